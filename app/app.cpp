@@ -1,0 +1,138 @@
+#include "app/app.h"
+
+#include <cstdlib>
+#include <iostream>
+#include <sys/stat.h>
+
+#include "app/commands.h"
+#include "renderer/mesh.h"
+
+#ifndef WARPLAB_DEFAULT_DATA_DIR
+#define WARPLAB_DEFAULT_DATA_DIR "."
+#endif
+#ifndef WARPLAB_VERSION
+#define WARPLAB_VERSION "0"
+#endif
+
+namespace warplab::app {
+namespace {
+
+bool isDirectory(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+std::string overview() {
+    std::string text =
+        "warplab " WARPLAB_VERSION
+        " -- user studies of frame-rate upconversion and latency in interactive 3D\n\n"
+        "usage: warplab <command> [options]    (warplab <command> --help for its options)\n\ncommands:\n";
+    for (const auto& c : commands()) {
+        std::string name = "  " + c.spec.name;
+        name.resize(12, ' ');
+        text += name + c.spec.summary.substr(0, c.spec.summary.find('\n')) + "\n";
+    }
+    return text;
+}
+
+}  // namespace
+
+OptionSpec glOption(const std::string& defaultBackend) {
+    return {"gl", "osmesa|egl|window",
+            "OpenGL context: headless Mesa (osmesa), headless EGL (a GPU where there is one), or an SDL window",
+            defaultBackend};
+}
+
+OptionSpec dataDirOption() {
+    return {"data-dir", "DIR", "folder holding shaders/ and assets/", "$WARPLAB_DATA_DIR or the source tree"};
+}
+
+renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback) {
+    if (!args.has("gl")) return fallback;
+    try {
+        return renderer::parseBackend(args.string("gl"));
+    } catch (const renderer::ContextError& e) {
+        throw UsageError(std::string("option --gl: ") + e.what());
+    }
+}
+
+renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
+    std::string root = WARPLAB_DEFAULT_DATA_DIR;
+    if (const char* env = std::getenv("WARPLAB_DATA_DIR"); env != nullptr && *env != '\0') root = env;
+    if (args.has("data-dir")) root = args.string("data-dir");
+    renderer::DataPaths paths{root + "/shaders", root + "/assets"};
+    if (!isDirectory(paths.shaderDir))
+        throw renderer::AssetError("cannot find warplab's shaders: '" + paths.shaderDir +
+                                   "' is not a folder (set --data-dir or WARPLAB_DATA_DIR)");
+    return paths;
+}
+
+const std::vector<Command>& commands() {
+    static const std::vector<Command> list = {
+        {{"info",
+          "Print the vendor, renderer and version of the OpenGL context a backend gives.",
+          "warplab info [--gl osmesa|egl|window]",
+          {glOption("osmesa")}},
+         &runInfo},
+        {{"render",
+          "Render one frame of the shooter scene headlessly and write it as PNG; optionally the\n"
+          "depth, object-id and velocity buffers as false-colour PNGs and as raw PFM images.",
+          "warplab render [--time T] [--out frame.png] [options]",
+          {
+              {"time", "SECONDS", "scene time of the frame", "0"},
+              {"yaw", "DEGREES", "camera yaw, positive turns right", "0"},
+              {"pitch", "DEGREES", "camera pitch, positive looks up", "0"},
+              {"aim-at-target", "", "turn the camera to the target's centre (overrides --yaw/--pitch)", ""},
+              {"fov", "DEGREES", "vertical field of view", "60"},
+              {"width", "PIXELS", "image width, 1..16384", "640"},
+              {"height", "PIXELS", "image height, 1..16384", "360"},
+              {"seed", "N", "target spawn seed", "1"},
+              {"speed", "M/S", "target speed", "2"},
+              {"out", "PATH", "colour image (PNG)", "frame.png"},
+              {"depth", "PATH", "false-colour depth image (PNG)", ""},
+              {"ids", "PATH", "false-colour object-id image (PNG)", ""},
+              {"velocity", "PATH", "false-colour velocity image (PNG)", ""},
+              {"raw", "PREFIX", "also write PREFIX-depth.pfm (window depth), PREFIX-ids.pfm, PREFIX-velocity.pfm",
+               ""},
+              {"show", "SECONDS", "with --gl window: keep the window open this long", "0"},
+              glOption("osmesa"),
+              dataDirOption(),
+          }},
+         &runRender},
+    };
+    return list;
+}
+
+int run(const std::vector<std::string>& args) {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        std::cout << overview();
+        return args.empty() ? 2 : 0;
+    }
+    if (args[0] == "--version") {
+        std::cout << "warplab " WARPLAB_VERSION "\n";
+        return 0;
+    }
+    const Command* command = nullptr;
+    for (const auto& c : commands())
+        if (c.spec.name == args[0]) command = &c;
+    if (command == nullptr) {
+        std::cerr << "warplab: unknown command '" << args[0] << "' (see warplab --help)\n";
+        return 2;
+    }
+    try {
+        const ParsedArgs parsed = parseArgs(command->spec, {args.begin() + 1, args.end()});
+        if (parsed.has("help")) {
+            std::cout << helpText(command->spec);
+            return 0;
+        }
+        return command->run(parsed);
+    } catch (const UsageError& e) {
+        std::cerr << "warplab: " << e.what() << " (see warplab " << command->spec.name << " --help)\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "warplab " << command->spec.name << ": " << e.what() << "\n";
+        return 1;
+    }
+}
+
+}  // namespace warplab::app

@@ -1,0 +1,103 @@
+#include "app/cli.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace warplab::app {
+
+std::string ParsedArgs::string(const std::string& name, const std::string& fallback) const {
+    const auto it = values_.find(name);
+    return it == values_.end() ? fallback : it->second;
+}
+
+double ParsedArgs::number(const std::string& name, double fallback) const {
+    const auto it = values_.find(name);
+    if (it == values_.end()) return fallback;
+    const char* text = it->second.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double value = std::strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a number, got '" +
+                         it->second + "'");
+    return value;
+}
+
+long long ParsedArgs::integer(const std::string& name, long long fallback, long long min, long long max) const {
+    const auto it = values_.find(name);
+    long long value = fallback;
+    if (it != values_.end()) {
+        const char* text = it->second.c_str();
+        char* end = nullptr;
+        errno = 0;
+        value = std::strtoll(text, &end, 10);
+        if (end == text || *end != '\0' || errno == ERANGE)
+            throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs an integer, got '" +
+                             it->second + "'");
+    }
+    if (value < min || value > max)
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' must be between " +
+                         std::to_string(min) + " and " + std::to_string(max) + ", got " + std::to_string(value));
+    return value;
+}
+
+ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args) {
+    ParsedArgs parsed;
+    parsed.commandName_ = spec.name;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (arg == "--help" || arg == "-h") {
+            parsed.values_["help"] = "";
+            continue;
+        }
+        if (arg.rfind("--", 0) != 0 || arg.size() == 2) {
+            if (spec.allowPositional && (arg.empty() || arg[0] != '-')) {
+                parsed.positional_.push_back(arg);
+                continue;
+            }
+            throw UsageError("unexpected argument '" + arg + "' for 'warplab " + spec.name + "'");
+        }
+        std::string name = arg.substr(2);
+        std::optional<std::string> inlineValue;
+        if (const auto eq = name.find('='); eq != std::string::npos) {
+            inlineValue = name.substr(eq + 1);
+            name = name.substr(0, eq);
+        }
+        const OptionSpec* option = nullptr;
+        for (const auto& o : spec.options)
+            if (o.name == name) option = &o;
+        if (option == nullptr) throw UsageError("unknown option '--" + name + "' for 'warplab " + spec.name + "'");
+        if (option->valueName.empty()) {
+            if (inlineValue) throw UsageError("option --" + name + " of 'warplab " + spec.name + "' takes no value");
+            parsed.values_[name] = "";
+        } else if (inlineValue) {
+            parsed.values_[name] = *inlineValue;
+        } else {
+            if (i + 1 >= args.size())
+                throw UsageError("option --" + name + " of 'warplab " + spec.name + "' needs a value (" +
+                                 option->valueName + ")");
+            parsed.values_[name] = args[++i];
+        }
+    }
+    return parsed;
+}
+
+std::string helpText(const CommandSpec& spec) {
+    std::ostringstream out;
+    out << "usage: " << spec.usage << "\n\n" << spec.summary << "\n";
+    if (!spec.options.empty()) out << "\noptions:\n";
+    for (const auto& o : spec.options) {
+        std::string left = "  --" + o.name + (o.valueName.empty() ? "" : " " + o.valueName);
+        if (left.size() < 26) left.resize(26, ' ');
+        else left += "\n" + std::string(26, ' ');
+        out << left << o.help;
+        if (!o.defaultValue.empty()) out << " (default " << o.defaultValue << ")";
+        out << "\n";
+    }
+    out << "  --help                  show this text\n";
+    return out.str();
+}
+
+}  // namespace warplab::app

@@ -1,0 +1,56 @@
+// A small command-line parser: each subcommand declares its options; anything else is a
+// usage error naming the offending argument. Kept in-house because the project needs only
+// "--name value" and "--flag" forms plus generated --help text.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace warplab::app {
+
+// Wrong command line: the message is shown with a pointer to --help, exit status 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct OptionSpec {
+    std::string name;       // without the leading "--"
+    std::string valueName;  // empty for a flag
+    std::string help;
+    std::string defaultValue;  // shown in --help; empty = none
+};
+
+struct CommandSpec {
+    std::string name;
+    std::string summary;
+    std::string usage;  // e.g. "warplab render [options]"
+    std::vector<OptionSpec> options;
+    bool allowPositional = false;
+};
+
+class ParsedArgs {
+public:
+    bool has(const std::string& name) const { return values_.count(name) != 0; }
+    bool flag(const std::string& name) const { return has(name); }
+    std::string string(const std::string& name, const std::string& fallback = "") const;
+    double number(const std::string& name, double fallback) const;
+    // An integer in [min, max]; UsageError naming the option otherwise.
+    long long integer(const std::string& name, long long fallback, long long min, long long max) const;
+    const std::vector<std::string>& positional() const { return positional_; }
+
+private:
+    friend ParsedArgs parseArgs(const CommandSpec&, const std::vector<std::string>&);
+    std::string commandName_;
+    std::map<std::string, std::string> values_;
+    std::vector<std::string> positional_;
+};
+
+// Parses args (after the subcommand name). "--help" is reported by has("help").
+ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args);
+std::string helpText(const CommandSpec& spec);
+
+}  // namespace warplab::app

@@ -1,0 +1,108 @@
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <thread>
+
+#include "app/commands.h"
+#include "game/shooter_scene.h"
+
+namespace warplab::app {
+namespace {
+
+// Linear eye-space distance from window depth, for the false-colour depth image.
+renderer::ImageF linearDepth(const renderer::ImageF& windowDepth, float nearPlane, float farPlane) {
+    renderer::ImageF out = windowDepth;
+    for (float& d : out.data) {
+        const float ndc = 2.0f * d - 1.0f;
+        d = 2.0f * nearPlane * farPlane / (farPlane + nearPlane - ndc * (farPlane - nearPlane));
+    }
+    return out;
+}
+
+renderer::ImageF idsAsFloat(const renderer::ImageU32& ids) {
+    renderer::ImageF out;
+    out.width = ids.width;
+    out.height = ids.height;
+    out.channels = 1;
+    out.data.assign(ids.data.begin(), ids.data.end());
+    return out;
+}
+
+}  // namespace
+
+int runRender(const ParsedArgs& args) {
+    const int width = static_cast<int>(args.integer("width", 640, 1, 16384));
+    const int height = static_cast<int>(args.integer("height", 360, 1, 16384));
+    const double time = args.number("time", 0.0);
+    const double fov = args.number("fov", 60.0);
+    if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov must be between 1 and 179 degrees");
+    const double speed = args.number("speed", 2.0);
+    if (speed < 0.0) throw UsageError("option --speed must not be negative");
+    const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
+    const double show = args.number("show", 0.0);
+    const renderer::DataPaths paths = dataPathsFrom(args);
+
+    game::ShooterSceneConfig config;
+    config.verticalFovDeg = static_cast<float>(fov);
+    config.aspect = static_cast<double>(width) / height;
+    config.targetSpeed = speed;
+    config.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, (1LL << 62)));
+    const game::ShooterScene shooter(config);
+
+    scene::FrameDescription frame;
+    frame.camera = shooter.restingCamera();
+    frame.scene = shooter.snapshot(time);
+    if (args.flag("aim-at-target")) {
+        const glm::vec3 toTarget = frame.scene.objects.front().position - frame.camera.eye;
+        frame.camera.yaw = std::atan2(toTarget.x, -toTarget.z);
+        frame.camera.pitch = std::asin(toTarget.y / glm::length(toTarget));
+    } else {
+        frame.camera.yaw = static_cast<float>(args.number("yaw", 0.0) * M_PI / 180.0);
+        frame.camera.pitch = static_cast<float>(args.number("pitch", 0.0) * M_PI / 180.0);
+    }
+
+    renderer::ContextOptions options;
+    options.backend = backend;
+    options.width = width;
+    options.height = height;
+    options.title = "warplab render";
+    const auto context = renderer::createContext(options);
+    renderer::ConventionalRenderer conventional(paths);
+    renderer::GBuffer gbuffer(width, height);
+    conventional.render(frame, gbuffer);
+    const renderer::GBufferImages images = renderer::readBack(gbuffer);
+
+    const std::string out = args.string("out", "frame.png");
+    if (context->hasWindow()) {
+        // The window shows the G-buffer's colour; what we save is the window's own pixels.
+        const int dw = context->drawableWidth(), dh = context->drawableHeight();
+        renderer::blitToDefaultFramebuffer(gbuffer, dw, dh);
+        renderer::writePng(out, renderer::readDefaultFramebuffer(dw, dh));
+        context->swapBuffers();
+        const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(show);
+        while (std::chrono::steady_clock::now() < until && context->pumpEvents())
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    } else {
+        renderer::writePng(out, images.colour);
+    }
+    std::cout << "wrote " << out << " (" << width << "x" << height << ", t=" << time << " s, "
+              << context->info().renderer << ")\n";
+
+    const scene::CameraState& cam = frame.camera;
+    if (args.has("depth"))
+        renderer::writePng(args.string("depth"), renderer::depthFalseColour(linearDepth(images.depth, cam.nearPlane, cam.farPlane),
+                                                                            cam.nearPlane, cam.farPlane));
+    if (args.has("ids")) renderer::writePng(args.string("ids"), renderer::idFalseColour(images.ids));
+    if (args.has("velocity"))
+        renderer::writePng(args.string("velocity"),
+                           renderer::velocityFalseColour(images.velocity, static_cast<float>(std::max(speed, 1e-3))));
+    if (args.has("raw")) {
+        const std::string prefix = args.string("raw");
+        renderer::writePfm(prefix + "-depth.pfm", images.depth);
+        renderer::writePfm(prefix + "-ids.pfm", idsAsFloat(images.ids));
+        renderer::writePfm(prefix + "-velocity.pfm", images.velocity);
+    }
+    return 0;
+}
+
+}  // namespace warplab::app

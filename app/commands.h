@@ -1,0 +1,30 @@
+// Private to app/: one function per subcommand, and what they share.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "renderer/context.h"
+#include "renderer/conventional.h"
+
+namespace warplab::app {
+
+struct Command {
+    CommandSpec spec;
+    int (*run)(const ParsedArgs& args);
+};
+
+const std::vector<Command>& commands();
+
+int runInfo(const ParsedArgs& args);
+int runRender(const ParsedArgs& args);
+
+// Shared option helpers.
+OptionSpec glOption(const std::string& defaultBackend);
+OptionSpec dataDirOption();
+renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback);
+// shaders/ and assets/ under --data-dir, else $WARPLAB_DATA_DIR, else the build's source tree.
+renderer::DataPaths dataPathsFrom(const ParsedArgs& args);
+
+}  // namespace warplab::app

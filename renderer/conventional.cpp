@@ -1,0 +1,300 @@
+#include "renderer/conventional.h"
+
+#include <stdexcept>
+
+#include <algorithm>
+#include <cstddef>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "renderer/gbuffer_gl.h"
+#include "renderer/gl/check.h"
+#include "renderer/gl/program.h"
+#include "renderer/mesh.h"
+#include "scene/camera.h"
+#include "scene/hangar_layout.h"
+
+namespace warplab::renderer {
+
+// ---------------------------------------------------------------------------- GBuffer
+
+namespace {
+
+constexpr int kMaxSize = 16384;
+
+gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int width, int height) {
+    gl::Texture texture = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, texture.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, width, height, 0, format, type, nullptr);
+    // Later passes fetch texels exactly (texelFetch) or sample colour bilinearly; never mipmaps.
+    const GLint filter = (format == GL_RGBA_INTEGER || format == GL_RED_INTEGER) ? GL_NEAREST : GL_LINEAR;
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+}  // namespace
+
+GBuffer::GBuffer(int width, int height) : impl_(std::make_unique<Impl>()) {
+    if (width < 1 || height < 1 || width > kMaxSize || height > kMaxSize)
+        throw std::invalid_argument("GBuffer: size " + std::to_string(width) + "x" + std::to_string(height) +
+                                    " is outside 1..16384");
+    impl_->width = width;
+    impl_->height = height;
+    impl_->colour = makeTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    impl_->depth = makeTexture(GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, width, height);
+    impl_->ids = makeTexture(GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, width, height);
+    impl_->velocity = makeTexture(GL_RGBA32F, GL_RGBA, GL_FLOAT, width, height);
+    impl_->framebuffer = gl::Framebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, impl_->framebuffer.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, Impl::kColourAttachment, GL_TEXTURE_2D, impl_->colour.id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, Impl::kIdAttachment, GL_TEXTURE_2D, impl_->ids.id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, Impl::kVelocityAttachment, GL_TEXTURE_2D, impl_->velocity.id(), 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, impl_->depth.id(), 0);
+    const GLenum buffers[] = {Impl::kColourAttachment, Impl::kIdAttachment, Impl::kVelocityAttachment};
+    glDrawBuffers(3, buffers);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkErrors("creating the G-buffer");
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw gl::GlError("GBuffer: the driver rejects the colour/id/velocity/depth framebuffer (status 0x" +
+                          std::to_string(status) + ")");
+}
+
+GBuffer::~GBuffer() = default;
+GBuffer::GBuffer(GBuffer&&) noexcept = default;
+GBuffer& GBuffer::operator=(GBuffer&&) noexcept = default;
+int GBuffer::width() const { return impl_->width; }
+int GBuffer::height() const { return impl_->height; }
+
+GBufferImages readBack(const GBuffer& gbuffer) {
+    const auto& g = gbuffer.impl();
+    GBufferImages out;
+    const int w = g.width, h = g.height;
+    const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+
+    out.colour.width = w;
+    out.colour.height = h;
+    out.colour.pixels.resize(4 * n);
+    glReadBuffer(GBuffer::Impl::kColourAttachment);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.colour.pixels.data());
+
+    out.ids.width = w;
+    out.ids.height = h;
+    out.ids.data.resize(n);
+    glReadBuffer(GBuffer::Impl::kIdAttachment);
+    glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data.data());
+
+    out.velocity.width = w;
+    out.velocity.height = h;
+    out.velocity.channels = 3;
+    out.velocity.data.resize(3 * n);
+    glReadBuffer(GBuffer::Impl::kVelocityAttachment);
+    glReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, out.velocity.data.data());
+
+    out.depth.width = w;
+    out.depth.height = h;
+    out.depth.channels = 1;
+    out.depth.data.resize(n);
+    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data.data());
+
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::checkErrors("reading back the G-buffer");
+    // GL rows are bottom-up; every image outside the renderer is top-down.
+    flipVertically(out.colour);
+    flipVertically(out.ids);
+    flipVertically(out.velocity);
+    flipVertically(out.depth);
+    return out;
+}
+
+void blitToDefaultFramebuffer(const GBuffer& gbuffer, int drawableWidth, int drawableHeight) {
+    const auto& g = gbuffer.impl();
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
+    glReadBuffer(GBuffer::Impl::kColourAttachment);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glDrawBuffer(GL_BACK);
+    const GLenum filter = (drawableWidth == g.width && drawableHeight == g.height) ? GL_NEAREST : GL_LINEAR;
+    glBlitFramebuffer(0, 0, g.width, g.height, 0, 0, drawableWidth, drawableHeight, GL_COLOR_BUFFER_BIT, filter);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkErrors("copying the frame to the window");
+}
+
+ImageRGBA8 readDefaultFramebuffer(int width, int height) {
+    ImageRGBA8 image;
+    image.width = width;
+    image.height = height;
+    image.pixels.resize(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+    gl::checkErrors("reading the window's framebuffer");
+    flipVertically(image);
+    return image;
+}
+
+// ----------------------------------------------------------------- ConventionalRenderer
+
+namespace {
+
+// A mesh on the GPU: interleaved MeshVertex records, drawn as a triangle list.
+struct GpuMesh {
+    gl::VertexArray vao;
+    gl::Buffer vbo;
+    GLsizei vertexCount = 0;
+};
+
+GpuMesh upload(const MeshData& mesh) {
+    GpuMesh gpu;
+    gpu.vao = gl::VertexArray::create();
+    gpu.vbo = gl::Buffer::create();
+    glBindVertexArray(gpu.vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, gpu.vbo.id());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
+    const auto stride = static_cast<GLsizei>(sizeof(MeshVertex));
+    auto attrib = [&](GLuint index, GLint size, std::size_t offset) {
+        glEnableVertexAttribArray(index);
+        glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+    };
+    attrib(0, 3, offsetof(MeshVertex, position));
+    attrib(1, 3, offsetof(MeshVertex, normal));
+    attrib(2, 3, offsetof(MeshVertex, diffuse));
+    attrib(3, 4, offsetof(MeshVertex, specular));
+    glBindVertexArray(0);
+    gpu.vertexCount = static_cast<GLsizei>(mesh.vertices.size());
+    gl::checkErrors("uploading a mesh");
+    return gpu;
+}
+
+// Ceiling lamps between the ribs, plus one near the far door; positions shared with the
+// shader through uniforms. Few enough that llvmpipe stays fast at full HD.
+struct Lamp {
+    glm::vec3 position;
+    glm::vec3 colour;
+};
+
+std::vector<Lamp> hangarLamps() {
+    using L = scene::HangarLayout;
+    std::vector<Lamp> lamps;
+    for (int i = 0; i < L::kRibCount; ++i) {
+        const float z = L::kFirstRibZ + L::kRibSpacing * 0.5f - L::kRibSpacing * static_cast<float>(i);
+        lamps.push_back({{0.0f, L::kClearMaxY - 0.3f, z}, {0.9f, 0.92f, 1.0f}});
+    }
+    lamps.push_back({{0.0f, L::kClearMaxY - 0.3f, L::kBackZ - 1.0f}, {0.9f, 0.92f, 1.0f}});
+    return lamps;
+}
+
+constexpr int kMaxLamps = 16;  // matches MAX_LAMPS in conventional.frag
+
+}  // namespace
+
+struct ConventionalRenderer::Impl {
+    ShadingOptions shading;
+    gl::Program program;
+    GpuMesh hangar;
+    GpuMesh sphere;
+    GpuMesh box;
+    std::vector<Lamp> lamps;
+    struct Uniforms {
+        GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
+            panelPattern, lampCount, lampPosition, lampColour;
+    } u{};
+};
+
+ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOptions shading)
+    : impl_(std::make_unique<Impl>()) {
+    auto& m = *impl_;
+    m.shading = shading;
+    m.program = gl::buildProgram({paths.shaderDir,
+                                  {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag"}},
+                                  {"MAX_LAMPS " + std::to_string(kMaxLamps)}});
+    const auto& p = m.program;
+    m.u = {gl::uniform(p, "uModel"),          gl::uniform(p, "uNormalMatrix"),   gl::uniform(p, "uViewProjection"),
+           gl::uniform(p, "uObjectId"),       gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
+           gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),            gl::uniform(p, "uTint"),
+           gl::uniform(p, "uPanelPattern"),   gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
+           gl::uniform(p, "uLampColour")};
+    m.hangar = upload(loadObj(paths.assetDir + "/hangar.obj"));
+    m.sphere = upload(makeUnitSphere(64, 32));
+    m.box = upload(makeUnitBox());
+    m.lamps = hangarLamps();
+}
+
+ConventionalRenderer::~ConventionalRenderer() = default;
+
+void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer& target) {
+    auto& m = *impl_;
+    auto& g = target.impl();
+    glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
+    glViewport(0, 0, g.width, g.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+
+    // Space beyond the far door: a dark blue-black, no id, no motion, depth at the far plane.
+    const GLfloat sky[4] = {0.02f, 0.025f, 0.05f, 1.0f};
+    const GLuint noId[4] = {scene::kIdNone, 0, 0, 0};
+    const GLfloat still[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, sky);
+    glClearBufferuiv(GL_COLOR, 1, noId);
+    glClearBufferfv(GL_COLOR, 2, still);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+
+    const float aspect = static_cast<float>(g.width) / static_cast<float>(g.height);
+    const glm::mat4 viewProjection =
+        scene::projectionMatrix(frame.camera, aspect) * scene::viewMatrix(frame.camera);
+
+    glUseProgram(m.program.id());
+    glUniformMatrix4fv(m.u.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
+    glUniform3fv(m.u.eye, 1, glm::value_ptr(frame.camera.eye));
+    const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
+    glUniform1i(m.u.lampCount, lampCount);
+    std::vector<glm::vec3> positions, colours;
+    for (int i = 0; i < lampCount; ++i) {
+        positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);
+        colours.push_back(m.lamps[static_cast<std::size_t>(i)].colour);
+    }
+    glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
+    glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
+
+    auto draw = [&](const GpuMesh& mesh, const glm::mat4& model, std::uint32_t id, const glm::vec3& centre,
+                    const glm::vec3& velocity, const glm::vec3& angular, const glm::vec3& tint, bool pattern) {
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
+        glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(model));
+        glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        glUniform1ui(m.u.objectId, id);
+        glUniform3fv(m.u.centre, 1, glm::value_ptr(centre));
+        glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(velocity));
+        glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(angular));
+        glUniform3fv(m.u.tint, 1, glm::value_ptr(tint));
+        glUniform1i(m.u.panelPattern, pattern ? 1 : 0);
+        glBindVertexArray(mesh.vao.id());
+        glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount);
+    };
+
+    draw(m.hangar, glm::mat4(1.0f), scene::kIdHangar, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f),
+         glm::vec3(1.0f), m.shading.panelPattern);
+    for (const auto& object : frame.scene.objects) {
+        const glm::mat4 model = glm::translate(glm::mat4(1.0f), object.position) * glm::mat4_cast(object.orientation) *
+                                glm::scale(glm::mat4(1.0f), object.shape == scene::Shape::Sphere
+                                                                ? glm::vec3(object.halfExtents.x)
+                                                                : object.halfExtents);
+        draw(object.shape == scene::Shape::Sphere ? m.sphere : m.box, model, object.id, object.position,
+             object.velocity, object.angularVelocity, object.colour, false);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkErrors("rendering a conventional frame");
+}
+
+}  // namespace warplab::renderer

@@ -1,0 +1,79 @@
+// The conventional renderer (seed 004 section 5.2.3): Phong shading of the hangar and the
+// moving objects into an offscreen G-buffer with four attachments -- colour, depth, object id
+// and world-space velocity per fragment -- which later passes (warp, reprojection, HUD, the
+// window blit, readback) consume.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "renderer/image.h"
+#include "scene/scene.h"
+
+namespace warplab::renderer {
+
+// Where shaders/ and assets/ are found at run time.
+struct DataPaths {
+    std::string shaderDir;
+    std::string assetDir;
+};
+
+// Offscreen frame buffer: RGBA8 colour, 32-bit float depth, R32UI object id, RGBA32F velocity
+// (xyz used). Owns GL objects, so create and destroy it while the context is current.
+class GBuffer {
+public:
+    GBuffer(int width, int height);  // throws std::invalid_argument outside 1..16384
+    ~GBuffer();
+    GBuffer(GBuffer&&) noexcept;
+    GBuffer& operator=(GBuffer&&) noexcept;
+
+    int width() const;
+    int height() const;
+
+    struct Impl;  // GL side, see renderer/gbuffer_gl.h (renderer-private)
+    Impl& impl() { return *impl_; }
+    const Impl& impl() const { return *impl_; }
+
+private:
+    std::unique_ptr<Impl> impl_;
+};
+
+// The G-buffer read back into plain images, rows top-down.
+struct GBufferImages {
+    ImageRGBA8 colour;
+    ImageF depth;     // window-space depth in [0, 1] as stored; 1 = far plane / sky
+    ImageU32 ids;     // scene::ObjectId per pixel, 0 where nothing was drawn
+    ImageF velocity;  // 3 channels, world-space m/s
+};
+
+GBufferImages readBack(const GBuffer& gbuffer);
+
+// Shading parameters. Defaults are the study scene's.
+struct ShadingOptions {
+    // The hangar's panel seams: detail that makes reprojection errors visible in the metrics.
+    bool panelPattern = true;
+};
+
+class ConventionalRenderer {
+public:
+    // Loads the hangar model and builds the shader programs; throws AssetError or
+    // gl::GlError with a message naming the file.
+    explicit ConventionalRenderer(const DataPaths& paths, ShadingOptions shading = {});
+    ~ConventionalRenderer();
+    ConventionalRenderer(const ConventionalRenderer&) = delete;
+    ConventionalRenderer& operator=(const ConventionalRenderer&) = delete;
+
+    void render(const scene::FrameDescription& frame, GBuffer& target);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Copies a G-buffer's colour to the window's default framebuffer, scaled to fit.
+void blitToDefaultFramebuffer(const GBuffer& gbuffer, int drawableWidth, int drawableHeight);
+
+// Reads the window's back buffer (what the next swap shows): the window's screenshot.
+ImageRGBA8 readDefaultFramebuffer(int width, int height);
+
+}  // namespace warplab::renderer

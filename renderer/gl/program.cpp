@@ -1,0 +1,106 @@
+#include "renderer/gl/program.h"
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "renderer/gl/check.h"
+
+namespace warplab::gl {
+namespace {
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw GlError("cannot read shader file '" + path + "'");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// Keeps the file's own #version line first, injects the defines, then a #line so that
+// the driver's line numbers are the file's line numbers again.
+std::string withDefines(const std::string& source, const std::vector<std::string>& defines,
+                        const std::string& path) {
+    const auto versionPos = source.find("#version");
+    if (versionPos == std::string::npos)
+        throw GlError("shader file '" + path + "' has no #version line");
+    const auto lineEnd = source.find('\n', versionPos);
+    if (lineEnd == std::string::npos) throw GlError("shader file '" + path + "' has no body");
+    int versionLine = 1;
+    for (std::size_t i = 0; i < versionPos; ++i)
+        if (source[i] == '\n') ++versionLine;
+    std::string out = source.substr(0, lineEnd + 1);
+    for (const auto& d : defines) out += "#define " + d + "\n";
+    // "#line N 0": the next line is line N of source string 0, the only string we pass.
+    out += "#line " + std::to_string(versionLine + 1) + " 0\n";
+    out += source.substr(lineEnd + 1);
+    return out;
+}
+
+// Mesa prints "0:12(5): error: ...", NVIDIA "0(12) : error ..."; both become "file:12: ...".
+std::string nameFileInLog(const std::string& log, const std::string& path) {
+    static const std::regex mesa(R"((^|\n)0:(\d+)\((\d+)\):)");
+    static const std::regex nvidia(R"((^|\n)0\((\d+)\) ?:)");
+    std::string out = std::regex_replace(log, mesa, "$1" + path + ":$2:$3:");
+    out = std::regex_replace(out, nvidia, "$1" + path + ":$2:");
+    return out;
+}
+
+const char* stageName(GLenum stage) {
+    switch (stage) {
+        case GL_VERTEX_SHADER: return "vertex";
+        case GL_FRAGMENT_SHADER: return "fragment";
+        case GL_GEOMETRY_SHADER: return "geometry";
+        case GL_TESS_CONTROL_SHADER: return "tessellation control";
+        case GL_TESS_EVALUATION_SHADER: return "tessellation evaluation";
+        default: return "unknown-stage";
+    }
+}
+
+}  // namespace
+
+Program buildProgram(const ProgramDesc& desc) {
+    std::vector<Shader> shaders;
+    std::string names;
+    for (const auto& stage : desc.stages) {
+        const std::string path = desc.shaderDir + "/" + stage.file;
+        const std::string source = withDefines(readFile(path), desc.defines, path);
+        Shader shader = Shader::create(stage.stage);
+        const char* text = source.c_str();
+        glShaderSource(shader.id(), 1, &text, nullptr);
+        glCompileShader(shader.id());
+        GLint ok = GL_FALSE;
+        glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
+        if (ok != GL_TRUE) {
+            GLint length = 0;
+            glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
+            std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
+            glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
+            throw GlError(std::string(stageName(stage.stage)) + " shader '" + path +
+                          "' failed to compile:\n" + nameFileInLog(log.c_str(), path));
+        }
+        names += (names.empty() ? "" : " + ") + stage.file;
+        shaders.push_back(std::move(shader));
+    }
+    Program program = Program::create();
+    for (const auto& s : shaders) glAttachShader(program.id(), s.id());
+    glLinkProgram(program.id());
+    for (const auto& s : shaders) glDetachShader(program.id(), s.id());
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        GLint length = 0;
+        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
+        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
+        throw GlError("shader program " + names + " failed to link: " + log.c_str());
+    }
+    checkErrors(("building shader program " + names).c_str());
+    return program;
+}
+
+GLint uniform(const Program& program, const char* name) {
+    return glGetUniformLocation(program.id(), name);
+}
+
+}  // namespace warplab::gl

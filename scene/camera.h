@@ -1,0 +1,20 @@
+// Camera maths shared by the renderer (matrices), physics (fitting the target plane) and
+// scoring (the aim ray). Plain GLM, no GL.
+#pragma once
+
+#include "scene/scene.h"
+
+namespace warplab::scene {
+
+// Unit view direction for a yaw/pitch (see CameraState for the convention).
+glm::vec3 forwardDirection(float yaw, float pitch);
+
+glm::mat4 viewMatrix(const CameraState& camera);
+// OpenGL clip convention (z in [-1, 1]), aspect = width / height.
+glm::mat4 projectionMatrix(const CameraState& camera, float aspect);
+
+// Direction of the ray through a point of the image, given in normalised device coordinates
+// (x, y in [-1, 1], y up). (0, 0) is the reticle.
+glm::vec3 rayDirection(const CameraState& camera, float aspect, glm::vec2 ndc);
+
+}  // namespace warplab::scene
