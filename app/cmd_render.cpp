@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iostream>
@@ -89,9 +90,16 @@ int runRender(const ParsedArgs& args) {
               << context->info().renderer << ")\n";
 
     const scene::CameraState& cam = frame.camera;
-    if (args.has("depth"))
-        renderer::writePng(args.string("depth"), renderer::depthFalseColour(linearDepth(images.depth, cam.nearPlane, cam.farPlane),
-                                                                            cam.nearPlane, cam.farPlane));
+    if (args.has("depth")) {
+        // The ramp spans the nearest to the farthest geometry in view, not the whole frustum,
+        // so the hallway's depth structure is visible; the far plane (sky) stays black.
+        const renderer::ImageF distance = linearDepth(images.depth, cam.nearPlane, cam.farPlane);
+        float farthest = cam.nearPlane * 2.0f;
+        for (std::size_t i = 0; i < distance.data.size(); ++i)
+            if (images.depth.data[i] < 1.0f) farthest = std::max(farthest, distance.data[i]);
+        renderer::writePng(args.string("depth"),
+                           renderer::depthFalseColour(distance, cam.nearPlane, std::min(farthest * 1.001f, cam.farPlane)));
+    }
     if (args.has("ids")) renderer::writePng(args.string("ids"), renderer::idFalseColour(images.ids));
     if (args.has("velocity"))
         renderer::writePng(args.string("velocity"),

@@ -1,7 +1,9 @@
 #include "renderer/mesh.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include <tiny_obj_loader.h>
 
@@ -17,6 +19,29 @@ void computeBounds(MeshData& mesh) {
     }
 }
 
+// tinyobjloader reads an unparsable coordinate ("nan", "1,5", "x") as 0 without a word; a
+// model silently squashed to the origin is worse than a refusal, so check v/vn lines first.
+void checkCoordinates(const std::string& path) {
+    std::ifstream in(path);
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+        if (line.rfind("v ", 0) != 0 && line.rfind("vn ", 0) != 0) continue;
+        std::istringstream fields(line);
+        std::string tag, token;
+        fields >> tag;
+        for (int i = 0; i < 3; ++i) {
+            if (!(fields >> token))
+                throw AssetError("cannot load model '" + path + "': line " + std::to_string(number) + " ('" + tag +
+                                 "') has fewer than 3 coordinates");
+            char* end = nullptr;
+            const double value = std::strtod(token.c_str(), &end);
+            if (end == token.c_str() || *end != '\0' || !std::isfinite(value))
+                throw AssetError("cannot load model '" + path + "': line " + std::to_string(number) +
+                                 " has coordinate '" + token + "', which is not a finite number");
+        }
+    }
+}
+
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
@@ -26,6 +51,7 @@ MeshData loadObj(const std::string& path) {
         std::ifstream probe(path);
         if (!probe) throw AssetError("cannot read model '" + path + "': file missing or unreadable");
     }
+    checkCoordinates(path);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;

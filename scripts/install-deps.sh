@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs everything warplab needs to build, run and test on Debian 12, with apt-get.
+# Run as root (or with sudo). Safe to run again.
+set -euo pipefail
+
+packages=(
+  # build
+  cmake g++ make pkg-config
+  # windowing, GL headers and loaders: SDL2 window, OSMesa and EGL headless contexts
+  libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core
+  libgl-dev libegl-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri mesa-common-dev
+  # libraries
+  libglm-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libsqlite3-dev
+  # tests: GoogleTest, a virtual X server for the window test
+  libgtest-dev xvfb xauth
+  # analysis scripts run with Debian's /usr/bin/python3 and these
+  python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

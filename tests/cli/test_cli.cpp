@@ -1,0 +1,179 @@
+// The `warplab` binary as a user meets it: bad command lines and bad data end in one clear
+// sentence naming the culprit and a non-zero exit, never a crash; good ones write files.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "renderer/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int status = -1;  // exit status, or 128 + signal
+    std::string output;  // stdout and stderr together
+    int lines() const {
+        int n = 0;
+        for (char c : output) n += c == '\n';
+        return n;
+    }
+};
+
+Result warplab(const std::string& arguments) {
+    const std::string command = std::string(WARPLAB_BINARY) + " " + arguments + " 2>&1";
+    Result result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) return result;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    return result;
+}
+
+std::string scratch(const std::string& name) {
+    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "cli" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+// A data folder with the real shaders and assets, to be broken one piece at a time.
+std::string copyOfData(const std::string& name) {
+    const std::string dir = scratch(name);
+    fs::copy(fs::path(WARPLAB_SOURCE_DIR) / "shaders", fs::path(dir) / "shaders", fs::copy_options::recursive);
+    fs::copy(fs::path(WARPLAB_SOURCE_DIR) / "assets", fs::path(dir) / "assets", fs::copy_options::recursive);
+    return dir;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(Cli, UnknownCommand) {
+    const auto r = warplab("frobnicate");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "unknown command 'frobnicate'")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+}
+
+TEST(Cli, UnknownOption) {
+    const auto r = warplab("render --frobnicate");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "unknown option '--frobnicate'")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+}
+
+TEST(Cli, MissingOptionValue) {
+    const auto r = warplab("render --time");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "--time")) << r.output;
+}
+
+TEST(Cli, BadSizesAreRefusedBeforeAnyContextIsMade) {
+    for (const std::string bad : {"--width 0", "--width -4", "--height 16385", "--width abc", "--height 1e3"}) {
+        const auto r = warplab("render " + bad + " --out /dev/null");
+        EXPECT_EQ(r.status, 2) << bad;
+        EXPECT_TRUE(contains(r.output, bad.substr(0, bad.find(' ')))) << bad << ": " << r.output;
+        EXPECT_EQ(r.lines(), 1) << r.output;
+    }
+}
+
+TEST(Cli, UnknownBackend) {
+    const auto r = warplab("info --gl vulkan");
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "unknown GL backend 'vulkan'")) << r.output;
+}
+
+TEST(Cli, HelpForEveryCommand) {
+    for (const std::string c : {"info", "render"}) {
+        const auto r = warplab(c + " --help");
+        EXPECT_EQ(r.status, 0) << c;
+        EXPECT_TRUE(contains(r.output, "usage: warplab " + c)) << r.output;
+        EXPECT_TRUE(contains(r.output, "--gl")) << r.output;
+    }
+    EXPECT_EQ(warplab("--help").status, 0);
+}
+
+TEST(Cli, InfoReportsACoreContextOfAtLeast41) {
+    for (const std::string backend : {"osmesa", "egl"}) {
+        const auto r = warplab("info --gl " + backend);
+        ASSERT_EQ(r.status, 0) << r.output;
+        EXPECT_TRUE(contains(r.output, "profile:  core 4.")) << r.output;
+        EXPECT_TRUE(contains(r.output, "renderer: ")) << r.output;
+    }
+}
+
+TEST(Cli, RenderWritesTheFrameAndBuffers) {
+    const std::string dir = scratch("render");
+    const auto r = warplab("render --time 1.0 --width 64 --height 36 --out " + dir + "/frame.png --depth " + dir +
+                           "/depth.png --ids " + dir + "/ids.png --velocity " + dir + "/velocity.png --raw " + dir +
+                           "/raw");
+    ASSERT_EQ(r.status, 0) << r.output;
+    for (const std::string f : {"frame.png", "depth.png", "ids.png", "velocity.png"}) {
+        const auto image = warplab::renderer::readPng(dir + "/" + f);
+        EXPECT_EQ(image.width, 64) << f;
+        EXPECT_EQ(image.height, 36) << f;
+    }
+    const auto depth = warplab::renderer::readPfm(dir + "/raw-depth.pfm");
+    EXPECT_EQ(depth.channels, 1);
+    EXPECT_EQ(warplab::renderer::readPfm(dir + "/raw-velocity.pfm").channels, 3);
+    EXPECT_EQ(warplab::renderer::readPfm(dir + "/raw-ids.pfm").width, 64);
+}
+
+TEST(Cli, UnwritableOutputIsNamed) {
+    const auto r = warplab("render --width 16 --height 16 --out /nonexistent-dir/frame.png");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "/nonexistent-dir/frame.png")) << r.output;
+}
+
+TEST(Cli, MissingShaderIsNamed) {
+    const std::string data = copyOfData("missing-shader");
+    fs::remove(fs::path(data) / "shaders" / "conventional.frag");
+    const auto r = warplab("render --width 16 --height 16 --out /dev/null --data-dir " + data);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, data + "/shaders/conventional.frag")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+}
+
+TEST(Cli, ShaderThatFailsToCompileNamesFileAndLine) {
+    const std::string data = copyOfData("broken-shader");
+    const std::string path = data + "/shaders/conventional.frag";
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto mainPos = text.find("void main() {");
+    ASSERT_NE(mainPos, std::string::npos);
+    int line = 1;
+    for (std::size_t i = 0; i < mainPos; ++i) line += text[i] == '\n';
+    text.insert(text.find('\n', mainPos) + 1, "    this is not glsl;\n");
+    std::ofstream(path) << text;
+    const auto r = warplab("render --width 16 --height 16 --out /dev/null --data-dir " + data);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, path + ":" + std::to_string(line + 1))) << r.output;
+}
+
+TEST(Cli, MissingOrMalformedModelIsNamed) {
+    const std::string data = copyOfData("bad-model");
+    const std::string obj = data + "/assets/hangar.obj";
+    fs::remove(obj);
+    auto r = warplab("render --width 16 --height 16 --out /dev/null --data-dir " + data);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, obj)) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+
+    for (const std::string& bad : {std::string("v 0 0 0\nv 1 0 0\nf 1 2 7\n"),  // face refers past the vertices
+                                   std::string("this is not an obj file\n"),       // no triangles at all
+                                   std::string("v 0 0 0\nv nan 1 0\nv 0 1 1\nf 1 2 3\n")}) {
+        std::ofstream(obj) << bad;
+        r = warplab("render --width 16 --height 16 --out /dev/null --data-dir " + data);
+        EXPECT_EQ(r.status, 1) << bad;
+        EXPECT_TRUE(contains(r.output, obj)) << bad << ": " << r.output;
+        EXPECT_LT(r.status, 128) << "crashed on " << bad;
+    }
+}
+
+}  // namespace

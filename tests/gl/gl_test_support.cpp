@@ -1,0 +1,95 @@
+#include "gl/gl_test_support.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+namespace warplab::testing {
+
+renderer::GlContext& glContext() {
+    static std::unique_ptr<renderer::GlContext> context = [] {
+        renderer::ContextOptions options;
+        const char* which = std::getenv("WARPLAB_TEST_GL");
+        options.backend = renderer::parseBackend(which && *which ? which : "osmesa");
+        options.visible = false;
+        options.width = 320;
+        options.height = 180;
+        return renderer::createContext(options);
+    }();
+    return *context;
+}
+
+renderer::DataPaths sourceDataPaths() {
+    return {std::string(WARPLAB_SOURCE_DIR) + "/shaders", std::string(WARPLAB_SOURCE_DIR) + "/assets"};
+}
+
+renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height) {
+    glContext();
+    static std::unique_ptr<renderer::ConventionalRenderer> conventional =
+        std::make_unique<renderer::ConventionalRenderer>(sourceDataPaths());
+    renderer::GBuffer gbuffer(width, height);
+    conventional->render(frame, gbuffer);
+    return renderer::readBack(gbuffer);
+}
+
+game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, double speed) {
+    game::ShooterSceneConfig config;
+    config.aspect = static_cast<double>(width) / height;
+    config.seed = seed;
+    config.targetSpeed = speed;
+    return game::ShooterScene(config);
+}
+
+scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point) {
+    const glm::vec3 d = point - camera.eye;
+    camera.yaw = std::atan2(d.x, -d.z);
+    camera.pitch = std::asin(d.y / glm::length(d));
+    return camera;
+}
+
+std::string testOutputDir() {
+    const char* env = std::getenv("WARPLAB_TEST_OUTPUT");
+    const std::string dir = env && *env ? env : std::string(WARPLAB_BINARY_DIR) + "/test-output";
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+::testing::AssertionResult imagesMatch(const renderer::ImageRGBA8& expected, const renderer::ImageRGBA8& actual,
+                                       const std::string& label, const ImageThresholds& t) {
+    if (expected.width != actual.width || expected.height != actual.height)
+        return ::testing::AssertionFailure() << label << ": size " << actual.width << "x" << actual.height
+                                             << " differs from the expected " << expected.width << "x"
+                                             << expected.height;
+    const auto diff = renderer::compareImages(expected, actual, t.pixelThreshold);
+    const double share = static_cast<double>(diff.pixelsOverThreshold) / (double(actual.width) * actual.height);
+    if (diff.meanChannelDiff <= t.mean && share <= t.maxShareOver) return ::testing::AssertionSuccess();
+    const std::string base = testOutputDir() + "/" + label;
+    renderer::writePng(base + ".actual.png", actual);
+    renderer::writePng(base + ".expected.png", expected);
+    renderer::writePng(base + ".diff.png", diff.diffImage);
+    return ::testing::AssertionFailure()
+           << label << ": mean channel difference " << diff.meanChannelDiff << " (limit " << t.mean << "), "
+           << diff.pixelsOverThreshold << " pixels over " << t.pixelThreshold << " = " << share * 100.0
+           << "% (limit " << t.maxShareOver * 100.0 << "%), max " << diff.maxChannelDiff << "; wrote " << base
+           << ".{actual,expected,diff}.png";
+}
+
+::testing::AssertionResult matchesReference(const std::string& name, const renderer::ImageRGBA8& actual,
+                                            const ImageThresholds& thresholds) {
+    const std::string path = std::string(WARPLAB_SOURCE_DIR) + "/tests/references/" + name + ".png";
+    const char* approve = std::getenv("WARPLAB_APPROVE");
+    if (approve != nullptr && std::string(approve) == "1") {
+        renderer::writePng(path, actual);
+        return ::testing::AssertionSuccess() << "approved " << path;
+    }
+    if (!std::filesystem::exists(path)) {
+        renderer::writePng(testOutputDir() + "/" + name + ".actual.png", actual);
+        return ::testing::AssertionFailure() << "no reference image " << path
+                                             << " (run scripts/approve-references.sh after checking "
+                                             << testOutputDir() << "/" << name << ".actual.png)";
+    }
+    return imagesMatch(renderer::readPng(path), actual, name, thresholds);
+}
+
+}  // namespace warplab::testing

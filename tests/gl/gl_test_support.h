@@ -1,0 +1,52 @@
+// Shared by the GL tests: one headless context per test binary, the source tree's data,
+// the shooter scene at small sizes, and reference-image comparison with approval.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "game/shooter_scene.h"
+#include "renderer/context.h"
+#include "renderer/conventional.h"
+
+namespace warplab::testing {
+
+// The context every GL test draws with: OSMesa unless WARPLAB_TEST_GL=egl|window.
+renderer::GlContext& glContext();
+renderer::DataPaths sourceDataPaths();
+
+// Renders a frame at width x height and reads the G-buffer back.
+renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height);
+
+// The shooter scene sized for a width x height image, target spawned from `seed`.
+game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);
+
+// Camera turned so the reticle (image centre) is on `point`.
+scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point);
+
+// Thresholds for comparing a render with a reference, each with its reason.
+struct ImageThresholds {
+    // Mean |difference| over all channels: shading arithmetic may differ in the last bits
+    // between rasterisers/CPUs (llvmpipe's AVX2 vs AVX-512 paths); 0.75 of 255 catches any
+    // real change of lighting or geometry, which moves the mean by whole units.
+    double mean = 0.75;
+    // A pixel counts as different above this per-channel difference...
+    int pixelThreshold = 24;
+    // ...and at most this share of pixels may be: silhouette pixels whose centre lies within
+    // rounding of a triangle edge can fall on either side on another rasteriser.
+    double maxShareOver = 0.004;
+};
+
+// Compares `actual` with tests/references/<name>.png. On failure writes actual and diff PNGs
+// to the test output folder and names them. With WARPLAB_APPROVE=1 it (re)writes the
+// reference instead and passes; scripts/approve-references.sh does that.
+::testing::AssertionResult matchesReference(const std::string& name, const renderer::ImageRGBA8& actual,
+                                            const ImageThresholds& thresholds = {});
+::testing::AssertionResult imagesMatch(const renderer::ImageRGBA8& expected, const renderer::ImageRGBA8& actual,
+                                       const std::string& label, const ImageThresholds& thresholds = {});
+
+std::string testOutputDir();
+
+}  // namespace warplab::testing
