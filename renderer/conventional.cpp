@@ -70,47 +70,56 @@ GBuffer& GBuffer::operator=(GBuffer&&) noexcept = default;
 int GBuffer::width() const { return impl_->width; }
 int GBuffer::height() const { return impl_->height; }
 
-GBufferImages readBack(const GBuffer& gbuffer) {
-    const auto& g = gbuffer.impl();
-    GBufferImages out;
-    const int w = g.width, h = g.height;
-    const auto n = static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
+ImageRGBA8 readColourAttachment(const GBuffer::Impl& g) {
+    ImageRGBA8 image = ImageRGBA8::make(g.width, g.height);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-
-    out.colour.width = w;
-    out.colour.height = h;
-    out.colour.pixels.resize(4 * n);
     glReadBuffer(GBuffer::Impl::kColourAttachment);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, out.colour.pixels.data());
-
-    out.ids.width = w;
-    out.ids.height = h;
-    out.ids.data.resize(n);
-    glReadBuffer(GBuffer::Impl::kIdAttachment);
-    glReadPixels(0, 0, w, h, GL_RED_INTEGER, GL_UNSIGNED_INT, out.ids.data.data());
-
-    out.velocity.width = w;
-    out.velocity.height = h;
-    out.velocity.channels = 3;
-    out.velocity.data.resize(3 * n);
-    glReadBuffer(GBuffer::Impl::kVelocityAttachment);
-    glReadPixels(0, 0, w, h, GL_RGB, GL_FLOAT, out.velocity.data.data());
-
-    out.depth.width = w;
-    out.depth.height = h;
-    out.depth.channels = 1;
-    out.depth.data.resize(n);
-    glReadPixels(0, 0, w, h, GL_DEPTH_COMPONENT, GL_FLOAT, out.depth.data.data());
-
+    glReadPixels(0, 0, g.width, g.height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::checkErrors("reading back the G-buffer");
-    // GL rows are bottom-up; every image outside the renderer is top-down.
-    flipVertically(out.colour);
-    flipVertically(out.ids);
-    flipVertically(out.velocity);
-    flipVertically(out.depth);
-    return out;
+    gl::checkErrors("reading back a colour attachment");
+    flipVertically(image);  // GL rows are bottom-up; every image outside the renderer is top-down
+    return image;
+}
+
+ImageU32 readIdAttachment(const GBuffer::Impl& g) {
+    ImageU32 image = ImageU32::make(g.width, g.height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GBuffer::Impl::kIdAttachment);
+    glReadPixels(0, 0, g.width, g.height, GL_RED_INTEGER, GL_UNSIGNED_INT, image.data.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::checkErrors("reading back an id attachment");
+    flipVertically(image);
+    return image;
+}
+
+ImageF readVectorAttachment(const GBuffer::Impl& g, int channels) {
+    ImageF image = ImageF::make(g.width, g.height, channels);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GBuffer::Impl::kVelocityAttachment);
+    glReadPixels(0, 0, g.width, g.height, channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.data.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::checkErrors("reading back a vector attachment");
+    flipVertically(image);
+    return image;
+}
+
+ImageF readDepthAttachment(const GBuffer::Impl& g) {
+    ImageF image = ImageF::make(g.width, g.height, 1);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, g.width, g.height, GL_DEPTH_COMPONENT, GL_FLOAT, image.data.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    gl::checkErrors("reading back a depth attachment");
+    flipVertically(image);
+    return image;
+}
+
+GBufferImages readBack(const GBuffer& gbuffer) {
+    const auto& g = gbuffer.impl();
+    return {readColourAttachment(g), readDepthAttachment(g), readIdAttachment(g), readVectorAttachment(g, 3)};
 }
 
 void blitToDefaultFramebuffer(const GBuffer& gbuffer, int drawableWidth, int drawableHeight) {
@@ -204,7 +213,7 @@ struct ConventionalRenderer::Impl {
     std::vector<Lamp> lamps;
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
-            panelPattern, lampCount, lampPosition, lampColour;
+            panelPattern, lampCount, lampPosition, lampColour, shadingCost;
     } u{};
 };
 
@@ -220,7 +229,7 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
            gl::uniform(p, "uObjectId"),       gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
            gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),            gl::uniform(p, "uTint"),
            gl::uniform(p, "uPanelPattern"),   gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
-           gl::uniform(p, "uLampColour")};
+           gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost")};
     m.hangar = upload(loadObj(paths.assetDir + "/hangar.obj"));
     m.sphere = upload(makeUnitSphere(64, 32));
     m.box = upload(makeUnitBox());
@@ -228,6 +237,8 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
 }
 
 ConventionalRenderer::~ConventionalRenderer() = default;
+
+void ConventionalRenderer::setShading(const ShadingOptions& shading) { impl_->shading = shading; }
 
 void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer& target) {
     auto& m = *impl_;
@@ -258,6 +269,7 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     glUniform3fv(m.u.eye, 1, glm::value_ptr(frame.camera.eye));
     const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
     glUniform1i(m.u.lampCount, lampCount);
+    glUniform1i(m.u.shadingCost, m.shading.shadingCost);
     std::vector<glm::vec3> positions, colours;
     for (int i = 0; i < lampCount; ++i) {
         positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);

@@ -52,6 +52,9 @@ GBufferImages readBack(const GBuffer& gbuffer);
 struct ShadingOptions {
     // The hangar's panel seams: detail that makes reprojection errors visible in the metrics.
     bool panelPattern = true;
+    // Extra per-fragment work (hash iterations), so the bench can make a conventional frame as
+    // expensive as a real game's and show where upconversion starts to pay. 0 = none.
+    int shadingCost = 0;
 };
 
 class ConventionalRenderer {
@@ -64,6 +67,7 @@ public:
     ConventionalRenderer& operator=(const ConventionalRenderer&) = delete;
 
     void render(const scene::FrameDescription& frame, GBuffer& target);
+    void setShading(const ShadingOptions& shading);
 
 private:
     struct Impl;

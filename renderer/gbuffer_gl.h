@@ -21,4 +21,10 @@ struct GBuffer::Impl {
     static constexpr GLenum kVelocityAttachment = GL_COLOR_ATTACHMENT2;
 };
 
+// Read one attachment back as a plain top-down image.
+ImageRGBA8 readColourAttachment(const GBuffer::Impl& g);
+ImageU32 readIdAttachment(const GBuffer::Impl& g);
+ImageF readVectorAttachment(const GBuffer::Impl& g, int channels);  // velocity / correspondence
+ImageF readDepthAttachment(const GBuffer::Impl& g);
+
 }  // namespace warplab::renderer

@@ -16,6 +16,7 @@ uniform vec3 uEye;
 uniform vec3 uTint;
 uniform int uPanelPattern;
 uniform int uLampCount;
+uniform int uShadingCost;
 uniform vec3 uLampPosition[MAX_LAMPS];
 uniform vec3 uLampColour[MAX_LAMPS];
 
@@ -33,6 +34,19 @@ float panelSeams(vec3 p, vec3 n) {
     return 1.0 - 0.35 * seam;
 }
 
+// The bench's shading-cost knob: uShadingCost iterations of a hash per fragment, standing in
+// for the expensive shading of a real game. Its result tints the surface by at most 2% so the
+// compiler cannot drop the loop; at 0 (the default) it does nothing.
+float costlyDetail(vec3 p, int iterations) {
+    vec3 q = p;
+    float sum = 0.0;
+    for (int i = 0; i < iterations; ++i) {
+        q = fract(q * 1.6180339 + vec3(0.1031, 0.1030, 0.0973));
+        sum += dot(q, q.yzx + 19.19);
+    }
+    return fract(sum);
+}
+
 void main() {
     vec3 n = normalize(vNormal);
     vec3 toEye = normalize(uEye - vWorldPosition);
@@ -40,6 +54,7 @@ void main() {
     if (dot(n, toEye) < 0.0) n = -n;
     vec3 kd = vDiffuse * uTint;
     if (uPanelPattern != 0) kd *= panelSeams(vWorldPosition, n);
+    if (uShadingCost > 0) kd *= 1.0 + 0.02 * (costlyDetail(vWorldPosition, uShadingCost) - 0.5);
 
     vec3 colour = 0.12 * kd;  // ambient: the hangar is never pitch black
     for (int i = 0; i < uLampCount; ++i) {

@@ -1,0 +1,76 @@
+// Upconversion methods: given the conventionally rendered source frames a mode would have,
+// make the frame displayed at some instant. Every method -- sample-and-hold, blend, and (in
+// their issues) warp extrapolation and bidirectional reprojection -- sits behind this one
+// interface, so the benchmark and the study modes treat them alike.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/conventional.h"
+#include "renderer/image.h"
+#include "scene/scene.h"
+
+namespace warplab::renderer {
+
+// A frame rendered conventionally at one instant, kept with what it depicts.
+struct SourceFrame {
+    SourceFrame(int width, int height) : gbuffer(width, height) {}
+    scene::FrameDescription depicts;
+    GBuffer gbuffer;
+};
+
+// The frame a method shows. Attachments as a G-buffer's, but the third holds the method's
+// claimed correspondences instead of velocity: xy = the continuous source-image coordinate
+// (top-down, pixel centres at +0.5) in the previous source, zw = in the next source, NaN
+// where the method claims none (bench measures these against the scene's exact ones).
+class DisplayFrame {
+public:
+    DisplayFrame(int width, int height) : buffer_(width, height) {}
+    int width() const { return buffer_.width(); }
+    int height() const { return buffer_.height(); }
+    GBuffer& buffer() { return buffer_; }
+    const GBuffer& buffer() const { return buffer_; }
+
+private:
+    GBuffer buffer_;
+};
+
+struct DisplayImages {
+    ImageRGBA8 colour;
+    ImageU32 ids;             // the object each displayed pixel shows (for scoring cross-checks)
+    ImageF correspondence;    // 4 channels, see DisplayFrame
+};
+DisplayImages readBack(const DisplayFrame& frame);
+
+struct UpconversionInput {
+    double displayTime = 0.0;
+    scene::CameraState camera;            // the view sampled at this display frame
+    const SourceFrame* previous = nullptr;  // latest source at or before displayTime
+    const SourceFrame* next = nullptr;      // the one after; only for methods with needsNext
+};
+
+struct MethodInfo {
+    std::string name;
+    std::string description;
+    double sourceRateHz = 15.0;   // how often sources are rendered conventionally
+    bool needsNext = false;       // uses the following source frame (so shows content later)
+    bool reportsCorrespondence = false;
+};
+
+class UpconversionMethod {
+public:
+    virtual ~UpconversionMethod() = default;
+    virtual const MethodInfo& info() const = 0;
+    // Draws the displayed frame into `out` (same size as the sources). GL state it changes
+    // is restored to the defaults the other passes assume.
+    virtual void produce(const UpconversionInput& input, DisplayFrame& out) = 0;
+};
+
+// All registered method names, in the order the bench reports them.
+std::vector<std::string> methodNames();
+// Throws std::invalid_argument naming the unknown method and listing the known ones.
+std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths);
+
+}  // namespace warplab::renderer
