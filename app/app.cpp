@@ -44,7 +44,7 @@ OptionSpec glOption(const std::string& defaultBackend) {
 }
 
 OptionSpec dataDirOption() {
-    return {"data-dir", "DIR", "folder holding shaders/ and assets/", "$WARPLAB_DATA_DIR or the source tree"};
+    return {"data-dir", "DIR", "folder holding shaders/, assets/ and analysis/", "$WARPLAB_DATA_DIR or the source tree"};
 }
 
 renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback) {
@@ -60,7 +60,7 @@ renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
     std::string root = WARPLAB_DEFAULT_DATA_DIR;
     if (const char* env = std::getenv("WARPLAB_DATA_DIR"); env != nullptr && *env != '\0') root = env;
     if (args.has("data-dir")) root = args.string("data-dir");
-    renderer::DataPaths paths{root + "/shaders", root + "/assets"};
+    renderer::DataPaths paths{root + "/shaders", root + "/assets", root + "/analysis"};
     if (!isDirectory(paths.shaderDir))
         throw renderer::AssetError("cannot find warplab's shaders: '" + paths.shaderDir +
                                    "' is not a folder (set --data-dir or WARPLAB_DATA_DIR)");
@@ -99,6 +99,27 @@ const std::vector<Command>& commands() {
               dataDirOption(),
           }},
          &runRender},
+        {{"bench",
+          "Speed against error: make every frame of scripted sequences with every upconversion method,\n"
+          "time each pass and compare it with a conventional render at the same instant.",
+          "warplab bench [--quick] [--out DIR] [options]",
+          {
+              {"quick", "", "320x180, 8 frames per sequence, 2 repeats: a few minutes at most", ""},
+              {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
+              {"width", "PIXELS", "frame width", "1920 (320 with --quick)"},
+              {"height", "PIXELS", "frame height", "1080 (180 with --quick)"},
+              {"sequences", "A,B", "which sequences (pan, track, translate, spheres, thin)", "all"},
+              {"methods", "A,B", "which methods (see the summary for the list)", "all"},
+              {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all", "16"},
+              {"duration-scale", "X", "scale the sequences' length", "1"},
+              {"repeats", "N", "timed runs of each pass; medians are reported", "3"},
+              {"shading-cost", "N", "extra per-fragment shading work in every conventional frame", "0"},
+              {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame", "0,64,256,1024"},
+              {"seed", "N", "target spawn seed of the sequences", "1"},
+              glOption("osmesa"),
+              dataDirOption(),
+          }},
+         &runBench},
     };
     return list;
 }

@@ -19,6 +19,7 @@ const std::vector<Command>& commands();
 
 int runInfo(const ParsedArgs& args);
 int runRender(const ParsedArgs& args);
+int runBench(const ParsedArgs& args);
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

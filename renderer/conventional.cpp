@@ -39,6 +39,7 @@ gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int wi
 }  // namespace
 
 GBuffer::GBuffer(int width, int height) : impl_(std::make_unique<Impl>()) {
+    if (glGenTextures == nullptr) throw std::logic_error("GBuffer: no OpenGL context has been created yet");
     if (width < 1 || height < 1 || width > kMaxSize || height > kMaxSize)
         throw std::invalid_argument("GBuffer: size " + std::to_string(width) + "x" + std::to_string(height) +
                                     " is outside 1..16384");

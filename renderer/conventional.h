@@ -12,10 +12,11 @@
 
 namespace warplab::renderer {
 
-// Where shaders/ and assets/ are found at run time.
+// Where shaders/, assets/ and analysis/ are found at run time.
 struct DataPaths {
     std::string shaderDir;
     std::string assetDir;
+    std::string analysisDir;  // Python scripts the bench calls for its plot
 };
 
 // Offscreen frame buffer: RGBA8 colour, 32-bit float depth, R32UI object id, RGBA32F velocity

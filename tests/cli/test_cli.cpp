@@ -177,3 +177,42 @@ TEST(Cli, MissingOrMalformedModelIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
+    const std::string dir = scratch("bench");
+    const auto r = warplab("bench --quick --frames 2 --repeats 1 --sequences pan,thin --methods hold15,hold120,blend --out " + dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "| pan | hold15 |")) << r.output;
+    EXPECT_TRUE(contains(r.output, "| **all** | blend |")) << r.output;
+    std::ifstream csv(dir + "/bench.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_EQ(header.rfind("sequence,method,frame,time_s,psnr_db,ssim,disocc_mae,corr_all_lt_0p1,corr_all_lt_0p5,"
+                           "corr_all_lt_1,corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,",
+                           0),
+              0u)
+        << header;
+    int rows = 0, exact = 0;
+    for (std::string line; std::getline(csv, line);) {
+        ++rows;
+        if (line.rfind("pan,hold120,", 0) == 0 || line.rfind("thin,hold120,", 0) == 0)
+            exact += contains(line, ",inf,1.00000,");  // hold at the display rate is ground truth
+    }
+    EXPECT_EQ(rows, 2 * 2 * 3);
+    EXPECT_EQ(exact, 4);
+    EXPECT_TRUE(fs::exists(dir + "/summary.md"));
+    EXPECT_GT(fs::file_size(dir + "/speed_vs_error.png"), 1000u);
+}
+
+TEST(CliBench, UnknownSequenceOrMethodIsNamed) {
+    auto r = warplab("bench --quick --sequences orbit --out " + scratch("bench-bad"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "orbit")) << r.output;
+    r = warplab("bench --quick --methods hold15,warp-magic --out " + scratch("bench-bad"));
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "warp-magic")) << r.output;
+}
+
+}  // namespace

@@ -21,7 +21,8 @@ renderer::GlContext& glContext() {
 }
 
 renderer::DataPaths sourceDataPaths() {
-    return {std::string(WARPLAB_SOURCE_DIR) + "/shaders", std::string(WARPLAB_SOURCE_DIR) + "/assets"};
+    const std::string root = WARPLAB_SOURCE_DIR;
+    return {root + "/shaders", root + "/assets", root + "/analysis"};
 }
 
 renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height) {

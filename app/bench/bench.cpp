@@ -1,0 +1,380 @@
+#include "app/bench/bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/bench/ground_truth.h"
+#include "game/sequences.h"
+#include "renderer/timing.h"
+#include "renderer/upconvert.h"
+
+namespace warplab::bench {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double median(std::vector<double> values) {
+    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
+    if (values.empty()) return kNaN;
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// PSNR of the mean squared error over frames, each frame's MSE recovered from its PSNR (an
+// identical frame, PSNR = inf, has MSE 0): averaging dB would let exact frames dominate.
+double psnrOfMeanMse(const std::vector<double>& psnrs) {
+    double sum = 0.0;
+    int n = 0;
+    for (double p : psnrs) {
+        if (std::isnan(p)) continue;
+        sum += 255.0 * 255.0 / std::pow(10.0, p / 10.0);
+        ++n;
+    }
+    if (n == 0) return kNaN;
+    return sum == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / (sum / n));
+}
+
+double mean(const std::vector<double>& values) {
+    double sum = 0.0;
+    int n = 0;
+    for (double v : values)
+        if (!std::isnan(v)) sum += v, ++n;
+    return n ? sum / n : kNaN;
+}
+
+// Empty for "does not apply", "inf" for identical images' PSNR.
+std::string field(double v, int precision = 4) {
+    if (std::isnan(v)) return "";
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    std::ostringstream s;
+    s << std::setprecision(precision) << std::fixed << v;
+    return s.str();
+}
+
+std::vector<glm::vec2> reportedCoordinates(const renderer::ImageF& correspondence, int channelOffset) {
+    std::vector<glm::vec2> out(static_cast<std::size_t>(correspondence.width) * correspondence.height);
+    for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = {correspondence.data[4 * i + channelOffset], correspondence.data[4 * i + channelOffset + 1]};
+    return out;
+}
+
+bool anyFinite(const std::vector<glm::vec2>& v) {
+    return std::any_of(v.begin(), v.end(), [](const glm::vec2& p) { return std::isfinite(p.x) && std::isfinite(p.y); });
+}
+
+// A conventionally rendered frame with its read-back depth and ids (for the scene's exact
+// correspondences), kept while a display frame needs it.
+struct RenderedSource {
+    std::unique_ptr<renderer::SourceFrame> frame;
+    renderer::GBufferImages images;
+};
+
+struct Row {
+    std::string sequence, method;
+    int frame = 0;
+    double time = 0, psnr = kNaN, ssim = kNaN, disoccMae = kNaN;
+    CorrespondenceStats corr;
+    bool hasCorr = false;
+    double passMs = kNaN, gpuMs = kNaN, conventionalMs = kNaN;
+};
+
+const char* kCsvHeader =
+    "sequence,method,frame,time_s,psnr_db,ssim,disocc_mae,corr_all_lt_0p1,corr_all_lt_0p5,corr_all_lt_1,"
+    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms";
+
+void writeRow(std::ostream& csv, const Row& r) {
+    auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
+    csv << r.sequence << ',' << r.method << ',' << r.frame << ',' << field(r.time, 6) << ',' << field(r.psnr, 3) << ','
+        << field(r.ssim, 5) << ',' << field(r.disoccMae, 3) << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5)
+        << ',' << c(r.corr.allLt1) << ',' << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ','
+        << c(r.corr.hitLt1) << ',' << field(r.passMs, 3) << ',' << field(r.gpuMs, 3) << ','
+        << field(r.conventionalMs, 3) << '\n';
+}
+
+// The plot is matplotlib's job; Debian's interpreter has it (python3 earlier on PATH may not).
+std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, const std::string& png,
+                      const std::string& title) {
+    const std::string script = paths.analysisDir + "/plot_bench.py";
+    const char* python = "/usr/bin/python3";
+    if (!std::filesystem::exists(script)) return "not written: " + script + " is missing";
+    if (!std::filesystem::exists(python)) return "not written: /usr/bin/python3 is missing (scripts/install-deps.sh)";
+    auto quote = [](const std::string& s) {
+        std::string q = "'";
+        for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+        return q + "'";
+    };
+    const std::string command = std::string(python) + " " + quote(script) + " " + quote(csv) + " " + quote(png) +
+                                " --title " + quote(title) + " 2>&1";
+    std::string output;
+    if (FILE* pipe = popen(command.c_str(), "r")) {
+        char buffer[512];
+        while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
+        const int status = pclose(pipe);
+        if (status == 0) return "";
+        while (!output.empty() && output.back() == '\n') output.pop_back();
+        return "not written: " + output;
+    }
+    return "not written: cannot run " + std::string(python);
+}
+
+}  // namespace
+
+std::vector<int> sampleFrames(int frameCount, int samples, int phases) {
+    std::vector<int> frames;
+    if (frameCount <= 0) return frames;
+    if (samples <= 0 || samples >= frameCount) {
+        for (int k = 0; k < frameCount; ++k) frames.push_back(k);
+        return frames;
+    }
+    const int cycles = std::max(1, frameCount / phases);
+    for (int j = 0; j < samples; ++j) {
+        // Spread over the cycles the sequence has; the phase walks 0, 1, ..., phases-1, 0, ...
+        const int cycle = static_cast<int>(static_cast<long long>(j) * cycles / samples);
+        const int k = std::min(frameCount - 1, cycle * phases + j % phases);
+        if (frames.empty() || frames.back() != k) frames.push_back(k);
+    }
+    return frames;
+}
+
+void runBench(const BenchOptions& options, const renderer::DataPaths& paths, const renderer::GlInfo& gl,
+              std::ostream& out, std::ostream& progress) {
+    namespace fs = std::filesystem;
+    if (options.width < 16 || options.height < 16 || options.width > 16384 || options.height > 16384)
+        throw std::invalid_argument("bench size must be between 16x16 and 16384x16384");
+    if (options.repeats < 1) throw std::invalid_argument("bench repeats must be at least 1");
+    const std::vector<std::string> sequenceNames =
+        options.sequences.empty() ? game::sequenceNames() : options.sequences;
+    const std::vector<std::string> methodNames =
+        options.methods.empty() ? renderer::methodNames() : options.methods;
+
+    // Everything that can be refused is refused before the first frame.
+    game::SequenceConfig sequenceConfig;
+    sequenceConfig.aspect = static_cast<double>(options.width) / options.height;
+    sequenceConfig.durationScale = options.durationScale;
+    sequenceConfig.seed = options.seed;
+    std::vector<std::unique_ptr<game::BenchSequence>> sequences;
+    for (const auto& name : sequenceNames) sequences.push_back(game::makeSequence(name, sequenceConfig));
+    std::vector<std::unique_ptr<renderer::UpconversionMethod>> methods;
+    for (const auto& name : methodNames) {
+        methods.push_back(renderer::makeMethod(name, paths));
+        const double perSource = options.refreshHz / methods.back()->info().sourceRateHz;
+        if (std::abs(perSource - std::round(perSource)) > 1e-9 || perSource < 1.0)
+            throw std::invalid_argument("method " + name + " renders at a rate that does not divide the display's");
+    }
+    fs::create_directories(options.outDir);
+    const std::string csvPath = options.outDir + "/bench.csv";
+    std::ofstream csv(csvPath);
+    if (!csv) throw std::runtime_error("cannot write '" + csvPath + "'");
+    csv << kCsvHeader << '\n';
+
+    renderer::ShadingOptions shading;
+    shading.shadingCost = options.shadingCost;
+    renderer::ConventionalRenderer conventional(paths, shading);
+    renderer::PassTimer timer;
+    renderer::SourceFrame truthFrame(options.width, options.height);
+    renderer::DisplayFrame display(options.width, options.height);
+
+    auto renderSource = [&](const scene::FrameDescription& depicts) {
+        RenderedSource s;
+        s.frame = std::make_unique<renderer::SourceFrame>(options.width, options.height);
+        s.frame->depicts = depicts;
+        conventional.render(depicts, s.frame->gbuffer);
+        s.images = renderer::readBack(s.frame->gbuffer);
+        return s;
+    };
+
+    std::vector<Row> rows;
+    const auto started = std::chrono::steady_clock::now();
+    std::size_t totalFrames = 0, doneFrames = 0;
+    std::vector<std::vector<int>> samplesPerSequence;
+    for (const auto& sequence : sequences) {
+        const int frameCount = std::max(1, static_cast<int>(std::floor(sequence->duration() * options.refreshHz)));
+        samplesPerSequence.push_back(sampleFrames(frameCount, options.framesPerSequence, 8));
+        totalFrames += samplesPerSequence.back().size();
+    }
+
+    for (std::size_t si = 0; si < sequences.size(); ++si) {
+        const auto& sequence = *sequences[si];
+        for (const int k : samplesPerSequence[si]) {
+            const double t = k / options.refreshHz;
+            const scene::FrameDescription truthDesc = sequence.at(t);
+
+            // Ground truth: a conventional frame at this very instant, timed as the reference cost.
+            std::vector<double> conventionalMs;
+            for (int r = 0; r < options.repeats; ++r) {
+                timer.begin();
+                conventional.render(truthDesc, truthFrame.gbuffer);
+                conventionalMs.push_back(timer.end().wallMs);
+            }
+            truthFrame.depicts = truthDesc;
+            const renderer::GBufferImages truth = renderer::readBack(truthFrame.gbuffer);
+            const double conventionalMedian = median(conventionalMs);
+
+            std::map<int, RenderedSource> sources;  // by display-frame index
+            std::map<int, Correspondence> truthCorrespondence;
+            auto source = [&](int index) -> const RenderedSource& {
+                auto it = sources.find(index);
+                if (it == sources.end())
+                    it = sources.emplace(index, renderSource(sequence.at(index / options.refreshHz))).first;
+                return it->second;
+            };
+            auto correspondenceTo = [&](int index) -> const Correspondence& {
+                auto it = truthCorrespondence.find(index);
+                if (it == truthCorrespondence.end()) {
+                    const RenderedSource& s = source(index);
+                    it = truthCorrespondence
+                             .emplace(index, trueCorrespondence(truthDesc, truth.depth, truth.ids, s.frame->depicts,
+                                                                s.images.depth, s.images.ids))
+                             .first;
+                }
+                return it->second;
+            };
+
+            for (auto& method : methods) {
+                const auto& info = method->info();
+                const int perSource = static_cast<int>(std::lround(options.refreshHz / info.sourceRateHz));
+                const int previous = k - k % perSource;
+                const int next = previous + perSource;
+                renderer::UpconversionInput input;
+                input.displayTime = t;
+                input.camera = truthDesc.camera;
+                input.previous = source(previous).frame.get();
+                if (info.needsNext) input.next = source(next).frame.get();
+
+                std::vector<double> wall, gpu;
+                for (int r = 0; r < options.repeats; ++r) {
+                    timer.begin();
+                    method->produce(input, display);
+                    const auto time = timer.end();
+                    wall.push_back(time.wallMs);
+                    gpu.push_back(time.gpuMs);
+                }
+                const renderer::DisplayImages shown = renderer::readBack(display);
+
+                Row row;
+                row.sequence = sequence.name();
+                row.method = info.name;
+                row.frame = k;
+                row.time = t;
+                row.psnr = renderer::psnr(shown.colour, truth.colour);
+                row.ssim = renderer::ssimLuminance(shown.colour, truth.colour);
+                std::vector<const Correspondence*> used{&correspondenceTo(previous)};
+                if (info.needsNext) used.push_back(&correspondenceTo(next));
+                row.disoccMae = maskedMeanAbsoluteError(shown.colour, truth.colour, disoccludedMask(used));
+                if (info.reportsCorrespondence) {
+                    CorrespondenceAccumulator accumulator;
+                    accumulator.add(reportedCoordinates(shown.correspondence, 0), *used[0]);
+                    const auto intoNext = reportedCoordinates(shown.correspondence, 2);
+                    if (info.needsNext && anyFinite(intoNext)) accumulator.add(intoNext, *used[1]);
+                    row.corr = accumulator.stats();
+                    row.hasCorr = true;
+                }
+                row.passMs = median(wall);
+                row.gpuMs = median(gpu);
+                row.conventionalMs = conventionalMedian;
+                writeRow(csv, row);
+                rows.push_back(row);
+            }
+            csv.flush();
+            ++doneFrames;
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+            progress << "bench: " << sequence.name() << " frame " << k << " (" << doneFrames << "/" << totalFrames
+                     << "), " << std::fixed << std::setprecision(0) << elapsed << " s elapsed, ~"
+                     << elapsed / doneFrames * (totalFrames - doneFrames) << " s left\n"
+                     << std::defaultfloat << std::flush;
+        }
+    }
+    if (!csv) throw std::runtime_error("writing '" + csvPath + "' failed");
+
+    // Where upconversion starts to pay: a conventional frame's cost as shading gets heavier.
+    std::vector<std::pair<int, double>> sweep;
+    {
+        const scene::FrameDescription frame = sequences.front()->at(0.0);
+        for (int cost : options.shadingSweep) {
+            renderer::ShadingOptions s;
+            s.shadingCost = cost;
+            conventional.setShading(s);
+            std::vector<double> ms;
+            for (int r = 0; r < options.repeats; ++r) {
+                timer.begin();
+                conventional.render(frame, truthFrame.gbuffer);
+                ms.push_back(timer.end().wallMs);
+            }
+            sweep.emplace_back(cost, median(ms));
+        }
+        conventional.setShading(shading);
+    }
+
+    // The summary: per method x sequence, then per method over all sequences.
+    std::ostringstream md;
+    md << "# warplab bench\n\n"
+       << "- GL: " << gl.renderer << " (" << gl.version << ", " << gl.backend << ")\n"
+       << "- size: " << options.width << "x" << options.height << ", display " << options.refreshHz << " Hz, "
+       << "shading cost " << options.shadingCost << ", " << options.repeats << " timed repeats per pass (medians)\n"
+       << "- frames: " << totalFrames << " sampled display frames over " << sequences.size() << " sequences\n\n";
+    md << "| sequence | method | median pass ms | ratio to conventional | PSNR dB | mean SSIM | disocc MAE | "
+          "corr all <0.5 px | corr hit <0.5 px |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+    auto summarise = [&](const std::string& seq, const std::string& method) {
+        std::vector<double> pass, conv, psnr, ssim, mae, all05, hit05;
+        for (const Row& r : rows) {
+            if ((!seq.empty() && r.sequence != seq) || r.method != method) continue;
+            pass.push_back(r.passMs);
+            conv.push_back(r.conventionalMs);
+            psnr.push_back(r.psnr);
+            ssim.push_back(r.ssim);
+            mae.push_back(r.disoccMae);
+            if (r.hasCorr) all05.push_back(r.corr.allLt0p5), hit05.push_back(r.corr.hitLt0p5);
+        }
+        const double p = median(pass), c = median(conv);
+        const double combined = psnrOfMeanMse(psnr);
+        const std::string psnrText = std::isinf(combined) ? "inf (exact)" : field(combined, 2);
+        auto pct = [](double v) { return std::isnan(v) ? std::string("") : field(100.0 * v, 1) + "%"; };
+        md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << field(p, 3) << " | "
+           << field(p / c, 3) << " | " << psnrText << " | " << field(mean(ssim), 4) << " | " << field(mean(mae), 2)
+           << " | " << pct(mean(all05)) << " | " << pct(mean(hit05)) << " |\n";
+    };
+    for (const auto& s : sequences)
+        for (const auto& m : methods) summarise(s->name(), m->info().name);
+    for (const auto& m : methods) summarise("", m->info().name);
+
+    md << "\nA 15->120 Hz method renders one conventional frame and makes seven, so per displayed frame it costs "
+          "(C + 7M)/8 against C for rendering every frame: it pays whenever its pass M is cheaper than a "
+          "conventional frame C.\n\n| shading cost | conventional frame ms (" << sequences.front()->name()
+       << ", t = 0) | methods cheaper than it |\n|---:|---:|---|\n";
+    for (const auto& [cost, ms] : sweep) {
+        std::string cheaper;
+        for (const auto& m : methods) {
+            std::vector<double> pass;
+            for (const Row& r : rows)
+                if (r.method == m->info().name) pass.push_back(r.passMs);
+            if (median(pass) < ms) cheaper += (cheaper.empty() ? "" : ", ") + m->info().name;
+        }
+        md << "| " << cost << " | " << field(ms, 3) << " | " << cheaper << " |\n";
+    }
+    md << "\nColumns of bench.csv: " << kCsvHeader
+       << ". Empty = does not apply; psnr_db inf = identical to ground truth. PSNR in the table is that of the "
+          "mean squared error over the frames. Ratios divide medians measured in this run.\n";
+
+    const std::string plotNote =
+        writePlot(paths, csvPath, options.outDir + "/speed_vs_error.png",
+                  gl.renderer + ", " + std::to_string(options.width) + "x" + std::to_string(options.height));
+    if (!plotNote.empty()) md << "\nspeed_vs_error.png " << plotNote << "\n";
+    const std::string summary = md.str();
+    std::ofstream(options.outDir + "/summary.md") << summary;
+    out << summary;
+}
+
+}  // namespace warplab::bench

@@ -1,0 +1,67 @@
+#include <iostream>
+#include <sstream>
+
+#include "app/bench/bench.h"
+#include "app/commands.h"
+
+namespace warplab::app {
+namespace {
+
+std::vector<std::string> splitList(const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream ss(text);
+    for (std::string item; std::getline(ss, item, ',');)
+        if (!item.empty()) items.push_back(item);
+    return items;
+}
+
+}  // namespace
+
+int runBench(const ParsedArgs& args) {
+    bench::BenchOptions options;
+    const bool quick = args.flag("quick");
+    if (quick) {
+        // Small and short: the whole table in well under 3 minutes on two cores.
+        options.width = 320;
+        options.height = 180;
+        options.framesPerSequence = 8;
+        options.repeats = 2;
+        options.shadingSweep = {0, 256};
+    }
+    options.width = static_cast<int>(args.integer("width", options.width, 16, 16384));
+    options.height = static_cast<int>(args.integer("height", options.height, 16, 16384));
+    options.framesPerSequence = static_cast<int>(args.integer("frames", options.framesPerSequence, 0, 1000000));
+    options.repeats = static_cast<int>(args.integer("repeats", options.repeats, 1, 1000));
+    options.shadingCost = static_cast<int>(args.integer("shading-cost", 0, 0, 1 << 20));
+    options.durationScale = args.number("duration-scale", 1.0);
+    if (!(options.durationScale > 0.0 && options.durationScale <= 100.0))
+        throw UsageError("option --duration-scale must be in (0, 100]");
+    options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    if (args.has("sequences")) options.sequences = splitList(args.string("sequences"));
+    if (args.has("methods")) options.methods = splitList(args.string("methods"));
+    if (args.has("shading-sweep")) {
+        options.shadingSweep.clear();
+        for (const auto& item : splitList(args.string("shading-sweep"))) {
+            try {
+                const int cost = std::stoi(item);
+                if (cost < 0) throw std::invalid_argument("negative");
+                options.shadingSweep.push_back(cost);
+            } catch (const std::exception&) {
+                throw UsageError("option --shading-sweep needs non-negative integers, got '" + item + "'");
+            }
+        }
+    }
+    options.outDir = args.string("out", "bench-out");
+
+    const renderer::DataPaths paths = dataPathsFrom(args);
+    renderer::ContextOptions context;
+    context.backend = backendFrom(args, renderer::GlBackend::OSMesa);
+    context.visible = false;
+    const auto gl = renderer::createContext(context);
+    std::cerr << "bench: " << options.width << "x" << options.height << " on " << gl->info().renderer << "\n";
+    bench::runBench(options, paths, gl->info(), std::cout, std::cerr);
+    std::cout << "\nwrote " << options.outDir << "/bench.csv, summary.md, speed_vs_error.png\n";
+    return 0;
+}
+
+}  // namespace warplab::app
