@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "game/shooter_scene.h"
+#include "renderer/upconvert.h"
 
 namespace warplab::app {
 namespace {
@@ -50,17 +51,28 @@ int runRender(const ParsedArgs& args) {
     config.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, (1LL << 62)));
     const game::ShooterScene shooter(config);
 
-    scene::FrameDescription frame;
-    frame.camera = shooter.restingCamera();
-    frame.scene = shooter.snapshot(time);
-    if (args.flag("aim-at-target")) {
-        const glm::vec3 toTarget = frame.scene.objects.front().position - frame.camera.eye;
-        frame.camera.yaw = std::atan2(toTarget.x, -toTarget.z);
-        frame.camera.pitch = std::asin(toTarget.y / glm::length(toTarget));
-    } else {
-        frame.camera.yaw = static_cast<float>(args.number("yaw", 0.0) * M_PI / 180.0);
-        frame.camera.pitch = static_cast<float>(args.number("pitch", 0.0) * M_PI / 180.0);
-    }
+    const double yaw = args.number("yaw", 0.0), pitch = args.number("pitch", 0.0);
+    auto frameAt = [&](double t, double yawDeg, double pitchDeg) {
+        scene::FrameDescription f;
+        f.camera = shooter.restingCamera();
+        f.scene = shooter.snapshot(t);
+        if (args.flag("aim-at-target")) {
+            const glm::vec3 toTarget = f.scene.objects.front().position - f.camera.eye;
+            f.camera.yaw = std::atan2(toTarget.x, -toTarget.z);
+            f.camera.pitch = std::asin(toTarget.y / glm::length(toTarget));
+        } else {
+            f.camera.yaw = static_cast<float>(yawDeg * M_PI / 180.0);
+            f.camera.pitch = static_cast<float>(pitchDeg * M_PI / 180.0);
+        }
+        return f;
+    };
+    const scene::FrameDescription frame = frameAt(time, yaw, pitch);
+    // Upconversion: the frame at --time is made by a method from a source rendered at --source-time.
+    const std::string methodName = args.string("method", "");
+    const double sourceTime = args.number("source-time", time);
+    if (methodName.empty() && (args.has("source-time") || args.has("truth") || args.has("source-yaw") ||
+                               args.has("source-pitch") || args.has("next-time")))
+        throw UsageError("options --source-time, --next-time, --source-yaw, --source-pitch and --truth need --method");
 
     renderer::ContextOptions options;
     options.backend = backend;
@@ -71,13 +83,43 @@ int runRender(const ParsedArgs& args) {
     renderer::ConventionalRenderer conventional(paths);
     renderer::GBuffer gbuffer(width, height);
     conventional.render(frame, gbuffer);
-    const renderer::GBufferImages images = renderer::readBack(gbuffer);
+    renderer::GBufferImages images = renderer::readBack(gbuffer);
+    const renderer::GBuffer* onScreen = &gbuffer;
+    std::unique_ptr<renderer::DisplayFrame> shown;
+    if (!methodName.empty()) {
+        auto method = renderer::makeMethod(methodName, paths);
+        renderer::SourceFrame previous(width, height), next(width, height);
+        previous.depicts = frameAt(sourceTime, args.number("source-yaw", yaw), args.number("source-pitch", pitch));
+        conventional.render(previous.depicts, previous.gbuffer);
+        renderer::UpconversionInput input;
+        input.displayTime = time;
+        input.camera = frame.camera;
+        input.previous = &previous;
+        if (method->info().needsNext) {
+            const double nextTime = args.number("next-time", sourceTime + 1.0 / method->info().sourceRateHz);
+            next.depicts = frameAt(nextTime, yaw, pitch);
+            conventional.render(next.depicts, next.gbuffer);
+            input.next = &next;
+        }
+        shown = std::make_unique<renderer::DisplayFrame>(width, height);
+        method->produce(input, *shown);
+        if (args.has("truth")) {
+            renderer::writePng(args.string("truth"), images.colour);
+            std::cout << "wrote " << args.string("truth") << " (ground truth at t=" << time << " s)\n";
+        }
+        // The displayed frame replaces the conventional one in every output below.
+        const renderer::DisplayImages display = renderer::readBack(*shown);
+        std::cout << methodName << ": PSNR " << renderer::psnr(display.colour, images.colour) << " dB against ground truth\n";
+        images.colour = display.colour;
+        images.ids = display.ids;
+        onScreen = &shown->buffer();
+    }
 
     const std::string out = args.string("out", "frame.png");
     if (context->hasWindow()) {
         // The window shows the G-buffer's colour; what we save is the window's own pixels.
         const int dw = context->drawableWidth(), dh = context->drawableHeight();
-        renderer::blitToDefaultFramebuffer(gbuffer, dw, dh);
+        renderer::blitToDefaultFramebuffer(*onScreen, dw, dh);
         renderer::writePng(out, renderer::readDefaultFramebuffer(dw, dh));
         context->swapBuffers();
         const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(show);

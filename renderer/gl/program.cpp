@@ -17,10 +17,11 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
-// Keeps the file's own #version line first, injects the defines, then a #line so that
-// the driver's line numbers are the file's line numbers again.
-std::string withDefines(const std::string& source, const std::vector<std::string>& defines,
-                        const std::string& path) {
+// Keeps the file's own #version line first, injects the defines and the include files (each
+// as GLSL source-string number k, counted from 1), then a #line so that the driver's line
+// numbers are the file's line numbers again (source string 0).
+std::string assemble(const std::string& source, const std::vector<std::string>& defines,
+                     const std::vector<std::string>& includeSources, const std::string& path) {
     const auto versionPos = source.find("#version");
     if (versionPos == std::string::npos)
         throw GlError("shader file '" + path + "' has no #version line");
@@ -31,18 +32,25 @@ std::string withDefines(const std::string& source, const std::vector<std::string
         if (source[i] == '\n') ++versionLine;
     std::string out = source.substr(0, lineEnd + 1);
     for (const auto& d : defines) out += "#define " + d + "\n";
+    for (std::size_t k = 0; k < includeSources.size(); ++k)
+        out += "#line 1 " + std::to_string(k + 1) + "\n" + includeSources[k] + "\n";
     // "#line N 0": the next line is line N of source string 0, the only string we pass.
     out += "#line " + std::to_string(versionLine + 1) + " 0\n";
     out += source.substr(lineEnd + 1);
     return out;
 }
 
-// Mesa prints "0:12(5): error: ...", NVIDIA "0(12) : error ..."; both become "file:12: ...".
-std::string nameFileInLog(const std::string& log, const std::string& path) {
-    static const std::regex mesa(R"((^|\n)0:(\d+)\((\d+)\):)");
-    static const std::regex nvidia(R"((^|\n)0\((\d+)\) ?:)");
-    std::string out = std::regex_replace(log, mesa, "$1" + path + ":$2:$3:");
-    out = std::regex_replace(out, nvidia, "$1" + path + ":$2:");
+// Mesa prints "0:12(5): error: ...", NVIDIA "0(12) : error ..."; both become "file:12: ...",
+// where source string 0 is the stage's file and k >= 1 its k-th include.
+std::string nameFileInLog(const std::string& log, const std::vector<std::string>& paths) {
+    std::string out = log;
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+        const std::string n = std::to_string(k);
+        const std::regex mesa("(^|\\n)" + n + R"(:(\d+)\((\d+)\):)");
+        const std::regex nvidia("(^|\\n)" + n + R"(\((\d+)\) ?:)");
+        out = std::regex_replace(out, mesa, "$1" + paths[k] + ":$2:$3:");
+        out = std::regex_replace(out, nvidia, "$1" + paths[k] + ":$2:");
+    }
     return out;
 }
 
@@ -64,7 +72,12 @@ Program buildProgram(const ProgramDesc& desc) {
     std::string names;
     for (const auto& stage : desc.stages) {
         const std::string path = desc.shaderDir + "/" + stage.file;
-        const std::string source = withDefines(readFile(path), desc.defines, path);
+        std::vector<std::string> paths{path}, includeSources;
+        for (const auto& include : stage.includes) {
+            paths.push_back(desc.shaderDir + "/" + include);
+            includeSources.push_back(readFile(paths.back()));
+        }
+        const std::string source = assemble(readFile(path), desc.defines, includeSources, path);
         Shader shader = Shader::create(stage.stage);
         const char* text = source.c_str();
         glShaderSource(shader.id(), 1, &text, nullptr);
@@ -77,7 +90,7 @@ Program buildProgram(const ProgramDesc& desc) {
             std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
             glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
             throw GlError(std::string(stageName(stage.stage)) + " shader '" + path +
-                          "' failed to compile:\n" + nameFileInLog(log.c_str(), path));
+                          "' failed to compile:\n" + nameFileInLog(log.c_str(), paths));
         }
         names += (names.empty() ? "" : " + ") + stage.file;
         shaders.push_back(std::move(shader));

@@ -11,6 +11,9 @@ namespace warplab::gl {
 struct ShaderStage {
     GLenum stage = GL_VERTEX_SHADER;  // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...
     std::string file;                 // relative to the shader directory, e.g. "conventional.vert"
+    // Files of shared functions (no #version line) compiled in before `file`, in order; GLSL
+    // has no #include. Errors in them are reported with their own name and line.
+    std::vector<std::string> includes = {};
 };
 
 struct ProgramDesc {

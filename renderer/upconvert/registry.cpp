@@ -6,6 +6,7 @@
 #include "renderer/gbuffer_gl.h"
 #include "renderer/upconvert.h"
 #include "renderer/upconvert/simple_methods.h"
+#include "renderer/upconvert/warp.h"
 
 namespace warplab::renderer {
 namespace {
@@ -15,6 +16,12 @@ struct Entry {
     std::function<std::unique_ptr<UpconversionMethod>(const DataPaths&)> make;
 };
 
+WarpSettings sparse(int patchSize) {
+    WarpSettings s;
+    s.patchSize = patchSize;
+    return s;
+}
+
 const std::vector<Entry>& registry() {
     static const std::vector<Entry> entries = {
         {"hold15", [](const DataPaths& p) { return makeHold(p, 15.0); }},
@@ -22,6 +29,16 @@ const std::vector<Entry>& registry() {
         {"hold60", [](const DataPaths& p) { return makeHold(p, 60.0); }},
         {"hold120", [](const DataPaths& p) { return makeHold(p, 120.0); }},
         {"blend", [](const DataPaths& p) { return makeBlend(p); }},
+        {"warp-full", [](const DataPaths& p) { return makeWarp(p, "warp-full", {}); }},
+        {"warp-nofix",
+         [](const DataPaths& p) {
+             WarpSettings s;
+             s.disocclusionFix = false;
+             return makeWarp(p, "warp-nofix", s);
+         }},
+        {"warp-sparse4", [](const DataPaths& p) { return makeWarp(p, "warp-sparse4", sparse(4)); }},
+        {"warp-sparse8", [](const DataPaths& p) { return makeWarp(p, "warp-sparse8", sparse(8)); }},
+        {"warp-sparse16", [](const DataPaths& p) { return makeWarp(p, "warp-sparse16", sparse(16)); }},
     };
     return entries;
 }

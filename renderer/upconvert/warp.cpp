@@ -1,0 +1,231 @@
+#include "renderer/upconvert/warp.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "renderer/gbuffer_gl.h"
+#include "renderer/gl/check.h"
+#include "renderer/gl/program.h"
+#include "renderer/upconvert/fullscreen.h"
+#include "scene/camera.h"
+
+namespace warplab::renderer {
+namespace {
+
+constexpr GLuint kRestart = 0xFFFFFFFFu;
+
+class WarpMethod final : public UpconversionMethod {
+public:
+    WarpMethod(const DataPaths& paths, const std::string& name, const WarpSettings& settings) : settings_(settings) {
+        info_.name = name;
+        info_.sourceRateHz = 15.0;
+        info_.reportsCorrespondence = true;
+        info_.description =
+            settings.patchSize == 0
+                ? std::string("warp extrapolation from the latest 15 Hz frame, full-density mesh") +
+                      (settings.disocclusionFix ? " with the disocclusion fix" : " without the disocclusion fix")
+                : "warp extrapolation, " + std::to_string(settings.patchSize) + "x" +
+                      std::to_string(settings.patchSize) + " sparse mesh re-densified by tessellation";
+        const std::vector<std::string> common{"warp_common.glsl"};
+        std::vector<gl::ShaderStage> stages;
+        if (settings.patchSize == 0) {
+            stages.push_back({GL_VERTEX_SHADER, "warp_full.vert", common});
+        } else {
+            stages.push_back({GL_VERTEX_SHADER, "warp_sparse.vert"});
+            stages.push_back({GL_TESS_CONTROL_SHADER, "warp_sparse.tesc"});
+            stages.push_back({GL_TESS_EVALUATION_SHADER, "warp_sparse.tese", common});
+            flagsProgram_ = gl::buildProgram({paths.shaderDir,
+                                              {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                               {GL_FRAGMENT_SHADER, "warp_patch_flags.frag"}},
+                                              {}});
+        }
+        std::vector<std::string> defines;
+        if (settings.disocclusionFix || settings.patchSize != 0) {
+            // Sparse meshes always take the fix: the thesis' final renderer used both.
+            stages.push_back({GL_GEOMETRY_SHADER, "warp_fix.geom"});
+            defines.push_back("WARP_GEOMETRY_STAGE 1");
+        }
+        stages.push_back({GL_FRAGMENT_SHADER, "warp.frag"});
+        program_ = gl::buildProgram({paths.shaderDir, stages, defines});
+        primitives_ = gl::Query::create();
+    }
+
+    const MethodInfo& info() const override { return info_; }
+
+    void produce(const UpconversionInput& input, DisplayFrame& out) override {
+        if (input.previous == nullptr) throw std::invalid_argument(info_.name + ": no source frame");
+        const SourceFrame& source = *input.previous;
+        const auto& src = source.gbuffer.impl();
+        const int w = out.width(), h = out.height();
+        if (src.width != w || src.height != h) throw std::invalid_argument(info_.name + ": source and display sizes differ");
+        const float aspect = static_cast<float>(w) / static_cast<float>(h);
+        const scene::CameraState& sourceCamera = source.depicts.camera;
+        const glm::mat4 sourceViewProjection =
+            scene::projectionMatrix(sourceCamera, aspect) * scene::viewMatrix(sourceCamera);
+        const glm::mat4 targetViewProjection =
+            scene::projectionMatrix(input.camera, aspect) * scene::viewMatrix(input.camera);
+        // Inverted in double: float inversion of a perspective matrix with near 0.05 and far 200
+        // costs several bits where depth is most compressed.
+        const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
+        const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
+
+        if (settings_.patchSize != 0) classifyPatches(source, w, h);
+
+        auto& target = out.buffer().impl();
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+        glViewport(0, 0, w, h);
+        const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
+        const GLuint noId[4] = {0, 0, 0, 0};
+        const GLfloat none[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
+        glClearBufferfv(GL_COLOR, 0, black);  // what no source pixel covers stays black, as in the thesis
+        glClearBufferuiv(GL_COLOR, 1, noId);
+        glClearBufferfv(GL_COLOR, 2, none);
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDisable(GL_BLEND);
+        glDisable(GL_CULL_FACE);
+
+        glUseProgram(program_.id());
+        auto u = [&](const char* name) { return gl::uniform(program_, name); };
+        bindTexture(program_, "uSourceDepth", 0, src.depth);
+        bindTexture(program_, "uSourceVelocity", 1, src.velocity);
+        bindTexture(program_, "uSourceColour", 2, src.colour);
+        bindTexture(program_, "uSourceIds", 3, src.ids);
+        glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceInverse));
+        glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
+        glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
+        glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
+        glUniform2f(u("uSize"), static_cast<float>(w), static_cast<float>(h));
+        glUniform1f(u("uDt"), dt);
+        glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
+        glUniform1f(u("uGrazingCosine"), std::cos(glm::radians(settings_.sheetAngleDeg)));
+        glUniform1f(u("uSheetDepthRatio"), settings_.sheetDepthRatio);
+
+        glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_.id());
+        if (settings_.patchSize == 0) {
+            const GLsizei count = fullMeshIndices(w, h);
+            glEnable(GL_PRIMITIVE_RESTART);
+            glPrimitiveRestartIndex(kRestart);
+            glBindVertexArray(fullMesh_.vao.id());
+            glDrawElements(GL_TRIANGLE_STRIP, count, GL_UNSIGNED_INT, nullptr);
+            glDisable(GL_PRIMITIVE_RESTART);
+        } else {
+            glUniform1i(u("uPatchSize"), settings_.patchSize);
+            glUniform2i(u("uPatchCount"), patchCountX_, patchCountY_);
+            bindTexture(program_, "uPatchFlags", 4, flags_);
+            glPatchParameteri(GL_PATCH_VERTICES, 4);
+            glBindVertexArray(emptyVao_.id());
+            glDrawArrays(GL_PATCHES, 0, 4 * patchCountX_ * patchCountY_);
+        }
+        glEndQuery(GL_PRIMITIVES_GENERATED);
+        glBindVertexArray(0);
+        glActiveTexture(GL_TEXTURE0);
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl::checkErrors(("warping a frame (" + info_.name + ")").c_str());
+    }
+
+    // Triangles the last draw made (after tessellation), for the bench's counts.
+    double lastTriangleCount() {
+        GLuint64 n = 0;
+        glGetQueryObjectui64v(primitives_.id(), GL_QUERY_RESULT, &n);
+        return static_cast<double>(n);
+    }
+
+private:
+    struct FullMesh {
+        gl::VertexArray vao;
+        gl::Buffer indices;
+        int width = 0, height = 0;
+        GLsizei count = 0;
+    };
+
+    // Row strips over the (w + 2) x (h + 2) vertex grid (the image plus an outer ring), one
+    // restart between rows; built once per size.
+    GLsizei fullMeshIndices(int w, int h) {
+        if (fullMesh_.width == w && fullMesh_.height == h) return fullMesh_.count;
+        const int columns = w + 2, rows = h + 2;
+        std::vector<GLuint> indices;
+        indices.reserve(static_cast<std::size_t>(rows - 1) * (2 * columns + 1));
+        for (int y = 0; y + 1 < rows; ++y) {
+            for (int x = 0; x < columns; ++x) {
+                indices.push_back(static_cast<GLuint>((y + 1) * columns + x));
+                indices.push_back(static_cast<GLuint>(y * columns + x));
+            }
+            indices.push_back(kRestart);
+        }
+        fullMesh_.vao = gl::VertexArray::create();
+        fullMesh_.indices = gl::Buffer::create();
+        glBindVertexArray(fullMesh_.vao.id());
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, fullMesh_.indices.id());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
+                     indices.data(), GL_STATIC_DRAW);
+        glBindVertexArray(0);
+        fullMesh_.width = w;
+        fullMesh_.height = h;
+        fullMesh_.count = static_cast<GLsizei>(indices.size());
+        gl::checkErrors("building the full warp mesh");
+        return fullMesh_.count;
+    }
+
+    // One texel per patch saying where the depth (or velocity) jumps; the tessellation
+    // control stage reads it for the patch and its four neighbours.
+    void classifyPatches(const SourceFrame& source, int w, int h) {
+        const int n = settings_.patchSize;
+        const int px = (w + 1 + n - 1) / n, py = (h + 1 + n - 1) / n;  // cover pixels -1 .. w
+        if (px != patchCountX_ || py != patchCountY_) {
+            patchCountX_ = px;
+            patchCountY_ = py;
+            flags_ = gl::Texture::create();
+            glBindTexture(GL_TEXTURE_2D, flags_.id());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RG8, px, py, 0, GL_RG, GL_UNSIGNED_BYTE, nullptr);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            flagsFramebuffer_ = gl::Framebuffer::create();
+            glBindFramebuffer(GL_FRAMEBUFFER, flagsFramebuffer_.id());
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, flags_.id(), 0);
+            if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+                throw gl::GlError(info_.name + ": the patch-flag framebuffer is incomplete");
+        }
+        const auto& src = source.gbuffer.impl();
+        glBindFramebuffer(GL_FRAMEBUFFER, flagsFramebuffer_.id());
+        glViewport(0, 0, px, py);
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(flagsProgram_.id());
+        bindTexture(flagsProgram_, "uSourceDepth", 0, src.depth);
+        bindTexture(flagsProgram_, "uSourceVelocity", 1, src.velocity);
+        glUniform2f(gl::uniform(flagsProgram_, "uSize"), static_cast<float>(w), static_cast<float>(h));
+        glUniform1i(gl::uniform(flagsProgram_, "uPatchSize"), n);
+        glUniform1f(gl::uniform(flagsProgram_, "uNear"), source.depicts.camera.nearPlane);
+        glUniform1f(gl::uniform(flagsProgram_, "uFar"), source.depicts.camera.farPlane);
+        glUniform1f(gl::uniform(flagsProgram_, "uDepthThreshold"), settings_.depthJump);
+        glUniform1f(gl::uniform(flagsProgram_, "uVelocityThreshold"), settings_.velocityJump);
+        flagsPass_.draw();
+        gl::checkErrors("classifying warp patches");
+    }
+
+    MethodInfo info_;
+    WarpSettings settings_;
+    gl::Program program_;
+    gl::Program flagsProgram_;
+    gl::Query primitives_;
+    FullMesh fullMesh_;
+    gl::VertexArray emptyVao_ = gl::VertexArray::create();
+    FullscreenPass flagsPass_;
+    gl::Texture flags_;
+    gl::Framebuffer flagsFramebuffer_;
+    int patchCountX_ = 0, patchCountY_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<UpconversionMethod> makeWarp(const DataPaths& paths, const std::string& name,
+                                             const WarpSettings& settings) {
+    return std::make_unique<WarpMethod>(paths, name, settings);
+}
+
+}  // namespace warplab::renderer

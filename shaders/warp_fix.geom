@@ -1,0 +1,58 @@
+#version 410 core
+// Disocclusion fix (seed 004 section 5.2.5): a triangle nearly parallel to the source view
+// ray is a "rubber sheet" stretched across a depth discontinuity. Its corners are sorted by
+// distance from the source eye: the nearest is foreground, the farthest background, the
+// middle joins whichever of the two it is closer to. Foreground corners then take the
+// background corners' source coordinates, so the sheet shows background colour instead of
+// a smear between foreground and background.
+
+layout(triangles) in;
+layout(triangle_strip, max_vertices = 3) out;
+
+in vec3 vSourceH[];
+in vec3 vSourceWorld[];
+out vec3 gSourceH;
+
+uniform vec3 uSourceEye;
+uniform float uGrazingCosine;  // |cos(normal, view ray)| below this = nearly parallel = a sheet
+// ...and its corners' distances from the source eye must also differ by more than this ratio:
+// a real surface seen at a grazing angle (the hallway's far floor) spans little depth between
+// neighbouring pixels, a sheet across a silhouette spans the jump.
+uniform float uSheetDepthRatio;
+
+void main() {
+    vec3 a = vSourceWorld[0], b = vSourceWorld[1], c = vSourceWorld[2];
+    vec3 normal = cross(b - a, c - a);
+    vec3 ray = (a + b + c) / 3.0 - uSourceEye;
+    float lengths = length(normal) * length(ray);
+    // Only triangles between neighbouring source pixels can be sheets: the sparse mesh
+    // subdivides every depth jump down to single pixels, so its larger triangles lie on
+    // surfaces (a distant floor at a grazing angle spans many metres over one big triangle).
+    vec2 pa = vSourceH[0].xy / vSourceH[0].z, pb = vSourceH[1].xy / vSourceH[1].z, pc = vSourceH[2].xy / vSourceH[2].z;
+    float extent = max(max(distance(pa, pb), distance(pb, pc)), distance(pc, pa));
+    bool sheet = extent < 1.5 && lengths > 0.0 && abs(dot(normal, ray)) < uGrazingCosine * lengths;
+
+    vec3 sourceH[3] = vec3[3](vSourceH[0], vSourceH[1], vSourceH[2]);
+    if (sheet) {
+        float d[3] = float[3](distance(a, uSourceEye), distance(b, uSourceEye), distance(c, uSourceEye));
+        int near = 0, far = 0;
+        for (int i = 1; i < 3; ++i) {
+            if (d[i] < d[near]) near = i;
+            if (d[i] > d[far]) far = i;
+        }
+        if (near != far && d[far] > uSheetDepthRatio * d[near]) {
+            int middle = 3 - near - far;
+            bool middleIsBackground = (d[far] - d[middle]) < (d[middle] - d[near]);
+            // The background corner nearest in depth to the foreground gives its colour.
+            int background = middleIsBackground ? middle : far;
+            sourceH[near] = vSourceH[background];
+            if (!middleIsBackground) sourceH[middle] = vSourceH[far];
+        }
+    }
+    for (int i = 0; i < 3; ++i) {
+        gl_Position = gl_in[i].gl_Position;
+        gSourceH = sourceH[i];
+        EmitVertex();
+    }
+    EndPrimitive();
+}
