@@ -5,7 +5,12 @@
 // The source coordinate comes from the geometry stage when the disocclusion fix runs.
 #ifdef WARP_GEOMETRY_STAGE
 in vec3 gSourceH;
-#define SOURCE_H gSourceH
+in vec3 gOwnSourceH;
+in float gForeground;
+// A sample exactly on a recoloured foreground corner is that foreground pixel itself (the
+// rasteriser's tie rule may hand it to the sheet rather than to the foreground surface):
+// it keeps its own colour, the rest of the sheet takes the background's.
+#define SOURCE_H (gForeground > 0.999 ? gOwnSourceH : gSourceH)
 #else
 in vec3 vSourceH;
 #define SOURCE_H vSourceH

@@ -12,6 +12,8 @@ layout(triangle_strip, max_vertices = 3) out;
 in vec3 vSourceH[];
 in vec3 vSourceWorld[];
 out vec3 gSourceH;
+out vec3 gOwnSourceH;     // the corner's own coordinate, before the fix
+out float gForeground;    // 1 at recoloured foreground corners, 0 elsewhere
 
 uniform vec3 uSourceEye;
 uniform float uGrazingCosine;  // |cos(normal, view ray)| below this = nearly parallel = a sheet
@@ -28,11 +30,14 @@ void main() {
     // Only triangles between neighbouring source pixels can be sheets: the sparse mesh
     // subdivides every depth jump down to single pixels, so its larger triangles lie on
     // surfaces (a distant floor at a grazing angle spans many metres over one big triangle).
+    // A patch subdivided in one direction only leaves one-pixel-wide slivers across its jump;
+    // those stay unfixed (measured: counting them as sheets recolours foreground pixels).
     vec2 pa = vSourceH[0].xy / vSourceH[0].z, pb = vSourceH[1].xy / vSourceH[1].z, pc = vSourceH[2].xy / vSourceH[2].z;
     float extent = max(max(distance(pa, pb), distance(pb, pc)), distance(pc, pa));
     bool sheet = extent < 1.5 && lengths > 0.0 && abs(dot(normal, ray)) < uGrazingCosine * lengths;
 
     vec3 sourceH[3] = vec3[3](vSourceH[0], vSourceH[1], vSourceH[2]);
+    float foreground[3] = float[3](0.0, 0.0, 0.0);
     if (sheet) {
         float d[3] = float[3](distance(a, uSourceEye), distance(b, uSourceEye), distance(c, uSourceEye));
         int near = 0, far = 0;
@@ -46,12 +51,18 @@ void main() {
             // The background corner nearest in depth to the foreground gives its colour.
             int background = middleIsBackground ? middle : far;
             sourceH[near] = vSourceH[background];
-            if (!middleIsBackground) sourceH[middle] = vSourceH[far];
+            foreground[near] = 1.0;
+            if (!middleIsBackground) {
+                sourceH[middle] = vSourceH[far];
+                foreground[middle] = 1.0;
+            }
         }
     }
     for (int i = 0; i < 3; ++i) {
         gl_Position = gl_in[i].gl_Position;
         gSourceH = sourceH[i];
+        gOwnSourceH = vSourceH[i];
+        gForeground = foreground[i];
         EmitVertex();
     }
     EndPrimitive();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 namespace warplab::testing {
@@ -25,13 +26,41 @@ renderer::DataPaths sourceDataPaths() {
     return {root + "/shaders", root + "/assets", root + "/analysis"};
 }
 
-renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height) {
+namespace {
+renderer::ConventionalRenderer& conventional() {
     glContext();
-    static std::unique_ptr<renderer::ConventionalRenderer> conventional =
+    static std::unique_ptr<renderer::ConventionalRenderer> renderer =
         std::make_unique<renderer::ConventionalRenderer>(sourceDataPaths());
+    return *renderer;
+}
+}  // namespace
+
+renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height) {
+    auto& renderer = conventional();
     renderer::GBuffer gbuffer(width, height);
-    conventional->render(frame, gbuffer);
+    renderer.render(frame, gbuffer);
     return renderer::readBack(gbuffer);
+}
+
+RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height) {
+    auto& renderer = conventional();
+    RenderedSource source;
+    source.frame = std::make_unique<renderer::SourceFrame>(width, height);
+    source.frame->depicts = frame;
+    renderer.render(frame, source.frame->gbuffer);
+    source.images = renderer::readBack(source.frame->gbuffer);
+    return source;
+}
+
+renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input, int width,
+                                     int height) {
+    glContext();
+    static std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods;
+    auto& m = methods[method];
+    if (!m) m = renderer::makeMethod(method, sourceDataPaths());
+    renderer::DisplayFrame display(width, height);
+    m->produce(input, display);
+    return renderer::readBack(display);
 }
 
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, double speed) {

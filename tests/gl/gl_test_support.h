@@ -10,6 +10,7 @@
 #include "game/shooter_scene.h"
 #include "renderer/context.h"
 #include "renderer/conventional.h"
+#include "renderer/upconvert.h"
 
 namespace warplab::testing {
 
@@ -19,6 +20,17 @@ renderer::DataPaths sourceDataPaths();
 
 // Renders a frame at width x height and reads the G-buffer back.
 renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int width, int height);
+
+// A conventionally rendered source frame kept with its read-back buffers.
+struct RenderedSource {
+    std::unique_ptr<renderer::SourceFrame> frame;
+    renderer::GBufferImages images;
+};
+RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height);
+
+// Makes the displayed frame with a registered method (methods are built once per name).
+renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input,
+                                     int width, int height);
 
 // The shooter scene sized for a width x height image, target spawned from `seed`.
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);

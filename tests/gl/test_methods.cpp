@@ -14,32 +14,12 @@ namespace {
 constexpr int kW = 128;
 constexpr int kH = 72;
 
-struct Rendered {
-    std::unique_ptr<renderer::SourceFrame> frame;
-    renderer::GBufferImages images;
-};
+using Rendered = testing::RenderedSource;
 
-renderer::ConventionalRenderer& conventional() {
-    testing::glContext();
-    static renderer::ConventionalRenderer r(testing::sourceDataPaths());
-    return r;
-}
-
-Rendered render(const scene::FrameDescription& description) {
-    auto& renderer = conventional();  // makes the context before any GL object
-    Rendered r;
-    r.frame = std::make_unique<renderer::SourceFrame>(kW, kH);
-    r.frame->depicts = description;
-    renderer.render(description, r.frame->gbuffer);
-    r.images = renderer::readBack(r.frame->gbuffer);
-    return r;
-}
+Rendered render(const scene::FrameDescription& description) { return testing::renderSource(description, kW, kH); }
 
 renderer::DisplayImages produce(const std::string& method, const renderer::UpconversionInput& input) {
-    auto m = renderer::makeMethod(method, testing::sourceDataPaths());
-    renderer::DisplayFrame display(kW, kH);
-    m->produce(input, display);
-    return renderer::readBack(display);
+    return testing::produceFrame(method, input, kW, kH);
 }
 
 scene::FrameDescription shooterAt(double t) {
