@@ -4,6 +4,7 @@
 // interface, so the benchmark and the study modes treat them alike.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,6 +67,9 @@ public:
     // Draws the displayed frame into `out` (same size as the sources). GL state it changes
     // is restored to the defaults the other passes assume.
     virtual void produce(const UpconversionInput& input, DisplayFrame& out) = 0;
+    // Triangles the last produce() drew (after tessellation), for the bench; NaN for
+    // image-space methods that draw no mesh.
+    virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
 // All registered method names, in the order the bench reports them.

@@ -88,11 +88,12 @@ struct Row {
     CorrespondenceStats corr;
     bool hasCorr = false;
     double passMs = kNaN, gpuMs = kNaN, conventionalMs = kNaN;
+    double triangles = kNaN;
 };
 
 const char* kCsvHeader =
     "sequence,method,frame,time_s,psnr_db,ssim,disocc_mae,corr_all_lt_0p1,corr_all_lt_0p5,corr_all_lt_1,"
-    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms";
+    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,triangles";
 
 void writeRow(std::ostream& csv, const Row& r) {
     auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
@@ -100,7 +101,7 @@ void writeRow(std::ostream& csv, const Row& r) {
         << field(r.ssim, 5) << ',' << field(r.disoccMae, 3) << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5)
         << ',' << c(r.corr.allLt1) << ',' << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ','
         << c(r.corr.hitLt1) << ',' << field(r.passMs, 3) << ',' << field(r.gpuMs, 3) << ','
-        << field(r.conventionalMs, 3) << '\n';
+        << field(r.conventionalMs, 3) << ',' << field(r.triangles, 0) << '\n';
 }
 
 // The plot is matplotlib's job; Debian's interpreter has it (python3 earlier on PATH may not).
@@ -281,6 +282,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                     row.corr = accumulator.stats();
                     row.hasCorr = true;
                 }
+                row.triangles = method->lastTriangleCount();
                 row.passMs = median(wall);
                 row.gpuMs = median(gpu);
                 row.conventionalMs = conventionalMedian;
@@ -326,9 +328,9 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
        << "shading cost " << options.shadingCost << ", " << options.repeats << " timed repeats per pass (medians)\n"
        << "- frames: " << totalFrames << " sampled display frames over " << sequences.size() << " sequences\n\n";
     md << "| sequence | method | median pass ms | ratio to conventional | PSNR dB | mean SSIM | disocc MAE | "
-          "corr all <0.5 px | corr hit <0.5 px |\n|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+          "corr all <0.5 px | corr hit <0.5 px | triangles |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     auto summarise = [&](const std::string& seq, const std::string& method) {
-        std::vector<double> pass, conv, psnr, ssim, mae, all05, hit05;
+        std::vector<double> pass, conv, psnr, ssim, mae, all05, hit05, triangles;
         for (const Row& r : rows) {
             if ((!seq.empty() && r.sequence != seq) || r.method != method) continue;
             pass.push_back(r.passMs);
@@ -336,6 +338,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
             psnr.push_back(r.psnr);
             ssim.push_back(r.ssim);
             mae.push_back(r.disoccMae);
+            triangles.push_back(r.triangles);
             if (r.hasCorr) all05.push_back(r.corr.allLt0p5), hit05.push_back(r.corr.hitLt0p5);
         }
         const double p = median(pass), c = median(conv);
@@ -344,7 +347,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
         auto pct = [](double v) { return std::isnan(v) ? std::string("") : field(100.0 * v, 1) + "%"; };
         md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << field(p, 3) << " | "
            << field(p / c, 3) << " | " << psnrText << " | " << field(mean(ssim), 4) << " | " << field(mean(mae), 2)
-           << " | " << pct(mean(all05)) << " | " << pct(mean(hit05)) << " |\n";
+           << " | " << pct(mean(all05)) << " | " << pct(mean(hit05)) << " | " << field(median(triangles), 0) << " |\n";
     };
     for (const auto& s : sequences)
         for (const auto& m : methods) summarise(s->name(), m->info().name);

@@ -130,7 +130,7 @@ public:
     }
 
     // Triangles the last draw made (after tessellation), for the bench's counts.
-    double lastTriangleCount() {
+    double lastTriangleCount() override {
         GLuint64 n = 0;
         glGetQueryObjectui64v(primitives_.id(), GL_QUERY_RESULT, &n);
         return static_cast<double>(n);
