@@ -1,0 +1,953 @@
+// The session store on the sqlite3 C API. docs/session-format.md is the contract with analysts;
+// keep the two in step (and bump kSessionFormatVersion when the schema changes).
+#include "protocol/session_store.h"
+
+#include <fcntl.h>
+#include <sqlite3.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace warplab::protocol {
+namespace {
+
+namespace fs = std::filesystem;
+
+// "WPLS" in the SQLite header (offset 68): tells a warplab session from any other database
+// before reading a single table, and lets `file(1)` style tools recognise it.
+constexpr std::int32_t kApplicationId = 0x57504C53;
+constexpr const char* kExtension = ".warplab-session";
+constexpr std::size_t kMaxNameBytes = 64;
+
+// ---- RAII for the two sqlite3 handle kinds ----
+
+struct DbCloser {
+    // close_v2 defers the close until every statement is finalised, so member order in the
+    // owners cannot cause a leaked handle.
+    void operator()(sqlite3* db) const { sqlite3_close_v2(db); }
+};
+using Db = std::unique_ptr<sqlite3, DbCloser>;
+
+struct StmtFinaliser {
+    void operator()(sqlite3_stmt* stmt) const { sqlite3_finalize(stmt); }
+};
+using Stmt = std::unique_ptr<sqlite3_stmt, StmtFinaliser>;
+
+// Parameter helpers, not named `bind`: given a std::string, argument-dependent lookup would
+// pick std::bind and silently bind nothing. Doubles are bound as REAL storage (IEEE-754
+// binary64, read back bit for bit); SQLite turns NaN into NULL, which the reader turns back.
+void bindArg(sqlite3_stmt* s, int i, double v) { sqlite3_bind_double(s, i, v); }
+void bindArg(sqlite3_stmt* s, int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+void bindArg(sqlite3_stmt* s, int i, const std::string& v) {
+    // Explicit length: ids and JSON may hold NUL bytes and must survive them.
+    sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+}
+void bindOptional(sqlite3_stmt* s, int i, const std::optional<std::int64_t>& v) {
+    if (v)
+        sqlite3_bind_int64(s, i, *v);
+    else
+        sqlite3_bind_null(s, i);
+}
+
+std::string columnText(sqlite3_stmt* s, int i) {
+    const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(s, i));
+    return text ? std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i)))
+                : std::string();
+}
+
+std::string utcNow() {
+    using namespace std::chrono;
+    const auto now = system_clock::now();
+    const std::time_t seconds = system_clock::to_time_t(now);
+    const auto millis =
+        duration_cast<milliseconds>(now.time_since_epoch()).count() % 1000;
+    std::tm tm{};
+    gmtime_r(&seconds, &tm);
+    char text[96];  // room for any int the format could meet, so no truncation warning
+    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900,
+                  tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
+                  static_cast<int>(millis));
+    return text;
+}
+
+// Meta values are TEXT; numbers go through to_chars/from_chars, which are exact (shortest
+// round-trip form) and, unlike printf/strtod, ignore the process locale.
+std::string numberText(double v) {
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+template <typename T>
+std::string numberText(T v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    return std::string(buf, r.ptr);
+}
+template <typename T>
+bool parseNumber(const std::string& text, T& out) {
+    const char* end = text.data() + text.size();
+    const auto r = std::from_chars(text.data(), end, out);
+    return r.ec == std::errc() && r.ptr == end;
+}
+
+// Only [A-Za-z0-9_-] reach the file system; every run of anything else becomes one '_'.
+// The id cannot then name a folder ('/' and '.' are gone), so it cannot be "." or "..", and
+// a leading '-' is replaced too so the file name never reads as a command-line option.
+std::string safeName(const std::string& raw, std::size_t maxBytes) {
+    std::string out;
+    for (const char c : raw) {
+        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                        (c >= '0' && c <= '9') || c == '_' || c == '-';
+        if (ok)
+            out += c;
+        else if (out.empty() || out.back() != '_')
+            out += '_';
+        if (out.size() >= maxBytes) break;
+    }
+    if (!out.empty() && out.front() == '-') out.front() = '_';
+    return out;
+}
+
+std::string timeForName(const std::string& iso) {
+    std::string out;
+    for (const char c : iso)
+        if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'))
+            out += c;
+    return out.substr(0, 32);
+}
+
+bool anyExists(const std::string& path) {
+    std::error_code ec;
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"})
+        if (fs::exists(fs::symlink_status(path + suffix, ec))) return true;
+    return false;
+}
+
+void removeSessionFiles(const std::string& path) {
+    std::error_code ec;
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
+}
+
+// Tables and their columns: the single source for CREATE and the reader's SELECTs.
+// Doubles are columns WITHOUT a declared type: a REAL-affinity column stores -0.0 as the
+// integer 0 (SQLite packs integral reals), which would break bit-exact replay. The CHECK keeps
+// every value a REAL (or NULL for NaN), so analysts still get plain doubles.
+#define WARPLAB_REAL(name) name " CHECK (typeof(" name ") IN ('real', 'null'))"
+constexpr const char* kSchema[] = {
+    "CREATE TABLE meta ("
+    "  key   TEXT PRIMARY KEY,"
+    "  value TEXT NOT NULL)",
+
+    "CREATE TABLE input ("
+    "  frame   INTEGER PRIMARY KEY,"
+    "  " WARPLAB_REAL("display_time") ","
+    "  " WARPLAB_REAL("mouse_dx") ","
+    "  " WARPLAB_REAL("mouse_dy") ","
+    "  buttons INTEGER NOT NULL,"
+    "  keys    INTEGER NOT NULL)",
+
+    "CREATE TABLE frames ("
+    "  frame          INTEGER PRIMARY KEY,"
+    "  mode           TEXT NOT NULL,"
+    "  kind           TEXT NOT NULL,"
+    "  " WARPLAB_REAL("frame_ms") ","
+    "  missed_vsyncs  INTEGER NOT NULL,"
+    "  " WARPLAB_REAL("camera_yaw") ","
+    "  " WARPLAB_REAL("camera_pitch") ","
+    "  " WARPLAB_REAL("target_x") ","
+    "  " WARPLAB_REAL("target_y") ","
+    "  " WARPLAB_REAL("target_z") ","
+    "  target_visible INTEGER NOT NULL CHECK (target_visible IN (0, 1)))",
+
+    "CREATE TABLE events ("
+    "  id                INTEGER PRIMARY KEY,"
+    "  frame             INTEGER NOT NULL,"
+    "  type              TEXT NOT NULL,"
+    "  phase             TEXT NOT NULL,"
+    "  trial             INTEGER NOT NULL,"
+    "  mode              TEXT NOT NULL,"
+    "  difficulty        INTEGER NOT NULL,"
+    "  " WARPLAB_REAL("target_speed") ","
+    "  " WARPLAB_REAL("spawn_time") ","
+    "  " WARPLAB_REAL("event_time") ","
+    "  " WARPLAB_REAL("aim_time") ","
+    "  world_outcome     TEXT NOT NULL,"
+    "  displayed_outcome TEXT NOT NULL,"
+    "  " WARPLAB_REAL("angular_error_deg") ","
+    "  detail_json       TEXT NOT NULL)",
+
+    "CREATE TABLE commits ("
+    "  id            INTEGER PRIMARY KEY,"
+    "  input_rows    INTEGER NOT NULL,"
+    "  frame_rows    INTEGER NOT NULL,"
+    "  event_rows    INTEGER NOT NULL,"
+    "  last_frame    INTEGER,"
+    "  last_event_id INTEGER,"
+    "  checksum      INTEGER NOT NULL,"
+    "  committed_at  TEXT NOT NULL)",
+};
+#undef WARPLAB_REAL
+
+constexpr const char* kInputColumns = "frame, display_time, mouse_dx, mouse_dy, buttons, keys";
+constexpr const char* kFrameColumns =
+    "frame, mode, kind, frame_ms, missed_vsyncs, camera_yaw, camera_pitch, target_x, target_y, "
+    "target_z, target_visible";
+constexpr const char* kEventColumns =
+    "id, frame, type, phase, trial, mode, difficulty, target_speed, spawn_time, event_time, "
+    "aim_time, world_outcome, displayed_outcome, angular_error_deg, detail_json";
+constexpr const char* kCommitColumns =
+    "id, input_rows, frame_rows, event_rows, last_frame, checksum";
+
+std::string placeholders(int n) {
+    std::string out = "?";
+    for (int i = 1; i < n; ++i) out += ", ?";
+    return out;
+}
+
+// SQLite has no page checksums: a file cut inside a page reads back with zeros in place of
+// the lost bytes and no error. So every commit carries a checksum of its own rows (and the
+// header one of its own), and the reader keeps only commits that verify. FNV-1a 64 over a
+// fixed little-endian serialisation, spelled out in docs/session-format.md.
+class Checksum {
+public:
+    void i64(std::int64_t v) {
+        auto u = static_cast<std::uint64_t>(v);
+        for (int i = 0; i < 8; ++i, u >>= 8) byte(static_cast<unsigned char>(u & 0xff));
+    }
+    void f64(double v) {
+        // NaN is stored as NULL and read back as the quiet NaN, so hash that one.
+        if (std::isnan(v)) v = std::numeric_limits<double>::quiet_NaN();
+        std::uint64_t bits;
+        std::memcpy(&bits, &v, sizeof bits);
+        i64(static_cast<std::int64_t>(bits));
+    }
+    void text(const std::string& v) {
+        i64(static_cast<std::int64_t>(v.size()));
+        for (const char c : v) byte(static_cast<unsigned char>(c));
+    }
+    std::uint64_t value() const { return h_; }
+
+private:
+    void byte(unsigned char b) { h_ = (h_ ^ b) * 0x100000001b3ull; }
+    std::uint64_t h_ = 0xcbf29ce484222325ull;
+};
+
+void hashRecord(Checksum& c, const InputRecord& r) {
+    c.i64(r.frame);
+    c.f64(r.displayTime);
+    c.f64(r.mouseDx);
+    c.f64(r.mouseDy);
+    c.i64(r.buttons);
+    c.i64(r.keys);
+}
+void hashRecord(Checksum& c, const FrameRecord& r) {
+    c.i64(r.frame);
+    c.text(r.mode);
+    c.text(r.kind);
+    c.f64(r.frameMs);
+    c.i64(r.missedVsyncs);
+    c.f64(r.cameraYaw);
+    c.f64(r.cameraPitch);
+    c.f64(r.targetX);
+    c.f64(r.targetY);
+    c.f64(r.targetZ);
+    c.i64(r.targetVisible ? 1 : 0);
+}
+void hashRecord(Checksum& c, const EventRecord& r) {
+    c.i64(r.frame);
+    c.text(r.type);
+    c.text(r.phase);
+    c.i64(r.trial);
+    c.text(r.mode);
+    c.i64(r.difficulty);
+    c.f64(r.targetSpeed);
+    c.f64(r.spawnTime);
+    c.f64(r.eventTime);
+    c.f64(r.aimTime);
+    c.text(r.worldOutcome);
+    c.text(r.displayedOutcome);
+    c.f64(r.angularErrorDeg);
+    c.text(r.detailJson);
+}
+
+// One running checksum per table for the rows of the commit being built.
+struct CommitChecksum {
+    Checksum input, frames, events;
+    std::int64_t value() const {
+        Checksum c;
+        c.i64(static_cast<std::int64_t>(input.value()));
+        c.i64(static_cast<std::int64_t>(frames.value()));
+        c.i64(static_cast<std::int64_t>(events.value()));
+        return static_cast<std::int64_t>(c.value());
+    }
+};
+
+// The header as meta entries, in checksum order (completed_at and header_checksum are not
+// part of it). The single list of header keys: the writer stores these, the reader checks
+// the same keys.
+std::vector<std::pair<const char*, std::string>> headerEntries(const SessionHeader& h) {
+    return {
+        {"format_version", std::to_string(kSessionFormatVersion)},
+        {"protocol_json", h.protocolJson},
+        {"seed", numberText(h.seed)},
+        {"participant", h.participant},
+        {"app_version", h.appVersion},
+        {"gl_renderer", h.glRenderer},
+        {"gl_version", h.glVersion},
+        {"refresh_hz", numberText(h.refreshHz)},
+        {"display_width", numberText(h.displayWidth)},
+        {"display_height", numberText(h.displayHeight)},
+        {"started_at", h.startedAt},
+        {"player", h.player},
+    };
+}
+
+}  // namespace
+
+// ============================ writer ============================
+
+struct SessionWriter::Impl {
+    std::string path;
+    Db db;
+    Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
+    bool inTransaction = false;
+    bool finished = false;
+
+    // Row counts and last keys so far. `committed` is the state of the last commit, restored
+    // when a commit fails so the writer's view matches the file again.
+    struct Counters {
+        std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;
+        std::optional<std::int64_t> lastInputFrame, lastFrameFrame;
+        CommitChecksum checksum;  // rows since the last commit
+    };
+    Counters now, committed;
+
+    ~Impl() {
+        // Discard the uncommitted tail explicitly: the file then holds exactly what a crash
+        // at this instant would have left.
+        if (db && inTransaction) sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+    }
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw SessionError("Cannot write session file " + path + " (" + what +
+                           "): " + sqlite3_errmsg(db.get()) + ".");
+    }
+    void exec(const char* sql, const char* what) {
+        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail(what);
+    }
+    Stmt prepare(const std::string& sql) {
+        sqlite3_stmt* raw = nullptr;
+        if (sqlite3_prepare_v3(db.get(), sql.c_str(), -1, SQLITE_PREPARE_PERSISTENT, &raw,
+                               nullptr) != SQLITE_OK)
+            fail("preparing a statement");
+        return Stmt(raw);
+    }
+    void run(sqlite3_stmt* s, const char* what) {
+        const int rc = sqlite3_step(s);
+        sqlite3_reset(s);
+        if (rc != SQLITE_DONE) fail(what);
+    }
+    void ensureTransaction() {
+        if (inTransaction) return;
+        // IMMEDIATE takes the write lock now, so a problem shows at the first add, not at commit.
+        exec("BEGIN IMMEDIATE", "starting a transaction");
+        inTransaction = true;
+    }
+    void putMeta(const std::string& key, const std::string& value) {
+        bindArg(insertMeta.get(), 1, key);
+        bindArg(insertMeta.get(), 2, value);
+        run(insertMeta.get(), "writing the header");
+    }
+
+    void commit(bool finishing) {
+        const bool pending = now.inputRows != committed.inputRows ||
+                             now.frameRows != committed.frameRows ||
+                             now.eventRows != committed.eventRows;
+        if (!pending && !finishing) return;
+        try {
+            ensureTransaction();
+            if (pending) {
+                std::optional<std::int64_t> lastFrame = now.lastInputFrame;
+                if (now.lastFrameFrame && (!lastFrame || *now.lastFrameFrame > *lastFrame))
+                    lastFrame = now.lastFrameFrame;
+                sqlite3_stmt* s = insertCommit.get();
+                bindArg(s, 1, now.inputRows);
+                bindArg(s, 2, now.frameRows);
+                bindArg(s, 3, now.eventRows);
+                bindOptional(s, 4, lastFrame);
+                bindOptional(s, 5, now.eventRows > 0 ? std::optional<std::int64_t>(now.eventRows)
+                                                     : std::nullopt);
+                bindArg(s, 6, now.checksum.value());
+                bindArg(s, 7, utcNow());
+                run(s, "recording the commit");
+            }
+            if (finishing) putMeta("completed_at", utcNow());
+            exec("COMMIT", "committing");
+            inTransaction = false;
+            now.checksum = CommitChecksum{};
+            committed = now;
+        } catch (...) {
+            // A failed COMMIT may or may not have rolled back by itself; make sure it did,
+            // so the file and the counters agree on what is stored.
+            if (!sqlite3_get_autocommit(db.get()))
+                sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+            inTransaction = false;
+            now = committed;
+            throw;
+        }
+    }
+
+    void checkOpen(const char* caller) const {
+        if (finished)
+            throw std::logic_error(std::string("SessionWriter::") + caller +
+                                   ": the session is already finished.");
+    }
+};
+
+SessionWriter::SessionWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+SessionWriter::SessionWriter(SessionWriter&&) noexcept = default;
+SessionWriter& SessionWriter::operator=(SessionWriter&&) noexcept = default;
+
+SessionWriter::~SessionWriter() = default;
+
+SessionWriter::Impl& SessionWriter::impl(const char* caller) const {
+    if (!impl_)
+        throw std::logic_error(std::string("SessionWriter::") + caller +
+                               ": this writer was moved from.");
+    return *impl_;
+}
+
+const std::string& SessionWriter::path() const { return impl("path").path; }
+
+SessionWriter SessionWriter::create(const std::string& resultsDir, const SessionHeader& header) {
+    if (header.formatVersion != kSessionFormatVersion)
+        throw std::invalid_argument("SessionWriter::create: header.formatVersion is " +
+                                    std::to_string(header.formatVersion) +
+                                    " but this warplab writes format version " +
+                                    std::to_string(kSessionFormatVersion) + ".");
+
+    // Everything that can be checked is checked before the first file exists, so a bad
+    // results folder leaves no litter behind.
+    std::error_code ec;
+    const auto status = fs::status(resultsDir, ec);
+    if (resultsDir.empty() || !fs::exists(status))
+        throw SessionError("Results folder '" + resultsDir + "' does not exist.");
+    if (!fs::is_directory(status))
+        throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
+    if (::access(resultsDir.c_str(), W_OK | X_OK) != 0)
+        throw SessionError("Results folder '" + resultsDir + "' is not writable (" +
+                           std::strerror(errno) + ").");
+
+    SessionHeader h = header;
+    if (h.startedAt.empty()) h.startedAt = utcNow();
+    std::string stem = safeName(h.participant, kMaxNameBytes);
+    if (stem.empty()) stem = "participant";
+    const std::string when = timeForName(h.startedAt);
+    if (!when.empty()) stem += "_" + when;
+
+    // O_EXCL makes "pick a free name" and "create it" one step, so two sessions started in
+    // the same second (two rigs sharing a results folder) never share a file.
+    auto impl = std::make_unique<Impl>();
+    for (int n = 1;; ++n) {
+        const std::string name = stem + (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
+        const std::string candidate = (fs::path(resultsDir) / name).string();
+        if (anyExists(candidate)) continue;
+        const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+        if (fd >= 0) {
+            ::close(fd);
+            impl->path = candidate;
+            break;
+        }
+        if (errno != EEXIST || n >= 10000)
+            throw SessionError("Cannot create session file " + candidate + ": " +
+                               std::strerror(errno) + ".");
+    }
+
+    try {
+        sqlite3* raw = nullptr;
+        const int rc = sqlite3_open_v2(impl->path.c_str(), &raw, SQLITE_OPEN_READWRITE, nullptr);
+        impl->db.reset(raw);
+        if (rc != SQLITE_OK) impl->fail("opening");
+        sqlite3_busy_timeout(impl->db.get(), 5000);
+        // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
+        // intact, and analysts can read a running session. FULL: each commit is fsynced, so
+        // a power cut keeps it as well; one fsync per trial costs nothing next to a
+        // participant's hour (see docs/session-format.md).
+        sqlite3_stmt* rawMode = nullptr;
+        sqlite3_prepare_v2(impl->db.get(), "PRAGMA journal_mode=WAL", -1, &rawMode, nullptr);
+        Stmt mode(rawMode);
+        if (!mode || sqlite3_step(mode.get()) != SQLITE_ROW || columnText(mode.get(), 0) != "wal")
+            impl->fail("switching to WAL mode");
+        mode.reset();
+        impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
+
+        impl->exec("BEGIN IMMEDIATE", "writing the header");
+        impl->inTransaction = true;
+        impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
+                   "writing the header");
+        for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
+        impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+        Checksum checksum;
+        for (const auto& [key, value] : headerEntries(h)) {
+            impl->putMeta(key, value);
+            checksum.text(key);
+            checksum.text(value);
+        }
+        impl->putMeta("header_checksum", numberText(checksum.value()));
+        impl->exec("COMMIT", "writing the header");
+        impl->inTransaction = false;
+        // Fold the header into the main file now, so that the main file alone -- a lost or
+        // deleted -wal -- is still a readable session, just with no trials.
+        if (sqlite3_wal_checkpoint_v2(impl->db.get(), nullptr, SQLITE_CHECKPOINT_TRUNCATE,
+                                      nullptr, nullptr) != SQLITE_OK)
+            impl->fail("writing the header");
+
+        impl->insertInput = impl->prepare(std::string("INSERT INTO input (") + kInputColumns +
+                                          ") VALUES (" + placeholders(6) + ")");
+        impl->insertFrame = impl->prepare(std::string("INSERT INTO frames (") + kFrameColumns +
+                                          ") VALUES (" + placeholders(11) + ")");
+        impl->insertEvent = impl->prepare(std::string("INSERT INTO events (") + kEventColumns +
+                                          ") VALUES (" + placeholders(15) + ")");
+        impl->insertCommit = impl->prepare(
+            "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
+            "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
+    } catch (...) {
+        const std::string path = impl->path;
+        impl.reset();
+        removeSessionFiles(path);
+        throw;
+    }
+    return SessionWriter(std::move(impl));
+}
+
+void SessionWriter::addInput(const InputRecord& r) {
+    Impl& w = impl("addInput");
+    w.checkOpen("addInput");
+    if (w.now.lastInputFrame && r.frame <= *w.now.lastInputFrame)
+        throw std::invalid_argument("SessionWriter::addInput: frame " + std::to_string(r.frame) +
+                                    " does not follow frame " +
+                                    std::to_string(*w.now.lastInputFrame) + ".");
+    w.ensureTransaction();
+    sqlite3_stmt* s = w.insertInput.get();
+    bindArg(s, 1, r.frame);
+    bindArg(s, 2, r.displayTime);
+    bindArg(s, 3, r.mouseDx);
+    bindArg(s, 4, r.mouseDy);
+    bindArg(s, 5, static_cast<std::int64_t>(r.buttons));
+    bindArg(s, 6, static_cast<std::int64_t>(r.keys));
+    w.run(s, "adding an input record");
+    w.now.lastInputFrame = r.frame;
+    ++w.now.inputRows;
+    hashRecord(w.now.checksum.input, r);
+}
+
+void SessionWriter::addFrame(const FrameRecord& r) {
+    Impl& w = impl("addFrame");
+    w.checkOpen("addFrame");
+    if (w.now.lastFrameFrame && r.frame <= *w.now.lastFrameFrame)
+        throw std::invalid_argument("SessionWriter::addFrame: frame " + std::to_string(r.frame) +
+                                    " does not follow frame " +
+                                    std::to_string(*w.now.lastFrameFrame) + ".");
+    w.ensureTransaction();
+    sqlite3_stmt* s = w.insertFrame.get();
+    bindArg(s, 1, r.frame);
+    bindArg(s, 2, r.mode);
+    bindArg(s, 3, r.kind);
+    bindArg(s, 4, r.frameMs);
+    bindArg(s, 5, static_cast<std::int64_t>(r.missedVsyncs));
+    bindArg(s, 6, r.cameraYaw);
+    bindArg(s, 7, r.cameraPitch);
+    bindArg(s, 8, r.targetX);
+    bindArg(s, 9, r.targetY);
+    bindArg(s, 10, r.targetZ);
+    bindArg(s, 11, static_cast<std::int64_t>(r.targetVisible ? 1 : 0));
+    w.run(s, "adding a frame record");
+    w.now.lastFrameFrame = r.frame;
+    ++w.now.frameRows;
+    hashRecord(w.now.checksum.frames, r);
+}
+
+void SessionWriter::addEvent(const EventRecord& r) {
+    Impl& w = impl("addEvent");
+    w.checkOpen("addEvent");
+    if (!r.detailJson.empty()) {
+        const auto parsed = nlohmann::json::parse(r.detailJson, nullptr, /*allow_exceptions=*/false);
+        if (!parsed.is_object())
+            throw std::invalid_argument(
+                "SessionWriter::addEvent: detailJson must be a JSON object or empty, not '" +
+                r.detailJson.substr(0, 80) + "'.");
+    }
+    w.ensureTransaction();
+    sqlite3_stmt* s = w.insertEvent.get();
+    // Ids are assigned here, 1, 2, 3 ... in the order events were added, so a commit's
+    // event_rows is also its last event id.
+    bindArg(s, 1, w.now.eventRows + 1);
+    bindArg(s, 2, r.frame);
+    bindArg(s, 3, r.type);
+    bindArg(s, 4, r.phase);
+    bindArg(s, 5, static_cast<std::int64_t>(r.trial));
+    bindArg(s, 6, r.mode);
+    bindArg(s, 7, static_cast<std::int64_t>(r.difficulty));
+    bindArg(s, 8, r.targetSpeed);
+    bindArg(s, 9, r.spawnTime);
+    bindArg(s, 10, r.eventTime);
+    bindArg(s, 11, r.aimTime);
+    bindArg(s, 12, r.worldOutcome);
+    bindArg(s, 13, r.displayedOutcome);
+    bindArg(s, 14, r.angularErrorDeg);
+    bindArg(s, 15, r.detailJson);
+    w.run(s, "adding an event record");
+    ++w.now.eventRows;
+    hashRecord(w.now.checksum.events, r);
+}
+
+void SessionWriter::commit() {
+    Impl& w = impl("commit");
+    w.checkOpen("commit");
+    w.commit(false);
+}
+
+void SessionWriter::finish() {
+    Impl& w = impl("finish");
+    w.checkOpen("finish");
+    w.commit(true);
+    w.finished = true;
+    // A finished session becomes one self-contained file (the WAL is folded in and removed),
+    // so it can be copied, archived or read from read-only media. Best effort: a reader that
+    // holds the file open keeps it in WAL mode, which is just as valid.
+    sqlite3_exec(w.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
+}
+
+// ============================ reader ============================
+
+namespace {
+
+class Reader {
+public:
+    explicit Reader(std::string path) : path_(std::move(path)) {}
+
+    SessionData read() {
+        open();
+        SessionData data;
+        // One read transaction: a session still being written is seen as one consistent
+        // snapshot across all tables, never a commits table older than the rows.
+        exec("BEGIN");
+        data.header = readHeader(data.completed);
+        readTables(data);
+        // Ending a read transaction writes nothing; after damage SQLite may report the damage
+        // again here, which readTables has already accounted for.
+        sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+        return data;
+    }
+
+private:
+    struct Commit {
+        std::int64_t id = 0, inputRows = 0, frameRows = 0, eventRows = 0, checksum = 0;
+        std::optional<std::int64_t> lastFrame;
+    };
+    // Where reading a table stopped early, and why; empty when it read to the end.
+    struct Stop {
+        std::string table, why;
+    };
+
+    std::string path_;
+    Db db_;
+    std::optional<Stop> firstStop_;
+
+    [[noreturn]] void fail(const std::string& sentence) const {
+        throw SessionError("Session file " + path_ + " " + sentence);
+    }
+    std::string errmsg() const { return sqlite3_errmsg(db_.get()); }
+
+    void open() {
+        std::error_code ec;
+        const auto status = fs::status(path_, ec);
+        if (!fs::exists(status)) fail("does not exist.");
+        if (fs::is_directory(status)) fail("is a folder, not a session file.");
+        sqlite3* raw = nullptr;
+        const int rc = sqlite3_open_v2(path_.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
+        db_.reset(raw);
+        if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
+        sqlite3_busy_timeout(db_.get(), 5000);
+        // Extra structural checks while walking pages: damaged files fail cleanly sooner.
+        sqlite3_exec(db_.get(), "PRAGMA cell_size_check=ON", nullptr, nullptr, nullptr);
+        // SQLite refuses a whole file that is shorter than its header says, unless the schema
+        // is "writable". On this read-only connection that writes nothing; it lets a cut-off
+        // file be read page by page up to the damage, where the checksums take over.
+        sqlite3_exec(db_.get(), "PRAGMA writable_schema=ON", nullptr, nullptr, nullptr);
+
+        Stmt s = prepareOrNull("PRAGMA application_id");
+        const int step = s ? sqlite3_step(s.get()) : sqlite3_errcode(db_.get());
+        if (step != SQLITE_ROW) {
+            if ((sqlite3_errcode(db_.get()) & 0xff) == SQLITE_NOTADB)
+                fail("is not a SQLite database.");
+            fail("has an unreadable header: " + errmsg() + ".");
+        }
+        if (sqlite3_column_int(s.get(), 0) != kApplicationId)
+            fail(std::filesystem::file_size(path_, ec) == 0
+                     ? "is empty, not a warplab session."
+                     : "is a SQLite database but not a warplab session (wrong application_id).");
+    }
+
+    void exec(const char* sql) {
+        if (sqlite3_exec(db_.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+            fail("cannot be read: " + errmsg() + ".");
+    }
+    Stmt prepareOrNull(const std::string& sql) {
+        sqlite3_stmt* raw = nullptr;
+        sqlite3_prepare_v2(db_.get(), sql.c_str(), -1, &raw, nullptr);
+        return Stmt(raw);
+    }
+    // A table whose SELECT does not compile is missing or lacks a column: a schema mismatch,
+    // or damage to the schema page itself.
+    Stmt prepareTable(const char* table, const char* columns, const char* key) {
+        Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table +
+                               " ORDER BY " + key);
+        if (!s)
+            fail("does not match the session format " + std::to_string(kSessionFormatVersion) +
+                 " schema: " + errmsg() + ".");
+        return s;
+    }
+
+    SessionHeader readHeader(bool& completed) {
+        Stmt s = prepareOrNull("SELECT key, value FROM meta");
+        if (!s) fail("has an unreadable header: " + errmsg() + ".");
+        std::map<std::string, std::string> meta;
+        int rc;
+        while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+            if (sqlite3_column_type(s.get(), 0) != SQLITE_TEXT ||
+                sqlite3_column_type(s.get(), 1) != SQLITE_TEXT)
+                fail("has an unreadable header: a meta entry is not text.");
+            meta[columnText(s.get(), 0)] = columnText(s.get(), 1);
+        }
+        if (rc != SQLITE_DONE) fail("has an unreadable header: " + errmsg() + ".");
+
+        const auto get = [&](const char* key) -> const std::string& {
+            const auto it = meta.find(key);
+            if (it == meta.end())
+                fail(std::string("has an unreadable header: no '") + key + "' entry in meta.");
+            return it->second;
+        };
+        SessionHeader h;
+        // The version first: a newer format may have moved everything else.
+        if (!parseNumber(get("format_version"), h.formatVersion))
+            fail("has an unreadable header: format_version is '" + get("format_version") + "'.");
+        if (h.formatVersion != kSessionFormatVersion)
+            fail("is session format version " + std::to_string(h.formatVersion) +
+                 "; this warplab reads session format version " +
+                 std::to_string(kSessionFormatVersion) + ".");
+        Checksum checksum;
+        for (const auto& entry : headerEntries(SessionHeader{})) {
+            checksum.text(entry.first);
+            checksum.text(get(entry.first));
+        }
+        std::uint64_t stored = 0;
+        if (!parseNumber(get("header_checksum"), stored) || stored != checksum.value())
+            fail("has a damaged header: its checksum does not match its contents.");
+        h.protocolJson = get("protocol_json");
+        if (!parseNumber(get("seed"), h.seed))
+            fail("has an unreadable header: seed is '" + get("seed") + "'.");
+        h.participant = get("participant");
+        h.appVersion = get("app_version");
+        h.glRenderer = get("gl_renderer");
+        h.glVersion = get("gl_version");
+        if (!parseNumber(get("refresh_hz"), h.refreshHz))
+            fail("has an unreadable header: refresh_hz is '" + get("refresh_hz") + "'.");
+        if (!parseNumber(get("display_width"), h.displayWidth))
+            fail("has an unreadable header: display_width is '" + get("display_width") + "'.");
+        if (!parseNumber(get("display_height"), h.displayHeight))
+            fail("has an unreadable header: display_height is '" + get("display_height") + "'.");
+        h.startedAt = get("started_at");
+        h.player = get("player");
+        completed = meta.count("completed_at") > 0;
+        return h;
+    }
+
+    // Row readers return false for a value of the wrong storage class: damage that SQLite's
+    // own page checks cannot see.
+    static bool real(sqlite3_stmt* s, int i, double& out) {
+        switch (sqlite3_column_type(s, i)) {
+        case SQLITE_FLOAT: out = sqlite3_column_double(s, i); return true;
+        case SQLITE_NULL: out = std::numeric_limits<double>::quiet_NaN(); return true;
+        case SQLITE_INTEGER: out = static_cast<double>(sqlite3_column_int64(s, i)); return true;
+        default: return false;
+        }
+    }
+    template <typename T>
+    static bool integer(sqlite3_stmt* s, int i, T& out) {
+        if (sqlite3_column_type(s, i) != SQLITE_INTEGER) return false;
+        const std::int64_t v = sqlite3_column_int64(s, i);
+        if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+            v > static_cast<std::int64_t>(std::numeric_limits<T>::max()))
+            return false;
+        out = static_cast<T>(v);
+        return true;
+    }
+    static bool text(sqlite3_stmt* s, int i, std::string& out) {
+        if (sqlite3_column_type(s, i) != SQLITE_TEXT) return false;
+        out = columnText(s, i);
+        return true;
+    }
+    static bool optionalInteger(sqlite3_stmt* s, int i, std::optional<std::int64_t>& out) {
+        if (sqlite3_column_type(s, i) == SQLITE_NULL) {
+            out.reset();
+            return true;
+        }
+        std::int64_t v = 0;
+        if (!integer(s, i, v)) return false;
+        out = v;
+        return true;
+    }
+
+    // Reads rows in key order -- the order they were committed in -- until the end or the
+    // first unreadable row; what was read before the damage is kept.
+    template <typename Row, typename Parse>
+    std::vector<Row> readPrefix(const char* table, Stmt s, Parse parse) {
+        std::vector<Row> rows;
+        int rc;
+        while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+            Row row;
+            if (!parse(s.get(), row)) {
+                stop(table, "row " + std::to_string(rows.size() + 1) + " has a value of the wrong type");
+                return rows;
+            }
+            rows.push_back(std::move(row));
+        }
+        if (rc != SQLITE_DONE) stop(table, errmsg());
+        return rows;
+    }
+    void stop(const char* table, const std::string& why) {
+        if (!firstStop_) firstStop_ = Stop{table, why};
+    }
+
+    void readTables(SessionData& data) {
+        auto commits = readPrefix<Commit>(
+            "commits", prepareTable("commits", kCommitColumns, "id"),
+            [](sqlite3_stmt* s, Commit& c) {
+                return integer(s, 0, c.id) && integer(s, 1, c.inputRows) &&
+                       integer(s, 2, c.frameRows) && integer(s, 3, c.eventRows) &&
+                       optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
+            });
+        auto inputs = readPrefix<InputRecord>(
+            "input", prepareTable("input", kInputColumns, "frame"),
+            [](sqlite3_stmt* s, InputRecord& r) {
+                return integer(s, 0, r.frame) && real(s, 1, r.displayTime) &&
+                       real(s, 2, r.mouseDx) && real(s, 3, r.mouseDy) &&
+                       integer(s, 4, r.buttons) && integer(s, 5, r.keys);
+            });
+        auto frames = readPrefix<FrameRecord>(
+            "frames", prepareTable("frames", kFrameColumns, "frame"),
+            [](sqlite3_stmt* s, FrameRecord& r) {
+                int visible = 0;
+                const bool ok = integer(s, 0, r.frame) && text(s, 1, r.mode) &&
+                                text(s, 2, r.kind) && real(s, 3, r.frameMs) &&
+                                integer(s, 4, r.missedVsyncs) && real(s, 5, r.cameraYaw) &&
+                                real(s, 6, r.cameraPitch) && real(s, 7, r.targetX) &&
+                                real(s, 8, r.targetY) && real(s, 9, r.targetZ) &&
+                                integer(s, 10, visible) && (visible == 0 || visible == 1);
+                r.targetVisible = visible == 1;
+                return ok;
+            });
+        std::int64_t eventsRead = 0;
+        auto events = readPrefix<EventRecord>(
+            "events", prepareTable("events", kEventColumns, "id"),
+            [&eventsRead](sqlite3_stmt* s, EventRecord& r) {
+                std::int64_t id = 0;
+                const bool ok =
+                    integer(s, 0, id) && integer(s, 1, r.frame) && text(s, 2, r.type) &&
+                    text(s, 3, r.phase) && integer(s, 4, r.trial) && text(s, 5, r.mode) &&
+                    integer(s, 6, r.difficulty) && real(s, 7, r.targetSpeed) &&
+                    real(s, 8, r.spawnTime) && real(s, 9, r.eventTime) &&
+                    real(s, 10, r.aimTime) && text(s, 11, r.worldOutcome) &&
+                    text(s, 12, r.displayedOutcome) && real(s, 13, r.angularErrorDeg) &&
+                    text(s, 14, r.detailJson);
+                // Ids are 1, 2, 3 ...: a gap means rows were lost.
+                return ok && id == ++eventsRead;
+            });
+
+        // The last commit whose rows are all here. Counts are cumulative and rows are read in
+        // commit order, so "all here" is "the table has at least that many rows".
+        const auto rowCount = [](const auto& v) { return static_cast<std::int64_t>(v.size()); };
+        std::optional<Commit> kept;
+        std::size_t keptIndex = 0;
+        for (std::size_t i = 0; i < commits.size(); ++i) {
+            const Commit& c = commits[i];
+            const bool ordered = !kept || (c.inputRows >= kept->inputRows &&
+                                           c.frameRows >= kept->frameRows &&
+                                           c.eventRows >= kept->eventRows);
+            if (!ordered) {
+                stop("commits", "commit " + std::to_string(c.id) + " counts fewer rows than the one before");
+                break;
+            }
+            if (c.inputRows > rowCount(inputs) || c.frameRows > rowCount(frames) ||
+                c.eventRows > rowCount(events)) {
+                stop(c.inputRows > rowCount(inputs)   ? "input"
+                     : c.frameRows > rowCount(frames) ? "frames"
+                                                      : "events",
+                     "rows of commit " + std::to_string(c.id) + " are missing");
+                break;
+            }
+            const Commit before = kept.value_or(Commit{});
+            CommitChecksum sum;
+            for (auto r = before.inputRows; r < c.inputRows; ++r)
+                hashRecord(sum.input, inputs[static_cast<std::size_t>(r)]);
+            for (auto r = before.frameRows; r < c.frameRows; ++r)
+                hashRecord(sum.frames, frames[static_cast<std::size_t>(r)]);
+            for (auto r = before.eventRows; r < c.eventRows; ++r)
+                hashRecord(sum.events, events[static_cast<std::size_t>(r)]);
+            if (sum.value() != c.checksum) {
+                stop("commits", "the rows of commit " + std::to_string(c.id) +
+                                    " do not match its checksum");
+                break;
+            }
+            kept = c;
+            keptIndex = i + 1;
+        }
+        const Commit last = kept.value_or(Commit{});
+        if (rowCount(inputs) > last.inputRows || rowCount(frames) > last.frameRows ||
+            rowCount(events) > last.eventRows)
+            stop("commits", "rows after the last readable commit");
+        inputs.resize(static_cast<std::size_t>(last.inputRows));
+        frames.resize(static_cast<std::size_t>(last.frameRows));
+        events.resize(static_cast<std::size_t>(last.eventRows));
+        data.inputs = std::move(inputs);
+        data.frames = std::move(frames);
+        data.events = std::move(events);
+
+        const std::string lastFrame =
+            last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
+        if (firstStop_) {
+            data.completed = false;
+            data.note = "damaged (" + firstStop_->table + " table: " + firstStop_->why + "): " +
+                        (keptIndex == 0 ? std::string("no complete commit survives")
+                                        : "kept the first " + std::to_string(keptIndex) +
+                                              " commits, ending after frame " + lastFrame);
+        } else if (!data.completed) {
+            data.note = keptIndex == 0 ? std::string("incomplete: no trial was committed")
+                                       : "incomplete: ends after frame " + lastFrame +
+                                             " (last commit, " + std::to_string(keptIndex) +
+                                             " in all)";
+        }
+    }
+};
+
+}  // namespace
+
+SessionData readSession(const std::string& path) { return Reader(path).read(); }
+
+}  // namespace warplab::protocol

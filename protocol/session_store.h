@@ -1,0 +1,130 @@
+// The session store: one SQLite file per session, written while the session runs, that
+// survives a kill at any instant with every committed trial intact (DESIGN.md "Session data").
+// The schema, its version and how to query it are documented in docs/session-format.md.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace warplab::protocol {
+
+inline constexpr int kSessionFormatVersion = 1;
+
+// Bad or unreadable session files and results folders: one sentence naming the path.
+class SessionError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SessionHeader {
+    std::string protocolJson;   // the protocol copied in full
+    std::uint64_t seed = 0;
+    std::string participant;    // data, never a path
+    std::string appVersion, glRenderer, glVersion;
+    double refreshHz = 120;
+    // The display the session ran on (or stands for): its aspect ratio shapes the view, so
+    // replay needs it to reproduce what was under the reticle.
+    int displayWidth = 1920, displayHeight = 1080;
+    std::string startedAt;      // ISO 8601 UTC; when empty, create() stores the current time
+    std::string player;         // "human", "bot:7", "replay:<path>"
+    int formatVersion = kSessionFormatVersion;   // as read; the writer writes only this one
+};
+
+// One row per displayed frame: enough to replay the session exactly.
+struct InputRecord {
+    std::int64_t frame = 0;
+    double displayTime = 0;     // seconds on the display clock
+    double mouseDx = 0, mouseDy = 0;
+    std::uint32_t buttons = 0;
+    std::uint32_t keys = 0;
+};
+
+// Per displayed frame: what was shown and how it went.
+struct FrameRecord {
+    std::int64_t frame = 0;
+    std::string mode;           // mode id, e.g. "warp15to120"
+    std::string kind;           // "rendered" | "held" | "warped" | "interpolated"
+    double frameMs = 0;
+    int missedVsyncs = 0;
+    double cameraYaw = 0, cameraPitch = 0;          // radians, scene::CameraState convention
+    double targetX = 0, targetY = 0, targetZ = 0;   // world metres
+    bool targetVisible = false;
+};
+
+// One row per trial/shot/phase change, with everything needed to analyse it.
+struct EventRecord {
+    std::int64_t frame = 0;
+    std::string type;           // "shot", "timeout", "trial_start", "phase", "level" ...
+    std::string phase;
+    int trial = -1;             // -1: not part of a trial
+    std::string mode;
+    int difficulty = 0;
+    double targetSpeed = 0;
+    double spawnTime = 0, eventTime = 0, aimTime = 0;
+    std::string worldOutcome, displayedOutcome;     // "hit" | "miss" | "timeout" | ""
+    double angularErrorDeg = 0;
+    std::string detailJson;     // anything else, as a JSON object text ("" = none)
+};
+
+// Doubles round-trip bit for bit (-0.0 and infinities included); NaN is stored as SQL NULL
+// and reads back as a quiet NaN.
+class SessionWriter {
+public:
+    // Creates RESULTS/<participant>_<start time>[-N].warplab-session (SQLite, WAL) and commits
+    // the header. Only [A-Za-z0-9_-] of the participant id reach the file name; the raw id is
+    // kept in the header only. Throws SessionError naming the path, before creating anything,
+    // when the results folder is missing or unwritable.
+    static SessionWriter create(const std::string& resultsDir, const SessionHeader& header);
+
+    SessionWriter(SessionWriter&&) noexcept;
+    SessionWriter& operator=(SessionWriter&&) noexcept;
+    SessionWriter(const SessionWriter&) = delete;
+    SessionWriter& operator=(const SessionWriter&) = delete;
+    // Closes the file; whatever was added after the last commit is discarded, as in a crash.
+    ~SessionWriter();
+
+    const std::string& path() const;
+
+    // Frame numbers must increase from one input (or frame) record to the next, so that a
+    // table's rows in key order are the order they were committed in. Violations, and a
+    // detailJson that is not a JSON object, throw std::invalid_argument.
+    void addInput(const InputRecord& record);
+    void addFrame(const FrameRecord& record);
+    void addEvent(const EventRecord& record);
+
+    // Writes everything added since the last commit as ONE durable transaction: a kill or a
+    // power cut afterwards keeps it. Call it at the end of every trial and phase change.
+    // Write failures (disk full ...) throw SessionError; the failed commit's rows are lost.
+    void commit();
+    // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
+    // the file, leaving one self-contained file. Adding or committing afterwards is a
+    // std::logic_error.
+    void finish();
+
+private:
+    struct Impl;
+    explicit SessionWriter(std::unique_ptr<Impl> impl);
+    Impl& impl(const char* caller) const;
+    std::unique_ptr<Impl> impl_;
+};
+
+struct SessionData {
+    SessionHeader header;
+    std::vector<InputRecord> inputs;
+    std::vector<FrameRecord> frames;
+    std::vector<EventRecord> events;   // in the order they were added
+    bool completed = false;            // finish() was committed and nothing was lost to damage
+    std::string note;                  // "" when complete; else why not and where it ends
+};
+
+// Opens read-only (a running session may be read too). Checks the format version and schema.
+// A truncated or corrupted file yields the commits before the damage, each checked against
+// its checksum, and a note saying where it stopped. Throws SessionError naming the path for
+// a file that is missing, not a SQLite database, not a warplab session, another format
+// version, or whose header is unreadable or fails its checksum.
+SessionData readSession(const std::string& path);
+
+}  // namespace warplab::protocol

@@ -1,0 +1,561 @@
+// The shooter protocol file: the shipped files say what the thesis says, the writer and the
+// reader are exact inverses, and every class of bad input is refused with a sentence that
+// names the file, the JSON path and the reason (sokol style: tests pin the messages).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "protocol/shooter_protocol.h"
+
+namespace warplab::protocol {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const std::string kSource = "p.json";
+
+std::string shippedPath(const std::string& name) {
+    return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+// The smallest valid file: only the required fields.
+Json minimal() { return Json{{"format_version", 1}, {"name", "t"}, {"game", "shooter"}}; }
+
+// The full canonical thesis document with one value replaced (pointer like "/test/timeout_s").
+Json thesisWith(const std::string& pointer, const Json& value) {
+    ShooterProtocol p;
+    p.name = "t";
+    Json document = Json::parse(toJson(p));
+    document[Json::json_pointer(pointer)] = value;
+    return document;
+}
+
+// The message of the ProtocolError that parsing gives, or a test failure if it parses.
+std::string errorOfText(const std::string& text) {
+    try {
+        parseShooterProtocol(text, kSource);
+    } catch (const ProtocolError& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected a ProtocolError for:\n" << text;
+    return "";
+}
+std::string errorOf(const Json& document) { return errorOfText(document.dump()); }
+
+void expectContains(const std::string& message, const std::vector<std::string>& needles) {
+    for (const std::string& needle : needles)
+        EXPECT_NE(message.find(needle), std::string::npos)
+            << "message '" << message << "' does not contain '" << needle << "'";
+    // One sentence, one line: what a researcher reads on the console before a session.
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind("protocol 'p.json': ", 0), 0u) << message;
+}
+
+void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.description, b.description);
+    EXPECT_EQ(a.formatVersion, b.formatVersion);
+    EXPECT_EQ(a.game, b.game);
+    // Doubles compared with ==: the round trip promises the same bits, not nearly.
+    EXPECT_EQ(a.refreshHz, b.refreshHz);
+    EXPECT_EQ(a.verticalFovDeg, b.verticalFovDeg);
+    EXPECT_EQ(a.targetRadius, b.targetRadius);
+    EXPECT_EQ(a.mouseRadiansPerCount, b.mouseRadiansPerCount);
+    EXPECT_EQ(a.acclimationS, b.acclimationS);
+    EXPECT_EQ(a.acclimationLevel, b.acclimationLevel);
+    EXPECT_EQ(a.acclimationMode, b.acclimationMode);
+    EXPECT_EQ(a.training.baseSpeed, b.training.baseSpeed);
+    EXPECT_EQ(a.training.startLevel, b.training.startLevel);
+    EXPECT_EQ(a.training.maxLevel, b.training.maxLevel);
+    EXPECT_EQ(a.training.shotsPerLevelEasy, b.training.shotsPerLevelEasy);
+    EXPECT_EQ(a.training.shotsPerLevelHard, b.training.shotsPerLevelHard);
+    EXPECT_EQ(a.training.highMode, b.training.highMode);
+    EXPECT_EQ(a.training.lowMode, b.training.lowMode);
+    EXPECT_EQ(a.training.timeLimitS, b.training.timeLimitS);
+    EXPECT_EQ(a.conditions, b.conditions);
+    EXPECT_EQ(a.targetsPerCondition, b.targetsPerCondition);
+    EXPECT_EQ(a.interleaveConditions, b.interleaveConditions);
+    EXPECT_EQ(a.timeoutS, b.timeoutS);
+    EXPECT_EQ(a.pauseS, b.pauseS);
+    EXPECT_EQ(a.scoring, b.scoring);
+    EXPECT_EQ(a.supervisorStartsTest, b.supervisorStartsTest);
+}
+
+// Every field different from its default, so a field the writer forgets comes back as its
+// default and fails the comparison.
+ShooterProtocol everyFieldChanged() {
+    ShooterProtocol p;
+    p.name = "all \"changed\" \xc3\xa9";  // quotes and UTF-8 must survive
+    p.description = "line one\nline two\t\\";
+    p.refreshHz = 240;
+    p.verticalFovDeg = 0.1 + 0.2 + 70;  // not a short decimal
+    p.targetRadius = 1.0 / 3.0;
+    p.mouseRadiansPerCount = std::nextafter(0.0022, 1.0);
+    p.acclimationS = 12.5;
+    p.acclimationLevel = 3;
+    p.acclimationMode = "conv60";
+    p.training.baseSpeed = 0.7;
+    p.training.startLevel = 5;
+    p.training.maxLevel = 40;
+    p.training.shotsPerLevelEasy = 3;
+    p.training.shotsPerLevelHard = 9;
+    p.training.highMode = "conv60";
+    p.training.lowMode = "conv30";
+    p.training.timeLimitS = 1e-3;
+    p.conditions = {"bireproj15to60", "lag200", "conv30", "warp15to120"};
+    p.targetsPerCondition = 17;
+    p.interleaveConditions = false;
+    p.timeoutS = 2.25;
+    p.pauseS = 0.1;
+    p.scoring = "world";
+    p.supervisorStartsTest = false;
+    return p;
+}
+
+// ---------------------------------------------------------------------------------------
+// The shipped files
+
+TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
+    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-thesis.json"));
+    EXPECT_EQ(p.name, "shooter-thesis");
+    EXPECT_EQ(p.game, "shooter");
+    EXPECT_EQ(p.formatVersion, 1);
+    EXPECT_EQ(p.refreshHz, 120.0);              // App. B step 4
+    EXPECT_EQ(p.acclimationS, 300.0);           // 5.3.4: 5 minutes
+    EXPECT_EQ(p.acclimationLevel, 0);           // "with the easiest difficulty"
+    EXPECT_EQ(p.training.timeLimitS, 720.0);    // 5.3.4: 12 minutes
+    EXPECT_EQ(p.training.highMode, "conv120");  // 5.3.3: stop when 120 Hz misses...
+    EXPECT_EQ(p.training.lowMode, "conv15");    // ... exceed 15 Hz hits
+    EXPECT_LT(p.training.shotsPerLevelEasy, p.training.shotsPerLevelHard);
+    EXPECT_EQ(p.conditions, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
+    EXPECT_EQ(p.targetsPerCondition, 225);      // 5.3.4: 675 targets in all
+    EXPECT_TRUE(p.interleaveConditions);        // "in random order"
+    EXPECT_EQ(p.timeoutS, 3.0);
+    EXPECT_EQ(p.pauseS, 1.0);
+    EXPECT_TRUE(p.supervisorStartsTest);        // App. B step 16
+    // 5.3.4: "the maximum length of the phase is exactly 45 minutes".
+    EXPECT_EQ(p.conditions.size() * p.targetsPerCondition * (p.timeoutS + p.pauseS), 45 * 60.0);
+}
+
+TEST(ProtocolFiles, ThesisIsWhatTheStructDefaultsSay) {
+    ShooterProtocol defaults;
+    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-thesis.json"));
+    defaults.name = p.name;
+    defaults.description = p.description;
+    expectSame(p, defaults);
+}
+
+TEST(ProtocolFiles, QuickPlaysInWellUnderAMinute) {
+    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-quick.json"));
+    EXPECT_EQ(p.name, "shooter-quick");
+    EXPECT_FALSE(p.supervisorStartsTest);  // tests and demos run unattended
+    EXPECT_EQ(p.conditions, ShooterProtocol{}.conditions);
+    EXPECT_GE(p.targetsPerCondition, 2);
+    const double longest = p.acclimationS + p.training.timeLimitS +
+                           p.conditions.size() * p.targetsPerCondition * (p.timeoutS + p.pauseS);
+    EXPECT_LE(longest, 50.0);
+}
+
+TEST(ProtocolFiles, ShippedFilesAreInCanonicalForm) {
+    // So each file lists every field explicitly and is byte for byte the copy a session stores.
+    for (const char* name : {"shooter-thesis.json", "shooter-quick.json"}) {
+        SCOPED_TRACE(name);
+        const std::string text = readFile(shippedPath(name));
+        EXPECT_EQ(toJson(parseShooterProtocol(text, name)), text);
+    }
+}
+
+TEST(ProtocolFiles, KnownModesAreTheDesignsNine) {
+    const std::vector<std::string> expected{"conv15", "conv30",  "conv60",      "conv120",
+                                            "lag50",  "lag100",  "lag200",      "warp15to120",
+                                            "bireproj15to60"};
+    ASSERT_EQ(kKnownModes.size(), expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(kKnownModes[i], expected[i]);
+}
+
+// ---------------------------------------------------------------------------------------
+// Defaults and the round trip
+
+TEST(ProtocolDefaults, UnsetFieldsTakeTheThesisValues) {
+    ShooterProtocol expected;
+    expected.name = "t";
+    expectSame(parseShooterProtocol(minimal().dump(), kSource), expected);
+    // An empty nested object is the same as an absent one.
+    Json document = minimal();
+    for (const char* section : {"display", "target", "input", "acclimation", "training", "test"})
+        document[section] = Json::object();
+    expectSame(parseShooterProtocol(document.dump(), kSource), expected);
+}
+
+TEST(ProtocolDefaults, IntegersAreAcceptedForRealFields) {
+    const ShooterProtocol p =
+        parseShooterProtocol(thesisWith("/display/refresh_hz", 240).dump(), kSource);
+    EXPECT_EQ(p.refreshHz, 240.0);
+}
+
+TEST(ProtocolRoundTrip, EveryFieldSurvivesBitForBit) {
+    const ShooterProtocol p = everyFieldChanged();
+    expectSame(parseShooterProtocol(toJson(p), kSource), p);
+}
+
+TEST(ProtocolRoundTrip, DefaultsSurvive) {
+    ShooterProtocol p;
+    p.name = "d";
+    expectSame(parseShooterProtocol(toJson(p), kSource), p);
+}
+
+TEST(ProtocolRoundTrip, WriterIsStable) {
+    const ShooterProtocol p = everyFieldChanged();
+    const std::string once = toJson(p);
+    EXPECT_EQ(toJson(parseShooterProtocol(once, kSource)), once);
+    EXPECT_EQ(toJson(p), once);  // no hidden state between calls
+    EXPECT_EQ(once.back(), '\n');
+}
+
+TEST(ProtocolRoundTrip, WriterUsesTheDocumentedLayout) {
+    const Json document = Json::parse(toJson(everyFieldChanged()));
+    std::vector<std::string> keys;
+    for (auto it = document.begin(); it != document.end(); ++it) keys.push_back(it.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"format_version", "name", "description", "game",
+                                              "display", "target", "input", "acclimation",
+                                              "training", "test"}));
+    EXPECT_EQ(document.at("test").at("scoring"), "world");
+    EXPECT_EQ(document.at("training").at("base_speed_m_per_s"), 0.7);
+    EXPECT_EQ(document.at("target").at("radius_m"), 1.0 / 3.0);
+    EXPECT_EQ(document.at("acclimation").at("duration_s"), 12.5);
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: one sentence naming file, path and reason
+
+TEST(ProtocolErrors, MalformedJsonGivesLineAndColumn) {
+    const std::string message = errorOfText("{\n  \"format_version\": 1,\n  \"name\": \"t\",\n}\n");
+    expectContains(message, {"malformed JSON", "line 4, column 1", "expected string literal"});
+    EXPECT_EQ(message.find("json.exception"), std::string::npos) << message;
+    expectContains(errorOfText(""), {"malformed JSON", "line 1, column 1"});
+    expectContains(errorOfText("{\"format_version\": 1} trailing"), {"malformed JSON", "line 1"});
+}
+
+TEST(ProtocolErrors, TopLevelMustBeAnObject) {
+    EXPECT_EQ(errorOfText("[1, 2]"),
+              "protocol 'p.json': the top level must be a JSON object, got array [1,2]");
+}
+
+TEST(ProtocolErrors, RequiredFieldsAreNamed) {
+    for (const char* field : {"format_version", "name", "game"}) {
+        SCOPED_TRACE(field);
+        Json document = minimal();
+        document.erase(field);
+        EXPECT_EQ(errorOf(document),
+                  std::string("protocol 'p.json': ") + field + " is required but missing");
+    }
+}
+
+TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
+    Json document = minimal();
+    document["format_version"] = 2;
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': format_version 2 is newer than this warplab supports (1)");
+    // A newer file may have fields this build does not know; the version is the real reason.
+    document["test"] = Json{{"new_thing", 1}};
+    document["shiny"] = true;
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': format_version 2 is newer than this warplab supports (1)");
+    document = minimal();
+    document["format_version"] = 0;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
+    document["format_version"] = "1";
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': format_version must be an integer, got string \"1\"");
+}
+
+TEST(ProtocolErrors, UnknownTopLevelFieldIsNamed) {
+    Json document = minimal();
+    document["refresh_hz"] = 120;  // belongs in "display"
+    const std::string message = errorOf(document);
+    expectContains(message, {"refresh_hz is not a known field", "the top level may have",
+                             "display", "test"});
+}
+
+TEST(ProtocolErrors, UnknownNestedFieldIsNamedWithItsPath) {
+    const std::string message = errorOf(thesisWith("/test/timout_s", 3));
+    EXPECT_EQ(message,
+              "protocol 'p.json': test.timout_s is not a known field (test may have conditions, "
+              "targets_per_condition, interleave, timeout_s, pause_s, scoring, supervisor_starts)");
+    expectContains(errorOf(thesisWith("/training/max_levle", 3)),
+                   {"training.max_levle is not a known field"});
+    expectContains(errorOf(thesisWith("/display/refresh", 3)),
+                   {"display.refresh is not a known field"});
+}
+
+TEST(ProtocolErrors, DuplicateKeyIsNamedWithItsPath) {
+    EXPECT_EQ(errorOfText(R"({"format_version":1,"name":"t","game":"shooter",
+                         "test":{"timeout_s":3,"conditions":["conv15"],"timeout_s":4}})"),
+              "protocol 'p.json': test.timeout_s appears more than once");
+    EXPECT_EQ(errorOfText(R"({"format_version":1,"name":"t","name":"u","game":"shooter"})"),
+              "protocol 'p.json': name appears more than once");
+    // Equal keys in different objects are not repeats.
+    EXPECT_NO_THROW(parseShooterProtocol(
+        R"({"format_version":1,"name":"t","game":"shooter","display":{},"target":{},
+            "acclimation":{"level":0},"training":{"start_level":0}})",
+        kSource));
+}
+
+TEST(ProtocolErrors, WrongTypesAreNamed) {
+    EXPECT_EQ(errorOf(thesisWith("/display/refresh_hz", "120")),
+              "protocol 'p.json': display.refresh_hz must be a number between 1 and 1000, got "
+              "string \"120\"");
+    EXPECT_EQ(errorOf(thesisWith("/test/targets_per_condition", 2.5)),
+              "protocol 'p.json': test.targets_per_condition must be an integer between 1 and "
+              "100000, got 2.5");
+    EXPECT_EQ(errorOf(thesisWith("/test/interleave", 1)),
+              "protocol 'p.json': test.interleave must be true or false, got 1");
+    EXPECT_EQ(errorOf(thesisWith("/test/supervisor_starts", nullptr)),
+              "protocol 'p.json': test.supervisor_starts must be true or false, got null");
+    EXPECT_EQ(errorOf(thesisWith("/description", 5)),
+              "protocol 'p.json': description must be a string, got 5");
+    EXPECT_EQ(errorOf(thesisWith("/display", 120)),
+              "protocol 'p.json': display must be an object, got 120");
+    EXPECT_EQ(errorOf(thesisWith("/test/conditions", "conv15")),
+              "protocol 'p.json': test.conditions must be a non-empty array of mode ids, got "
+              "string \"conv15\"");
+    EXPECT_EQ(errorOf(thesisWith("/test/conditions", Json::array())),
+              "protocol 'p.json': test.conditions must be a non-empty array of mode ids, got "
+              "array []");
+    EXPECT_EQ(errorOf(thesisWith("/training/start_level", true)),
+              "protocol 'p.json': training.start_level must be an integer between 0 and 120, got "
+              "boolean true");
+}
+
+TEST(ProtocolErrors, GameAndNameAreChecked) {
+    EXPECT_EQ(errorOf(thesisWith("/game", "click")),
+              "protocol 'p.json': game must be \"shooter\" for a shooter protocol, got string "
+              "\"click\"");
+    expectContains(errorOf(thesisWith("/name", "")), {"name must be a non-empty single line"});
+    expectContains(errorOf(thesisWith("/name", "a\nb")), {"name must be a non-empty single line"});
+}
+
+TEST(ProtocolErrors, OutOfRangeValuesNameTheRange) {
+    struct Case {
+        const char* pointer;
+        Json value;
+        const char* expected;  // after "protocol 'p.json': "
+    };
+    const std::vector<Case> cases{
+        {"/test/targets_per_condition", -3,
+         "test.targets_per_condition must be an integer between 1 and 100000, got -3"},
+        {"/test/targets_per_condition", 0,
+         "test.targets_per_condition must be an integer between 1 and 100000, got 0"},
+        {"/test/targets_per_condition", 18446744073709551615u,
+         "test.targets_per_condition must be an integer between 1 and 100000, got "
+         "18446744073709551615"},
+        {"/display/refresh_hz", 0, "display.refresh_hz must be a number between 1 and 1000, got 0"},
+        {"/display/refresh_hz", 1200,
+         "display.refresh_hz must be a number between 1 and 1000, got 1200"},
+        {"/display/vertical_fov_deg", 180,
+         "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
+        {"/target/radius_m", 0, "target.radius_m must be a number greater than 0 and less than 3, got 0"},
+        {"/target/radius_m", 3.0,
+         "target.radius_m must be a number greater than 0 and less than 3, got 3.0"},
+        {"/input/mouse_radians_per_count", -0.0022,
+         "input.mouse_radians_per_count must be a number greater than 0 and at most 0.1, got "
+         "-0.0022"},
+        {"/acclimation/duration_s", 0,
+         "acclimation.duration_s must be a number greater than 0 and at most 86400, got 0"},
+        {"/acclimation/level", -1, "acclimation.level must be an integer between 0 and 120, got -1"},
+        {"/training/base_speed_m_per_s", -1.0,
+         "training.base_speed_m_per_s must be a number greater than 0 and at most 100, got -1.0"},
+        {"/training/max_level", 121, "training.max_level must be an integer between 0 and 120, got 121"},
+        {"/training/shots_per_level_easy", 0,
+         "training.shots_per_level_easy must be an integer between 1 and 10000, got 0"},
+        {"/training/shots_per_level_hard", 0,
+         "training.shots_per_level_hard must be an integer between 1 and 10000, got 0"},
+        {"/training/time_limit_s", -720,
+         "training.time_limit_s must be a number greater than 0 and at most 86400, got -720"},
+        {"/test/timeout_s", 0, "test.timeout_s must be a number greater than 0 and at most 86400, got 0"},
+        {"/test/pause_s", -1, "test.pause_s must be a number greater than 0 and at most 86400, got -1"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.pointer);
+        EXPECT_EQ(errorOf(thesisWith(c.pointer, c.value)),
+                  std::string("protocol 'p.json': ") + c.expected);
+    }
+    // The bounds themselves are allowed where the range is closed.
+    EXPECT_NO_THROW(parseShooterProtocol(thesisWith("/display/vertical_fov_deg", 179).dump(), kSource));
+    EXPECT_NO_THROW(parseShooterProtocol(thesisWith("/test/targets_per_condition", 100000).dump(), kSource));
+}
+
+TEST(ProtocolErrors, HugeNumbersAreRefusedNotWrapped) {
+    // 1e400 is valid JSON but overflows a double.
+    EXPECT_EQ(errorOfText(R"({"format_version":1,"name":"t","game":"shooter","test":{"timeout_s":1e400}})"),
+              "protocol 'p.json': unreadable JSON, number overflow parsing '1e400'");
+    // An integer too big for 64 bits becomes a double: not an integer.
+    expectContains(errorOfText(R"({"format_version":1,"name":"t","game":"shooter",
+                              "test":{"targets_per_condition":100000000000000000000000}})"),
+                   {"test.targets_per_condition must be an integer between 1 and 100000"});
+}
+
+TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
+    Json document = thesisWith("/training/start_level", 30);
+    document["training"]["max_level"] = 20;
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.start_level must be at most training.max_level (20), "
+              "got 30");
+    document = thesisWith("/acclimation/level", 61);
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': acclimation.level must be at most training.max_level (60), got 61");
+    document = thesisWith("/training/shots_per_level_hard", 3);
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.shots_per_level_hard must be at least "
+              "training.shots_per_level_easy (4), got 3");
+    document = thesisWith("/training/low_mode", "conv120");
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.low_mode must differ from training.high_mode, both are "
+              "\"conv120\"");
+    // Equal is fine: a fixed-difficulty "staircase" and fixed shots per level.
+    document = thesisWith("/training/start_level", 60);
+    document["training"]["shots_per_level_hard"] = 4;
+    EXPECT_NO_THROW(parseShooterProtocol(document.dump(), kSource));
+}
+
+TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
+    const std::string known =
+        "(conv15, conv30, conv60, conv120, lag50, lag100, lag200, warp15to120, bireproj15to60)";
+    EXPECT_EQ(errorOf(thesisWith("/test/conditions/1", "conv25")),
+              "protocol 'p.json': test.conditions[1] must be a known mode id " + known +
+                  ", got string \"conv25\"");
+    EXPECT_EQ(errorOf(thesisWith("/acclimation/mode", "CONV120")),
+              "protocol 'p.json': acclimation.mode must be a known mode id " + known +
+                  ", got string \"CONV120\"");
+    expectContains(errorOf(thesisWith("/training/high_mode", "warp")),
+                   {"training.high_mode must be a known mode id", "got string \"warp\""});
+    expectContains(errorOf(thesisWith("/training/low_mode", 15)),
+                   {"training.low_mode must be a known mode id", "got 15"});
+    expectContains(errorOf(thesisWith("/test/conditions/0", Json::array({"conv15"}))),
+                   {"test.conditions[0] must be a known mode id", "got array [\"conv15\"]"});
+}
+
+TEST(ProtocolErrors, DuplicateConditionsAreNamed) {
+    EXPECT_EQ(errorOf(thesisWith("/test/conditions", {"conv15", "conv120", "conv15"})),
+              "protocol 'p.json': test.conditions[2] repeats \"conv15\", already test.conditions[0]");
+}
+
+TEST(ProtocolErrors, ScoringIsDisplayedOrWorld) {
+    EXPECT_EQ(errorOf(thesisWith("/test/scoring", "both")),
+              "protocol 'p.json': test.scoring must be \"displayed\" or \"world\", got string "
+              "\"both\"");
+    EXPECT_EQ(errorOf(thesisWith("/test/scoring", "Displayed")),
+              "protocol 'p.json': test.scoring must be \"displayed\" or \"world\", got string "
+              "\"Displayed\"");
+    EXPECT_EQ(parseShooterProtocol(thesisWith("/test/scoring", "world").dump(), kSource).scoring,
+              "world");
+}
+
+TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
+    EXPECT_EQ(errorOf(thesisWith("/display/refresh_hz", 100)),
+              "protocol 'p.json': acclimation.mode is \"conv120\", which needs display.refresh_hz "
+              "to be a whole multiple of 120, but it is 100");
+
+    Json document = thesisWith("/display/refresh_hz", 100);
+    document["acclimation"]["mode"] = "conv60";  // not a multiple either
+    expectContains(errorOf(document), {"acclimation.mode is \"conv60\"", "multiple of 60"});
+
+    // 60 Hz: conv15/30/60, the lag modes and bireproj fit; 120 Hz and warp do not.
+    document = thesisWith("/display/refresh_hz", 60);
+    document["acclimation"]["mode"] = "conv60";
+    document["training"]["high_mode"] = "conv60";
+    document["test"]["conditions"] = {"conv15", "conv30", "conv60", "lag50", "lag100", "lag200",
+                                      "bireproj15to60", "warp15to120"};
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': test.conditions[7] is \"warp15to120\", which needs "
+              "display.refresh_hz to be a whole multiple of 120, but it is 60");
+    document["test"]["conditions"].erase(7);
+    EXPECT_NO_THROW(parseShooterProtocol(document.dump(), kSource));
+
+    // 90 Hz is a multiple of 30 and 15 but not of the lag modes' 60 Hz rendering.
+    document = thesisWith("/display/refresh_hz", 90);
+    document["acclimation"]["mode"] = "conv30";
+    document["training"]["high_mode"] = "conv30";
+    document["test"]["conditions"] = {"conv15", "lag100"};
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': test.conditions[1] is \"lag100\", which needs "
+              "display.refresh_hz to be a whole multiple of 60, but it is 90");
+    document["test"]["conditions"] = {"bireproj15to60"};
+    expectContains(errorOf(document), {"test.conditions[0] is \"bireproj15to60\"", "multiple of 60"});
+
+    // The training pair is checked like any other mode.
+    document = thesisWith("/display/refresh_hz", 45);
+    document["acclimation"]["mode"] = "conv15";
+    document["training"]["high_mode"] = "conv15";
+    document["training"]["low_mode"] = "conv30";
+    document["test"]["conditions"] = {"conv15"};
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.low_mode is \"conv30\", which needs display.refresh_hz "
+              "to be a whole multiple of 30, but it is 45");
+
+    // A non-integral refresh fits nothing, 240 Hz fits everything.
+    expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"but it is 119.88"});
+    document = thesisWith("/display/refresh_hz", 240);
+    document["test"]["conditions"] = Json::array();
+    for (std::string_view id : kKnownModes) document["test"]["conditions"].push_back(id);
+    EXPECT_EQ(parseShooterProtocol(document.dump(), kSource).conditions.size(), kKnownModes.size());
+}
+
+// ---------------------------------------------------------------------------------------
+// Files
+
+TEST(ProtocolLoad, MissingFileNamesThePath) {
+    const std::string path = std::string(WARPLAB_BINARY_DIR) + "/no-such-dir/missing.json";
+    try {
+        loadShooterProtocol(path);
+        FAIL() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()), "protocol '" + path + "': no such file");
+    }
+}
+
+TEST(ProtocolLoad, DirectoryIsNotAFile) {
+    const std::string path = std::string(WARPLAB_SOURCE_DIR) + "/protocol";
+    try {
+        loadShooterProtocol(path);
+        FAIL() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()), "protocol '" + path + "': is a directory, not a file");
+    }
+}
+
+TEST(ProtocolLoad, ErrorsInAFileNameItsPath) {
+    const std::filesystem::path dir =
+        std::filesystem::path(WARPLAB_BINARY_DIR) / "test-output" / "protocol";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "bad.json").string();
+    {
+        std::ofstream file(path, std::ios::binary | std::ios::trunc);
+        file << thesisWith("/test/timeout_s", 0).dump(2);
+    }
+    try {
+        loadShooterProtocol(path);
+        FAIL() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "protocol '" + path +
+                      "': test.timeout_s must be a number greater than 0 and at most 86400, got 0");
+    }
+}
+
+}  // namespace
+}  // namespace warplab::protocol
