@@ -126,6 +126,29 @@ const std::vector<Command>& commands() {
               dataDirOption(),
           }},
          &runBench},
+        {{"run",
+          "Run a study session: plays the protocol and writes the session store into the results\n"
+          "folder (one file per session), then prints its path.",
+          "warplab run --protocol P --participant ID --out RESULTS --headless --player bot[:SEED]",
+          {
+              {"protocol", "FILE", "study protocol (JSON), e.g. protocol/shooter-quick.json", ""},
+              {"participant", "ID", "participant id: stored as data, never used as a path", ""},
+              {"out", "DIR", "results folder (must exist and be writable)", "results"},
+              {"headless", "", "no window: the player is simulated or replayed", ""},
+              {"player", "bot[:SEED]|replay:SESSION", "who plays: the scripted bot, or a recorded session's input",
+               "bot"},
+              {"seed", "N", "session seed: trial order and target spawns", "1"},
+              {"width", "PIXELS", "display width the session stands for", "1920"},
+              {"height", "PIXELS", "display height", "1080"},
+          }},
+         &runRun},
+        {{"replay",
+          "Re-run a session from its store without a window or rendering, check every logged\n"
+          "outcome and print how many were reproduced, or the first difference (exit 1).",
+          "warplab replay SESSION",
+          {},
+          true},
+         &runReplay},
     };
     return list;
 }

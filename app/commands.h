@@ -20,6 +20,8 @@ const std::vector<Command>& commands();
 int runInfo(const ParsedArgs& args);
 int runRender(const ParsedArgs& args);
 int runBench(const ParsedArgs& args);
+int runRun(const ParsedArgs& args);
+int runReplay(const ParsedArgs& args);
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

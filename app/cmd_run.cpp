@@ -1,0 +1,43 @@
+#include <iostream>
+
+#include "app/commands.h"
+#include "app/session_runner.h"
+
+namespace warplab::app {
+
+int runRun(const ParsedArgs& args) {
+    if (!args.flag("headless"))
+        throw UsageError("sessions in a window are not available yet; run with --headless and a --player");
+    HeadlessRun run;
+    run.protocolPath = args.string("protocol");
+    if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
+    if (!args.has("participant")) throw UsageError("option --participant is required");
+    run.participant = args.string("participant");
+    run.resultsDir = args.string("out", "results");
+    run.player = args.string("player", "bot");
+    run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
+    run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
+    const std::string path = runHeadless(run, std::cerr);
+    std::cout << path << "\n";
+    return 0;
+}
+
+int runReplay(const ParsedArgs& args) {
+    if (args.positional().size() != 1) throw UsageError("give exactly one SESSION file");
+    const std::string& path = args.positional().front();
+    const ReplayResult r = replaySession(path);
+    if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";
+    if (!r.difference.empty()) {
+        std::cout << "replay differs at " << r.difference << "\n"
+                  << r.reproduced << "/" << r.outcomes << " outcomes reproduced before it\n";
+        return 1;
+    }
+    std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, "
+              << static_cast<long long>(r.displaySeconds) << " s of display time replayed in " << r.seconds
+              << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0)
+              << "x real time)\n";
+    return 0;
+}
+
+}  // namespace warplab::app

@@ -1,0 +1,37 @@
+// Private to app/: playing a protocol headlessly (bot or recorded input) into a session store,
+// and replaying a stored session to check every logged outcome.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+
+namespace warplab::app {
+
+struct HeadlessRun {
+    std::string protocolPath;
+    std::string participant;
+    std::string resultsDir;
+    std::string player;        // "bot", "bot:SEED" or "replay:SESSION"
+    std::uint64_t seed = 1;    // the session seed: trial order and target spawns
+    int displayWidth = 1920;   // the display the session stands for (fits the target plane)
+    int displayHeight = 1080;
+};
+
+// Plays the whole protocol; returns the session file's path.
+std::string runHeadless(const HeadlessRun& run, std::ostream& progress);
+
+struct ReplayResult {
+    std::size_t outcomes = 0;      // shots and timeouts logged
+    std::size_t reproduced = 0;    // ... and replayed identically
+    std::size_t events = 0;        // all events compared
+    std::string difference;        // first difference, "" when none
+    std::string note;              // why the session ends early, "" when complete
+    double seconds = 0.0;          // wall time of the replay itself
+    double displaySeconds = 0.0;   // display time the session covers
+};
+
+// Re-runs the session from its store without a window and without rendering.
+ReplayResult replaySession(const std::string& sessionPath);
+
+}  // namespace warplab::app

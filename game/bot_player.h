@@ -1,0 +1,50 @@
+// A scripted player for headless runs: it looks at what is on screen (the displayed target
+// and camera, after a reaction delay), turns towards where it predicts the target to be,
+// with aiming noise, and clicks when the reticle seems to be on it. Enough for realistic hits
+// and misses -- and for 15 Hz to be harder than 120 Hz -- not a model of perception (a later
+// issue brings simulated participants). Deterministic from its seed.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+
+#include "game/shooter_game.h"
+
+namespace warplab::game {
+
+struct BotSettings {
+    double reactionS = 0.18;        // what it acts on was on screen this long ago
+    double gainPerS = 9.0;          // share of the aiming error corrected per second
+    double noiseDeg = 0.05;         // per-frame hand tremor, standard deviation
+    double clickWithin = 0.7;       // clicks when the predicted error is below this share of the target's angular radius
+    double minAimS = 0.3;           // never clicks sooner than this after the target appears
+    double enterAfterS = 0.5;       // the supervisor presses Enter this long after the prompt
+};
+
+class BotPlayer {
+public:
+    BotPlayer(std::uint64_t seed, const protocol::ShooterProtocol& protocol, BotSettings settings = {});
+    // Given the frame now on screen, the input for the next frame.
+    FrameInput next(const ShownFrame& shown);
+
+private:
+    struct Seen {
+        double time;
+        bool target;
+        double yaw, pitch;  // direction of the displayed target from the eye
+    };
+    double gaussian();
+
+    std::uint64_t state_;
+    protocol::ShooterProtocol protocol_;
+    BotSettings settings_;
+    std::deque<Seen> seen_;
+    std::deque<Seen> history_;
+    double aimYaw_ = 0.0, aimPitch_ = 0.0;  // where it knows its hand points
+    double visibleSince_ = -1.0;
+    bool clickedThisTarget_ = false;
+    bool buttonDown_ = false;
+    double promptSince_ = -1.0;
+};
+
+}  // namespace warplab::game

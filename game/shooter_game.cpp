@@ -1,0 +1,427 @@
+#include "game/shooter_game.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "physics/ray.h"
+#include "scene/camera.h"
+#include "scene/hangar_layout.h"
+
+namespace warplab::game {
+namespace {
+
+constexpr std::size_t kCameraHistory = 512;  // frames; more than any mode looks back (lag200: 24)
+constexpr double kMaxPitch = 1.5;            // radians, ~86 degrees: the view never flips over
+
+// splitmix64 (as in physics/bouncing_target.cpp): fixed integer arithmetic, so a seed means
+// the same trial order and spawns on every machine.
+std::uint64_t mix(std::uint64_t x) {
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
+template <typename T>
+void shuffle(std::vector<T>& items, std::uint64_t seed) {
+    // Fisher-Yates with our own generator; std::shuffle's use of its engine is unspecified.
+    std::uint64_t state = seed;
+    for (std::size_t i = items.size(); i > 1; --i) {
+        state = mix(state);
+        const std::size_t j = static_cast<std::size_t>(state % i);
+        std::swap(items[i - 1], items[j]);
+    }
+}
+
+std::string number(double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+
+}  // namespace
+
+const char* phaseName(Phase phase) {
+    switch (phase) {
+        case Phase::Acclimation: return "acclimation";
+        case Phase::Training: return "training";
+        case Phase::AwaitingSupervisor: return "awaiting_supervisor";
+        case Phase::Test: return "test";
+        case Phase::Done: return "done";
+    }
+    return "?";
+}
+
+const char* outcomeName(Outcome outcome) {
+    switch (outcome) {
+        case Outcome::None: return "";
+        case Outcome::Hit: return "hit";
+        case Outcome::Miss: return "miss";
+        case Outcome::Timeout: return "timeout";
+    }
+    return "?";
+}
+
+ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect)
+    : protocol_(protocol), seed_(seed), aspect_(aspect) {
+    using L = scene::HangarLayout;
+    restingCamera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
+    restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
+    plane_ = physics::fitTargetPlane(restingCamera_, aspect, protocol.targetRadius);
+    camera_ = restingCamera_;
+    mode_ = protocol.acclimationMode;
+    schedule_.emplace(modeSpec(mode_), protocol.refreshHz);
+}
+
+std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
+    if (!trial_) return std::nullopt;
+    return TrialView{static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz, trial_->motion, trial_->mode};
+}
+
+std::vector<protocol::EventRecord> ShooterGame::takeEvents() {
+    std::vector<protocol::EventRecord> out;
+    out.swap(events_);
+    return out;
+}
+
+void ShooterGame::emit(protocol::EventRecord event) {
+    event.frame = frame_;
+    event.phase = phaseName(phase_);
+    events_.push_back(std::move(event));
+}
+
+double ShooterGame::speedFor(int level) const {
+    return protocol_.training.baseSpeed * std::pow(2.0, level / 6.0);  // seed 004 eq. 12
+}
+
+std::uint64_t ShooterGame::trialSeed(int phaseTag, int index) const {
+    return mix(seed_ ^ mix((static_cast<std::uint64_t>(phaseTag) << 32) ^ static_cast<std::uint64_t>(index)));
+}
+
+scene::CameraState ShooterGame::cameraAt(std::int64_t frame) const {
+    if (cameraHistory_.empty() || frame < historyStart_) return cameraHistory_.empty() ? camera_ : cameraHistory_.front();
+    const auto offset = static_cast<std::size_t>(frame - historyStart_);
+    return offset < cameraHistory_.size() ? cameraHistory_[offset] : cameraHistory_.back();
+}
+
+std::optional<glm::dvec3> ShooterGame::targetAt(double time) const {
+    if (!trial_) return std::nullopt;
+    const double spawn = static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz;
+    if (time < spawn) return std::nullopt;
+    const glm::dvec2 p = physics::positionAt(plane_, trial_->motion, time - spawn);
+    return glm::dvec3(p, plane_.z);
+}
+
+std::optional<glm::dvec3> ShooterGame::displayedTarget(const ScheduledFrame& f, double) const {
+    const double refresh = protocol_.refreshHz;
+    auto global = [&](double localTime) {
+        return static_cast<double>(scheduleStart_ + std::llround(localTime * refresh)) / refresh;
+    };
+    const ModeSpec& mode = schedule_->mode();
+    switch (mode.upconversion) {
+        case Upconversion::None: return targetAt(global(f.sceneTime));
+        case Upconversion::Warp: {
+            // What the warp shows: the source's target moved on by the source's velocity.
+            const double source = global(f.worldSampleTime);
+            const auto p = targetAt(source);
+            if (!p) return std::nullopt;
+            const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
+            const glm::dvec2 v = physics::velocityAt(plane_, trial_->motion, source - spawn);
+            return *p + glm::dvec3(v, 0.0) * (global(f.sceneTime) - source);
+        }
+        case Upconversion::Bidirectional: {
+            const double depicted = global(f.sceneTime);
+            if (f.nextSourceIndex < 0) return targetAt(depicted);
+            const double t0 = static_cast<double>(scheduleStart_ + f.sourceIndex) / refresh;
+            const double t1 = static_cast<double>(scheduleStart_ + f.nextSourceIndex) / refresh;
+            const auto p0 = targetAt(t0), p1 = targetAt(t1);
+            if (!p0 || !p1) return targetAt(depicted);
+            const double a = (depicted - t0) / (t1 - t0);
+            return *p0 + (*p1 - *p0) * a;  // B-frames interpolate linearly between I-frames
+        }
+    }
+    return std::nullopt;
+}
+
+void ShooterGame::beginPhase(Phase phase) {
+    phase_ = phase;
+    phaseStartFrame_ = frame_;
+    trialsInPhase_ = 0;
+    commitPoint_ = true;
+    protocol::EventRecord event;
+    event.type = "phase";
+    event.difficulty = phase == Phase::Test ? testLevel_ : level_;
+    event.eventTime = now();
+    emit(event);
+    switch (phase) {
+        case Phase::Acclimation:
+            if (protocol_.acclimationS <= 0.0) return beginPhase(Phase::AwaitingSupervisor);
+            return scheduleNextTrial();
+        case Phase::Training: {
+            level_ = protocol_.training.startLevel;
+            missedYet_ = false;
+            shotsPerMode_ = protocol_.training.shotsPerLevelEasy;
+            levelQueue_.clear();
+            return scheduleNextTrial();
+        }
+        case Phase::AwaitingSupervisor:
+            // Appendix B: after the practice the supervisor's Enter begins the recorded
+            // experiment (training, then the test).
+            if (!protocol_.supervisorStartsTest) return beginPhase(Phase::Training);
+            return;
+        case Phase::Test: {
+            testQueue_.clear();
+            for (int i = 0; i < protocol_.targetsPerCondition; ++i)
+                for (const auto& c : protocol_.conditions) testQueue_.push_back(c);
+            if (protocol_.interleaveConditions) shuffle(testQueue_, trialSeed(7, 0));
+            else std::stable_sort(testQueue_.begin(), testQueue_.end(), [&](const std::string& a, const std::string& b) {
+                return std::find(protocol_.conditions.begin(), protocol_.conditions.end(), a) <
+                       std::find(protocol_.conditions.begin(), protocol_.conditions.end(), b);
+            });
+            testNext_ = 0;
+            return scheduleNextTrial();
+        }
+        case Phase::Done: return;
+    }
+}
+
+void ShooterGame::startTrial(const std::string& mode, int level) {
+    Trial t;
+    t.index = trialsInPhase_++;
+    t.mode = mode;
+    t.level = level;
+    t.speed = speedFor(level);
+    t.spawnFrame = frame_;
+    t.motion = physics::spawnTarget(plane_, t.speed, trialSeed(static_cast<int>(phase_), t.index));
+    trial_ = t;
+    // Every trial starts its mode's schedule afresh (DESIGN: switching modes starts clean).
+    mode_ = mode;
+    schedule_.emplace(modeSpec(mode), protocol_.refreshHz);
+    scheduleStart_ = frame_;
+}
+
+void ShooterGame::finishTrainingLevel() {
+    const double lowHit = levelShots_[0] ? double(levelHits_[0]) / levelShots_[0] : 1.0;
+    const double highMiss = levelShots_[1] ? 1.0 - double(levelHits_[1]) / levelShots_[1] : 0.0;
+    protocol::EventRecord event;
+    event.type = "level";
+    event.difficulty = level_;
+    event.targetSpeed = speedFor(level_);
+    event.eventTime = now();
+    event.detailJson = "{\"low_mode\":\"" + protocol_.training.lowMode + "\",\"low_hit_rate\":" + number(lowHit) +
+                       ",\"high_mode\":\"" + protocol_.training.highMode + "\",\"high_miss_rate\":" +
+                       number(highMiss) + ",\"shots_per_mode\":" + std::to_string(shotsPerMode_) + "}";
+    emit(event);
+    commitPoint_ = true;
+    // Stop where the fast mode's misses outnumber the slow mode's hits (seed 004 Figure 31).
+    if (levelShots_[0] > 0 && highMiss > lowHit) {
+        testLevel_ = level_;
+        return beginPhase(Phase::Test);
+    }
+    if (levelHits_[0] < levelShots_[0] || levelHits_[1] < levelShots_[1]) missedYet_ = true;
+    if (level_ >= protocol_.training.maxLevel) {
+        testLevel_ = level_;
+        return beginPhase(Phase::Test);
+    }
+    ++level_;
+    // Few shots per level while everything is hit, more once rates start to drop.
+    shotsPerMode_ = missedYet_ ? protocol_.training.shotsPerLevelHard : protocol_.training.shotsPerLevelEasy;
+}
+
+void ShooterGame::scheduleNextTrial() {
+    const double elapsed = static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz;
+    switch (phase_) {
+        case Phase::Acclimation:
+            if (elapsed >= protocol_.acclimationS) return beginPhase(Phase::AwaitingSupervisor);
+            return startTrial(protocol_.acclimationMode, protocol_.acclimationLevel);
+        case Phase::Training: {
+            if (elapsed >= protocol_.training.timeLimitS) {
+                testLevel_ = level_;
+                protocol::EventRecord event;
+                event.type = "training_limit";
+                event.difficulty = level_;
+                event.eventTime = now();
+                emit(event);
+                return beginPhase(Phase::Test);
+            }
+            if (levelQueue_.empty()) {
+                if (levelShots_[0] + levelShots_[1] > 0) {
+                    finishTrainingLevel();
+                    if (phase_ != Phase::Training) return;
+                }
+                levelHits_[0] = levelHits_[1] = levelShots_[0] = levelShots_[1] = 0;
+                for (int i = 0; i < shotsPerMode_; ++i) {
+                    levelQueue_.push_back(protocol_.training.lowMode);
+                    levelQueue_.push_back(protocol_.training.highMode);
+                }
+                shuffle(levelQueue_, trialSeed(8, level_));
+            }
+            const std::string mode = levelQueue_.back();
+            levelQueue_.pop_back();
+            return startTrial(mode, level_);
+        }
+        case Phase::Test:
+            if (testNext_ >= testQueue_.size()) return beginPhase(Phase::Done);
+            return startTrial(testQueue_[testNext_++], testLevel_);
+        case Phase::AwaitingSupervisor:
+        case Phase::Done: return;
+    }
+}
+
+void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg) {
+    const Trial& t = *trial_;
+    const double spawn = static_cast<double>(t.spawnFrame) / protocol_.refreshHz;
+    protocol::EventRecord event;
+    event.type = world == Outcome::Timeout ? "timeout" : "shot";
+    event.trial = t.index;
+    event.mode = t.mode;
+    event.difficulty = t.level;
+    event.targetSpeed = t.speed;
+    event.spawnTime = spawn;
+    event.eventTime = shotTime;
+    event.aimTime = shotTime - spawn;
+    event.worldOutcome = outcomeName(world);
+    event.displayedOutcome = outcomeName(displayed);
+    event.angularErrorDeg = angularErrorDeg;
+    event.detailJson = "{\"scored\":\"" + std::string(protocol_.scoring == "world" ? outcomeName(world)
+                                                                                     : outcomeName(displayed)) +
+                       "\",\"start_x\":" + number(t.motion.start.x) + ",\"start_y\":" + number(t.motion.start.y) +
+                       ",\"velocity_x\":" + number(t.motion.velocity.x) +
+                       ",\"velocity_y\":" + number(t.motion.velocity.y) + ",\"plane_z\":" + number(plane_.z) + "}";
+    emit(event);
+
+    const Outcome scored = protocol_.scoring == "world" ? world : displayed;
+    banner_ = scored == Outcome::Hit ? "HIT" : (scored == Outcome::Timeout ? "TIMEOUT" : "MISS");
+    if (phase_ == Phase::Training) {
+        const int which = t.mode == protocol_.training.lowMode ? 0 : 1;
+        ++levelShots_[which];
+        levelHits_[which] += scored == Outcome::Hit;
+    }
+    trial_.reset();
+    commitPoint_ = true;
+    pauseUntil_ = frame_ + 1 + std::llround(protocol_.pauseS * protocol_.refreshHz);
+}
+
+ShownFrame ShooterGame::step(const FrameInput& input) {
+    ++frame_;
+    commitPoint_ = false;
+    const double refresh = protocol_.refreshHz;
+    const double sensitivity = protocol_.mouseRadiansPerCount;
+    camera_.yaw = static_cast<float>(camera_.yaw + input.mouseDx * sensitivity);
+    camera_.pitch = static_cast<float>(std::clamp(camera_.pitch - input.mouseDy * sensitivity, -kMaxPitch, kMaxPitch));
+    if (cameraHistory_.empty()) historyStart_ = frame_;
+    cameraHistory_.push_back(camera_);
+    if (cameraHistory_.size() > kCameraHistory) {
+        cameraHistory_.pop_front();
+        ++historyStart_;
+    }
+    const bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
+    const bool enter = (input.keys & kKeyEnter) && !(previousKeys_ & kKeyEnter);
+    previousButtons_ = input.buttons;
+    previousKeys_ = input.keys;
+
+    if (frame_ == 0) beginPhase(Phase::Acclimation);
+    if (pauseUntil_ >= 0 && frame_ >= pauseUntil_) {
+        pauseUntil_ = -1;
+        frozenFrame_.reset();
+        banner_.clear();
+        scheduleNextTrial();
+    }
+    if (phase_ == Phase::AwaitingSupervisor && enter) beginPhase(Phase::Training);
+
+    if (frozenFrame_) {
+        ShownFrame shown = *frozenFrame_;
+        shown.frame = frame_;
+        shown.time = now();
+        shown.frozen = true;
+        shown.rendersNow = false;
+        shown.banner = banner_;
+        return shown;
+    }
+
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.mode = mode_;
+    const ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
+    shown.schedule = f;
+    shown.camera = cameraAt(scheduleStart_ + std::llround(f.cameraTime * refresh));
+    shown.sourceFrame = scheduleStart_ + f.sourceIndex;
+    shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : scheduleStart_ + f.nextSourceIndex;
+    shown.scene.time = static_cast<double>(scheduleStart_ + std::llround(f.sceneTime * refresh)) / refresh;
+    if (const auto p = displayedTarget(f, 0.0)) {
+        scene::ObjectState target = physics::targetObject(plane_, trial_->motion, 0.0, protocol_.targetRadius);
+        target.position = glm::vec3(*p);
+        shown.scene.objects.push_back(target);
+    }
+    shown.rendersNow = f.rendersNow;
+    if (f.rendersNow) {
+        shown.render.camera = camera_;
+        shown.render.scene.time = now();
+        if (trial_) {
+            const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
+            shown.render.scene.objects.push_back(
+                physics::targetObject(plane_, trial_->motion, now() - spawn, protocol_.targetRadius));
+        }
+    }
+    switch (phase_) {
+        case Phase::Acclimation: shown.phaseText = "Acclimation"; break;
+        case Phase::Training: shown.phaseText = "Training: level " + std::to_string(level_); break;
+        case Phase::AwaitingSupervisor: shown.phaseText = "Press Enter to begin"; break;
+        case Phase::Test: shown.phaseText = "Test"; break;
+        case Phase::Done: shown.phaseText = "Thank you"; break;
+    }
+
+    if (trial_) {
+        const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
+        if (click) {
+            // World: the aim the mouse really has now against the world now. Displayed: what is
+            // under the reticle of the frame on screen (its camera, its target).
+            const auto world = targetAt(now());
+            const glm::dvec3 eye(camera_.eye);
+            const glm::dvec3 aim(scene::forwardDirection(camera_.yaw, camera_.pitch));
+            const bool worldHit = world && physics::raySphereHit(eye, aim, *world, protocol_.targetRadius).has_value();
+            const glm::dvec3 shownAim(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch));
+            const bool shownHit = !shown.scene.objects.empty() &&
+                                  physics::raySphereHit(glm::dvec3(shown.camera.eye), shownAim,
+                                                        glm::dvec3(shown.scene.objects.front().position),
+                                                        protocol_.targetRadius)
+                                      .has_value();
+            const double error = world ? glm::degrees(physics::angleBetweenRayAndPoint(eye, aim, *world)) : 180.0;
+            frozenFrame_ = shown;
+            finishTrial(worldHit ? Outcome::Hit : Outcome::Miss, shownHit ? Outcome::Hit : Outcome::Miss, now(), error);
+        } else if (now() - spawn >= protocol_.timeoutS) {
+            const auto world = targetAt(now());
+            const double error =
+                world ? glm::degrees(physics::angleBetweenRayAndPoint(
+                            glm::dvec3(camera_.eye), glm::dvec3(scene::forwardDirection(camera_.yaw, camera_.pitch)),
+                            *world))
+                      : 180.0;
+            frozenFrame_ = shown;
+            finishTrial(Outcome::Timeout, Outcome::Timeout, now(), error);
+        }
+    }
+    return shown;
+}
+
+protocol::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
+    protocol::FrameRecord r;
+    r.frame = shown.frame;
+    r.mode = shown.mode;
+    r.kind = shown.frozen ? "frozen" : frameKindName(shown.schedule.kind);
+    r.cameraYaw = shown.camera.yaw;
+    r.cameraPitch = shown.camera.pitch;
+    if (!shown.scene.objects.empty()) {
+        const auto& p = shown.scene.objects.front().position;
+        r.targetX = p.x;
+        r.targetY = p.y;
+        r.targetZ = p.z;
+        r.targetVisible = true;
+    }
+    return r;
+}
+
+}  // namespace warplab::game
