@@ -216,3 +216,115 @@ TEST(CliBench, UnknownSequenceOrMethodIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+// The only session file a run left in `dir`.
+std::string sessionIn(const std::string& dir) {
+    std::string found;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".warplab-session") found = entry.path().string();
+    return found;
+}
+
+TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
+    const std::string dir = scratch("session-bot");
+    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                             "/protocol/shooter-quick.json --participant P01 --out " + dir +
+                             " --headless --player bot:3 --seed 5");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string session = sessionIn(dir);
+    ASSERT_FALSE(session.empty());
+    EXPECT_TRUE(contains(run.output, session)) << run.output;
+    const auto replay = warplab("replay " + session);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "outcomes reproduced")) << replay.output;
+    // N/N with N = the 12 test targets plus training and acclimation shots.
+    const auto slash = replay.output.find('/');
+    ASSERT_NE(slash, std::string::npos);
+    const std::string left = replay.output.substr(0, slash);
+    const std::string right = replay.output.substr(slash + 1, replay.output.find(' ', slash) - slash - 1);
+    EXPECT_EQ(left, right) << replay.output;
+    EXPECT_GE(std::stoi(left), 12);
+}
+
+TEST(CliSession, ARunDrivenByARecordedSessionsInputGivesTheSameOutcomes) {
+    const std::string dir = scratch("session-source"), again = scratch("session-again");
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
+    ASSERT_EQ(warplab("run --protocol " + protocol + " --participant A --out " + dir + " --headless --player bot:8 --seed 2")
+                  .status,
+              0);
+    const std::string source = sessionIn(dir);
+    const auto rerun = warplab("run --protocol " + protocol + " --participant A --out " + again +
+                               " --headless --player replay:" + source + " --seed 2");
+    ASSERT_EQ(rerun.status, 0) << rerun.output;
+    const auto a = warplab("replay " + source), b = warplab("replay " + sessionIn(again));
+    EXPECT_EQ(a.output.substr(0, a.output.find(' ')), b.output.substr(0, b.output.find(' ')));
+}
+
+// SIGKILL at random moments of a full-length session: every completed trial survives and
+// replays exactly; the replay says where the store ends.
+TEST(CliSession, KilledRunsKeepEveryCompletedTrialAndReplay) {
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json";
+    int withOutcomes = 0;
+    for (const char* delay : {"0.05", "0.12", "0.25", "0.4", "0.6"}) {
+        const std::string dir = scratch(std::string("session-kill-") + delay);
+        const std::string command = "timeout -s KILL " + std::string(delay) + " " + WARPLAB_BINARY +
+                                    " run --protocol " + protocol + " --participant K --out " + dir +
+                                    " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
+        const int raw = std::system(command.c_str());
+        (void)raw;
+        const std::string session = sessionIn(dir);
+        if (session.empty()) continue;  // killed before the store existed: nothing to keep
+        const auto replay = warplab("replay " + session);
+        EXPECT_EQ(replay.status, 0) << delay << ": " << replay.output;
+        EXPECT_TRUE(contains(replay.output, "outcomes reproduced")) << replay.output;
+        if (!contains(replay.output, " 0/0 ") && replay.output.rfind("0/0", 0) != 0) ++withOutcomes;
+    }
+    EXPECT_GE(withOutcomes, 2) << "no kill landed after a completed trial";
+}
+
+TEST(CliSession, TruncatedStoreReplaysUpToItsLastCompleteRecord) {
+    const std::string dir = scratch("session-truncate");
+    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/shooter-quick.json --participant T --out " + dir + " --headless --player bot:4")
+                  .status,
+              0);
+    const std::string session = sessionIn(dir);
+    const auto size = fs::file_size(session);
+    for (const double keep : {0.9, 0.6, 0.3}) {
+        const std::string copy = dir + "/cut-" + std::to_string(static_cast<int>(keep * 10)) + ".warplab-session";
+        fs::copy_file(session, copy, fs::copy_options::overwrite_existing);
+        fs::resize_file(copy, static_cast<std::uintmax_t>(static_cast<double>(size) * keep));
+        const auto replay = warplab("replay " + copy);
+        EXPECT_LT(replay.status, 128) << "crashed on a store cut to " << keep;
+        if (replay.status == 0) EXPECT_TRUE(contains(replay.output, "outcomes reproduced")) << replay.output;
+        else EXPECT_TRUE(contains(replay.output, copy)) << replay.output;  // unreadable: named
+        EXPECT_LE(replay.lines(), 3) << replay.output;
+    }
+}
+
+TEST(CliSession, BadResultsFolderOrParticipantNeverEscapes) {
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
+    auto r = warplab("run --protocol " + protocol + " --participant P --out /nonexistent/results --headless");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "/nonexistent/results")) << r.output;
+    const std::string dir = scratch("session-evil");
+    r = warplab("run --protocol " + protocol + " --participant '../../evil/../x' --out " + dir + " --headless");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string session = sessionIn(dir);
+    ASSERT_FALSE(session.empty());
+    EXPECT_EQ(fs::canonical(fs::path(session)).parent_path(), fs::canonical(dir));
+}
+
+TEST(CliSession, BadProtocolIsNamed) {
+    const std::string dir = scratch("session-bad-protocol");
+    std::ofstream(dir + "/p.json") << "{\"format_version\":1,\"name\":\"x\",\"game\":\"shooter\",\"test\":{\"targets\":3}}";
+    const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "test.targets")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty()) << "a session was started from a bad protocol";
+}
+
+}  // namespace
