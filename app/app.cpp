@@ -145,8 +145,15 @@ const std::vector<Command>& commands() {
         {{"replay",
           "Re-run a session from its store without a window or rendering, check every logged\n"
           "outcome and print how many were reproduced, or the first difference (exit 1).",
-          "warplab replay SESSION",
-          {},
+          "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
+          {
+              {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},
+              {"frames", "FIRST:LAST", "with --render: which display frames", "0:599"},
+              {"width", "PIXELS", "with --render: image width", "the session's display"},
+              {"height", "PIXELS", "with --render: image height", "the session's display"},
+              glOption("osmesa"),
+              dataDirOption(),
+          },
           true},
          &runReplay},
     };

@@ -1,6 +1,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/replay_render.h"
 #include "app/session_runner.h"
 
 namespace warplab::app {
@@ -26,6 +27,25 @@ int runRun(const ParsedArgs& args) {
 int runReplay(const ParsedArgs& args) {
     if (args.positional().size() != 1) throw UsageError("give exactly one SESSION file");
     const std::string& path = args.positional().front();
+    if (args.has("render")) {
+        ReplayRender request;
+        request.sessionPath = path;
+        request.outDir = args.string("render");
+        const std::string range = args.string("frames", "0:599");
+        const auto colon = range.find(':');
+        try {
+            if (colon == std::string::npos) throw std::invalid_argument("no colon");
+            request.firstFrame = std::stoll(range.substr(0, colon));
+            request.lastFrame = std::stoll(range.substr(colon + 1));
+        } catch (const std::exception&) {
+            throw UsageError("option --frames needs FIRST:LAST frame numbers, got '" + range + "'");
+        }
+        if (request.firstFrame < 0 || request.lastFrame < request.firstFrame)
+            throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
+        request.width = static_cast<int>(args.integer("width", 0, 0, 16384));
+        request.height = static_cast<int>(args.integer("height", 0, 0, 16384));
+        renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+    }
     const ReplayResult r = replaySession(path);
     if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";
     if (!r.difference.empty()) {

@@ -328,3 +328,25 @@ TEST(CliSession, BadProtocolIsNamed) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
+    const std::string dir = scratch("session-render");
+    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/shooter-quick.json --participant R --out " + dir + " --headless --player bot:2")
+                  .status,
+              0);
+    const std::string frames = dir + "/frames";
+    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 40:79 --width 64 --height 36");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "wrote 40 frames")) << r.output;
+    EXPECT_TRUE(contains(r.output, "outcomes reproduced")) << r.output;
+    const auto image = warplab::renderer::readPng(frames + "/frame_0000040.png");
+    EXPECT_EQ(image.width, 64);
+    EXPECT_TRUE(fs::exists(frames + "/frame_0000079.png"));
+    EXPECT_FALSE(fs::exists(frames + "/frame_0000080.png"));
+    EXPECT_EQ(warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 9:3").status, 2);
+}
+
+}  // namespace
