@@ -1,13 +1,19 @@
 #!/usr/bin/env bash
-# The main job on a fresh Debian 12 machine: install, build, run the default headless demo.
-# Until the demo study lands, the demo renders one frame of the shooter scene and its buffers.
+# The main job on a fresh Debian 12 machine: install, build, run the default headless demo
+# study -- the quick shooter protocol played by the scripted bot, replayed and checked, a few
+# seconds of it re-rendered as its modes showed it -- plus one rendered frame with its buffers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 out="${1:-demo-out}"
-mkdir -p "$out"
-build/app/warplab info --gl osmesa
-build/app/warplab render --time 1.0 --width 1280 --height 720 --out "$out/frame.png" \
+mkdir -p "$out/results"
+warplab=build/app/warplab
+$warplab info --gl osmesa
+session=$($warplab run --protocol protocol/shooter-quick.json --participant demo --out "$out/results" \
+  --headless --player bot:1)
+echo "demo: session $session"
+$warplab replay "$session" --render "$out/frames" --frames 600:839 --width 640 --height 360
+$warplab render --time 1.0 --width 1280 --height 720 --out "$out/frame.png" \
   --depth "$out/depth.png" --ids "$out/ids.png" --velocity "$out/velocity.png"
-echo "demo: images in $out/"
+echo "demo: session in $out/results, displayed frames in $out/frames, a frame and its buffers in $out/"

@@ -4,6 +4,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
+
+# Sanitizer tier: the tests that need no GL context, built with AddressSanitizer and
+# UndefinedBehaviorSanitizer (Mesa's JIT is left out of it on purpose).
+asan="${WARPLAB_ASAN_BUILD_DIR:-build-asan}"
+cmake -S . -B "$asan" -DWARPLAB_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug -DWARPLAB_WERROR=ON >/dev/null
+cmake --build "$asan" --target warplab_unit_tests -j"$(nproc)"
+"$asan/tests/warplab_unit_tests" --gtest_brief=1
+
+# Everything, optimised: unit, GL (headless), CLI, window (Xvfb) and analysis tests.
 scripts/build.sh -DWARPLAB_WERROR=ON
 cd "${WARPLAB_BUILD_DIR:-build}"
 ctest --output-on-failure -j2

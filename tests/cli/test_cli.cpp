@@ -350,3 +350,23 @@ TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
 }
 
 }  // namespace
+
+namespace {
+
+// The study as published, start to end: acclimation, training, 675 test targets.
+TEST(CliSession, FullThesisSessionRunsToTheEndAndReplaysExactly) {
+    const std::string dir = scratch("session-thesis");
+    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                             "/protocol/shooter-thesis.json --participant T01 --out " + dir +
+                             " --headless --player bot:4 --seed 8");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const auto replay = warplab("replay " + sessionIn(dir));
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_FALSE(contains(replay.output, "incomplete")) << replay.output;
+    const int reproduced = std::stoi(replay.output.substr(0, replay.output.find('/')));
+    EXPECT_EQ(replay.output.substr(0, replay.output.find(' ')),
+              std::to_string(reproduced) + "/" + std::to_string(reproduced));
+    EXPECT_GT(reproduced, 675);  // the test's 675 targets plus training and acclimation shots
+}
+
+}  // namespace
