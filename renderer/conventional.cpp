@@ -71,49 +71,49 @@ GBuffer& GBuffer::operator=(GBuffer&&) noexcept = default;
 int GBuffer::width() const { return impl_->width; }
 int GBuffer::height() const { return impl_->height; }
 
-ImageRGBA8 readColourAttachment(const GBuffer::Impl& g) {
-    ImageRGBA8 image = ImageRGBA8::make(g.width, g.height);
+namespace {
+
+// Reads one attachment (GL_NONE for depth) into `pixels`; the caller flips the rows, since GL
+// rows are bottom-up and every image outside the renderer is top-down.
+void readAttachment(const GBuffer::Impl& g, GLenum attachment, GLenum format, GLenum type, void* pixels,
+                    const char* what) {
     glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GBuffer::Impl::kColourAttachment);
-    glReadPixels(0, 0, g.width, g.height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+    if (attachment != GL_NONE) glReadBuffer(attachment);
+    glReadPixels(0, 0, g.width, g.height, format, type, pixels);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::checkErrors("reading back a colour attachment");
-    flipVertically(image);  // GL rows are bottom-up; every image outside the renderer is top-down
+    gl::checkErrors(what);
+}
+
+}  // namespace
+
+ImageRGBA8 readColourAttachment(const GBuffer::Impl& g) {
+    ImageRGBA8 image = ImageRGBA8::make(g.width, g.height);
+    readAttachment(g, GBuffer::Impl::kColourAttachment, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data(),
+                   "reading back a colour attachment");
+    flipVertically(image);
     return image;
 }
 
 ImageU32 readIdAttachment(const GBuffer::Impl& g) {
     ImageU32 image = ImageU32::make(g.width, g.height);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GBuffer::Impl::kIdAttachment);
-    glReadPixels(0, 0, g.width, g.height, GL_RED_INTEGER, GL_UNSIGNED_INT, image.data.data());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::checkErrors("reading back an id attachment");
+    readAttachment(g, GBuffer::Impl::kIdAttachment, GL_RED_INTEGER, GL_UNSIGNED_INT, image.data.data(),
+                   "reading back an id attachment");
     flipVertically(image);
     return image;
 }
 
 ImageF readVectorAttachment(const GBuffer::Impl& g, int channels) {
     ImageF image = ImageF::make(g.width, g.height, channels);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GBuffer::Impl::kVelocityAttachment);
-    glReadPixels(0, 0, g.width, g.height, channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.data.data());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::checkErrors("reading back a vector attachment");
+    readAttachment(g, GBuffer::Impl::kVelocityAttachment, channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT,
+                   image.data.data(), "reading back a vector attachment");
     flipVertically(image);
     return image;
 }
 
 ImageF readDepthAttachment(const GBuffer::Impl& g) {
     ImageF image = ImageF::make(g.width, g.height, 1);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, g.framebuffer.id());
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, g.width, g.height, GL_DEPTH_COMPONENT, GL_FLOAT, image.data.data());
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
-    gl::checkErrors("reading back a depth attachment");
+    readAttachment(g, GL_NONE, GL_DEPTH_COMPONENT, GL_FLOAT, image.data.data(), "reading back a depth attachment");
     flipVertically(image);
     return image;
 }

@@ -65,6 +65,16 @@ const char* stageName(GLenum stage) {
     }
 }
 
+// The info log of a shader or program object (GL has a pair of getters for each).
+template <typename GetIv, typename GetLog>
+std::string infoLog(GLuint object, GetIv getIv, GetLog getLog) {
+    GLint length = 0;
+    getIv(object, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
+    getLog(object, length, nullptr, log.data());
+    return log.c_str();
+}
+
 }  // namespace
 
 Program buildProgram(const ProgramDesc& desc) {
@@ -84,14 +94,9 @@ Program buildProgram(const ProgramDesc& desc) {
         glCompileShader(shader.id());
         GLint ok = GL_FALSE;
         glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
-        if (ok != GL_TRUE) {
-            GLint length = 0;
-            glGetShaderiv(shader.id(), GL_INFO_LOG_LENGTH, &length);
-            std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
-            glGetShaderInfoLog(shader.id(), length, nullptr, log.data());
-            throw GlError(std::string(stageName(stage.stage)) + " shader '" + path +
-                          "' failed to compile:\n" + nameFileInLog(log.c_str(), paths));
-        }
+        if (ok != GL_TRUE)
+            throw GlError(std::string(stageName(stage.stage)) + " shader '" + path + "' failed to compile:\n" +
+                          nameFileInLog(infoLog(shader.id(), glGetShaderiv, glGetShaderInfoLog), paths));
         names += (names.empty() ? "" : " + ") + stage.file;
         shaders.push_back(std::move(shader));
     }
@@ -101,13 +106,9 @@ Program buildProgram(const ProgramDesc& desc) {
     for (const auto& s : shaders) glDetachShader(program.id(), s.id());
     GLint ok = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
-    if (ok != GL_TRUE) {
-        GLint length = 0;
-        glGetProgramiv(program.id(), GL_INFO_LOG_LENGTH, &length);
-        std::string log(static_cast<std::size_t>(length > 1 ? length : 1), '\0');
-        glGetProgramInfoLog(program.id(), length, nullptr, log.data());
-        throw GlError("shader program " + names + " failed to link: " + log.c_str());
-    }
+    if (ok != GL_TRUE)
+        throw GlError("shader program " + names + " failed to link: " +
+                      infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog));
     checkErrors(("building shader program " + names).c_str());
     return program;
 }
