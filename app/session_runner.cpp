@@ -18,13 +18,6 @@
 namespace warplab::app {
 namespace {
 
-std::string utcNow() {
-    const std::time_t now = std::time(nullptr);
-    char buffer[32];
-    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-    return buffer;
-}
-
 game::FrameInput toGame(const protocol::InputRecord& r) { return {r.mouseDx, r.mouseDy, r.buttons, r.keys}; }
 
 protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in) {
@@ -104,7 +97,6 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     header.refreshHz = protocol.refreshHz;
     header.displayWidth = run.displayWidth;
     header.displayHeight = run.displayHeight;
-    header.startedAt = utcNow();
     header.player = run.player;
     auto writer = protocol::SessionWriter::create(run.resultsDir, header);
 

@@ -291,7 +291,7 @@ public:
         const double halfAngle = 0.5 * kStartAngle + kPi * kTurnsPerSecond * sinceStart;
 
         scene::ObjectState bar;
-        bar.id = kIdSpinningBar;
+        bar.id = scene::kIdSpinningBar;
         bar.shape = scene::Shape::Box;
         bar.position = {static_cast<float>(kSlide.value(t)), Layout::kEyeY, -5.0f};
         bar.velocity = {static_cast<float>(kSlide.rate(t)), 0.0f, 0.0f};

@@ -16,10 +16,6 @@
 
 namespace warplab::game {
 
-// The spinning bar of `thin`. Not a scene::ObjectId value: only the bench shows it, and the
-// id buffer must still tell it from the target (2) and the spheres (16+).
-inline constexpr std::uint32_t kIdSpinningBar = 3;
-
 struct SequenceConfig {
     double aspect = 16.0 / 9.0;    // width / height; fits the target's plane to the view
     float verticalFovDeg = 60.0f;

@@ -115,7 +115,7 @@ std::optional<glm::dvec3> ShooterGame::targetAt(double time) const {
     return glm::dvec3(p, plane_.z);
 }
 
-std::optional<glm::dvec3> ShooterGame::displayedTarget(const ScheduledFrame& f, double) const {
+std::optional<glm::dvec3> ShooterGame::displayedTarget(const ScheduledFrame& f) const {
     const double refresh = protocol_.refreshHz;
     auto global = [&](double localTime) {
         return static_cast<double>(scheduleStart_ + std::llround(localTime * refresh)) / refresh;
@@ -352,8 +352,11 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     shown.sourceFrame = scheduleStart_ + f.sourceIndex;
     shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : scheduleStart_ + f.nextSourceIndex;
     shown.scene.time = static_cast<double>(scheduleStart_ + std::llround(f.sceneTime * refresh)) / refresh;
-    if (const auto p = displayedTarget(f, 0.0)) {
-        scene::ObjectState target = physics::targetObject(plane_, trial_->motion, 0.0, protocol_.targetRadius);
+    if (const auto p = displayedTarget(f)) {
+        // Position as the frame depicts it; velocity the world's at that instant.
+        const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
+        scene::ObjectState target = physics::targetObject(plane_, trial_->motion,
+                                                          std::max(0.0, shown.scene.time - spawn), protocol_.targetRadius);
         target.position = glm::vec3(*p);
         shown.scene.objects.push_back(target);
     }

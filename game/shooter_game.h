@@ -97,7 +97,7 @@ private:
     void finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg);
     void finishTrainingLevel();
     std::optional<glm::dvec3> targetAt(double time) const;  // the world; nullopt when no target
-    std::optional<glm::dvec3> displayedTarget(const ScheduledFrame& f, double scheduleStart) const;
+    std::optional<glm::dvec3> displayedTarget(const ScheduledFrame& f) const;  // as frame f depicts it
     scene::CameraState cameraAt(std::int64_t frame) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     double speedFor(int level) const;

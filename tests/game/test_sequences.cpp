@@ -530,7 +530,7 @@ TEST(SequenceSpheres, LandAtDifferentTimes) {
 
 scene::ObjectState barOf(const scene::FrameDescription& frame) {
     for (const scene::ObjectState& o : frame.scene.objects) {
-        if (o.id == kIdSpinningBar) return o;
+        if (o.id == scene::kIdSpinningBar) return o;
     }
     ADD_FAILURE() << "no bar at t = " << frame.scene.time;
     return {};

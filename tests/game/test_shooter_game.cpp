@@ -112,7 +112,6 @@ struct ModeRig {
         p.acclimationS = 0.0;
         p.supervisorStartsTest = false;
         p.training.timeLimitS = 0.001;  // the first training trial is the only one
-        p.timeoutS = 1.0;
         p.conditions = {mode};
         p.targetsPerCondition = 2;
         p.timeoutS = 2.5;
