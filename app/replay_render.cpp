@@ -10,6 +10,7 @@
 #include "physics/ray.h"
 #include "protocol/session_store.h"
 #include "protocol/shooter_protocol.h"
+#include "renderer/hud.h"
 #include "renderer/upconvert.h"
 #include "scene/camera.h"
 
@@ -34,9 +35,9 @@ void renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
         if (!m) m = renderer::makeMethod(name, paths);
         return *m;
     };
+    renderer::HudRenderer hud(paths);
     renderer::DisplayFrame display(width, height);
     std::map<std::int64_t, std::unique_ptr<renderer::SourceFrame>> sources;  // by session frame
-    renderer::ImageRGBA8 lastImage;
     bool saidBlend = false;
     int written = 0, checked = 0, agreed = 0;
 
@@ -47,66 +48,64 @@ void renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
         if (in.frame > request.lastFrame) break;
         const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
         game.takeEvents();
-        // Sources are needed from before the range too (held, lagged and warped frames).
+        // Sources are needed from before the range too (held, lagged and warped frames); none
+        // older than what the frame on screen is made from will be needed again.
         if (shown.rendersNow) {
             auto source = std::make_unique<renderer::SourceFrame>(width, height);
             source->depicts = shown.render;
             conventional.render(shown.render, source->gbuffer);
             sources[shown.frame] = std::move(source);
-            while (!sources.empty() && sources.begin()->first < shown.frame - 64) sources.erase(sources.begin());
         }
+        while (!sources.empty() && sources.begin()->first < shown.sourceFrame) sources.erase(sources.begin());
         if (shown.frame < request.firstFrame) continue;
 
-        renderer::ImageRGBA8 image;
-        if (shown.frozen && !lastImage.pixels.empty()) {
-            image = lastImage;
-        } else {
-            const auto it = sources.find(shown.sourceFrame);
-            if (it == sources.end()) {
-                // Lag modes open with frames queued before the mode started: the empty hallway.
-                scene::FrameDescription before{shown.camera, {}};
-                renderer::SourceFrame s(width, height);
-                conventional.render(before, s.gbuffer);
-                image = renderer::readBack(s.gbuffer).colour;
-            } else {
-                renderer::UpconversionInput input;
-                input.displayTime = shown.time;
-                input.camera = shown.camera;
-                input.previous = it->second.get();
-                std::string name = "hold120";
-                if (shown.schedule.kind == game::FrameKind::Warped) name = game::modeSpec(shown.mode).method;
-                if (shown.schedule.kind == game::FrameKind::Interpolated) {
-                    name = "blend";
-                    const auto next = sources.find(shown.nextSourceFrame);
-                    input.next = next == sources.end() ? it->second.get() : next->second.get();
-                    input.displayTime = shown.scene.time;
-                    if (!saidBlend) out << "replay: interpolated frames are drawn with blend until the bidirectional "
-                                           "reprojection renderer exists\n";
-                    saidBlend = true;
-                }
-                method(name).produce(input, display);
-                const renderer::DisplayImages shownImages = renderer::readBack(display);
-                image = shownImages.colour;
-                if (shown.schedule.kind == game::FrameKind::Rendered && shown.sourceFrame == shown.frame) {
-                    // Cross-check the analytic scoring: is the target under the reticle?
-                    const bool idSaysTarget =
-                        shownImages.ids.at(width / 2, height / 2) == scene::kIdTarget;
-                    bool analytic = false;
-                    if (!shown.scene.objects.empty())
-                        analytic = physics::raySphereHit(
-                                       glm::dvec3(shown.camera.eye),
-                                       glm::dvec3(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch)),
-                                       glm::dvec3(shown.scene.objects.front().position), protocol.targetRadius)
-                                       .has_value();
-                    ++checked;
-                    agreed += idSaysTarget == analytic;
-                }
-            }
+        auto it = sources.find(shown.sourceFrame);
+        if (it == sources.end()) {
+            // Lag modes open with frames queued before the mode started: the hallway as it was.
+            auto before = std::make_unique<renderer::SourceFrame>(width, height);
+            before->depicts = {shown.camera, {}};
+            conventional.render(before->depicts, before->gbuffer);
+            it = sources.emplace(shown.sourceFrame, std::move(before)).first;
         }
-        char name[64];
-        std::snprintf(name, sizeof name, "/frame_%07lld.png", static_cast<long long>(shown.frame));
-        renderer::writePng(request.outDir + name, image);
-        lastImage = std::move(image);
+        renderer::UpconversionInput input;
+        input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
+        input.camera = shown.camera;
+        input.previous = it->second.get();
+        std::string name = "hold120";
+        if (shown.schedule.kind == game::FrameKind::Warped) name = game::modeSpec(shown.mode).method;
+        if (shown.schedule.kind == game::FrameKind::Interpolated) {
+            name = "blend";
+            const auto next = sources.find(shown.nextSourceFrame);
+            input.next = next == sources.end() ? it->second.get() : next->second.get();
+            if (!saidBlend)
+                out << "replay: interpolated frames are drawn with blend until the bidirectional reprojection "
+                       "renderer exists\n";
+            saidBlend = true;
+        }
+        method(name).produce(input, display);
+        if (!shown.frozen && shown.schedule.kind == game::FrameKind::Rendered && shown.sourceFrame == shown.frame) {
+            // Cross-check the analytic scoring: is the target under the reticle?
+            const bool idSaysTarget =
+                renderer::readBack(display).ids.at(width / 2, height / 2) == scene::kIdTarget;
+            bool analytic = false;
+            if (!shown.scene.objects.empty())
+                analytic = physics::raySphereHit(glm::dvec3(shown.camera.eye),
+                                                 glm::dvec3(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch)),
+                                                 glm::dvec3(shown.scene.objects.front().position),
+                                                 protocol.targetRadius)
+                               .has_value();
+            ++checked;
+            agreed += idSaysTarget == analytic;
+        }
+        renderer::HudContent content;
+        content.banner = shown.banner;
+        content.bannerGood = shown.banner == "HIT";
+        content.status = shown.phaseText;
+        hud.draw(content, display.buffer());
+
+        char file[64];
+        std::snprintf(file, sizeof file, "/frame_%07lld.png", static_cast<long long>(shown.frame));
+        renderer::writePng(request.outDir + file, renderer::readBack(display).colour);
         ++written;
     }
     out << "wrote " << written << " frames to " << request.outDir << "; reticle cross-check on " << checked
