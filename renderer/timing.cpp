@@ -34,6 +34,10 @@ PassTime PassTimer::end() {
         GLuint64 ns = 0;
         glGetQueryObjectui64v(impl_->query.id(), GL_QUERY_RESULT, &ns);
         time.gpuMs = static_cast<double>(ns) * 1e-6;
+        // The GPU's interval lies inside the glFinish-bracketed wall interval; a longer one is
+        // a driver returning nonsense (seen: Mesa llvmpipe through EGL surfaceless reports
+        // absolute timestamps), so it is dropped rather than reported.
+        if (time.gpuMs > 1.5 * time.wallMs + 1.0) time.gpuMs = std::numeric_limits<double>::quiet_NaN();
     } else {
         time.gpuMs = std::numeric_limits<double>::quiet_NaN();
     }

@@ -9,7 +9,7 @@ namespace warplab::renderer {
 
 struct PassTime {
     double wallMs = 0.0;
-    double gpuMs = 0.0;  // NaN when the driver gives no timer result
+    double gpuMs = 0.0;  // NaN when the driver gives no (plausible) timer result
 };
 
 class PassTimer {
