@@ -246,6 +246,18 @@ void copySession(const std::string& src, const std::string& dst, std::intmax_t m
     }
 }
 
+// A finished session of `trials` trials, each committed on its own; returns its path.
+std::string writeFinishedSession(const std::string& dir, int trials) {
+    SessionWriter w = SessionWriter::create(dir, sampleHeader());
+    const std::string path = w.path();
+    for (int t = 0; t < trials; ++t) {
+        writeTrial(w, t);
+        w.commit();
+    }
+    w.finish();
+    return path;
+}
+
 std::string errorOf(const std::string& path) {
     try {
         readSession(path);
@@ -516,16 +528,7 @@ TEST(SessionStoreKill, KeepsEveryCommittedTrialAndNothingPartial) {
 TEST(SessionStoreDamage, TruncatedFileKeepsWholeCommitsOrFailsNamingThePath) {
     TempDir dir;
     constexpr int kTrials = 40;
-    std::string path;
-    {
-        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
-        path = w.path();
-        for (int t = 0; t < kTrials; ++t) {
-            writeTrial(w, t);
-            w.commit();
-        }
-        w.finish();
-    }
+    const std::string path = writeFinishedSession(dir.str(), kTrials);
     const auto size = static_cast<std::intmax_t>(fs::file_size(path));
     ASSERT_GT(size, 16 * 4096);
     std::vector<std::intmax_t> cuts = {0, 1, 50, 99, 100, 101, 1000, size - 1};
@@ -597,16 +600,7 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
 // SessionError.
 TEST(SessionStoreDamage, GarbagePagesNeverCrashTheReader) {
     TempDir dir;
-    std::string path;
-    {
-        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
-        path = w.path();
-        for (int t = 0; t < 20; ++t) {
-            writeTrial(w, t);
-            w.commit();
-        }
-        w.finish();
-    }
+    const std::string path = writeFinishedSession(dir.str(), 20);
     const auto size = fs::file_size(path);
     const std::string copy = (dir.path() / "copy.warplab-session").string();
     std::mt19937 rng(7);
@@ -634,16 +628,7 @@ TEST(SessionStoreDamage, GarbagePagesNeverCrashTheReader) {
 TEST(SessionStoreDamage, FlippedBytesNeverPassAsData) {
     TempDir dir;
     constexpr int kTrials = 8;
-    std::string path;
-    {
-        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
-        path = w.path();
-        for (int t = 0; t < kTrials; ++t) {
-            writeTrial(w, t);
-            w.commit();
-        }
-        w.finish();
-    }
+    const std::string path = writeFinishedSession(dir.str(), kTrials);
     const auto size = static_cast<std::streamoff>(fs::file_size(path));
     const std::string copy = (dir.path() / "copy.warplab-session").string();
     int shortened = 0;
