@@ -1,5 +1,7 @@
 #include "physics/bouncing_target.h"
 
+#include "physics/splitmix.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -67,23 +69,11 @@ void requireValidPlane(const TargetPlane& plane) {
             "min must not exceed max");
 }
 
-// splitmix64 (Steele, Lea, Flood 2014): tiny, fully specified by integer arithmetic, so a
-// seed means the same numbers with every compiler and standard library (the <random>
-// distributions do not promise that).
+// Draws from the one splitmix64 (physics/splitmix.h).
 class SplitMix64 {
 public:
     explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-
-    std::uint64_t next() {
-        state_ += 0x9E3779B97F4A7C15ULL;
-        std::uint64_t z = state_;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        return z ^ (z >> 31);
-    }
-
-    // Uniform in [0, 1): the top 53 bits, exactly representable.
-    double uniform01() { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
+    double uniform01() { return physics::uniform01(state_); }
 
 private:
     std::uint64_t state_;
