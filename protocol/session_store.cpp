@@ -1,6 +1,10 @@
-// The session store on the sqlite3 C API. docs/session-format.md is the contract with analysts;
-// keep the two in step (and bump kSessionFormatVersion when the schema changes).
+// The session store on the sqlite3 C API. The record tables' columns come from
+// protocol/records.h; docs/session-format.md is the contract with analysts. Keep the three in
+// step, and bump kSessionFormatVersion (keeping a frozen description of the old version here
+// for the reader) when the schema changes.
 #include "protocol/session_store.h"
+
+#include "protocol/records.h"
 
 #include <fcntl.h>
 #include <sqlite3.h>
@@ -18,7 +22,9 @@
 #include <map>
 #include <optional>
 #include <system_error>
+#include <type_traits>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -143,53 +149,64 @@ void removeSessionFiles(const std::string& path) {
     for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
 }
 
-// Tables and their columns: the single source for CREATE and the reader's SELECTs.
-// Doubles are columns WITHOUT a declared type: a REAL-affinity column stores -0.0 as the
-// integer 0 (SQLite packs integral reals), which would break bit-exact replay. The CHECK keeps
-// every value a REAL (or NULL for NaN), so analysts still get plain doubles.
-#define WARPLAB_REAL(name) name " CHECK (typeof(" name ") IN ('real', 'null'))"
+// Where each record type is stored. Input and frame rows are keyed by their first field
+// (frame); event rows by an `id` column before the fields, which the writer numbers 1, 2, 3 ...
+// in the order the events were added.
+template <typename Row>
+struct Table {
+    const char* name;
+    bool numbered;                          // an `id INTEGER PRIMARY KEY` comes first
+    const std::vector<Field<Row>>& fields;  // records.h, or the version-1 ones below
+
+    const char* key() const { return numbered ? "id" : fields.front().column; }
+    int columnCount() const { return static_cast<int>(fields.size()) + (numbered ? 1 : 0); }
+    std::string columns() const {
+        std::string out = numbered ? "id" : "";
+        for (const Field<Row>& f : fields) out += (out.empty() ? "" : ", ") + std::string(f.column);
+        return out;
+    }
+    // Doubles are columns WITHOUT a declared type: a REAL-affinity column stores -0.0 as the
+    // integer 0 (SQLite packs integral reals), which would break bit-exact replay. The CHECK
+    // keeps every value a REAL (or NULL for NaN), so analysts still get plain doubles.
+    std::string createSql() const {
+        std::string sql = std::string("CREATE TABLE ") + name + " (";
+        if (numbered) sql += "id INTEGER PRIMARY KEY, ";
+        for (std::size_t i = 0; i < fields.size(); ++i) {
+            const std::string c = fields[i].column;
+            if (i > 0) sql += ", ";
+            if (i == 0 && !numbered) {
+                sql += c + " INTEGER PRIMARY KEY";
+                continue;
+            }
+            switch (fields[i].storage) {
+            case Storage::Integer: sql += c + " INTEGER NOT NULL"; break;
+            case Storage::Real: sql += c + " CHECK (typeof(" + c + ") IN ('real', 'null'))"; break;
+            case Storage::Text:
+            case Storage::JsonObject: sql += c + " TEXT NOT NULL"; break;
+            }
+        }
+        return sql + ")";
+    }
+};
+
+// Functions rather than globals: usable from any static initialiser.
+const Table<InputRecord>& inputTable() {
+    static const Table<InputRecord> table{"input", false, fieldsOf<InputRecord>()};
+    return table;
+}
+const Table<FrameRecord>& frameTable() {
+    static const Table<FrameRecord> table{"frames", false, fieldsOf<FrameRecord>()};
+    return table;
+}
+const Table<EventRecord>& eventTable() {
+    static const Table<EventRecord> table{"events", true, fieldsOf<EventRecord>()};
+    return table;
+}
+
 constexpr const char* kSchema[] = {
     "CREATE TABLE meta ("
     "  key   TEXT PRIMARY KEY,"
     "  value TEXT NOT NULL)",
-
-    "CREATE TABLE input ("
-    "  frame   INTEGER PRIMARY KEY,"
-    "  " WARPLAB_REAL("display_time") ","
-    "  " WARPLAB_REAL("mouse_dx") ","
-    "  " WARPLAB_REAL("mouse_dy") ","
-    "  buttons INTEGER NOT NULL,"
-    "  keys    INTEGER NOT NULL)",
-
-    "CREATE TABLE frames ("
-    "  frame          INTEGER PRIMARY KEY,"
-    "  mode           TEXT NOT NULL,"
-    "  kind           TEXT NOT NULL,"
-    "  " WARPLAB_REAL("frame_ms") ","
-    "  missed_vsyncs  INTEGER NOT NULL,"
-    "  " WARPLAB_REAL("camera_yaw") ","
-    "  " WARPLAB_REAL("camera_pitch") ","
-    "  " WARPLAB_REAL("target_x") ","
-    "  " WARPLAB_REAL("target_y") ","
-    "  " WARPLAB_REAL("target_z") ","
-    "  target_visible INTEGER NOT NULL CHECK (target_visible IN (0, 1)))",
-
-    "CREATE TABLE events ("
-    "  id                INTEGER PRIMARY KEY,"
-    "  frame             INTEGER NOT NULL,"
-    "  type              TEXT NOT NULL,"
-    "  phase             TEXT NOT NULL,"
-    "  trial             INTEGER NOT NULL,"
-    "  mode              TEXT NOT NULL,"
-    "  difficulty        INTEGER NOT NULL,"
-    "  " WARPLAB_REAL("target_speed") ","
-    "  " WARPLAB_REAL("spawn_time") ","
-    "  " WARPLAB_REAL("event_time") ","
-    "  " WARPLAB_REAL("aim_time") ","
-    "  world_outcome     TEXT NOT NULL,"
-    "  displayed_outcome TEXT NOT NULL,"
-    "  " WARPLAB_REAL("angular_error_deg") ","
-    "  detail_json       TEXT NOT NULL)",
 
     "CREATE TABLE commits ("
     "  id            INTEGER PRIMARY KEY,"
@@ -201,28 +218,129 @@ constexpr const char* kSchema[] = {
     "  checksum      INTEGER NOT NULL,"
     "  committed_at  TEXT NOT NULL)",
 };
-#undef WARPLAB_REAL
 
-constexpr const char* kInputColumns = "frame, display_time, mouse_dx, mouse_dy, buttons, keys";
-constexpr const char* kFrameColumns =
-    "frame, mode, kind, frame_ms, missed_vsyncs, camera_yaw, camera_pitch, target_x, target_y, "
-    "target_z, target_visible";
-constexpr const char* kEventColumns =
-    "id, frame, type, phase, trial, mode, difficulty, target_speed, spawn_time, event_time, "
-    "aim_time, world_outcome, displayed_outcome, angular_error_deg, detail_json";
 constexpr const char* kCommitColumns =
     "id, input_rows, frame_rows, event_rows, last_frame, checksum";
 
-std::string placeholders(int n) {
-    std::string out = "?";
-    for (int i = 1; i < n; ++i) out += ", ?";
+// ---- version 1, read only ----
+// Frozen as version 1 wrote them: the column order is also the order its checksums were
+// computed in. A version-1 row type extends today's record with the columns version 2 moved
+// into detail_json; toRecord() below folds them in.
+
+struct V1FrameRow : FrameRecord {
+    double targetX = 0, targetY = 0, targetZ = 0;
+    std::int64_t targetVisible = 0;
+};
+struct V1EventRow : EventRecord {
+    int difficulty = 0;
+    double targetSpeed = 0, spawnTime = 0, aimTime = 0, angularErrorDeg = 0;
+};
+
+const std::vector<Field<InputRecord>>& v1InputFields() {
+    using R = InputRecord;
+    static const std::vector<Field<R>> fields = {
+        {"frame", &R::frame},       {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
+        {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
+    };
+    return fields;
+}
+const std::vector<Field<V1FrameRow>>& v1FrameFields() {
+    using R = V1FrameRow;
+    static const std::vector<Field<R>> fields = {
+        {"frame", &R::frame},
+        {"mode", &R::mode},
+        {"kind", &R::kind},
+        {"frame_ms", &R::frameMs},
+        {"missed_vsyncs", &R::missedVsyncs},
+        {"camera_yaw", &R::cameraYaw},
+        {"camera_pitch", &R::cameraPitch},
+        {"target_x", &R::targetX},
+        {"target_y", &R::targetY},
+        {"target_z", &R::targetZ},
+        {"target_visible", &R::targetVisible},
+    };
+    return fields;
+}
+const std::vector<Field<V1EventRow>>& v1EventFields() {
+    using R = V1EventRow;
+    static const std::vector<Field<R>> fields = {
+        {"frame", &R::frame},
+        {"type", &R::type},
+        {"phase", &R::phase},
+        {"trial", &R::trial},
+        {"mode", &R::mode},
+        {"difficulty", &R::difficulty},
+        {"target_speed", &R::targetSpeed},
+        {"spawn_time", &R::spawnTime},
+        {"event_time", &R::eventTime},
+        {"aim_time", &R::aimTime},
+        {"world_outcome", &R::worldOutcome},
+        {"displayed_outcome", &R::displayedOutcome},
+        {"angular_error_deg", &R::angularErrorDeg},
+        {"detail_json", &R::detailJson, /*jsonObject=*/true},
+    };
+    return fields;
+}
+
+// Rows the storage-class checks pass but that are still not what the writer wrote.
+template <typename Row>
+bool rowValid(const Row&) {
+    return true;
+}
+bool rowValid(const V1FrameRow& r) { return r.targetVisible == 0 || r.targetVisible == 1; }
+bool rowValid(const V1EventRow& r) { return isJsonObjectOrEmpty(r.detailJson); }
+
+// Rows as records of today's format. Version 1's shooter columns go into detail_json under the
+// keys the shooter writes today (docs/session-format.md, "Version 1"), so the session replays.
+template <typename Record>
+Record toRecord(Record r) {
+    return r;
+}
+FrameRecord toRecord(V1FrameRow&& r) {
+    FrameRecord out = std::move(static_cast<FrameRecord&>(r));
+    out.detailJson = r.targetVisible
+                         ? nlohmann::json{{"target", nlohmann::json::array({r.targetX, r.targetY,
+                                                                            r.targetZ})}}
+                               .dump()
+                         : std::string();
     return out;
+}
+EventRecord toRecord(V1EventRow&& r) {
+    nlohmann::json detail = r.detailJson.empty() ? nlohmann::json::object()
+                                                 : nlohmann::json::parse(r.detailJson);
+    detail["difficulty"] = r.difficulty;
+    if (r.type == "shot" || r.type == "timeout" || r.type == "level")
+        detail["target_speed"] = r.targetSpeed;
+    if (r.type == "shot" || r.type == "timeout") {
+        detail["spawn_time"] = r.spawnTime;
+        detail["aim_time"] = r.aimTime;
+        detail["angular_error_deg"] = r.angularErrorDeg;
+    }
+    EventRecord out = std::move(static_cast<EventRecord&>(r));
+    out.detailJson = detail.dump();
+    return out;
+}
+
+template <typename InputRow, typename FrameRow, typename EventRow>
+struct Layout {
+    Table<InputRow> input;
+    Table<FrameRow> frames;
+    Table<EventRow> events;
+};
+
+template <typename Row>
+std::string insertSql(const Table<Row>& table) {
+    std::string values = "?";
+    for (int i = 1; i < table.columnCount(); ++i) values += ", ?";
+    return std::string("INSERT INTO ") + table.name + " (" + table.columns() + ") VALUES (" +
+           values + ")";
 }
 
 // SQLite has no page checksums: a file cut inside a page reads back with zeros in place of
 // the lost bytes and no error. So every commit carries a checksum of its own rows (and the
 // header one of its own), and the reader keeps only commits that verify. FNV-1a 64 over a
-// fixed little-endian serialisation, spelled out in docs/session-format.md.
+// fixed little-endian serialisation of each row's fields in table order, spelled out in
+// docs/session-format.md.
 class Checksum {
 public:
     void i64(std::int64_t v) {
@@ -247,42 +365,23 @@ private:
     std::uint64_t h_ = 0xcbf29ce484222325ull;
 };
 
-void hashRecord(Checksum& c, const InputRecord& r) {
-    c.i64(r.frame);
-    c.f64(r.displayTime);
-    c.f64(r.mouseDx);
-    c.f64(r.mouseDy);
-    c.i64(r.buttons);
-    c.i64(r.keys);
-}
-void hashRecord(Checksum& c, const FrameRecord& r) {
-    c.i64(r.frame);
-    c.text(r.mode);
-    c.text(r.kind);
-    c.f64(r.frameMs);
-    c.i64(r.missedVsyncs);
-    c.f64(r.cameraYaw);
-    c.f64(r.cameraPitch);
-    c.f64(r.targetX);
-    c.f64(r.targetY);
-    c.f64(r.targetZ);
-    c.i64(r.targetVisible ? 1 : 0);
-}
-void hashRecord(Checksum& c, const EventRecord& r) {
-    c.i64(r.frame);
-    c.text(r.type);
-    c.text(r.phase);
-    c.i64(r.trial);
-    c.text(r.mode);
-    c.i64(r.difficulty);
-    c.f64(r.targetSpeed);
-    c.f64(r.spawnTime);
-    c.f64(r.eventTime);
-    c.f64(r.aimTime);
-    c.text(r.worldOutcome);
-    c.text(r.displayedOutcome);
-    c.f64(r.angularErrorDeg);
-    c.text(r.detailJson);
+// Integers as 8-byte integers, doubles as their bits, texts (JSON ones too) as length and
+// bytes; the events' id is not hashed.
+template <typename Row>
+void hashRow(Checksum& c, const Table<Row>& table, const Row& r) {
+    for (const Field<Row>& field : table.fields)
+        std::visit(
+            [&](auto member) {
+                const auto& v = r.*member;
+                using T = std::decay_t<decltype(v)>;
+                if constexpr (std::is_same_v<T, std::string>)
+                    c.text(v);
+                else if constexpr (std::is_same_v<T, double>)
+                    c.f64(v);
+                else
+                    c.i64(static_cast<std::int64_t>(v));
+            },
+            field.member);
 }
 
 // One running checksum per table for the rows of the commit being built.
@@ -412,6 +511,49 @@ struct SessionWriter::Impl {
         }
     }
 
+    // Binds one record's fields in table order (after its id, for numbered tables) and
+    // inserts it.
+    template <typename R>
+    void insert(const Table<R>& table, sqlite3_stmt* s, const R& r, std::int64_t id,
+                const char* what) {
+        ensureTransaction();
+        int i = 1;
+        if (table.numbered) bindArg(s, i++, id);
+        for (const Field<R>& field : table.fields)
+            std::visit(
+                [&](auto member) {
+                    const auto& v = r.*member;
+                    using T = std::decay_t<decltype(v)>;
+                    if constexpr (std::is_same_v<T, std::string> || std::is_same_v<T, double>)
+                        bindArg(s, i++, v);
+                    else
+                        bindArg(s, i++, static_cast<std::int64_t>(v));
+                },
+                field.member);
+        run(s, what);
+    }
+
+    static void checkFollows(const std::optional<std::int64_t>& last, std::int64_t frame,
+                             const char* caller) {
+        if (last && frame <= *last)
+            throw std::invalid_argument(std::string("SessionWriter::") + caller + ": frame " +
+                                        std::to_string(frame) + " does not follow frame " +
+                                        std::to_string(*last) + ".");
+    }
+
+    template <typename R>
+    static void checkJson(const Table<R>& table, const R& r, const char* caller) {
+        for (const Field<R>& field : table.fields) {
+            if (field.storage != Storage::JsonObject) continue;
+            const std::string& text = r.*std::get<std::string R::*>(field.member);
+            if (!isJsonObjectOrEmpty(text))
+                throw std::invalid_argument(std::string("SessionWriter::") + caller + ": " +
+                                            field.column +
+                                            " must be a JSON object or empty, not '" +
+                                            text.substr(0, 80) + "'.");
+        }
+    }
+
     void checkOpen(const char* caller) const {
         if (finished)
             throw std::logic_error(std::string("SessionWriter::") + caller +
@@ -501,6 +643,9 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
         impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
                    "writing the header");
         for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
+        impl->exec(inputTable().createSql().c_str(), "creating the tables");
+        impl->exec(frameTable().createSql().c_str(), "creating the tables");
+        impl->exec(eventTable().createSql().c_str(), "creating the tables");
         impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
         Checksum checksum;
         for (const auto& [key, value] : headerEntries(h)) {
@@ -517,12 +662,9 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
                                       nullptr, nullptr) != SQLITE_OK)
             impl->fail("writing the header");
 
-        impl->insertInput = impl->prepare(std::string("INSERT INTO input (") + kInputColumns +
-                                          ") VALUES (" + placeholders(6) + ")");
-        impl->insertFrame = impl->prepare(std::string("INSERT INTO frames (") + kFrameColumns +
-                                          ") VALUES (" + placeholders(11) + ")");
-        impl->insertEvent = impl->prepare(std::string("INSERT INTO events (") + kEventColumns +
-                                          ") VALUES (" + placeholders(15) + ")");
+        impl->insertInput = impl->prepare(insertSql(inputTable()));
+        impl->insertFrame = impl->prepare(insertSql(frameTable()));
+        impl->insertEvent = impl->prepare(insertSql(eventTable()));
         impl->insertCommit = impl->prepare(
             "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
             "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
@@ -538,82 +680,33 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
 void SessionWriter::addInput(const InputRecord& r) {
     Impl& w = impl("addInput");
     w.checkOpen("addInput");
-    if (w.now.lastInputFrame && r.frame <= *w.now.lastInputFrame)
-        throw std::invalid_argument("SessionWriter::addInput: frame " + std::to_string(r.frame) +
-                                    " does not follow frame " +
-                                    std::to_string(*w.now.lastInputFrame) + ".");
-    w.ensureTransaction();
-    sqlite3_stmt* s = w.insertInput.get();
-    bindArg(s, 1, r.frame);
-    bindArg(s, 2, r.displayTime);
-    bindArg(s, 3, r.mouseDx);
-    bindArg(s, 4, r.mouseDy);
-    bindArg(s, 5, static_cast<std::int64_t>(r.buttons));
-    bindArg(s, 6, static_cast<std::int64_t>(r.keys));
-    w.run(s, "adding an input record");
+    w.checkFollows(w.now.lastInputFrame, r.frame, "addInput");
+    w.insert(inputTable(), w.insertInput.get(), r, 0, "adding an input record");
     w.now.lastInputFrame = r.frame;
     ++w.now.inputRows;
-    hashRecord(w.now.checksum.input, r);
+    hashRow(w.now.checksum.input, inputTable(), r);
 }
 
 void SessionWriter::addFrame(const FrameRecord& r) {
     Impl& w = impl("addFrame");
     w.checkOpen("addFrame");
-    if (w.now.lastFrameFrame && r.frame <= *w.now.lastFrameFrame)
-        throw std::invalid_argument("SessionWriter::addFrame: frame " + std::to_string(r.frame) +
-                                    " does not follow frame " +
-                                    std::to_string(*w.now.lastFrameFrame) + ".");
-    w.ensureTransaction();
-    sqlite3_stmt* s = w.insertFrame.get();
-    bindArg(s, 1, r.frame);
-    bindArg(s, 2, r.mode);
-    bindArg(s, 3, r.kind);
-    bindArg(s, 4, r.frameMs);
-    bindArg(s, 5, static_cast<std::int64_t>(r.missedVsyncs));
-    bindArg(s, 6, r.cameraYaw);
-    bindArg(s, 7, r.cameraPitch);
-    bindArg(s, 8, r.targetX);
-    bindArg(s, 9, r.targetY);
-    bindArg(s, 10, r.targetZ);
-    bindArg(s, 11, static_cast<std::int64_t>(r.targetVisible ? 1 : 0));
-    w.run(s, "adding a frame record");
+    w.checkFollows(w.now.lastFrameFrame, r.frame, "addFrame");
+    w.checkJson(frameTable(), r, "addFrame");
+    w.insert(frameTable(), w.insertFrame.get(), r, 0, "adding a frame record");
     w.now.lastFrameFrame = r.frame;
     ++w.now.frameRows;
-    hashRecord(w.now.checksum.frames, r);
+    hashRow(w.now.checksum.frames, frameTable(), r);
 }
 
 void SessionWriter::addEvent(const EventRecord& r) {
     Impl& w = impl("addEvent");
     w.checkOpen("addEvent");
-    if (!r.detailJson.empty()) {
-        const auto parsed = nlohmann::json::parse(r.detailJson, nullptr, /*allow_exceptions=*/false);
-        if (!parsed.is_object())
-            throw std::invalid_argument(
-                "SessionWriter::addEvent: detailJson must be a JSON object or empty, not '" +
-                r.detailJson.substr(0, 80) + "'.");
-    }
-    w.ensureTransaction();
-    sqlite3_stmt* s = w.insertEvent.get();
+    w.checkJson(eventTable(), r, "addEvent");
     // Ids are assigned here, 1, 2, 3 ... in the order events were added, so a commit's
     // event_rows is also its last event id.
-    bindArg(s, 1, w.now.eventRows + 1);
-    bindArg(s, 2, r.frame);
-    bindArg(s, 3, r.type);
-    bindArg(s, 4, r.phase);
-    bindArg(s, 5, static_cast<std::int64_t>(r.trial));
-    bindArg(s, 6, r.mode);
-    bindArg(s, 7, static_cast<std::int64_t>(r.difficulty));
-    bindArg(s, 8, r.targetSpeed);
-    bindArg(s, 9, r.spawnTime);
-    bindArg(s, 10, r.eventTime);
-    bindArg(s, 11, r.aimTime);
-    bindArg(s, 12, r.worldOutcome);
-    bindArg(s, 13, r.displayedOutcome);
-    bindArg(s, 14, r.angularErrorDeg);
-    bindArg(s, 15, r.detailJson);
-    w.run(s, "adding an event record");
+    w.insert(eventTable(), w.insertEvent.get(), r, w.now.eventRows + 1, "adding an event record");
     ++w.now.eventRows;
-    hashRecord(w.now.checksum.events, r);
+    hashRow(w.now.checksum.events, eventTable(), r);
 }
 
 void SessionWriter::commit() {
@@ -648,7 +741,15 @@ public:
         // snapshot across all tables, never a commits table older than the rows.
         exec("BEGIN");
         data.header = readHeader(data.completed);
-        readTables(data);
+        version_ = data.header.formatVersion;
+        if (version_ == 1)
+            readTables(data, Layout<InputRecord, V1FrameRow, V1EventRow>{
+                                 {"input", false, v1InputFields()},
+                                 {"frames", false, v1FrameFields()},
+                                 {"events", true, v1EventFields()}});
+        else
+            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{
+                                 inputTable(), frameTable(), eventTable()});
         // Ending a read transaction writes nothing; after damage SQLite may report the damage
         // again here, which readTables has already accounted for.
         sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
@@ -667,6 +768,7 @@ private:
 
     std::string path_;
     Db db_;
+    int version_ = kSessionFormatVersion;  // the file's
     std::optional<Stop> firstStop_;
 
     [[noreturn]] void fail(const std::string& sentence) const {
@@ -719,7 +821,7 @@ private:
         Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table +
                                " ORDER BY " + key);
         if (!s)
-            fail("does not match the session format " + std::to_string(kSessionFormatVersion) +
+            fail("does not match the session format " + std::to_string(version_) +
                  " schema: " + errmsg() + ".");
         return s;
     }
@@ -747,10 +849,14 @@ private:
         // The version first: a newer format may have moved everything else.
         if (!parseNumber(get("format_version"), h.formatVersion))
             fail("has an unreadable header: format_version is '" + get("format_version") + "'.");
-        if (h.formatVersion != kSessionFormatVersion)
+        if (h.formatVersion < kOldestSessionFormatVersion ||
+            h.formatVersion > kSessionFormatVersion) {
+            std::string versions = std::to_string(kOldestSessionFormatVersion);
+            for (int v = kOldestSessionFormatVersion + 1; v <= kSessionFormatVersion; ++v)
+                versions += (v == kSessionFormatVersion ? " and " : ", ") + std::to_string(v);
             fail("is session format version " + std::to_string(h.formatVersion) +
-                 "; this warplab reads session format version " +
-                 std::to_string(kSessionFormatVersion) + ".");
+                 "; this warplab reads session format versions " + versions + ".");
+        }
         Checksum checksum;
         for (const auto& entry : headerEntries(SessionHeader{})) {
             checksum.text(entry.first);
@@ -835,7 +941,43 @@ private:
         if (!firstStop_) firstStop_ = Stop{table, why};
     }
 
-    void readTables(SessionData& data) {
+    static bool column(sqlite3_stmt* s, int i, double& out) { return real(s, i, out); }
+    static bool column(sqlite3_stmt* s, int i, std::string& out) { return text(s, i, out); }
+    template <typename T>
+    static bool column(sqlite3_stmt* s, int i, T& out) {
+        return integer(s, i, out);
+    }
+
+    template <typename Row>
+    std::vector<Row> readRows(const Table<Row>& table) {
+        std::int64_t rowsRead = 0;
+        return readPrefix<Row>(
+            table.name, prepareTable(table.name, table.columns().c_str(), table.key()),
+            [&](sqlite3_stmt* s, Row& r) {
+                int i = 0;
+                std::int64_t id = 0;
+                // Ids are 1, 2, 3 ...: a gap means rows were lost.
+                if (table.numbered && (!integer(s, i++, id) || id != ++rowsRead)) return false;
+                for (const Field<Row>& field : table.fields)
+                    if (!std::visit([&](auto member) { return column(s, i++, r.*member); },
+                                    field.member))
+                        return false;
+                return rowValid(r);
+            });
+    }
+
+    template <typename Row>
+    static auto toRecords(std::vector<Row>&& rows) {
+        std::vector<decltype(toRecord(std::move(rows.front())))> out;
+        out.reserve(rows.size());
+        for (Row& r : rows) out.push_back(toRecord(std::move(r)));
+        return out;
+    }
+
+    // Reads the rows of a file laid out as `layout` (the file's format version), keeps the
+    // commits that verify, and hands them on as today's records.
+    template <typename InputRow, typename FrameRow, typename EventRow>
+    void readTables(SessionData& data, const Layout<InputRow, FrameRow, EventRow>& layout) {
         auto commits = readPrefix<Commit>(
             "commits", prepareTable("commits", kCommitColumns, "id"),
             [](sqlite3_stmt* s, Commit& c) {
@@ -843,42 +985,9 @@ private:
                        integer(s, 2, c.frameRows) && integer(s, 3, c.eventRows) &&
                        optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
             });
-        auto inputs = readPrefix<InputRecord>(
-            "input", prepareTable("input", kInputColumns, "frame"),
-            [](sqlite3_stmt* s, InputRecord& r) {
-                return integer(s, 0, r.frame) && real(s, 1, r.displayTime) &&
-                       real(s, 2, r.mouseDx) && real(s, 3, r.mouseDy) &&
-                       integer(s, 4, r.buttons) && integer(s, 5, r.keys);
-            });
-        auto frames = readPrefix<FrameRecord>(
-            "frames", prepareTable("frames", kFrameColumns, "frame"),
-            [](sqlite3_stmt* s, FrameRecord& r) {
-                int visible = 0;
-                const bool ok = integer(s, 0, r.frame) && text(s, 1, r.mode) &&
-                                text(s, 2, r.kind) && real(s, 3, r.frameMs) &&
-                                integer(s, 4, r.missedVsyncs) && real(s, 5, r.cameraYaw) &&
-                                real(s, 6, r.cameraPitch) && real(s, 7, r.targetX) &&
-                                real(s, 8, r.targetY) && real(s, 9, r.targetZ) &&
-                                integer(s, 10, visible) && (visible == 0 || visible == 1);
-                r.targetVisible = visible == 1;
-                return ok;
-            });
-        std::int64_t eventsRead = 0;
-        auto events = readPrefix<EventRecord>(
-            "events", prepareTable("events", kEventColumns, "id"),
-            [&eventsRead](sqlite3_stmt* s, EventRecord& r) {
-                std::int64_t id = 0;
-                const bool ok =
-                    integer(s, 0, id) && integer(s, 1, r.frame) && text(s, 2, r.type) &&
-                    text(s, 3, r.phase) && integer(s, 4, r.trial) && text(s, 5, r.mode) &&
-                    integer(s, 6, r.difficulty) && real(s, 7, r.targetSpeed) &&
-                    real(s, 8, r.spawnTime) && real(s, 9, r.eventTime) &&
-                    real(s, 10, r.aimTime) && text(s, 11, r.worldOutcome) &&
-                    text(s, 12, r.displayedOutcome) && real(s, 13, r.angularErrorDeg) &&
-                    text(s, 14, r.detailJson);
-                // Ids are 1, 2, 3 ...: a gap means rows were lost.
-                return ok && id == ++eventsRead;
-            });
+        auto inputs = readRows(layout.input);
+        auto frames = readRows(layout.frames);
+        auto events = readRows(layout.events);
 
         // The last commit whose rows are all here. Counts are cumulative and rows are read in
         // commit order, so "all here" is "the table has at least that many rows".
@@ -905,11 +1014,11 @@ private:
             const Commit before = kept.value_or(Commit{});
             CommitChecksum sum;
             for (auto r = before.inputRows; r < c.inputRows; ++r)
-                hashRecord(sum.input, inputs[static_cast<std::size_t>(r)]);
+                hashRow(sum.input, layout.input, inputs[static_cast<std::size_t>(r)]);
             for (auto r = before.frameRows; r < c.frameRows; ++r)
-                hashRecord(sum.frames, frames[static_cast<std::size_t>(r)]);
+                hashRow(sum.frames, layout.frames, frames[static_cast<std::size_t>(r)]);
             for (auto r = before.eventRows; r < c.eventRows; ++r)
-                hashRecord(sum.events, events[static_cast<std::size_t>(r)]);
+                hashRow(sum.events, layout.events, events[static_cast<std::size_t>(r)]);
             if (sum.value() != c.checksum) {
                 stop("commits", "the rows of commit " + std::to_string(c.id) +
                                     " do not match its checksum");
@@ -925,9 +1034,9 @@ private:
         inputs.resize(static_cast<std::size_t>(last.inputRows));
         frames.resize(static_cast<std::size_t>(last.frameRows));
         events.resize(static_cast<std::size_t>(last.eventRows));
-        data.inputs = std::move(inputs);
-        data.frames = std::move(frames);
-        data.events = std::move(events);
+        data.inputs = toRecords(std::move(inputs));
+        data.frames = toRecords(std::move(frames));
+        data.events = toRecords(std::move(events));
 
         const std::string lastFrame =
             last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");

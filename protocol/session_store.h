@@ -11,7 +11,11 @@
 
 namespace warplab::protocol {
 
-inline constexpr int kSessionFormatVersion = 1;
+// 2: game-neutral frame and event rows (game-specific fields in detail_json). Version 1 files
+// (shooter only) are still read: their shooter columns are folded into detail_json exactly as
+// the shooter writes them today, so they replay (docs/session-format.md, "Version 1").
+inline constexpr int kSessionFormatVersion = 2;
+inline constexpr int kOldestSessionFormatVersion = 1;
 
 // Bad or unreadable session files and results folders: one sentence naming the path.
 class SessionError : public std::runtime_error {
@@ -46,27 +50,26 @@ struct InputRecord {
 struct FrameRecord {
     std::int64_t frame = 0;
     std::string mode;           // mode id, e.g. "warp15to120"
-    std::string kind;           // "rendered" | "held" | "warped" | "interpolated"
-    double frameMs = 0;
+    std::string kind;           // "rendered" | "held" | "warped" | "interpolated" | "frozen"
+    double frameMs = 0;         // measured (live sessions); 0 headless
     int missedVsyncs = 0;
     double cameraYaw = 0, cameraPitch = 0;          // radians, scene::CameraState convention
-    double targetX = 0, targetY = 0, targetZ = 0;   // world metres
-    bool targetVisible = false;
+    std::string detailJson;     // the game's own per-frame state, a JSON object ("" = none):
+                                // shooter {"target":[x,y,z]}, click {"cursor":[x,y],"spheres":[...]}
 };
 
-// One row per trial/shot/phase change, with everything needed to analyse it.
+// One row per trial/shot/click/match/rating/phase change. The columns every game shares are
+// typed; everything game-specific (difficulty, target speed, aim time, cursor, ratings ...)
+// is in detailJson, whose keys each game documents in docs/session-format.md.
 struct EventRecord {
     std::int64_t frame = 0;
-    std::string type;           // "shot", "timeout", "trial_start", "phase", "level" ...
+    std::string type;           // "shot", "timeout", "phase", "level", "click", "match", "rating" ...
     std::string phase;
-    int trial = -1;             // -1: not part of a trial
+    int trial = -1;             // trial (shooter) or match (click) index; -1: not part of one
     std::string mode;
-    int difficulty = 0;
-    double targetSpeed = 0;
-    double spawnTime = 0, eventTime = 0, aimTime = 0;
-    std::string worldOutcome, displayedOutcome;     // "hit" | "miss" | "timeout" | ""
-    double angularErrorDeg = 0;
-    std::string detailJson;     // anything else, as a JSON object text ("" = none)
+    double eventTime = 0;       // seconds on the display clock
+    std::string worldOutcome, displayedOutcome;     // "hit" | "miss" | "timeout" | "green" | "red" | ""
+    std::string detailJson;     // a JSON object text ("" = none), keys sorted (nlohmann dump)
 };
 
 // Doubles round-trip bit for bit (-0.0 and infinities included); NaN is stored as SQL NULL
