@@ -4,28 +4,17 @@
 // so an unset field in a file means "as in the thesis".
 #pragma once
 
-#include <array>
-#include <stdexcept>
 #include <string>
-#include <string_view>
 #include <vector>
+
+#include "protocol/study_protocol.h"
 
 namespace warplab::protocol {
 
-// A bad protocol file: one sentence naming the file and the JSON path of the culprit.
-class ProtocolError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
-
-// The newest protocol format this build reads and the one toJson writes.
-inline constexpr int kShooterFormatVersion = 1;
-
-// Mode ids a protocol may name. Kept here rather than taken from game/modes.h because the
-// protocol module must not depend on game; a test on the game side keeps the two in sync.
-inline constexpr std::array<std::string_view, 9> kKnownModes{
-    "conv15", "conv30", "conv60", "conv120", "lag50", "lag100", "lag200", "warp15to120",
-    "bireproj15to60"};
+// The newest protocol format this build reads. 2 added test.click_timing and fixed the timeout
+// and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
+// replay under the rules they were recorded with.
+inline constexpr int kShooterFormatVersion = 2;
 
 // The training staircase (seed 004 section 5.3.3, figure 31).
 struct StaircaseSettings {
@@ -59,15 +48,27 @@ struct ShooterProtocol {
     double pauseS = 1;
     std::string scoring = "displayed";     // or "world" (DESIGN.md "Scoring")
     bool supervisorStartsTest = true;      // the supervisor's Enter starts the recorded part
+    // "display": a click counts at the display frame where the button goes down;
+    // "input_reads": only at frames where the mode reads input (conv15/30/60 read it only at
+    // their renders), so a press counts at the next such frame. Format 2 and later.
+    std::string clickTiming = "display";
+    // Not in the JSON: true for a format_version 1 file, whose sessions were recorded under the
+    // old trial-timeout and training-evaluation rules and must replay under them. toJson writes
+    // the form of formatVersion, so keep the two together in a hand-built struct.
+    bool legacyRules = false;
 };
 
-// sourceName is what messages call the file (its path). Throws ProtocolError.
-ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);
+// sourceName is what messages call the file (its path); `modes` judges every mode id against
+// the refresh (pass game::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
+ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
+                                     const ModeCheck& modes);
 // A missing or unreadable file is a ProtocolError naming the path.
-ShooterProtocol loadShooterProtocol(const std::string& path);
+ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& modes);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
 // gives back the same struct bit for bit, so the session stores this copy as the protocol it
-// ran. Does not validate; parse what it writes to check a hand-built struct.
+// ran. Writes the form of protocol.formatVersion: a version 1 struct (a stored v1 session)
+// comes out as version 1, without click_timing, and so reads back with legacyRules. Does not
+// validate; parse what it writes to check a hand-built struct.
 std::string toJson(const ShooterProtocol& protocol);
 
 }  // namespace warplab::protocol

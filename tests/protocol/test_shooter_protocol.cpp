@@ -6,12 +6,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "game/modes.h"
 #include "protocol/shooter_protocol.h"
 
 namespace warplab::protocol {
@@ -25,15 +27,14 @@ std::string shippedPath(const std::string& name) {
     return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name;
 }
 
-std::string readFile(const std::string& path) {
-    std::ifstream file(path, std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
+// Parsing against the one mode table, as the app does.
+ShooterProtocol parse(const std::string& text, const std::string& source = kSource) {
+    return parseShooterProtocol(text, source, game::checkMode);
 }
+ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path, game::checkMode); }
 
 // The smallest valid file: only the required fields.
-Json minimal() { return Json{{"format_version", 1}, {"name", "t"}, {"game", "shooter"}}; }
+Json minimal() { return Json{{"format_version", 2}, {"name", "t"}, {"game", "shooter"}}; }
 
 // The full canonical thesis document with one value replaced (pointer like "/test/timeout_s").
 Json thesisWith(const std::string& pointer, const Json& value) {
@@ -47,7 +48,7 @@ Json thesisWith(const std::string& pointer, const Json& value) {
 // The message of the ProtocolError that parsing gives, or a test failure if it parses.
 std::string errorOfText(const std::string& text) {
     try {
-        parseShooterProtocol(text, kSource);
+        parse(text);
     } catch (const ProtocolError& e) {
         return e.what();
     }
@@ -93,6 +94,8 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.pauseS, b.pauseS);
     EXPECT_EQ(a.scoring, b.scoring);
     EXPECT_EQ(a.supervisorStartsTest, b.supervisorStartsTest);
+    EXPECT_EQ(a.clickTiming, b.clickTiming);
+    EXPECT_EQ(a.legacyRules, b.legacyRules);
 }
 
 // Every field different from its default, so a field the writer forgets comes back as its
@@ -123,6 +126,7 @@ ShooterProtocol everyFieldChanged() {
     p.pauseS = 0.1;
     p.scoring = "world";
     p.supervisorStartsTest = false;
+    p.clickTiming = "input_reads";
     return p;
 }
 
@@ -130,10 +134,12 @@ ShooterProtocol everyFieldChanged() {
 // The shipped files
 
 TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
-    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-thesis.json"));
+    const ShooterProtocol p = load(shippedPath("shooter-thesis.json"));
     EXPECT_EQ(p.name, "shooter-thesis");
     EXPECT_EQ(p.game, "shooter");
-    EXPECT_EQ(p.formatVersion, 1);
+    EXPECT_EQ(p.formatVersion, 2);
+    EXPECT_FALSE(p.legacyRules);
+    EXPECT_EQ(p.clickTiming, "display");  // a click counts where the button goes down
     EXPECT_EQ(p.refreshHz, 120.0);              // App. B step 4
     EXPECT_EQ(p.acclimationS, 300.0);           // 5.3.4: 5 minutes
     EXPECT_EQ(p.acclimationLevel, 0);           // "with the easiest difficulty"
@@ -153,14 +159,14 @@ TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
 
 TEST(ProtocolFiles, ThesisIsWhatTheStructDefaultsSay) {
     ShooterProtocol defaults;
-    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-thesis.json"));
+    const ShooterProtocol p = load(shippedPath("shooter-thesis.json"));
     defaults.name = p.name;
     defaults.description = p.description;
     expectSame(p, defaults);
 }
 
 TEST(ProtocolFiles, QuickPlaysInWellUnderAMinute) {
-    const ShooterProtocol p = loadShooterProtocol(shippedPath("shooter-quick.json"));
+    const ShooterProtocol p = load(shippedPath("shooter-quick.json"));
     EXPECT_EQ(p.name, "shooter-quick");
     EXPECT_FALSE(p.supervisorStartsTest);  // tests and demos run unattended
     EXPECT_EQ(p.conditions, ShooterProtocol{}.conditions);
@@ -174,17 +180,9 @@ TEST(ProtocolFiles, ShippedFilesAreInCanonicalForm) {
     // So each file lists every field explicitly and is byte for byte the copy a session stores.
     for (const char* name : {"shooter-thesis.json", "shooter-quick.json"}) {
         SCOPED_TRACE(name);
-        const std::string text = readFile(shippedPath(name));
-        EXPECT_EQ(toJson(parseShooterProtocol(text, name)), text);
+        const std::string text = readProtocolFile(shippedPath(name));
+        EXPECT_EQ(toJson(parse(text, name)), text);
     }
-}
-
-TEST(ProtocolFiles, KnownModesAreTheDesignsNine) {
-    const std::vector<std::string> expected{"conv15", "conv30",  "conv60",      "conv120",
-                                            "lag50",  "lag100",  "lag200",      "warp15to120",
-                                            "bireproj15to60"};
-    ASSERT_EQ(kKnownModes.size(), expected.size());
-    for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(kKnownModes[i], expected[i]);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -193,35 +191,35 @@ TEST(ProtocolFiles, KnownModesAreTheDesignsNine) {
 TEST(ProtocolDefaults, UnsetFieldsTakeTheThesisValues) {
     ShooterProtocol expected;
     expected.name = "t";
-    expectSame(parseShooterProtocol(minimal().dump(), kSource), expected);
+    expectSame(parse(minimal().dump()), expected);
     // An empty nested object is the same as an absent one.
     Json document = minimal();
     for (const char* section : {"display", "target", "input", "acclimation", "training", "test"})
         document[section] = Json::object();
-    expectSame(parseShooterProtocol(document.dump(), kSource), expected);
+    expectSame(parse(document.dump()), expected);
 }
 
 TEST(ProtocolDefaults, IntegersAreAcceptedForRealFields) {
     const ShooterProtocol p =
-        parseShooterProtocol(thesisWith("/display/refresh_hz", 240).dump(), kSource);
+        parse(thesisWith("/display/refresh_hz", 240).dump());
     EXPECT_EQ(p.refreshHz, 240.0);
 }
 
 TEST(ProtocolRoundTrip, EveryFieldSurvivesBitForBit) {
     const ShooterProtocol p = everyFieldChanged();
-    expectSame(parseShooterProtocol(toJson(p), kSource), p);
+    expectSame(parse(toJson(p)), p);
 }
 
 TEST(ProtocolRoundTrip, DefaultsSurvive) {
     ShooterProtocol p;
     p.name = "d";
-    expectSame(parseShooterProtocol(toJson(p), kSource), p);
+    expectSame(parse(toJson(p)), p);
 }
 
 TEST(ProtocolRoundTrip, WriterIsStable) {
     const ShooterProtocol p = everyFieldChanged();
     const std::string once = toJson(p);
-    EXPECT_EQ(toJson(parseShooterProtocol(once, kSource)), once);
+    EXPECT_EQ(toJson(parse(once)), once);
     EXPECT_EQ(toJson(p), once);  // no hidden state between calls
     EXPECT_EQ(once.back(), '\n');
 }
@@ -267,14 +265,14 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 2;
+    document["format_version"] = 3;
     EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': format_version 2 is newer than this warplab supports (1)");
+              "protocol 'p.json': format_version 3 is newer than this warplab supports (2)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
     EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': format_version 2 is newer than this warplab supports (1)");
+              "protocol 'p.json': format_version 3 is newer than this warplab supports (2)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -295,7 +293,8 @@ TEST(ProtocolErrors, UnknownNestedFieldIsNamedWithItsPath) {
     const std::string message = errorOf(thesisWith("/test/timout_s", 3));
     EXPECT_EQ(message,
               "protocol 'p.json': test.timout_s is not a known field (test may have conditions, "
-              "targets_per_condition, interleave, timeout_s, pause_s, scoring, supervisor_starts)");
+              "targets_per_condition, interleave, timeout_s, pause_s, scoring, supervisor_starts, "
+              "click_timing)");
     expectContains(errorOf(thesisWith("/training/max_levle", 3)),
                    {"training.max_levle is not a known field"});
     expectContains(errorOf(thesisWith("/display/refresh", 3)),
@@ -309,10 +308,9 @@ TEST(ProtocolErrors, DuplicateKeyIsNamedWithItsPath) {
     EXPECT_EQ(errorOfText(R"({"format_version":1,"name":"t","name":"u","game":"shooter"})"),
               "protocol 'p.json': name appears more than once");
     // Equal keys in different objects are not repeats.
-    EXPECT_NO_THROW(parseShooterProtocol(
+    EXPECT_NO_THROW(parse(
         R"({"format_version":1,"name":"t","game":"shooter","display":{},"target":{},
-            "acclimation":{"level":0},"training":{"start_level":0}})",
-        kSource));
+            "acclimation":{"level":0},"training":{"start_level":0}})"));
 }
 
 TEST(ProtocolErrors, WrongTypesAreNamed) {
@@ -395,8 +393,8 @@ TEST(ProtocolErrors, OutOfRangeValuesNameTheRange) {
                   std::string("protocol 'p.json': ") + c.expected);
     }
     // The bounds themselves are allowed where the range is closed.
-    EXPECT_NO_THROW(parseShooterProtocol(thesisWith("/display/vertical_fov_deg", 179).dump(), kSource));
-    EXPECT_NO_THROW(parseShooterProtocol(thesisWith("/test/targets_per_condition", 100000).dump(), kSource));
+    EXPECT_NO_THROW(parse(thesisWith("/display/vertical_fov_deg", 179).dump()));
+    EXPECT_NO_THROW(parse(thesisWith("/test/targets_per_condition", 100000).dump()));
 }
 
 TEST(ProtocolErrors, HugeNumbersAreRefusedNotWrapped) {
@@ -429,24 +427,56 @@ TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
     // Equal is fine: a fixed-difficulty "staircase" and fixed shots per level.
     document = thesisWith("/training/start_level", 60);
     document["training"]["shots_per_level_hard"] = 4;
-    EXPECT_NO_THROW(parseShooterProtocol(document.dump(), kSource));
+    EXPECT_NO_THROW(parse(document.dump()));
+}
+
+// The reason after the path is game::checkMode's own: the mode table has one home.
+std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
+    return "protocol 'p.json': " + where + " is \"" + id + "\": " + game::checkMode(id, refreshHz);
 }
 
 TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
-    const std::string known =
-        "(conv15, conv30, conv60, conv120, lag50, lag100, lag200, warp15to120, bireproj15to60)";
-    EXPECT_EQ(errorOf(thesisWith("/test/conditions/1", "conv25")),
-              "protocol 'p.json': test.conditions[1] must be a known mode id " + known +
-                  ", got string \"conv25\"");
+    const std::string message = errorOf(thesisWith("/test/conditions/1", "conv25"));
+    EXPECT_EQ(message, modeError("test.conditions[1]", "conv25", 120));
+    expectContains(message, {"test.conditions[1] is \"conv25\": unknown mode 'conv25'"});
+    for (const std::string& id : game::modeIds()) expectContains(message, {id});
     EXPECT_EQ(errorOf(thesisWith("/acclimation/mode", "CONV120")),
-              "protocol 'p.json': acclimation.mode must be a known mode id " + known +
-                  ", got string \"CONV120\"");
-    expectContains(errorOf(thesisWith("/training/high_mode", "warp")),
-                   {"training.high_mode must be a known mode id", "got string \"warp\""});
-    expectContains(errorOf(thesisWith("/training/low_mode", 15)),
-                   {"training.low_mode must be a known mode id", "got 15"});
-    expectContains(errorOf(thesisWith("/test/conditions/0", Json::array({"conv15"}))),
-                   {"test.conditions[0] must be a known mode id", "got array [\"conv15\"]"});
+              modeError("acclimation.mode", "CONV120", 120));
+    EXPECT_EQ(errorOf(thesisWith("/training/high_mode", "warp")),
+              modeError("training.high_mode", "warp", 120));
+    // Not a string at all: a type error, before any mode is looked up.
+    EXPECT_EQ(errorOf(thesisWith("/training/low_mode", 15)),
+              "protocol 'p.json': training.low_mode must be a mode id (a string), got 15");
+    EXPECT_EQ(errorOf(thesisWith("/test/conditions/0", Json::array({"conv15"}))),
+              "protocol 'p.json': test.conditions[0] must be a mode id (a string), got array "
+              "[\"conv15\"]");
+}
+
+TEST(ProtocolErrors, ModesAreJudgedByTheInjectedCheck) {
+    // A parser with its own list would accept conv15 and refuse "mine" whatever it is handed.
+    std::vector<std::pair<std::string, double>> asked;
+    const ModeCheck onlyMine = [&asked](const std::string& id, double refreshHz) {
+        asked.emplace_back(id, refreshHz);
+        return id == "mine" || id == "other" ? "" : "only mine here";
+    };
+    Json document = thesisWith("/test/conditions", {"mine"});
+    document["acclimation"]["mode"] = "mine";
+    document["training"]["high_mode"] = "mine";
+    document["training"]["low_mode"] = "other";
+    document["display"]["refresh_hz"] = 50;
+    EXPECT_EQ(parseShooterProtocol(document.dump(), kSource, onlyMine).conditions,
+              std::vector<std::string>{"mine"});
+    EXPECT_EQ(asked, (std::vector<std::pair<std::string, double>>{
+                         {"mine", 50}, {"mine", 50}, {"other", 50}, {"mine", 50}}));
+    document["test"]["conditions"] = {"mine", "conv15"};
+    try {
+        parseShooterProtocol(document.dump(), kSource, onlyMine);
+        ADD_FAILURE() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "protocol 'p.json': test.conditions[1] is \"conv15\": only mine here");
+    }
+    EXPECT_THROW(parseShooterProtocol(document.dump(), kSource, ModeCheck{}), std::invalid_argument);
 }
 
 TEST(ProtocolErrors, DuplicateConditionsAreNamed) {
@@ -461,16 +491,21 @@ TEST(ProtocolErrors, ScoringIsDisplayedOrWorld) {
     EXPECT_EQ(errorOf(thesisWith("/test/scoring", "Displayed")),
               "protocol 'p.json': test.scoring must be \"displayed\" or \"world\", got string "
               "\"Displayed\"");
-    EXPECT_EQ(parseShooterProtocol(thesisWith("/test/scoring", "world").dump(), kSource).scoring,
-              "world");
+    EXPECT_EQ(parse(thesisWith("/test/scoring", "world").dump()).scoring, "world");
 }
 
 TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
+    // The thesis defaults at 100 Hz: the first mode read, acclimation's, is the culprit.
     EXPECT_EQ(errorOf(thesisWith("/display/refresh_hz", 100)),
-              "protocol 'p.json': acclimation.mode is \"conv120\", which needs display.refresh_hz "
-              "to be a whole multiple of 120, but it is 100");
+              modeError("acclimation.mode", "conv120", 100));
+    expectContains(errorOf(thesisWith("/display/refresh_hz", 100)),
+                   {"acclimation.mode is \"conv120\"", "whole multiple of 120 Hz"});
+    // Defaults are checked too, not just the modes a file spells out.
+    Json document = minimal();
+    document["display"] = Json{{"refresh_hz", 60}};
+    EXPECT_EQ(errorOf(document), modeError("acclimation.mode", "conv120", 60));
 
-    Json document = thesisWith("/display/refresh_hz", 100);
+    document = thesisWith("/display/refresh_hz", 100);
     document["acclimation"]["mode"] = "conv60";  // not a multiple either
     expectContains(errorOf(document), {"acclimation.mode is \"conv60\"", "multiple of 60"});
 
@@ -480,20 +515,16 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
     document["training"]["high_mode"] = "conv60";
     document["test"]["conditions"] = {"conv15", "conv30", "conv60", "lag50", "lag100", "lag200",
                                       "bireproj15to60", "warp15to120"};
-    EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': test.conditions[7] is \"warp15to120\", which needs "
-              "display.refresh_hz to be a whole multiple of 120, but it is 60");
+    EXPECT_EQ(errorOf(document), modeError("test.conditions[7]", "warp15to120", 60));
     document["test"]["conditions"].erase(7);
-    EXPECT_NO_THROW(parseShooterProtocol(document.dump(), kSource));
+    EXPECT_NO_THROW(parse(document.dump()));
 
     // 90 Hz is a multiple of 30 and 15 but not of the lag modes' 60 Hz rendering.
     document = thesisWith("/display/refresh_hz", 90);
     document["acclimation"]["mode"] = "conv30";
     document["training"]["high_mode"] = "conv30";
     document["test"]["conditions"] = {"conv15", "lag100"};
-    EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': test.conditions[1] is \"lag100\", which needs "
-              "display.refresh_hz to be a whole multiple of 60, but it is 90");
+    EXPECT_EQ(errorOf(document), modeError("test.conditions[1]", "lag100", 90));
     document["test"]["conditions"] = {"bireproj15to60"};
     expectContains(errorOf(document), {"test.conditions[0] is \"bireproj15to60\"", "multiple of 60"});
 
@@ -503,16 +534,83 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
     document["training"]["high_mode"] = "conv15";
     document["training"]["low_mode"] = "conv30";
     document["test"]["conditions"] = {"conv15"};
-    EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': training.low_mode is \"conv30\", which needs display.refresh_hz "
-              "to be a whole multiple of 30, but it is 45");
+    EXPECT_EQ(errorOf(document), modeError("training.low_mode", "conv30", 45));
 
     // A non-integral refresh fits nothing, 240 Hz fits everything.
-    expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"but it is 119.88"});
+    expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)),
+                   {"acclimation.mode is \"conv120\""});
     document = thesisWith("/display/refresh_hz", 240);
-    document["test"]["conditions"] = Json::array();
-    for (std::string_view id : kKnownModes) document["test"]["conditions"].push_back(id);
-    EXPECT_EQ(parseShooterProtocol(document.dump(), kSource).conditions.size(), kKnownModes.size());
+    document["test"]["conditions"] = game::modeIds();
+    EXPECT_EQ(parse(document.dump()).conditions, game::modeIds());
+}
+
+// ---------------------------------------------------------------------------------------
+// Format versions: 1 is still read, and means the rules it was recorded under
+
+// The thesis study as a version 1 file: no click_timing.
+Json thesisVersion1() {
+    Json document = thesisWith("/format_version", 1);
+    document["test"].erase("click_timing");
+    return document;
+}
+
+TEST(ProtocolVersions, NewStructsAreVersion2WithNewRules) {
+    const ShooterProtocol p;
+    EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
+    EXPECT_EQ(kShooterFormatVersion, 2);
+    EXPECT_FALSE(p.legacyRules);
+    EXPECT_EQ(p.clickTiming, "display");
+    EXPECT_FALSE(parse(minimal().dump()).legacyRules);
+}
+
+TEST(ProtocolVersions, Version1MeansLegacyRules) {
+    const ShooterProtocol p = parse(thesisVersion1().dump());
+    EXPECT_EQ(p.formatVersion, 1);
+    EXPECT_TRUE(p.legacyRules);
+    EXPECT_EQ(p.clickTiming, "display");
+    Json document = minimal();
+    document["format_version"] = 1;
+    EXPECT_TRUE(parse(document.dump()).legacyRules);
+}
+
+TEST(ProtocolVersions, Version1CannotHaveClickTiming) {
+    EXPECT_EQ(errorOf(thesisWith("/format_version", 1)),
+              "protocol 'p.json': test.click_timing is new in format_version 2, but this file is "
+              "format_version 1");
+    Json document = thesisVersion1();
+    document["test"]["click_timing"] = "input_reads";
+    expectContains(errorOf(document), {"test.click_timing", "format_version 1"});
+}
+
+TEST(ProtocolVersions, Version1RoundTripsAsVersion1) {
+    // A version 1 session stores this copy; replaying it must give legacy rules again.
+    const std::string text = thesisVersion1().dump(2) + "\n";  // canonical layout
+    const ShooterProtocol p = parse(text);
+    const std::string written = toJson(p);
+    EXPECT_EQ(written, text);
+    EXPECT_EQ(Json::parse(written).at("test").count("click_timing"), 0u);
+    expectSame(parse(written), p);
+    EXPECT_TRUE(parse(written).legacyRules);
+}
+
+TEST(ProtocolVersions, Version1StructCannotQuietlyLoseClickTiming) {
+    ShooterProtocol p = parse(thesisVersion1().dump());
+    p.clickTiming = "input_reads";  // a value version 1 cannot say
+    expectContains(errorOfText(toJson(p)), {"test.click_timing is new in format_version 2"});
+}
+
+TEST(ProtocolVersions, ClickTimingIsDisplayOrInputReads) {
+    EXPECT_EQ(parse(thesisWith("/test/click_timing", "input_reads").dump()).clickTiming,
+              "input_reads");
+    Json document = thesisWith("/format_version", 2);
+    document["test"].erase("click_timing");
+    EXPECT_EQ(parse(document.dump()).clickTiming, "display");
+    EXPECT_EQ(errorOf(thesisWith("/test/click_timing", "frame")),
+              "protocol 'p.json': test.click_timing must be \"display\" or \"input_reads\", got "
+              "string \"frame\"");
+    EXPECT_EQ(errorOf(thesisWith("/test/click_timing", true)),
+              "protocol 'p.json': test.click_timing must be \"display\" or \"input_reads\", got "
+              "boolean true");
 }
 
 // ---------------------------------------------------------------------------------------
@@ -521,7 +619,7 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
 TEST(ProtocolLoad, MissingFileNamesThePath) {
     const std::string path = std::string(WARPLAB_BINARY_DIR) + "/no-such-dir/missing.json";
     try {
-        loadShooterProtocol(path);
+        load(path);
         FAIL() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + path + "': no such file");
@@ -531,7 +629,7 @@ TEST(ProtocolLoad, MissingFileNamesThePath) {
 TEST(ProtocolLoad, DirectoryIsNotAFile) {
     const std::string path = std::string(WARPLAB_SOURCE_DIR) + "/protocol";
     try {
-        loadShooterProtocol(path);
+        load(path);
         FAIL() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + path + "': is a directory, not a file");
@@ -548,7 +646,7 @@ TEST(ProtocolLoad, ErrorsInAFileNameItsPath) {
         file << thesisWith("/test/timeout_s", 0).dump(2);
     }
     try {
-        loadShooterProtocol(path);
+        load(path);
         FAIL() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()),

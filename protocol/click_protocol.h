@@ -1,0 +1,70 @@
+// The falling-sphere click game's protocol file (Yang et al. 2011, seed 000 section 8): red and
+// green spheres fall and bounce in a box, the player clicks the green ones and avoids the red
+// ones, in 45 s matches played in each mode, each followed by four 1-7 ratings. Every field is
+// documented, with its JSON key, unit, range and source, in docs/protocol.md. The defaults are
+// the published study, so an unset field in a file means "as in the paper".
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "protocol/study_protocol.h"
+
+namespace warplab::protocol {
+
+// The newest click protocol format this build reads and the one toJson writes.
+inline constexpr int kClickFormatVersion = 1;
+
+// One round: every mode of the study played matchesPerMode times. Yang et al. played an
+// unscored round of one match per mode, then a scored round of two per mode.
+struct ClickRound {
+    std::string name;          // written into every match event of the round
+    bool scored = true;        // false: played for practice, outcomes logged but not analysed
+    int matchesPerMode = 1;
+};
+
+struct ClickProtocol {
+    std::string name;
+    std::string description;
+    int formatVersion = kClickFormatVersion;
+    std::string game = "click";
+    double refreshHz = 60;             // display.refresh_hz
+    double verticalFovDeg = 60;        // display.vertical_fov_deg
+    double cameraPitchDeg = -10;       // display.camera_pitch_deg, looks down at the box floor
+    // physics.* (the game maps these onto physics::FallingSphereSettings; keep the same defaults)
+    double gravity = 9.81;             // m/s^2, >= 0
+    double sphereRadius = 0.45;        // m, (0, 2]
+    double restitution = 0.9;          // [0, 1]; bouncy enough that spheres keep moving through a 45 s match
+    int stepRateHz = 960;              // internal physics steps per second; refresh must divide it
+    int sphereCount = 10;              // [1, 40]
+    double greenShare = 0.5;           // [0, 1]
+    double spawnDelayS = 0.5;          // >= 0
+    double spawnSpeedMPerS = 2.0;      // >= 0
+    // input.*
+    double cursorPixelsPerCount = 1.0; // cursor movement per mouse count on the session's display, (0, 100]
+    std::string clickTiming = "display";  // or "input_reads", as for the shooter
+    // matches.*
+    double matchS = 45;                // > 0
+    std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
+    std::vector<ClickRound> rounds{{"practice", false, 1}, {"scored", true, 2}};
+    bool shuffle = true;               // random mode order per round, from the session seed
+    // ratings.*
+    bool ratingsEnabled = true;
+    std::vector<std::string> ratingStatements{"I enjoyed playing this game", "This game was difficult to play",
+        "This game was responsive to my input", "The animation was smooth"};
+    int ratingMin = 1, ratingMax = 7;  // 1 = strongly disagree, 7 = strongly agree
+    std::string scoring = "world";     // matches.scoring: or "displayed" (DESIGN.md "Scoring")
+};
+
+// sourceName is what messages call the file (its path); `modes` judges every mode id against
+// the refresh (pass game::checkMode). Throws ProtocolError.
+ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
+                                 const ModeCheck& modes);
+// A missing or unreadable file is a ProtocolError naming the path.
+ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes);
+// Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
+// gives back the same struct bit for bit, so the session stores this copy as the protocol it
+// ran. Does not validate; parse what it writes to check a hand-built struct.
+std::string toJson(const ClickProtocol& protocol);
+
+}  // namespace warplab::protocol

@@ -1,0 +1,33 @@
+// What every study protocol file shares, whichever game it is for: the error type, reading the
+// file, the top-level "game" field that picks the game's own parser (shooter_protocol.h,
+// click_protocol.h), and the mode check each parser is handed. docs/protocol.md describes the
+// files.
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+namespace warplab::protocol {
+
+// A bad protocol file: one sentence naming the file and the JSON path of the culprit.
+class ProtocolError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// "" when mode `id` can run on a display of refreshHz, else the reason in one sentence.
+// game::checkMode is the one to pass: the mode table lives in game/ alone, and protocol/ may not
+// include game/, so each parser is handed the check instead of keeping a copy of the list.
+using ModeCheck = std::function<std::string(const std::string& id, double refreshHz)>;
+
+// The whole file as text. A missing file, a folder or an unreadable file is a ProtocolError
+// naming the path.
+std::string readProtocolFile(const std::string& path);
+
+// The value of the top-level "game" field, which says which parser reads the rest ("shooter",
+// "click"). A ProtocolError naming sourceName when the text is not JSON (with line and column),
+// not an object, or has no string "game". Nothing else in the file is checked.
+std::string protocolGame(const std::string& jsonText, const std::string& sourceName);
+
+}  // namespace warplab::protocol

@@ -1,0 +1,477 @@
+// The click game's protocol file and the loader every protocol shares: the shipped files say
+// what Yang et al. 2011 section 8 says, the writer and the reader are exact inverses, and each
+// bad input is refused with one sentence naming the file and the field (tests pin the words).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "game/modes.h"
+#include "protocol/click_protocol.h"
+#include "protocol/shooter_protocol.h"
+
+namespace warplab::protocol {
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+const std::string kSource = "p.json";
+const std::string kPrefix = "protocol 'p.json': ";
+
+std::string protocolDir() { return std::string(WARPLAB_SOURCE_DIR) + "/protocol"; }
+
+ClickProtocol parse(const std::string& text, const std::string& source = kSource) {
+    return parseClickProtocol(text, source, game::checkMode);
+}
+
+// The ProtocolError's message, or "" when the document parses.
+std::string messageFor(const Json& document) {
+    try {
+        parse(document.dump());
+    } catch (const ProtocolError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// The full canonical published study with one value replaced (pointer like "/physics/restitution").
+Json yangWith(const std::string& pointer, const Json& value) {
+    ClickProtocol p;
+    p.name = "t";
+    Json document = Json::parse(toJson(p));
+    document[Json::json_pointer(pointer)] = value;
+    return document;
+}
+
+Json minimal() { return Json{{"format_version", 1}, {"name", "t"}, {"game", "click"}}; }
+
+void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.description, b.description);
+    EXPECT_EQ(a.formatVersion, b.formatVersion);
+    EXPECT_EQ(a.game, b.game);
+    // Doubles compared with ==: the round trip promises the same bits, not nearly.
+    EXPECT_EQ(a.refreshHz, b.refreshHz);
+    EXPECT_EQ(a.verticalFovDeg, b.verticalFovDeg);
+    EXPECT_EQ(a.cameraPitchDeg, b.cameraPitchDeg);
+    EXPECT_EQ(a.gravity, b.gravity);
+    EXPECT_EQ(a.sphereRadius, b.sphereRadius);
+    EXPECT_EQ(a.restitution, b.restitution);
+    EXPECT_EQ(a.stepRateHz, b.stepRateHz);
+    EXPECT_EQ(a.sphereCount, b.sphereCount);
+    EXPECT_EQ(a.greenShare, b.greenShare);
+    EXPECT_EQ(a.spawnDelayS, b.spawnDelayS);
+    EXPECT_EQ(a.spawnSpeedMPerS, b.spawnSpeedMPerS);
+    EXPECT_EQ(a.cursorPixelsPerCount, b.cursorPixelsPerCount);
+    EXPECT_EQ(a.clickTiming, b.clickTiming);
+    EXPECT_EQ(a.matchS, b.matchS);
+    EXPECT_EQ(a.modes, b.modes);
+    ASSERT_EQ(a.rounds.size(), b.rounds.size());
+    for (std::size_t i = 0; i < a.rounds.size(); ++i) {
+        SCOPED_TRACE("round " + std::to_string(i));
+        EXPECT_EQ(a.rounds[i].name, b.rounds[i].name);
+        EXPECT_EQ(a.rounds[i].scored, b.rounds[i].scored);
+        EXPECT_EQ(a.rounds[i].matchesPerMode, b.rounds[i].matchesPerMode);
+    }
+    EXPECT_EQ(a.shuffle, b.shuffle);
+    EXPECT_EQ(a.ratingsEnabled, b.ratingsEnabled);
+    EXPECT_EQ(a.ratingStatements, b.ratingStatements);
+    EXPECT_EQ(a.ratingMin, b.ratingMin);
+    EXPECT_EQ(a.ratingMax, b.ratingMax);
+    EXPECT_EQ(a.scoring, b.scoring);
+}
+
+// Every field different from its default, so a field the writer forgets comes back as its
+// default and fails the comparison.
+ClickProtocol everyFieldChanged() {
+    ClickProtocol p;
+    p.name = "all \"changed\" \xc3\xa9";
+    p.description = "two\nlines";
+    p.refreshHz = 120;
+    p.verticalFovDeg = 0.1 + 0.2 + 50;  // not a short decimal
+    p.cameraPitchDeg = -1.0 / 3.0;
+    p.gravity = 1.62;
+    p.sphereRadius = 0.3;
+    p.restitution = 0.95;
+    p.stepRateHz = 1200;
+    p.sphereCount = 17;
+    p.greenShare = 0.25;
+    p.spawnDelayS = 0;
+    p.spawnSpeedMPerS = 3.5;
+    p.cursorPixelsPerCount = 2.5;
+    p.clickTiming = "input_reads";
+    p.matchS = 30.5;
+    p.modes = {"conv120", "warp15to120"};
+    p.rounds = {{"warm-up", false, 3}, {"a", true, 1}, {"b", true, 4}};
+    p.shuffle = false;
+    p.ratingsEnabled = false;
+    p.ratingStatements = {"Only one"};
+    p.ratingMin = 0;
+    p.ratingMax = 10;
+    p.scoring = "displayed";
+    return p;
+}
+
+// ---------------------------------------------------------------------------------------
+// The shipped files
+
+TEST(ClickFiles, YangIsTheStudyAsPublished) {
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", game::checkMode);
+    EXPECT_EQ(p.name, "click-yang");
+    EXPECT_EQ(p.game, "click");
+    EXPECT_EQ(p.refreshHz, 60.0);  // the fastest mode is 60 fps
+    EXPECT_EQ(p.matchS, 45.0);     // "Each game match lasts for 45 seconds"
+    // "60, 30, and 15fps", "60fps ... 50ms, 100ms, and 200ms" of lag, bireproj "15 to 60fps".
+    EXPECT_EQ(p.modes, (std::vector<std::string>{"conv60", "conv30", "conv15", "lag50", "lag100",
+                                                 "lag200", "bireproj15to60"}));
+    // "21 matches, divided into two rounds": 7 unscored (one per mode), 14 scored (two per mode).
+    ASSERT_EQ(p.rounds.size(), 2u);
+    EXPECT_FALSE(p.rounds[0].scored);
+    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+    EXPECT_TRUE(p.rounds[1].scored);
+    EXPECT_EQ(p.rounds[1].matchesPerMode, 2);
+    EXPECT_EQ(p.modes.size() * (p.rounds[0].matchesPerMode + p.rounds[1].matchesPerMode), 21u);
+    EXPECT_TRUE(p.shuffle);  // "presented in random order"
+    EXPECT_TRUE(p.ratingsEnabled);
+    EXPECT_EQ(p.ratingStatements,
+              (std::vector<std::string>{"I enjoyed playing this game", "This game was difficult to play",
+                                        "This game was responsive to my input",
+                                        "The animation was smooth"}));
+    EXPECT_EQ(p.ratingMin, 1);  // "from 1 (strongly disagree) to 7 (strongly agree)"
+    EXPECT_EQ(p.ratingMax, 7);
+}
+
+TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", game::checkMode);
+    ClickProtocol defaults;
+    defaults.name = p.name;
+    defaults.description = p.description;
+    expectSame(p, defaults);
+}
+
+TEST(ClickFiles, QuickIsTheSameStudyInSeconds) {
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json", game::checkMode);
+    EXPECT_EQ(p.name, "click-quick");
+    EXPECT_EQ(p.refreshHz, 60.0);
+    EXPECT_EQ(p.modes, ClickProtocol{}.modes);
+    EXPECT_EQ(p.matchS, 3.0);
+    ASSERT_EQ(p.rounds.size(), 2u);
+    EXPECT_EQ(p.rounds[0].name, "practice");
+    EXPECT_FALSE(p.rounds[0].scored);
+    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+    EXPECT_EQ(p.rounds[1].name, "scored");
+    EXPECT_TRUE(p.rounds[1].scored);
+    EXPECT_EQ(p.rounds[1].matchesPerMode, 1);
+    EXPECT_EQ(p.modes.size() * 2 * p.matchS, 42.0);  // seconds of play, ratings aside
+}
+
+TEST(ClickFiles, ShippedFilesAreInCanonicalForm) {
+    for (const char* name : {"click-yang.json", "click-quick.json"}) {
+        SCOPED_TRACE(name);
+        const std::string text = readProtocolFile(protocolDir() + "/" + name);
+        EXPECT_EQ(toJson(parse(text, name)), text);
+    }
+}
+
+// Every protocol that ships, whichever game, goes through the shared loader: "game" picks the
+// parser, and each parser asks the one mode table about every mode id the file names.
+TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(protocolDir())) {
+        if (entry.path().extension() != ".json") continue;
+        const std::string path = entry.path().string();
+        SCOPED_TRACE(path);
+        const std::string text = readProtocolFile(path);
+        const std::string game = protocolGame(text, path);
+        if (game == "shooter")
+            EXPECT_NO_THROW(parseShooterProtocol(text, path, game::checkMode));
+        else if (game == "click")
+            EXPECT_NO_THROW(parseClickProtocol(text, path, game::checkMode));
+        else
+            ADD_FAILURE() << "no parser for game " << game;
+        ++count;
+    }
+    EXPECT_GE(count, 4);
+}
+
+// ---------------------------------------------------------------------------------------
+// Defaults and the round trip
+
+TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
+    ClickProtocol expected;
+    expected.name = "t";
+    expectSame(parse(minimal().dump()), expected);
+    Json document = minimal();
+    for (const char* section : {"display", "physics", "input", "matches", "ratings"})
+        document[section] = Json::object();
+    expectSame(parse(document.dump()), expected);
+    // A round with only its name is one scored match per mode.
+    document["matches"]["rounds"] = Json::array({Json{{"name", "only"}}});
+    const ClickProtocol p = parse(document.dump());
+    ASSERT_EQ(p.rounds.size(), 1u);
+    EXPECT_TRUE(p.rounds[0].scored);
+    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+}
+
+TEST(ClickRoundTrip, EveryFieldSurvivesBitForBit) {
+    const ClickProtocol p = everyFieldChanged();
+    expectSame(parse(toJson(p)), p);
+}
+
+TEST(ClickRoundTrip, WriterIsStable) {
+    const std::string once = toJson(everyFieldChanged());
+    EXPECT_EQ(toJson(parse(once)), once);
+    EXPECT_EQ(once.back(), '\n');
+}
+
+TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
+    const Json document = Json::parse(toJson(everyFieldChanged()));
+    std::vector<std::string> keys;
+    for (auto it = document.begin(); it != document.end(); ++it) keys.push_back(it.key());
+    EXPECT_EQ(keys, (std::vector<std::string>{"format_version", "name", "description", "game",
+                                              "display", "physics", "input", "matches",
+                                              "ratings"}));
+    EXPECT_EQ(document.at("matches").at("rounds").at(0),
+              (Json{{"name", "warm-up"}, {"scored", false}, {"matches_per_mode", 3}}));
+    EXPECT_EQ(document.at("matches").at("scoring"), "displayed");
+    EXPECT_EQ(document.at("physics").at("gravity_m_per_s2"), 1.62);
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad input: one sentence naming file, path and reason
+
+TEST(ClickErrors, NegativeGravity) {
+    EXPECT_EQ(messageFor(yangWith("/physics/gravity_m_per_s2", -9.81)),
+              kPrefix + "physics.gravity_m_per_s2 must be a number between 0 and 100, got -9.81");
+    EXPECT_EQ(parse(yangWith("/physics/gravity_m_per_s2", 0).dump()).gravity, 0.0);
+}
+
+TEST(ClickErrors, ZeroMatches) {
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/matches_per_mode", 0)),
+              kPrefix + "matches.rounds[1].matches_per_mode must be an integer between 1 and 100, "
+                        "got 0");
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds", Json::array())),
+              kPrefix + "matches.rounds must be a non-empty array of rounds, got array []");
+    // Rounds that are all practice record nothing to analyse.
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", false)),
+              kPrefix + "matches.rounds must have at least one round with \"scored\": true, or "
+                        "the session measures nothing");
+    EXPECT_EQ(messageFor(yangWith("/matches/match_s", 0)),
+              kPrefix + "matches.match_s must be a number greater than 0 and at most 86400, got 0");
+}
+
+// The reason after the path is game::checkMode's own: the mode table has one home.
+std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
+    return kPrefix + where + " is \"" + id + "\": " + game::checkMode(id, refreshHz);
+}
+
+TEST(ClickErrors, UnknownMode) {
+    const std::string message = messageFor(yangWith("/matches/modes/2", "conv25"));
+    EXPECT_EQ(message, modeError("matches.modes[2]", "conv25", 60));
+    EXPECT_NE(message.find("unknown mode 'conv25'"), std::string::npos) << message;
+    EXPECT_EQ(messageFor(yangWith("/matches/modes/0", 60)),
+              kPrefix + "matches.modes[0] must be a mode id (a string), got 60");
+    EXPECT_EQ(messageFor(yangWith("/matches/modes", Json::array())),
+              kPrefix + "matches.modes must be a non-empty array of mode ids, got array []");
+}
+
+TEST(ClickErrors, ModeThatCannotRunAtTheRefresh) {
+    const std::string message = messageFor(yangWith("/matches/modes/3", "conv120"));
+    EXPECT_EQ(message, modeError("matches.modes[3]", "conv120", 60));
+    EXPECT_NE(message.find("whole multiple of 120 Hz"), std::string::npos) << message;
+    // The defaults are checked too: the published modes need a multiple of 60 Hz.
+    Json document = minimal();
+    document["display"] = Json{{"refresh_hz", 50}};
+    document["physics"] = Json{{"step_rate_hz", 1000}};
+    EXPECT_EQ(messageFor(document), modeError("matches.modes[0]", "conv60", 50));
+    // 120 Hz runs everything the study names, and conv120 too.
+    document = yangWith("/display/refresh_hz", 120);
+    document["matches"]["modes"].push_back("conv120");
+    EXPECT_EQ(parse(document.dump()).modes.size(), 8u);
+}
+
+TEST(ClickErrors, DuplicateModes) {
+    EXPECT_EQ(messageFor(yangWith("/matches/modes/3", "conv60")),
+              kPrefix + "matches.modes[3] repeats \"conv60\", already matches.modes[0]");
+}
+
+TEST(ClickErrors, MissingOrEmptyRatingText) {
+    const std::string rule = " must be a non-empty single line of at most 200 bytes, got ";
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements/1", "")),
+              kPrefix + "ratings.statements[1]" + rule + "string \"\"");
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements/0", nullptr)),
+              kPrefix + "ratings.statements[0]" + rule + "null");
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements/2", "two\nlines")),
+              kPrefix + "ratings.statements[2]" + rule + "string \"two\\nlines\"");
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements", Json::array())),
+              kPrefix + "ratings.statements must list at least one statement while "
+                        "ratings.enabled is true");
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements", "I enjoyed playing this game")),
+              kPrefix + "ratings.statements must be an array of statements, got string \"I "
+                        "enjoyed playing this game\"");
+    EXPECT_EQ(messageFor(yangWith("/ratings/statements/3", "This game was difficult to play")),
+              kPrefix + "ratings.statements[3] repeats \"This game was difficult to play\", "
+                        "already ratings.statements[1]");
+    // No statements is fine when nothing is asked.
+    Json document = yangWith("/ratings/statements", Json::array());
+    document["ratings"]["enabled"] = false;
+    EXPECT_TRUE(parse(document.dump()).ratingStatements.empty());
+}
+
+TEST(ClickErrors, RatingMinMustBeBelowMax) {
+    Json document = yangWith("/ratings/min", 7);
+    EXPECT_EQ(messageFor(document), kPrefix + "ratings.min must be less than ratings.max (7), got 7");
+    document["ratings"]["max"] = 3;
+    EXPECT_EQ(messageFor(document), kPrefix + "ratings.min must be less than ratings.max (3), got 7");
+    EXPECT_EQ(messageFor(yangWith("/ratings/max", 101)),
+              kPrefix + "ratings.max must be an integer between -100 and 100, got 101");
+    document = yangWith("/ratings/min", -3);
+    document["ratings"]["max"] = 3;
+    EXPECT_EQ(parse(document.dump()).ratingMin, -3);
+}
+
+TEST(ClickErrors, StepRateTheRefreshDoesNotDivide) {
+    EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 1000)),
+              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
+                        "got 1000");
+    EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 30)),
+              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
+                        "got 30");
+    // 960 Hz divides into 60 and 120 Hz frames alike; 144 Hz needs its own step rate.
+    EXPECT_NO_THROW(parse(yangWith("/display/refresh_hz", 120).dump()));
+    Json document = yangWith("/display/refresh_hz", 144);
+    EXPECT_EQ(messageFor(document),
+              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz "
+                        "(144), got 960");
+    EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 960.0)),
+              kPrefix + "physics.step_rate_hz must be an integer between 1 and 100000, got 960.0");
+}
+
+TEST(ClickErrors, WrongGame) {
+    EXPECT_EQ(messageFor(yangWith("/game", "shooter")),
+              kPrefix + "game must be \"click\" for a click protocol, got string \"shooter\"");
+    // And the other way round: a click file is refused by the shooter parser, not half-read.
+    try {
+        parseShooterProtocol(yangWith("/name", "c").dump(), kSource, game::checkMode);
+        ADD_FAILURE() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  kPrefix + "game must be \"shooter\" for a shooter protocol, got string \"click\"");
+    }
+}
+
+TEST(ClickErrors, RoundsAreChecked) {
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1", "scored")),
+              kPrefix + "matches.rounds[1] must be an object, got string \"scored\"");
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/0", Json{{"scored", false}})),
+              kPrefix + "matches.rounds[0].name is required but missing");
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/0/matches", 1)),
+              kPrefix + "matches.rounds[0].matches is not a known field (matches.rounds[0] may "
+                        "have name, scored, matches_per_mode)");
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/name", "practice")),
+              kPrefix + "matches.rounds[1].name repeats \"practice\", already matches.rounds[0].name");
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", "yes")),
+              kPrefix + "matches.rounds[1].scored must be true or false, got string \"yes\"");
+}
+
+TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
+    struct Case {
+        const char* pointer;
+        Json value;
+        const char* expected;  // after the prefix
+    };
+    const std::vector<Case> cases{
+        {"/display/refresh_hz", 0, "display.refresh_hz must be a number between 1 and 1000, got 0"},
+        {"/display/vertical_fov_deg", 180,
+         "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
+        {"/display/camera_pitch_deg", -90,
+         "display.camera_pitch_deg must be a number between -89 and 89, got -90"},
+        {"/physics/sphere_radius_m", 0,
+         "physics.sphere_radius_m must be a number greater than 0 and at most 2, got 0"},
+        {"/physics/sphere_radius_m", 2.5,
+         "physics.sphere_radius_m must be a number greater than 0 and at most 2, got 2.5"},
+        {"/physics/restitution", 1.1, "physics.restitution must be a number between 0 and 1, got 1.1"},
+        {"/physics/sphere_count", 0, "physics.sphere_count must be an integer between 1 and 40, got 0"},
+        {"/physics/sphere_count", 41, "physics.sphere_count must be an integer between 1 and 40, got 41"},
+        {"/physics/green_share", -0.1, "physics.green_share must be a number between 0 and 1, got -0.1"},
+        {"/physics/spawn_delay_s", -1,
+         "physics.spawn_delay_s must be a number between 0 and 86400, got -1"},
+        {"/physics/spawn_speed_m_per_s", -2.0,
+         "physics.spawn_speed_m_per_s must be a number between 0 and 100, got -2.0"},
+        {"/physics/step_rate_hz", 0, "physics.step_rate_hz must be an integer between 1 and 100000, got 0"},
+        {"/input/cursor_pixels_per_count", 0,
+         "input.cursor_pixels_per_count must be a number greater than 0 and at most 100, got 0"},
+        {"/input/click_timing", "frame",
+         "input.click_timing must be \"display\" or \"input_reads\", got string \"frame\""},
+        {"/matches/scoring", "both", "matches.scoring must be \"world\" or \"displayed\", got string \"both\""},
+        {"/matches/shuffle", 1, "matches.shuffle must be true or false, got 1"},
+        {"/ratings/enabled", "yes", "ratings.enabled must be true or false, got string \"yes\""},
+        {"/physics/gravity", 9.81,
+         "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
+         "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
+        {"/format_version", 2, "format_version 2 is newer than this warplab supports (1)"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.pointer);
+        EXPECT_EQ(messageFor(yangWith(c.pointer, c.value)), kPrefix + c.expected);
+    }
+}
+
+TEST(ClickErrors, AnEmptyModeCheckIsAProgrammingError) {
+    EXPECT_THROW(parseClickProtocol(minimal().dump(), kSource, ModeCheck{}), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------
+// The shared loader
+
+std::string gameError(const std::string& text) {
+    try {
+        protocolGame(text, kSource);
+    } catch (const ProtocolError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SharedLoader, GamePicksTheParser) {
+    EXPECT_EQ(protocolGame(readProtocolFile(protocolDir() + "/click-yang.json"), kSource), "click");
+    EXPECT_EQ(protocolGame(readProtocolFile(protocolDir() + "/shooter-thesis.json"), kSource),
+              "shooter");
+    // The loader only reads the field; which games exist is the caller's business.
+    EXPECT_EQ(protocolGame(R"({"game": "pong", "anything": [1, 2]})", kSource), "pong");
+}
+
+TEST(SharedLoader, GameErrorsNameTheFile) {
+    const std::string malformed = gameError("{\n  \"game\": \"click\",\n}\n");
+    EXPECT_EQ(malformed.rfind(kPrefix + "malformed JSON at line 3, column 1", 0), 0u) << malformed;
+    EXPECT_EQ(malformed.find('\n'), std::string::npos) << malformed;
+    EXPECT_EQ(gameError("[\"click\"]"),
+              kPrefix + "the top level must be a JSON object, got array [\"click\"]");
+    EXPECT_EQ(gameError(R"({"format_version": 1})"), kPrefix + "game is required but missing");
+    EXPECT_EQ(gameError(R"({"game": 2})"), kPrefix + "game must be a string, got 2");
+    EXPECT_EQ(gameError(R"({"game": "click", "game": "shooter"})"),
+              kPrefix + "game appears more than once");
+}
+
+TEST(SharedLoader, ReadingAFileNamesThePath) {
+    const std::string missing = std::string(WARPLAB_BINARY_DIR) + "/no-such-dir/missing.json";
+    try {
+        readProtocolFile(missing);
+        ADD_FAILURE() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()), "protocol '" + missing + "': no such file");
+    }
+    try {
+        loadClickProtocol(protocolDir(), game::checkMode);
+        ADD_FAILURE() << "expected a ProtocolError";
+    } catch (const ProtocolError& e) {
+        EXPECT_EQ(std::string(e.what()), "protocol '" + protocolDir() + "': is a directory, not a file");
+    }
+}
+
+}  // namespace
+}  // namespace warplab::protocol
