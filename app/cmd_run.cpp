@@ -44,7 +44,13 @@ int runReplay(const ParsedArgs& args) {
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
         request.width = static_cast<int>(args.integer("width", 0, 0, 16384));
         request.height = static_cast<int>(args.integer("height", 0, 0, 16384));
-        renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+        const ReplayRenderResult rendered =
+            renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+        if (rendered.disagreed > 0) {
+            std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
+                      << " comparisons\n";
+            return 1;
+        }
     }
     const ReplayResult r = replaySession(path);
     if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "renderer/context.h"
 #include "renderer/conventional.h"
@@ -18,12 +19,22 @@ struct ReplayRender {
     int width = 0, height = 0;      // 0: the session's display size
 };
 
+struct ReplayRenderResult {
+    int written = 0;               // frames written
+    int checked = 0;               // frames whose id under the pointer was compared with the analytic model
+    int eventsChecked = 0;         // ... of which a logged shot or click, also compared with its displayed outcome
+    int nearSilhouette = 0;        // frames not counted: the pointer within a pixel or two of an outline
+    int disagreed = 0;             // comparisons that disagreed
+    std::vector<std::string> disagreements;  // the first few, one line each
+};
+
 // Replays the session and writes every displayed frame of the range as DIR/frame_NNNNNNN.png,
-// made the way its mode makes it (rendered, held, warped; interpolated frames use a blend until
-// the bidirectional renderer exists, and say so). Where a frame was really rendered, the object
-// id read back under the reticle is checked against the analytic displayed outcome; prints the
-// tally to `out`.
-void renderReplay(const ReplayRender& request, const renderer::DataPaths& paths, renderer::GlBackend backend,
-                  std::ostream& out);
+// made the way its mode makes it (rendered, held, warped, interpolated -- with a stand-in
+// method where the mode's own renderer does not exist yet, and says so) with the HUD over it.
+// On frames whose image is an exact render (rendered or held), the object id read back under
+// the reticle or cursor is checked against the game's analytic account of that frame, and on
+// frames with a logged shot or click, against the logged displayed outcome. Prints the tally.
+ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
+                                renderer::GlBackend backend, std::ostream& out);
 
 }  // namespace warplab::app

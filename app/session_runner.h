@@ -22,7 +22,7 @@ struct HeadlessRun {
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress);
 
 struct ReplayResult {
-    std::size_t outcomes = 0;      // shots and timeouts logged
+    std::size_t outcomes = 0;      // scored outcomes logged (shots and timeouts, clicks)
     std::size_t reproduced = 0;    // ... and replayed identically
     std::size_t events = 0;        // all events compared
     std::string difference;        // first difference, "" when none

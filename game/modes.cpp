@@ -1,6 +1,7 @@
 #include "game/modes.h"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 namespace warplab::game {
@@ -38,7 +39,10 @@ std::vector<ModeSpec> makeModes() {
     bireproj.renderRateHz = 15;
     bireproj.upconversion = Upconversion::Bidirectional;
     bireproj.upconvertedRateHz = 60;
-    bireproj.method = "bireproj";  // its renderer comes with the bidirectional reprojection issue
+    // Its renderer comes with the bidirectional reprojection issue; until then the B-frames
+    // are a linear blend of the two I-frames, on the mode's exact schedule.
+    bireproj.method = "blend";
+    bireproj.standInFor = "bidirectional reprojection";
     modes.push_back(bireproj);
     return modes;
 }
@@ -48,13 +52,20 @@ const std::vector<ModeSpec>& modes() {
     return list;
 }
 
+// A rate or a duration for a message: "60", "59.94", not "60.000000".
+std::string number(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
 std::int64_t framesPer(double refreshHz, double rateHz, const std::string& mode) {
     const double ratio = refreshHz / rateHz;
     const auto whole = static_cast<std::int64_t>(std::llround(ratio));
     if (whole < 1 || std::abs(ratio - static_cast<double>(whole)) > 1e-9)
         throw std::invalid_argument("mode " + mode + " needs a display refresh that is a whole multiple of " +
                                     std::to_string(static_cast<int>(rateHz)) + " Hz, not " +
-                                    std::to_string(refreshHz) + " Hz");
+                                    number(refreshHz) + " Hz");
     return whole;
 }
 
@@ -90,6 +101,15 @@ const ModeSpec& modeSpec(const std::string& id) {
     throw std::invalid_argument("unknown mode '" + id + "' (known: " + known + ")");
 }
 
+std::string checkMode(const std::string& id, double refreshHz) {
+    try {
+        ModeSchedule(modeSpec(id), refreshHz);
+        return "";
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+}
+
 ModeSchedule::ModeSchedule(const ModeSpec& mode, double refreshHz) : mode_(mode), refreshHz_(refreshHz) {
     if (!(refreshHz > 0.0) || !std::isfinite(refreshHz))
         throw std::invalid_argument("display refresh must be a positive number of Hz");
@@ -97,8 +117,8 @@ ModeSchedule::ModeSchedule(const ModeSpec& mode, double refreshHz) : mode_(mode)
     const double lagFrames = mode.lagMs * refreshHz / 1000.0;
     lagFrames_ = std::llround(lagFrames);
     if (std::abs(lagFrames - static_cast<double>(lagFrames_)) > 1e-9)
-        throw std::invalid_argument("mode " + mode.id + ": a lag of " + std::to_string(mode.lagMs) +
-                                    " ms is not a whole number of frames at " + std::to_string(refreshHz) + " Hz");
+        throw std::invalid_argument("mode " + mode.id + ": a lag of " + number(mode.lagMs) +
+                                    " ms is not a whole number of frames at " + number(refreshHz) + " Hz");
     bPeriod_ = mode.upconversion == Upconversion::Bidirectional
                    ? framesPer(refreshHz, mode.upconvertedRateHz, mode.id)
                    : 1;

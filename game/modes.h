@@ -24,12 +24,19 @@ struct ModeSpec {
     Upconversion upconversion = Upconversion::None;
     double upconvertedRateHz = 0.0; // frames made per second by warp (every display frame) or bireproj
     std::string method;             // renderer method that makes the in-between frames
+    // The method above only stands in until the mode's own renderer exists; sessions and
+    // `replay --render` say so. (bireproj15to60 until bidirectional reprojection lands.)
+    std::string standInFor;
 };
 
 // conv15, conv30, conv60, conv120, lag50, lag100, lag200, warp15to120, bireproj15to60.
 std::vector<std::string> modeIds();
 // Throws std::invalid_argument naming the unknown id and listing the known ones.
 const ModeSpec& modeSpec(const std::string& id);
+// For protocol validation (protocol/ cannot include game/, so the loader is handed this):
+// "" when `id` names a mode that can run on a display of refreshHz, else the reason, e.g.
+// "unknown mode 'conv45' (known: ...)" or "mode conv15 needs a display refresh that is ...".
+std::string checkMode(const std::string& id, double refreshHz);
 
 // What one displayed frame depicts. Times are seconds since the schedule started (a mode
 // switch starts a new schedule); they may be negative for lag and bidirectional modes, whose

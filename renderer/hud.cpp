@@ -102,12 +102,16 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     glUniform2f(gl::uniform(m.program, "uViewport"), static_cast<float>(w), static_cast<float>(h));
     glBindVertexArray(m.vao.id());
 
+    const float dark[4] = {0.0f, 0.0f, 0.0f, 0.6f}, light[4] = {1.0f, 1.0f, 1.0f, 0.9f};
+    glUniform1i(gl::uniform(m.program, "uTextured"), 0);
+    if (content.backdrop) {
+        const float backdrop[4] = {0.12f, 0.13f, 0.16f, 1.0f};
+        m.rect(0.0f, 0.0f, static_cast<float>(w), static_cast<float>(h), backdrop);
+    }
     if (content.reticle) {
         // A cross with a dark outline so it reads on light and dark walls alike.
         const float arm = std::max(3.0f, h / 60.0f), thick = std::max(1.0f, h / 360.0f);
         const float cx = w * 0.5f, cy = h * 0.5f;
-        const float dark[4] = {0.0f, 0.0f, 0.0f, 0.6f}, light[4] = {1.0f, 1.0f, 1.0f, 0.9f};
-        glUniform1i(gl::uniform(m.program, "uTextured"), 0);
         m.rect(cx - arm - 1, cy - thick / 2 - 1, 2 * arm + 2, thick + 2, dark);
         m.rect(cx - thick / 2 - 1, cy - arm - 1, thick + 2, 2 * arm + 2, dark);
         m.rect(cx - arm, cy - thick / 2, 2 * arm, thick, light);
@@ -122,6 +126,35 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
         const float tw = t.width * scale, th = t.height * scale;
         m.rect(centreX - tw / 2, baselineY, tw, th, colour);
     };
+    if (content.rating) {
+        const HudRating& r = *content.rating;
+        const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f}, grey[4] = {0.8f, 0.8f, 0.8f, 0.9f};
+        const float fill[4] = {0.25f, 0.27f, 0.33f, 1.0f}, lit[4] = {0.35f, 0.55f, 0.85f, 1.0f};
+        if (!r.statement.empty()) drawText(r.statement, w * 0.5f, h * 0.62f, 0.55f, white);
+        for (std::size_t i = 0; i < r.boxes.size(); ++i) {
+            const glm::vec4 b = r.boxes[i];
+            const float y = h - b.y - b.w;  // frame pixels are y-down; GL is y-up
+            glUniform1i(gl::uniform(m.program, "uTextured"), 0);
+            m.rect(b.x - 2, y - 2, b.z + 4, b.w + 4, light);
+            m.rect(b.x, y, b.z, b.w, static_cast<int>(i) == r.highlighted ? lit : fill);
+            drawText(std::to_string(r.firstValue + static_cast<int>(i)), b.x + b.z * 0.5f, y + b.w * 0.2f, 0.6f, white);
+        }
+        if (!r.boxes.empty()) {
+            const glm::vec4 first = r.boxes.front(), last = r.boxes.back();
+            if (!r.minLabel.empty()) drawText(r.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
+            if (!r.maxLabel.empty()) drawText(r.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
+        }
+    }
+    if (content.cursor) {
+        // A small cross with a dark outline, centred on the cursor's pixel.
+        const float arm = std::max(3.0f, h / 90.0f), thick = std::max(1.0f, h / 400.0f);
+        const float cx = content.cursor->x, cy = h - content.cursor->y;
+        glUniform1i(gl::uniform(m.program, "uTextured"), 0);
+        m.rect(cx - arm - 1, cy - thick / 2 - 1, 2 * arm + 2, thick + 2, dark);
+        m.rect(cx - thick / 2 - 1, cy - arm - 1, thick + 2, 2 * arm + 2, dark);
+        m.rect(cx - arm, cy - thick / 2, 2 * arm, thick, light);
+        m.rect(cx - thick / 2, cy - arm, thick, 2 * arm, light);
+    }
     if (!content.banner.empty()) {
         const float green[4] = {0.2f, 0.95f, 0.3f, 1.0f}, red[4] = {1.0f, 0.2f, 0.15f, 1.0f};
         drawText(content.banner, w * 0.5f, h * 0.58f, 1.0f, content.bannerGood ? green : red);

@@ -1,18 +1,36 @@
-// The heads-up display, drawn last over a displayed frame: the reticle, the HIT / MISS /
-// TIMEOUT banner of the pause after a shot, and a line of phase text. Text comes from
+// The heads-up display, drawn last over a displayed frame: the reticle or the cursor, the
+// HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, and the rating
+// screen. Text comes from
 // SDL2_ttf with a DejaVu font, uploaded as textures; the object-id attachment is left
 // untouched so the id under the reticle still names what the scene shows.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "renderer/conventional.h"
 
 namespace warplab::renderer {
 
+// A rating screen: the statement, and one box per answer to click, in the frame's pixels
+// (x right, y down; x, y, width, height), numbered from firstValue.
+struct HudRating {
+    std::string statement;
+    std::vector<glm::vec4> boxes;
+    int highlighted = -1;      // the box under the cursor
+    int firstValue = 1;
+    std::string minLabel, maxLabel;  // under the first and the last box
+};
+
 struct HudContent {
+    bool backdrop = false;     // a plain dark screen under everything else (no scene shown)
     bool reticle = true;
+    std::optional<glm::vec2> cursor;  // the click game's cursor, frame pixels, x right, y down
+    std::optional<HudRating> rating;
     std::string banner;        // e.g. "HIT"; empty = none
     bool bannerGood = false;   // green when true, red when false
     std::string status;        // small text at the top, e.g. "Training: level 4"; empty = none

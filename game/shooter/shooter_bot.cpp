@@ -1,4 +1,4 @@
-#include "game/bot_player.h"
+#include "game/shooter/shooter_bot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -16,24 +16,10 @@ double wrapAngle(double a) {
 
 }  // namespace
 
-BotPlayer::BotPlayer(std::uint64_t seed, const protocol::ShooterProtocol& protocol, BotSettings settings)
-    : state_(seed ^ 0xB07B07B07ULL), protocol_(protocol), settings_(settings) {}
+ShooterBot::ShooterBot(std::uint64_t seed, const protocol::ShooterProtocol& protocol, ShooterBotSettings settings)
+    : random_(seed ^ 0xB07B07B07ULL), protocol_(protocol), settings_(settings) {}
 
-double BotPlayer::gaussian() {
-    // Box-Muller on splitmix64; the bot's inputs are recorded, so replay never depends on
-    // these numbers being the same on another machine.
-    auto uniform = [&] {
-        state_ += 0x9E3779B97F4A7C15ULL;
-        std::uint64_t z = state_;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-        z ^= z >> 31;
-        return (static_cast<double>(z >> 11) + 0.5) * 0x1.0p-53;
-    };
-    return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * kPi * uniform());
-}
-
-FrameInput BotPlayer::next(const ShownFrame& shown) {
+FrameInput ShooterBot::next(const ShownFrame& shown) {
     FrameInput input;
     const double dt = 1.0 / protocol_.refreshHz;
 
@@ -54,7 +40,7 @@ FrameInput BotPlayer::next(const ShownFrame& shown) {
     if (!seen_.front().target) history_.clear();
 
     // The supervisor's Enter.
-    if (shown.phaseText == "Press Enter to begin") {
+    if (shown.promptsEnter) {
         if (promptSince_ < 0.0) promptSince_ = shown.time;
         if (shown.time - promptSince_ >= settings_.enterAfterS) input.keys = kKeyEnter;
     } else {
@@ -86,8 +72,8 @@ FrameInput BotPlayer::next(const ShownFrame& shown) {
         const double errorYaw = wrapAngle(yaw - aimYaw_), errorPitch = pitch - aimPitch_;
         const double step = std::min(1.0, settings_.gainPerS * dt);
         const double noise = settings_.noiseDeg * kPi / 180.0;
-        const double turnYaw = rateYaw * dt + errorYaw * step + noise * gaussian();
-        const double turnPitch = ratePitch * dt + errorPitch * step + noise * gaussian();
+        const double turnYaw = rateYaw * dt + errorYaw * step + noise * random_.gaussian();
+        const double turnPitch = ratePitch * dt + errorPitch * step + noise * random_.gaussian();
         input.mouseDx = turnYaw / protocol_.mouseRadiansPerCount;
         input.mouseDy = -turnPitch / protocol_.mouseRadiansPerCount;
         aimYaw_ += turnYaw;

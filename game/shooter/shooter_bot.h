@@ -8,11 +8,13 @@
 #include <cstdint>
 #include <deque>
 
-#include "game/shooter_game.h"
+#include "game/game.h"
+#include "game/random.h"
+#include "protocol/shooter_protocol.h"
 
 namespace warplab::game {
 
-struct BotSettings {
+struct ShooterBotSettings {
     double reactionS = 0.18;        // what it acts on was on screen this long ago
     double gainPerS = 9.0;          // share of the aiming error corrected per second
     double noiseDeg = 0.05;         // per-frame hand tremor, standard deviation
@@ -21,11 +23,10 @@ struct BotSettings {
     double enterAfterS = 0.5;       // the supervisor presses Enter this long after the prompt
 };
 
-class BotPlayer {
+class ShooterBot final : public Player {
 public:
-    BotPlayer(std::uint64_t seed, const protocol::ShooterProtocol& protocol, BotSettings settings = {});
-    // Given the frame now on screen, the input for the next frame.
-    FrameInput next(const ShownFrame& shown);
+    ShooterBot(std::uint64_t seed, const protocol::ShooterProtocol& protocol, ShooterBotSettings settings = {});
+    FrameInput next(const ShownFrame& shown) override;
 
 private:
     struct Seen {
@@ -33,11 +34,9 @@ private:
         bool target;
         double yaw, pitch;  // direction of the displayed target from the eye
     };
-    double gaussian();
-
-    std::uint64_t state_;
+    Random random_;
     protocol::ShooterProtocol protocol_;
-    BotSettings settings_;
+    ShooterBotSettings settings_;
     std::deque<Seen> seen_;
     std::deque<Seen> history_;
     double aimYaw_ = 0.0, aimPitch_ = 0.0;  // where it knows its hand points

@@ -1,10 +1,13 @@
-#include "game/shooter_game.h"
+#include "game/shooter/shooter_game.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
+#include "game/random.h"
 #include "physics/ray.h"
 #include "scene/camera.h"
 #include "scene/hangar_layout.h"
@@ -12,35 +15,12 @@
 namespace warplab::game {
 namespace {
 
-constexpr std::size_t kCameraHistory = 512;  // frames; more than any mode looks back (lag200: 24)
-constexpr double kMaxPitch = 1.5;            // radians, ~86 degrees: the view never flips over
+constexpr double kMaxPitch = 1.5;  // radians, ~86 degrees: the view never flips over
 
-// splitmix64 (as in physics/bouncing_target.cpp): fixed integer arithmetic, so a seed means
-// the same trial order and spawns on every machine.
-std::uint64_t mix(std::uint64_t x) {
-    x += 0x9E3779B97F4A7C15ULL;
-    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
-    return x ^ (x >> 31);
-}
-
-template <typename T>
-void shuffle(std::vector<T>& items, std::uint64_t seed) {
-    // Fisher-Yates with our own generator; std::shuffle's use of its engine is unspecified.
-    std::uint64_t state = seed;
-    for (std::size_t i = items.size(); i > 1; --i) {
-        state = mix(state);
-        const std::size_t j = static_cast<std::size_t>(state % i);
-        std::swap(items[i - 1], items[j]);
-    }
-}
-
-std::string number(double v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v;
-    return s.str();
-}
+// Event details are JSON objects with sorted keys (nlohmann::json is map-backed), written
+// with shortest round-trip numbers: the same values give the same text, which is what lets a
+// version-1 session, whose shooter columns the store folds into the same keys, replay.
+std::string detailText(const nlohmann::json& detail) { return detail.dump(); }
 
 }  // namespace
 
@@ -81,6 +61,27 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
     return TrialView{static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz, trial_->motion, trial_->mode};
 }
 
+bool ShooterGame::isOutcome(const protocol::EventRecord& e) const { return e.type == "shot" || e.type == "timeout"; }
+
+std::optional<std::uint32_t> ShooterGame::displayedObject(const protocol::EventRecord& e) const {
+    if (e.type != "shot") return std::nullopt;
+    return e.displayedOutcome == "hit" ? scene::kIdTarget : scene::kIdNone;
+}
+
+PointerProbe ShooterGame::probePointer(const ShownFrame& shown) const {
+    PointerProbe probe;
+    if (shown.scene.objects.empty()) return probe;
+    const glm::dvec3 eye(shown.camera.eye);
+    const glm::dvec3 aim(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch));
+    const glm::dvec3 centre(shown.scene.objects.front().position);
+    const double distance = glm::length(centre - eye);
+    const double angularRadius = std::asin(std::min(1.0, protocol_.targetRadius / distance));
+    const double offAxis = physics::angleBetweenRayAndPoint(eye, aim, centre);
+    probe.objectId = offAxis <= angularRadius ? scene::kIdTarget : scene::kIdNone;
+    probe.silhouetteMarginRad = std::abs(offAxis - angularRadius);
+    return probe;
+}
+
 std::vector<protocol::EventRecord> ShooterGame::takeEvents() {
     std::vector<protocol::EventRecord> out;
     out.swap(events_);
@@ -97,14 +98,15 @@ double ShooterGame::speedFor(int level) const {
     return protocol_.training.baseSpeed * std::pow(2.0, level / 6.0);  // seed 004 eq. 12
 }
 
-std::uint64_t ShooterGame::trialSeed(int phaseTag, int index) const {
-    return mix(seed_ ^ mix((static_cast<std::uint64_t>(phaseTag) << 32) ^ static_cast<std::uint64_t>(index)));
-}
+std::uint64_t ShooterGame::trialSeed(int phaseTag, int index) const { return subSeed(seed_, phaseTag, index); }
 
-scene::CameraState ShooterGame::cameraAt(std::int64_t frame) const {
-    if (cameraHistory_.empty() || frame < historyStart_) return cameraHistory_.empty() ? camera_ : cameraHistory_.front();
-    const auto offset = static_cast<std::size_t>(frame - historyStart_);
-    return offset < cameraHistory_.size() ? cameraHistory_[offset] : cameraHistory_.back();
+bool ShooterGame::timedOut(const Trial& trial) const {
+    if (protocol_.legacyRules) {
+        // Format 1: seconds compared after division, so rounding made the trial last N or
+        // N + 1 frames. Kept so that version-1 sessions replay as they were recorded.
+        return now() - static_cast<double>(trial.spawnFrame) / protocol_.refreshHz >= protocol_.timeoutS;
+    }
+    return frame_ - trial.spawnFrame >= std::llround(protocol_.timeoutS * protocol_.refreshHz);
 }
 
 std::optional<glm::dvec3> ShooterGame::targetAt(double time) const {
@@ -153,8 +155,8 @@ void ShooterGame::beginPhase(Phase phase) {
     commitPoint_ = true;
     protocol::EventRecord event;
     event.type = "phase";
-    event.difficulty = phase == Phase::Test ? testLevel_ : level_;
     event.eventTime = now();
+    event.detailJson = detailText({{"difficulty", phase == Phase::Test ? testLevel_ : level_}});
     emit(event);
     switch (phase) {
         case Phase::Acclimation:
@@ -208,12 +210,14 @@ void ShooterGame::finishTrainingLevel() {
     const double highMiss = levelShots_[1] ? 1.0 - double(levelHits_[1]) / levelShots_[1] : 0.0;
     protocol::EventRecord event;
     event.type = "level";
-    event.difficulty = level_;
-    event.targetSpeed = speedFor(level_);
     event.eventTime = now();
-    event.detailJson = "{\"low_mode\":\"" + protocol_.training.lowMode + "\",\"low_hit_rate\":" + number(lowHit) +
-                       ",\"high_mode\":\"" + protocol_.training.highMode + "\",\"high_miss_rate\":" +
-                       number(highMiss) + ",\"shots_per_mode\":" + std::to_string(shotsPerMode_) + "}";
+    event.detailJson = detailText({{"difficulty", level_},
+                                   {"target_speed", speedFor(level_)},
+                                   {"low_mode", protocol_.training.lowMode},
+                                   {"low_hit_rate", lowHit},
+                                   {"high_mode", protocol_.training.highMode},
+                                   {"high_miss_rate", highMiss},
+                                   {"shots_per_mode", shotsPerMode_}});
     emit(event);
     commitPoint_ = true;
     // Stop where the fast mode's misses outnumber the slow mode's hits (seed 004 Figure 31).
@@ -238,17 +242,24 @@ void ShooterGame::scheduleNextTrial() {
             if (elapsed >= protocol_.acclimationS) return beginPhase(Phase::AwaitingSupervisor);
             return startTrial(protocol_.acclimationMode, protocol_.acclimationLevel);
         case Phase::Training: {
+            const bool levelDone = levelQueue_.empty() && levelShots_[0] + levelShots_[1] > 0;
+            // Format 2 judges a finished level before stopping for time; format 1 stopped
+            // first and so started the test one level too low (kept for its replays).
+            if (levelDone && !protocol_.legacyRules) {
+                finishTrainingLevel();
+                if (phase_ != Phase::Training) return;
+            }
             if (elapsed >= protocol_.training.timeLimitS) {
                 testLevel_ = level_;
                 protocol::EventRecord event;
                 event.type = "training_limit";
-                event.difficulty = level_;
                 event.eventTime = now();
+                event.detailJson = detailText({{"difficulty", level_}});
                 emit(event);
                 return beginPhase(Phase::Test);
             }
             if (levelQueue_.empty()) {
-                if (levelShots_[0] + levelShots_[1] > 0) {
+                if (levelDone && protocol_.legacyRules) {
                     finishTrainingLevel();
                     if (phase_ != Phase::Training) return;
                 }
@@ -278,19 +289,20 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
     event.type = world == Outcome::Timeout ? "timeout" : "shot";
     event.trial = t.index;
     event.mode = t.mode;
-    event.difficulty = t.level;
-    event.targetSpeed = t.speed;
-    event.spawnTime = spawn;
     event.eventTime = shotTime;
-    event.aimTime = shotTime - spawn;
     event.worldOutcome = outcomeName(world);
     event.displayedOutcome = outcomeName(displayed);
-    event.angularErrorDeg = angularErrorDeg;
-    event.detailJson = "{\"scored\":\"" + std::string(protocol_.scoring == "world" ? outcomeName(world)
-                                                                                     : outcomeName(displayed)) +
-                       "\",\"start_x\":" + number(t.motion.start.x) + ",\"start_y\":" + number(t.motion.start.y) +
-                       ",\"velocity_x\":" + number(t.motion.velocity.x) +
-                       ",\"velocity_y\":" + number(t.motion.velocity.y) + ",\"plane_z\":" + number(plane_.z) + "}";
+    event.detailJson = detailText({{"difficulty", t.level},
+                                   {"target_speed", t.speed},
+                                   {"spawn_time", spawn},
+                                   {"aim_time", shotTime - spawn},
+                                   {"angular_error_deg", angularErrorDeg},
+                                   {"scored", protocol_.scoring == "world" ? outcomeName(world) : outcomeName(displayed)},
+                                   {"start_x", t.motion.start.x},
+                                   {"start_y", t.motion.start.y},
+                                   {"velocity_x", t.motion.velocity.x},
+                                   {"velocity_y", t.motion.velocity.y},
+                                   {"plane_z", plane_.z}});
     emit(event);
 
     const Outcome scored = protocol_.scoring == "world" ? world : displayed;
@@ -312,13 +324,8 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     const double sensitivity = protocol_.mouseRadiansPerCount;
     camera_.yaw = static_cast<float>(camera_.yaw + input.mouseDx * sensitivity);
     camera_.pitch = static_cast<float>(std::clamp(camera_.pitch - input.mouseDy * sensitivity, -kMaxPitch, kMaxPitch));
-    if (cameraHistory_.empty()) historyStart_ = frame_;
-    cameraHistory_.push_back(camera_);
-    if (cameraHistory_.size() > kCameraHistory) {
-        cameraHistory_.pop_front();
-        ++historyStart_;
-    }
-    const bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
+    cameraHistory_.record(frame_, camera_);
+    bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
     const bool enter = (input.keys & kKeyEnter) && !(previousKeys_ & kKeyEnter);
     previousButtons_ = input.buttons;
     previousKeys_ = input.keys;
@@ -333,6 +340,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     if (phase_ == Phase::AwaitingSupervisor && enter) beginPhase(Phase::Training);
 
     if (frozenFrame_) {
+        clickPending_ = false;
         ShownFrame shown = *frozenFrame_;
         shown.frame = frame_;
         shown.time = now();
@@ -348,7 +356,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     shown.mode = mode_;
     const ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
     shown.schedule = f;
-    shown.camera = cameraAt(scheduleStart_ + std::llround(f.cameraTime * refresh));
+    shown.camera = cameraHistory_.at(scheduleStart_ + std::llround(f.cameraTime * refresh));
     shown.sourceFrame = scheduleStart_ + f.sourceIndex;
     shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : scheduleStart_ + f.nextSourceIndex;
     shown.scene.time = static_cast<double>(scheduleStart_ + std::llround(f.sceneTime * refresh)) / refresh;
@@ -373,13 +381,22 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     switch (phase_) {
         case Phase::Acclimation: shown.phaseText = "Acclimation"; break;
         case Phase::Training: shown.phaseText = "Training: level " + std::to_string(level_); break;
-        case Phase::AwaitingSupervisor: shown.phaseText = "Press Enter to begin"; break;
+        case Phase::AwaitingSupervisor:
+            shown.phaseText = "Press Enter to begin";
+            shown.promptsEnter = true;
+            break;
         case Phase::Test: shown.phaseText = "Test"; break;
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
 
+    if (protocol_.clickTiming == "input_reads") {
+        // The press waits for the next frame at which the mode reads its input (conv15/30/60
+        // read it only at their renders), as a game polling input at its frame rate would.
+        clickPending_ = (clickPending_ || click) && trial_.has_value();
+        click = clickPending_ && f.samplesInput;
+        if (click) clickPending_ = false;
+    }
     if (trial_) {
-        const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
         if (click) {
             // World: the aim the mouse really has now against the world now. Displayed: what is
             // under the reticle of the frame on screen (its camera, its target).
@@ -396,7 +413,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             const double error = world ? glm::degrees(physics::angleBetweenRayAndPoint(eye, aim, *world)) : 180.0;
             frozenFrame_ = shown;
             finishTrial(worldHit ? Outcome::Hit : Outcome::Miss, shownHit ? Outcome::Hit : Outcome::Miss, now(), error);
-        } else if (now() - spawn >= protocol_.timeoutS) {
+        } else if (timedOut(*trial_)) {
             const auto world = targetAt(now());
             const double error =
                 world ? glm::degrees(physics::angleBetweenRayAndPoint(
@@ -419,10 +436,7 @@ protocol::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
     r.cameraPitch = shown.camera.pitch;
     if (!shown.scene.objects.empty()) {
         const auto& p = shown.scene.objects.front().position;
-        r.targetX = p.x;
-        r.targetY = p.y;
-        r.targetZ = p.z;
-        r.targetVisible = true;
+        r.detailJson = nlohmann::json{{"target", {p.x, p.y, p.z}}}.dump();
     }
     return r;
 }

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "protocol/session_store.h"
 #include "renderer/image.h"
 
 namespace {
@@ -227,6 +228,32 @@ std::string sessionIn(const std::string& dir) {
     return found;
 }
 
+// replay --render's tally: "pointer cross-check on N rendered or held frames (E of them
+// logged clicks or shots, ...): the id read back disagrees on D".
+struct CrossCheck {
+    int frames = -1, events = -1, disagreed = -1;
+};
+CrossCheck crossCheckIn(const std::string& output) {
+    CrossCheck c;
+    const auto at = output.find("pointer cross-check on ");
+    if (at == std::string::npos) return c;
+    std::sscanf(output.c_str() + at, "pointer cross-check on %d rendered or held frames (%d", &c.frames, &c.events);
+    const auto d = output.find("disagrees on ", at);
+    if (d != std::string::npos) c.disagreed = std::stoi(output.substr(d + 13));
+    return c;
+}
+
+// "N/N outcomes reproduced": N, or -1 when the two differ or the line is missing.
+int reproducedIn(const std::string& output) {
+    const auto at = output.find(" outcomes reproduced");
+    if (at == std::string::npos) return -1;
+    const auto start = output.rfind('\n', at) == std::string::npos ? 0 : output.rfind('\n', at) + 1;
+    const std::string fraction = output.substr(start, at - start);
+    const auto slash = fraction.find('/');
+    if (slash == std::string::npos || fraction.substr(0, slash) != fraction.substr(slash + 1)) return -1;
+    return std::stoi(fraction.substr(0, slash));
+}
+
 TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
     const std::string dir = scratch("session-bot");
     const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
@@ -338,14 +365,19 @@ TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
                   .status,
               0);
     const std::string frames = dir + "/frames";
-    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 40:79 --width 64 --height 36");
+    // The first target's 0.3 s or so up to the shot, the shot, and the frozen frames after it.
+    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 0:59 --width 320 --height 180");
     ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_TRUE(contains(r.output, "wrote 40 frames")) << r.output;
+    EXPECT_TRUE(contains(r.output, "wrote 60 frames")) << r.output;
+    const CrossCheck check = crossCheckIn(r.output);
+    EXPECT_GE(check.frames, 20) << r.output;  // the frames before the shot, the target clear of its outline
+    EXPECT_EQ(check.events, 1) << r.output;  // the shot itself
+    EXPECT_EQ(check.disagreed, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "outcomes reproduced")) << r.output;
     const auto image = warplab::renderer::readPng(frames + "/frame_0000040.png");
-    EXPECT_EQ(image.width, 64);
-    EXPECT_TRUE(fs::exists(frames + "/frame_0000079.png"));
-    EXPECT_FALSE(fs::exists(frames + "/frame_0000080.png"));
+    EXPECT_EQ(image.width, 320);
+    EXPECT_TRUE(fs::exists(frames + "/frame_0000059.png"));
+    EXPECT_FALSE(fs::exists(frames + "/frame_0000060.png"));
     EXPECT_EQ(warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 9:3").status, 2);
 }
 
@@ -367,6 +399,108 @@ TEST(CliSession, FullThesisSessionRunsToTheEndAndReplaysExactly) {
     EXPECT_EQ(replay.output.substr(0, replay.output.find(' ')),
               std::to_string(reproduced) + "/" + std::to_string(reproduced));
     EXPECT_GT(reproduced, 675);  // the test's 675 targets plus training and acclimation shots
+}
+
+}  // namespace
+
+namespace {
+
+// The click game (seed 000 section 8) through the same runner, replay and renderer.
+TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
+    const std::string dir = scratch("click-yang");
+    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                             "/protocol/click-yang.json --participant C01 --out " + dir +
+                             " --headless --player bot:4 --seed 8");
+    ASSERT_EQ(run.status, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "bireproj15to60 is scored on its exact schedule, but its frames are drawn with"))
+        << run.output;
+    const auto data = warplab::protocol::readSession(sessionIn(dir));
+    EXPECT_TRUE(data.completed) << data.note;
+    int matches = 0, ratings = 0, clicks = 0;
+    for (const auto& e : data.events) {
+        matches += e.type == "match";
+        ratings += e.type == "rating";
+        clicks += e.type == "click";
+    }
+    EXPECT_EQ(matches, 21);  // 7 practice + 14 scored
+    EXPECT_EQ(ratings, 84);
+    const auto replay = warplab("replay " + sessionIn(dir));
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_EQ(reproducedIn(replay.output), clicks) << replay.output;
+    EXPECT_GT(clicks, 21 * 10);
+}
+
+TEST(CliClick, ReplayRenderDrawsTheCursorAndAssertsWhatIsUnderIt) {
+    const std::string dir = scratch("click-render");
+    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/click-quick.json --participant R --out " + dir + " --headless --player bot:2 --width 640 --height 360")
+                  .status,
+              0);
+    const std::string frames = dir + "/frames";
+    // From the ready screen well into the first match, clicks included.
+    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 20:219 --width 320 --height 180");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "wrote 200 frames")) << r.output;
+    const CrossCheck check = crossCheckIn(r.output);
+    EXPECT_GE(check.frames, 60) << r.output;
+    EXPECT_GE(check.events, 1) << r.output;
+    EXPECT_EQ(check.disagreed, 0) << r.output;
+    EXPECT_GT(reproducedIn(r.output), 0) << r.output;
+}
+
+TEST(CliClick, MalformedClickProtocolsAreNamed) {
+    const std::string dir = scratch("click-bad-protocol");
+    const std::pair<const char*, const char*> cases[] = {
+        {R"("physics":{"gravity_m_per_s2":-9.81})", "physics.gravity_m_per_s2"},
+        {R"("matches":{"rounds":[{"name":"a","scored":true,"matches_per_mode":0}]})", "matches_per_mode"},
+        {R"("matches":{"modes":["conv60","conv61"]})", "conv61"},
+        {R"("ratings":{"statements":["I enjoyed playing this game",""]})", "ratings.statements[1]"},
+    };
+    for (const auto& [section, field] : cases) {
+        std::ofstream(dir + "/p.json") << R"({"format_version":1,"name":"x","game":"click",)" << section << "}";
+        const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+        EXPECT_EQ(r.status, 1) << section;
+        EXPECT_TRUE(contains(r.output, field)) << section << ": " << r.output;
+        EXPECT_EQ(r.lines(), 1) << r.output;
+    }
+    std::ofstream(dir + "/p.json") << R"({"format_version":1,"name":"x","game":"pong"})";
+    const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    EXPECT_EQ(r.status, 1);
+    EXPECT_TRUE(contains(r.output, "\"pong\"")) << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty()) << "a session was started from a bad protocol";
+}
+
+// A kill in the middle of a match keeps every completed match, which replays exactly.
+TEST(CliClick, KilledRunsKeepEveryCompletedMatch) {
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-yang.json";
+    int withMatches = 0;
+    for (const char* delay : {"0.15", "0.3", "0.6"}) {
+        const std::string dir = scratch(std::string("click-kill-") + delay);
+        const std::string command = "timeout -s KILL " + std::string(delay) + " " + WARPLAB_BINARY +
+                                    " run --protocol " + protocol + " --participant K --out " + dir +
+                                    " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
+        (void)std::system(command.c_str());
+        const std::string session = sessionIn(dir);
+        if (session.empty()) continue;
+        const auto data = warplab::protocol::readSession(session);
+        if (data.completed) continue;  // finished before the kill
+        int matches = 0, matchStarts = 0;
+        for (const auto& e : data.events) matches += e.type == "match", matchStarts += e.type == "match_start";
+        // Every match that was begun is either complete or the one the kill interrupted.
+        EXPECT_LE(matchStarts - matches, 1) << delay;
+        const auto replay = warplab("replay " + session);
+        EXPECT_EQ(replay.status, 0) << delay << ": " << replay.output;
+        EXPECT_GE(reproducedIn(replay.output), 0) << replay.output;
+        withMatches += matches > 0;
+    }
+    EXPECT_GE(withMatches, 1) << "no kill landed after a completed match";
+}
+
+// Sessions recorded in format 1 (before the games plugged in) still read and replay.
+TEST(CliSession, AVersion1SessionStillReplaysExactly) {
+    const auto replay = warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_GT(reproducedIn(replay.output), 12) << replay.output;
 }
 
 }  // namespace

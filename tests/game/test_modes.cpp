@@ -1,10 +1,12 @@
 // The modes' frame schedules: what every displayed frame depicts, and the latencies that
 // follow -- the table in the README is these numbers.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "game/modes.h"
+#include "renderer/upconvert.h"
 
 namespace warplab::game {
 namespace {
@@ -24,6 +26,29 @@ TEST(Modes, KnownIdsAndUnknownOnesNamed) {
         EXPECT_NE(std::string(e.what()).find("conv16"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("warp15to120"), std::string::npos);
     }
+}
+
+// Every mode must be drawable: the frames a mode makes between its renders use the method it
+// names, and held or rendered frames are copied by hold120 (app/replay_render.cpp).
+TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
+    const auto methods = renderer::methodNames();
+    auto has = [&](const std::string& name) { return std::find(methods.begin(), methods.end(), name) != methods.end(); };
+    EXPECT_TRUE(has("hold120"));
+    for (const auto& id : modeIds()) {
+        const ModeSpec& mode = modeSpec(id);
+        if (mode.upconversion == Upconversion::None) {
+            EXPECT_TRUE(mode.method.empty()) << id << " makes no frames between renders";
+            continue;
+        }
+        EXPECT_TRUE(has(mode.method)) << id << " names method '" << mode.method << "', which the renderer lacks";
+    }
+    EXPECT_EQ(modeSpec("bireproj15to60").standInFor, "bidirectional reprojection");
+}
+
+TEST(Modes, CheckModeNamesTheProblem) {
+    EXPECT_EQ(checkMode("conv60", 60.0), "");
+    EXPECT_NE(checkMode("conv120", 60.0).find("120"), std::string::npos);
+    EXPECT_NE(checkMode("conv45", 60.0).find("unknown mode 'conv45'"), std::string::npos);
 }
 
 TEST(Modes, RefreshMustBeAWholeMultipleOfTheRates) {

@@ -5,16 +5,19 @@
 #include <map>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
-#include "game/bot_player.h"
-#include "game/shooter_game.h"
+#include "game/shooter/shooter_bot.h"
+#include "game/shooter/shooter_game.h"
+#include "protocol/records.h"
 #include "protocol/shooter_protocol.h"
+#include "scene/camera.h"
 
 namespace warplab::game {
 namespace {
 
 protocol::ShooterProtocol quick() {
-    return protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+    return protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json", checkMode);
 }
 
 struct Played {
@@ -25,7 +28,7 @@ struct Played {
 
 Played playWithBot(const protocol::ShooterProtocol& p, std::uint64_t seed, std::uint64_t botSeed) {
     ShooterGame game(p, seed, 16.0 / 9.0);
-    BotPlayer bot(botSeed, p);
+    ShooterBot bot(botSeed, p);
     Played out;
     FrameInput input;
     while (!game.finished() && out.frames < 200000) {
@@ -38,18 +41,17 @@ Played playWithBot(const protocol::ShooterProtocol& p, std::uint64_t seed, std::
     return out;
 }
 
-bool sameEvents(const std::vector<protocol::EventRecord>& a, const std::vector<protocol::EventRecord>& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const auto &x = a[i], &y = b[i];
-        if (x.frame != y.frame || x.type != y.type || x.phase != y.phase || x.trial != y.trial || x.mode != y.mode ||
-            x.difficulty != y.difficulty || x.targetSpeed != y.targetSpeed || x.spawnTime != y.spawnTime ||
-            x.eventTime != y.eventTime || x.worldOutcome != y.worldOutcome ||
-            x.displayedOutcome != y.displayedOutcome || x.angularErrorDeg != y.angularErrorDeg ||
-            x.detailJson != y.detailJson)
-            return false;
-    }
-    return true;
+// "" when both runs logged the same events bit for bit, else the first difference.
+std::string eventDifference(const std::vector<protocol::EventRecord>& a, const std::vector<protocol::EventRecord>& b) {
+    if (a.size() != b.size()) return std::to_string(a.size()) + " events against " + std::to_string(b.size());
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (const std::string d = protocol::firstDifference(a[i], b[i]); !d.empty())
+            return "event " + std::to_string(i) + ": " + d;
+    return "";
+}
+
+double detailNumber(const protocol::EventRecord& e, const char* key) {
+    return nlohmann::json::parse(e.detailJson).at(key).get<double>();
 }
 
 TEST(ShooterGame, BotPlaysTheQuickProtocolToTheEnd) {
@@ -64,8 +66,8 @@ TEST(ShooterGame, BotPlaysTheQuickProtocolToTheEnd) {
             ++testOutcomes;
             hits += e.displayedOutcome == "hit";
             misses += e.displayedOutcome != "hit";
-            EXPECT_NEAR(e.aimTime, e.eventTime - e.spawnTime, 1e-12);
-            EXPECT_LE(e.aimTime, p.timeoutS + 1e-9);
+            EXPECT_NEAR(detailNumber(e, "aim_time"), e.eventTime - detailNumber(e, "spawn_time"), 1e-12);
+            EXPECT_LE(detailNumber(e, "aim_time"), p.timeoutS + 1e-9);
         }
     }
     EXPECT_EQ(testOutcomes, static_cast<int>(p.conditions.size()) * p.targetsPerCondition);
@@ -86,10 +88,10 @@ TEST(ShooterGame, SameSeedAndInputSameEventsBitForBit) {
         game.step(in);
         for (auto& e : game.takeEvents()) replayed.push_back(e);
     }
-    EXPECT_TRUE(sameEvents(a.events, replayed));
+    EXPECT_EQ(eventDifference(a.events, replayed), "");
     // Another session seed spawns other targets: the outcomes differ.
     const Played b = playWithBot(p, 12, 2);
-    EXPECT_FALSE(sameEvents(a.events, b.events));
+    EXPECT_NE(eventDifference(a.events, b.events), "");
 }
 
 TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
@@ -116,7 +118,7 @@ struct ModeRig {
         p.targetsPerCondition = 2;
         p.timeoutS = 2.5;
         game = std::make_unique<ShooterGame>(p, 5, 16.0 / 9.0);
-        for (int i = 0; i < 100000 && game->phase() != Phase::Test; ++i) last = game->step({});
+        for (int i = 0; i < 100000 && game->currentPhase() != Phase::Test; ++i) last = game->step({});
         // Settle onto a fresh test trial.
         while (last.frozen || last.scene.objects.empty()) last = game->step({});
     }
@@ -181,6 +183,123 @@ TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
             }
         }
         EXPECT_TRUE(measured) << mode << ": no bounce early enough in 8 trials";
+    }
+}
+
+// Format 2: a trial times out after exactly round(timeout_s * refresh) frames, wherever its
+// spawn frame falls. (Format 1 compared seconds after a division, so rounding made some
+// trials one frame longer; the legacy run below shows this test would see it.)
+std::map<std::int64_t, int> timeoutLengths(bool legacy) {
+    auto p = quick();
+    p.legacyRules = legacy;
+    p.acclimationS = 0.0;
+    p.training.timeLimitS = 0.001;
+    p.timeoutS = 3.0;
+    p.pauseS = 0.0;  // trials 361 frames apart, so spawn frames meet every residue of k / 120
+    p.targetsPerCondition = 100;
+    ShooterGame game(p, 9, 16.0 / 9.0);
+    std::map<std::int64_t, int> lengths;  // frames from spawn to timeout -> count
+    for (int i = 0; i < 2000000 && !game.finished(); ++i) {
+        game.step({});
+        for (const auto& e : game.takeEvents())
+            if (e.type == "timeout")
+                ++lengths[e.frame - std::llround(detailNumber(e, "spawn_time") * p.refreshHz)];
+    }
+    return lengths;
+}
+
+TEST(ShooterGame, TimeoutLastsExactlyTheRoundedNumberOfFrames) {
+    const auto lengths = timeoutLengths(false);
+    ASSERT_EQ(lengths.size(), 1u) << "timeouts of several lengths";
+    EXPECT_EQ(lengths.begin()->first, 360);
+    EXPECT_GE(lengths.begin()->second, 300);
+    EXPECT_GT(timeoutLengths(true).count(361), 0u) << "format 1's rounding no longer shows: is the test still able to fail?";
+}
+
+// Aims exactly at the world's target and clicks on the frame after it appears: every shot
+// hits (scored by the world), so every evaluated training level moves up.
+struct PerfectShooter {
+    const protocol::ShooterProtocol& p;
+    ShooterGame& game;
+    FrameInput next() {
+        FrameInput in;
+        const auto trial = game.currentTrial();
+        if (!trial) return in;
+        const double t = static_cast<double>(game.frameIndex() + 1) / p.refreshHz - trial->spawnTime;
+        if (t <= 0.0) return in;
+        const glm::dvec2 xy = physics::positionAt(game.targetPlane(), trial->motion, t);
+        const glm::dvec3 d = glm::dvec3(xy, game.targetPlane().z) - glm::dvec3(game.trueCamera().eye);
+        const double yaw = std::atan2(d.x, -d.z), pitch = std::atan2(d.y, std::hypot(d.x, d.z));
+        in.mouseDx = (yaw - game.trueCamera().yaw) / p.mouseRadiansPerCount;
+        in.mouseDy = -(pitch - game.trueCamera().pitch) / p.mouseRadiansPerCount;
+        in.buttons = kButtonLeft;
+        return in;
+    }
+};
+
+// Training shots left after the last evaluated level when the test began.
+int unevaluatedTrainingShots(bool legacy, double timeLimitS) {
+    auto p = quick();
+    p.legacyRules = legacy;
+    p.acclimationS = 0.0;
+    p.scoring = "world";
+    p.pauseS = 0.1;
+    p.training.timeLimitS = timeLimitS;
+    ShooterGame game(p, 4, 16.0 / 9.0);
+    PerfectShooter shooter{p, game};
+    int sinceLevel = 0, hits = 0;
+    FrameInput in;
+    for (int i = 0; i < 100000 && game.currentPhase() != Phase::Test; ++i) {
+        game.step(in);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type == "level") sinceLevel = 0;
+            if (e.type == "shot" && e.phase == "training") ++sinceLevel, hits += e.worldOutcome == "hit";
+        }
+        // Release the button between shots: the game scores presses.
+        in = in.buttons ? FrameInput{} : shooter.next();
+    }
+    EXPECT_GT(hits, 0);
+    return sinceLevel;
+}
+
+TEST(ShooterGame, ALevelFinishedBeforeTheTimeLimitIsEvaluated) {
+    // Sweep the limit across two levels' worth of time so that, for some limits, a level's
+    // last shot lands just before it.
+    const int perLevel = 2 * quick().training.shotsPerLevelEasy;
+    bool legacyLeftOne = false;
+    for (int i = 0; i < 40; ++i) {
+        const double limit = 0.5 + i * 0.05;
+        EXPECT_LT(unevaluatedTrainingShots(false, limit), perLevel) << "time limit " << limit;
+        legacyLeftOne = legacyLeftOne || unevaluatedTrainingShots(true, limit) >= perLevel;
+    }
+    EXPECT_TRUE(legacyLeftOne) << "format 1's early stop no longer shows: is the test still able to fail?";
+}
+
+// click_timing "input_reads": a press at a frame where conv15 does not read input counts at
+// its next render; "display" counts it at once.
+TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
+    for (const std::string timing : {"display", "input_reads"}) {
+        auto p = quick();
+        p.clickTiming = timing;
+        p.acclimationS = 0.0;
+        p.training.timeLimitS = 0.001;
+        p.conditions = {"conv15"};
+        p.timeoutS = 2.0;
+        ShooterGame game(p, 3, 16.0 / 9.0);
+        ShownFrame last;
+        for (int i = 0; i < 100000 && game.currentPhase() != Phase::Test; ++i) last = game.step({});
+        while (last.frozen || last.scene.objects.empty()) last = game.step({});
+        game.takeEvents();
+        while (last.schedule.index % 8 != 2) last = game.step({});  // between conv15's renders
+        const std::int64_t pressed = game.frameIndex() + 1;
+        game.step({0, 0, kButtonLeft, 0});
+        std::int64_t counted = -1;
+        for (int i = 0; i < 16 && counted < 0; ++i) {
+            for (const auto& e : game.takeEvents())
+                if (e.type == "shot") counted = e.frame;
+            if (counted < 0) game.step({});
+        }
+        EXPECT_EQ(counted - pressed, timing == "display" ? 0 : 5) << timing;  // pressed at index 3, read at 8
     }
 }
 

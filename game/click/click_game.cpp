@@ -1,0 +1,461 @@
+#include "game/click/click_game.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "game/random.h"
+#include "game/screen.h"
+#include "physics/ray.h"
+#include "scene/hangar_layout.h"
+
+namespace warplab::game {
+namespace {
+
+const glm::vec3 kRed{0.85f, 0.15f, 0.12f};
+const glm::vec3 kGreen{0.15f, 0.75f, 0.2f};
+
+// Seed tags: each purpose draws from its own stream, so adding one never shifts another.
+constexpr int kTagMatchOrder = 40;
+constexpr int kTagWorld = 41;
+
+// Trajectories in the frame log are for plotting, not replay (replay re-simulates): a tenth
+// of a millimetre keeps the rows short.
+double rounded(double v) { return std::round(v * 1e4) / 1e4; }
+
+scene::ObjectState objectFor(const physics::Sphere& s, double radius) {
+    scene::ObjectState o;
+    o.id = ClickGame::objectId(s);
+    o.shape = scene::Shape::Sphere;
+    o.position = glm::vec3(s.position);
+    o.velocity = glm::vec3(s.velocity);
+    o.halfExtents = glm::vec3(static_cast<float>(radius));
+    o.colour = s.green ? kGreen : kRed;
+    return o;
+}
+
+physics::FallingSphereSettings physicsFrom(const protocol::ClickProtocol& p) {
+    physics::FallingSphereSettings s;
+    s.gravity = p.gravity;
+    s.radius = p.sphereRadius;
+    s.restitution = p.restitution;
+    s.stepRateHz = p.stepRateHz;
+    s.sphereCount = p.sphereCount;
+    s.greenShare = p.greenShare;
+    s.spawnDelayS = p.spawnDelayS;
+    s.spawnSpeed = p.spawnSpeedMPerS;
+    return s;
+}
+
+}  // namespace
+
+ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const std::vector<physics::Sphere>& spheres,
+                          double radius) {
+    ClickHit hit;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& s : spheres) {
+        const auto t = physics::raySphereHit(eye, dir, s.position, radius);
+        if (t && *t < nearest) {
+            nearest = *t;
+            hit.sphere = s;
+        }
+    }
+    return hit;
+}
+
+std::uint32_t ClickGame::objectId(const physics::Sphere& sphere) { return scene::kIdFirstSphere + sphere.id; }
+
+ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed, const DisplaySize& display)
+    : protocol_(protocol), seed_(seed), display_(display), physics_(physicsFrom(protocol)) {
+    using L = scene::HangarLayout;
+    camera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
+    camera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
+    camera_.pitch = static_cast<float>(glm::radians(protocol.cameraPitchDeg));
+    const double steps = protocol.stepRateHz / protocol.refreshHz;
+    stepsPerFrame_ = std::llround(steps);
+    if (stepsPerFrame_ < 1 || std::abs(steps - static_cast<double>(stepsPerFrame_)) > 1e-9)
+        throw std::invalid_argument("ClickGame: physics.step_rate_hz must be a whole multiple of the display refresh");
+    cursor_ = {display.width * 0.5, display.height * 0.5};
+    physics::FallingSpheres(physics_, seed);  // throws now, naming the field, if the settings cannot work
+    for (std::size_t r = 0; r < protocol.rounds.size(); ++r) {
+        std::vector<std::string> order;
+        for (const auto& mode : protocol.modes)
+            for (int i = 0; i < protocol.rounds[r].matchesPerMode; ++i) order.push_back(mode);
+        if (protocol.shuffle) shuffle(order, subSeed(seed, kTagMatchOrder, static_cast<int>(r)));
+        for (const auto& mode : order)
+            matches_.push_back({static_cast<int>(matches_.size()), static_cast<int>(r), mode});
+    }
+}
+
+std::string ClickGame::phase() const {
+    switch (phase_) {
+        case Phase::Ready: return "ready";
+        case Phase::Match: return "match";
+        case Phase::Rating: return "rating";
+        case Phase::Done: return "done";
+    }
+    return "?";
+}
+
+std::vector<protocol::EventRecord> ClickGame::takeEvents() {
+    std::vector<protocol::EventRecord> out;
+    out.swap(events_);
+    return out;
+}
+
+void ClickGame::emit(protocol::EventRecord event) {
+    event.frame = frame_;
+    event.eventTime = now();
+    if (event.phase.empty()) event.phase = phase();
+    events_.push_back(std::move(event));
+}
+
+void ClickGame::beginMatch() {
+    const Match& m = matches_[matchIndex_];
+    phase_ = Phase::Match;
+    matchStart_ = frame_;
+    world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
+    schedule_.emplace(modeSpec(m.mode), protocol_.refreshHz);
+    worldHistory_.clear();
+    // The cursor stays where the hand left it; frames before the match shows its own
+    // history (lag, bireproj) show it where the match found it.
+    cursorHistory_.clear();
+    greenHits_ = redHits_ = misses_ = 0;
+    clickPending_ = false;
+    protocol::EventRecord e;
+    e.type = "match_start";
+    e.phase = protocol_.rounds[static_cast<std::size_t>(m.round)].name;
+    e.trial = m.index;
+    e.mode = m.mode;
+    e.detailJson = nlohmann::json{{"round", e.phase}, {"scored", protocol_.rounds[static_cast<std::size_t>(m.round)].scored}}.dump();
+    emit(e);
+    commitPoint_ = true;
+}
+
+void ClickGame::endMatch() {
+    const Match& m = matches_[matchIndex_];
+    const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
+    protocol::EventRecord e;
+    e.type = "match";
+    e.phase = round.name;
+    e.trial = m.index;
+    e.mode = m.mode;
+    e.detailJson = nlohmann::json{{"round", round.name},
+                                  {"scored", round.scored},
+                                  {"green_hits", greenHits_},
+                                  {"red_hits", redHits_},
+                                  {"misses", misses_},
+                                  {"clicks", greenHits_ + redHits_ + misses_},
+                                  {"duration_s", protocol_.matchS},
+                                  {"stand_in", modeSpec(m.mode).standInFor}}
+                       .dump();
+    emit(e);
+    commitPoint_ = true;
+    world_.reset();
+    schedule_.reset();
+    statement_ = 0;
+    if (protocol_.ratingsEnabled) {
+        phase_ = Phase::Rating;
+        return;
+    }
+    if (++matchIndex_ < matches_.size()) return beginMatch();
+    phase_ = Phase::Done;
+}
+
+RatingPrompt ClickGame::ratingPrompt() const {
+    RatingPrompt r;
+    r.statement = protocol_.ratingStatements[static_cast<std::size_t>(statement_)];
+    r.index = statement_;
+    r.count = static_cast<int>(protocol_.ratingStatements.size());
+    r.min = protocol_.ratingMin;
+    r.max = protocol_.ratingMax;
+    const int n = r.max - r.min + 1;
+    const double size = display_.height / 10.0, gap = size / 2.0;
+    const double left = display_.width * 0.5 - (n * size + (n - 1) * gap) * 0.5;
+    for (int i = 0; i < n; ++i) {
+        const glm::dvec4 box(left + i * (size + gap), display_.height * 0.5, size, size);
+        r.boxes.push_back(box);
+        if (cursor_.x >= box.x && cursor_.x < box.x + box.z && cursor_.y >= box.y && cursor_.y < box.y + box.w)
+            r.highlighted = i;
+    }
+    return r;
+}
+
+void ClickGame::answerRating(int value, const char* how) {
+    const Match& m = matches_[matchIndex_];
+    const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
+    protocol::EventRecord e;
+    e.type = "rating";
+    e.phase = round.name;
+    e.trial = m.index;
+    e.mode = m.mode;
+    e.detailJson = nlohmann::json{{"round", round.name},
+                                  {"scored", round.scored},
+                                  {"statement_index", statement_},
+                                  {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
+                                  {"value", value},
+                                  {"answered_with", how}}
+                       .dump();
+    emit(e);
+    commitPoint_ = true;
+    if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
+    if (++matchIndex_ < matches_.size()) return beginMatch();
+    phase_ = Phase::Done;
+    protocol::EventRecord done;
+    done.type = "phase";
+    done.phase = "done";
+    emit(done);
+}
+
+std::vector<physics::Sphere> ClickGame::depictedSpheres(const ScheduledFrame& f) const {
+    const double refresh = protocol_.refreshHz;
+    auto frameOf = [&](double localTime) { return matchStart_ + std::llround(localTime * refresh); };
+    const ModeSpec& mode = schedule_->mode();
+    switch (mode.upconversion) {
+        case Upconversion::None: return worldHistory_.at(frameOf(f.sceneTime));
+        case Upconversion::Warp: {
+            // The source's spheres moved on by their velocities, as the warp moves pixels.
+            const double dt = f.sceneTime - f.worldSampleTime;
+            auto spheres = worldHistory_.at(frameOf(f.worldSampleTime));
+            for (auto& s : spheres) s.position += s.velocity * dt;
+            return spheres;
+        }
+        case Upconversion::Bidirectional: {
+            if (f.nextSourceIndex < 0) return worldHistory_.at(frameOf(f.sceneTime));
+            const auto& before = worldHistory_.at(matchStart_ + f.sourceIndex);
+            const auto& after = worldHistory_.at(matchStart_ + f.nextSourceIndex);
+            const double a = static_cast<double>(std::llround(f.sceneTime * refresh) - f.sourceIndex) /
+                             static_cast<double>(f.nextSourceIndex - f.sourceIndex);
+            // B-frames move what both I-frames show linearly between them; a sphere only one
+            // of them has (clicked away, or newly entered) is shown from the nearer one.
+            std::vector<physics::Sphere> out;
+            for (const auto& s : before) {
+                const auto other = std::find_if(after.begin(), after.end(), [&](const auto& o) { return o.id == s.id; });
+                if (other == after.end()) {
+                    if (a < 0.5) out.push_back(s);
+                    continue;
+                }
+                physics::Sphere m = s;
+                m.position = s.position + (other->position - s.position) * a;
+                m.velocity = (other->position - s.position) /
+                             (static_cast<double>(f.nextSourceIndex - f.sourceIndex) / refresh);
+                out.push_back(m);
+            }
+            for (const auto& s : after)
+                if (a >= 0.5 && std::none_of(before.begin(), before.end(), [&](const auto& o) { return o.id == s.id; }))
+                    out.push_back(s);
+            std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
+            return out;
+        }
+    }
+    return {};
+}
+
+ShownFrame ClickGame::screenFrame() {
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.camera = camera_;
+    shown.blank = true;
+    shown.pointer = PointerKind::Cursor;
+    shown.cursor = cursor_;
+    switch (phase_) {
+        case Phase::Ready:
+            shown.phaseText = "Press Enter to begin";
+            shown.promptsEnter = true;
+            shown.pointer = PointerKind::None;
+            break;
+        case Phase::Rating: {
+            const Match& m = matches_[matchIndex_];
+            shown.rating = ratingPrompt();
+            shown.phaseText = "Match " + std::to_string(m.index + 1) + " of " + std::to_string(matches_.size()) +
+                              ": rate the match you just played";
+            break;
+        }
+        case Phase::Match:
+        case Phase::Done:
+            shown.phaseText = "Thank you";
+            shown.pointer = PointerKind::None;
+            break;
+    }
+    return shown;
+}
+
+ShownFrame ClickGame::matchFrame(bool click) {
+    const double refresh = protocol_.refreshHz;
+    const Match& match = matches_[matchIndex_];
+    const std::int64_t k = frame_ - matchStart_;
+    if (k > 0) world_->advance(stepsPerFrame_);
+    worldHistory_.record(frame_, world_->spheres());
+    cursorHistory_.record(frame_, cursor_);
+
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.mode = match.mode;
+    const ScheduledFrame f = schedule_->frame(k);
+    shown.schedule = f;
+    shown.camera = camera_;
+    shown.pointer = PointerKind::Cursor;
+    shown.cursor = cursorHistory_.at(matchStart_ + std::llround(f.cameraTime * refresh));
+    shown.sourceFrame = matchStart_ + f.sourceIndex;
+    shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : matchStart_ + f.nextSourceIndex;
+    shown.scene.time = static_cast<double>(matchStart_ + std::llround(f.sceneTime * refresh)) / refresh;
+    const auto depicted = depictedSpheres(f);
+    for (const auto& s : depicted) shown.scene.objects.push_back(objectFor(s, physics_.radius));
+    shown.rendersNow = f.rendersNow;
+    if (f.rendersNow) {
+        shown.render.camera = camera_;
+        shown.render.scene.time = now();
+        for (const auto& s : world_->spheres()) shown.render.scene.objects.push_back(objectFor(s, physics_.radius));
+    }
+    const auto& round = protocol_.rounds[static_cast<std::size_t>(match.round)];
+    shown.phaseText = "Match " + std::to_string(match.index + 1) + " of " + std::to_string(matches_.size()) +
+                      (round.scored ? "" : " (practice)");
+
+    if (protocol_.clickTiming == "input_reads") {
+        // The press waits for the next frame at which the mode reads its input.
+        clickPending_ = clickPending_ || click;
+        click = clickPending_ && f.samplesInput;
+        if (click) clickPending_ = false;
+    }
+    if (click) {
+        // World: the cursor where the mouse has it now, against the world now. Displayed:
+        // the cursor and spheres as the frame on screen shows them.
+        const ScreenMapping screen(camera_, display_);
+        const ClickHit world = firstSphereAlong(screen.eye(), screen.ray(cursor_), world_->spheres(), physics_.radius);
+        const ClickHit displayed = firstSphereAlong(screen.eye(), screen.ray(shown.cursor), depicted, physics_.radius);
+        // How far the cursor was from the nearest green sphere's centre on screen (world).
+        double nearestGreenPx = std::numeric_limits<double>::quiet_NaN();
+        for (const auto& s : world_->spheres()) {
+            const auto p = s.green ? screen.project(s.position) : std::nullopt;
+            if (p && !(glm::length(*p - cursor_) >= nearestGreenPx)) nearestGreenPx = glm::length(*p - cursor_);
+        }
+        const ClickHit& judged = protocol_.scoring == "world" ? world : displayed;
+        std::string scored = judged.outcome();
+        // A clicked sphere vanishes, red or green ("circles disappear when clicked", seed 000
+        // section 8), and can be clicked away only once: under lag its image lingers after it
+        // is gone, and a click on the ghost is a miss.
+        if (judged.sphere && !world_->remove(judged.sphere->id)) scored = "miss";
+        greenHits_ += scored == "green";
+        redHits_ += scored == "red";
+        misses_ += scored == "miss";
+        auto idOf = [](const ClickHit& h) { return h.sphere ? static_cast<std::int64_t>(h.sphere->id) : -1; };
+        protocol::EventRecord e;
+        e.type = "click";
+        e.phase = round.name;
+        e.trial = match.index;
+        e.mode = match.mode;
+        e.worldOutcome = world.outcome();
+        e.displayedOutcome = displayed.outcome();
+        e.detailJson = nlohmann::json{{"round", round.name},
+                                      {"scored", scored},
+                                      {"match_time", static_cast<double>(k) / refresh},
+                                      {"cursor_x", cursor_.x},
+                                      {"cursor_y", cursor_.y},
+                                      {"shown_cursor_x", shown.cursor.x},
+                                      {"shown_cursor_y", shown.cursor.y},
+                                      {"world_sphere", idOf(world)},
+                                      {"displayed_sphere", idOf(displayed)},
+                                      {"nearest_green_px", nearestGreenPx}}
+                           .dump();
+        emit(e);
+    }
+    if (k + 1 >= std::llround(protocol_.matchS * refresh)) endMatch();
+    return shown;
+}
+
+ShownFrame ClickGame::step(const FrameInput& input) {
+    ++frame_;
+    commitPoint_ = false;
+    const bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
+    const std::uint32_t pressed = input.keys & ~previousKeys_;
+    previousButtons_ = input.buttons;
+    previousKeys_ = input.keys;
+    cursor_.x = std::clamp(cursor_.x + input.mouseDx * protocol_.cursorPixelsPerCount, 0.0,
+                           static_cast<double>(display_.width));
+    cursor_.y = std::clamp(cursor_.y + input.mouseDy * protocol_.cursorPixelsPerCount, 0.0,
+                           static_cast<double>(display_.height));
+
+    if (frame_ == 0) {
+        protocol::EventRecord e;
+        e.type = "phase";
+        emit(e);
+        commitPoint_ = true;
+    }
+    switch (phase_) {
+        case Phase::Ready: {
+            ShownFrame shown = screenFrame();
+            if (pressed & kKeyEnter) beginMatch();
+            return shown;
+        }
+        case Phase::Match: return matchFrame(click);
+        case Phase::Rating: {
+            ShownFrame shown = screenFrame();
+            int keyed = 0;
+            for (int v = std::max(1, protocol_.ratingMin); v <= std::min(9, protocol_.ratingMax); ++v)
+                if (pressed & digitKey(v)) keyed = v;
+            if (keyed != 0) answerRating(keyed, "key");
+            else if (click && shown.rating->highlighted >= 0)
+                answerRating(protocol_.ratingMin + shown.rating->highlighted, "mouse");
+            return shown;
+        }
+        case Phase::Done: return screenFrame();
+    }
+    return screenFrame();
+}
+
+protocol::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
+    protocol::FrameRecord r;
+    r.frame = shown.frame;
+    r.mode = shown.mode;
+    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : frameKindName(shown.schedule.kind));
+    r.cameraYaw = shown.camera.yaw;
+    r.cameraPitch = shown.camera.pitch;
+    nlohmann::json detail{{"cursor", {shown.cursor.x, shown.cursor.y}}};
+    // Spheres where the frame shows something new; a held frame shows its source's.
+    if (!shown.blank && shown.schedule.kind != FrameKind::Held) {
+        nlohmann::json spheres = nlohmann::json::array();
+        for (const auto& o : shown.scene.objects)
+            spheres.push_back({o.id - scene::kIdFirstSphere, o.colour == kGreen ? 1 : 0, rounded(o.position.x),
+                               rounded(o.position.y), rounded(o.position.z)});
+        detail["spheres"] = std::move(spheres);
+    }
+    r.detailJson = detail.dump();
+    return r;
+}
+
+PointerProbe ClickGame::probePointer(const ShownFrame& shown) const {
+    PointerProbe probe;
+    probe.silhouetteMarginRad = std::numeric_limits<double>::infinity();
+    if (shown.blank) return probe;
+    const ScreenMapping screen(shown.camera, display_);
+    const glm::dvec3 dir = screen.ray(shown.cursor);
+    std::vector<physics::Sphere> spheres;
+    for (const auto& o : shown.scene.objects) {
+        physics::Sphere s;
+        s.id = o.id - scene::kIdFirstSphere;
+        s.position = glm::dvec3(o.position);  // as the renderer draws it: float positions
+        spheres.push_back(s);
+        const double distance = glm::length(s.position - screen.eye());
+        const double angularRadius = std::asin(std::min(1.0, physics_.radius / distance));
+        const double offAxis = physics::angleBetweenRayAndPoint(screen.eye(), dir, s.position);
+        probe.silhouetteMarginRad = std::min(probe.silhouetteMarginRad, std::abs(offAxis - angularRadius));
+    }
+    const ClickHit hit = firstSphereAlong(screen.eye(), dir, spheres, physics_.radius);
+    probe.objectId = hit.sphere ? objectId(*hit.sphere) : scene::kIdNone;
+    return probe;
+}
+
+std::optional<std::uint32_t> ClickGame::displayedObject(const protocol::EventRecord& event) const {
+    if (event.type != "click") return std::nullopt;
+    const auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
+    if (detail.is_discarded() || !detail.contains("displayed_sphere")) return std::nullopt;
+    const std::int64_t id = detail["displayed_sphere"].get<std::int64_t>();
+    return id < 0 ? scene::kIdNone : scene::kIdFirstSphere + static_cast<std::uint32_t>(id);
+}
+
+}  // namespace warplab::game

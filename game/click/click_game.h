@@ -1,0 +1,98 @@
+// The falling-sphere click game (seed 000 section 8; slides: seed 003) as a deterministic
+// state machine on the display clock. Red and green spheres fall and bounce in a box seen by
+// a fixed camera; the player moves a cursor and clicks: a clicked sphere vanishes and counts
+// as a green or a red hit, a click on empty space as a miss. Matches of a fixed length,
+// one per mode and round in a seeded order, each followed by a rating screen of four
+// statements. The cursor is part of the displayed frame, so it shares the mode's frame rate
+// and lag with the spheres. No GL; a session is a pure function of protocol, seed and input.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "game/frame_history.h"
+#include "game/game.h"
+#include "physics/falling_spheres.h"
+#include "protocol/click_protocol.h"
+
+namespace warplab::game {
+
+// What a click hit, in the world or in the frame on screen.
+struct ClickHit {
+    std::optional<physics::Sphere> sphere;  // nullopt: empty space
+    std::string outcome() const { return !sphere ? "miss" : (sphere->green ? "green" : "red"); }
+};
+
+// The first sphere along a ray (spheres may hide each other).
+ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const std::vector<physics::Sphere>& spheres,
+                          double radius);
+
+class ClickGame final : public Game {
+public:
+    ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed, const DisplaySize& display);
+
+    ShownFrame step(const FrameInput& input) override;
+    bool finished() const override { return phase_ == Phase::Done; }
+    std::string phase() const override;
+    std::vector<protocol::EventRecord> takeEvents() override;
+    bool atCommitPoint() const override { return commitPoint_; }
+    protocol::FrameRecord frameRecord(const ShownFrame& shown) const override;
+    bool isOutcome(const protocol::EventRecord& event) const override { return event.type == "click"; }
+    PointerProbe probePointer(const ShownFrame& shown) const override;
+    std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const override;
+
+    struct Match {
+        int index = 0;        // over the whole session
+        int round = 0;        // index into protocol.rounds
+        std::string mode;
+    };
+    const std::vector<Match>& matches() const { return matches_; }
+    // The world of the match in progress (tests); nullptr between matches.
+    const physics::FallingSpheres* world() const { return world_ ? &*world_ : nullptr; }
+    const scene::CameraState& camera() const { return camera_; }
+    glm::dvec2 cursor() const { return cursor_; }
+    static std::uint32_t objectId(const physics::Sphere& sphere);
+
+private:
+    enum class Phase : std::uint8_t { Ready, Match, Rating, Done };
+
+    void beginMatch();
+    void endMatch();
+    void answerRating(int value, const char* how);
+    ShownFrame matchFrame(bool click);
+    ShownFrame screenFrame();  // ready, rating and done screens
+    std::vector<physics::Sphere> depictedSpheres(const ScheduledFrame& f) const;
+    void emit(protocol::EventRecord event);
+    double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
+    RatingPrompt ratingPrompt() const;
+
+    protocol::ClickProtocol protocol_;
+    std::uint64_t seed_;
+    DisplaySize display_;
+    physics::FallingSphereSettings physics_;
+    scene::CameraState camera_;
+    std::int64_t stepsPerFrame_ = 1;
+
+    std::int64_t frame_ = -1;
+    glm::dvec2 cursor_;
+    std::uint32_t previousButtons_ = 0, previousKeys_ = 0;
+    bool clickPending_ = false;  // click_timing "input_reads": pressed, not yet read
+
+    Phase phase_ = Phase::Ready;
+    std::vector<Match> matches_;
+    std::size_t matchIndex_ = 0;
+    std::int64_t matchStart_ = 0;
+    std::optional<physics::FallingSpheres> world_;
+    std::optional<ModeSchedule> schedule_;
+    FrameHistory<std::vector<physics::Sphere>> worldHistory_;  // the world at each frame of the match
+    FrameHistory<glm::dvec2> cursorHistory_;
+    int greenHits_ = 0, redHits_ = 0, misses_ = 0;
+    int statement_ = 0;
+
+    std::vector<protocol::EventRecord> events_;
+    bool commitPoint_ = false;
+};
+
+}  // namespace warplab::game

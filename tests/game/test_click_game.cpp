@@ -1,0 +1,334 @@
+// The click game as a pure function of protocol, seed and input: the bot plays the quick
+// protocol to the end with every match and rating, replays reproduce it bit for bit, the
+// cursor and spheres on screen are as late as each mode's schedule says, and clicks are
+// judged against the world and against the frame on screen.
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "game/click/click_bot.h"
+#include "game/click/click_game.h"
+#include "game/screen.h"
+#include "protocol/click_protocol.h"
+#include "protocol/records.h"
+
+namespace warplab::game {
+namespace {
+
+const DisplaySize kDisplay{1280, 720};
+
+protocol::ClickProtocol quick() {
+    return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json", checkMode);
+}
+
+nlohmann::json detail(const protocol::EventRecord& e) { return nlohmann::json::parse(e.detailJson); }
+
+struct Played {
+    std::vector<FrameInput> inputs;
+    std::vector<protocol::EventRecord> events;
+};
+
+Played playWithBot(const protocol::ClickProtocol& p, std::uint64_t seed, std::uint64_t botSeed) {
+    ClickGame game(p, seed, kDisplay);
+    ClickBot bot(botSeed, p, kDisplay);
+    Played out;
+    FrameInput input = bot.first();
+    for (int i = 0; i < 1000000 && !game.finished(); ++i) {
+        out.inputs.push_back(input);
+        const ShownFrame shown = game.step(input);
+        for (auto& e : game.takeEvents()) out.events.push_back(e);
+        input = bot.next(shown);
+    }
+    return out;
+}
+
+// Steps through the ready screen into the first match.
+ShownFrame startFirstMatch(ClickGame& game) {
+    ShownFrame shown = game.step({0, 0, 0, kKeyEnter});
+    while (shown.blank) shown = game.step({});
+    return shown;
+}
+
+TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
+    const auto p = quick();
+    const Played played = playWithBot(p, 3, 7);
+    std::map<int, std::set<std::string>> modesPerRound;
+    int matches = 0, ratings = 0, clicks = 0, greens = 0, byKey = 0, byMouse = 0;
+    for (const auto& e : played.events) {
+        if (e.type == "match") {
+            ++matches;
+            modesPerRound[detail(e)["round"] == "practice" ? 0 : 1].insert(e.mode);
+            EXPECT_EQ(detail(e)["clicks"].get<int>(), detail(e)["green_hits"].get<int>() +
+                                                           detail(e)["red_hits"].get<int>() +
+                                                           detail(e)["misses"].get<int>());
+        }
+        if (e.type == "rating") {
+            ++ratings;
+            const int v = detail(e)["value"];
+            EXPECT_GE(v, p.ratingMin);
+            EXPECT_LE(v, p.ratingMax);
+            EXPECT_EQ(v, botRating(e.mode, detail(e)["statement_index"], p.ratingMin, p.ratingMax));
+            (detail(e)["answered_with"] == "key" ? byKey : byMouse) += 1;
+        }
+        if (e.type == "click") {
+            ++clicks;
+            greens += detail(e)["scored"] == "green";
+        }
+    }
+    const int expected = static_cast<int>(p.modes.size()) * 2;  // one match per mode per round
+    EXPECT_EQ(matches, expected);
+    EXPECT_EQ(ratings, expected * 4);
+    EXPECT_EQ(byKey, byMouse) << "the bot answers half by key, half by clicking the box";
+    for (const auto& [round, modes] : modesPerRound) EXPECT_EQ(modes.size(), p.modes.size()) << round;
+    EXPECT_GT(clicks, expected);
+    EXPECT_GT(greens, clicks / 4) << "the bot should hit green spheres";
+    EXPECT_EQ(played.events.back().type, "phase");
+    EXPECT_EQ(played.events.back().phase, "done");
+}
+
+TEST(ClickGame, SameSeedAndInputSameEventsBitForBit) {
+    const auto p = quick();
+    const Played a = playWithBot(p, 11, 2);
+    ClickGame game(p, 11, kDisplay);
+    std::vector<protocol::EventRecord> replayed;
+    for (const auto& in : a.inputs) {
+        game.step(in);
+        for (auto& e : game.takeEvents()) replayed.push_back(e);
+    }
+    ASSERT_EQ(a.events.size(), replayed.size());
+    for (std::size_t i = 0; i < replayed.size(); ++i)
+        ASSERT_EQ(protocol::firstDifference(a.events[i], replayed[i]), "") << "event " << i;
+    // Another session seed: other spheres, other match order, other outcomes.
+    const Played b = playWithBot(p, 12, 2);
+    bool differ = a.events.size() != b.events.size();
+    for (std::size_t i = 0; !differ && i < a.events.size(); ++i)
+        differ = !protocol::firstDifference(a.events[i], b.events[i]).empty();
+    EXPECT_TRUE(differ);
+}
+
+TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersModesBySeed) {
+    auto p = quick();
+    ClickGame a(p, 5, kDisplay), b(p, 6, kDisplay);
+    std::vector<std::string> orderA, orderB;
+    for (const auto& m : a.matches()) orderA.push_back(m.mode);
+    for (const auto& m : b.matches()) orderB.push_back(m.mode);
+    EXPECT_NE(orderA, orderB);
+    const Played played = playWithBot(p, 5, 1);
+    std::map<int, std::int64_t> start;
+    for (const auto& e : played.events) {
+        if (e.type == "match_start") start[e.trial] = e.frame;
+        if (e.type == "match") {
+            EXPECT_EQ(e.frame - start.at(e.trial) + 1, std::llround(p.matchS * p.refreshHz));
+        }
+    }
+    EXPECT_EQ(start.size(), a.matches().size());
+}
+
+// The cursor is drawn into the frame, so a mouse step shows with the mode's view latency --
+// the same schedule the shooter's reticle follows.
+TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
+    for (const auto& mode : quick().modes) {
+        for (int phase = 0; phase < 4; ++phase) {
+            auto p = quick();
+            p.modes = {mode};
+            p.rounds = {{"only", true, 1}};
+            ClickGame game(p, 2, kDisplay);
+            ShownFrame shown = startFirstMatch(game);
+            for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
+            const glm::dvec2 before = shown.cursor;
+            const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
+            const ModeSchedule schedule(modeSpec(mode), p.refreshHz);
+            ShownFrame f = stepFrame;
+            while (f.cursor == before) f = game.step({});
+            EXPECT_NEAR(f.time - stepFrame.time, schedule.viewLatency(stepFrame.schedule.displayTime), 1e-9)
+                << mode << " phase " << phase;
+            EXPECT_DOUBLE_EQ(f.cursor.x - before.x, 40.0 * p.cursorPixelsPerCount) << mode;
+        }
+    }
+}
+
+// What a lag or conventional frame shows is the world of the frame it was rendered at; a
+// bireproj B-frame lies on the straight line between its two I-frames.
+TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
+    for (const auto& mode : quick().modes) {
+        auto p = quick();
+        p.modes = {mode};
+        p.rounds = {{"only", true, 1}};
+        ClickGame game(p, 8, kDisplay);
+        startFirstMatch(game);
+        std::map<std::int64_t, std::vector<physics::Sphere>> world;  // by session frame
+        int compared = 0;
+        for (int i = 0; i < 90; ++i) {
+            const ShownFrame shown = game.step({});
+            world[shown.frame] = game.world()->spheres();
+            const std::int64_t depicted = std::llround(shown.scene.time * p.refreshHz);
+            if (!world.count(depicted) || shown.schedule.kind == FrameKind::Interpolated) {
+                if (shown.schedule.kind != FrameKind::Interpolated) continue;
+                // Interpolated: every shown sphere lies between its two I-frame positions.
+                if (!world.count(shown.sourceFrame) || !world.count(shown.nextSourceFrame)) continue;
+                const auto& a = world.at(shown.sourceFrame);
+                const auto& b = world.at(shown.nextSourceFrame);
+                for (const auto& o : shown.scene.objects) {
+                    const std::uint32_t id = o.id - scene::kIdFirstSphere;
+                    const auto pa = std::find_if(a.begin(), a.end(), [&](auto& s) { return s.id == id; });
+                    const auto pb = std::find_if(b.begin(), b.end(), [&](auto& s) { return s.id == id; });
+                    if (pa == a.end() || pb == b.end()) continue;
+                    const double w = double(depicted - shown.sourceFrame) / double(shown.nextSourceFrame - shown.sourceFrame);
+                    const glm::dvec3 expected = pa->position + (pb->position - pa->position) * w;
+                    EXPECT_LT(glm::length(glm::dvec3(o.position) - expected), 1e-5) << mode;
+                    ++compared;
+                }
+                continue;
+            }
+            const auto& truth = world.at(depicted);
+            ASSERT_EQ(shown.scene.objects.size(), truth.size()) << mode << " frame " << shown.frame;
+            for (std::size_t j = 0; j < truth.size(); ++j) {
+                // Positions cross to the renderer as float.
+                EXPECT_LT(glm::length(glm::dvec3(shown.scene.objects[j].position) - truth[j].position), 1e-5) << mode;
+                ++compared;
+            }
+        }
+        EXPECT_GT(compared, 100) << mode;
+    }
+}
+
+// Moves the cursor onto a moving green sphere (where it will be after this frame's physics)
+// and clicks, in one frame. Resting spheres are skipped: lag cannot matter for them.
+FrameInput clickOnGreen(const ClickGame& game, const protocol::ClickProtocol& p) {
+    const ScreenMapping screen(game.camera(), kDisplay);
+    for (const auto& s : game.world()->spheres()) {
+        if (!s.green || glm::length(s.velocity) < 2.0) continue;
+        const auto at = screen.project(s.position + s.velocity / p.refreshHz);
+        if (!at || at->x < 50 || at->y < 50 || at->x > kDisplay.width - 50 || at->y > kDisplay.height - 50) continue;
+        const glm::dvec2 move = (*at - game.cursor()) / p.cursorPixelsPerCount;
+        return {move.x, move.y, kButtonLeft, 0};
+    }
+    return {};
+}
+
+struct ClickTally {
+    std::map<std::string, int> world, displayed, scored;
+    int removedAfterGreen = 0, greens = 0;
+};
+
+ClickTally aimAtTheWorld(const std::string& mode, const std::string& scoring) {
+    auto p = quick();
+    p.modes = {mode};
+    p.rounds = {{"only", true, 1}};
+    p.matchS = 20;
+    p.scoring = scoring;
+    ClickGame game(p, 4, kDisplay);
+    startFirstMatch(game);
+    ClickTally tally;
+    for (int i = 0; i < 1100 && game.world() != nullptr; ++i) {
+        const FrameInput in = i % 6 == 5 ? clickOnGreen(game, p) : FrameInput{};
+        game.step(in);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type != "click") continue;
+            ++tally.world[e.worldOutcome];
+            ++tally.displayed[e.displayedOutcome];
+            const std::string scored = detail(e)["scored"];
+            ++tally.scored[scored];
+            if (scored == "green") {
+                ++tally.greens;
+                const std::int64_t id = detail(e)[scoring == "world" ? "world_sphere" : "displayed_sphere"];
+                const auto& now = game.world()->spheres();
+                tally.removedAfterGreen += std::none_of(now.begin(), now.end(), [&](auto& s) { return s.id == id; });
+            }
+        }
+    }
+    return tally;
+}
+
+TEST(ClickGame, ClicksAreJudgedAgainstTheWorldAndAgainstTheFrameOnScreen) {
+    // At 60 fps the frame on screen is the world of this very frame: both agree on nearly every click.
+    ClickTally now = aimAtTheWorld("conv60", "world");
+
+    EXPECT_GT(now.world.at("green"), 20);
+    EXPECT_GE(now.world.at("green"), now.displayed["green"]);
+    EXPECT_LE(now.world["miss"] + now.world["red"], now.world.at("green") / 10);
+    EXPECT_EQ(now.removedAfterGreen, now.greens) << "a clicked sphere vanishes";
+    // 200 ms late, the spheres on screen are elsewhere: aiming at the world hits far less on screen.
+    ClickTally late = aimAtTheWorld("lag200", "world");
+    EXPECT_GT(late.world.at("green"), 20);
+    EXPECT_LT(late.displayed["green"], late.world.at("green") / 2);
+    // Scored as displayed, the same clicks mostly miss.
+    ClickTally judgedOnScreen = aimAtTheWorld("lag200", "displayed");
+    EXPECT_LT(judgedOnScreen.scored["green"], judgedOnScreen.world.at("green") / 2);
+    EXPECT_EQ(judgedOnScreen.removedAfterGreen, judgedOnScreen.greens);
+}
+
+// Under lag the image of a clicked sphere lingers; a second click on it is a miss.
+TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
+    auto p = quick();
+    p.modes = {"lag200"};
+    p.rounds = {{"only", true, 1}};
+    p.scoring = "displayed";
+    ClickGame game(p, 4, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    for (int i = 0; i < 40; ++i) shown = game.step({});
+    // Aim at a green sphere as the frame on screen shows it, click, wait a frame, click again.
+    const ScreenMapping screen(shown.camera, kDisplay);
+    bool done = false;
+    for (const auto& o : shown.scene.objects) {
+        if (done || o.colour.g < o.colour.r) continue;
+        const auto at = screen.project(glm::dvec3(o.position));
+        if (!at) continue;
+        // The cursor on screen is 12 frames late too: hold it still for a while first.
+        const glm::dvec2 move = (*at - game.cursor()) / p.cursorPixelsPerCount;
+        game.step({move.x, move.y, 0, 0});
+        for (int i = 0; i < 30; ++i) game.step({});
+        game.takeEvents();
+        done = true;
+    }
+    ASSERT_TRUE(done);
+    std::vector<std::string> scored;
+    for (int i = 0; i < 2; ++i) {
+        game.step({0, 0, kButtonLeft, 0});
+        game.step({});
+        for (const auto& e : game.takeEvents())
+            if (e.type == "click") scored.push_back(detail(e)["scored"]);
+    }
+    ASSERT_EQ(scored.size(), 2u);
+    // The held cursor now shows over where the sphere's image is after 30 frames only if it
+    // stayed; whatever the first click scored, a green can never be scored twice in a row
+    // on the same sphere image.
+    EXPECT_FALSE(scored[0] == "green" && scored[1] == "green");
+}
+
+TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
+    auto p = quick();
+    p.modes = {"conv60"};
+    p.rounds = {{"only", true, 1}};
+    p.matchS = 0.5;
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    while (!shown.rating) shown = game.step({});
+    EXPECT_EQ(shown.rating->boxes.size(), 7u);
+    game.step({0, 0, 0, digitKey(9)});       // out of range: ignored
+    game.step({-5000, -5000, 0, 0});         // the top left corner, far from the boxes
+    game.step({0, 0, kButtonLeft, 0});       // not on a box: ignored
+    game.step({});
+    shown = game.step({0, 0, 0, digitKey(3)});
+    EXPECT_EQ(shown.rating->index, 0);       // this frame still shows the first statement
+    shown = game.step({});
+    EXPECT_EQ(shown.rating->index, 1);
+    // Click box 6 (value 6).
+    const glm::dvec4 box = shown.rating->boxes[5];
+    const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
+    shown = game.step({move.x, move.y, 0, 0});
+    EXPECT_EQ(shown.rating->highlighted, 5);
+    game.step({0, 0, kButtonLeft, 0});
+    std::vector<int> values;
+    std::vector<std::string> how;
+    for (const auto& e : game.takeEvents())
+        if (e.type == "rating") values.push_back(detail(e)["value"]), how.push_back(detail(e)["answered_with"]);
+    EXPECT_EQ(values, (std::vector<int>{3, 6}));
+    EXPECT_EQ(how, (std::vector<std::string>{"key", "mouse"}));
+}
+
+}  // namespace
+}  // namespace warplab::game
