@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job on a fresh Debian 12 machine: install, build, run the default headless demo
-# study -- the quick shooter protocol played by the scripted bot, replayed and checked, a few
-# seconds of it re-rendered as its modes showed it -- plus one rendered frame with its buffers.
+# studies -- the quick shooter and click-game protocols played by their scripted bots,
+# replayed and checked, a few seconds of each re-rendered as its modes showed it -- plus one
+# rendered frame with its buffers.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -14,6 +15,10 @@ session=$($warplab run --protocol protocol/shooter-quick.json --participant demo
   --headless --player bot:1)
 echo "demo: session $session"
 $warplab replay "$session" --render "$out/frames" --frames 600:839 --width 640 --height 360
+click=$($warplab run --protocol protocol/click-quick.json --participant demo --out "$out/results" \
+  --headless --player bot:1)
+echo "demo: click-game session $click"
+$warplab replay "$click" --render "$out/click-frames" --frames 20:259 --width 640 --height 360
 $warplab render --time 1.0 --width 1280 --height 720 --out "$out/frame.png" \
   --depth "$out/depth.png" --ids "$out/ids.png" --velocity "$out/velocity.png"
-echo "demo: session in $out/results, displayed frames in $out/frames, a frame and its buffers in $out/"
+echo "demo: sessions in $out/results, displayed frames in $out/frames and $out/click-frames, a frame and its buffers in $out/"

@@ -113,6 +113,20 @@ void ClickGame::emit(protocol::EventRecord event) {
     events_.push_back(std::move(event));
 }
 
+protocol::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json detail) const {
+    const Match& m = matches_[matchIndex_];
+    const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
+    protocol::EventRecord e;
+    e.type = type;
+    e.phase = round.name;
+    e.trial = m.index;
+    e.mode = m.mode;
+    detail["round"] = round.name;
+    if (!detail.contains("scored")) detail["scored"] = round.scored;
+    e.detailJson = detail.dump();
+    return e;
+}
+
 void ClickGame::beginMatch() {
     const Match& m = matches_[matchIndex_];
     phase_ = Phase::Match;
@@ -125,34 +139,17 @@ void ClickGame::beginMatch() {
     cursorHistory_.clear();
     greenHits_ = redHits_ = misses_ = 0;
     clickPending_ = false;
-    protocol::EventRecord e;
-    e.type = "match_start";
-    e.phase = protocol_.rounds[static_cast<std::size_t>(m.round)].name;
-    e.trial = m.index;
-    e.mode = m.mode;
-    e.detailJson = nlohmann::json{{"round", e.phase}, {"scored", protocol_.rounds[static_cast<std::size_t>(m.round)].scored}}.dump();
-    emit(e);
+    emit(matchEvent("match_start", nlohmann::json::object()));
     commitPoint_ = true;
 }
 
 void ClickGame::endMatch() {
-    const Match& m = matches_[matchIndex_];
-    const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
-    protocol::EventRecord e;
-    e.type = "match";
-    e.phase = round.name;
-    e.trial = m.index;
-    e.mode = m.mode;
-    e.detailJson = nlohmann::json{{"round", round.name},
-                                  {"scored", round.scored},
-                                  {"green_hits", greenHits_},
-                                  {"red_hits", redHits_},
-                                  {"misses", misses_},
-                                  {"clicks", greenHits_ + redHits_ + misses_},
-                                  {"duration_s", protocol_.matchS},
-                                  {"stand_in", modeSpec(m.mode).standInFor}}
-                       .dump();
-    emit(e);
+    emit(matchEvent("match", {{"green_hits", greenHits_},
+                              {"red_hits", redHits_},
+                              {"misses", misses_},
+                              {"clicks", greenHits_ + redHits_ + misses_},
+                              {"duration_s", protocol_.matchS},
+                              {"stand_in", modeSpec(matches_[matchIndex_].mode).standInFor}}));
     commitPoint_ = true;
     world_.reset();
     schedule_.reset();
@@ -185,21 +182,10 @@ RatingPrompt ClickGame::ratingPrompt() const {
 }
 
 void ClickGame::answerRating(int value, const char* how) {
-    const Match& m = matches_[matchIndex_];
-    const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
-    protocol::EventRecord e;
-    e.type = "rating";
-    e.phase = round.name;
-    e.trial = m.index;
-    e.mode = m.mode;
-    e.detailJson = nlohmann::json{{"round", round.name},
-                                  {"scored", round.scored},
-                                  {"statement_index", statement_},
-                                  {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
-                                  {"value", value},
-                                  {"answered_with", how}}
-                       .dump();
-    emit(e);
+    emit(matchEvent("rating", {{"statement_index", statement_},
+                               {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
+                               {"value", value},
+                               {"answered_with", how}}));
     commitPoint_ = true;
     if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
     if (++matchIndex_ < matches_.size()) return beginMatch();
@@ -344,24 +330,17 @@ ShownFrame ClickGame::matchFrame(bool click) {
         redHits_ += scored == "red";
         misses_ += scored == "miss";
         auto idOf = [](const ClickHit& h) { return h.sphere ? static_cast<std::int64_t>(h.sphere->id) : -1; };
-        protocol::EventRecord e;
-        e.type = "click";
-        e.phase = round.name;
-        e.trial = match.index;
-        e.mode = match.mode;
+        protocol::EventRecord e = matchEvent("click", {{"scored", scored},
+                                                       {"match_time", static_cast<double>(k) / refresh},
+                                                       {"cursor_x", cursor_.x},
+                                                       {"cursor_y", cursor_.y},
+                                                       {"shown_cursor_x", shown.cursor.x},
+                                                       {"shown_cursor_y", shown.cursor.y},
+                                                       {"world_sphere", idOf(world)},
+                                                       {"displayed_sphere", idOf(displayed)},
+                                                       {"nearest_green_px", nearestGreenPx}});
         e.worldOutcome = world.outcome();
         e.displayedOutcome = displayed.outcome();
-        e.detailJson = nlohmann::json{{"round", round.name},
-                                      {"scored", scored},
-                                      {"match_time", static_cast<double>(k) / refresh},
-                                      {"cursor_x", cursor_.x},
-                                      {"cursor_y", cursor_.y},
-                                      {"shown_cursor_x", shown.cursor.x},
-                                      {"shown_cursor_y", shown.cursor.y},
-                                      {"world_sphere", idOf(world)},
-                                      {"displayed_sphere", idOf(displayed)},
-                                      {"nearest_green_px", nearestGreenPx}}
-                           .dump();
         emit(e);
     }
     if (k + 1 >= std::llround(protocol_.matchS * refresh)) endMatch();

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "game/frame_history.h"
 #include "game/game.h"
 #include "physics/falling_spheres.h"
@@ -65,6 +67,9 @@ private:
     ShownFrame screenFrame();  // ready, rating and done screens
     std::vector<physics::Sphere> depictedSpheres(const ScheduledFrame& f) const;
     void emit(protocol::EventRecord event);
+    // An event of the match in progress: its round, index and mode, and the detail with the
+    // round's name and whether it is scored (unless the detail says what "scored" means).
+    protocol::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     RatingPrompt ratingPrompt() const;
 
