@@ -347,6 +347,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         shown.frozen = true;
         shown.rendersNow = false;
         shown.banner = banner_;
+        shown.bannerGood = banner_ == "HIT";
         return shown;
     }
 

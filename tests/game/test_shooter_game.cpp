@@ -94,6 +94,26 @@ TEST(ShooterGame, SameSeedAndInputSameEventsBitForBit) {
     EXPECT_NE(eventDifference(a.events, b.events), "");
 }
 
+// The pause after a shot shows the scored outcome: HIT in green, MISS and TIMEOUT in red.
+TEST(ShooterGame, BannerNamesTheScoredOutcomeInItsColour) {
+    const auto p = quick();
+    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterBot bot(5, p);
+    FrameInput input;
+    std::map<std::string, int> seen;
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        if (!shown.banner.empty()) {
+            ++seen[shown.banner];
+            EXPECT_TRUE(shown.frozen);
+            EXPECT_EQ(shown.bannerGood, shown.banner == "HIT") << shown.banner;
+        }
+        input = bot.next(shown);
+    }
+    EXPECT_GT(seen["HIT"], 0);
+    EXPECT_GT(seen["MISS"] + seen["TIMEOUT"], 0);
+}
+
 TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
     auto p = quick();
     p.targetsPerCondition = 6;
