@@ -1,5 +1,9 @@
 #include "game/click/click_study.h"
 
+#include <cctype>
+#include <cstring>
+#include <utility>
+
 #include "game/click/click_bot.h"
 #include "game/click/click_game.h"
 #include "protocol/click_protocol.h"
@@ -36,7 +40,22 @@ std::unique_ptr<Study> parseClickStudy(const std::string& jsonText, const std::s
     try {
         ClickGame probe(p, 0, DisplaySize{});
     } catch (const std::invalid_argument& e) {
-        throw protocol::ProtocolError("protocol '" + sourceName + "': physics does not fit the box: " + e.what());
+        // Name the protocol's field, not the physics struct's member.
+        std::string why = e.what();
+        const std::pair<const char*, const char*> names[] = {
+            {"FallingSphereSettings.radius", "physics.sphere_radius_m"},
+            {"FallingSphereSettings.sphereCount", "physics.sphere_count"},
+            {"FallingSphereSettings.gravity", "physics.gravity_m_per_s2"},
+            {"FallingSphereSettings.restitution", "physics.restitution"},
+            {"FallingSphereSettings.stepRateHz", "physics.step_rate_hz"},
+            {"FallingSphereSettings.greenShare", "physics.green_share"},
+            {"FallingSphereSettings.spawnDelayS", "physics.spawn_delay_s"},
+            {"FallingSphereSettings.spawnSpeed", "physics.spawn_speed_m_per_s"},
+        };
+        for (const auto& [member, field] : names)
+            if (why.rfind(member, 0) == 0 && !std::isalpha(static_cast<unsigned char>(why[std::strlen(member)])))
+                why = field + why.substr(std::strlen(member));
+        throw protocol::ProtocolError("protocol '" + sourceName + "': " + why);
     }
     return std::make_unique<ClickStudy>(std::move(p));
 }

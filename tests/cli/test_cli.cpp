@@ -455,6 +455,9 @@ TEST(CliClick, MalformedClickProtocolsAreNamed) {
         {R"("matches":{"rounds":[{"name":"a","scored":true,"matches_per_mode":0}]})", "matches_per_mode"},
         {R"("matches":{"modes":["conv60","conv61"]})", "conv61"},
         {R"("ratings":{"statements":["I enjoyed playing this game",""]})", "ratings.statements[1]"},
+        // Only the physics can tell: the protocol's range allows it, the box does not.
+        {R"("physics":{"sphere_radius_m":1.95})", "physics.sphere_radius_m must be"},
+        {R"("physics":{"sphere_radius_m":1.0,"sphere_count":40})", "physics.sphere_count must be"},
     };
     for (const auto& [section, field] : cases) {
         std::ofstream(dir + "/p.json") << R"({"format_version":1,"name":"x","game":"click",)" << section << "}";
