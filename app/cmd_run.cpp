@@ -1,14 +1,59 @@
+#include <algorithm>
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/live_session.h"
 #include "app/replay_render.h"
 #include "app/session_runner.h"
 
 namespace warplab::app {
 
+namespace {
+
+int runWindowed(const ParsedArgs& args) {
+    LiveRun run;
+    run.protocolPath = args.string("protocol");
+    if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
+    if (!args.has("participant")) throw UsageError("option --participant is required");
+    run.participant = args.string("participant");
+    run.resultsDir = args.string("out", "results");
+    run.player = args.string("player", "human");
+    run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
+    run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
+    run.fullscreen = args.flag("fullscreen");
+    run.display = static_cast<int>(args.integer("display", 0, 0, 63));
+    run.cmPer360 = args.number("cm-per-360", 0.0);
+    run.mouseDpi = args.number("mouse-dpi", 800.0);
+    if (run.cmPer360 < 0.0 || !(run.mouseDpi > 0.0))
+        throw UsageError("options --cm-per-360 and --mouse-dpi need positive numbers");
+    run.invertY = args.flag("invert-y");
+    run.allowRefreshMismatch = args.flag("allow-refresh-mismatch");
+    run.inputScript = args.string("input-script", "");
+    run.screenshotDir = args.string("screenshots", "");
+    run.screenshotStartScreen = !run.screenshotDir.empty();
+    const std::string frames = args.string("screenshot-frames", "");
+    std::size_t at = 0;
+    while (at < frames.size()) {
+        const std::size_t comma = std::min(frames.find(',', at), frames.size());
+        try {
+            run.screenshotFrames.push_back(std::stoll(frames.substr(at, comma - at)));
+        } catch (const std::exception&) {
+            throw UsageError("option --screenshot-frames needs frame numbers separated by commas, got '" + frames + "'");
+        }
+        at = comma + 1;
+    }
+    const std::string path = runLive(run, dataPathsFrom(args), std::cerr);
+    if (!path.empty()) std::cout << path << "\n";
+    return 0;
+}
+
+}  // namespace
+
 int runRun(const ParsedArgs& args) {
-    if (!args.flag("headless"))
-        throw UsageError("sessions in a window are not available yet; run with --headless and a --player");
+    if (!args.flag("headless")) return runWindowed(args);
+    if (args.string("player", "bot") == "human")
+        throw UsageError("a human player needs the window; leave out --headless");
     HeadlessRun run;
     run.protocolPath = args.string("protocol");
     if (run.protocolPath.empty()) throw UsageError("option --protocol is required");

@@ -9,6 +9,7 @@
 
 #include "game/registry.h"
 #include "protocol/session_store.h"
+#include "app/frame_maker.h"
 #include "renderer/hud.h"
 #include "renderer/upconvert.h"
 
@@ -22,98 +23,6 @@ constexpr double kSilhouetteMarginPx = 2.0;
 
 // Game objects have ids from kIdTarget up; the hangar and the sky both mean "nothing".
 std::uint32_t gameObject(std::uint32_t id) { return id >= scene::kIdTarget ? id : scene::kIdNone; }
-
-renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY) {
-    renderer::HudContent content;
-    content.backdrop = shown.blank;
-    content.reticle = shown.pointer == game::PointerKind::Reticle;
-    if (shown.pointer == game::PointerKind::Cursor)
-        content.cursor = glm::vec2(static_cast<float>(shown.cursor.x * toFrameX), static_cast<float>(shown.cursor.y * toFrameY));
-    content.banner = shown.banner;
-    content.bannerGood = shown.bannerGood;
-    content.status = shown.phaseText;
-    if (shown.rating) {
-        renderer::HudRating r;
-        r.statement = shown.rating->statement;
-        for (const auto& b : shown.rating->boxes)
-            r.boxes.emplace_back(b.x * toFrameX, b.y * toFrameY, b.z * toFrameX, b.w * toFrameY);
-        r.highlighted = shown.rating->highlighted;
-        r.firstValue = shown.rating->min;
-        r.minLabel = shown.rating->minLabel;
-        r.maxLabel = shown.rating->maxLabel;
-        content.rating = r;
-    }
-    return content;
-}
-
-// Makes each displayed frame the way its mode makes it, from the conventional renders it
-// keeps: a held or rendered frame is its source copied (hold120); warped and interpolated
-// frames use the mode's method (or its stand-in, said once).
-class FrameMaker {
-public:
-    FrameMaker(const renderer::DataPaths& paths, int width, int height, std::ostream& out)
-        : paths_(paths), conventional_(paths), width_(width), height_(height), out_(out) {}
-
-    // Every step's frame, also outside the requested range: held, lagged and warped frames
-    // need sources from before it.
-    void keepSource(const game::ShownFrame& shown) {
-        if (shown.rendersNow) {
-            auto source = std::make_unique<renderer::SourceFrame>(width_, height_);
-            source->depicts = shown.render;
-            conventional_.render(shown.render, source->gbuffer);
-            sources_[shown.frame] = std::move(source);
-        }
-        // None older than what the frame on screen is made from will be needed again.
-        if (!shown.blank)
-            while (!sources_.empty() && sources_.begin()->first < shown.sourceFrame) sources_.erase(sources_.begin());
-    }
-
-    void make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
-        auto it = sources_.find(shown.sourceFrame);
-        if (it == sources_.end()) {
-            // Lag modes open with frames queued before the mode started: the scene as it was.
-            auto before = std::make_unique<renderer::SourceFrame>(width_, height_);
-            before->depicts = {shown.camera, shown.scene};
-            conventional_.render(before->depicts, before->gbuffer);
-            it = sources_.emplace(shown.sourceFrame, std::move(before)).first;
-        }
-        renderer::UpconversionInput input;
-        input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
-        input.camera = shown.camera;
-        input.previous = it->second.get();
-        std::string name = "hold120";
-        const auto kind = shown.schedule.kind;
-        if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {
-            const auto& mode = game::modeSpec(shown.mode);
-            name = mode.method;
-            if (!mode.standInFor.empty() && !saidStandIn_[shown.mode]) {
-                out_ << "replay: " << shown.mode << " frames are drawn with '" << name << "' until the "
-                     << mode.standInFor << " renderer exists\n";
-                saidStandIn_[shown.mode] = true;
-            }
-        }
-        if (kind == game::FrameKind::Interpolated) {
-            const auto next = sources_.find(shown.nextSourceFrame);
-            input.next = next == sources_.end() ? it->second.get() : next->second.get();
-        }
-        method(name).produce(input, display);
-    }
-
-private:
-    renderer::UpconversionMethod& method(const std::string& name) {
-        auto& m = methods_[name];
-        if (!m) m = renderer::makeMethod(name, paths_);
-        return *m;
-    }
-
-    renderer::DataPaths paths_;
-    renderer::ConventionalRenderer conventional_;
-    int width_, height_;
-    std::ostream& out_;
-    std::map<std::int64_t, std::unique_ptr<renderer::SourceFrame>> sources_;  // by session frame
-    std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
-    std::map<std::string, bool> saidStandIn_;
-};
 
 // The cross-check of the analytic scoring against the id buffer, on frames whose image is an
 // exact render of what they depict (rendered or held; warped and interpolated images only

@@ -14,7 +14,6 @@
 #endif
 
 namespace warplab::app {
-namespace {
 
 protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in) {
     protocol::InputRecord r;
@@ -47,7 +46,6 @@ std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_
     throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED or replay:SESSION)");
 }
 
-// Modes of this study drawn by a stand-in renderer, said once per session.
 void sayStandIns(const game::Study& study, std::ostream& out) {
     std::vector<std::string> said;
     for (const auto& id : study.modes()) {
@@ -59,7 +57,20 @@ void sayStandIns(const game::Study& study, std::ostream& out) {
     }
 }
 
-}  // namespace
+protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
+                                      const std::string& player, const game::DisplaySize& display) {
+    protocol::SessionHeader header;
+    header.protocolJson = study.protocolJson();
+    header.seed = seed;
+    header.participant = participant;
+    header.appVersion = WARPLAB_VERSION;
+    header.glRenderer = "none (headless simulation, nothing rendered)";
+    header.refreshHz = study.refreshHz();
+    header.displayWidth = display.width;
+    header.displayHeight = display.height;
+    header.player = player;
+    return header;
+}
 
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
@@ -67,17 +78,8 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto player = makePlayer(run.player, run.seed, *study, display);
     sayStandIns(*study, progress);
 
-    protocol::SessionHeader header;
-    header.protocolJson = study->protocolJson();
-    header.seed = run.seed;
-    header.participant = run.participant;
-    header.appVersion = WARPLAB_VERSION;
-    header.glRenderer = "none (headless simulation, nothing rendered)";
-    header.refreshHz = study->refreshHz();
-    header.displayWidth = run.displayWidth;
-    header.displayHeight = run.displayHeight;
-    header.player = run.player;
-    auto writer = protocol::SessionWriter::create(run.resultsDir, header);
+    auto writer =
+        protocol::SessionWriter::create(run.resultsDir, sessionHeader(*study, run.participant, run.seed, run.player, display));
 
     const auto game = study->newGame(run.seed, display);
     game::FrameInput input = player->first();

@@ -3,8 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <ostream>
 #include <string>
+
+#include "game/game.h"
+#include "protocol/session_store.h"
 
 namespace warplab::app {
 
@@ -17,6 +21,15 @@ struct HeadlessRun {
     int displayWidth = 1920;   // the display the session stands for (fits the target plane)
     int displayHeight = 1080;
 };
+
+// What headless and live runs share.
+std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
+                                         const game::Study& study, const game::DisplaySize& display);
+// Says once per session which of its modes are drawn by a stand-in renderer.
+void sayStandIns(const game::Study& study, std::ostream& out);
+protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
+                                      const std::string& player, const game::DisplaySize& display);
+protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);
 
 // Plays the whole protocol; returns the session file's path.
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress);

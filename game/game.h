@@ -79,6 +79,7 @@ struct ShownFrame {
     std::string banner;                 // "HIT", "MISS", "TIMEOUT" ... ; "" = none
     bool bannerGood = false;            // green when true, red when false
     std::string phaseText;              // for the participant and supervisor
+    std::string feedback;               // "hit", "miss" or "timeout" on the frame a shot or click is judged: a sound
     bool promptsEnter = false;          // waiting for the supervisor's Enter
     std::optional<RatingPrompt> rating;
 };
@@ -157,6 +158,9 @@ public:
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
     // Modes this protocol uses (each session says which of them are drawn by a stand-in).
     virtual std::vector<std::string> modes() const = 0;
+    // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
+    // (the click game's cursor). Live sessions scale a participant's counts to it.
+    virtual double mouseRadiansPerCount() const { return 0.0; }
 };
 
 }  // namespace warplab::game

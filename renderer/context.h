@@ -24,6 +24,17 @@ struct ContextOptions {
     std::string title = "warplab";
     bool vsync = true;
     bool visible = true;
+    bool fullscreen = false;  // borderless at the display's own mode (no mode switch)
+    int display = 0;          // which display the window opens on (SDL's index)
+};
+
+// What the participant did since the last poll of a window (keys as characters: '\r' Enter,
+// 27 Esc, '0'..'9', lower-case letters; others are dropped).
+struct WindowInput {
+    bool closed = false;
+    double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
+    bool leftHeld = false;                // the left button is down now
+    std::string keysPressed;              // in the order they were pressed
 };
 
 struct GlInfo {
@@ -56,6 +67,17 @@ public:
     virtual void swapBuffers() {}
     // Window only: handles pending window events; false once the user closed the window.
     virtual bool pumpEvents() { return true; }
+    // Window only: input since the last poll (pumpEvents and pollInput both drain the queue).
+    virtual WindowInput pollInput() { return {}; }
+    // Window only: queues input as if the participant had given it; the next poll reads it
+    // (scripted sessions in tests: mouse motion, a left press, keys as in WindowInput).
+    virtual void injectInput(const WindowInput&) {}
+    // Window only: relative mouse mode (hidden, unbounded, raw deltas) for studies.
+    virtual void setRelativeMouse(bool) {}
+    // The refresh rate of the display the window is on, Hz; 0 when unknown (Xvfb, headless).
+    virtual double refreshHz() const { return 0.0; }
+    // Whether swaps wait for vsync (the driver may refuse the swap interval).
+    virtual bool vsyncOn() const { return false; }
     // Drawable size of the window's default framebuffer (0 x 0 when headless).
     virtual int drawableWidth() const { return 0; }
     virtual int drawableHeight() const { return 0; }

@@ -130,7 +130,9 @@ protocol::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json det
 void ClickGame::beginMatch() {
     const Match& m = matches_[matchIndex_];
     phase_ = Phase::Match;
-    matchStart_ = frame_;
+    // Matches begin on a screen's frame (Enter, the last rating): the match's own frames, and
+    // its schedule's renders, start with the next one.
+    matchStart_ = frame_ + 1;
     world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
     schedule_.emplace(modeSpec(m.mode), protocol_.refreshHz);
     worldHistory_.clear();
@@ -326,6 +328,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
         // section 8), and can be clicked away only once: under lag its image lingers after it
         // is gone, and a click on the ghost is a miss.
         if (judged.sphere && !world_->remove(judged.sphere->id)) scored = "miss";
+        shown.feedback = scored == "green" ? "hit" : "miss";
         greenHits_ += scored == "green";
         redHits_ += scored == "red";
         misses_ += scored == "miss";

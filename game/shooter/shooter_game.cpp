@@ -424,6 +424,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             frozenFrame_ = shown;
             finishTrial(Outcome::Timeout, Outcome::Timeout, now(), error);
         }
+        if (!trial_) shown.feedback = banner_ == "HIT" ? "hit" : (banner_ == "TIMEOUT" ? "timeout" : "miss");
     }
     return shown;
 }

@@ -121,10 +121,35 @@ TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersModesBySeed) {
     for (const auto& e : played.events) {
         if (e.type == "match_start") start[e.trial] = e.frame;
         if (e.type == "match") {
-            EXPECT_EQ(e.frame - start.at(e.trial) + 1, std::llround(p.matchS * p.refreshHz));
+            // match_start is logged on the screen frame that begins it; play starts on the next.
+            EXPECT_EQ(e.frame - start.at(e.trial), std::llround(p.matchS * p.refreshHz));
         }
     }
     EXPECT_EQ(start.size(), a.matches().size());
+}
+
+// A match's first frame is its schedule's frame 0, rendered: the frames after it (held, or
+// interpolated towards it) are made from it. (Starting the schedule on the screen frame that
+// begins the match left them no source.)
+TEST(ClickGame, EveryMatchOpensWithARender) {
+    const auto p = quick();
+    ClickGame game(p, 3, kDisplay);
+    ClickBot bot(7, p, kDisplay);
+    FrameInput input = bot.first();
+    bool previousBlank = true;
+    int openings = 0;
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        if (previousBlank && !shown.blank) {
+            ++openings;
+            EXPECT_EQ(shown.schedule.index, 0) << shown.mode;
+            EXPECT_TRUE(shown.rendersNow) << shown.mode;
+            EXPECT_EQ(shown.sourceFrame, shown.frame - (shown.schedule.index - shown.schedule.sourceIndex)) << shown.mode;
+        }
+        previousBlank = shown.blank;
+        input = bot.next(shown);
+    }
+    EXPECT_EQ(openings, static_cast<int>(game.matches().size()));
 }
 
 // The cursor is drawn into the frame, so a mouse step shows with the mode's view latency --

@@ -1,0 +1,47 @@
+// Private to app/: making the frames a session displayed, shared by `replay --render` and live
+// sessions in a window, so both show exactly what the mode makes.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "game/game.h"
+#include "renderer/conventional.h"
+#include "renderer/hud.h"
+#include "renderer/upconvert.h"
+
+namespace warplab::app {
+
+// The HUD of a shown frame: reticle or cursor, banner, phase text, rating screen. Display
+// pixels are scaled to the frame's by toFrameX/Y.
+renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY);
+
+// Makes each displayed frame the way its mode makes it, from the conventional renders it
+// keeps: a held or rendered frame is its source copied (hold120); warped and interpolated
+// frames use the mode's method (or its stand-in, said once).
+class FrameMaker {
+public:
+    FrameMaker(const renderer::DataPaths& paths, int width, int height, std::ostream& out)
+        : paths_(paths), conventional_(paths), width_(width), height_(height), out_(out) {}
+
+    // Call for every frame the game steps, shown or not: held, lagged and warped frames need
+    // the sources rendered before them.
+    void keepSource(const game::ShownFrame& shown);
+    // Draws the frame `shown` into `display` (no HUD).
+    void make(const game::ShownFrame& shown, renderer::DisplayFrame& display);
+
+private:
+    renderer::UpconversionMethod& method(const std::string& name);
+
+    renderer::DataPaths paths_;
+    renderer::ConventionalRenderer conventional_;
+    int width_, height_;
+    std::ostream& out_;
+    std::map<std::int64_t, std::unique_ptr<renderer::SourceFrame>> sources_;  // by session frame
+    std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
+    std::map<std::string, bool> saidStandIn_;
+};
+
+}  // namespace warplab::app

@@ -1,0 +1,51 @@
+// Private to app/: a study session in a real window (seed 004 section 5.2 and Appendix B;
+// seed 000 section 8): the participant's mouse in relative mode, one frame per vsync (or per
+// timer tick where vsync or the refresh rate cannot be had), the frames made as the mode makes
+// them with the HUD over them, feedback sounds, and the supervisor's start, pause, abort and
+// end screens. The session is written as it runs, like a headless one, and replays the same.
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "renderer/context.h"
+#include "renderer/conventional.h"
+
+namespace warplab::app {
+
+struct LiveRun {
+    std::string protocolPath;
+    std::string participant;
+    std::string resultsDir;
+    std::string player = "human";  // "human", "bot[:SEED]" or "replay:SESSION"
+    std::uint64_t seed = 1;
+    bool fullscreen = false;
+    int display = 0;
+    int width = 1280, height = 720;  // windowed size; fullscreen takes the display's
+    // The participant's mouse: a full turn (shooter) takes cmPer360 cm of mouse travel at
+    // mouseDpi counts per inch; 0 keeps the protocol's own sensitivity. Logged in the header.
+    double cmPer360 = 0.0;
+    double mouseDpi = 800.0;
+    bool invertY = false;
+    // A known display refresh that differs from the protocol's refuses the session unless
+    // this is set (then it warns).
+    bool allowRefreshMismatch = false;
+    // Tests: a script of input the window receives as if from the participant, one action a
+    // line: "WHEN ACTION", WHEN a session frame number, "start" (the start screen) or "end"
+    // (the end screen); ACTION "key enter|esc|q|0-9|a-z", "move DX DY" (mouse counts) or
+    // "click" (a left press). Lines starting with # are comments.
+    std::string inputScript;
+    // Test and documentation aid: write the window's frame as PNG at these session frames.
+    std::string screenshotDir;
+    std::vector<std::int64_t> screenshotFrames;
+    bool screenshotStartScreen = false;
+};
+
+// Runs the session; returns the session file's path ("" if the supervisor left at the start
+// screen). Throws for bad input (protocol, results folder, refresh mismatch) before anything
+// is written.
+std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
+
+}  // namespace warplab::app

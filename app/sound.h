@@ -1,0 +1,33 @@
+// Private to app/: the feedback sounds of a live session (seed 004 section 5.3.4: a sound with
+// every HIT, MISS and TIMEOUT), generated rather than shipped: short sine tones through SDL
+// audio. Where no audio device opens (a server, Xvfb in CI), sounds are off and say so once.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace warplab::app {
+
+class FeedbackSounds {
+public:
+    FeedbackSounds();
+    ~FeedbackSounds();
+    FeedbackSounds(const FeedbackSounds&) = delete;
+    FeedbackSounds& operator=(const FeedbackSounds&) = delete;
+
+    bool available() const { return device_ != 0; }
+    const std::string& why() const { return why_; }  // why not available
+    // "hit", "miss" or "timeout"; anything else is silent. Never blocks.
+    void play(const std::string& which);
+
+    // The samples of a sound (mono float at kRate), for tests and for play().
+    static constexpr int kRate = 48000;
+    static std::vector<float> samples(const std::string& which);
+
+private:
+    std::uint32_t device_ = 0;
+    std::string why_;
+};
+
+}  // namespace warplab::app

@@ -1,0 +1,190 @@
+// Sessions in a real SDL window (Mesa GLX under Xvfb): a participant's input scripted as window
+// events, the supervisor's pause and abort, and the bot in the window writing the same session
+// as headless. Xvfb reports no refresh rate, so these runs pace frames by timer, as the tool
+// says it will; feedback sounds go to SDL's dummy audio driver.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdlib>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "protocol/records.h"
+#include "protocol/session_store.h"
+#include "renderer/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+    int status = -1;
+    std::string output;
+};
+
+Result run(const std::string& command) {
+    Result result;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (pipe == nullptr) return result;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    return result;
+}
+
+// warplab in a window on a fresh virtual X display.
+Result inWindow(const std::string& arguments) {
+    return run("SDL_AUDIODRIVER=dummy xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(WARPLAB_BINARY) + " " +
+               arguments);
+}
+
+std::string scratch(const std::string& name) {
+    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "live" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+std::string sessionIn(const std::string& dir) {
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".warplab-session") return entry.path().string();
+    return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A shooter session of a few seconds that still has every phase: acclimation, the supervisor's
+// Enter, training and a test target per condition.
+std::string tinyProtocol(const std::string& dir) {
+    std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
+ "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
+ "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":true}})";
+    return dir + "/tiny.json";
+}
+
+// The click game in a few seconds: two modes (one of them interpolating between renders),
+// one short match each, each followed by its four ratings.
+std::string tinyClickProtocol(const std::string& dir) {
+    std::ofstream(dir + "/tiny-click.json") << R"({"format_version":1,"name":"click-tiny","game":"click",
+ "matches":{"match_s":1.0,"modes":["conv30","bireproj15to60"],"rounds":[{"name":"scored","scored":true,"matches_per_mode":1}]}})";
+    return dir + "/tiny-click.json";
+}
+
+std::string replayOf(const std::string& session) {
+    return run(std::string(WARPLAB_BINARY) + " replay " + session).output;
+}
+
+TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
+    const std::string dir = scratch("participant");
+    std::ofstream(dir + "/script.txt") << "# the supervisor starts, the participant turns and shoots\n"
+                                          "start key enter\n5 move 40 0\n12 click\n30 move 0 -20\n"
+                                          "# Esc pauses; Enter resumes; nothing is recorded meanwhile\n"
+                                          "60 key esc\n60 key enter\n"
+                                          "# the supervisor's Enter after acclimation begins the test\n"
+                                          "200 key enter\nend key enter\n";
+    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant H1 --out " + dir +
+                            " --width 192 --height 108 --input-script " + dir + "/script.txt --screenshots " + dir +
+                            " --screenshot-frames 12,20");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "paced by a timer")) << r.output;
+    const std::string session = sessionIn(dir);
+    ASSERT_FALSE(session.empty()) << r.output;
+    const auto data = warplab::protocol::readSession(session);
+    EXPECT_TRUE(data.completed) << data.note;
+    EXPECT_TRUE(contains(data.header.player, "human")) << data.header.player;
+    EXPECT_EQ(data.header.displayWidth, 192);
+    ASSERT_GT(data.inputs.size(), 201u);
+    // The window's input, as the script gave it, on the frames it named.
+    EXPECT_EQ(data.inputs[5].mouseDx, 40.0);
+    EXPECT_EQ(data.inputs[12].buttons, 1u);
+    EXPECT_EQ(data.inputs[30].mouseDy, -20.0);
+    EXPECT_EQ(data.inputs[200].keys, 1u);
+    int shotsAt12 = 0, frozen = 0;
+    for (const auto& e : data.events) shotsAt12 += e.type == "shot" && e.frame == 12;
+    for (const auto& f : data.frames) frozen += f.kind == "frozen";
+    EXPECT_EQ(shotsAt12, 1);
+    EXPECT_GT(frozen, 0);
+    for (const auto& f : data.frames) EXPECT_GT(f.frameMs, 0.0) << "frame " << f.frame << " has no measured time";
+    const std::string replay = replayOf(session);
+    EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
+    EXPECT_FALSE(contains(replay, "differs")) << replay;
+    // The screens: start, the frame of the shot (reticle on the hallway), the HIT/MISS pause, the end.
+    for (const char* name : {"start", "frame_12", "frame_20", "end"})
+        EXPECT_TRUE(fs::exists(dir + "/" + name + ".png")) << name;
+    const auto start = warplab::renderer::readPng(dir + "/start.png");
+    EXPECT_EQ(start.width, 192);
+    const auto shot = warplab::renderer::readPng(dir + "/frame_12.png");
+    const std::uint8_t* centre = shot.at(96, 54);
+    EXPECT_GT(centre[0] + centre[1] + centre[2], 600) << "no reticle at the centre";
+}
+
+TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
+    const std::string dir = scratch("abort");
+    std::ofstream(dir + "/script.txt") << "start key enter\n80 key esc\n80 key q\n";
+    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant A1 --out " + dir +
+                            " --width 160 --height 90 --input-script " + dir + "/script.txt");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 79")) << r.output;
+    const auto data = warplab::protocol::readSession(sessionIn(dir));
+    EXPECT_FALSE(data.completed);
+    EXPECT_EQ(data.inputs.size(), 80u) << "every frame up to the pause is kept";
+    EXPECT_TRUE(contains(replayOf(sessionIn(dir)), "outcomes reproduced"));
+}
+
+// The window changes how frames reach a person, never what the session is.
+TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
+    for (const std::string protocol : {"tiny", "click-tiny"}) {
+        const std::string dir = scratch("bot-" + protocol), headless = scratch("bot-headless-" + protocol);
+        const std::string path = protocol == "tiny" ? tinyProtocol(dir) : tinyClickProtocol(dir);
+        const auto window = inWindow("run --protocol " + path + " --participant B --out " + dir +
+                                     " --width 160 --height 90 --player bot:3 --seed 4 --screenshots " + dir +
+                                     " --screenshot-frames 40,100");
+        ASSERT_EQ(window.status, 0) << window.output;
+        const auto plain = run(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
+                               headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
+        ASSERT_EQ(plain.status, 0) << plain.output;
+        const auto a = warplab::protocol::readSession(sessionIn(dir));
+        const auto b = warplab::protocol::readSession(sessionIn(headless));
+        EXPECT_TRUE(a.completed) << a.note;
+        ASSERT_EQ(a.events.size(), b.events.size()) << protocol;
+        for (std::size_t i = 0; i < a.events.size(); ++i)
+            ASSERT_EQ(warplab::protocol::firstDifference(a.events[i], b.events[i]), "") << protocol << " event " << i;
+        ASSERT_EQ(a.inputs.size(), b.inputs.size());
+        for (std::size_t i = 0; i < a.inputs.size(); ++i)
+            ASSERT_EQ(warplab::protocol::firstDifference(a.inputs[i], b.inputs[i]), "") << protocol << " input " << i;
+    }
+    // Frame 100 of the tiny click session is on the first rating screen: the dark backdrop
+    // (its top-left corner) and the seven boxes across the middle.
+    const auto rating = warplab::renderer::readPng(
+        (fs::path(WARPLAB_BINARY_DIR) / "test-output" / "live" / "bot-click-tiny" / "frame_100.png").string());
+    ASSERT_EQ(rating.width, 160);
+    const std::uint8_t* corner = rating.at(1, 1);
+    EXPECT_LT(std::abs(corner[0] - 31), 4);
+    EXPECT_LT(std::abs(corner[2] - 41), 4);
+    int boxRows = 0;  // pixels of the boxes' light outline on the row through their middle
+    for (int x = 0; x < 160; ++x) boxRows += rating.at(x, 50)[0] > 200;
+    EXPECT_GE(boxRows, 7) << "no rating boxes";
+}
+
+TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
+    const std::string dir = scratch("bad-script");
+    std::ofstream(dir + "/script.txt") << "start key enter\n12 jump\n";
+    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant X --out " + dir +
+                            " --width 160 --height 90 --input-script " + dir + "/script.txt");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "script.txt' line 2: unknown action 'jump'")) << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty());
+}
+
+TEST(LiveSession, AHumanNeedsTheWindow) {
+    const auto r = run(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, "needs the window")) << r.output;
+}
+
+}  // namespace
