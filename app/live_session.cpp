@@ -202,7 +202,8 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
 
     const auto game = study->newGame(run.seed, display);
     const double period = 1.0 / refresh;
-    std::map<std::string, std::pair<long, long>> missedPerMode;  // mode -> missed, frames
+    std::map<std::string, std::pair<long, long>> missedPerMode;  // mode -> missed vsyncs, frames
+    std::map<std::string, long> lateFramesPerMode;               // mode -> frames that missed one
     game::ShownFrame shown;
     game::FrameInput input = player ? player->first() : game::FrameInput{};
     auto lastPresent = Clock::now();
@@ -258,9 +259,11 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         record.frameMs = frameS * 1000.0;
         // A frame that took n refresh periods to reach the screen missed n - 1 vsyncs.
         record.missedVsyncs = shown.frame == 0 ? 0 : std::max(0, static_cast<int>(std::lround(frameS / period)) - 1);
-        auto& tally = missedPerMode[shown.mode.empty() ? "(screens)" : shown.mode];
+        const std::string mode = shown.mode.empty() ? "(screens)" : shown.mode;
+        auto& tally = missedPerMode[mode];
         tally.first += record.missedVsyncs;
         ++tally.second;
+        lateFramesPerMode[mode] += record.missedVsyncs > 0;
         writer.addFrame(record);
         if (game->atCommitPoint()) writer.commit();
 
@@ -269,10 +272,24 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         if (player) input = player->next(shown);
     }
     window->setRelativeMouse(false);
+    // More than 1 % of frames late is more than a study can call "at the protocol's rate":
+    // the store says so, and export can leave such sessions out.
+    long missed = 0, frames = 0, lateFrames = 0;
+    for (const auto& [mode, tally] : missedPerMode) {
+        missed += tally.first;
+        frames += tally.second;
+        lateFrames += lateFramesPerMode[mode];
+    }
+    if (frames > 0 && lateFrames * 100 > frames) {
+        std::ostringstream text;
+        text << lateFrames << " of " << frames << " frames missed their vsync (" << missed << " vsyncs in all)";
+        writer.flag("missed_frames", text.str());
+        progress << "warning: " << text.str() << "; the session is flagged\n";
+    }
     if (game->finished()) writer.finish();
     else writer.commit();
 
-    progress << "missed vsyncs per mode:";
+    progress << "missed vsyncs per mode (missed / frames):";
     for (const auto& [mode, tally] : missedPerMode)
         progress << " " << mode << " " << tally.first << "/" << tally.second;
     progress << "\n";

@@ -424,6 +424,7 @@ struct SessionWriter::Impl {
     std::string path;
     Db db;
     Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
+    std::map<std::string, std::string> flags;  // set since the last commit
     bool inTransaction = false;
     bool finished = false;
 
@@ -477,7 +478,7 @@ struct SessionWriter::Impl {
         const bool pending = now.inputRows != committed.inputRows ||
                              now.frameRows != committed.frameRows ||
                              now.eventRows != committed.eventRows;
-        if (!pending && !finishing) return;
+        if (!pending && !finishing && flags.empty()) return;
         try {
             ensureTransaction();
             if (pending) {
@@ -495,8 +496,10 @@ struct SessionWriter::Impl {
                 bindArg(s, 7, utcNow());
                 run(s, "recording the commit");
             }
+            for (const auto& [name, text] : flags) putMeta("flag:" + name, text);
             if (finishing) putMeta("completed_at", utcNow());
             exec("COMMIT", "committing");
+            flags.clear();
             inTransaction = false;
             now.checksum = CommitChecksum{};
             committed = now;
@@ -715,6 +718,12 @@ void SessionWriter::commit() {
     w.commit(false);
 }
 
+void SessionWriter::flag(const std::string& name, const std::string& text) {
+    Impl& w = impl("flag");
+    w.checkOpen("flag");
+    w.flags[name] = text;
+}
+
 void SessionWriter::finish() {
     Impl& w = impl("finish");
     w.checkOpen("finish");
@@ -741,6 +750,7 @@ public:
         // snapshot across all tables, never a commits table older than the rows.
         exec("BEGIN");
         data.header = readHeader(data.completed);
+        data.flags = flags_;
         version_ = data.header.formatVersion;
         if (version_ == 1)
             readTables(data, Layout<InputRecord, V1FrameRow, V1EventRow>{
@@ -770,6 +780,7 @@ private:
     Db db_;
     int version_ = kSessionFormatVersion;  // the file's
     std::optional<Stop> firstStop_;
+    std::map<std::string, std::string> flags_;  // meta "flag:<name>" entries
 
     [[noreturn]] void fail(const std::string& sentence) const {
         throw SessionError("Session file " + path_ + " " + sentence);
@@ -881,6 +892,8 @@ private:
         h.startedAt = get("started_at");
         h.player = get("player");
         completed = meta.count("completed_at") > 0;
+        for (const auto& [key, value] : meta)
+            if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;
         return h;
     }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -102,6 +103,10 @@ public:
     // power cut afterwards keeps it. Call it at the end of every trial and phase change.
     // Write failures (disk full ...) throw SessionError; the failed commit's rows are lost.
     void commit();
+    // Marks the session for its analysts (meta key "flag:<name>", written with the next
+    // commit; a later flag of the same name replaces it), e.g. "missed_frames". Not part of
+    // the header checksum: a flag describes how the session went, not what it ran.
+    void flag(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
     // the file, leaving one self-contained file. Adding or committing afterwards is a
     // std::logic_error.
@@ -120,6 +125,7 @@ struct SessionData {
     std::vector<FrameRecord> frames;
     std::vector<EventRecord> events;   // in the order they were added
     bool completed = false;            // finish() was committed and nothing was lost to damage
+    std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
     std::string note;                  // "" when complete; else why not and where it ends
 };
 

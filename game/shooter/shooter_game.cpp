@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -380,7 +381,15 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         }
     }
     switch (phase_) {
-        case Phase::Acclimation: shown.phaseText = "Acclimation"; break;
+        case Phase::Acclimation: {
+            // Appendix B: the supervisor and the participant see how much practice is left.
+            const double left = protocol_.acclimationS - static_cast<double>(frame_ - phaseStartFrame_) / refresh;
+            const long seconds = std::max(0L, static_cast<long>(std::ceil(left)));
+            char text[48];
+            std::snprintf(text, sizeof text, "Acclimation: %ld:%02ld left", seconds / 60, seconds % 60);
+            shown.phaseText = text;
+            break;
+        }
         case Phase::Training: shown.phaseText = "Training: level " + std::to_string(level_); break;
         case Phase::AwaitingSupervisor:
             shown.phaseText = "Press Enter to begin";

@@ -512,6 +512,26 @@ TEST(SessionStore, DiscardsTheUncommittedTail) {
     EXPECT_EQ(data.note, "incomplete: ends after frame 95 (last commit, 1 in all)");
 }
 
+// A flag (e.g. too many missed vsyncs) is stored with the next commit, outside the header's
+// checksum, and the latest of a name wins; an uncommitted one is lost like any other row.
+TEST(SessionStore, FlagsTravelWithTheNextCommit) {
+    TempDir dir;
+    std::string path;
+    {
+        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+        path = w.path();
+        writeTrial(w, 0);
+        w.flag("missed_frames", "first");
+        w.flag("missed_frames", "12 of 600 frames missed their vsync");
+        w.commit();
+        w.flag("other", "never committed");
+    }
+    const SessionData data = readSession(path);
+    EXPECT_EQ(data.flags.size(), 1u);
+    EXPECT_EQ(data.flags.at("missed_frames"), "12 of 600 frames missed their vsync");
+    EXPECT_EQ(expectWholeTrials(data), 1);
+}
+
 TEST(SessionStore, ReadsARunningSessionUpToItsLastCommit) {
     TempDir dir;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
