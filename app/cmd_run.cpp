@@ -10,15 +10,21 @@ namespace warplab::app {
 
 namespace {
 
-int runWindowed(const ParsedArgs& args) {
-    LiveRun run;
+// What every run names, windowed or headless.
+template <typename Run>
+void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run) {
     run.protocolPath = args.string("protocol");
     if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
     if (!args.has("participant")) throw UsageError("option --participant is required");
     run.participant = args.string("participant");
     run.resultsDir = args.string("out", "results");
-    run.player = args.string("player", "human");
+    run.player = args.string("player", defaultPlayer);
     run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+}
+
+int runWindowed(const ParsedArgs& args) {
+    LiveRun run;
+    readSessionOptions(args, "human", run);
     run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
     run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
     run.fullscreen = args.flag("fullscreen");
@@ -55,13 +61,7 @@ int runRun(const ParsedArgs& args) {
     if (args.string("player", "bot") == "human")
         throw UsageError("a human player needs the window; leave out --headless");
     HeadlessRun run;
-    run.protocolPath = args.string("protocol");
-    if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
-    if (!args.has("participant")) throw UsageError("option --participant is required");
-    run.participant = args.string("participant");
-    run.resultsDir = args.string("out", "results");
-    run.player = args.string("player", "bot");
-    run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    readSessionOptions(args, "bot", run);
     run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
     run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
     const std::string path = runHeadless(run, std::cerr);

@@ -1,7 +1,5 @@
 // The `warplab` binary as a user meets it: bad command lines and bad data end in one clear
 // sentence naming the culprit and a non-zero exit, never a crash; good ones write files.
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli/cli_support.h"
 #include "protocol/session_store.h"
 #include "renderer/image.h"
 
@@ -16,34 +15,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int status = -1;  // exit status, or 128 + signal
-    std::string output;  // stdout and stderr together
-    int lines() const {
-        int n = 0;
-        for (char c : output) n += c == '\n';
-        return n;
-    }
-};
+using warplab::testing::contains;
+using warplab::testing::Result;
+using warplab::testing::sessionIn;
+using warplab::testing::warplab;
 
-Result warplab(const std::string& arguments) {
-    const std::string command = std::string(WARPLAB_BINARY) + " " + arguments + " 2>&1";
-    Result result;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) return result;
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    return result;
-}
-
-std::string scratch(const std::string& name) {
-    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "cli" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
+std::string scratch(const std::string& name) { return warplab::testing::scratch("cli", name); }
 
 // A data folder with the real shaders and assets, to be broken one piece at a time.
 std::string copyOfData(const std::string& name) {
@@ -53,7 +30,6 @@ std::string copyOfData(const std::string& name) {
     return dir;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(Cli, UnknownCommand) {
     const auto r = warplab("frobnicate");
@@ -221,12 +197,6 @@ TEST(CliBench, UnknownSequenceOrMethodIsNamed) {
 namespace {
 
 // The only session file a run left in `dir`.
-std::string sessionIn(const std::string& dir) {
-    std::string found;
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().extension() == ".warplab-session") found = entry.path().string();
-    return found;
-}
 
 // replay --render's tally: "pointer cross-check on N rendered or held frames (E of them
 // logged clicks or shots, ...): the id read back disagrees on D".

@@ -2,8 +2,6 @@
 // events, the supervisor's pause and abort, and the bot in the window writing the same session
 // as headless. Xvfb reports no refresh rate, so these runs pace frames by timer, as the tool
 // says it will; feedback sounds go to SDL's dummy audio driver.
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdlib>
 #include <cstdio>
@@ -12,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "cli/cli_support.h"
 #include "protocol/records.h"
 #include "protocol/session_store.h"
 #include "renderer/image.h"
@@ -20,42 +19,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-    int status = -1;
-    std::string output;
-};
-
-Result run(const std::string& command) {
-    Result result;
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (pipe == nullptr) return result;
-    std::array<char, 4096> buffer{};
-    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-    const int raw = pclose(pipe);
-    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-    return result;
-}
+using warplab::testing::contains;
+using warplab::testing::Result;
+using warplab::testing::runCommand;
+using warplab::testing::sessionIn;
 
 // warplab in a window on a fresh virtual X display.
 Result inWindow(const std::string& arguments) {
-    return run("SDL_AUDIODRIVER=dummy xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(WARPLAB_BINARY) + " " +
-               arguments);
+    return runCommand("SDL_AUDIODRIVER=dummy xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(WARPLAB_BINARY) +
+                      " " + arguments);
 }
 
-std::string scratch(const std::string& name) {
-    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "live" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
-
-std::string sessionIn(const std::string& dir) {
-    for (const auto& entry : fs::directory_iterator(dir))
-        if (entry.path().extension() == ".warplab-session") return entry.path().string();
-    return "";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
 
 // A shooter session of a few seconds that still has every phase: acclimation, the supervisor's
 // Enter, training and a test target per condition.
@@ -76,7 +51,7 @@ std::string tinyClickProtocol(const std::string& dir) {
 }
 
 std::string replayOf(const std::string& session) {
-    return run(std::string(WARPLAB_BINARY) + " replay " + session).output;
+    return runCommand(std::string(WARPLAB_BINARY) + " replay " + session).output;
 }
 
 TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
@@ -145,7 +120,7 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
                                      " --width 160 --height 90 --player bot:3 --seed 4 --screenshots " + dir +
                                      " --screenshot-frames 40,100");
         ASSERT_EQ(window.status, 0) << window.output;
-        const auto plain = run(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
+        const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
                                headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
         ASSERT_EQ(plain.status, 0) << plain.output;
         const auto a = warplab::protocol::readSession(sessionIn(dir));
@@ -182,7 +157,7 @@ TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {
-    const auto r = run(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
+    const auto r = runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_TRUE(contains(r.output, "needs the window")) << r.output;
 }

@@ -1,0 +1,55 @@
+// What the CLI tests share: running a command and reading what it printed, a scratch folder
+// per test, finding the session a run wrote.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace warplab::testing {
+
+struct Result {
+    int status = -1;     // exit status, or 128 + signal
+    std::string output;  // stdout and stderr together
+    int lines() const {
+        int n = 0;
+        for (char c : output) n += c == '\n';
+        return n;
+    }
+};
+
+inline Result runCommand(const std::string& command) {
+    Result result;
+    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+    if (pipe == nullptr) return result;
+    std::array<char, 4096> buffer{};
+    while (std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
+    const int raw = pclose(pipe);
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    return result;
+}
+
+inline Result warplab(const std::string& arguments) { return runCommand(std::string(WARPLAB_BINARY) + " " + arguments); }
+
+// An empty folder build/test-output/<group>/<name>.
+inline std::string scratch(const std::string& group, const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::path(WARPLAB_BINARY_DIR) / "test-output" / group / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir.string();
+}
+
+// The session file a run wrote into `dir` ("" for none).
+inline std::string sessionIn(const std::string& dir) {
+    std::string found;
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
+        if (entry.path().extension() == ".warplab-session") found = entry.path().string();
+    return found;
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace warplab::testing
