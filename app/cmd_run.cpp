@@ -12,10 +12,10 @@ namespace {
 
 // What every run names, windowed or headless.
 template <typename Run>
-void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run) {
+void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run, bool recorded = true) {
     run.protocolPath = args.string("protocol");
     if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
-    if (!args.has("participant")) throw UsageError("option --participant is required");
+    if (recorded && !args.has("participant")) throw UsageError("option --participant is required");
     run.participant = args.string("participant");
     run.resultsDir = args.string("out", "results");
     run.player = args.string("player", defaultPlayer);
@@ -24,7 +24,7 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
 
 int runWindowed(const ParsedArgs& args) {
     LiveRun run;
-    readSessionOptions(args, "human", run);
+    readSessionOptions(args, "human", run, !args.flag("free-play"));
     run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
     run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
     run.fullscreen = args.flag("fullscreen");
@@ -48,6 +48,12 @@ int runWindowed(const ParsedArgs& args) {
             throw UsageError("option --screenshot-frames needs frame numbers separated by commas, got '" + frames + "'");
         }
         at = comma + 1;
+    }
+    if (args.flag("free-play")) {
+        run.freePlayMode = args.string("mode", "");
+        run.freePlayLevel = static_cast<int>(args.integer("level", 0, 0, 120));
+        runFreePlay(run, dataPathsFrom(args), std::cerr);
+        return 0;
     }
     const std::string path = runLive(run, dataPathsFrom(args), std::cerr);
     if (!path.empty()) std::cout << path << "\n";

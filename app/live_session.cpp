@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 #include "app/frame_maker.h"
 #include "app/session_runner.h"
@@ -129,43 +130,97 @@ void screenshot(const LiveRun& run, const renderer::DisplayFrame& frame, const s
     renderer::writePng(run.screenshotDir + "/" + name + ".png", renderer::readBack(frame).colour);
 }
 
-}  // namespace
+// One present per vsync, or per timer tick where vsync cannot keep the protocol's rate.
+class DisplayClock {
+public:
+    DisplayClock(renderer::GlContext& window, double refreshHz, bool byVsync)
+        : window_(window), period_(1.0 / refreshHz), byVsync_(byVsync), last_(Clock::now()), deadline_(last_) {}
 
-std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
-    const auto study = game::loadStudy(run.protocolPath);
+    struct Presented {
+        double frameS;     // since the previous present
+        int missedVsyncs;  // a frame that took n periods to reach the screen missed n - 1
+    };
+    Presented present() {
+        if (!byVsync_) {
+            deadline_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
+            std::this_thread::sleep_until(deadline_);
+        }
+        window_.swapBuffers();
+        const auto now = Clock::now();
+        const double frameS = std::chrono::duration<double>(now - last_).count();
+        last_ = now;
+        if (!byVsync_ && now > deadline_ + std::chrono::milliseconds(100)) deadline_ = now;  // fell far behind
+        const bool first = std::exchange(first_, false);
+        return {frameS, first ? 0 : std::max(0, static_cast<int>(std::lround(frameS / period_)) - 1)};
+    }
+    // After a pause: the next frame is not late.
+    void restart() {
+        deadline_ = last_ = Clock::now();
+        first_ = true;
+    }
+
+private:
+    renderer::GlContext& window_;
+    double period_;
+    bool byVsync_;
+    Clock::time_point last_, deadline_;
+    bool first_ = true;
+};
+
+struct Window {
+    std::unique_ptr<renderer::GlContext> context;
+    game::DisplaySize display;
+    bool byVsync = false;
+    double measuredHz = 0.0;
+};
+
+// Opens the window and decides the display clock: vsync at the protocol's refresh, else a
+// timer at it; a known refresh that differs refuses unless allowed.
+Window openWindow(const LiveRun& run, const game::Study& study, std::ostream& progress) {
     renderer::ContextOptions options;
     options.backend = renderer::GlBackend::Window;
     options.width = run.width;
     options.height = run.height;
     options.fullscreen = run.fullscreen;
     options.display = run.display;
-    options.title = "warplab: " + study->name();
-    const auto window = renderer::createContext(options);
-    const int width = window->drawableWidth(), height = window->drawableHeight();
-    const game::DisplaySize display{width, height};
-
-    // The display clock: vsync at the protocol's refresh, else a timer at it.
-    const double refresh = study->refreshHz(), measured = window->refreshHz();
-    const bool byVsync = window->vsyncOn() && measured > 0.0 && std::abs(measured - refresh) < 0.5;
-    if (measured > 0.0 && std::abs(measured - refresh) >= 0.5) {
+    options.title = "warplab: " + study.name();
+    Window w;
+    w.context = renderer::createContext(options);
+    w.display = {w.context->drawableWidth(), w.context->drawableHeight()};
+    const double refresh = study.refreshHz();
+    w.measuredHz = w.context->refreshHz();
+    w.byVsync = w.context->vsyncOn() && w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) < 0.5;
+    if (w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) >= 0.5) {
         std::ostringstream why;
-        why << "the display runs at " << measured << " Hz but protocol '" << run.protocolPath << "' needs " << refresh
-            << " Hz";
+        why << "the display runs at " << w.measuredHz << " Hz but protocol '" << run.protocolPath << "' needs "
+            << refresh << " Hz";
         if (!run.allowRefreshMismatch)
             throw std::runtime_error(why.str() + "; set the display to " + std::to_string(std::lround(refresh)) +
                                      " Hz (or pass --allow-refresh-mismatch for a pilot)");
         progress << "warning: " << why.str() << "; frames are paced by a timer, not by vsync\n";
-    } else if (!byVsync) {
-        progress << "note: " << (measured > 0.0 ? "vsync could not be set" : "the display reports no refresh rate")
+    } else if (!w.byVsync) {
+        progress << "note: " << (w.measuredHz > 0.0 ? "vsync could not be set" : "the display reports no refresh rate")
                  << "; frames are paced by a timer at " << refresh << " Hz\n";
     }
+    return w;
+}
 
-    // A participant's sensitivity as the protocol's counts: cm per full turn at the mouse's DPI.
-    double countScale = 1.0;
-    if (run.cmPer360 > 0.0 && study->mouseRadiansPerCount() > 0.0) {
-        const double countsPerTurn = run.cmPer360 / 2.54 * run.mouseDpi;
-        countScale = (2.0 * kPi / countsPerTurn) / study->mouseRadiansPerCount();
-    }
+// A participant's sensitivity as the protocol's counts: cm per full turn at the mouse's DPI.
+double countScaleFor(const LiveRun& run, const game::Study& study) {
+    if (!(run.cmPer360 > 0.0) || !(study.mouseRadiansPerCount() > 0.0)) return 1.0;
+    const double countsPerTurn = run.cmPer360 / 2.54 * run.mouseDpi;
+    return (2.0 * kPi / countsPerTurn) / study.mouseRadiansPerCount();
+}
+
+}  // namespace
+
+std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
+    const auto study = game::loadStudy(run.protocolPath);
+    Window opened = openWindow(run, *study, progress);
+    renderer::GlContext* const window = opened.context.get();
+    const game::DisplaySize display = opened.display;
+    const int width = display.width, height = display.height;
+    const double countScale = countScaleFor(run, *study);
     std::ostringstream playerText;
     playerText << run.player;
     if (run.player == "human")
@@ -195,19 +250,17 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     auto header = sessionHeader(*study, run.participant, run.seed, playerText.str(), display);
     header.glRenderer = window->info().renderer;
     header.glVersion = window->info().version;
-    header.refreshHz = byVsync ? measured : refresh;
+    header.refreshHz = opened.byVsync ? opened.measuredHz : study->refreshHz();
     auto writer = protocol::SessionWriter::create(run.resultsDir, header);
     progress << "session " << writer.path() << "\n";
     if (human) window->setRelativeMouse(true);
 
     const auto game = study->newGame(run.seed, display);
-    const double period = 1.0 / refresh;
     std::map<std::string, std::pair<long, long>> missedPerMode;  // mode -> missed vsyncs, frames
     std::map<std::string, long> lateFramesPerMode;               // mode -> frames that missed one
     game::ShownFrame shown;
     game::FrameInput input = player ? player->first() : game::FrameInput{};
-    auto lastPresent = Clock::now();
-    auto deadline = lastPresent;
+    DisplayClock clock(*window, study->refreshHz(), opened.byVsync);
     bool aborted = false;
     std::int64_t nextFrame = 0, injectedFor = -1;
     while (!game->finished() && (!player || player->hasMore())) {
@@ -231,7 +284,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
                 break;
             }
             if (human) window->setRelativeMouse(true);
-            deadline = lastPresent = Clock::now();
+            clock.restart();
             continue;
         }
 
@@ -244,21 +297,12 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         if (!shown.blank) maker.make(shown, frame);
         hud.draw(hudFor(shown, 1.0, 1.0), frame.buffer());
         renderer::blitToDefaultFramebuffer(frame.buffer(), width, height);
-        if (!byVsync) {
-            deadline += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period));
-            std::this_thread::sleep_until(deadline);
-        }
-        window->swapBuffers();
-        const auto presented = Clock::now();
-        const double frameS = std::chrono::duration<double>(presented - lastPresent).count();
-        lastPresent = presented;
-        if (!byVsync && presented > deadline + std::chrono::milliseconds(100)) deadline = presented;  // fell far behind
+        const DisplayClock::Presented presented = clock.present();
         if (!shown.feedback.empty()) sounds.play(shown.feedback);
 
         protocol::FrameRecord record = game->frameRecord(shown);
-        record.frameMs = frameS * 1000.0;
-        // A frame that took n refresh periods to reach the screen missed n - 1 vsyncs.
-        record.missedVsyncs = shown.frame == 0 ? 0 : std::max(0, static_cast<int>(std::lround(frameS / period)) - 1);
+        record.frameMs = presented.frameS * 1000.0;
+        record.missedVsyncs = presented.missedVsyncs;
         const std::string mode = shown.mode.empty() ? "(screens)" : shown.mode;
         auto& tally = missedPerMode[mode];
         tally.first += record.missedVsyncs;
@@ -304,6 +348,93 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     script.inject(*window, "end");
     if (human) waitFor(hud, frame, *window, "Thank you", "The experiment has ended. Press Enter or Esc to close.", "\r\x1b");
     return writer.path();
+}
+
+void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
+    const auto study = game::loadStudy(run.protocolPath);
+    Window opened = openWindow(run, *study, progress);
+    renderer::GlContext& window = *opened.context;
+    const game::DisplaySize display = opened.display;
+    const double countScale = countScaleFor(run, *study);
+    const bool human = run.player == "human";
+    const auto player = human ? nullptr : makePlayer(run.player, run.seed, *study, display);
+
+    std::string mode = run.freePlayMode.empty() ? study->modes().front() : run.freePlayMode;
+    int level = run.freePlayLevel;
+    auto game = study->newFreePlay(run.seed, display, mode, level);
+    FrameMaker maker(paths, display.width, display.height, progress);
+    renderer::HudRenderer hud(paths);
+    renderer::DisplayFrame frame(display.width, display.height);
+    FeedbackSounds sounds;
+    DisplayClock clock(window, study->refreshHz(), opened.byVsync);
+    const InputScript script = run.inputScript.empty() ? InputScript() : InputScript(run.inputScript);
+    const std::vector<std::string> modes = game::modeIds();
+    std::vector<double> recentMs;  // the last second's frame times, for the status line
+    long late = 0;
+    std::string said;              // why the last key was refused, shown for a while
+    std::int64_t saidUntil = -1;
+    if (human) window.setRelativeMouse(true);
+    game::ShownFrame shown;
+    game::FrameInput input = player ? player->first() : game::FrameInput{};
+    for (std::int64_t n = 0;; ++n) {
+        script.inject(window, std::to_string(n));
+        const Polled polled = poll(window, countScale, run.invertY);
+        if (human) input = polled.input;
+        if (polled.closed) break;
+        if (polled.escape) {
+            window.setRelativeMouse(false);
+            if (waitFor(hud, frame, window, "Paused", "Free play. Enter resumes, Q ends.", "\rq",
+                        polled.keys.substr(polled.keys.find('\x1b') + 1)) != '\r')
+                break;
+            if (human) window.setRelativeMouse(true);
+            clock.restart();
+            continue;
+        }
+        // The supervisor's keys: digits pick a mode, U and D the difficulty.
+        std::string nextMode = mode;
+        int nextLevel = level;
+        for (const char c : polled.keys) {
+            if (c >= '1' && c <= '9' && static_cast<std::size_t>(c - '1') < modes.size()) nextMode = modes[c - '1'];
+            if (c == 'u') ++nextLevel;
+            if (c == 'd') nextLevel = std::max(0, nextLevel - 1);
+        }
+        if (nextMode != mode || nextLevel != level) {
+            try {
+                game->switchTo(nextMode, nextLevel);
+                mode = nextMode;
+                level = nextLevel;
+                progress << "free play: " << mode << ", level " << level << "\n";
+            } catch (const std::invalid_argument& e) {
+                said = e.what();
+                saidUntil = n + static_cast<std::int64_t>(2 * study->refreshHz());
+            }
+        }
+        input.keys = 0;  // the keys were the supervisor's, not the game's
+        shown = game->step(input);
+        game->takeEvents();
+        maker.keepSource(shown);
+        if (!shown.blank) maker.make(shown, frame);
+        renderer::HudContent content = hudFor(shown, 1.0, 1.0);
+        std::vector<double> sorted = recentMs;
+        std::sort(sorted.begin(), sorted.end());
+        char stats[160];
+        std::snprintf(stats, sizeof stats, " | %.1f ms median, %.1f max, %ld late | keys 1-9, U, D, Esc",
+                      sorted.empty() ? 0.0 : sorted[sorted.size() / 2], sorted.empty() ? 0.0 : sorted.back(), late);
+        content.status = (n < saidUntil ? said : shown.phaseText) + stats;
+        hud.draw(content, frame.buffer());
+        renderer::blitToDefaultFramebuffer(frame.buffer(), display.width, display.height);
+        const DisplayClock::Presented presented = clock.present();
+        if (!shown.feedback.empty()) sounds.play(shown.feedback);
+        late += presented.missedVsyncs > 0;
+        recentMs.push_back(presented.frameS * 1000.0);
+        if (recentMs.size() > static_cast<std::size_t>(study->refreshHz())) recentMs.erase(recentMs.begin());
+        if (std::find(run.screenshotFrames.begin(), run.screenshotFrames.end(), n) != run.screenshotFrames.end())
+            screenshot(run, frame, "free_" + std::to_string(n));
+        if (player) input = player->next(shown);
+        if (player && !player->hasMore()) break;
+    }
+    window.setRelativeMouse(false);
+    progress << "free play ended: " << late << " late frames\n";
 }
 
 }  // namespace warplab::app

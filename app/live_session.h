@@ -41,11 +41,19 @@ struct LiveRun {
     std::string screenshotDir;
     std::vector<std::int64_t> screenshotFrames;
     bool screenshotStartScreen = false;
+    // Free play (runFreePlay): the mode and difficulty it starts in ("" = the protocol's first).
+    std::string freePlayMode;
+    int freePlayLevel = 0;
 };
 
 // Runs the session; returns the session file's path ("" if the supervisor left at the start
 // screen). Throws for bad input (protocol, results folder, refresh mismatch) before anything
 // is written.
 std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
+
+// Free play for pilots and demonstrations: the protocol's game, endless and unrecorded; keys
+// 1-9 switch to the nine modes live, U and D change the difficulty, the status line shows the
+// mode and the frame times; Esc pauses, Q ends. Returns when it ends.
+void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
 }  // namespace warplab::app

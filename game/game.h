@@ -114,6 +114,15 @@ public:
     virtual std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const = 0;
 };
 
+// Free play, for pilots and demonstrations: the game runs on without end, nothing counts, and
+// the supervisor switches the mode (and, where the game has one, the difficulty) live. The
+// runner records nothing of it.
+class FreePlayGame : public Game {
+public:
+    // Starts over in `mode` at `difficulty` from the next frame (a new target or a new field).
+    virtual void switchTo(const std::string& mode, int difficulty) = 0;
+};
+
 class Player {
 public:
     virtual ~Player() = default;
@@ -155,6 +164,9 @@ public:
     virtual std::string protocolJson() const = 0;  // canonical copy, stored in the session
     virtual double refreshHz() const = 0;
     virtual std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const = 0;
+    // The same game in free play (see FreePlayGame), starting in `mode` at `difficulty`.
+    virtual std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
+                                                      const std::string& mode, int difficulty) const = 0;
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
     // Modes this protocol uses (each session says which of them are drawn by a stand-in).
     virtual std::vector<std::string> modes() const = 0;

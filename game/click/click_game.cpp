@@ -90,6 +90,15 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
     }
 }
 
+void ClickGame::switchTo(const std::string& mode, int) {
+    ModeSchedule(modeSpec(mode), protocol_.refreshHz);  // throws for a mode this display cannot run
+    freePlay_ = true;
+    matches_ = {{0, 0, mode}};
+    matchIndex_ = 0;
+    beginMatch();  // from the next frame, with a fresh field
+    takeEvents();  // free play records nothing
+}
+
 std::string ClickGame::phase() const {
     switch (phase_) {
         case Phase::Ready: return "ready";
@@ -346,7 +355,8 @@ ShownFrame ClickGame::matchFrame(bool click) {
         e.displayedOutcome = displayed.outcome();
         emit(e);
     }
-    if (k + 1 >= std::llround(protocol_.matchS * refresh)) endMatch();
+    if (freePlay_) shown.phaseText = "Free play: " + match.mode;
+    else if (k + 1 >= std::llround(protocol_.matchS * refresh)) endMatch();
     return shown;
 }
 

@@ -31,7 +31,7 @@ struct ClickHit {
 ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const std::vector<physics::Sphere>& spheres,
                           double radius);
 
-class ClickGame final : public Game {
+class ClickGame final : public FreePlayGame {
 public:
     ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed, const DisplaySize& display);
 
@@ -44,6 +44,8 @@ public:
     bool isOutcome(const protocol::EventRecord& event) const override { return event.type == "click"; }
     PointerProbe probePointer(const ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const override;
+    // Free play: one endless match in `mode` (the click game has no difficulty levels).
+    void switchTo(const std::string& mode, int difficulty) override;
 
     struct Match {
         int index = 0;        // over the whole session
@@ -95,6 +97,8 @@ private:
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;
     int statement_ = 0;
+
+    bool freePlay_ = false;
 
     std::vector<protocol::EventRecord> events_;
     bool commitPoint_ = false;

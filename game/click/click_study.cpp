@@ -22,6 +22,12 @@ public:
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickGame>(protocol_, seed, display);
     }
+    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
+                                              int difficulty) const override {
+        auto game = std::make_unique<ClickGame>(protocol_, seed, display);
+        game->switchTo(mode, difficulty);
+        return game;
+    }
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }

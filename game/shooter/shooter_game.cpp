@@ -62,6 +62,20 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
     return TrialView{static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz, trial_->motion, trial_->mode};
 }
 
+void ShooterGame::switchTo(const std::string& mode, int difficulty) {
+    modeSpec(mode);  // throws for an unknown mode, before anything changes
+    ModeSchedule(modeSpec(mode), protocol_.refreshHz);
+    freePlay_ = true;
+    freeMode_ = mode;
+    freeLevel_ = std::max(0, difficulty);
+    // The practice phase, endless: the next frame starts a fresh target in the new mode.
+    phase_ = Phase::Acclimation;
+    trial_.reset();
+    frozenFrame_.reset();
+    banner_.clear();
+    if (frame_ >= 0) pauseUntil_ = frame_ + 1;  // before the first frame, the first frame starts it
+}
+
 bool ShooterGame::isOutcome(const protocol::EventRecord& e) const { return e.type == "shot" || e.type == "timeout"; }
 
 std::optional<std::uint32_t> ShooterGame::displayedObject(const protocol::EventRecord& e) const {
@@ -161,7 +175,7 @@ void ShooterGame::beginPhase(Phase phase) {
     emit(event);
     switch (phase) {
         case Phase::Acclimation:
-            if (protocol_.acclimationS <= 0.0) return beginPhase(Phase::AwaitingSupervisor);
+            if (protocol_.acclimationS <= 0.0 && !freePlay_) return beginPhase(Phase::AwaitingSupervisor);
             return scheduleNextTrial();
         case Phase::Training: {
             level_ = protocol_.training.startLevel;
@@ -240,6 +254,7 @@ void ShooterGame::scheduleNextTrial() {
     const double elapsed = static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz;
     switch (phase_) {
         case Phase::Acclimation:
+            if (freePlay_) return startTrial(freeMode_, freeLevel_);
             if (elapsed >= protocol_.acclimationS) return beginPhase(Phase::AwaitingSupervisor);
             return startTrial(protocol_.acclimationMode, protocol_.acclimationLevel);
         case Phase::Training: {
@@ -382,6 +397,10 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     }
     switch (phase_) {
         case Phase::Acclimation: {
+            if (freePlay_) {
+                shown.phaseText = "Free play: " + mode_ + ", level " + std::to_string(freeLevel_);
+                break;
+            }
             // Appendix B: the supervisor and the participant see how much practice is left.
             const double left = protocol_.acclimationS - static_cast<double>(frame_ - phaseStartFrame_) / refresh;
             const long seconds = std::max(0L, static_cast<long>(std::ceil(left)));

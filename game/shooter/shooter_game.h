@@ -28,7 +28,7 @@ const char* phaseName(Phase phase);
 enum class Outcome : std::uint8_t { None, Hit, Miss, Timeout };
 const char* outcomeName(Outcome outcome);
 
-class ShooterGame final : public Game {
+class ShooterGame final : public FreePlayGame {
 public:
     // aspect = width / height of the display; it fits the target's plane to the view.
     ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect);
@@ -42,6 +42,8 @@ public:
     bool isOutcome(const protocol::EventRecord& event) const override;
     PointerProbe probePointer(const ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const override;
+    // Free play: endless targets at `difficulty` (the staircase's level) in `mode`.
+    void switchTo(const std::string& mode, int difficulty) override;
 
     Phase currentPhase() const { return phase_; }
     int testLevel() const { return testLevel_; }
@@ -115,6 +117,10 @@ private:
     // Test.
     std::vector<std::string> testQueue_;
     std::size_t testNext_ = 0;
+
+    bool freePlay_ = false;
+    std::string freeMode_;
+    int freeLevel_ = 0;
 
     std::vector<protocol::EventRecord> events_;
     bool commitPoint_ = false;

@@ -17,6 +17,12 @@ public:
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ShooterGame>(protocol_, seed, display.aspect());
     }
+    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
+                                              int difficulty) const override {
+        auto game = std::make_unique<ShooterGame>(protocol_, seed, display.aspect());
+        game->switchTo(mode, difficulty);
+        return game;
+    }
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
         return std::make_unique<ShooterBot>(seed, protocol_);
     }

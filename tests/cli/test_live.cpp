@@ -156,6 +156,23 @@ TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
     EXPECT_TRUE(sessionIn(dir).empty());
 }
 
+// Free play: the supervisor switches modes and difficulty live; a mode the display cannot run
+// is refused with its reason; nothing is recorded.
+TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
+    const std::string dir = scratch("free-play");
+    std::ofstream(dir + "/script.txt") << "5 key 1\n20 key u\n40 key 8\n70 key esc\n70 key q\n";
+    const auto r = inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                            "/protocol/click-quick.json --free-play --width 160 --height 90 --out " + dir +
+                            " --input-script " + dir + "/script.txt");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "free play: conv15, level 0")) << r.output;
+    EXPECT_TRUE(contains(r.output, "free play: conv15, level 1")) << r.output;
+    // warp15to120 needs a 120 Hz display; the click game's is 60 Hz: refused, still conv15.
+    EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
+    EXPECT_TRUE(contains(r.output, "free play ended")) << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty()) << "free play wrote a session";
+}
+
 TEST(LiveSession, AHumanNeedsTheWindow) {
     const auto r = runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;
