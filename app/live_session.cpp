@@ -19,6 +19,7 @@
 #include "protocol/session_store.h"
 #include "renderer/hud.h"
 #include "renderer/image.h"
+#include "renderer/timing.h"
 
 namespace warplab::app {
 namespace {
@@ -261,6 +262,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     game::ShownFrame shown;
     game::FrameInput input = player ? player->first() : game::FrameInput{};
     DisplayClock clock(*window, study->refreshHz(), opened.byVsync);
+    renderer::PassTimer timer;
     bool aborted = false;
     std::int64_t nextFrame = 0, injectedFor = -1;
     while (!game->finished() && (!player || player->hasMore())) {
@@ -293,15 +295,20 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         writer.addInput(toRecord(shown.frame, shown.time, input));
         for (auto& e : game->takeEvents()) writer.addEvent(e);
 
+        // Making the frame, timed to glFinish: what must fit in one refresh. (The glFinish
+        // only waits for what the swap would wait for anyway.)
+        timer.begin();
         maker.keepSource(shown);
         if (!shown.blank) maker.make(shown, frame);
         hud.draw(hudFor(shown, 1.0, 1.0), frame.buffer());
         renderer::blitToDefaultFramebuffer(frame.buffer(), width, height);
+        const double renderMs = timer.end().wallMs;
         const DisplayClock::Presented presented = clock.present();
         if (!shown.feedback.empty()) sounds.play(shown.feedback);
 
         protocol::FrameRecord record = game->frameRecord(shown);
         record.frameMs = presented.frameS * 1000.0;
+        record.renderMs = renderMs;
         record.missedVsyncs = presented.missedVsyncs;
         const std::string mode = shown.mode.empty() ? "(screens)" : shown.mode;
         auto& tally = missedPerMode[mode];

@@ -34,6 +34,7 @@ const std::vector<Field<FrameRecord>>& fieldsOf<FrameRecord>() {
         {"mode", &R::mode},
         {"kind", &R::kind},
         {"frame_ms", &R::frameMs},
+        {"render_ms", &R::renderMs},
         {"missed_vsyncs", &R::missedVsyncs},
         {"camera_yaw", &R::cameraYaw},
         {"camera_pitch", &R::cameraPitch},

@@ -52,7 +52,8 @@ struct FrameRecord {
     std::int64_t frame = 0;
     std::string mode;           // mode id, e.g. "warp15to120"
     std::string kind;           // "rendered" | "held" | "warped" | "interpolated" | "frozen"
-    double frameMs = 0;         // measured (live sessions); 0 headless
+    double frameMs = 0;         // measured present to present (live sessions); 0 headless
+    double renderMs = 0;        // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
     int missedVsyncs = 0;
     double cameraYaw = 0, cameraPitch = 0;          // radians, scene::CameraState convention
     std::string detailJson;     // the game's own per-frame state, a JSON object ("" = none):

@@ -84,7 +84,11 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
     for (const auto& f : data.frames) frozen += f.kind == "frozen";
     EXPECT_EQ(shotsAt12, 1);
     EXPECT_GT(frozen, 0);
-    for (const auto& f : data.frames) EXPECT_GT(f.frameMs, 0.0) << "frame " << f.frame << " has no measured time";
+    for (const auto& f : data.frames) {
+        EXPECT_GT(f.frameMs, 0.0) << "frame " << f.frame << " has no measured time";
+        EXPECT_GT(f.renderMs, 0.0) << "frame " << f.frame << " has no render time";
+        EXPECT_LT(f.renderMs, f.frameMs + 1e-9) << "frame " << f.frame << " took longer to make than to show";
+    }
     const std::string replay = replayOf(session);
     EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
     EXPECT_FALSE(contains(replay, "differs")) << replay;
