@@ -195,7 +195,7 @@ Window openWindow(const LiveRun& run, const game::Study& study, std::ostream& pr
         std::ostringstream why;
         why << "the display runs at " << w.measuredHz << " Hz but protocol '" << run.protocolPath << "' needs "
             << refresh << " Hz";
-        if (!run.allowRefreshMismatch)
+        if (!run.allowRefreshMismatch && !study.warnsOnRefreshMismatch())
             throw std::runtime_error(why.str() + "; set the display to " + std::to_string(std::lround(refresh)) +
                                      " Hz (or pass --allow-refresh-mismatch for a pilot)");
         progress << "warning: " << why.str() << "; frames are paced by a timer, not by vsync\n";

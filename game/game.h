@@ -173,6 +173,8 @@ public:
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
     // (the click game's cursor). Live sessions scale a participant's counts to it.
     virtual double mouseRadiansPerCount() const { return 0.0; }
+    // A live session on a display known to run at another refresh: warn (true) or refuse.
+    virtual bool warnsOnRefreshMismatch() const = 0;
 };
 
 }  // namespace warplab::game

@@ -72,10 +72,11 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 
     if (const Json* display = r.object(document, "", "display")) {
         r.requireKnownKeys(*display, "display",
-                           {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg"});
+                           {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg", "refresh_mismatch"});
         r.number(display, "display", "refresh_hz", {1, false, 1000, false}, p.refreshHz);
         r.number(display, "display", "vertical_fov_deg", {1, false, 179, false}, p.verticalFovDeg);
         r.number(display, "display", "camera_pitch_deg", {-89, false, 89, false}, p.cameraPitchDeg);
+        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
     }
     if (const Json* physics = r.object(document, "", "physics")) {
         const char* const path = "physics";
@@ -145,6 +146,7 @@ std::string toJson(const ClickProtocol& p) {
     display["refresh_hz"] = p.refreshHz;
     display["vertical_fov_deg"] = p.verticalFovDeg;
     display["camera_pitch_deg"] = p.cameraPitchDeg;
+    display["refresh_mismatch"] = p.refreshMismatch;
     Json& physics = document["physics"];
     physics["gravity_m_per_s2"] = p.gravity;
     physics["sphere_radius_m"] = p.sphereRadius;

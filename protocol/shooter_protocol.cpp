@@ -34,9 +34,10 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
     r.nameAndDescription(document, p.name, p.description);
 
     if (const Json* display = r.object(document, "", "display")) {
-        r.requireKnownKeys(*display, "display", {"refresh_hz", "vertical_fov_deg"});
+        r.requireKnownKeys(*display, "display", {"refresh_hz", "vertical_fov_deg", "refresh_mismatch"});
         r.number(display, "display", "refresh_hz", {1, false, 1000, false}, p.refreshHz);
         r.number(display, "display", "vertical_fov_deg", {1, false, 179, false}, p.verticalFovDeg);
+        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
     }
     if (const Json* target = r.object(document, "", "target")) {
         r.requireKnownKeys(*target, "target", {"radius_m"});
@@ -121,6 +122,8 @@ std::string toJson(const ShooterProtocol& p) {
     Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
     document["display"]["refresh_hz"] = p.refreshHz;
     document["display"]["vertical_fov_deg"] = p.verticalFovDeg;
+    // Like click_timing below: new with format 2, written for version 1 only when it says more.
+    if (p.formatVersion >= 2 || p.refreshMismatch != "refuse") document["display"]["refresh_mismatch"] = p.refreshMismatch;
     document["target"]["radius_m"] = p.targetRadius;
     document["input"]["mouse_radians_per_count"] = p.mouseRadiansPerCount;
     document["acclimation"]["duration_s"] = p.acclimationS;

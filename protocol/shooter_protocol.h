@@ -35,6 +35,9 @@ struct ShooterProtocol {
     std::string game = "shooter";
     double refreshHz = 120;
     double verticalFovDeg = 60;
+    // A live session on a display whose refresh is known to differ: "refuse" to start, or
+    // "warn" and pace frames by timer (quick protocols, so they run anywhere).
+    std::string refreshMismatch = "refuse";
     double targetRadius = 0.35;            // metres
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
     double acclimationS = 300;

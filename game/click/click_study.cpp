@@ -32,6 +32,7 @@ public:
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
+    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
 
 private:
     protocol::ClickProtocol protocol_;

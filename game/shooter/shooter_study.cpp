@@ -26,6 +26,7 @@ public:
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
         return std::make_unique<ShooterBot>(seed, protocol_);
     }
+    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
     double mouseRadiansPerCount() const override { return protocol_.mouseRadiansPerCount; }
     std::vector<std::string> modes() const override {
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode, protocol_.training.highMode};

@@ -551,6 +551,7 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
 Json thesisVersion1() {
     Json document = thesisWith("/format_version", 1);
     document["test"].erase("click_timing");
+    document["display"].erase("refresh_mismatch");  // also new with format 2
     return document;
 }
 
@@ -597,6 +598,14 @@ TEST(ProtocolVersions, Version1StructCannotQuietlyLoseClickTiming) {
     ShooterProtocol p = parse(thesisVersion1().dump());
     p.clickTiming = "input_reads";  // a value version 1 cannot say
     expectContains(errorOfText(toJson(p)), {"test.click_timing is new in format_version 2"});
+}
+
+// A live session on a display at another refresh: refuse (the published studies) or warn
+// (the quick protocols, so they run anywhere).
+TEST(ProtocolVersions, RefreshMismatchIsRefuseOrWarn) {
+    EXPECT_EQ(parse(thesisWith("/display/refresh_mismatch", "warn").dump()).refreshMismatch, "warn");
+    EXPECT_EQ(ShooterProtocol{}.refreshMismatch, "refuse");
+    expectContains(errorOf(thesisWith("/display/refresh_mismatch", "ignore")), {"display.refresh_mismatch"});
 }
 
 TEST(ProtocolVersions, ClickTimingIsDisplayOrInputReads) {
