@@ -605,25 +605,56 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     const std::string when = timeForName(h.startedAt);
     if (!when.empty()) stem += "_" + when;
 
-    // O_EXCL makes "pick a free name" and "create it" one step, so two sessions started in
-    // the same second (two rigs sharing a results folder) never share a file.
+    // The header is written into a hidden file beside the session and only then linked to the
+    // session's name: a kill at any instant leaves either no session or a readable one with its
+    // header, never an empty file. link(2) refuses an existing name, so "pick a free name" and
+    // "create it" stay one step (two rigs sharing a results folder never share a file).
+    const std::string temp =
+        (fs::path(resultsDir) / ("." + stem + "." + std::to_string(::getpid()) + ".creating")).string();
+    removeSessionFiles(temp);  // a leftover of a killed run with our pid
     auto impl = std::make_unique<Impl>();
-    for (int n = 1;; ++n) {
-        const std::string name = stem + (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
-        const std::string candidate = (fs::path(resultsDir) / name).string();
-        if (anyExists(candidate)) continue;
-        const int fd = ::open(candidate.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-        if (fd >= 0) {
-            ::close(fd);
-            impl->path = candidate;
-            break;
-        }
-        if (errno != EEXIST || n >= 10000)
-            throw SessionError("Cannot create session file " + candidate + ": " +
-                               std::strerror(errno) + ".");
-    }
-
     try {
+        {
+            sqlite3* raw = nullptr;
+            const int rc = sqlite3_open_v2(temp.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
+            impl->db.reset(raw);
+            impl->path = temp;
+            if (rc != SQLITE_OK) impl->fail("creating");
+            impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
+            impl->exec("BEGIN IMMEDIATE", "writing the header");
+            impl->inTransaction = true;
+            impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
+                       "writing the header");
+            for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
+            impl->exec(inputTable().createSql().c_str(), "creating the tables");
+            impl->exec(frameTable().createSql().c_str(), "creating the tables");
+            impl->exec(eventTable().createSql().c_str(), "creating the tables");
+            impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+            Checksum checksum;
+            for (const auto& [key, value] : headerEntries(h)) {
+                impl->putMeta(key, value);
+                checksum.text(key);
+                checksum.text(value);
+            }
+            impl->putMeta("header_checksum", numberText(checksum.value()));
+            impl->exec("COMMIT", "writing the header");
+            impl->inTransaction = false;
+            impl->insertMeta.reset();
+            impl->db.reset();  // closed: the header is in the file, fsynced
+        }
+        for (int n = 1;; ++n) {
+            const std::string name = stem + (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
+            const std::string candidate = (fs::path(resultsDir) / name).string();
+            if (anyExists(candidate)) continue;
+            if (::link(temp.c_str(), candidate.c_str()) == 0) {
+                impl->path = candidate;
+                break;
+            }
+            if (errno != EEXIST || n >= 10000)
+                throw SessionError("Cannot create session file " + candidate + ": " + std::strerror(errno) + ".");
+        }
+        ::unlink(temp.c_str());
+
         sqlite3* raw = nullptr;
         const int rc = sqlite3_open_v2(impl->path.c_str(), &raw, SQLITE_OPEN_READWRITE, nullptr);
         impl->db.reset(raw);
@@ -640,31 +671,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             impl->fail("switching to WAL mode");
         mode.reset();
         impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
-
-        impl->exec("BEGIN IMMEDIATE", "writing the header");
-        impl->inTransaction = true;
-        impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
-                   "writing the header");
-        for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
-        impl->exec(inputTable().createSql().c_str(), "creating the tables");
-        impl->exec(frameTable().createSql().c_str(), "creating the tables");
-        impl->exec(eventTable().createSql().c_str(), "creating the tables");
         impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
-        Checksum checksum;
-        for (const auto& [key, value] : headerEntries(h)) {
-            impl->putMeta(key, value);
-            checksum.text(key);
-            checksum.text(value);
-        }
-        impl->putMeta("header_checksum", numberText(checksum.value()));
-        impl->exec("COMMIT", "writing the header");
-        impl->inTransaction = false;
-        // Fold the header into the main file now, so that the main file alone -- a lost or
-        // deleted -wal -- is still a readable session, just with no trials.
-        if (sqlite3_wal_checkpoint_v2(impl->db.get(), nullptr, SQLITE_CHECKPOINT_TRUNCATE,
-                                      nullptr, nullptr) != SQLITE_OK)
-            impl->fail("writing the header");
-
         impl->insertInput = impl->prepare(insertSql(inputTable()));
         impl->insertFrame = impl->prepare(insertSql(frameTable()));
         impl->insertEvent = impl->prepare(insertSql(eventTable()));
@@ -674,7 +681,8 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     } catch (...) {
         const std::string path = impl->path;
         impl.reset();
-        removeSessionFiles(path);
+        removeSessionFiles(temp);
+        if (path != temp) removeSessionFiles(path);
         throw;
     }
     return SessionWriter(std::move(impl));
