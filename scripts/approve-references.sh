@@ -5,6 +5,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${WARPLAB_BUILD_DIR:-build}"
-cmake --build "$build" --target warplab_gl_tests -j"$(nproc)"
+cmake --build "$build" --target warplab_gl_tests warplab_cli_tests -j"$(nproc)"
 WARPLAB_APPROVE=1 "$build/tests/warplab_gl_tests" --gtest_filter='*Reference*'
+# The live-session screens (start, a shot, the pause, a rating, the end), made under Xvfb.
+WARPLAB_APPROVE=1 "$build/tests/warplab_cli_tests" \
+  --gtest_filter='LiveSession.AScriptedParticipant*:LiveSession.TheBotInTheWindow*'
 git status --short tests/references

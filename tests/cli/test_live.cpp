@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.h"
+#include "gl/gl_test_support.h"
 #include "protocol/records.h"
 #include "protocol/session_store.h"
 #include "renderer/image.h"
@@ -100,6 +101,12 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
     const auto shot = warplab::renderer::readPng(dir + "/frame_12.png");
     const std::uint8_t* centre = shot.at(96, 54);
     EXPECT_GT(centre[0] + centre[1] + centre[2], 600) << "no reticle at the centre";
+    // Each screen against its approved reference (scripts/approve-references.sh), with the GL
+    // tests' thresholds: the frames are the same offscreen renders the window shows.
+    EXPECT_TRUE(warplab::testing::matchesReference("live_start", start));
+    EXPECT_TRUE(warplab::testing::matchesReference("live_shot", shot));
+    EXPECT_TRUE(warplab::testing::matchesReference("live_miss_pause", warplab::renderer::readPng(dir + "/frame_20.png")));
+    EXPECT_TRUE(warplab::testing::matchesReference("live_end", warplab::renderer::readPng(dir + "/end.png")));
 }
 
 TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
@@ -148,6 +155,7 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
     int boxRows = 0;  // pixels of the boxes' light outline on the row through their middle
     for (int x = 0; x < 160; ++x) boxRows += rating.at(x, 50)[0] > 200;
     EXPECT_GE(boxRows, 7) << "no rating boxes";
+    EXPECT_TRUE(warplab::testing::matchesReference("live_rating", rating));
 }
 
 TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
