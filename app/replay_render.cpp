@@ -35,14 +35,15 @@ public:
             if (const auto id = game.displayedObject(e)) loggedObject_[e.frame] = *id;
     }
 
-    void check(const game::ShownFrame& shown, const renderer::DisplayFrame& display, ReplayRenderResult& result) {
+    // `ids`: the displayed frame's id attachment (the HUD leaves it untouched).
+    void check(const game::ShownFrame& shown, const renderer::ImageU32& ids, ReplayRenderResult& result) {
         const auto kind = shown.schedule.kind;
         if (shown.blank || shown.frozen || !(kind == game::FrameKind::Rendered || kind == game::FrameKind::Held)) return;
-        const int width = display.width(), height = display.height();
+        const int width = ids.width, height = ids.height;
         const bool cursor = shown.pointer == game::PointerKind::Cursor;
         const int ix = std::clamp(static_cast<int>(cursor ? shown.cursor.x * toFrameX_ : width * 0.5), 0, width - 1);
         const int iy = std::clamp(static_cast<int>(cursor ? shown.cursor.y * toFrameY_ : height * 0.5), 0, height - 1);
-        const std::uint32_t seen = gameObject(renderer::readBack(display).ids.at(ix, iy));
+        const std::uint32_t seen = gameObject(ids.at(ix, iy));
         const game::PointerProbe probe = game_.probePointer(shown);
         const double radiansPerPixel = glm::radians(static_cast<double>(shown.camera.verticalFovDeg)) / height;
         if (probe.silhouetteMarginRad <= kSilhouetteMarginPx * radiansPerPixel) {
@@ -101,15 +102,15 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         game->takeEvents();
         maker.keepSource(shown);
         if (shown.frame < request.firstFrame) continue;
-        if (!shown.blank) {
-            maker.make(shown, displayFrame);
-            pointerCheck.check(shown, displayFrame, result);
-        }
+        if (!shown.blank) maker.make(shown, displayFrame);
         hud.draw(hudFor(shown, toFrameX, toFrameY), displayFrame.buffer());
+        // One read-back a frame serves both the check (ids) and the PNG (colour).
+        const renderer::DisplayImages images = renderer::readBack(displayFrame);
+        pointerCheck.check(shown, images.ids, result);
 
         char file[64];
         std::snprintf(file, sizeof file, "/frame_%07lld.png", static_cast<long long>(shown.frame));
-        renderer::writePng(request.outDir + file, renderer::readBack(displayFrame).colour);
+        renderer::writePng(request.outDir + file, images.colour);
         ++result.written;
     }
     out << "wrote " << result.written << " frames to " << request.outDir << "; pointer cross-check on "

@@ -63,8 +63,7 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
 }
 
 void ShooterGame::switchTo(const std::string& mode, int difficulty) {
-    modeSpec(mode);  // throws for an unknown mode, before anything changes
-    ModeSchedule(modeSpec(mode), protocol_.refreshHz);
+    ModeSchedule(modeSpec(mode), protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
     freePlay_ = true;
     freeMode_ = mode;
     freeLevel_ = std::max(0, difficulty);
