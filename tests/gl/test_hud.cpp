@@ -16,10 +16,14 @@ namespace {
 constexpr int kW = 320;
 constexpr int kH = 180;
 
-TEST(Hud, ReticleAndBannerOverColourIdsUntouched) {
+// The frame every HUD test draws over: the hallway with the target, rendered.
+testing::RenderedSource hallwayWithTarget() {
     const auto shooter = testing::shooterScene(kW, kH, 2);
-    scene::FrameDescription frame{shooter.restingCamera(), shooter.snapshot(0.5)};
-    auto source = testing::renderSource(frame, kW, kH);
+    return testing::renderSource({shooter.restingCamera(), shooter.snapshot(0.5)}, kW, kH);
+}
+
+TEST(Hud, ReticleAndBannerOverColourIdsUntouched) {
+    auto source = hallwayWithTarget();
     renderer::HudRenderer hud(testing::sourceDataPaths());
     renderer::HudContent content;
     content.banner = "HIT";
@@ -48,9 +52,7 @@ TEST(Hud, ReticleAndBannerOverColourIdsUntouched) {
 // The click game's cursor lands on the pixel it names (y down, like the images), not at the
 // centre; the ids under it stay the scene's.
 TEST(Hud, CursorIsDrawnWhereItIs) {
-    const auto shooter = testing::shooterScene(kW, kH, 2);
-    scene::FrameDescription frame{shooter.restingCamera(), shooter.snapshot(0.5)};
-    auto source = testing::renderSource(frame, kW, kH);
+    auto source = hallwayWithTarget();
     renderer::HudRenderer hud(testing::sourceDataPaths());
     renderer::HudContent content;
     content.reticle = false;
@@ -73,9 +75,7 @@ TEST(Hud, CursorIsDrawnWhereItIs) {
 // A rating screen: a dark backdrop over everything, the highlighted box in blue, the others
 // in slate, each where the game put it.
 TEST(Hud, RatingScreenDrawsTheBoxesWhereTheGamePutThem) {
-    const auto shooter = testing::shooterScene(kW, kH, 2);
-    scene::FrameDescription frame{shooter.restingCamera(), shooter.snapshot(0.5)};
-    auto source = testing::renderSource(frame, kW, kH);
+    auto source = hallwayWithTarget();
     renderer::HudRenderer hud(testing::sourceDataPaths());
     renderer::HudContent content;
     content.backdrop = true;
