@@ -22,6 +22,7 @@ int runRender(const ParsedArgs& args);
 int runBench(const ParsedArgs& args);
 int runRun(const ParsedArgs& args);
 int runReplay(const ParsedArgs& args);
+int runExport(const ParsedArgs& args);
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "game/modes.h"
+#include "game/results.h"
 #include "protocol/session_store.h"
 #include "scene/scene.h"
 
@@ -175,6 +176,9 @@ public:
     virtual double mouseRadiansPerCount() const { return 0.0; }
     // A live session on a display known to run at another refresh: warn (true) or refuse.
     virtual bool warnsOnRefreshMismatch() const = 0;
+    // A stored session's events (of a session run with this protocol) as export's rows.
+    // Events of other types are skipped; a session cut short gives what it has.
+    virtual SessionResults results(const std::vector<protocol::EventRecord>& events) const = 0;
 };
 
 }  // namespace warplab::game

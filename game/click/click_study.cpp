@@ -2,9 +2,11 @@
 
 #include <cctype>
 #include <cstring>
+#include <map>
 #include <utility>
 
 #include "game/click/click_bot.h"
+#include "game/event_detail.h"
 #include "game/click/click_game.h"
 #include "protocol/click_protocol.h"
 #include "protocol/study_protocol.h"
@@ -33,8 +35,57 @@ public:
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
+    SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
+        SessionResults out;
+        // Ratings follow their match's "match" event; match indices are unique in a session.
+        std::map<int, std::size_t> matchAt;
+        for (const auto& e : events) {
+            const EventDetail d(e.detailJson);
+            if (e.type == "click") {
+                ShotResult r;
+                r.phase = e.phase;
+                r.scoredPhase = roundScored(e.phase);
+                r.trial = e.trial;
+                r.mode = e.mode;
+                r.worldOutcome = e.worldOutcome;
+                r.displayedOutcome = e.displayedOutcome;
+                r.outcome = d.text("scored", protocol_.scoring == "world" ? e.worldOutcome : e.displayedOutcome);
+                r.hit = r.outcome == "green";
+                r.time = e.eventTime;
+                r.errorPx = d.number("nearest_green_px");
+                out.shots.push_back(std::move(r));
+            } else if (e.type == "match") {
+                MatchResult m;
+                m.round = e.phase;
+                m.scoredPhase = roundScored(e.phase);
+                m.match = e.trial;
+                m.mode = e.mode;
+                m.standIn = d.text("stand_in");
+                m.greenHits = static_cast<int>(d.integer("green_hits", 0));
+                m.redHits = static_cast<int>(d.integer("red_hits", 0));
+                m.misses = static_cast<int>(d.integer("misses", 0));
+                m.clicks = static_cast<int>(d.integer("clicks", 0));
+                m.durationS = d.number("duration_s");
+                matchAt[e.trial] = out.matches.size();
+                out.matches.push_back(std::move(m));
+            } else if (e.type == "rating") {
+                const auto at = matchAt.find(e.trial);
+                if (at == matchAt.end()) continue;  // cannot happen in a game's own log: a rating follows its match
+                out.matches[at->second].ratings.push_back({static_cast<int>(d.integer("statement_index", 0)),
+                                                           d.text("statement"), static_cast<int>(d.integer("value", 0)),
+                                                           d.text("answered_with")});
+            }
+        }
+        return out;
+    }
 
 private:
+    bool roundScored(const std::string& round) const {
+        for (const auto& r : protocol_.rounds)
+            if (r.name == round) return r.scored;
+        return false;
+    }
+
     protocol::ClickProtocol protocol_;
 };
 

@@ -1,5 +1,6 @@
 #include "game/shooter/shooter_study.h"
 
+#include "game/event_detail.h"
 #include "game/shooter/shooter_bot.h"
 #include "game/shooter/shooter_game.h"
 #include "protocol/shooter_protocol.h"
@@ -32,6 +33,31 @@ public:
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode, protocol_.training.highMode};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
+    }
+    SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
+        SessionResults out;
+        for (const auto& e : events) {
+            if (e.type != "shot" && e.type != "timeout") continue;
+            const EventDetail d(e.detailJson);
+            ShotResult r;
+            r.phase = e.phase;
+            r.scoredPhase = e.phase == "test";  // acclimation and training set up the test; only it is analysed
+            r.trial = e.trial;
+            r.mode = e.mode;
+            r.worldOutcome = e.worldOutcome;
+            r.displayedOutcome = e.displayedOutcome;
+            r.outcome = d.text("scored", protocol_.scoring == "world" ? e.worldOutcome : e.displayedOutcome);
+            r.hit = r.outcome == "hit";
+            r.timeout = r.outcome == "timeout";
+            r.time = e.eventTime;
+            r.spawnTime = d.number("spawn_time");
+            r.aimTime = d.number("aim_time");
+            r.angularErrorDeg = d.number("angular_error_deg");
+            r.difficulty = d.number("difficulty");
+            r.targetSpeed = d.number("target_speed");
+            out.shots.push_back(std::move(r));
+        }
+        return out;
     }
 
 private:

@@ -1,0 +1,38 @@
+// `warplab export`: every session file in a results folder merged into tidy CSVs for the
+// analysis (docs/export.md). Read-only: session files are opened read-only and never changed.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace warplab::app {
+
+struct ExportOptions {
+    bool allPhases = false;          // also practice rounds, acclimation and training
+    bool includeIncomplete = false;  // sessions that never finished (killed, or cut by damage)
+    bool includeFlagged = false;     // sessions their run flagged (e.g. missed_frames)
+};
+
+// What happened to one session file.
+struct ExportedSession {
+    std::string file;       // relative to the results folder
+    std::string status;     // "ok", "incomplete", "flagged", "duplicate" or "damaged"
+    bool included = false;
+    std::string why;        // for the others: the reason, one sentence
+};
+
+struct ExportSummary {
+    std::vector<ExportedSession> sessions;   // in file order
+    std::vector<std::string> written;        // the CSV paths
+};
+
+// Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
+// sessions.csv, shots.csv, hitrates.csv, matches.csv and ratings.csv into outDir (created
+// when missing). Progress and one line per excluded or damaged session go to `log`.
+// Throws std::runtime_error naming the folder when resultsDir is not a readable folder or
+// holds no session file; a damaged session file is reported and skipped, not fatal.
+ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
+                            std::ostream& log);
+
+}  // namespace warplab::app
