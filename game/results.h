@@ -53,6 +53,7 @@ struct MatchResult {
 };
 
 struct SessionResults {
+    bool canTimeOut = false;             // the game's trials can time out (hitrates.csv counts them)
     std::vector<ShotResult> shots;
     std::vector<MatchResult> matches;    // empty for games without matches
 };

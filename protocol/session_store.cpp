@@ -10,6 +10,7 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -795,13 +796,38 @@ private:
     }
     std::string errmsg() const { return sqlite3_errmsg(db_.get()); }
 
+    // file:/abs/path?immutable=1, every byte outside [A-Za-z0-9/._~-] percent-encoded.
+    static std::string immutableUri(const std::string& path) {
+        const std::string absolute = fs::absolute(path).lexically_normal().string();
+        std::string uri = "file:";
+        for (const char c : absolute) {
+            const auto b = static_cast<unsigned char>(c);
+            if (std::isalnum(b) || std::strchr("/._~-", c) != nullptr) {
+                uri += c;
+            } else {
+                static const char* hex = "0123456789ABCDEF";
+                uri += '%';
+                uri += hex[b >> 4];
+                uri += hex[b & 15];
+            }
+        }
+        return uri + "?immutable=1";
+    }
+
     void open() {
         std::error_code ec;
         const auto status = fs::status(path_, ec);
         if (!fs::exists(status)) fail("does not exist.");
         if (fs::is_directory(status)) fail("is a folder, not a session file.");
         sqlite3* raw = nullptr;
-        const int rc = sqlite3_open_v2(path_.c_str(), &raw, SQLITE_OPEN_READONLY, nullptr);
+        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
+        // finishing): nothing is writing it. A plain read-only open would still create empty
+        // -wal and -shm files next to it; "immutable" reads it as it is and leaves the folder
+        // untouched (export promises that). With a -wal present a writer may be running, so
+        // the read takes part in SQLite's locking as usual.
+        const bool whole = !fs::exists(path_ + "-wal", ec);
+        const std::string name = whole ? immutableUri(path_) : path_;
+        const int rc = sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
         db_.reset(raw);
         if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
         sqlite3_busy_timeout(db_.get(), 5000);

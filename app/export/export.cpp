@@ -162,8 +162,8 @@ private:
 
     void write(const std::string& participant, const std::string& session, const std::string& gameName,
                const game::SessionResults& results) {
+        if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
-            if (s.timeout) timeoutGames_.insert(gameName);
             if (!s.scoredPhase && !options_.allPhases) continue;
             shots_.text(participant).text(session).text(gameName).text(s.phase).boolean(s.scoredPhase)
                 .integer(s.trial).text(s.mode).text(s.outcome).boolean(s.hit).text(s.worldOutcome)

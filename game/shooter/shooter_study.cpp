@@ -36,6 +36,7 @@ public:
     }
     SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
         SessionResults out;
+        out.canTimeOut = true;
         for (const auto& e : events) {
             if (e.type != "shot" && e.type != "timeout") continue;
             const EventDetail d(e.detailJson);

@@ -476,4 +476,29 @@ TEST(CliSession, AVersion1SessionStillReplaysExactly) {
     EXPECT_GT(reproducedIn(replay.output), 12) << replay.output;
 }
 
+
+TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
+    const std::string results = scratch("export-results"), out = scratch("export-out");
+    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +
+                      " --participant E1 --out " + results + " --headless --player bot:2")
+                  .status,
+              0);
+    const auto ok = warplab("export " + results + " --out " + out);
+    EXPECT_EQ(ok.status, 0) << ok.output;
+    for (const char* name : {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv"}) {
+        EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
+        EXPECT_TRUE(contains(ok.output, out + "/" + name)) << ok.output;
+    }
+    EXPECT_TRUE(contains(ok.output, "[1/1]")) << "progress per session: " << ok.output;
+
+    const auto none = warplab("export");
+    EXPECT_EQ(none.status, 2) << none.output;
+    const auto two = warplab("export " + results + " " + results);
+    EXPECT_EQ(two.status, 2) << two.output;
+    const auto missing = warplab("export " + results + "/nope --out " + out);
+    EXPECT_EQ(missing.status, 1) << missing.output;
+    EXPECT_TRUE(contains(missing.output, results + "/nope")) << missing.output;
+    EXPECT_EQ(missing.lines(), 1) << missing.output;
+}
+
 }  // namespace

@@ -1,0 +1,474 @@
+// `warplab export`: CSV cells (quoting, formulas, UTF-8, numbers that read back exactly), and
+// whole results folders made of real headless sessions, whose CSVs are checked against counts
+// taken straight from the stored events -- not through the games' Study::results that export
+// uses. Also: incomplete, running, flagged, duplicate, damaged and version-1 sessions, and
+// that export changes nothing in the results folder.
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/export/csv.h"
+#include "app/export/export.h"
+#include "app/session_runner.h"
+#include "protocol/session_store.h"
+
+namespace warplab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using Row = std::map<std::string, std::string>;
+
+std::string scratch(const std::string& name) {
+    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "export" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir.string();
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// RFC 4180, written independently of the exporter: quoted cells, doubled quotes, line breaks
+// inside quotes. Every row must have as many cells as the header.
+std::vector<Row> readCsv(const std::string& path) {
+    const std::string text = slurp(path);
+    std::vector<std::vector<std::string>> rows(1);
+    std::string cell;
+    bool quoted = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (quoted) {
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') cell += '"', ++i;
+            else if (c == '"') quoted = false;
+            else cell += c;
+        } else if (c == '"') {
+            quoted = true;
+        } else if (c == ',') {
+            rows.back().push_back(cell);
+            cell.clear();
+        } else if (c == '\n') {
+            rows.back().push_back(cell);
+            cell.clear();
+            rows.emplace_back();
+        } else {
+            cell += c;
+        }
+    }
+    EXPECT_TRUE(rows.back().empty() && cell.empty()) << path << " does not end with a line break";
+    rows.pop_back();
+    std::vector<Row> out;
+    if (rows.empty()) {
+        ADD_FAILURE() << path << " has no header";
+        return out;
+    }
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+        EXPECT_EQ(rows[r].size(), rows[0].size()) << path << " row " << r;
+        Row row;
+        for (std::size_t k = 0; k < rows[0].size() && k < rows[r].size(); ++k) row[rows[0][k]] = rows[r][k];
+        out.push_back(row);
+    }
+    return out;
+}
+
+std::vector<std::string> headerOf(const std::string& path) {
+    std::string line = slurp(path);
+    line = line.substr(0, line.find('\n'));
+    std::vector<std::string> names;
+    std::stringstream s(line);
+    for (std::string name; std::getline(s, name, ',');) names.push_back(name);
+    return names;
+}
+
+std::string headless(const std::string& protocol, const std::string& participant, const std::string& dir,
+                     std::uint64_t seed) {
+    HeadlessRun run;
+    run.protocolPath = std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + protocol;
+    run.participant = participant;
+    run.resultsDir = dir;
+    run.player = "bot:" + std::to_string(seed);
+    run.seed = seed;
+    std::ostringstream quiet;
+    return runHeadless(run, quiet);
+}
+
+ExportSummary exportQuietly(const std::string& results, const std::string& out, const ExportOptions& options = {},
+                            std::string* log = nullptr) {
+    std::ostringstream lines;
+    ExportSummary summary = exportResults(results, out, options, lines);
+    if (log != nullptr) *log = lines.str();
+    return summary;
+}
+
+// ---- the expected numbers, straight from the stored events ----
+
+struct Counts {
+    int shots = 0, hits = 0, timeouts = 0;
+};
+using Key = std::tuple<std::string, std::string, std::string>;  // participant, game, mode
+
+// Scored-phase shots and clicks per participant x game x mode. The shooter's scored phase is
+// "test"; a click counts when its match event says the round was scored. The outcome that
+// counts is the one the protocol's "scoring" names (world or displayed).
+void countScored(const protocol::SessionData& data, std::map<Key, Counts>& into) {
+    const auto protocol = nlohmann::json::parse(data.header.protocolJson);
+    const std::string gameName = protocol.value("game", "shooter");
+    const std::string scoring = gameName == "shooter" ? protocol.at("test").at("scoring").get<std::string>()
+                                                      : protocol.at("matches").at("scoring").get<std::string>();
+    std::map<int, bool> scoredMatch;
+    for (const auto& e : data.events)
+        if (e.type == "match") scoredMatch[e.trial] = nlohmann::json::parse(e.detailJson).at("scored").get<bool>();
+    for (const auto& e : data.events) {
+        const bool shooterTrial = (e.type == "shot" || e.type == "timeout") && e.phase == "test";
+        const bool scoredClick = e.type == "click" && scoredMatch[e.trial];
+        if (!shooterTrial && !scoredClick) continue;
+        const std::string outcome = scoring == "world" ? e.worldOutcome : e.displayedOutcome;
+        Counts& c = into[{data.header.participant, gameName, e.mode}];
+        ++c.shots;
+        c.hits += outcome == "hit" || outcome == "green";
+        c.timeouts += outcome == "timeout";
+    }
+}
+
+// ---- cells ----
+
+TEST(ExportCsv, TextThatASpreadsheetWouldRunIsDefused) {
+    EXPECT_EQ(csvText("=1+2"), "'=1+2");
+    EXPECT_EQ(csvText("+41"), "'+41");
+    EXPECT_EQ(csvText("-5"), "'-5");
+    EXPECT_EQ(csvText("@SUM(A1)"), "'@SUM(A1)");
+    EXPECT_EQ(csvText("\tx"), "'\tx");
+    EXPECT_EQ(csvText("P-01"), "P-01");  // only the first character matters
+    EXPECT_EQ(csvText("=HYPERLINK(\"x\",\"y\")"), "\"'=HYPERLINK(\"\"x\"\",\"\"y\"\")\"");
+}
+
+TEST(ExportCsv, TextIsQuotedOnlyWhereRfc4180NeedsIt) {
+    EXPECT_EQ(csvText("plain text"), "plain text");
+    EXPECT_EQ(csvText("a,b"), "\"a,b\"");
+    EXPECT_EQ(csvText("say \"hi\""), "\"say \"\"hi\"\"\"");
+    EXPECT_EQ(csvText("two\nlines"), "\"two\nlines\"");
+    EXPECT_EQ(csvText(""), "");
+}
+
+TEST(ExportCsv, InvalidUtf8BecomesTheReplacementCharacterAndValidUtf8Stays) {
+    EXPECT_EQ(csvText("caf\xC3\xA9"), "caf\xC3\xA9");
+    EXPECT_EQ(csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");                  // U+1F600
+    EXPECT_EQ(csvText("a\xFFz"), "a\xEF\xBF\xBDz");                              // stray byte
+    EXPECT_EQ(csvText("\xC3"), "\xEF\xBF\xBD");                                  // cut sequence
+    EXPECT_EQ(csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");                  // overlong '/'
+    EXPECT_EQ(csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
+}
+
+TEST(ExportCsv, NumbersReadBackBitForBit) {
+    std::mt19937_64 random(7);
+    std::vector<double> values{0.1, 1.0 / 3.0, -0.0, 1e-300, 4.9e-324, 1.7976931348623157e308, 2.0 / 3.0, 25.0};
+    for (int i = 0; i < 2000; ++i) {
+        double d;
+        const std::uint64_t bits = random();
+        std::memcpy(&d, &bits, sizeof d);
+        if (std::isfinite(d)) values.push_back(d);
+    }
+    for (const double v : values) {
+        const std::string text = csvNumber(v);
+        EXPECT_EQ(text.find(','), std::string::npos) << text;
+        const double back = std::strtod(text.c_str(), nullptr);
+        EXPECT_EQ(std::memcmp(&back, &v, sizeof v), 0) << text;
+    }
+    EXPECT_EQ(csvNumber(0.1), "0.1");  // shortest, not 0.10000000000000001
+    EXPECT_EQ(csvNumber(std::nan("")), "");
+    EXPECT_EQ(csvNumber(HUGE_VAL), "Inf");
+    EXPECT_EQ(csvNumber(-HUGE_VAL), "-Inf");
+}
+
+TEST(ExportCsv, ARowWithTheWrongNumberOfCellsIsRefusedAndNoFileIsLeft) {
+    const std::string dir = scratch("wrong-cells");
+    {
+        CsvFile f(dir + "/t.csv", {"a", "b"});
+        f.text("x");
+        EXPECT_THROW(f.endRow(), std::logic_error);
+    }
+    EXPECT_FALSE(fs::exists(dir + "/t.csv"));
+    EXPECT_FALSE(fs::exists(dir + "/t.csv.partial"));
+}
+
+// ---- whole folders ----
+
+// Two participants' shooter sessions and a click session in a sub-folder: every CSV's numbers
+// against counts taken straight from the stored events.
+TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
+    const std::string results = scratch("real/results"), out = scratch("real/out");
+    fs::create_directories(results + "/day2");
+    const std::vector<std::string> files{headless("shooter-quick.json", "P01", results, 1),
+                                         headless("shooter-quick.json", "P02", results, 2),
+                                         headless("click-quick.json", "P01", results + "/day2", 3)};
+    std::map<Key, Counts> expected;
+    int scoredMatches = 0, ratingEvents = 0;
+    for (const auto& f : files) {
+        const auto data = protocol::readSession(f);
+        countScored(data, expected);
+        for (const auto& e : data.events) {
+            if (e.type == "match" && nlohmann::json::parse(e.detailJson).at("scored").get<bool>()) ++scoredMatches;
+            if (e.type == "rating" && e.phase == "scored") ++ratingEvents;
+        }
+    }
+    ASSERT_GE(expected.size(), 6u);
+
+    const ExportSummary summary = exportQuietly(results, out);
+    ASSERT_EQ(summary.sessions.size(), 3u);
+    for (const auto& s : summary.sessions) EXPECT_TRUE(s.included) << s.file << ": " << s.status << " " << s.why;
+    EXPECT_EQ(summary.sessions[0].file, "P01_" + fs::path(files[0]).filename().string().substr(4));
+    EXPECT_EQ(summary.sessions[2].file.rfind("day2/", 0), 0u) << summary.sessions[2].file;
+
+    // hitrates.csv: exactly the expected rows, rates exactly hits/shots.
+    EXPECT_EQ(headerOf(out + "/hitrates.csv"),
+              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate"}));
+    const auto hitrates = readCsv(out + "/hitrates.csv");
+    ASSERT_EQ(hitrates.size(), expected.size());
+    int clickRows = 0;
+    for (const auto& row : hitrates) {
+        const Key key{row.at("participant"), row.at("game"), row.at("mode")};
+        ASSERT_EQ(expected.count(key), 1u) << row.at("participant") << " " << row.at("mode");
+        const Counts& c = expected[key];
+        EXPECT_EQ(std::stoi(row.at("shots")), c.shots);
+        EXPECT_EQ(std::stoi(row.at("hits")), c.hits);
+        EXPECT_EQ(std::strtod(row.at("hit_rate").c_str(), nullptr), static_cast<double>(c.hits) / c.shots);
+        if (row.at("game") == "click") {
+            ++clickRows;
+            EXPECT_EQ(row.at("timeouts"), "");  // the click game has none to count
+        } else {
+            EXPECT_EQ(std::stoi(row.at("timeouts")), c.timeouts);
+        }
+    }
+    EXPECT_GE(clickRows, 3);
+
+    // shots.csv: one row per scored shot or click, none from other phases.
+    int expectedShots = 0;
+    for (const auto& [key, c] : expected) expectedShots += c.shots;
+    const auto shots = readCsv(out + "/shots.csv");
+    EXPECT_EQ(static_cast<int>(shots.size()), expectedShots);
+    for (const auto& s : shots) {
+        EXPECT_EQ(s.at("scored_phase"), "true");
+        EXPECT_EQ(s.at("hit") == "true", s.at("outcome") == "hit" || s.at("outcome") == "green");
+        if (s.at("game") == "shooter") {
+            EXPECT_EQ(s.at("phase"), "test");
+            EXPECT_FALSE(s.at("aim_time_s").empty());
+            EXPECT_NEAR(std::stod(s.at("time_s")) - std::stod(s.at("spawn_time_s")), std::stod(s.at("aim_time_s")),
+                        1e-9);
+            EXPECT_EQ(s.at("error_px"), "");
+        } else {
+            EXPECT_EQ(s.at("aim_time_s"), "");
+            EXPECT_EQ(s.at("angular_error_deg"), "");
+        }
+    }
+
+    // matches.csv and ratings.csv: the scored round's matches, four ratings each.
+    const auto matches = readCsv(out + "/matches.csv");
+    EXPECT_EQ(static_cast<int>(matches.size()), scoredMatches);
+    EXPECT_EQ(headerOf(out + "/matches.csv").back(), "rating_4");
+    for (const auto& m : matches) {
+        EXPECT_EQ(std::stoi(m.at("clicks")),
+                  std::stoi(m.at("green_hits")) + std::stoi(m.at("red_hits")) + std::stoi(m.at("misses")));
+        for (int k = 1; k <= 4; ++k) EXPECT_FALSE(m.at("rating_" + std::to_string(k)).empty());
+    }
+    EXPECT_EQ(static_cast<int>(readCsv(out + "/ratings.csv").size()), ratingEvents);
+
+    // --all-phases adds acclimation, training and the practice round to shots.csv, not to hit rates.
+    const std::string all = scratch("real/all");
+    ExportOptions options;
+    options.allPhases = true;
+    exportQuietly(results, all, options);
+    EXPECT_GT(readCsv(all + "/shots.csv").size(), shots.size());
+    EXPECT_GT(readCsv(all + "/matches.csv").size(), matches.size());
+    EXPECT_EQ(slurp(all + "/hitrates.csv"), slurp(out + "/hitrates.csv"));
+}
+
+// A session's results with a new participant id (and start time), as if run again.
+std::string rewrite(const protocol::SessionData& data, const std::string& dir, const std::string& participant,
+                    std::size_t events, bool finish, const std::string& flag = "") {
+    protocol::SessionHeader header = data.header;
+    header.participant = participant;
+    header.startedAt = "";  // now: another session
+    protocol::SessionWriter w = protocol::SessionWriter::create(dir, header);
+    for (std::size_t i = 0; i < events && i < data.events.size(); ++i) w.addEvent(data.events[i]);
+    if (!flag.empty()) w.flag(flag, "12.5 % of frames missed their vsync");
+    if (finish) w.finish();
+    else w.commit();
+    return w.path();
+}
+
+// Every file under dir with its size and a hash of its bytes (but SQLite's shared-memory
+// index, which readers may touch).
+std::map<std::string, std::string> snapshot(const std::string& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        const std::string p = e.path().filename().string();
+        if (!e.is_regular_file()) {
+            files[p] = "not a regular file";
+        } else if (p.size() < 4 || p.compare(p.size() - 4, 4, "-shm") != 0) {
+            const std::string bytes = slurp(e.path().string());
+            files[p] = std::to_string(bytes.size()) + " bytes, hash " + std::to_string(std::hash<std::string>{}(bytes));
+        } else {
+            files[p] = "shm";
+        }
+    }
+    return files;
+}
+
+TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnlessAskedFor) {
+    const std::string results = scratch("mixed/results"), source = scratch("mixed/source");
+    const auto data = protocol::readSession(headless("shooter-quick.json", "OK", source, 4));
+    // Cut in the middle of the test phase: some scored trials survive, not all.
+    std::vector<std::size_t> testShots;
+    for (std::size_t i = 0; i < data.events.size(); ++i)
+        if (data.events[i].type == "shot" && data.events[i].phase == "test") testShots.push_back(i);
+    ASSERT_GE(testShots.size(), 4u);
+    const std::size_t cut = testShots[testShots.size() / 2];
+    const std::string complete = rewrite(data, results, "OK", data.events.size(), true);
+    const std::string incomplete = rewrite(data, results, "CUT", cut, false);
+    const std::string flagged = rewrite(data, results, "FLAG", data.events.size(), true, "missed_frames");
+    fs::copy_file(complete, results + "/copy-of-ok.warplab-session");
+    { std::ofstream(results + "/garbage.warplab-session") << "this is not a database, just text"; }
+    { std::ofstream(results + "/.hidden-being-created.warplab-session") << "ignored"; }
+    { std::ofstream(results + "/notes.txt") << "ignored"; }
+    ASSERT_EQ(::mkfifo((results + "/pipe.warplab-session").c_str(), 0600), 0);  // must not block the export
+    // A session still being written: its writer holds the file open with a WAL beside it.
+    protocol::SessionWriter running = [&] {
+        protocol::SessionHeader header = data.header;
+        header.participant = "LIVE";
+        header.startedAt = "";
+        protocol::SessionWriter w = protocol::SessionWriter::create(results, header);
+        for (std::size_t i = 0; i < cut; ++i) w.addEvent(data.events[i]);
+        w.commit();
+        return w;
+    }();
+
+    const auto before = snapshot(results);
+    std::string log;
+    const std::string out = scratch("mixed/out");
+    const ExportSummary summary = exportQuietly(results, out, {}, &log);
+    EXPECT_EQ(snapshot(results), before) << "export changed the results folder";
+
+    std::map<std::string, std::string> status;
+    std::map<std::string, bool> included;
+    for (const auto& s : summary.sessions) {
+        status[s.file] = s.status;
+        included[s.file] = s.included;
+    }
+    const auto name = [&](const std::string& path) { return fs::path(path).filename().string(); };
+    ASSERT_EQ(summary.sessions.size(), 6u) << log;  // no hidden file, no text file, no pipe
+    EXPECT_EQ(status[name(complete)], "ok");
+    EXPECT_EQ(status[name(incomplete)], "incomplete");
+    EXPECT_EQ(status[name(running.path())], "incomplete");
+    EXPECT_EQ(status[name(flagged)], "flagged");
+    EXPECT_EQ(status["garbage.warplab-session"], "damaged");
+    // Files are read in path order: OK_... before copy-of-ok, so the copy is the duplicate.
+    EXPECT_EQ(status["copy-of-ok.warplab-session"], "duplicate");
+    EXPECT_TRUE(log.find("garbage.warplab-session") != std::string::npos) << log;
+    EXPECT_TRUE(log.find("pipe.warplab-session") != std::string::npos) << log;
+
+    const auto sessions = readCsv(out + "/sessions.csv");
+    ASSERT_EQ(sessions.size(), 6u);
+    for (const auto& row : sessions) {
+        EXPECT_EQ(row.at("included"), included[row.at("file")] ? "true" : "false") << row.at("file");
+        EXPECT_EQ(row.at("status"), status[row.at("file")]);
+        if (row.at("status") == "flagged") {
+            EXPECT_EQ(row.at("flags"), "missed_frames");
+        }
+        if (row.at("status") == "damaged") {
+            EXPECT_FALSE(row.at("note").empty());
+        }
+    }
+
+    std::map<std::string, int> scoredShots;  // by participant
+    for (const auto& s : readCsv(out + "/shots.csv")) ++scoredShots[s.at("participant")];
+    std::map<Key, Counts> expected;
+    countScored(data, expected);
+    int perSession = 0;
+    for (const auto& [key, c] : expected) perSession += c.shots;
+    ASSERT_GT(perSession, 0);
+    EXPECT_EQ(scoredShots.size(), 1u) << "only the complete session (once) by default";
+    EXPECT_EQ(scoredShots["OK"], perSession);
+
+    ExportOptions more;
+    more.includeIncomplete = more.includeFlagged = true;
+    const std::string outAll = scratch("mixed/out-all");
+    exportQuietly(results, outAll, more);
+    std::map<std::string, int> allShots;
+    for (const auto& s : readCsv(outAll + "/shots.csv")) ++allShots[s.at("participant")];
+    EXPECT_EQ(allShots["OK"], perSession) << "a duplicate never counts twice";
+    EXPECT_EQ(allShots["FLAG"], perSession);
+    EXPECT_GT(allShots["CUT"], 0);
+    EXPECT_LT(allShots["CUT"], perSession);
+    EXPECT_EQ(allShots.count("LIVE"), 1u);
+    EXPECT_EQ(snapshot(results), before);
+}
+
+TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
+    const std::string results = scratch("ids/results"), source = scratch("ids/source");
+    const auto data = protocol::readSession(headless("shooter-quick.json", "x", source, 5));
+    for (const char* id : {"=1+2", "-5", "@cmd", "+A1", "a,b \"c\"", "caf\xC3\xA9", "bad\xFFid"})
+        rewrite(data, results, id, data.events.size(), true);
+    const std::string out = scratch("ids/out");
+    exportQuietly(results, out);
+    std::set<std::string> ids;
+    for (const auto& row : readCsv(out + "/hitrates.csv")) ids.insert(row.at("participant"));
+    EXPECT_EQ(ids, (std::set<std::string>{"'=1+2", "'-5", "'@cmd", "'+A1", "a,b \"c\"", "caf\xC3\xA9",
+                                          "bad\xEF\xBF\xBDid"}));
+}
+
+TEST(Export, AVersion1SessionExportsItsScoredTrials) {
+    const std::string results = scratch("v1/results");
+    const std::string fixture = std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session";
+    fs::copy_file(fixture, results + "/v1.warplab-session");
+    std::map<Key, Counts> expected;
+    countScored(protocol::readSession(fixture), expected);
+    ASSERT_FALSE(expected.empty());
+    const std::string out = scratch("v1/out");
+    exportQuietly(results, out);
+    const auto rows = readCsv(out + "/hitrates.csv");
+    ASSERT_EQ(rows.size(), expected.size());
+    for (const auto& row : rows) {
+        const Counts& c = expected[{row.at("participant"), row.at("game"), row.at("mode")}];
+        EXPECT_EQ(std::stoi(row.at("shots")), c.shots);
+        EXPECT_EQ(std::stoi(row.at("hits")), c.hits);
+    }
+}
+
+TEST(Export, AMissingOrEmptyResultsFolderIsNamed) {
+    const std::string out = scratch("errors/out");
+    try {
+        exportQuietly("/nonexistent/results", out);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("'/nonexistent/results' does not exist"), std::string::npos) << e.what();
+    }
+    const std::string empty = scratch("errors/empty");
+    try {
+        exportQuietly(empty, out);
+        ADD_FAILURE() << "no error";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("holds no session files"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(fs::is_empty(out)) << "nothing is written when there is nothing to export";
+}
+
+}  // namespace
+}  // namespace warplab::app
