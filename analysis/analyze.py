@@ -1,0 +1,275 @@
+#!/usr/bin/python3
+"""Statistics for a warplab study: from the CSVs `warplab export` writes to report.md, report.json
+and PNG figures.
+
+Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE]
+
+Hit rates (hitrates.csv, every game): exact paired sign tests between every two modes of a game,
+as Pulkkinen's thesis tests warp upconversion against 15 and 120 Hz rendering (seed 004 §7,
+Tables 1–3, Figures 32–34): per participant the difference of hit rates, ties dropped, binomial
+tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order below,
+so warp15to120 − conv15 is positive where warping helps.
+
+Click game (matches.csv, scored matches only): per participant and mode the average over their
+matches of green hits, red hits, misses and each rating, then per mode mean and SD across
+participants, each mode against a reference mode (bireproj15to60 by default) by paired t-test
+(the "simple contrast" F(1, n−1) = t² Yang et al. report, seed 000 §8 Table 2), Wilcoxon
+signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodels' AnovaRM,
+left out with a note if statsmodels is missing).
+
+Bad input (a missing folder or file, an empty file, a missing column, a cell that is not a
+count, hits above shots, a game with one participant) ends in one sentence on stderr naming the
+file and column, and exit status 1.
+"""
+import argparse
+import importlib
+import json
+import math
+import os
+import re
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+from warplab_analysis import inputs, report, stats  # noqa: E402
+from warplab_analysis.inputs import BadInput  # noqa: E402
+from warplab_analysis.stats import UPCONVERSION_MODES, conventional_rate, order_modes  # noqa: E402
+
+DEFAULT_REFERENCE = "bireproj15to60"
+GAME_ORDER = ["shooter", "click"]
+CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
+
+
+def natural_key(participant):
+    """p2 before p10; ties broken by the exact string."""
+    parts = tuple((0, int(t), "") if t.isdigit() else (1, 0, t.lower()) for t in re.split(r"(\d+)", participant) if t)
+    return parts, participant
+
+
+def order_games(games):
+    return [g for g in GAME_ORDER if g in games] + sorted(set(games) - set(GAME_ORDER))
+
+
+def file_stem(name, taken):
+    stem = re.sub(r"[^A-Za-z0-9_.-]+", "_", name).strip("._") or "game"
+    candidate, k = stem, 2
+    while candidate in taken:
+        candidate, k = f"{stem}_{k}", k + 1
+    taken.add(candidate)
+    return candidate
+
+
+def analyse_game(game, participants):
+    """One game's hit rates: Table 1 data, every pair's sign test, Table 2 per upconversion mode."""
+    order = sorted(participants, key=natural_key)
+    participants = {p: participants[p] for p in order}
+    modes = order_modes({m for row in participants.values() for m in row})
+    hit_rates = {p: {m: {"shots": row[m][1], "hits": row[m][0], "hit_rate": row[m][0] / row[m][1]}
+                     for m in modes if m in row}
+                 for p, row in participants.items()}
+    tests = [stats.hit_rate_sign_test(game, a, b, participants)
+             for i, a in enumerate(modes) for b in modes[i + 1:]]
+    upconversion = []
+    for mode in [m for m in modes if m in UPCONVERSION_MODES]:
+        others = [m for m in modes if m != mode]
+        if not others:
+            continue
+        conventional = [m for m in others if conventional_rate(m) is not None]
+        sort_by = min(conventional, key=conventional_rate) if conventional else others[0]
+        others = [sort_by] + [m for m in others if m != sort_by]  # the thesis's Table 2 leads with it
+        rows = []
+        for p, row in participants.items():
+            differences = {}
+            for other in others:
+                if mode in row and other in row:
+                    differences[other] = stats.rate_difference(row[mode], row[other])[1]
+            if differences:
+                rows.append({"participant": p, "differences": differences})
+        rows.sort(key=lambda r: (sort_by not in r["differences"], r["differences"].get(sort_by, 0.0)))
+        upconversion.append({"mode": mode, "against": others, "sorted_by": sort_by, "rows": rows})
+    notes = []
+    if len(modes) == 1:
+        notes.append(f"Only one mode ({modes[0]}): no pairs to test.")
+    summary = {"participants": order, "modes": modes, "hit_rates": hit_rates, "upconversion_differences": upconversion,
+               "figures": {}, "notes": notes}
+    return summary, tests
+
+
+def analyse_click(loaded, statements, requested_reference):
+    matches, rating_columns, rows = loaded
+    labels = statements[0] if statements else {}
+    measures = CLICK_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
+    click = {"scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
+             "reference_mode": None, "reference_requested": requested_reference, "anova_available": None,
+             "measures": {}, "notes": list(statements[1]) if statements else [], "figure": None}
+    if not matches:
+        click["notes"].append("matches.csv has no scored matches: no click-game table.")
+        return click
+    participants = sorted({m["participant"] for m in matches}, key=natural_key)
+    modes = order_modes({m["mode"] for m in matches})
+    reference = requested_reference if requested_reference in modes else modes[0]
+    if reference != requested_reference:
+        click["notes"].append(f"The reference mode {requested_reference} is not in the scored matches; the first "
+                              f"mode present in the mode order, {reference}, is the reference instead.")
+    others = [m for m in modes if m != reference]
+    click.update(participants=participants, modes=modes, reference_mode=reference)
+    try:
+        importlib.import_module("statsmodels.stats.anova")
+        click["anova_available"] = True
+    except ImportError:
+        click["anova_available"] = False
+        click["notes"].append("statsmodels is not installed (Debian: python3-statsmodels): no repeated-measures "
+                              "ANOVA.")
+    for index, (key, label) in enumerate(measures):
+        cells = {}  # participant -> mode -> the values of their matches
+        for m in matches:
+            value = m[key] if index < len(CLICK_COUNTS) else m["ratings"][index - len(CLICK_COUNTS)]
+            if value is not None:
+                cells.setdefault(m["participant"], {}).setdefault(m["mode"], []).append(float(value))
+        values = {p: {mode: sum(v) / len(v) for mode, v in cells.get(p, {}).items()} for p in participants}
+        per_mode = {}
+        for mode in modes:
+            entry = stats.describe([row[mode] for row in values.values() if mode in row])
+            if mode != reference:
+                paired = [p for p in participants if mode in values[p] and reference in values[p]]
+                entry["vs_reference"] = stats.paired_tests([values[p][mode] for p in paired],
+                                                           [values[p][reference] for p in paired])
+            else:
+                entry["vs_reference"] = None
+            per_mode[mode] = entry
+        anova = None
+        if click["anova_available"]:
+            anova = stats.rm_anova(values, modes)
+            for k in ("df_num", "df_den"):
+                if anova[k] is not None and float(anova[k]).is_integer():
+                    anova[k] = int(anova[k])
+        click["measures"][key] = {"label": label, "modes": per_mode, "anova": anova,
+                                  "participant_means": values}
+    if not others:
+        click["notes"].append(f"Only one mode ({reference}) in the scored matches: nothing to compare.")
+    return click
+
+
+def analyse(export_dir, reference_mode):
+    if not os.path.exists(export_dir):
+        raise BadInput(f"{export_dir}: no such directory (expected the folder `warplab export` wrote).")
+    if not os.path.isdir(export_dir):
+        raise BadInput(f"{export_dir}: is not a directory (expected the folder `warplab export` wrote).")
+    games, hitrate_rows = inputs.load_hitrates(export_dir)
+    matches = inputs.load_matches(export_dir)
+    statements = inputs.load_statements(export_dir)
+    sessions = inputs.load_sessions(export_dir)
+    results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
+               "sessions": None, "mode_order": [], "games": {}, "sign_tests": [], "click": None, "figures": [],
+               "notes": []}
+    if isinstance(sessions, str):
+        results["notes"].append(sessions)
+    else:
+        results["sessions"] = sessions
+    for game in order_games(games):
+        summary, tests = analyse_game(game, games[game])
+        results["games"][game] = summary
+        results["sign_tests"] += tests
+    if matches is not None:
+        results["inputs"][inputs.MATCHES] = {"rows": matches[2], "scored_rows": len(matches[0])}
+        if matches[2]:  # header-only when no session was a click session: no click section then
+            results["click"] = analyse_click(matches, statements, reference_mode)
+    if statements is not None:
+        results["inputs"][inputs.RATINGS] = {"statements": len(statements[0])}
+    all_modes = {m for g in results["games"].values() for m in g["modes"]}
+    if results["click"]:
+        all_modes |= set(results["click"]["modes"])
+    results["mode_order"] = order_modes(all_modes)
+    return results
+
+
+def draw_figures(results, out_dir):
+    """Draws every figure, records its file name in results, and returns the paths written."""
+    from warplab_analysis import figures  # matplotlib only once the input has been accepted
+    written, taken = [], set()
+    tests_by_game = {}
+    for test in results["sign_tests"]:
+        tests_by_game.setdefault(test["game"], []).append(test)
+    for game, summary in results["games"].items():
+        stem = file_stem(game, taken)
+        name = f"{stem}_hit_rates.png"
+        figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
+                                 summary["hit_rates"])
+        summary["figures"]["hit_rates"] = name
+        written.append(name)
+        panels = []
+        for test in tests_by_game.get(game, []):
+            a, b = test["a"], test["b"]
+            if a in UPCONVERSION_MODES or b in UPCONVERSION_MODES:
+                flip = a not in UPCONVERSION_MODES  # draw upconversion − other
+                values = [-d if flip else d for d in test["differences"].values()]
+                panels.append(((b, a) if flip else (a, b), values))
+        if panels:
+            name = f"{stem}_differences.png"
+            figures.differences_figure(os.path.join(out_dir, name), game, panels)
+            summary["figures"]["differences"] = name
+            written.append(name)
+        elif len(summary["modes"]) > 1:
+            summary["notes"].append("No upconversion mode (warp15to120, bireproj15to60): no histograms of "
+                                    "differences.")
+    click = results["click"]
+    if click and click["modes"]:
+        name = file_stem("click_measures", taken) + ".png"
+        figures.click_figure(os.path.join(out_dir, name), click)
+        click["figure"] = name
+        written.append(name)
+    results["figures"] = written
+    return [os.path.join(out_dir, name) for name in written]
+
+
+def finite_or_none(value):
+    """JSON has no NaN or infinity: such values become null."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: finite_or_none(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [finite_or_none(v) for v in value]
+    return value
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, click-game tables and figures from "
+                                                                 "the CSVs `warplab export` writes.")
+    parser.add_argument("export_dir", metavar="EXPORT_DIR", help="the folder `warplab export` wrote")
+    parser.add_argument("--out", required=True, metavar="REPORT_DIR",
+                        help="where to write report.md, report.json and the figures (created if missing)")
+    parser.add_argument("--reference-mode", default=DEFAULT_REFERENCE, metavar="MODE",
+                        help=f"the click game's mode every other mode is compared with (default {DEFAULT_REFERENCE})")
+    args = parser.parse_args(argv)
+    try:
+        results = analyse(args.export_dir, args.reference_mode)
+    except BadInput as e:
+        print(f"analyze: {e}", file=sys.stderr)
+        return 1
+    target = args.out
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        print(f"analyze: {args.out}: is not a directory (REPORT_DIR, where the report goes).", file=sys.stderr)
+        return 1
+    try:
+        os.makedirs(args.out, exist_ok=True)
+        written = draw_figures(results, args.out)
+        target = os.path.join(args.out, "report.json")
+        with open(target, "w", encoding="utf-8") as f:
+            json.dump(finite_or_none(results), f, indent=2, allow_nan=False, ensure_ascii=False)
+            f.write("\n")
+        written.append(target)
+        target = os.path.join(args.out, "report.md")
+        with open(target, "w", encoding="utf-8") as f:
+            f.write(report.render(results))
+        written.append(target)
+    except OSError as e:
+        print(f"analyze: cannot write {e.filename or target}: {e.strerror or e}.", file=sys.stderr)
+        return 1
+    for path in written:
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

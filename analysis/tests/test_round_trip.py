@@ -1,0 +1,112 @@
+"""A real study through the whole pipeline: headless bot sessions of both games (`warplab run`),
+`warplab export`, then analysis/analyze. The counts are checked against the session files
+themselves, read here with Python's sqlite3 -- a path independent of both warplab's C++ reader
+and the export under test.
+
+Needs the warplab binary: ctest passes it as WARPLAB_BINARY (tests/CMakeLists.txt). Run by hand,
+the test looks for build/app/warplab and is skipped, saying so, when there is none.
+"""
+import collections
+import csv
+import json
+import os
+import sqlite3
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+PARTICIPANTS = ["P1", "P2", "P3"]
+
+
+def binary():
+    path = os.environ.get("WARPLAB_BINARY") or str(ROOT / "build" / "app" / "warplab")
+    if not os.path.exists(path):
+        if os.environ.get("WARPLAB_BINARY"):
+            pytest.fail(f"WARPLAB_BINARY={path} does not exist")
+        pytest.skip("no warplab binary (build it, or set WARPLAB_BINARY)")
+    return path
+
+
+def run(*args):
+    done = subprocess.run(list(map(str, args)), capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, f"{args}: {done.stderr}"
+    return done
+
+
+def scored_counts_from_sqlite(session):
+    """(participant, game, mode) -> [shots, hits] over the scored phase, straight from SQL."""
+    db = sqlite3.connect(f"file:{session}?mode=ro&immutable=1", uri=True)
+    meta = dict(db.execute("SELECT key, value FROM meta"))
+    protocol = json.loads(meta["protocol_json"])
+    game = protocol["game"]
+    counts = collections.defaultdict(lambda: [0, 0])
+    if game == "shooter":
+        scoring = protocol["test"]["scoring"]
+        rows = db.execute("SELECT mode, world_outcome, displayed_outcome FROM events "
+                          "WHERE type IN ('shot', 'timeout') AND phase = 'test'")
+        hit = "hit"
+    else:
+        scoring = protocol["matches"]["scoring"]
+        scored_rounds = [r["name"] for r in protocol["matches"]["rounds"] if r["scored"]]
+        rows = db.execute(f"SELECT mode, world_outcome, displayed_outcome FROM events WHERE type = 'click' "
+                          f"AND phase IN ({','.join('?' * len(scored_rounds))})", scored_rounds)
+        hit = "green"
+    for mode, world, displayed in rows:
+        c = counts[(meta["participant"], game, mode)]
+        c[0] += 1
+        c[1] += (world if scoring == "world" else displayed) == hit
+    db.close()
+    return counts
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory):
+    warplab = binary()
+    base = tmp_path_factory.mktemp("study")
+    results, export, report = base / "results", base / "export", base / "report"
+    results.mkdir()
+    for seed, participant in enumerate(PARTICIPANTS, start=1):
+        for protocol in ("shooter-quick.json", "click-quick.json"):
+            run(warplab, "run", "--headless", "--protocol", ROOT / "protocol" / protocol, "--participant",
+                participant, "--out", results, "--player", f"bot:{seed}", "--seed", seed)
+    before = {p: p.read_bytes() for p in results.iterdir()}
+    run(warplab, "export", results, "--out", export)
+    assert {p: p.read_bytes() for p in results.iterdir()} == before, "export changed the results folder"
+    run(ROOT / "analysis" / "analyze", export, "--out", report)
+    return results, export, report
+
+
+def test_hit_rates_are_the_counts_the_session_files_hold(study):
+    results, export, _ = study
+    expected = collections.defaultdict(lambda: [0, 0])
+    for session in results.glob("*.warplab-session"):
+        for key, (shots, hits) in scored_counts_from_sqlite(session).items():
+            expected[key][0] += shots
+            expected[key][1] += hits
+    with open(export / "hitrates.csv", newline="", encoding="utf-8") as f:
+        rows = list(csv.DictReader(f))
+    got = {(r["participant"], r["game"], r["mode"]): [int(r["shots"]), int(r["hits"])] for r in rows}
+    assert got == dict(expected)
+    assert {r["game"] for r in rows} == {"shooter", "click"}
+
+
+def test_report_has_both_games_tables_and_figures(study):
+    _, export, report = study
+    data = json.loads((report / "report.json").read_text())
+    assert set(data["games"]) == {"shooter", "click"}
+    pairs = {(t["game"], t["a"], t["b"]) for t in data["sign_tests"]}
+    assert ("shooter", "warp15to120", "conv15") in pairs
+    assert ("click", "bireproj15to60", "conv15") in pairs
+    for t in data["sign_tests"]:
+        assert t["n"] + t["ties"] == len(PARTICIPANTS)
+        assert t["positive"] + t["negative"] == t["n"]
+    with open(export / "matches.csv", newline="", encoding="utf-8") as f:
+        scored = [m for m in csv.DictReader(f) if m["scored_phase"] == "true"]
+    assert data["click"]["scored_matches"] == len(scored) > 0
+    text = (report / "report.md").read_text()
+    assert "Table 1 (shooter)" in text and "Click game" in text
+    for figure in data["figures"]:
+        assert (report / figure).stat().st_size > 1000
+    assert "shooter_hit_rates.png" in data["figures"] and "click_measures.png" in data["figures"]

@@ -1,0 +1,118 @@
+"""The report's figures (PNG, matplotlib's Agg backend, so no display is needed).
+
+- hit rate per participant, one series per mode (seed 004 Figure 32);
+- histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
+  33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
+- the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
+  of seed 000 Table 2).
+Each mode keeps one colour in every figure.
+"""
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .stats import MODE_ORDER  # noqa: E402
+
+BIN_WIDTH = 0.05
+MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
+
+
+def colour(mode):
+    """One colour per mode: the known modes by their place in the mode order, others by name."""
+    cmap = plt.get_cmap("tab10")
+    if mode in MODE_ORDER:
+        return cmap(MODE_ORDER.index(mode) % 10)
+    return plt.get_cmap("Dark2")(sum(map(ord, mode)) % 8)
+
+
+def hit_rates_figure(path, game, participants, modes, hit_rates):
+    fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
+    x = np.arange(len(participants))
+    # Modes side by side within a participant's column: equal hit rates (common with few shots)
+    # would otherwise hide one mode's marker behind another's.
+    dodge = min(0.25, 0.6 / max(1, len(modes)))
+    for k, mode in enumerate(modes):
+        y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
+        ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="-", linewidth=0.8, markersize=5,
+                color=colour(mode), label=mode)
+    ax.set_xticks(x)
+    ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
+    ax.set_xlim(-0.5, len(participants) - 0.5)
+    ax.set_ylim(0, 1.02)
+    ax.set_xlabel("participant")
+    ax.set_ylabel("hit rate (hits / shots)" if game != "click" else "hit rate (green hits / clicks)")
+    ax.set_title(f"{game}: hit rate per participant and mode")
+    ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
+    ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="best", framealpha=0.9)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def bins(values):
+    low = math.floor(min(values) / BIN_WIDTH + 1e-9) * BIN_WIDTH
+    high = math.ceil(max(values) / BIN_WIDTH - 1e-9) * BIN_WIDTH
+    if high - low < BIN_WIDTH / 2:  # every value on one bin edge (e.g. all ties: 0)
+        low, high = low - BIN_WIDTH, high + BIN_WIDTH
+    return np.linspace(low, high, int(round((high - low) / BIN_WIDTH)) + 1)
+
+
+def differences_figure(path, game, panels):
+    """panels: [((upconversion mode, other mode), [differences])]."""
+    columns = min(3, len(panels))
+    rows = math.ceil(len(panels) / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), dpi=110, squeeze=False)
+    for ax, ((mode, other), values) in zip(axes.flat, panels):
+        if values:
+            ax.hist(values, bins=bins(values), color=colour(mode), edgecolor="black", linewidth=0.6)
+            ax.axvline(0.0, color="0.3", linestyle="--", linewidth=0.9)
+        else:
+            ax.text(0.5, 0.5, "no participant has both modes", ha="center", va="center", transform=ax.transAxes,
+                    fontsize=8)
+        ax.set_title(f"{mode} − {other}", fontsize=9)
+        ax.set_xlabel("hit-rate difference")
+        ax.set_ylabel("participants")
+        ax.yaxis.get_major_locator().set_params(integer=True)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{game}: hit-rate differences, upconversion against each other mode (bins of {BIN_WIDTH:g})",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def click_figure(path, click):
+    measures = list(click["measures"].values())
+    modes = click["modes"]
+    columns = min(4, len(measures))
+    rows = math.ceil(len(measures) / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.4 * rows), dpi=110, squeeze=False)
+    x = np.arange(len(modes))
+    for k, (ax, measure) in enumerate(zip(axes.flat, measures)):
+        means = [measure["modes"][m]["mean"] for m in modes]
+        sds = [measure["modes"][m]["sd"] for m in modes]
+        means = [math.nan if v is None else v for v in means]
+        sds = [0.0 if v is None else v for v in sds]
+        bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(m) for m in modes], edgecolor="black",
+                      linewidth=0.5, error_kw={"linewidth": 0.8})
+        if click["reference_mode"] in modes:
+            bars[modes.index(click["reference_mode"])].set_linewidth(2.0)
+        ax.set_xticks(x)
+        ax.set_xticklabels(modes, rotation=60, ha="right", fontsize=7)
+        label = measure["label"]
+        ax.set_title(label if len(label) <= 34 else label[:32] + "…", fontsize=9)
+        if k % columns == 0:
+            ax.set_ylabel("mean ± SD of participants' averages", fontsize=8)
+        ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
+    for ax in list(axes.flat)[len(measures):]:
+        ax.set_visible(False)
+    fig.suptitle(f"click game: mean ± SD across participants (reference {click['reference_mode']}, bold outline)",
+                 fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)

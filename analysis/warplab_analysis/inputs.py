@@ -1,0 +1,231 @@
+"""Reading the CSVs `warplab export` writes, and refusing bad ones with one sentence.
+
+The csv module rather than pandas: every cell stays the exact string the export wrote (a
+participant id such as `NA` or `'=1` is an opaque id, never a missing value or a formula),
+and each record keeps the line it starts on, so an error can name the line a spreadsheet or
+an editor shows, even after a quoted field that spans lines.
+
+Every problem raises BadInput with one sentence naming the file, and the column and line
+where there is one.
+"""
+import csv
+import math
+import os
+import re
+
+HITRATES = "hitrates.csv"
+MATCHES = "matches.csv"
+RATINGS = "ratings.csv"
+SESSIONS = "sessions.csv"
+
+HITRATES_REQUIRED = ["participant", "game", "mode", "shots", "hits"]
+MATCHES_REQUIRED = ["participant", "scored_phase", "mode", "green_hits", "red_hits", "misses"]
+RATINGS_REQUIRED = ["statement_index", "statement"]
+RATING_COLUMN = re.compile(r"rating_(\d+)$")
+
+
+class BadInput(Exception):
+    pass
+
+
+class Table:
+    """A CSV's header and its records, each a dict with the record's first line in `_line`."""
+
+    def __init__(self, path, header, records):
+        self.path = path
+        self.header = header
+        self.records = records
+
+
+def read_table(path, required):
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
+            reader = csv.reader(f, strict=True)
+            header = None
+            records = []
+            end_of_previous = 0
+            for fields in reader:
+                first_line = end_of_previous + 1
+                end_of_previous = reader.line_num
+                if not fields:
+                    continue  # a blank line
+                if header is None:
+                    header = [name.strip() for name in fields]
+                    continue
+                if len(fields) != len(header):
+                    raise BadInput(f"{path}: line {first_line} has {len(fields)} fields but the header has "
+                                   f"{len(header)}.")
+                record = dict(zip(header, fields))
+                record["_line"] = first_line
+                records.append(record)
+    except FileNotFoundError:
+        raise BadInput(f"{path}: no such file.")
+    except IsADirectoryError:
+        raise BadInput(f"{path}: is a directory, expected a CSV file.")
+    except UnicodeDecodeError:
+        raise BadInput(f"{path}: is not UTF-8 text.")
+    except csv.Error as e:
+        raise BadInput(f"{path}: cannot be read as CSV (line {reader.line_num}: {e}).")
+    except OSError as e:
+        raise BadInput(f"{path}: cannot be read ({e.strerror or e}).")
+    if header is None:
+        raise BadInput(f"{path}: the file is empty, expected a header line with columns {', '.join(required)}.")
+    for column in required:
+        if column not in header:
+            raise BadInput(f"{path}: missing column '{column}'.")
+    return Table(path, header, records)
+
+
+def text(table, record, column):
+    """A non-empty string cell, kept exactly as written."""
+    value = record[column]
+    if value == "":
+        raise BadInput(f"{table.path}: line {record['_line']}, column '{column}' is empty.")
+    return value
+
+
+def number(table, record, column, *, integer=False, optional=False):
+    """A numeric cell: float (int for integer columns); None for an empty cell where allowed."""
+    raw = record[column]
+    where = f"{table.path}: line {record['_line']}, column '{column}'"
+    if raw.strip() == "":
+        if optional:
+            return None
+        raise BadInput(f"{where} is empty, expected a number.")
+    try:
+        value = int(raw) if integer else float(raw)  # int first: a count above 2^53 stays exact
+    except ValueError:
+        try:
+            value = float(raw)
+        except ValueError:
+            raise BadInput(f"{where} is not a number: {raw!r}.")
+    if isinstance(value, float) and not math.isfinite(value):
+        raise BadInput(f"{where} is not a finite number: {raw!r}.")
+    if integer:
+        if isinstance(value, float) and not value.is_integer():
+            raise BadInput(f"{where} is not a whole number: {raw!r}.")
+        value = int(value)
+        if value < 0:
+            raise BadInput(f"{where} is negative: {raw!r}.")
+    return value
+
+
+def boolean(table, record, column):
+    raw = record[column].strip().lower()
+    if raw in ("true", "1"):
+        return True
+    if raw in ("false", "0"):
+        return False
+    raise BadInput(f"{table.path}: line {record['_line']}, column '{column}' is not true or false: "
+                   f"{record[column]!r}.")
+
+
+def load_hitrates(export_dir):
+    """{game: {participant: {mode: (hits, shots)}}} and the number of rows, in file order."""
+    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED)
+    if not table.records:
+        raise BadInput(f"{table.path}: has a header but no data rows.")
+    optional_numeric = [c for c in ("timeouts", "hit_rate") if c in table.header]
+    games = {}
+    first_seen = {}
+    for record in table.records:
+        participant = text(table, record, "participant")
+        game = text(table, record, "game")
+        mode = text(table, record, "mode")
+        shots = number(table, record, "shots", integer=True)
+        hits = number(table, record, "hits", integer=True)
+        for column in optional_numeric:
+            number(table, record, column, optional=True)
+        line = record["_line"]
+        if shots == 0:
+            raise BadInput(f"{table.path}: line {line}, column 'shots' is 0, so there is no hit rate.")
+        if hits > shots:
+            raise BadInput(f"{table.path}: line {line}, column 'hits' ({hits}) exceeds column 'shots' ({shots}).")
+        key = (game, participant, mode)
+        if key in first_seen:
+            raise BadInput(f"{table.path}: line {line}, column 'participant': {participant!r} has a second row "
+                           f"for game {game!r} and mode {mode!r} (the first is on line {first_seen[key]}).")
+        first_seen[key] = line
+        games.setdefault(game, {}).setdefault(participant, {})[mode] = (hits, shots)
+    for game, participants in games.items():
+        if len(participants) < 2:
+            only = next(iter(participants))
+            raise BadInput(f"{table.path}: column 'participant' has a single participant ({only!r}) for game "
+                           f"{game!r}, which needs at least two participants for paired tests.")
+    return games, len(table.records)
+
+
+def load_matches(export_dir):
+    """None without matches.csv; else (scored match records, rating columns, rows in the file).
+
+    A scored record: participant, mode, green_hits, red_hits, misses and `ratings`, a list with one
+    value or None per rating column, in column order rating_1, rating_2, ...
+    """
+    path = os.path.join(export_dir, MATCHES)
+    if not os.path.exists(path):
+        return None
+    table = read_table(path, MATCHES_REQUIRED)
+    numbered = sorted((int(m.group(1)), name) for name in table.header if (m := RATING_COLUMN.match(name)))
+    rating_columns = [name for _, name in numbered]
+    optional_numeric = [c for c in ("clicks", "duration_s") if c in table.header]
+    scored = []
+    for record in table.records:
+        if not boolean(table, record, "scored_phase"):
+            continue
+        match = {
+            "participant": text(table, record, "participant"),
+            "mode": text(table, record, "mode"),
+            "green_hits": number(table, record, "green_hits", integer=True),
+            "red_hits": number(table, record, "red_hits", integer=True),
+            "misses": number(table, record, "misses", integer=True),
+            "ratings": [number(table, record, c, optional=True) for c in rating_columns],
+        }
+        for column in optional_numeric:
+            number(table, record, column, optional=True)
+        scored.append(match)
+    return scored, rating_columns, len(table.records)
+
+
+def load_statements(export_dir):
+    """None without ratings.csv; else ({rating column number k+1: statement text}, notes)."""
+    path = os.path.join(export_dir, RATINGS)
+    if not os.path.exists(path):
+        return None
+    table = read_table(path, RATINGS_REQUIRED)
+    texts = {}
+    for record in table.records:
+        index = number(table, record, "statement_index", integer=True)
+        counts = texts.setdefault(index + 1, {})
+        statement = record["statement"]
+        counts[statement] = counts.get(statement, 0) + 1
+    labels, notes = {}, []
+    for column, counts in sorted(texts.items()):
+        ordered = sorted(counts.items(), key=lambda item: -item[1])
+        labels[column] = ordered[0][0]
+        if len(ordered) > 1:
+            others = "; ".join(repr(t) for t, _ in ordered[1:])
+            notes.append(f"ratings.csv gives statement {column - 1} more than one text; the table uses the most "
+                         f"frequent, {ordered[0][0]!r} (also seen: {others}).")
+    return labels, notes
+
+
+def load_sessions(export_dir):
+    """None without sessions.csv; a note string if it cannot be used; else counts of sessions."""
+    path = os.path.join(export_dir, SESSIONS)
+    if not os.path.exists(path):
+        return None
+    try:
+        table = read_table(path, ["included"])
+        summary = {"listed": 0, "included": 0, "by_game": {}}
+        for record in table.records:
+            included = boolean(table, record, "included")
+            game = record.get("game", "")
+            per_game = summary["by_game"].setdefault(game, {"listed": 0, "included": 0})
+            for counts in (summary, per_game):
+                counts["listed"] += 1
+                counts["included"] += int(included)
+        if "game" not in table.header:
+            del summary["by_game"]
+        return summary
+    except BadInput as e:
+        return f"sessions.csv was not used: {e}"

@@ -1,0 +1,212 @@
+"""report.md from the results analyze.py also writes to report.json, so the two cannot disagree.
+
+Shooter (and any other game): the thesis's layout (seed 004 §6–§7): Table 1 hits and rates per
+participant, the hit-rate figure, sign tests for every pair of modes, Table 2 differences of
+each upconversion mode, Table 3 quartiles, histograms. Click game: the layout of Yang et al.'s
+Table 2 (seed 000 §8) first, then the same hit-rate sections on green hits / clicks.
+Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
+"""
+import math
+
+MODE_DESCRIPTIONS = {
+    "warp15to120": "rendered at 15 Hz, warped to 120 Hz",
+    "bireproj15to60": "rendered at 15 Hz, bidirectionally reprojected to 60 Hz",
+    "conv120": "conventional 120 Hz",
+    "conv60": "conventional 60 Hz",
+    "conv30": "conventional 30 Hz",
+    "conv15": "conventional 15 Hz",
+    "lag50": "60 Hz with 50 ms added lag",
+    "lag100": "60 Hz with 100 ms added lag",
+    "lag200": "60 Hz with 200 ms added lag",
+}
+NOTHING = "–"
+
+
+def cell(text):
+    """Markdown table cell: characters that would start a table column, emphasis or a link escaped."""
+    out = str(text).replace("\r", " ").replace("\n", " ")
+    for ch in "\\`*_[]<>|":
+        out = out.replace(ch, "\\" + ch)
+    return out
+
+
+def fmt(value, spec):
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return NOTHING if value is None or math.isnan(value) else ("∞" if value > 0 else "−∞")
+    return format(value, spec)
+
+
+def table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return "\n".join(lines) + "\n"
+
+
+def title(game):
+    return game[:1].upper() + game[1:]
+
+
+def hit_rate_sections(out, game, summary, tests, level):
+    """Tables 1–3 (numbered as the thesis's, labelled with the game), sign tests and figures."""
+    h = "#" * level
+    participants, modes, rates = summary["participants"], summary["modes"], summary["hit_rates"]
+    out.append(f"{h} Table 1 ({cell(game)}): hits and hit rates per participant\n")
+    shots = {rates[p][m]["shots"] for p in participants for m in modes if m in rates[p]}
+    uniform = len(shots) == 1
+    header = ["participant"] + [f"{m} hits" for m in modes] + ([] if uniform else [f"{m} shots" for m in modes])
+    header += [f"{m} rate" for m in modes]
+    rows = []
+    for p in participants:
+        row = [cell(p)] + [str(rates[p][m]["hits"]) if m in rates[p] else NOTHING for m in modes]
+        if not uniform:
+            row += [str(rates[p][m]["shots"]) if m in rates[p] else NOTHING for m in modes]
+        row += [fmt(rates[p][m]["hit_rate"], ".3f") if m in rates[p] else NOTHING for m in modes]
+        rows.append(row)
+    what = "green hits out of clicks" if game == "click" else "hits out of shots"
+    out.append(f"{len(participants)} participants, {len(modes)} modes; rate = {what}"
+               + (f", {shots.pop()} per participant and mode" if uniform else "") + "."
+               + (" A dash: the participant has no data in that mode." if any(
+                   m not in rates[p] for p in participants for m in modes) else "") + "\n")
+    out.append(table(header, rows))
+    if "hit_rates" in summary["figures"]:
+        out.append(f"![{cell(game)}: hit rate per participant and mode]({summary['figures']['hit_rates']})\n")
+    for note in summary["notes"]:
+        out.append(f"{note}\n")
+    if not tests:
+        return
+    out.append(f"{h} Sign tests between every two modes\n")
+    out.append("Per participant with both modes, d = rate(a) − rate(b). A tie (equal rates, decided on the "
+               "integer counts) is dropped from n. With X ~ Binomial(n, ½): p(a > b) = P(X ≥ +) tests "
+               "whether a beats b, p(a < b) = P(X ≤ +) whether b beats a; two-sided is scipy's binomtest. "
+               "Exact, as R's binom.test (seed 004 §7.1).\n")
+    rows = [[t["a"], t["b"], str(t["participants"]), str(t["n"]), str(t["positive"]), str(t["negative"]),
+             str(t["ties"]), fmt(t["p_greater"], ".4g"), fmt(t["p_less"], ".4g"), fmt(t["p_two_sided"], ".4g")]
+            for t in tests]
+    out.append(table(["a", "b", "paired", "n", "+", "−", "ties", "p(a > b)", "p(a < b)", "p two-sided"], rows))
+    for t in tests:
+        if t["n"] == 0:
+            why = "no participant has both modes" if t["participants"] == 0 else "every pair is tied"
+            out.append(f"{t['a']} against {t['b']}: no untied pairs remain ({why}), so n = 0 and every p is 1.\n")
+    for k, upconversion in enumerate(summary["upconversion_differences"]):
+        mode, against, sort_by = upconversion["mode"], upconversion["against"], upconversion["sorted_by"]
+        suffix = "abcdefgh"[k % 8] if len(summary["upconversion_differences"]) > 1 else ""
+        out.append(f"{h} Table 2{suffix} ({cell(game)}): {mode} hit rate minus each other mode's\n")
+        if not upconversion["rows"]:
+            out.append(f"No participant has {mode} and another mode.\n")
+            continue
+        out.append(f"Sorted by the difference to {sort_by}. Positive: {mode} hit more.\n")
+        rows = [[cell(r["participant"])] + [fmt(r["differences"].get(o), ".3f") for o in against]
+                for r in upconversion["rows"]]
+        out.append(table(["participant"] + [f"{mode} − {o}" for o in against], rows))
+    out.append(f"{h} Table 3 ({cell(game)}): quartiles of the differences\n")
+    out.append("Of every paired participant's d = rate(a) − rate(b), ties included; R's default quantiles "
+               "(type 7), as seed 004 Table 3.\n")
+    rows = []
+    for t in tests:
+        q = t["diff_quartiles"] or {}
+        rows.append([f"{t['a']} − {t['b']}"] + [fmt(q.get(k), ".3f") for k in ("min", "q25", "median", "q75",
+                                                                                   "max")])
+    out.append(table(["difference", "min", "25 %", "median", "75 %", "max"], rows))
+    if "differences" in summary["figures"]:
+        out.append(f"![{cell(game)}: histograms of upconversion hit-rate differences]"
+                   f"({summary['figures']['differences']})\n")
+
+
+def click_sections(out, click, level):
+    h = "#" * level
+    for note in click["notes"]:
+        out.append(f"{note}\n")
+    if not click["modes"]:
+        return
+    ref = click["reference_mode"]
+    others = [m for m in click["modes"] if m != ref]
+    out.append(f"{click['scored_matches']} scored matches from {len(click['participants'])} participants "
+               f"(matches.csv, scored_phase = true). Reference mode: {ref}.\n")
+    out.append(f"{h} Table: results per mode\n")
+    out.append("Each participant's measures are averaged over their matches in a mode; M and SD (n − 1) are "
+               f"across participants. p: paired t-test of the mode against {ref} over the participants with "
+               "both. That is the simple contrast Yang et al. report: F(1, n − 1) = t², same p.\n")
+    header = ["Measure", f"{ref} M", f"{ref} SD"]
+    for m in others:
+        header += [f"{m} M", f"{m} SD", f"{m} p"]
+    rows = []
+    for measure in click["measures"].values():
+        entry = measure["modes"][ref]
+        row = [cell(measure["label"]), fmt(entry["mean"], ".2f"), fmt(entry["sd"], ".2f")]
+        for m in others:
+            e = measure["modes"][m]
+            row += [fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"), fmt(e["vs_reference"]["p_t"], ".4g")]
+        rows.append(row)
+    out.append(table(header, rows))
+    if click["figure"]:
+        out.append(f"![click game: mean ± SD per mode]({click['figure']})\n")
+    if others:
+        out.append(f"{h} Paired tests against {ref}\n")
+        out.append(f"Difference = mode − {ref} per participant. t: paired t-test (df = n − 1; "
+                   "F(1, n − 1) = t²). "
+                   "Wilcoxon: signed-rank, zero differences dropped, p = 1 when all are zero; exact for up to 50 "
+                   "non-zero differences, normal approximation beyond. Sign test: exact, two-sided, ties "
+                   "dropped.\n")
+        rows = []
+        for measure in click["measures"].values():
+            for m in others:
+                v = measure["modes"][m]["vs_reference"]
+                t = v["t"]
+                f_value = t * t if t is not None and math.isfinite(t) else None
+                rows.append([cell(measure["label"]), m, str(v["n"]), fmt(v["mean_diff"], ".3f"), fmt(t, ".3f"),
+                             fmt(f_value, ".3f"), fmt(v["p_t"], ".4g"), fmt(v["p_wilcoxon"], ".4g"),
+                             f"{v['positive']}/{v['negative']}/{v['ties']}", fmt(v["p_sign"], ".4g")])
+        out.append(table(["Measure", "mode", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
+                          "+/−/ties", "p (sign)"], rows))
+    out.append(f"{h} Repeated-measures ANOVA over modes\n")
+    if not click["anova_available"]:
+        out.append("Left out: statsmodels is not installed (Debian: python3-statsmodels).\n")
+        return
+    out.append("statsmodels' AnovaRM, one within factor (mode), on the per-participant averages. A participant "
+               "lacking a mode (or every rating of a statement in a mode) is dropped from that measure's ANOVA.\n")
+    rows = []
+    for measure in click["measures"].values():
+        a = measure["anova"]
+        df = NOTHING if a["df_num"] is None else f"{a['df_num']:g}, {a['df_den']:g}"
+        rows.append([cell(measure["label"]), fmt(a["F"], ".3f"), df, fmt(a["p"], ".4g"), str(a["participants"]),
+                     str(a["dropped"])])
+    out.append(table(["Measure", "F", "df", "p", "participants", "dropped"], rows))
+
+
+def render(results):
+    out = ["# warplab study report\n"]
+    files = ", ".join(name + " (" + ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in info.items()) + ")"
+                      for name, info in results["inputs"].items())
+    out.append(f"From `{results['export_dir']}`: {files}.\n")
+    sessions = results["sessions"]
+    if sessions:
+        by_game = sessions.get("by_game", {})
+        detail = "; ".join(f"{g or '(no game)'}: {c['included']} of {c['listed']}" for g, c in by_game.items())
+        out.append(f"Sessions (sessions.csv): {sessions['included']} of {sessions['listed']} included"
+                   + (f" ({detail})" if detail else "") + ".\n")
+    modes = results["mode_order"]
+    out.append("Modes: " + "; ".join(f"{m} ({MODE_DESCRIPTIONS[m]})" if m in MODE_DESCRIPTIONS else m
+                                     for m in modes) + ".\n")
+    for note in results["notes"]:
+        out.append(f"{note}\n")
+    tests_by_game = {}
+    for test in results["sign_tests"]:
+        tests_by_game.setdefault(test["game"], []).append(test)
+    games = list(results["games"])
+    if results["click"] is not None and "click" not in games:
+        games.append("click")
+    for game in games:
+        summary = results["games"].get(game)
+        if game == "click":
+            out.append("## Click game (Yang et al. 2011, seed 000 §8)\n")
+            if results["click"] is not None:
+                click_sections(out, results["click"], 3)
+            else:
+                out.append("No matches.csv: only the hit rates below (green hits / clicks).\n")
+            if summary:
+                out.append("### Hit rates: green hits / clicks\n")
+                hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
+        else:
+            out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
+            hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
+    return "\n".join(out)

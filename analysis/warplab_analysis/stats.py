@@ -1,0 +1,153 @@
+"""The tests: exact sign tests on hit rates (seed 004 §7.1), type-7 quartiles (seed 004 Table 3),
+and the click game's paired tests and repeated-measures ANOVA (seed 000 §8, Table 2).
+
+Sign-test tails are sums of binomial coefficients over 2^n in exact rational arithmetic, so
+they equal R's binom.test to the last bit or two (the thesis quotes R's digits); signs and
+ties of hit-rate differences are decided on integers, hits_a·shots_b against hits_b·shots_a,
+so 2/4 against 3/6 is a tie however floating point rounds the two rates.
+"""
+import math
+import warnings
+from fractions import Fraction
+
+import numpy as np
+import scipy.stats
+
+UPCONVERSION_MODES = ("warp15to120", "bireproj15to60")
+MODE_ORDER = ["warp15to120", "bireproj15to60", "conv120", "conv60", "conv30", "conv15", "lag50", "lag100",
+              "lag200"]
+QUARTILE_KEYS = ("min", "q25", "median", "q75", "max")
+
+
+def order_modes(modes):
+    known = [m for m in MODE_ORDER if m in modes]
+    return known + sorted(set(modes) - set(MODE_ORDER))
+
+
+def conventional_rate(mode):
+    """120 for conv120; None for anything that is not a conventional mode."""
+    if mode.startswith("conv") and mode[4:].isdigit():
+        return int(mode[4:])
+    return None
+
+
+def sign_test_p(positive, n):
+    """(p_greater, p_less, p_two_sided) of `positive` successes in n fair coin flips; all 1.0 when n = 0."""
+    if n == 0:
+        return 1.0, 1.0, 1.0
+    total = 2 ** n
+    p_greater = float(Fraction(sum(math.comb(n, k) for k in range(positive, n + 1)), total))
+    p_less = float(Fraction(sum(math.comb(n, k) for k in range(0, positive + 1)), total))
+    p_two_sided = float(scipy.stats.binomtest(positive, n, 0.5, alternative="two-sided").pvalue)
+    return p_greater, p_less, p_two_sided
+
+
+def quartiles(values):
+    """min, 25 %, median, 75 %, max by R's default (type 7, numpy's 'linear'); None without values."""
+    if len(values) == 0:
+        return None
+    q = np.percentile(np.asarray(values, dtype=float), [0, 25, 50, 75, 100])
+    return dict(zip(QUARTILE_KEYS, (float(v) for v in q)))
+
+
+def rate_difference(counts_a, counts_b):
+    """(sign, hit rate a − b) of two (hits, shots) pairs; the sign, and 0.0 for a tie, from integers."""
+    (hits_a, shots_a), (hits_b, shots_b) = counts_a, counts_b
+    left, right = hits_a * shots_b, hits_b * shots_a
+    if left == right:
+        return 0, 0.0
+    return (1 if left > right else -1), hits_a / shots_a - hits_b / shots_b
+
+
+def hit_rate_sign_test(game, a, b, participants):
+    """Sign test of hit rate a − b over the participants with both modes, in the order given.
+
+    participants: {participant: {mode: (hits, shots)}}; `differences` keeps its order.
+    """
+    differences = {}
+    signs = {1: 0, -1: 0, 0: 0}
+    for participant, modes in participants.items():
+        if a in modes and b in modes:
+            sign, differences[participant] = rate_difference(modes[a], modes[b])
+            signs[sign] += 1
+    positive, negative, ties = signs[1], signs[-1], signs[0]
+    n = positive + negative
+    p_greater, p_less, p_two_sided = sign_test_p(positive, n)
+    return {
+        "game": game, "a": a, "b": b, "n": n, "positive": positive, "negative": negative, "ties": ties,
+        "p_greater": p_greater, "p_less": p_less, "p_two_sided": p_two_sided,
+        "diff_quartiles": quartiles(list(differences.values())),
+        "participants": len(differences), "differences": differences,
+    }
+
+
+def paired_tests(mode_values, reference_values):
+    """Mode against reference on aligned per-participant values: paired t, Wilcoxon, sign test.
+
+    Paired t: None below two pairs; t = 0, p = 1 when every difference is zero; t = ±inf, p = 0
+    when the differences are one non-zero constant. Wilcoxon: zero differences dropped (Wilcoxon's
+    own rule, like the sign test's ties), p = 1 when none remain; scipy's exact null distribution up
+    to 50 non-zero differences, the normal approximation beyond. Sign test: exact, ties dropped.
+    """
+    x = np.asarray(mode_values, dtype=float)
+    y = np.asarray(reference_values, dtype=float)
+    d = x - y
+    n = len(d)
+    result = {"n": n, "mean_diff": float(d.mean()) if n else None, "t": None, "df": n - 1 if n >= 2 else None,
+              "p_t": None}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # scipy's precision and approximation notices: said in the report
+        if n >= 2:
+            if np.all(d == 0):
+                result["t"], result["p_t"] = 0.0, 1.0
+            else:
+                test = scipy.stats.ttest_rel(x, y)
+                result["t"], result["p_t"] = float(test.statistic), float(test.pvalue)
+        nonzero = d[d != 0]
+        result["p_wilcoxon"] = float(scipy.stats.wilcoxon(nonzero).pvalue) if len(nonzero) else 1.0
+    positive, negative = int(np.sum(d > 0)), int(np.sum(d < 0))
+    result.update(positive=positive, negative=negative, ties=n - positive - negative,
+                  p_sign=sign_test_p(positive, positive + negative)[2])
+    return result
+
+
+def rm_anova(values, modes):
+    """One-way repeated-measures ANOVA over `modes` with statsmodels' AnovaRM.
+
+    values: {participant: {mode: value}}; a participant lacking a finite value for any mode is
+    dropped. Returns F, df_num, df_den, p, participants, dropped; the statistics are None below
+    two participants or two modes. Raises ImportError without statsmodels.
+    """
+    from statsmodels.stats.anova import AnovaRM
+    import pandas as pd
+
+    complete = [p for p, row in values.items() if all(m in row and math.isfinite(row[m]) for m in modes)]
+    result = {"F": None, "df_num": None, "df_den": None, "p": None, "participants": len(complete),
+              "dropped": len(values) - len(complete)}
+    if len(complete) < 2 or len(modes) < 2:
+        return result
+    # Integer codes: the ids and mode names never reach statsmodels' formula machinery.
+    frame = pd.DataFrame([{"subject": s, "mode": m, "value": values[p][mode]}
+                          for s, p in enumerate(complete) for m, mode in enumerate(modes)])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        row = AnovaRM(frame, "value", "subject", within=["mode"]).fit().anova_table.iloc[0]
+    result.update(F=float(row["F Value"]), df_num=float(row["Num DF"]), df_den=float(row["Den DF"]),
+                  p=float(row["Pr > F"]))
+    # No residual variation (every participant shifted the same way between modes, e.g. a
+    # scripted player's ratings): F divides by rounding noise. Say infinite (or undefined when
+    # the modes do not differ either) rather than print a 30-digit F.
+    y = np.array([[values[p][mode] for mode in modes] for p in complete], dtype=float)
+    grand = y.mean()
+    ss_modes = len(complete) * float(((y.mean(axis=0) - grand) ** 2).sum())
+    ss_error = float(((y - y.mean(axis=1, keepdims=True) - y.mean(axis=0) + grand) ** 2).sum())
+    if ss_error <= 1e-12 * max(float(((y - grand) ** 2).sum()), 1e-300):
+        result.update(F=math.inf, p=0.0) if ss_modes > 0 else result.update(F=None, p=None)
+    return result
+
+
+def describe(values):
+    """mean, sd (ddof = 1), n of the finite values; None where undefined."""
+    v = np.asarray([x for x in values if x is not None and math.isfinite(x)], dtype=float)
+    return {"mean": float(v.mean()) if len(v) else None, "sd": float(v.std(ddof=1)) if len(v) >= 2 else None,
+            "n": int(len(v))}
