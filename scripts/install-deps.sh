@@ -13,8 +13,9 @@ packages=(
   libglm-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libsqlite3-dev
   # tests: GoogleTest, a virtual X server for the window test
   libgtest-dev xvfb xauth
-  # analysis scripts run with Debian's /usr/bin/python3 and these
-  python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest
+  # analysis scripts run with Debian's /usr/bin/python3 and these (statsmodels: the click
+  # game's repeated-measures ANOVA)
+  python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest python3-statsmodels
 )
 
 missing=()
