@@ -12,6 +12,7 @@
 #include "renderer/gl/check.h"
 #include "renderer/gl/program.h"
 #include "renderer/mesh.h"
+#include "renderer/scene_geometry.h"
 #include "scene/camera.h"
 #include "scene/hangar_layout.h"
 
@@ -153,36 +154,6 @@ ImageRGBA8 readDefaultFramebuffer(int width, int height) {
 
 namespace {
 
-// A mesh on the GPU: interleaved MeshVertex records, drawn as a triangle list.
-struct GpuMesh {
-    gl::VertexArray vao;
-    gl::Buffer vbo;
-    GLsizei vertexCount = 0;
-};
-
-GpuMesh upload(const MeshData& mesh) {
-    GpuMesh gpu;
-    gpu.vao = gl::VertexArray::create();
-    gpu.vbo = gl::Buffer::create();
-    glBindVertexArray(gpu.vao.id());
-    glBindBuffer(GL_ARRAY_BUFFER, gpu.vbo.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)),
-                 mesh.vertices.data(), GL_STATIC_DRAW);
-    const auto stride = static_cast<GLsizei>(sizeof(MeshVertex));
-    auto attrib = [&](GLuint index, GLint size, std::size_t offset) {
-        glEnableVertexAttribArray(index);
-        glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
-    };
-    attrib(0, 3, offsetof(MeshVertex, position));
-    attrib(1, 3, offsetof(MeshVertex, normal));
-    attrib(2, 3, offsetof(MeshVertex, diffuse));
-    attrib(3, 4, offsetof(MeshVertex, specular));
-    glBindVertexArray(0);
-    gpu.vertexCount = static_cast<GLsizei>(mesh.vertices.size());
-    gl::checkErrors("uploading a mesh");
-    return gpu;
-}
-
 // Ceiling lamps between the ribs, plus one near the far door; positions shared with the
 // shader through uniforms. Few enough that llvmpipe stays fast at full HD.
 struct Lamp {
@@ -208,10 +179,9 @@ constexpr int kMaxLamps = 16;  // matches MAX_LAMPS in conventional.frag
 struct ConventionalRenderer::Impl {
     ShadingOptions shading;
     gl::Program program;
-    GpuMesh hangar;
-    GpuMesh sphere;
-    GpuMesh box;
+    SceneGeometry geometry;
     std::vector<Lamp> lamps;
+    explicit Impl(const DataPaths& paths) : geometry(paths) {}
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
             panelPattern, lampCount, lampPosition, lampColour, shadingCost;
@@ -219,7 +189,7 @@ struct ConventionalRenderer::Impl {
 };
 
 ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOptions shading)
-    : impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<Impl>(paths)) {
     auto& m = *impl_;
     m.shading = shading;
     m.program = gl::buildProgram({paths.shaderDir,
@@ -231,9 +201,6 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
            gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),            gl::uniform(p, "uTint"),
            gl::uniform(p, "uPanelPattern"),   gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
            gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost")};
-    m.hangar = upload(loadObj(paths.assetDir + "/hangar.obj"));
-    m.sphere = upload(makeUnitSphere(64, 32));
-    m.box = upload(makeUnitBox());
     m.lamps = hangarLamps();
 }
 
@@ -279,31 +246,19 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
     glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
 
-    auto draw = [&](const GpuMesh& mesh, const glm::mat4& model, std::uint32_t id, const glm::vec3& centre,
-                    const glm::vec3& velocity, const glm::vec3& angular, const glm::vec3& tint, bool pattern) {
-        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(model)));
-        glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(model));
+    m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
+        const scene::ObjectState* o = item.object;
+        const glm::vec3 zero(0.0f);
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
+        glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
         glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-        glUniform1ui(m.u.objectId, id);
-        glUniform3fv(m.u.centre, 1, glm::value_ptr(centre));
-        glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(velocity));
-        glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(angular));
-        glUniform3fv(m.u.tint, 1, glm::value_ptr(tint));
-        glUniform1i(m.u.panelPattern, pattern ? 1 : 0);
-        glBindVertexArray(mesh.vao.id());
-        glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount);
-    };
-
-    draw(m.hangar, glm::mat4(1.0f), scene::kIdHangar, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f),
-         glm::vec3(1.0f), m.shading.panelPattern);
-    for (const auto& object : frame.scene.objects) {
-        const glm::mat4 model = glm::translate(glm::mat4(1.0f), object.position) * glm::mat4_cast(object.orientation) *
-                                glm::scale(glm::mat4(1.0f), object.shape == scene::Shape::Sphere
-                                                                ? glm::vec3(object.halfExtents.x)
-                                                                : object.halfExtents);
-        draw(object.shape == scene::Shape::Sphere ? m.sphere : m.box, model, object.id, object.position,
-             object.velocity, object.angularVelocity, object.colour, false);
-    }
+        glUniform1ui(m.u.objectId, item.id);
+        glUniform3fv(m.u.centre, 1, glm::value_ptr(o ? o->position : zero));
+        glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(o ? o->velocity : zero));
+        glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(o ? o->angularVelocity : zero));
+        glUniform3fv(m.u.tint, 1, glm::value_ptr(o ? o->colour : glm::vec3(1.0f)));
+        glUniform1i(m.u.panelPattern, o == nullptr && m.shading.panelPattern ? 1 : 0);
+    });
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

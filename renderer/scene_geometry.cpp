@@ -1,0 +1,56 @@
+#include "renderer/scene_geometry.h"
+
+#include <cstddef>
+
+#include "renderer/gl/check.h"
+#include "renderer/mesh.h"
+#include "scene/motion.h"
+
+namespace warplab::renderer {
+namespace {
+
+GpuMesh upload(const MeshData& mesh) {
+    GpuMesh gpu;
+    gpu.vao = gl::VertexArray::create();
+    gpu.vbo = gl::Buffer::create();
+    glBindVertexArray(gpu.vao.id());
+    glBindBuffer(GL_ARRAY_BUFFER, gpu.vbo.id());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.vertices.size() * sizeof(MeshVertex)),
+                 mesh.vertices.data(), GL_STATIC_DRAW);
+    const auto stride = static_cast<GLsizei>(sizeof(MeshVertex));
+    auto attrib = [&](GLuint index, GLint size, std::size_t offset) {
+        glEnableVertexAttribArray(index);
+        glVertexAttribPointer(index, size, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<const void*>(offset));
+    };
+    attrib(0, 3, offsetof(MeshVertex, position));
+    attrib(1, 3, offsetof(MeshVertex, normal));
+    attrib(2, 3, offsetof(MeshVertex, diffuse));
+    attrib(3, 4, offsetof(MeshVertex, specular));
+    glBindVertexArray(0);
+    gpu.vertexCount = static_cast<GLsizei>(mesh.vertices.size());
+    gl::checkErrors("uploading a mesh");
+    return gpu;
+}
+
+}  // namespace
+
+SceneGeometry::SceneGeometry(const DataPaths& paths)
+    : hangar_(upload(loadObj(paths.assetDir + "/hangar.obj"))),
+      sphere_(upload(makeUnitSphere(64, 32))),
+      box_(upload(makeUnitBox())) {}
+
+void SceneGeometry::draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const {
+    auto drawMesh = [](const GpuMesh& mesh) {
+        glBindVertexArray(mesh.vao.id());
+        glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount);
+    };
+    prepare({scene::kIdHangar, glm::mat4(1.0f), nullptr});
+    drawMesh(hangar_);
+    for (const auto& object : scene.objects) {
+        prepare({object.id, scene::modelMatrix(object), &object});
+        drawMesh(object.shape == scene::Shape::Sphere ? sphere_ : box_);
+    }
+    glBindVertexArray(0);
+}
+
+}  // namespace warplab::renderer

@@ -1,0 +1,44 @@
+// Renderer-private: the scene's meshes on the GPU and the loop that draws them. Every pass that
+// rasterises the scene -- the conventional frame, the flow fields of bidirectional
+// reprojection, scene-assisted B-frames -- draws the same triangles the same way through it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include <glm/glm.hpp>
+
+#include "renderer/conventional.h"
+#include "renderer/gl/objects.h"
+#include "scene/scene.h"
+
+namespace warplab::renderer {
+
+// A mesh on the GPU: interleaved MeshVertex records (attributes 0 position, 1 normal,
+// 2 diffuse, 3 specular), drawn as a triangle list.
+struct GpuMesh {
+    gl::VertexArray vao;
+    gl::Buffer vbo;
+    GLsizei vertexCount = 0;
+};
+
+class SceneGeometry {
+public:
+    // Loads assets/hangar.obj (AssetError naming it) and builds the unit sphere and box.
+    explicit SceneGeometry(const DataPaths& paths);
+
+    // What one draw call is about: the hangar (object == nullptr, identity model) or an object.
+    struct Item {
+        std::uint32_t id = 0;
+        glm::mat4 model{1.0f};
+        const scene::ObjectState* object = nullptr;
+    };
+    // Draws the hangar, then every object of `scene`, calling `prepare` before each draw so
+    // the caller can set its program's per-draw uniforms. The caller binds program and target.
+    void draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const;
+
+private:
+    GpuMesh hangar_, sphere_, box_;
+};
+
+}  // namespace warplab::renderer
