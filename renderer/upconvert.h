@@ -58,6 +58,10 @@ struct MethodInfo {
     double sourceRateHz = 15.0;   // how often sources are rendered conventionally
     bool needsNext = false;       // uses the following source frame (so shows content later)
     bool reportsCorrespondence = false;
+    // Starts from what it computed for the previous displayed frame of the same source
+    // interval (bidirectional reprojection's latest-frame initialisation): the bench makes
+    // those frames, untimed, before timing one.
+    bool usesEarlierFrames = false;
 };
 
 class UpconversionMethod {
@@ -67,6 +71,10 @@ public:
     // Draws the displayed frame into `out` (same size as the sources). GL state it changes
     // is restored to the defaults the other passes assume.
     virtual void produce(const UpconversionInput& input, DisplayFrame& out) = 0;
+    // Work done once per source frame (or pair) rather than per displayed frame -- e.g. the
+    // flow fields of bidirectional reprojection's I-frames. produce() does it when needed;
+    // the bench calls it first so that the displayed frame's own pass is timed alone.
+    virtual void prepare(const UpconversionInput& /*input*/) {}
     // Triangles the last produce() drew (after tessellation), for the bench; NaN for
     // image-space methods that draw no mesh.
     virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }

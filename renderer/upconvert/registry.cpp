@@ -5,6 +5,7 @@
 
 #include "renderer/gbuffer_gl.h"
 #include "renderer/upconvert.h"
+#include "renderer/upconvert/bireproj.h"
 #include "renderer/upconvert/simple_methods.h"
 #include "renderer/upconvert/warp.h"
 
@@ -19,6 +20,14 @@ struct Entry {
 WarpSettings sparse(int patchSize) {
     WarpSettings s;
     s.patchSize = patchSize;
+    return s;
+}
+
+BireprojSettings bireproj(int iterations, bool dual, bool latest) {
+    BireprojSettings s;
+    s.iterations = iterations;
+    s.dualInit = dual;
+    s.latestInit = latest;
     return s;
 }
 
@@ -39,6 +48,16 @@ const std::vector<Entry>& registry() {
         {"warp-sparse4", [](const DataPaths& p) { return makeWarp(p, "warp-sparse4", sparse(4)); }},
         {"warp-sparse8", [](const DataPaths& p) { return makeWarp(p, "warp-sparse8", sparse(8)); }},
         {"warp-sparse16", [](const DataPaths& p) { return makeWarp(p, "warp-sparse16", sparse(16)); }},
+        {"bireproj", [](const DataPaths& p) { return makeBireproj(p, "bireproj", {}); }},
+        {"bireproj-m1", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m1", bireproj(1, true, true)); }},
+        {"bireproj-m2", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m2", bireproj(2, true, true)); }},
+        {"bireproj-m4", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m4", bireproj(4, true, true)); }},
+        {"bireproj-nodual",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nodual", bireproj(3, false, true)); }},
+        {"bireproj-nolatest",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nolatest", bireproj(3, true, false)); }},
+        {"bireproj-noinit",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-noinit", bireproj(3, false, false)); }},
     };
     return entries;
 }
