@@ -53,13 +53,7 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     std::string name = "hold120";
     const auto kind = shown.schedule.kind;
     if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {
-        const auto& mode = game::modeSpec(shown.mode);
-        name = mode.method;
-        if (!mode.standInFor.empty() && !saidStandIn_[shown.mode]) {
-            out_ << "replay: " << shown.mode << " frames are drawn with '" << name << "' until the "
-                 << mode.standInFor << " renderer exists\n";
-            saidStandIn_[shown.mode] = true;
-        }
+        name = game::modeSpec(shown.mode).method;
     }
     if (kind == game::FrameKind::Interpolated) {
         const auto next = sources_.find(shown.nextSourceFrame);

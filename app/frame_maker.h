@@ -4,7 +4,6 @@
 
 #include <map>
 #include <memory>
-#include <ostream>
 #include <string>
 
 #include "game/game.h"
@@ -20,11 +19,11 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 
 // Makes each displayed frame the way its mode makes it, from the conventional renders it
 // keeps: a held or rendered frame is its source copied (hold120); warped and interpolated
-// frames use the mode's method (or its stand-in, said once).
+// frames use the mode's method.
 class FrameMaker {
 public:
-    FrameMaker(const renderer::DataPaths& paths, int width, int height, std::ostream& out)
-        : paths_(paths), conventional_(paths), width_(width), height_(height), out_(out) {}
+    FrameMaker(const renderer::DataPaths& paths, int width, int height)
+        : paths_(paths), conventional_(paths), width_(width), height_(height) {}
 
     // Call for every frame the game steps, shown or not: held, lagged and warped frames need
     // the sources rendered before them.
@@ -38,10 +37,8 @@ private:
     renderer::DataPaths paths_;
     renderer::ConventionalRenderer conventional_;
     int width_, height_;
-    std::ostream& out_;
     std::map<std::int64_t, std::unique_ptr<renderer::SourceFrame>> sources_;  // by session frame
     std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
-    std::map<std::string, bool> saidStandIn_;
 };
 
 }  // namespace warplab::app

@@ -230,12 +230,11 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     const bool human = run.player == "human";
     const auto player = human ? nullptr : makePlayer(run.player, run.seed, *study, display);
 
-    FrameMaker maker(paths, width, height, progress);
+    FrameMaker maker(paths, width, height);
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(width, height);
     FeedbackSounds sounds;
     if (!sounds.available()) progress << "note: " << sounds.why() << "; feedback sounds are off\n";
-    sayStandIns(*study, progress);
 
     // Start screen (Appendix B: the supervisor checks the participant and the protocol).
     const std::string who = "Participant " + run.participant + ", protocol " + study->name();
@@ -369,7 +368,7 @@ void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostr
     std::string mode = run.freePlayMode.empty() ? study->modes().front() : run.freePlayMode;
     int level = run.freePlayLevel;
     auto game = study->newFreePlay(run.seed, display, mode, level);
-    FrameMaker maker(paths, display.width, display.height, progress);
+    FrameMaker maker(paths, display.width, display.height);
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(display.width, display.height);
     FeedbackSounds sounds;

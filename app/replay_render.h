@@ -29,8 +29,7 @@ struct ReplayRenderResult {
 };
 
 // Replays the session and writes every displayed frame of the range as DIR/frame_NNNNNNN.png,
-// made the way its mode makes it (rendered, held, warped, interpolated -- with a stand-in
-// method where the mode's own renderer does not exist yet, and says so) with the HUD over it.
+// made the way its mode makes it (rendered, held, warped, interpolated) with the HUD over it.
 // On frames whose image is an exact render (rendered or held), the object id read back under
 // the reticle or cursor is checked against the game's analytic account of that frame, and on
 // frames with a logged shot or click, against the logged displayed outcome. Prints the tally.

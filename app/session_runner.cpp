@@ -5,6 +5,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
+
 #include "game/registry.h"
 #include "protocol/records.h"
 #include "protocol/session_store.h"
@@ -46,17 +48,6 @@ std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_
     throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED or replay:SESSION)");
 }
 
-void sayStandIns(const game::Study& study, std::ostream& out) {
-    std::vector<std::string> said;
-    for (const auto& id : study.modes()) {
-        const auto& mode = game::modeSpec(id);
-        if (mode.standInFor.empty() || std::find(said.begin(), said.end(), id) != said.end()) continue;
-        said.push_back(id);
-        out << "note: mode " << id << " is scored on its exact schedule, but its frames are drawn with '"
-            << mode.method << "' until the " << mode.standInFor << " renderer exists\n";
-    }
-}
-
 protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                       const std::string& player, const game::DisplaySize& display) {
     protocol::SessionHeader header;
@@ -76,7 +67,6 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
     const game::DisplaySize display{run.displayWidth, run.displayHeight};
     const auto player = makePlayer(run.player, run.seed, *study, display);
-    sayStandIns(*study, progress);
 
     auto writer =
         protocol::SessionWriter::create(run.resultsDir, sessionHeader(*study, run.participant, run.seed, run.player, display));
@@ -103,6 +93,23 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     return writer.path();
 }
 
+namespace {
+
+// Click sessions recorded before bidirectional reprojection existed say in each match event
+// that a stand-in drew the mode's frames ("stand_in"). That describes the rendering, which
+// replay does not redo, not what was played: it is left out of the comparison, so those
+// sessions still replay (and export still reports it).
+protocol::EventRecord withoutRenderNotes(protocol::EventRecord event) {
+    if (event.detailJson.find("\"stand_in\"") == std::string::npos) return event;
+    auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
+    if (!detail.is_object()) return event;
+    detail.erase("stand_in");
+    event.detailJson = detail.dump();
+    return event;
+}
+
+}  // namespace
+
 ReplayResult replaySession(const std::string& sessionPath) {
     const auto started = std::chrono::steady_clock::now();
     const protocol::SessionData data = protocol::readSession(sessionPath);
@@ -120,8 +127,8 @@ ReplayResult replaySession(const std::string& sessionPath) {
                 // The store ends before this event was committed: nothing more to check.
                 break;
             }
+            const std::string diff = protocol::firstDifference(withoutRenderNotes(data.events[eventIndex]), replayed);
             const auto& logged = data.events[eventIndex];
-            const std::string diff = protocol::firstDifference(logged, replayed);
             if (!diff.empty() && result.difference.empty()) {
                 result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +
                                     std::to_string(logged.frame) + "): " + diff;

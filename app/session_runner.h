@@ -25,8 +25,6 @@ struct HeadlessRun {
 // What headless and live runs share.
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
                                          const game::Study& study, const game::DisplaySize& display);
-// Says once per session which of its modes are drawn by a stand-in renderer.
-void sayStandIns(const game::Study& study, std::ostream& out);
 protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                       const std::string& player, const game::DisplaySize& display);
 protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);

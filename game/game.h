@@ -169,7 +169,7 @@ public:
     virtual std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
                                                       const std::string& mode, int difficulty) const = 0;
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
-    // Modes this protocol uses (each session says which of them are drawn by a stand-in).
+    // Modes this protocol uses.
     virtual std::vector<std::string> modes() const = 0;
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
     // (the click game's cursor). Live sessions scale a participant's counts to it.

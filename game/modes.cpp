@@ -39,10 +39,7 @@ std::vector<ModeSpec> makeModes() {
     bireproj.renderRateHz = 15;
     bireproj.upconversion = Upconversion::Bidirectional;
     bireproj.upconvertedRateHz = 60;
-    // Its renderer comes with the bidirectional reprojection issue; until then the B-frames
-    // are a linear blend of the two I-frames, on the mode's exact schedule.
-    bireproj.method = "blend";
-    bireproj.standInFor = "bidirectional reprojection";
+    bireproj.method = "bireproj";  // image-based, m = 3, dual and latest-frame initialisation
     modes.push_back(bireproj);
     return modes;
 }

@@ -24,9 +24,6 @@ struct ModeSpec {
     Upconversion upconversion = Upconversion::None;
     double upconvertedRateHz = 0.0; // frames made per second by warp (every display frame) or bireproj
     std::string method;             // renderer method that makes the in-between frames
-    // The method above only stands in until the mode's own renderer exists; sessions and
-    // `replay --render` say so. (bireproj15to60 until bidirectional reprojection lands.)
-    std::string standInFor;
 };
 
 // conv15, conv30, conv60, conv120, lag50, lag100, lag200, warp15to120, bireproj15to60.

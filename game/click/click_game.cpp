@@ -159,8 +159,7 @@ void ClickGame::endMatch() {
                               {"red_hits", redHits_},
                               {"misses", misses_},
                               {"clicks", greenHits_ + redHits_ + misses_},
-                              {"duration_s", protocol_.matchS},
-                              {"stand_in", modeSpec(matches_[matchIndex_].mode).standInFor}}));
+                              {"duration_s", protocol_.matchS}}));
     commitPoint_ = true;
     world_.reset();
     schedule_.reset();

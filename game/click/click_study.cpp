@@ -60,7 +60,7 @@ public:
                 m.scoredPhase = roundScored(e.phase);
                 m.match = e.trial;
                 m.mode = e.mode;
-                m.standIn = d.text("stand_in");
+                m.standIn = d.text("stand_in");  // sessions recorded while blend stood in for bireproj
                 m.greenHits = static_cast<int>(d.integer("green_hits", 0));
                 m.redHits = static_cast<int>(d.integer("red_hits", 0));
                 m.misses = static_cast<int>(d.integer("misses", 0));

@@ -382,8 +382,7 @@ TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
                              "/protocol/click-yang.json --participant C01 --out " + dir +
                              " --headless --player bot:4 --seed 8");
     ASSERT_EQ(run.status, 0) << run.output;
-    EXPECT_TRUE(contains(run.output, "bireproj15to60 is scored on its exact schedule, but its frames are drawn with"))
-        << run.output;
+    EXPECT_FALSE(contains(run.output, "stand")) << "every mode has its own renderer now: " << run.output;
     const auto data = warplab::protocol::readSession(sessionIn(dir));
     EXPECT_TRUE(data.completed) << data.note;
     int matches = 0, ratings = 0, clicks = 0;

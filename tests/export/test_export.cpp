@@ -452,6 +452,44 @@ TEST(Export, AVersion1SessionExportsItsScoredTrials) {
     }
 }
 
+// Click sessions recorded while `blend` stood in for bidirectional reprojection carry
+// "stand_in" in their match events. They still replay (the note describes the rendering, not
+// what was played), and export says which matches were drawn so.
+TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
+    const std::string source = scratch("stand-in/source"), results = scratch("stand-in/results");
+    const auto data = protocol::readSession(headless("click-quick.json", "S", source, 6));
+    protocol::SessionWriter w = protocol::SessionWriter::create(results, data.header);
+    for (const auto& r : data.inputs) w.addInput(r);
+    for (const auto& r : data.frames) w.addFrame(r);
+    int marked = 0;
+    for (auto e : data.events) {
+        if (e.type == "match" && e.mode == "bireproj15to60") {
+            auto detail = nlohmann::json::parse(e.detailJson);
+            detail["stand_in"] = "bidirectional reprojection";
+            e.detailJson = detail.dump();
+            ++marked;
+        }
+        w.addEvent(e);
+    }
+    ASSERT_GT(marked, 0);
+    w.finish();
+    const ReplayResult replay = replaySession(w.path());
+    EXPECT_EQ(replay.difference, "");
+    EXPECT_EQ(replay.reproduced, replay.outcomes);
+    EXPECT_GT(replay.outcomes, 0u);
+
+    const std::string out = scratch("stand-in/out");
+    ExportOptions all;
+    all.allPhases = true;
+    exportQuietly(results, out, all);
+    int standIns = 0;
+    for (const auto& m : readCsv(out + "/matches.csv")) {
+        EXPECT_EQ(m.at("stand_in").empty(), m.at("mode") != "bireproj15to60") << m.at("mode");
+        standIns += !m.at("stand_in").empty();
+    }
+    EXPECT_EQ(standIns, marked);
+}
+
 TEST(Export, AMissingOrEmptyResultsFolderIsNamed) {
     const std::string out = scratch("errors/out");
     try {

@@ -42,7 +42,7 @@ TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
         }
         EXPECT_TRUE(has(mode.method)) << id << " names method '" << mode.method << "', which the renderer lacks";
     }
-    EXPECT_EQ(modeSpec("bireproj15to60").standInFor, "bidirectional reprojection");
+    EXPECT_EQ(modeSpec("bireproj15to60").method, "bireproj");
 }
 
 TEST(Modes, CheckModeNamesTheProblem) {
