@@ -94,6 +94,7 @@ int runRender(const ParsedArgs& args) {
         renderer::UpconversionInput input;
         input.displayTime = time;
         input.camera = frame.camera;
+        input.scene = &frame.scene;
         input.previous = &previous;
         if (method->info().needsNext) {
             const double nextTime = args.number("next-time", sourceTime + 1.0 / method->info().sourceRateHz);

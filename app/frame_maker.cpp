@@ -50,6 +50,7 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
     input.camera = shown.camera;
     input.previous = it->second.get();
+    input.scene = &shown.scene;
     std::string name = "hold120";
     const auto kind = shown.schedule.kind;
     if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {

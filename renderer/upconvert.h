@@ -50,6 +50,9 @@ struct UpconversionInput {
     scene::CameraState camera;            // the view sampled at this display frame
     const SourceFrame* previous = nullptr;  // latest source at or before displayTime
     const SourceFrame* next = nullptr;      // the one after; only for methods with needsNext
+    // The scene at the displayed instant; only for methods with needsScene, which rasterise it
+    // again (scene-assisted reprojection). Everything else works from the sources' images.
+    const scene::SceneSnapshot* scene = nullptr;
 };
 
 struct MethodInfo {
@@ -62,6 +65,7 @@ struct MethodInfo {
     // interval (bidirectional reprojection's latest-frame initialisation): the bench makes
     // those frames, untimed, before timing one.
     bool usesEarlierFrames = false;
+    bool needsScene = false;  // reads UpconversionInput::scene
 };
 
 class UpconversionMethod {

@@ -253,6 +253,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 input.camera = truthDesc.camera;
                 input.previous = source(previous).frame.get();
                 if (info.needsNext) input.next = source(next).frame.get();
+                input.scene = &truthDesc.scene;
 
                 // Per-interval work (flow fields) and, for methods that start from the previous
                 // displayed frame, the interval's earlier frames: made untimed, as a session
@@ -262,7 +263,9 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                     for (int j = previous + 1; j < k; ++j) {
                         renderer::UpconversionInput earlier = input;
                         earlier.displayTime = j / options.refreshHz;
-                        earlier.camera = sequence.at(earlier.displayTime).camera;
+                        const scene::FrameDescription then = sequence.at(earlier.displayTime);
+                        earlier.camera = then.camera;
+                        earlier.scene = &then.scene;
                         method->produce(earlier, display);
                     }
                 }

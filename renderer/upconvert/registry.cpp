@@ -6,6 +6,7 @@
 #include "renderer/gbuffer_gl.h"
 #include "renderer/upconvert.h"
 #include "renderer/upconvert/bireproj.h"
+#include "renderer/upconvert/scene_assisted.h"
 #include "renderer/upconvert/simple_methods.h"
 #include "renderer/upconvert/warp.h"
 
@@ -58,6 +59,7 @@ const std::vector<Entry>& registry() {
          [](const DataPaths& p) { return makeBireproj(p, "bireproj-nolatest", bireproj(3, true, false)); }},
         {"bireproj-noinit",
          [](const DataPaths& p) { return makeBireproj(p, "bireproj-noinit", bireproj(3, false, false)); }},
+        {"scene-assisted", [](const DataPaths& p) { return makeSceneAssisted(p); }},
     };
     return entries;
 }
