@@ -32,6 +32,7 @@ layout(location = 2) out vec4 outCorrespondence;
 layout(location = 3) out vec4 outOffsets;
 
 const float kFar = 1e9;  // the error of a search that left the image
+const float kExact = 0.1;  // pixels: two searches this close to p both solved eq. 3 / 8
 
 bool inside(vec2 q) { return all(greaterThanEqual(q, vec2(0.0))) && all(lessThan(q, uSize)); }
 ivec2 texel(vec2 q) { return clamp(ivec2(floor(q)), ivec2(0), ivec2(uSize) - 1); }
@@ -70,7 +71,14 @@ Search searchBackward(vec2 p, vec2 start) {
     return s;
 }
 
-Search better(Search a, Search b) { return b.error < a.error ? b : a; }
+// Of two searches from different starting points, the smaller error, as the paper says --
+// except where both land within kExact of p: then both found a surface point that projects
+// to p at t + alpha (with exact flows an occluded one converges as well as the visible one:
+// the background behind a moving sphere), and the nearer is the one p shows.
+Search better(Search a, Search b) {
+    if (a.error < kExact && b.error < kExact) return b.depth < a.depth ? b : a;
+    return b.error < a.error ? b : a;
+}
 
 // Latest-frame initialisation: among the previous B-frame's offsets around p (scaled to this
 // alpha), the start whose I-frame pixel is nearest the camera.
