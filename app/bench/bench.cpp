@@ -81,6 +81,11 @@ struct RenderedSource {
     renderer::GBufferImages images;
 };
 
+struct BruteForce {
+    renderer::ImageRGBA8 colour;
+    double ms = 0.0;
+};
+
 struct Row {
     std::string sequence, method;
     int frame = 0;
@@ -243,6 +248,37 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 return it->second;
             };
 
+            // Brute-force motion blur over the display frames [first, last): the mean of
+            // `samples` conventional renders spread over it, and their total time (each render's
+            // median over the repeats).
+            std::map<std::pair<int, int>, BruteForce> bruteForces;
+            auto bruteForce = [&](int first, int last, int samples) -> const BruteForce& {
+                auto it = bruteForces.find({first, samples});
+                if (it != bruteForces.end()) return it->second;
+                BruteForce b;
+                std::vector<double> sum;
+                for (int j = 0; j < samples; ++j) {
+                    const double at = (first + (last - first) * (j + 0.5) / samples) / options.refreshHz;
+                    const scene::FrameDescription d = sequence.at(at);
+                    std::vector<double> ms;
+                    for (int r = 0; r < options.repeats; ++r) {
+                        timer.begin();
+                        conventional.render(d, truthFrame.gbuffer);
+                        ms.push_back(timer.end().wallMs);
+                    }
+                    b.ms += median(ms);
+                    const renderer::ImageRGBA8 colour = renderer::readBack(truthFrame.gbuffer).colour;
+                    if (sum.empty()) {
+                        sum.assign(colour.pixels.size(), 0.0);
+                        b.colour = colour;
+                    }
+                    for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += colour.pixels[i];
+                }
+                for (std::size_t i = 0; i < sum.size(); ++i)
+                    b.colour.pixels[i] = static_cast<std::uint8_t>(std::lround(sum[i] / samples));
+                return bruteForces.emplace(std::make_pair(first, samples), std::move(b)).first->second;
+            };
+
             for (auto& method : methods) {
                 const auto& info = method->info();
                 const int perSource = static_cast<int>(std::lround(options.refreshHz / info.sourceRateHz));
@@ -284,23 +320,33 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 row.method = info.name;
                 row.frame = k;
                 row.time = t;
-                row.psnr = renderer::psnr(shown.colour, truth.colour);
-                row.ssim = renderer::ssimLuminance(shown.colour, truth.colour);
-                std::vector<const Correspondence*> used{&correspondenceTo(previous)};
-                if (info.needsNext) used.push_back(&correspondenceTo(next));
-                row.disoccMae = maskedMeanAbsoluteError(shown.colour, truth.colour, disoccludedMask(used));
+                if (info.exposureSamples > 0) {
+                    // Motion blur: judged against brute force, the mean of as many conventional
+                    // renders over the same exposure, whose total time is the reference cost.
+                    const BruteForce& reference = bruteForce(previous, next, info.exposureSamples);
+                    row.psnr = renderer::psnr(shown.colour, reference.colour);
+                    row.ssim = renderer::ssimLuminance(shown.colour, reference.colour);
+                    row.disoccMae = std::numeric_limits<double>::quiet_NaN();
+                } else {
+                    row.psnr = renderer::psnr(shown.colour, truth.colour);
+                    row.ssim = renderer::ssimLuminance(shown.colour, truth.colour);
+                    std::vector<const Correspondence*> used{&correspondenceTo(previous)};
+                    if (info.needsNext) used.push_back(&correspondenceTo(next));
+                    row.disoccMae = maskedMeanAbsoluteError(shown.colour, truth.colour, disoccludedMask(used));
+                }
                 if (info.reportsCorrespondence) {
                     CorrespondenceAccumulator accumulator;
-                    accumulator.add(reportedCoordinates(shown.correspondence, 0), *used[0]);
+                    accumulator.add(reportedCoordinates(shown.correspondence, 0), correspondenceTo(previous));
                     const auto intoNext = reportedCoordinates(shown.correspondence, 2);
-                    if (info.needsNext && anyFinite(intoNext)) accumulator.add(intoNext, *used[1]);
+                    if (info.needsNext && anyFinite(intoNext)) accumulator.add(intoNext, correspondenceTo(next));
                     row.corr = accumulator.stats();
                     row.hasCorr = true;
                 }
                 row.triangles = method->lastTriangleCount();
                 row.passMs = median(wall);
                 row.gpuMs = median(gpu);
-                row.conventionalMs = conventionalMedian;
+                row.conventionalMs =
+                    info.exposureSamples > 0 ? bruteForce(previous, next, info.exposureSamples).ms : conventionalMedian;
                 writeRow(csv, row);
                 rows.push_back(row);
             }

@@ -240,7 +240,98 @@ private:
     Offsets latest_, initFrom_;
 };
 
+// The mean of several B-frames over the interval: each made by the image-based method into a
+// scratch frame and added into a float accumulator, then resolved into the displayed frame.
+class BireprojBlurMethod final : public UpconversionMethod {
+public:
+    BireprojBlurMethod(const DataPaths& paths, const std::string& name, const BireprojSettings& settings, int samples)
+        : bframes_(paths, name, settings), samples_(samples) {
+        if (samples < 1 || samples > 64) throw std::invalid_argument(name + ": samples must be 1..64");
+        info_ = bframes_.info();
+        info_.name = name;
+        info_.description = "motion blur: the mean of " + std::to_string(samples) +
+                            " bidirectionally reprojected B-frames spread over the 15 Hz interval";
+        info_.reportsCorrespondence = false;
+        info_.usesEarlierFrames = false;  // it makes the interval's frames itself, in order
+        info_.exposureSamples = samples;
+        accumulate_ = gl::buildProgram(
+            {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "accumulate.frag"}}, {}});
+        resolve_ = gl::buildProgram({paths.shaderDir,
+                                     {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                      {GL_FRAGMENT_SHADER, "accumulate_resolve.frag"}},
+                                     {}});
+    }
+
+    const MethodInfo& info() const override { return info_; }
+    void prepare(const UpconversionInput& input) override { bframes_.prepare(input); }
+
+    void produce(const UpconversionInput& input, DisplayFrame& out) override {
+        prepare(input);
+        const int w = out.width(), h = out.height();
+        if (!scratch_ || scratch_->width() != w || scratch_->height() != h) {
+            scratch_ = std::make_unique<DisplayFrame>(w, h);
+            middle_ = std::make_unique<DisplayFrame>(w, h);
+            sum_ = makeFloatTexture(w, h);
+            sumTarget_ = gl::Framebuffer::create();
+            glBindFramebuffer(GL_FRAMEBUFFER, sumTarget_.id());
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, sum_.id(), 0);
+            glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        }
+        const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glBindFramebuffer(GL_FRAMEBUFFER, sumTarget_.id());
+        glClearBufferfv(GL_COLOR, 0, zero);
+        const double t0 = input.previous->depicts.scene.time, t1 = input.next->depicts.scene.time;
+        const int middle = samples_ / 2;
+        for (int k = 0; k < samples_; ++k) {
+            UpconversionInput instant = input;
+            instant.displayTime = t0 + (t1 - t0) * (k + 0.5) / samples_;
+            DisplayFrame& frame = k == middle ? *middle_ : *scratch_;
+            bframes_.produce(instant, frame);
+            glBindFramebuffer(GL_FRAMEBUFFER, sumTarget_.id());
+            glViewport(0, 0, w, h);
+            glDisable(GL_DEPTH_TEST);
+            glEnable(GL_BLEND);
+            glBlendFunc(GL_ONE, GL_ONE);
+            glUseProgram(accumulate_.id());
+            bindTexture(accumulate_, "uColour", 0, frame.buffer().impl().colour);
+            pass_.draw();
+            glDisable(GL_BLEND);
+        }
+        auto& target = out.buffer().impl();
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
+        glViewport(0, 0, w, h);
+        glUseProgram(resolve_.id());
+        bindTexture(resolve_, "uSum", 0, sum_);
+        bindTexture(resolve_, "uMiddleIds", 1, middle_->buffer().impl().ids);
+        glUniform1f(gl::uniform(resolve_, "uCount"), static_cast<float>(samples_));
+        pass_.draw();
+        glActiveTexture(GL_TEXTURE1);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, 0);
+        glUseProgram(0);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glEnable(GL_DEPTH_TEST);
+        gl::checkErrors("accumulating B-frames");
+    }
+
+private:
+    BireprojMethod bframes_;
+    int samples_;
+    MethodInfo info_;
+    gl::Program accumulate_, resolve_;
+    FullscreenPass pass_;
+    std::unique_ptr<DisplayFrame> scratch_, middle_;
+    gl::Texture sum_;
+    gl::Framebuffer sumTarget_;
+};
+
 }  // namespace
+
+std::unique_ptr<UpconversionMethod> makeBireprojBlur(const DataPaths& paths, const std::string& name,
+                                                     const BireprojSettings& settings, int samples) {
+    return std::make_unique<BireprojBlurMethod>(paths, name, settings, samples);
+}
 
 std::unique_ptr<UpconversionMethod> makeBireproj(const DataPaths& paths, const std::string& name,
                                                  const BireprojSettings& settings) {

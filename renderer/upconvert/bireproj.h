@@ -21,4 +21,9 @@ struct BireprojSettings {
 std::unique_ptr<UpconversionMethod> makeBireproj(const DataPaths& paths, const std::string& name,
                                                  const BireprojSettings& settings);
 
+// Motion blur from B-frames (seed 000 section 9, Figure 10): the mean of `samples` B-frames
+// spread evenly over the interval between the two I-frames, made by bireproj with `settings`.
+std::unique_ptr<UpconversionMethod> makeBireprojBlur(const DataPaths& paths, const std::string& name,
+                                                     const BireprojSettings& settings, int samples);
+
 }  // namespace warplab::renderer

@@ -9,6 +9,7 @@
 #include "renderer/upconvert/scene_assisted.h"
 #include "renderer/upconvert/simple_methods.h"
 #include "renderer/upconvert/warp.h"
+#include "renderer/upconvert/warp_search.h"
 
 namespace warplab::renderer {
 namespace {
@@ -23,6 +24,9 @@ WarpSettings sparse(int patchSize) {
     s.patchSize = patchSize;
     return s;
 }
+
+// Motion blur from B-frames: ten per I-frame interval, as seed 000's Figure 10.
+constexpr int kBlurSamplesPerInterval = 10;
 
 BireprojSettings bireproj(int iterations, bool dual, bool latest) {
     BireprojSettings s;
@@ -49,6 +53,7 @@ const std::vector<Entry>& registry() {
         {"warp-sparse4", [](const DataPaths& p) { return makeWarp(p, "warp-sparse4", sparse(4)); }},
         {"warp-sparse8", [](const DataPaths& p) { return makeWarp(p, "warp-sparse8", sparse(8)); }},
         {"warp-sparse16", [](const DataPaths& p) { return makeWarp(p, "warp-sparse16", sparse(16)); }},
+        {"warp-search", [](const DataPaths& p) { return makeWarpSearch(p, "warp-search", {}); }},
         {"bireproj", [](const DataPaths& p) { return makeBireproj(p, "bireproj", {}); }},
         {"bireproj-m1", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m1", bireproj(1, true, true)); }},
         {"bireproj-m2", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m2", bireproj(2, true, true)); }},
@@ -60,6 +65,8 @@ const std::vector<Entry>& registry() {
         {"bireproj-noinit",
          [](const DataPaths& p) { return makeBireproj(p, "bireproj-noinit", bireproj(3, false, false)); }},
         {"scene-assisted", [](const DataPaths& p) { return makeSceneAssisted(p); }},
+        {"bireproj-blur",
+         [](const DataPaths& p) { return makeBireprojBlur(p, "bireproj-blur", {}, kBlurSamplesPerInterval); }},
     };
     return entries;
 }
