@@ -29,7 +29,13 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
         auto source = std::make_unique<renderer::SourceFrame>(width_, height_);
         source->depicts = shown.render;
-        conventional_.render(shown.render, source->gbuffer);
+        // Bidirectional reprojection's I-frames carry their backward flow towards the previous
+        // I-frame, drawn in the same pass (seed 000 section 5).
+        const bool flow = !shown.mode.empty() &&
+                          game::modeSpec(shown.mode).upconversion == game::Upconversion::Bidirectional &&
+                          !sources_.empty() && method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
+        if (flow) conventional_.render(shown.render, source->gbuffer, sources_.rbegin()->second->depicts);
+        else conventional_.render(shown.render, source->gbuffer);
         sources_[shown.frame] = std::move(source);
     }
     // None older than what the frame on screen is made from will be needed again.

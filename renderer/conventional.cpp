@@ -15,6 +15,7 @@
 #include "renderer/scene_geometry.h"
 #include "scene/camera.h"
 #include "scene/hangar_layout.h"
+#include "scene/motion.h"
 
 namespace warplab::renderer {
 
@@ -176,12 +177,17 @@ constexpr int kMaxLamps = 16;  // matches MAX_LAMPS in conventional.frag
 
 }  // namespace
 
+// Space beyond the far door: a dark blue-black, no id, no motion, depth at the far plane.
+constexpr GLfloat kSky[4] = {0.02f, 0.025f, 0.05f, 1.0f};
+
 struct ConventionalRenderer::Impl {
     ShadingOptions shading;
     gl::Program program;
     SceneGeometry geometry;
     std::vector<Lamp> lamps;
+    gl::VertexArray emptyVao;  // the sky's far-plane triangle (flow only)
     explicit Impl(const DataPaths& paths) : geometry(paths) {}
+    void render(const scene::FrameDescription& frame, GBuffer& target, const scene::FrameDescription* flowTo);
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
             panelPattern, lampCount, lampPosition, lampColour, shadingCost;
@@ -192,9 +198,12 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
     : impl_(std::make_unique<Impl>(paths)) {
     auto& m = *impl_;
     m.shading = shading;
-    m.program = gl::buildProgram({paths.shaderDir,
-                                  {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag"}},
-                                  {"MAX_LAMPS " + std::to_string(kMaxLamps)}});
+    m.program = gl::buildProgram(
+        {paths.shaderDir,
+         {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag", {"flow_common.glsl"}}},
+         {"MAX_LAMPS " + std::to_string(kMaxLamps), "SKY_COLOUR vec3(" + std::to_string(kSky[0]) + ", " +
+                                                        std::to_string(kSky[1]) + ", " + std::to_string(kSky[2]) + ")"}});
+    m.emptyVao = gl::VertexArray::create();
     const auto& p = m.program;
     m.u = {gl::uniform(p, "uModel"),          gl::uniform(p, "uNormalMatrix"),   gl::uniform(p, "uViewProjection"),
            gl::uniform(p, "uObjectId"),       gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
@@ -209,7 +218,17 @@ ConventionalRenderer::~ConventionalRenderer() = default;
 void ConventionalRenderer::setShading(const ShadingOptions& shading) { impl_->shading = shading; }
 
 void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer& target) {
-    auto& m = *impl_;
+    impl_->render(frame, target, nullptr);
+}
+
+void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer& target,
+                                  const scene::FrameDescription& flowTo) {
+    impl_->render(frame, target, &flowTo);
+}
+
+void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GBuffer& target,
+                                        const scene::FrameDescription* flowTo) {
+    auto& m = *this;
     auto& g = target.impl();
     glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
     glViewport(0, 0, g.width, g.height);
@@ -219,20 +238,33 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
 
-    // Space beyond the far door: a dark blue-black, no id, no motion, depth at the far plane.
-    const GLfloat sky[4] = {0.02f, 0.025f, 0.05f, 1.0f};
     const GLuint noId[4] = {scene::kIdNone, 0, 0, 0};
     const GLfloat still[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, sky);
+    glClearBufferfv(GL_COLOR, 0, kSky);
     glClearBufferuiv(GL_COLOR, 1, noId);
     glClearBufferfv(GL_COLOR, 2, still);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
     const float aspect = static_cast<float>(g.width) / static_cast<float>(g.height);
-    const glm::mat4 viewProjection =
-        scene::projectionMatrix(frame.camera, aspect) * scene::viewMatrix(frame.camera);
+    const glm::mat4 view = scene::viewMatrix(frame.camera);
+    const glm::mat4 viewProjection = scene::projectionMatrix(frame.camera, aspect) * view;
+    // Without a flow target the "other" instant is this one: the flow output, not stored, is 0.
+    const scene::FrameDescription& other = flowTo != nullptr ? *flowTo : frame;
+    const glm::mat4 otherView = scene::viewMatrix(other.camera);
+    const glm::mat4 otherViewProjection = scene::projectionMatrix(other.camera, aspect) * otherView;
 
     glUseProgram(m.program.id());
+    auto u = [&](const char* name) { return gl::uniform(m.program, name); };
+    glUniformMatrix4fv(u("uView"), 1, GL_FALSE, glm::value_ptr(view));
+    glUniformMatrix4fv(u("uOtherView"), 1, GL_FALSE, glm::value_ptr(otherView));
+    glUniformMatrix4fv(u("uOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
+    glUniformMatrix4fv(u("uFlowOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
+    const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(viewProjection)));
+    glUniformMatrix4fv(u("uFlowInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+    glUniform2f(u("uFlowSize"), static_cast<float>(g.width), static_cast<float>(g.height));
+    glUniform1f(u("uFlowFar"), frame.camera.farPlane);
+    glUniform1i(u("uSky"), 0);
+    const GLint otherModel = u("uOtherModel");
     glUniformMatrix4fv(m.u.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
     glUniform3fv(m.u.eye, 1, glm::value_ptr(frame.camera.eye));
     const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
@@ -246,8 +278,36 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
     glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
 
+    if (flowTo != nullptr) {
+        // The flow goes into a fourth target, made the first time it is asked for; the sky's
+        // flow first, under everything, as a far-plane triangle that leaves depth alone.
+        if (g.flow.id() == 0) {
+            g.flow = gl::Texture::create();
+            glBindTexture(GL_TEXTURE_2D, g.flow.id());
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, g.width, g.height, 0, GL_RGBA, GL_FLOAT, nullptr);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glBindTexture(GL_TEXTURE_2D, 0);
+            glFramebufferTexture2D(GL_FRAMEBUFFER, GBuffer::Impl::kFlowAttachment, GL_TEXTURE_2D, g.flow.id(), 0);
+        }
+        const GLenum four[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
+                               GBuffer::Impl::kVelocityAttachment, GBuffer::Impl::kFlowAttachment};
+        glDrawBuffers(4, four);
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glUniform1i(u("uSky"), 1);
+        glBindVertexArray(m.emptyVao.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glUniform1i(u("uSky"), 0);
+        glEnable(GL_DEPTH_TEST);
+        glDepthMask(GL_TRUE);
+    }
     m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
         const scene::ObjectState* o = item.object;
+        const glm::mat4 there =
+            o == nullptr || flowTo == nullptr ? item.model
+                                              : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
+        glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
         const glm::vec3 zero(0.0f);
         const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
         glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
@@ -261,6 +321,14 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     });
     glBindVertexArray(0);
     glUseProgram(0);
+    if (flowTo != nullptr) {
+        const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
+                                GBuffer::Impl::kVelocityAttachment};
+        glDrawBuffers(3, three);
+        g.flowTo = GBuffer::Impl::FlowTarget{flowTo->scene.time, flowTo->camera.yaw, flowTo->camera.pitch};
+    } else {
+        g.flowTo.reset();  // whatever flow the target held belongs to its previous frame
+    }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("rendering a conventional frame");
 }

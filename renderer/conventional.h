@@ -68,6 +68,10 @@ public:
     ConventionalRenderer& operator=(const ConventionalRenderer&) = delete;
 
     void render(const scene::FrameDescription& frame, GBuffer& target);
+    // The same, and in the same pass (a fourth render target) the backward flow field of seed
+    // 000 eq. 2 towards `flowTo`, the previous I-frame: what bidirectional reprojection needs
+    // of every I-frame besides its colour and depth.
+    void render(const scene::FrameDescription& frame, GBuffer& target, const scene::FrameDescription& flowTo);
     void setShading(const ShadingOptions& shading);
 
 private:

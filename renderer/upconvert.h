@@ -66,6 +66,10 @@ struct MethodInfo {
     // those frames, untimed, before timing one.
     bool usesEarlierFrames = false;
     bool needsScene = false;  // reads UpconversionInput::scene
+    // Takes the next source's backward flow from its own render when it was rendered with one
+    // towards the previous source (ConventionalRenderer::render with flowTo, seed 000's MRT
+    // I-frame pass); draws it itself otherwise.
+    bool usesSourceFlow = false;
     // A motion-blurred frame: the mean of this many instants spread evenly over the source
     // interval [previous, next] (the exposure). The bench compares it with the mean of as
     // many conventional renders (brute force). 0 = an instant, as every other method.

@@ -7,6 +7,11 @@ in vec3 vWorldPosition;
 in vec3 vNormal;
 in vec3 vDiffuse;
 in vec4 vSpecular;
+in vec4 vOtherClip;
+in float vViewDepth;
+in float vOtherViewDepth;
+
+uniform int uSky;
 
 uniform uint uObjectId;
 uniform vec3 uLinearVelocity;
@@ -23,6 +28,7 @@ uniform vec3 uLampColour[MAX_LAMPS];
 layout(location = 0) out vec4 outColour;
 layout(location = 1) out uint outId;
 layout(location = 2) out vec4 outVelocity;
+layout(location = 3) out vec4 outFlow;  // only stored when a fourth target is bound (see flow_common.glsl)
 
 // Thin dark seams every 2 m on the hangar's surfaces: high-frequency detail that a warp
 // must carry correctly, and that makes its errors show in PSNR / SSIM.
@@ -48,6 +54,13 @@ float costlyDetail(vec3 p, int iterations) {
 }
 
 void main() {
+    outFlow = flowOf(gl_FragCoord.xy, vOtherClip, vViewDepth, vOtherViewDepth, uSky != 0);
+    if (uSky != 0) {
+        outColour = vec4(SKY_COLOUR, 1.0);  // the clear colour, from conventional.cpp
+        outId = 0u;
+        outVelocity = vec4(0.0);
+        return;
+    }
     vec3 n = normalize(vNormal);
     vec3 toEye = normalize(uEye - vWorldPosition);
     // Two-sided: a face seen from behind is lit as if it faced the viewer.

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -192,11 +193,19 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     renderer::SourceFrame truthFrame(options.width, options.height);
     renderer::DisplayFrame display(options.width, options.height);
 
-    auto renderSource = [&](const scene::FrameDescription& depicts) {
+    // Sources carry the backward flow towards the source one period earlier when a method takes
+    // it from them (bidirectional reprojection's I-frames, drawn in the same pass); untimed,
+    // like the rest of the source render.
+    int flowPeriod = 0;
+    for (const auto& m : methods)
+        if (m->info().usesSourceFlow)
+            flowPeriod = static_cast<int>(std::lround(options.refreshHz / m->info().sourceRateHz));
+    auto renderSource = [&](const scene::FrameDescription& depicts, const scene::FrameDescription* flowTo) {
         RenderedSource s;
         s.frame = std::make_unique<renderer::SourceFrame>(options.width, options.height);
         s.frame->depicts = depicts;
-        conventional.render(depicts, s.frame->gbuffer);
+        if (flowTo != nullptr) conventional.render(depicts, s.frame->gbuffer, *flowTo);
+        else conventional.render(depicts, s.frame->gbuffer);
         s.images = renderer::readBack(s.frame->gbuffer);
         return s;
     };
@@ -232,8 +241,15 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
             std::map<int, Correspondence> truthCorrespondence;
             auto source = [&](int index) -> const RenderedSource& {
                 auto it = sources.find(index);
-                if (it == sources.end())
-                    it = sources.emplace(index, renderSource(sequence.at(index / options.refreshHz))).first;
+                if (it == sources.end()) {
+                    std::optional<scene::FrameDescription> before;
+                    if (flowPeriod > 0 && index >= flowPeriod)
+                        before = sequence.at((index - flowPeriod) / options.refreshHz);
+                    it = sources
+                             .emplace(index, renderSource(sequence.at(index / options.refreshHz),
+                                                          before ? &*before : nullptr))
+                             .first;
+                }
                 return it->second;
             };
             auto correspondenceTo = [&](int index) -> const Correspondence& {

@@ -67,12 +67,13 @@ public:
         info_.needsNext = true;
         info_.reportsCorrespondence = true;
         info_.usesEarlierFrames = settings.latestInit;
+        info_.usesSourceFlow = true;
         info_.description = "image-based bidirectional reprojection between 15 Hz I-frames, m = " +
                             std::to_string(settings.iterations) + (settings.dualInit ? ", dual" : "") +
                             (settings.latestInit ? ", latest-frame" : "") + " initialisation";
         if (!settings.dualInit && !settings.latestInit) info_.description += " (default start only)";
         flowProgram_ = gl::buildProgram(
-            {paths.shaderDir, {{GL_VERTEX_SHADER, "flow.vert"}, {GL_FRAGMENT_SHADER, "flow.frag"}}, {}});
+            {paths.shaderDir, {{GL_VERTEX_SHADER, "flow.vert"}, {GL_FRAGMENT_SHADER, "flow.frag", {"flow_common.glsl"}}}, {}});
         program_ = gl::buildProgram({paths.shaderDir,
                                      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "bireproj.frag"}},
                                      {"ITERATIONS " + std::to_string(settings.iterations),
@@ -97,8 +98,15 @@ public:
             flowsFor_.reset();
         }
         if (flowsFor_ && *flowsFor_ == key) return;
+        // The forward flow of the earlier I-frame needs the later one's instant, so it is drawn
+        // now, as seed 000 section 5 draws it; the later I-frame's backward flow came with its
+        // own render where the renderer was asked for it (the mode's sessions, the bench).
         drawFlow(input.previous->depicts, input.next->depicts, *forward_);
-        drawFlow(input.next->depicts, input.previous->depicts, *backward_);
+        const auto& next = input.next->gbuffer.impl();
+        const auto& before = input.previous->depicts;
+        backwardFromSource_ = next.flowTo && next.flowTo->time == before.scene.time &&
+                              next.flowTo->yaw == before.camera.yaw && next.flowTo->pitch == before.camera.pitch;
+        if (!backwardFromSource_) drawFlow(input.next->depicts, input.previous->depicts, *backward_);
         flowsFor_ = key;
         latest_ = {};  // a new interval: no earlier B-frame in it
         initFrom_ = {};
@@ -136,7 +144,7 @@ public:
         bindTexture(program_, "uIds0", 2, p.ids);
         bindTexture(program_, "uIds1", 3, n.ids);
         bindTexture(program_, "uFlowF", 4, forward_->impl().velocity);
-        bindTexture(program_, "uFlowB", 5, backward_->impl().velocity);
+        bindTexture(program_, "uFlowB", 5, backwardFromSource_ ? n.flow : backward_->impl().velocity);
         // Never the texture being written: with no earlier frame the shader ignores it anyway.
         bindTexture(program_, "uPreviousOffsets", 6, offsets_[1 - write]);
         glUniform2f(gl::uniform(program_, "uSize"), static_cast<float>(target.width), static_cast<float>(target.height));
@@ -199,9 +207,10 @@ private:
         glUniformMatrix4fv(u("uOtherView"), 1, GL_FALSE, glm::value_ptr(otherView));
         glUniformMatrix4fv(u("uViewProjection"), 1, GL_FALSE, glm::value_ptr(viewProjection));
         glUniformMatrix4fv(u("uOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
-        glUniformMatrix4fv(u("uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
-        glUniform2f(u("uSize"), static_cast<float>(g.width), static_cast<float>(g.height));
-        glUniform1f(u("uFar"), from.camera.farPlane);
+        glUniformMatrix4fv(u("uFlowInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+        glUniformMatrix4fv(u("uFlowOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
+        glUniform2f(u("uFlowSize"), static_cast<float>(g.width), static_cast<float>(g.height));
+        glUniform1f(u("uFlowFar"), from.camera.farPlane);
 
         // The sky first, everywhere, without depth; then the scene over it.
         glDisable(GL_DEPTH_TEST);
@@ -237,6 +246,7 @@ private:
     std::unique_ptr<GBuffer> forward_, backward_;  // flows in their velocity attachments
     gl::Texture offsets_[2];
     std::optional<PairKey> flowsFor_;
+    bool backwardFromSource_ = false;  // the next source's own flow target holds the backward flow
     Offsets latest_, initFrom_;
 };
 
@@ -247,7 +257,7 @@ public:
     BireprojBlurMethod(const DataPaths& paths, const std::string& name, const BireprojSettings& settings, int samples)
         : bframes_(paths, name, settings), samples_(samples) {
         if (samples < 1 || samples > 64) throw std::invalid_argument(name + ": samples must be 1..64");
-        info_ = bframes_.info();
+        info_ = bframes_.info();  // usesSourceFlow included: it hands the sources on
         info_.name = name;
         info_.description = "motion blur: the mean of " + std::to_string(samples) +
                             " bidirectionally reprojected B-frames spread over the 15 Hz interval";

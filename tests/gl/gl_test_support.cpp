@@ -42,12 +42,14 @@ renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int wi
     return renderer::readBack(gbuffer);
 }
 
-RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height) {
+RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height,
+                            const scene::FrameDescription* flowTo) {
     auto& renderer = conventional();
     RenderedSource source;
     source.frame = std::make_unique<renderer::SourceFrame>(width, height);
     source.frame->depicts = frame;
-    renderer.render(frame, source.frame->gbuffer);
+    if (flowTo != nullptr) renderer.render(frame, source.frame->gbuffer, *flowTo);
+    else renderer.render(frame, source.frame->gbuffer);
     source.images = renderer::readBack(source.frame->gbuffer);
     return source;
 }

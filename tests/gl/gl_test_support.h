@@ -26,7 +26,10 @@ struct RenderedSource {
     std::unique_ptr<renderer::SourceFrame> frame;
     renderer::GBufferImages images;
 };
-RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height);
+// With flowTo, the render also writes its backward flow towards that frame (bidirectional
+// reprojection's I-frame pass).
+RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height,
+                            const scene::FrameDescription* flowTo = nullptr);
 
 // Makes the displayed frame with a registered method (methods are built once per name).
 renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input,

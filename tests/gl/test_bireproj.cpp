@@ -531,6 +531,28 @@ TEST(BireprojLatestInit, StartingFromTheEarlierBFrameIsUsedAndChangesLittle) {
     }
 }
 
+// The later I-frame's backward flow drawn in its own render (a fourth render target, as the
+// study mode and the bench make their I-frames) gives exactly the B-frames the method makes
+// when it has to draw that flow itself.
+TEST(BireprojFlow, TheIFramesOwnFlowGivesTheSameBFrames) {
+    game::SequenceConfig config;
+    config.aspect = double(kW) / kH;
+    for (const std::string name : {"spheres", "pan"}) {
+        const auto sequence = game::makeSequence(name, config);
+        const auto before = sequence->at(4 * kPeriod), after = sequence->at(5 * kPeriod);
+        const Rendered a = render(before), plain = render(after);
+        const Rendered withFlow = testing::renderSource(after, kW, kH, &before);
+        EXPECT_EQ(withFlow.images.colour.pixels, plain.images.colour.pixels) << name << ": the flow target changes nothing else";
+        auto drawsItsOwn = fresh("bireproj"), takesTheSources = fresh("bireproj");
+        for (int eighth = 1; eighth < 8; ++eighth) {
+            const auto d = sequence->at((4 + eighth / 8.0) * kPeriod);
+            const auto own = produce(*drawsItsOwn, a, plain, d.scene.time, d.camera);
+            const auto sources = produce(*takesTheSources, a, withFlow, d.scene.time, d.camera);
+            EXPECT_TRUE(identical(own, sources)) << name << " B-frame " << eighth << "/8";
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------
 // 7. Scene-assisted reprojection (section 4): the reference the search is measured against.
 
