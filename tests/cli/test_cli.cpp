@@ -500,4 +500,24 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     EXPECT_EQ(missing.lines(), 1) << missing.output;
 }
 
+// A reader of the run's output that goes away (`| head -1`, a dying tee) must not end the
+// session: before SIGPIPE was ignored this run died at its second progress line with 80 of
+// 1353 outcomes.
+TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
+    const std::string dir = scratch("closed-pipe");
+    const std::string command = "bash -c '" + std::string(WARPLAB_BINARY) + " run --protocol " +
+                                std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json --participant P --out " +
+                                dir + " --headless --player bot:2 2>&1 | head -1; exit ${PIPESTATUS[0]}'";
+    const auto r = warplab::testing::runCommand(command);
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;  // the pipe really closed after one line
+    const std::string session = sessionIn(dir);
+    ASSERT_FALSE(session.empty());
+    const auto data = warplab::protocol::readSession(session);
+    EXPECT_TRUE(data.completed) << data.note;
+    int outcomes = 0;
+    for (const auto& e : data.events) outcomes += e.type == "shot" || e.type == "timeout";
+    EXPECT_GT(outcomes, 1000);
+}
+
 }  // namespace
