@@ -161,6 +161,30 @@ void Reader::fail(const std::string& path, const std::string& reason) const {
 
 Json Reader::parseObject(const std::string& text) const {
     const std::string prefix = "protocol '" + source_ + "': ";
+    // Limits a file cannot drive past: the parser and the duplicate-key check recurse and keep
+    // a path per level, so a few hundred kilobytes of '[' took a minute and gigabytes before.
+    // A real protocol is a few kilobytes and four levels deep.
+    if (text.size() > kMaxProtocolBytes)
+        throw ProtocolError(prefix + "is " + std::to_string(text.size()) + " bytes, more than a protocol may be (" +
+                            std::to_string(kMaxProtocolBytes) + ")");
+    int depth = 0, line = 1;
+    bool inString = false, escaped = false;
+    for (const char c : text) {
+        if (c == '\n') ++line;
+        if (inString) {
+            if (escaped) escaped = false;
+            else if (c == '\\') escaped = true;
+            else if (c == '"') inString = false;
+        } else if (c == '"') {
+            inString = true;
+        } else if (c == '{' || c == '[') {
+            if (++depth > kMaxNestingDepth)
+                throw ProtocolError(prefix + "nested deeper than " + std::to_string(kMaxNestingDepth) +
+                                    " levels at line " + std::to_string(line));
+        } else if (c == '}' || c == ']') {
+            --depth;
+        }
+    }
     DuplicateKeyFinder finder;
     Json document;
     try {

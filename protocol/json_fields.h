@@ -16,6 +16,10 @@
 
 namespace warplab::protocol::detail {
 
+// What a protocol may be: bounded, so that no file can make parsing slow or deep.
+inline constexpr std::size_t kMaxProtocolBytes = 1 << 20;
+inline constexpr int kMaxNestingDepth = 32;
+
 // Ordered so that toJson keeps the documented field order and errors name the first culprit
 // in file order rather than in alphabetical order.
 using Json = nlohmann::ordered_json;

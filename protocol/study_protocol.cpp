@@ -16,6 +16,12 @@ std::string readProtocolFile(const std::string& path) {
     if (!std::filesystem::exists(status)) throw ProtocolError(prefix + "no such file");
     if (std::filesystem::is_directory(status))
         throw ProtocolError(prefix + "is a directory, not a file");
+    // A pipe or a device would block or never end.
+    if (!std::filesystem::is_regular_file(status)) throw ProtocolError(prefix + "is not a regular file");
+    const auto size = std::filesystem::file_size(path, error);
+    if (!error && size > detail::kMaxProtocolBytes)
+        throw ProtocolError(prefix + "is " + std::to_string(size) + " bytes, more than a protocol may be (" +
+                            std::to_string(detail::kMaxProtocolBytes) + ")");
     std::ifstream file(path, std::ios::binary);
     if (!file) throw ProtocolError(prefix + "cannot be opened for reading");
     std::ostringstream text;

@@ -1,5 +1,7 @@
 // The `warplab` binary as a user meets it: bad command lines and bad data end in one clear
 // sentence naming the culprit and a non-zero exit, never a crash; good ones write files.
+#include <sys/stat.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -518,6 +520,28 @@ TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     int outcomes = 0;
     for (const auto& e : data.events) outcomes += e.type == "shot" || e.type == "timeout";
     EXPECT_GT(outcomes, 1000);
+}
+
+// Protocol files a parser could be driven into the ground by: 100,000 levels of '[' took 54 s
+// and 9 GB before failing (and 30,000 overflowed the stack); an endless pipe hung the read.
+TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
+    const std::string dir = scratch("hostile-protocols");
+    const std::string deep = dir + "/deep.json", wide = dir + "/big.json", pipe = dir + "/pipe.json";
+    { std::ofstream(deep) << std::string(100000, '[') << std::string(100000, ']'); }
+    { std::ofstream(wide) << "{\"name\": \"" << std::string(2 << 20, 'x') << "\"}"; }
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    const std::pair<std::string, std::string> cases[] = {
+        {deep, "nested deeper than 32 levels at line 1"},
+        {wide, "more than a protocol may be"},
+        {pipe, "is not a regular file"},
+    };
+    for (const auto& [file, why] : cases) {
+        const auto r = warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --protocol " + file +
+                                                    " --participant P --out " + dir + " --headless");
+        EXPECT_EQ(r.status, 1) << r.output;
+        EXPECT_TRUE(contains(r.output, file) && contains(r.output, why)) << r.output;
+        EXPECT_EQ(r.lines(), 1) << r.output;
+    }
 }
 
 }  // namespace
