@@ -43,6 +43,16 @@ long long ParsedArgs::integer(const std::string& name, long long fallback, long 
     return value;
 }
 
+long long wholeInteger(const std::string& text, const std::string& what) {
+    const char* begin = text.c_str();
+    char* end = nullptr;
+    errno = 0;
+    const long long value = std::strtoll(begin, &end, 10);
+    if (text.empty() || end == begin || *end != '\0' || errno == ERANGE || std::isspace(static_cast<unsigned char>(text[0])))
+        throw UsageError(what + ", got '" + text + "'");
+    return value;
+}
+
 ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args) {
     ParsedArgs parsed;
     parsed.commandName_ = spec.name;
@@ -69,6 +79,8 @@ ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& ar
         for (const auto& o : spec.options)
             if (o.name == name) option = &o;
         if (option == nullptr) throw UsageError("unknown option '--" + name + "' for 'warplab " + spec.name + "'");
+        if (parsed.values_.count(name) != 0)
+            throw UsageError("option --" + name + " of 'warplab " + spec.name + "' is given more than once");
         if (option->valueName.empty()) {
             if (inlineValue) throw UsageError("option --" + name + " of 'warplab " + spec.name + "' takes no value");
             parsed.values_[name] = "";

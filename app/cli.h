@@ -49,7 +49,12 @@ private:
     std::vector<std::string> positional_;
 };
 
-// Parses args (after the subcommand name). "--help" is reported by has("help").
+// A whole decimal integer: "12abc", "1e3", "" and out-of-range values are a UsageError that
+// quotes `what` (e.g. "option --frames needs FIRST:LAST frame numbers") and the text.
+long long wholeInteger(const std::string& text, const std::string& what);
+
+// Parses args (after the subcommand name). "--help" is reported by has("help"). An option
+// given twice is a UsageError: which of two values was meant is a guess.
 ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args);
 std::string helpText(const CommandSpec& spec);
 

@@ -42,13 +42,10 @@ int runBench(const ParsedArgs& args) {
     if (args.has("shading-sweep")) {
         options.shadingSweep.clear();
         for (const auto& item : splitList(args.string("shading-sweep"))) {
-            try {
-                const int cost = std::stoi(item);
-                if (cost < 0) throw std::invalid_argument("negative");
-                options.shadingSweep.push_back(cost);
-            } catch (const std::exception&) {
-                throw UsageError("option --shading-sweep needs non-negative integers, got '" + item + "'");
-            }
+            const std::string what = "option --shading-sweep needs integers from 0 to 1000000";
+            const long long cost = wholeInteger(item, what);
+            if (cost < 0 || cost > 1000000) throw UsageError(what + ", got '" + item + "'");
+            options.shadingSweep.push_back(static_cast<int>(cost));
         }
     }
     options.outDir = args.string("out", "bench-out");

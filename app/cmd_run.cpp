@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/export/csv.h"
 #include "app/live_session.h"
 #include "app/replay_render.h"
 #include "app/session_runner.h"
@@ -11,12 +12,24 @@ namespace warplab::app {
 namespace {
 
 // What every run names, windowed or headless.
+// A participant id is data that export, R and spreadsheets must read back: something, in
+// well-formed UTF-8, without control characters, of a sane length.
+void checkParticipant(const std::string& id) {
+    const std::string what = "option --participant ";
+    if (id.find_first_not_of(" \t") == std::string::npos) throw UsageError(what + "must not be empty or blank");
+    if (id.size() > 128) throw UsageError(what + "must be at most 128 bytes, got " + std::to_string(id.size()));
+    if (!isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text");
+    for (const char c : id)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) throw UsageError(what + "must not hold control characters");
+}
+
 template <typename Run>
 void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run, bool recorded = true) {
     run.protocolPath = args.string("protocol");
     if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
     if (recorded && !args.has("participant")) throw UsageError("option --participant is required");
     run.participant = args.string("participant");
+    if (recorded) checkParticipant(run.participant);
     run.resultsDir = args.string("out", "results");
     run.player = args.string("player", defaultPlayer);
     run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
@@ -42,11 +55,8 @@ int runWindowed(const ParsedArgs& args) {
     std::size_t at = 0;
     while (at < frames.size()) {
         const std::size_t comma = std::min(frames.find(',', at), frames.size());
-        try {
-            run.screenshotFrames.push_back(std::stoll(frames.substr(at, comma - at)));
-        } catch (const std::exception&) {
-            throw UsageError("option --screenshot-frames needs frame numbers separated by commas, got '" + frames + "'");
-        }
+        run.screenshotFrames.push_back(wholeInteger(
+            frames.substr(at, comma - at), "option --screenshot-frames needs frame numbers separated by commas"));
         at = comma + 1;
     }
     if (args.flag("free-play")) {
@@ -77,6 +87,9 @@ int runRun(const ParsedArgs& args) {
 
 int runReplay(const ParsedArgs& args) {
     if (args.positional().size() != 1) throw UsageError("give exactly one SESSION file");
+    if (!args.has("render"))
+        for (const char* option : {"frames", "width", "height", "gl", "data-dir"})
+            if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies with --render");
     const std::string& path = args.positional().front();
     if (args.has("render")) {
         ReplayRender request;
@@ -84,13 +97,10 @@ int runReplay(const ParsedArgs& args) {
         request.outDir = args.string("render");
         const std::string range = args.string("frames", "0:599");
         const auto colon = range.find(':');
-        try {
-            if (colon == std::string::npos) throw std::invalid_argument("no colon");
-            request.firstFrame = std::stoll(range.substr(0, colon));
-            request.lastFrame = std::stoll(range.substr(colon + 1));
-        } catch (const std::exception&) {
-            throw UsageError("option --frames needs FIRST:LAST frame numbers, got '" + range + "'");
-        }
+        const std::string what = "option --frames needs FIRST:LAST frame numbers";
+        if (colon == std::string::npos) throw UsageError(what + ", got '" + range + "'");
+        request.firstFrame = wholeInteger(range.substr(0, colon), what);
+        request.lastFrame = wholeInteger(range.substr(colon + 1), what);
         if (request.firstFrame < 0 || request.lastFrame < request.firstFrame)
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
         request.width = static_cast<int>(args.integer("width", 0, 0, 16384));

@@ -32,6 +32,15 @@ std::size_t utf8Length(const std::string& s, std::size_t i) {
 
 }  // namespace
 
+bool isValidUtf8(const std::string& text) {
+    for (std::size_t i = 0; i < text.size();) {
+        const std::size_t n = utf8Length(text, i);
+        if (n == 0) return false;
+        i += n;
+    }
+    return true;
+}
+
 std::string csvText(const std::string& text) {
     std::string valid;
     valid.reserve(text.size() + 2);

@@ -10,6 +10,9 @@
 
 namespace warplab::app {
 
+// True when `text` is well-formed UTF-8 (no stray, cut, overlong or surrogate sequences).
+bool isValidUtf8(const std::string& text);
+
 // One text cell as written: invalid UTF-8 bytes become U+FFFD; a cell beginning with = + - @
 // (or a tab or carriage return) gets a leading ' so that a spreadsheet shows it as text
 // instead of evaluating it; a cell holding , " or a line break is quoted, quotes doubled.

@@ -544,4 +544,38 @@ TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
     }
 }
 
+// Values taken in part, flags ignored in a combination, a flag given twice, ids that cannot
+// be read back: each was silently accepted (--frames 1e3:2e3 became 1:2, 0:10abc became 0:10,
+// --shading-sweep 12abc became 12, a repeated --participant kept the last). Now exit 2 with
+// one sentence naming the flag.
+TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
+    const std::string dir = scratch("bad-flags");
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
+    ASSERT_EQ(warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless").status, 0);
+    const std::string session = sessionIn(dir);
+    const std::pair<std::string, std::string> cases[] = {
+        {"replay " + session + " --render " + dir + "/f --frames 1e3:2e3", "--frames"},
+        {"replay " + session + " --render " + dir + "/f --frames 0:10abc", "--frames"},
+        {"replay " + session + " --render " + dir + "/f --frames :5", "--frames"},
+        {"replay " + session + " --frames 0:10", "--frames only applies with --render"},
+        {"replay " + session + " --width 64", "--width only applies with --render"},
+        {"bench --shading-sweep 12abc --out " + dir + "/b", "--shading-sweep"},
+        {"run --protocol " + protocol + " --participant A --participant B --out " + dir + " --headless",
+         "--participant of 'warplab run' is given more than once"},
+        {"run --protocol " + protocol + " --participant '' --out " + dir + " --headless", "--participant must not be empty"},
+        {"run --protocol " + protocol + " --participant '  ' --out " + dir + " --headless", "--participant must not be empty"},
+        {"run --protocol " + protocol + " --participant $'bad\\xffid' --out " + dir + " --headless",
+         "--participant must be UTF-8"},
+        {"run --protocol " + protocol + " --participant " + std::string(200, 'p') + " --out " + dir + " --headless",
+         "at most 128 bytes"},
+    };
+    for (const auto& [arguments, named] : cases) {
+        const auto r = warplab::testing::runCommand("bash -c \"" + std::string(WARPLAB_BINARY) + " " + arguments + "\"");
+        EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, named)) << arguments << "\n" << r.output;
+        EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
+    }
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "no session was started";
+}
+
 }  // namespace
