@@ -113,18 +113,24 @@ int runReplay(const ParsedArgs& args) {
             return 1;
         }
     }
-    const ReplayResult r = replaySession(path);
+    ReplayResult r;
+    try {
+        r = replaySession(path);
+    } catch (const protocol::SessionError& e) {
+        std::cerr << "warplab replay: " << e.what() << "\n";
+        return kReplayDamaged;
+    }
     if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";
     if (!r.difference.empty()) {
         std::cout << "replay differs at " << r.difference << "\n"
                   << r.reproduced << "/" << r.outcomes << " outcomes reproduced before it\n";
-        return 1;
+        return replayExitCode(r);
     }
     std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, "
               << static_cast<long long>(r.displaySeconds) << " s of display time replayed in " << r.seconds
               << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0)
               << "x real time)\n";
-    return 0;
+    return replayExitCode(r);
 }
 
 }  // namespace warplab::app

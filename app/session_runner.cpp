@@ -110,6 +110,13 @@ protocol::EventRecord withoutRenderNotes(protocol::EventRecord event) {
 
 }  // namespace
 
+int replayExitCode(const ReplayResult& result) {
+    if (!result.difference.empty()) return kReplayDiffers;
+    if (result.damaged) return kReplayDamaged;
+    if (!result.completed) return kReplayIncomplete;
+    return kReplayReproduced;
+}
+
 ReplayResult replaySession(const std::string& sessionPath) {
     const auto started = std::chrono::steady_clock::now();
     const protocol::SessionData data = protocol::readSession(sessionPath);
@@ -118,6 +125,8 @@ ReplayResult replaySession(const std::string& sessionPath) {
 
     ReplayResult result;
     result.note = data.note;
+    result.completed = data.completed;
+    result.damaged = data.damaged;
     for (const auto& e : data.events) result.outcomes += game->isOutcome(e);
     std::size_t eventIndex = 0;
     for (const auto& in : data.inputs) {

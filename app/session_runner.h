@@ -38,9 +38,21 @@ struct ReplayResult {
     std::size_t events = 0;        // all events compared
     std::string difference;        // first difference, "" when none
     std::string note;              // why the session ends early, "" when complete
+    bool completed = false;        // the session finished and nothing was lost
+    bool damaged = false;          // committed data was lost or altered (SessionData::damaged)
     double seconds = 0.0;          // wall time of the replay itself
     double displaySeconds = 0.0;   // display time the session covers
 };
+
+// What `warplab replay` exits with, so that a script can tell a session worth keeping from one
+// that is not (README "Exit codes"): 0 only for an intact session whose every outcome replayed.
+enum ReplayExit : int {
+    kReplayReproduced = 0,
+    kReplayDiffers = 1,     // a logged record differs from the replayed one
+    kReplayIncomplete = 3,  // the session never finished (killed, ended early, still running); all it holds replays
+    kReplayDamaged = 4,     // committed data was lost or altered, or the file is unreadable
+};
+int replayExitCode(const ReplayResult& result);
 
 // Re-runs the session from its store without a window and without rendering.
 ReplayResult replaySession(const std::string& sessionPath);

@@ -1089,6 +1089,7 @@ private:
             last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
         if (firstStop_) {
             data.completed = false;
+            data.damaged = true;
             data.note = "damaged (" + firstStop_->table + " table: " + firstStop_->why + "): " +
                         (keptIndex == 0 ? std::string("no complete commit survives")
                                         : "kept the first " + std::to_string(keptIndex) +

@@ -126,6 +126,10 @@ struct SessionData {
     std::vector<FrameRecord> frames;
     std::vector<EventRecord> events;   // in the order they were added
     bool completed = false;            // finish() was committed and nothing was lost to damage
+    // Committed data was lost or altered (a row or commit failing its checksum, a cut-off
+    // table): `note` says where reading stopped. An incomplete session that is not damaged
+    // (killed, or still running) holds every trial it committed.
+    bool damaged = false;
     std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
     std::string note;                  // "" when complete; else why not and where it ends
 };

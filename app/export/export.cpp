@@ -91,12 +91,28 @@ public:
         }
         const protocol::SessionHeader& h = data.header;
         const auto key = std::make_tuple(h.participant, h.startedAt, h.seed, h.player, h.protocolJson);
+        // A copy of a session already counted intact is a duplicate. Only intact copies count as
+        // the original: a damaged or cut copy listed first must not shut out a whole one after it.
         if (const auto seen = firstWith_.find(key); seen != firstWith_.end()) {
             out.status = "duplicate";
             out.why = "the same session as " + seen->second + " (participant, start time, seed, player, protocol)";
         } else {
-            firstWith_.emplace(key, name);
-            if (!data.completed) {
+            if (data.completed && !data.damaged) {
+                firstWith_.emplace(key, name);
+                if (const auto partial = partialCopy_.find(key); partial != partialCopy_.end())
+                    warnings_.push_back(name + " and " + partial->second +
+                                        " are copies of one session, the latter incomplete or damaged and included "
+                                        "(--include-incomplete): keep one of them");
+            } else if (options_.includeIncomplete) {
+                partialCopy_.emplace(key, name);
+            }
+            if (data.damaged) {
+                // Readable up to the damage: what survives is kept only when asked for, like an
+                // incomplete session's, but it is not called incomplete (replay's exit code 4).
+                out.status = "damaged";
+                out.why = data.note;
+                out.included = options_.includeIncomplete;
+            } else if (!data.completed) {
                 out.status = "incomplete";
                 out.why = data.note.empty() ? "it never finished" : data.note;
                 out.included = options_.includeIncomplete;
@@ -194,7 +210,12 @@ private:
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
     int ratingColumns_ = 0;
-    std::map<std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>, std::string> firstWith_;
+    using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
+    std::map<SessionKey, std::string> firstWith_;    // intact sessions, by what identifies them
+    std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
+
+public:
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace
@@ -224,6 +245,7 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
         summary.sessions.push_back(s);
     }
     summary.written = exporter.close(outDir);
+    for (const auto& warning : exporter.warnings_) log << "export: warning: " << warning << "\n";
 
     std::map<std::string, int> byStatus;
     int included = 0;

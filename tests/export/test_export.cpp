@@ -346,6 +346,10 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     const std::string flagged = rewrite(data, results, "FLAG", data.events.size(), true, "missed_frames");
     fs::copy_file(complete, results + "/copy-of-ok.warplab-session");
     { std::ofstream(results + "/garbage.warplab-session") << "this is not a database, just text"; }
+    // A copy cut short, listed before the whole one: readable up to the cut, committed data
+    // lost, so "damaged" (replay's exit 4), and it must not make the whole copy a duplicate.
+    fs::copy_file(complete, results + "/A-cut.warplab-session");
+    fs::resize_file(results + "/A-cut.warplab-session", fs::file_size(complete) * 6 / 10);
     { std::ofstream(results + "/.hidden-being-created.warplab-session") << "ignored"; }
     { std::ofstream(results + "/notes.txt") << "ignored"; }
     ASSERT_EQ(::mkfifo((results + "/pipe.warplab-session").c_str(), 0600), 0);  // must not block the export
@@ -373,7 +377,8 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
         included[s.file] = s.included;
     }
     const auto name = [&](const std::string& path) { return fs::path(path).filename().string(); };
-    ASSERT_EQ(summary.sessions.size(), 6u) << log;  // no hidden file, no text file, no pipe
+    ASSERT_EQ(summary.sessions.size(), 7u) << log;  // no hidden file, no text file, no pipe
+    EXPECT_EQ(status["A-cut.warplab-session"], "damaged");
     EXPECT_EQ(status[name(complete)], "ok");
     EXPECT_EQ(status[name(incomplete)], "incomplete");
     EXPECT_EQ(status[name(running.path())], "incomplete");
@@ -385,7 +390,7 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     EXPECT_TRUE(log.find("pipe.warplab-session") != std::string::npos) << log;
 
     const auto sessions = readCsv(out + "/sessions.csv");
-    ASSERT_EQ(sessions.size(), 6u);
+    ASSERT_EQ(sessions.size(), 7u);
     for (const auto& row : sessions) {
         EXPECT_EQ(row.at("included"), included[row.at("file")] ? "true" : "false") << row.at("file");
         EXPECT_EQ(row.at("status"), status[row.at("file")]);
