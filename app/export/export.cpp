@@ -136,6 +136,9 @@ public:
         return out;
     }
 
+    // Said once every session has been read: copies of one session both included.
+    const std::vector<std::string>& warnings() const { return warnings_; }
+
     std::vector<std::string> close(const fs::path& outDir) {
         CsvFile hitrates(file(outDir, "hitrates.csv"),
                          {"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate"});
@@ -213,8 +216,6 @@ private:
     using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
     std::map<SessionKey, std::string> firstWith_;    // intact sessions, by what identifies them
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
-
-public:
     std::vector<std::string> warnings_;
 };
 
@@ -245,7 +246,7 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
         summary.sessions.push_back(s);
     }
     summary.written = exporter.close(outDir);
-    for (const auto& warning : exporter.warnings_) log << "export: warning: " << warning << "\n";
+    for (const auto& warning : exporter.warnings()) log << "export: warning: " << warning << "\n";
 
     std::map<std::string, int> byStatus;
     int included = 0;
