@@ -1,5 +1,7 @@
 #include "app/replay_render.h"
 
+#include "app/cli.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -77,6 +79,11 @@ private:
 ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
                                 renderer::GlBackend backend, std::ostream& out) {
     const protocol::SessionData data = protocol::readSession(request.sessionPath);
+    // Before any work: a range past the end would re-simulate the whole session to write nothing.
+    const std::int64_t lastRecorded = data.inputs.empty() ? -1 : data.inputs.back().frame;
+    if (request.firstFrame > lastRecorded)
+        throw UsageError("option --frames starts at frame " + std::to_string(request.firstFrame) + ", but " +
+                         request.sessionPath + " ends at frame " + std::to_string(lastRecorded));
     const auto study = game::parseStudy(data.header.protocolJson, request.sessionPath);
     const game::DisplaySize display{data.header.displayWidth, data.header.displayHeight};
     const int width = request.width > 0 ? request.width : display.width;

@@ -559,6 +559,9 @@ TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
         {"replay " + session + " --render " + dir + "/f --frames 0:10abc", "--frames"},
         {"replay " + session + " --render " + dir + "/f --frames :5", "--frames"},
         {"replay " + session + " --frames 0:10", "--frames only applies with --render"},
+        // Past the session's end: refused before anything is simulated or written (it used to
+        // re-simulate for minutes and write nothing).
+        {"replay " + session + " --render " + dir + "/f --frames 10000000:10000010", "ends at frame"},
         {"replay " + session + " --width 64", "--width only applies with --render"},
         {"bench --shading-sweep 12abc --out " + dir + "/b", "--shading-sweep"},
         {"run --protocol " + protocol + " --participant A --participant B --out " + dir + " --headless",
