@@ -185,7 +185,6 @@ struct ConventionalRenderer::Impl {
     gl::Program program;
     SceneGeometry geometry;
     std::vector<Lamp> lamps;
-    gl::VertexArray emptyVao;  // the sky's far-plane triangle (flow only)
     explicit Impl(const DataPaths& paths) : geometry(paths) {}
     void render(const scene::FrameDescription& frame, GBuffer& target, const scene::FrameDescription* flowTo);
     struct Uniforms {
@@ -203,7 +202,6 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
          {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag", {"flow_common.glsl"}}},
          {"MAX_LAMPS " + std::to_string(kMaxLamps), "SKY_COLOUR vec3(" + std::to_string(kSky[0]) + ", " +
                                                         std::to_string(kSky[1]) + ", " + std::to_string(kSky[2]) + ")"}});
-    m.emptyVao = gl::VertexArray::create();
     const auto& p = m.program;
     m.u = {gl::uniform(p, "uModel"),          gl::uniform(p, "uNormalMatrix"),   gl::uniform(p, "uViewProjection"),
            gl::uniform(p, "uObjectId"),       gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
@@ -293,14 +291,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         const GLenum four[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                GBuffer::Impl::kVelocityAttachment, GBuffer::Impl::kFlowAttachment};
         glDrawBuffers(4, four);
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glUniform1i(u("uSky"), 1);
-        glBindVertexArray(m.emptyVao.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glUniform1i(u("uSky"), 0);
-        glEnable(GL_DEPTH_TEST);
-        glDepthMask(GL_TRUE);
+        m.geometry.drawSky(m.program);
     }
     m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
         const scene::ObjectState* o = item.object;

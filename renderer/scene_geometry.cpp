@@ -3,6 +3,7 @@
 #include <cstddef>
 
 #include "renderer/gl/check.h"
+#include "renderer/gl/program.h"
 #include "renderer/mesh.h"
 #include "scene/motion.h"
 
@@ -37,7 +38,22 @@ GpuMesh upload(const MeshData& mesh) {
 SceneGeometry::SceneGeometry(const DataPaths& paths)
     : hangar_(upload(loadObj(paths.assetDir + "/hangar.obj"))),
       sphere_(upload(makeUnitSphere(64, 32))),
-      box_(upload(makeUnitBox())) {}
+      box_(upload(makeUnitBox())),
+      empty_(gl::VertexArray::create()) {}
+
+void SceneGeometry::drawSky(const gl::Program& program) const {
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUniform1i(gl::uniform(program, "uSky"), 1);
+    glUniform1ui(gl::uniform(program, "uObjectId"), scene::kIdNone);
+    glBindVertexArray(empty_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glUniform1i(gl::uniform(program, "uSky"), 0);
+}
 
 void SceneGeometry::draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const {
     auto drawMesh = [](const GpuMesh& mesh) {

@@ -36,9 +36,15 @@ public:
     // Draws the hangar, then every object of `scene`, calling `prepare` before each draw so
     // the caller can set its program's per-draw uniforms. The caller binds program and target.
     void draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const;
+    // For passes that give pixels with no surface a value too (flow fields, scene-assisted
+    // reprojection): one far-plane triangle over the whole target, drawn with `program`'s
+    // uSky = 1 and uObjectId = none, depth test and writes off; then depth testing is restored
+    // (GL_LESS, writes on) and uSky set back to 0 for the scene that follows.
+    void drawSky(const gl::Program& program) const;
 
 private:
     GpuMesh hangar_, sphere_, box_;
+    gl::VertexArray empty_;  // the sky triangle's positions come from gl_VertexID
 };
 
 }  // namespace warplab::renderer

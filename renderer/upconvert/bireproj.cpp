@@ -80,7 +80,6 @@ public:
                                       "DUAL_INIT " + std::to_string(settings.dualInit ? 1 : 0),
                                       "LATEST_INIT " + std::to_string(settings.latestInit ? 1 : 0),
                                       "NEIGHBOURHOOD " + std::to_string(settings.neighbourhood)}});
-        emptyVao_ = gl::VertexArray::create();
     }
 
     const MethodInfo& info() const override { return info_; }
@@ -212,17 +211,7 @@ private:
         glUniform2f(u("uFlowSize"), static_cast<float>(g.width), static_cast<float>(g.height));
         glUniform1f(u("uFlowFar"), from.camera.farPlane);
 
-        // The sky first, everywhere, without depth; then the scene over it.
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glUniform1i(u("uSky"), 1);
-        glUniform1ui(u("uObjectId"), scene::kIdNone);
-        glBindVertexArray(emptyVao_.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glUniform1i(u("uSky"), 0);
+        geometry_.drawSky(flowProgram_);  // the sky first, everywhere; then the scene over it
         const GLint model = u("uModel"), otherModel = u("uOtherModel"), objectId = u("uObjectId");
         geometry_.draw(from.scene, [&](const SceneGeometry::Item& item) {
             const glm::mat4 there =
@@ -241,7 +230,6 @@ private:
     MethodInfo info_;
     SceneGeometry geometry_;
     gl::Program flowProgram_, program_;
-    gl::VertexArray emptyVao_;
     FullscreenPass pass_;
     std::unique_ptr<GBuffer> forward_, backward_;  // flows in their velocity attachments
     gl::Texture offsets_[2];

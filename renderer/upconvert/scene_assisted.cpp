@@ -40,7 +40,6 @@ public:
                                      {{GL_VERTEX_SHADER, "scene_assisted.vert"},
                                       {GL_FRAGMENT_SHADER, "scene_assisted.frag"}},
                                      {}});
-        emptyVao_ = gl::VertexArray::create();
     }
 
     const MethodInfo& info() const override { return info_; }
@@ -88,17 +87,7 @@ public:
         glUniform1f(u("uFar"), input.camera.farPlane);
         glUniform1f(u("uDepthTolerance"), kDepthTolerance);
 
-        // The sky everywhere first, without depth; then the scene's surfaces over it.
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glUniform1i(u("uSky"), 1);
-        glUniform1ui(u("uObjectId"), scene::kIdNone);
-        glBindVertexArray(emptyVao_.id());
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-        glDepthMask(GL_TRUE);
-        glUniform1i(u("uSky"), 0);
+        geometry_.drawSky(program_);  // the sky everywhere first; then the scene's surfaces over it
         const GLint model = u("uModel"), model0 = u("uModel0"), model1 = u("uModel1"), objectId = u("uObjectId");
         const double now = input.displayTime;
         geometry_.draw(*input.scene, [&](const SceneGeometry::Item& item) {
@@ -125,7 +114,6 @@ private:
     MethodInfo info_;
     SceneGeometry geometry_;
     gl::Program program_;
-    gl::VertexArray emptyVao_;
 };
 
 }  // namespace
