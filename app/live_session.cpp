@@ -256,6 +256,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     if (human) window->setRelativeMouse(true);
 
     const auto game = study->newGame(run.seed, display);
+    SessionCommits commits(writer, study->refreshHz(), progress);
     std::map<std::string, std::pair<long, long>> missedPerMode;  // mode -> missed vsyncs, frames
     std::map<std::string, long> lateFramesPerMode;               // mode -> frames that missed one
     game::ShownFrame shown;
@@ -299,7 +300,10 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         timer.begin();
         maker.keepSource(shown);
         if (!shown.blank) maker.make(shown, frame);
-        hud.draw(hudFor(shown, 1.0, 1.0), frame.buffer());
+        renderer::HudContent content = hudFor(shown, 1.0, 1.0);
+        const std::string waiting = commits.waitingText();  // the supervisor must see it
+        if (!waiting.empty()) content.status = waiting;
+        hud.draw(content, frame.buffer());
         renderer::blitToDefaultFramebuffer(frame.buffer(), width, height);
         const double renderMs = timer.end().wallMs;
         const DisplayClock::Presented presented = clock.present();
@@ -315,7 +319,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         ++tally.second;
         lateFramesPerMode[mode] += record.missedVsyncs > 0;
         writer.addFrame(record);
-        if (game->atCommitPoint()) writer.commit();
+        commits.afterFrame(shown.frame, game->atCommitPoint());
 
         if (std::find(run.screenshotFrames.begin(), run.screenshotFrames.end(), shown.frame) != run.screenshotFrames.end())
             screenshot(run, frame, "frame_" + std::to_string(shown.frame));
@@ -336,8 +340,10 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         writer.flag("missed_frames", text.str());
         progress << "warning: " << text.str() << "; the session is flagged\n";
     }
-    if (game->finished()) writer.finish();
-    else writer.commit();
+    commits.end(game->finished(), [&](const std::string& line) {
+        showScreen(hud, frame, *window, "Saving", line);
+        window->pollInput();  // keeps the window responsive while it waits
+    });
 
     progress << "missed vsyncs per mode (missed / frames):";
     for (const auto& [mode, tally] : missedPerMode)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -63,6 +64,59 @@ protocol::SessionHeader sessionHeader(const game::Study& study, const std::strin
     return header;
 }
 
+SessionCommits::SessionCommits(protocol::SessionWriter& writer, double refreshHz, std::ostream& progress)
+    : writer_(writer),
+      progress_(progress),
+      maxFrames_(std::max<std::int64_t>(1, static_cast<std::int64_t>(kMaxSecondsBetweenCommits * refreshHz))),
+      retryFrames_(std::max<std::int64_t>(1, static_cast<std::int64_t>(refreshHz))) {}
+
+void SessionCommits::afterFrame(std::int64_t frame, bool commitPoint) {
+    const bool due = commitPoint || frame - lastCommit_ >= maxFrames_ ||
+                     (writer_.heldCommits() > 0 && frame - lastTry_ >= retryFrames_);
+    if (!due) return;
+    if (commitPoint || frame - lastCommit_ >= maxFrames_) lastCommit_ = frame;
+    lastTry_ = frame;
+    writer_.commit();
+    tell();
+}
+
+std::string SessionCommits::waitingText() const {
+    if (writer_.heldCommits() == 0) return "";
+    std::ostringstream text;
+    text << "Another program holds the write lock on the session file: " << writer_.heldCommits()
+         << " commit(s) wait in memory (" << static_cast<long>(writer_.heldForSeconds())
+         << " s). Close it (a DB browser, or sqlite3 without -readonly).";
+    return text.str();
+}
+
+void SessionCommits::tell() {
+    for (const std::string& notice : writer_.takeNotices()) progress_ << "warning: " << notice << "\n";
+    const bool held = writer_.heldCommits() > 0;
+    if (held && !waiting_)
+        progress_ << "warning: another program holds the write lock on " << writer_.path()
+                  << " (a DB browser, or sqlite3 without -readonly?); the session goes on and keeps "
+                     "its commits in memory until the lock is free: a crash meanwhile would lose them\n";
+    if (!held && waiting_) progress_ << "note: " << writer_.path() << " is written again; no commit was lost\n";
+    waiting_ = held;
+}
+
+void SessionCommits::end(bool completed, const std::function<void(const std::string&)>& show) {
+    const auto waiting = [&](double seconds) {
+        const std::string line = "Saving the session: another program has held the write lock on " +
+                                 writer_.path() + " for " + std::to_string(static_cast<long>(seconds)) +
+                                 " s. Close it (a DB browser, or sqlite3 without -readonly).";
+        if (show) show(line);
+        if (static_cast<long>(seconds) % 5 == 1) progress_ << "waiting: " << line << "\n";
+    };
+    if (completed) {
+        writer_.finish(waiting);
+    } else {
+        writer_.commit();
+        writer_.flush(waiting);
+    }
+    tell();
+}
+
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
     const game::DisplaySize display{run.displayWidth, run.displayHeight};
@@ -72,6 +126,7 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
         protocol::SessionWriter::create(run.resultsDir, sessionHeader(*study, run.participant, run.seed, run.player, display));
 
     const auto game = study->newGame(run.seed, display);
+    SessionCommits commits(writer, study->refreshHz(), progress);
     game::FrameInput input = player->first();
     std::int64_t lastReport = 0;
     const auto reportEvery = static_cast<std::int64_t>(60.0 * study->refreshHz());
@@ -80,7 +135,7 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
         writer.addInput(toRecord(shown.frame, shown.time, input));
         writer.addFrame(game->frameRecord(shown));
         for (auto& e : game->takeEvents()) writer.addEvent(e);
-        if (game->atCommitPoint()) writer.commit();
+        commits.afterFrame(shown.frame, game->atCommitPoint());
         input = player->next(shown);
         if (shown.frame - lastReport >= reportEvery) {
             lastReport = shown.frame;
@@ -88,8 +143,7 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
                      << "\n";
         }
     }
-    if (game->finished()) writer.finish();
-    else writer.commit();
+    commits.end(game->finished());
     return writer.path();
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -28,6 +29,37 @@ std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_
 protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                       const std::string& player, const game::DisplaySize& display);
 protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);
+
+// When a running session commits, and what the supervisor hears about its file. Shared by
+// the headless and the live loop.
+class SessionCommits {
+public:
+    // The longest stretch of display time whose rows wait in memory without a commit: a
+    // long phase (acclimation, a slow trial) is committed in parts, so a kill loses at most
+    // this much and the rows held stay small.
+    static constexpr double kMaxSecondsBetweenCommits = 10.0;
+
+    SessionCommits(protocol::SessionWriter& writer, double refreshHz, std::ostream& progress);
+
+    // After each frame's rows are added: commits at the game's commit points (each trial's
+    // end, each phase change), at least every kMaxSecondsBetweenCommits, and about once a
+    // second while commits wait for another program's write lock. Never waits.
+    void afterFrame(std::int64_t frame, bool commitPoint);
+    // While commits wait for the write lock: one line for the supervisor; "" otherwise.
+    std::string waitingText() const;
+    // The end: finish() when the protocol ran to its end, else a commit; either way waits as
+    // long as another program holds the write lock, calling `show(line)` about once a second
+    // (and saying so on `progress` every few seconds) until everything is written.
+    void end(bool completed, const std::function<void(const std::string&)>& show = {});
+
+private:
+    void tell();
+    protocol::SessionWriter& writer_;
+    std::ostream& progress_;
+    std::int64_t maxFrames_, retryFrames_;
+    std::int64_t lastCommit_ = 0, lastTry_ = 0;
+    bool waiting_ = false;  // said that commits wait, not yet that they are written
+};
 
 // Plays the whole protocol; returns the session file's path.
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress);

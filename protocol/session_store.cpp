@@ -8,6 +8,7 @@
 
 #include <fcntl.h>
 #include <sqlite3.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -18,11 +19,15 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <deque>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
 #include <system_error>
+#include <thread>
 #include <type_traits>
 #include <utility>
 #include <variant>
@@ -421,35 +426,86 @@ std::vector<std::pair<const char*, std::string>> headerEntries(const SessionHead
 
 // ============================ writer ============================
 
+namespace {
+
+// Thrown inside a write while another connection holds the file's write lock: the write is
+// rolled back and everything it would have written stays held for the next try.
+struct LockBusy {};
+
+bool isBusy(int rc) { return (rc & 0xff) == SQLITE_BUSY || (rc & 0xff) == SQLITE_LOCKED; }
+
+// Which file a path names now (device and inode), or nothing when the name is gone.
+std::optional<std::pair<dev_t, ino_t>> fileIdentity(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0) return std::nullopt;
+    return std::make_pair(st.st_dev, st.st_ino);
+}
+
+}  // namespace
+
 struct SessionWriter::Impl {
+    using Clock = std::chrono::steady_clock;
+
     std::string path;
     Db db;
     Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
-    std::map<std::string, std::string> flags;  // set since the last commit
-    bool inTransaction = false;
+    bool writing = false;   // inside writeHeld(): a busy lock is LockBusy, not a failure
     bool finished = false;
 
-    // Row counts and last keys so far. `committed` is the state of the last commit, restored
-    // when a commit fails so the writer's view matches the file again.
-    struct Counters {
-        std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;
-        std::optional<std::int64_t> lastInputFrame, lastFrameFrame;
-        CommitChecksum checksum;  // rows since the last commit
+    // Rows are kept in memory until they are written, so another program's write lock can
+    // only delay them (see commit()).
+    struct Rows {
+        std::vector<InputRecord> inputs;
+        std::vector<FrameRecord> frames;
+        std::vector<EventRecord> events;
     };
-    Counters now, committed;
+    // Added since the last commit(): part of no commit yet, dropped as in a crash.
+    Rows adding;
+    CommitChecksum addingChecksum;
+    std::map<std::string, std::string> addingFlags;
+    std::optional<std::int64_t> lastInputFrame, lastFrameFrame;  // over every row added
+
+    // Commits made but not yet in the file, oldest first, and what goes with them.
+    struct Held {
+        Rows rows;
+        std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;  // cumulative, after it
+        std::optional<std::int64_t> lastFrame;
+        std::int64_t checksum = 0;
+        std::string committedAt;
+    };
+    std::deque<Held> held;
+    std::map<std::string, std::string> heldFlags;
+    bool completing = false;  // finish(): completed_at still to be written
+    std::optional<Clock::time_point> heldSince;
+    Held totals;  // the cumulative counts of every commit so far, written or held
+
+    // Names that must keep meaning the files this connection writes (checkWhereItWrites).
+    std::optional<std::pair<dev_t, ino_t>> fileId, walId;
+    std::vector<std::string> notices;
 
     ~Impl() {
-        // Discard the uncommitted tail explicitly: the file then holds exactly what a crash
-        // at this instant would have left.
-        if (db && inTransaction) sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+        // Held commits were committed as far as the game knows: one last short try to write
+        // them. What was added after the last commit is dropped, as a crash would drop it.
+        if (!db || (held.empty() && heldFlags.empty() && !completing)) return;
+        try {
+            const auto deadline = Clock::now() + std::chrono::seconds(2);
+            while (!writeHeld() && Clock::now() < deadline)
+                std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        } catch (...) {
+        }
     }
 
     [[noreturn]] void fail(const std::string& what) const {
         throw SessionError("Cannot write session file " + path + " (" + what +
                            "): " + sqlite3_errmsg(db.get()) + ".");
     }
+    void check(int rc, const char* what) const {
+        if (writing && isBusy(rc)) throw LockBusy{};
+        fail(what);
+    }
     void exec(const char* sql, const char* what) {
-        if (sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK) fail(what);
+        const int rc = sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr);
+        if (rc != SQLITE_OK) check(rc, what);
     }
     Stmt prepare(const std::string& sql) {
         sqlite3_stmt* raw = nullptr;
@@ -461,13 +517,7 @@ struct SessionWriter::Impl {
     void run(sqlite3_stmt* s, const char* what) {
         const int rc = sqlite3_step(s);
         sqlite3_reset(s);
-        if (rc != SQLITE_DONE) fail(what);
-    }
-    void ensureTransaction() {
-        if (inTransaction) return;
-        // IMMEDIATE takes the write lock now, so a problem shows at the first add, not at commit.
-        exec("BEGIN IMMEDIATE", "starting a transaction");
-        inTransaction = true;
+        if (rc != SQLITE_DONE) check(rc, what);
     }
     void putMeta(const std::string& key, const std::string& value) {
         bindArg(insertMeta.get(), 1, key);
@@ -475,44 +525,68 @@ struct SessionWriter::Impl {
         run(insertMeta.get(), "writing the header");
     }
 
-    void commit(bool finishing) {
-        const bool pending = now.inputRows != committed.inputRows ||
-                             now.frameRows != committed.frameRows ||
-                             now.eventRows != committed.eventRows;
-        if (!pending && !finishing && flags.empty()) return;
-        try {
-            ensureTransaction();
-            if (pending) {
-                std::optional<std::int64_t> lastFrame = now.lastInputFrame;
-                if (now.lastFrameFrame && (!lastFrame || *now.lastFrameFrame > *lastFrame))
-                    lastFrame = now.lastFrameFrame;
-                sqlite3_stmt* s = insertCommit.get();
-                bindArg(s, 1, now.inputRows);
-                bindArg(s, 2, now.frameRows);
-                bindArg(s, 3, now.eventRows);
-                bindOptional(s, 4, lastFrame);
-                bindOptional(s, 5, now.eventRows > 0 ? std::optional<std::int64_t>(now.eventRows)
-                                                     : std::nullopt);
-                bindArg(s, 6, now.checksum.value());
-                bindArg(s, 7, utcNow());
-                run(s, "recording the commit");
-            }
-            for (const auto& [name, text] : flags) putMeta("flag:" + name, text);
-            if (finishing) putMeta("completed_at", utcNow());
-            exec("COMMIT", "committing");
-            flags.clear();
-            inTransaction = false;
-            now.checksum = CommitChecksum{};
-            committed = now;
-        } catch (...) {
-            // A failed COMMIT may or may not have rolled back by itself; make sure it did,
-            // so the file and the counters agree on what is stored.
-            if (!sqlite3_get_autocommit(db.get()))
-                sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
-            inTransaction = false;
-            now = committed;
-            throw;
-        }
+    // Opens `path` (which holds at least the header) for appending: WAL, fsync per commit,
+    // statements prepared. Also used to reopen after the files were replaced under us.
+    void openForWriting() {
+        sqlite3* raw = nullptr;
+        const int rc = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READWRITE, nullptr);
+        db.reset(raw);
+        if (rc != SQLITE_OK) fail("opening");
+        // No busy wait inside SQLite: a foreign write lock must not stall a live frame. The
+        // writer holds its commits and retries instead (commit(), flush()).
+        sqlite3_busy_timeout(db.get(), 0);
+        // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
+        // intact, and analysts can read a running session. FULL: each commit is fsynced, so
+        // a power cut keeps it as well; one fsync per trial costs nothing next to a
+        // participant's hour (see docs/session-format.md).
+        sqlite3_stmt* rawMode = nullptr;
+        sqlite3_prepare_v2(db.get(), "PRAGMA journal_mode=WAL", -1, &rawMode, nullptr);
+        Stmt mode(rawMode);
+        if (!mode || sqlite3_step(mode.get()) != SQLITE_ROW || columnText(mode.get(), 0) != "wal")
+            fail("switching to WAL mode");
+        mode.reset();
+        exec("PRAGMA synchronous=FULL", "setting synchronous");
+        insertMeta = prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+        insertInput = prepare(insertSql(inputTable()));
+        insertFrame = prepare(insertSql(frameTable()));
+        insertEvent = prepare(insertSql(eventTable()));
+        insertCommit = prepare(
+            "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
+            "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
+        fileId = fileIdentity(path);
+        walId.reset();  // learnt after the first write: SQLite makes the log when it needs it
+    }
+    void close() {
+        insertInput.reset();
+        insertFrame.reset();
+        insertEvent.reset();
+        insertCommit.reset();
+        insertMeta.reset();
+        db.reset();
+    }
+
+    // Makes the rows added since the last commit one commit, held until it is written.
+    void commitAdded() {
+        const bool rows = !adding.inputs.empty() || !adding.frames.empty() || !adding.events.empty();
+        for (auto& [name, text] : addingFlags) heldFlags[name] = std::move(text);
+        addingFlags.clear();
+        if (!rows) return;
+        Held h;
+        totals.inputRows += static_cast<std::int64_t>(adding.inputs.size());
+        totals.frameRows += static_cast<std::int64_t>(adding.frames.size());
+        totals.eventRows += static_cast<std::int64_t>(adding.events.size());
+        h.inputRows = totals.inputRows;
+        h.frameRows = totals.frameRows;
+        h.eventRows = totals.eventRows;
+        h.lastFrame = lastInputFrame;
+        if (lastFrameFrame && (!h.lastFrame || *lastFrameFrame > *h.lastFrame)) h.lastFrame = lastFrameFrame;
+        h.checksum = addingChecksum.value();
+        h.committedAt = utcNow();
+        h.rows = std::move(adding);
+        adding = Rows{};
+        addingChecksum = CommitChecksum{};
+        held.push_back(std::move(h));
+        if (!heldSince) heldSince = Clock::now();
     }
 
     // Binds one record's fields in table order (after its id, for numbered tables) and
@@ -520,7 +594,6 @@ struct SessionWriter::Impl {
     template <typename R>
     void insert(const Table<R>& table, sqlite3_stmt* s, const R& r, std::int64_t id,
                 const char* what) {
-        ensureTransaction();
         int i = 1;
         if (table.numbered) bindArg(s, i++, id);
         for (const Field<R>& field : table.fields)
@@ -535,6 +608,105 @@ struct SessionWriter::Impl {
                 },
                 field.member);
         run(s, what);
+    }
+
+    // Writes every held commit, in order, then the held flags and completed_at, as ONE
+    // transaction (fsynced). False, with nothing written, while another connection holds the
+    // write lock; any other failure throws SessionError and keeps everything held.
+    bool writeHeld() {
+        if (held.empty() && heldFlags.empty() && !completing) return true;
+        writing = true;
+        try {
+            exec("BEGIN IMMEDIATE", "starting a transaction");
+            for (const Held& h : held) {
+                for (const InputRecord& r : h.rows.inputs)
+                    insert(inputTable(), insertInput.get(), r, 0, "adding an input record");
+                for (const FrameRecord& r : h.rows.frames)
+                    insert(frameTable(), insertFrame.get(), r, 0, "adding a frame record");
+                std::int64_t id = h.eventRows - static_cast<std::int64_t>(h.rows.events.size());
+                for (const EventRecord& r : h.rows.events)
+                    insert(eventTable(), insertEvent.get(), r, ++id, "adding an event record");
+                sqlite3_stmt* s = insertCommit.get();
+                bindArg(s, 1, h.inputRows);
+                bindArg(s, 2, h.frameRows);
+                bindArg(s, 3, h.eventRows);
+                bindOptional(s, 4, h.lastFrame);
+                bindOptional(s, 5, h.eventRows > 0 ? std::optional<std::int64_t>(h.eventRows)
+                                                   : std::nullopt);
+                bindArg(s, 6, h.checksum);
+                bindArg(s, 7, h.committedAt);
+                run(s, "recording the commit");
+            }
+            for (const auto& [name, text] : heldFlags) putMeta("flag:" + name, text);
+            if (completing) putMeta("completed_at", utcNow());
+            exec("COMMIT", "committing");
+        } catch (...) {
+            writing = false;
+            // A failed COMMIT may or may not have rolled back by itself; make sure it did,
+            // so the file holds exactly what it held before.
+            if (!sqlite3_get_autocommit(db.get()))
+                sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+            try {
+                throw;
+            } catch (const LockBusy&) {
+                return false;
+            }
+        }
+        writing = false;
+        held.clear();
+        heldFlags.clear();
+        completing = false;
+        heldSince.reset();
+        // Fold the log into the main file at once (PASSIVE: never waits for a reader). The
+        // -wal then holds no commit the file lacks, so a -wal deleted or damaged later loses
+        // nothing written before.
+        sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+        checkWhereItWrites();
+        return true;
+    }
+
+    // Another program may delete or replace the session file or its -wal while we write
+    // (a cleanup script, a sync tool). SQLite would go on writing the old, now nameless,
+    // files, and everything from then on would vanish at the next kill. So after each write
+    // the names are checked against the files this connection has open; on a change the
+    // session is saved under its name again from the open files, and the supervisor told.
+    void checkWhereItWrites() {
+        const auto nowFile = fileIdentity(path);
+        const auto nowWal = fileIdentity(path + "-wal");
+        if (!walId) walId = nowWal;
+        const bool fileMoved = nowFile != fileId;
+        const bool walMoved = walId && nowWal != walId;
+        if (!fileMoved && !walMoved) return;
+
+        std::string savedTo = path;
+        if (fileMoved) {
+            // The file itself is gone or another one is in its place: a complete copy, from
+            // what this connection sees, goes to the name if it is free, else beside it.
+            // No -wal or -shm of the name may be left either: SQLite would take them for the
+            // new file's.
+            for (int n = 1; anyExists(savedTo); ++n)
+                savedTo = path.substr(0, path.size() - std::strlen(kExtension)) + "-rescued" +
+                          (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
+            Stmt copy = prepare("VACUUM INTO ?");
+            bindArg(copy.get(), 1, savedTo);
+            if (sqlite3_step(copy.get()) != SQLITE_DONE) fail("saving a copy to " + savedTo);
+        } else {
+            // Only the -wal: the checkpoint above copied every commit from the open log into
+            // the file, unless a reader's snapshot held it back; then try again next time.
+            int logFrames = 0, copied = 0;
+            sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
+            if (copied < logFrames) return;
+        }
+        const std::string what =
+            fileMoved ? "the session file " + path + " was deleted or replaced by another program"
+                      : "the log " + path + "-wal was deleted or replaced by another program";
+        close();
+        path = savedTo;
+        openForWriting();
+        const std::string text = what + "; every commit up to then is saved in " + path;
+        notices.push_back(text);
+        heldFlags[fileMoved ? "file_replaced" : "wal_replaced"] = text;
+        writeHeld();  // the flag; if the lock is taken now, it goes with the next commit
     }
 
     static void checkFollows(const std::optional<std::int64_t>& last, std::int64_t frame,
@@ -562,6 +734,19 @@ struct SessionWriter::Impl {
         if (finished)
             throw std::logic_error(std::string("SessionWriter::") + caller +
                                    ": the session is already finished.");
+    }
+
+    // Retries writeHeld() until it gets the lock, telling `waiting` about once a second.
+    void waitForWrite(const WaitCallback& waiting) {
+        const auto start = Clock::now();
+        auto nextCall = start + std::chrono::seconds(1);
+        while (!writeHeld()) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            if (waiting && Clock::now() >= nextCall) {
+                waiting(std::chrono::duration<double>(Clock::now() - start).count());
+                nextCall += std::chrono::seconds(1);
+            }
+        }
     }
 };
 
@@ -623,7 +808,6 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             if (rc != SQLITE_OK) impl->fail("creating");
             impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
             impl->exec("BEGIN IMMEDIATE", "writing the header");
-            impl->inTransaction = true;
             impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
                        "writing the header");
             for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
@@ -639,8 +823,10 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             }
             impl->putMeta("header_checksum", numberText(checksum.value()));
             impl->exec("COMMIT", "writing the header");
-            impl->inTransaction = false;
             impl->insertMeta.reset();
+            // WAL mode is kept in the file: switching here, while nobody else can see the
+            // file, means another program's lock on the named file can never stop the switch.
+            impl->exec("PRAGMA journal_mode=WAL", "switching to WAL mode");
             impl->db.reset();  // closed: the header is in the file, fsynced
         }
         for (int n = 1;; ++n) {
@@ -654,31 +840,8 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             if (errno != EEXIST || n >= 10000)
                 throw SessionError("Cannot create session file " + candidate + ": " + std::strerror(errno) + ".");
         }
-        ::unlink(temp.c_str());
-
-        sqlite3* raw = nullptr;
-        const int rc = sqlite3_open_v2(impl->path.c_str(), &raw, SQLITE_OPEN_READWRITE, nullptr);
-        impl->db.reset(raw);
-        if (rc != SQLITE_OK) impl->fail("opening");
-        sqlite3_busy_timeout(impl->db.get(), 5000);
-        // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
-        // intact, and analysts can read a running session. FULL: each commit is fsynced, so
-        // a power cut keeps it as well; one fsync per trial costs nothing next to a
-        // participant's hour (see docs/session-format.md).
-        sqlite3_stmt* rawMode = nullptr;
-        sqlite3_prepare_v2(impl->db.get(), "PRAGMA journal_mode=WAL", -1, &rawMode, nullptr);
-        Stmt mode(rawMode);
-        if (!mode || sqlite3_step(mode.get()) != SQLITE_ROW || columnText(mode.get(), 0) != "wal")
-            impl->fail("switching to WAL mode");
-        mode.reset();
-        impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
-        impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
-        impl->insertInput = impl->prepare(insertSql(inputTable()));
-        impl->insertFrame = impl->prepare(insertSql(frameTable()));
-        impl->insertEvent = impl->prepare(insertSql(eventTable()));
-        impl->insertCommit = impl->prepare(
-            "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
-            "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
+        removeSessionFiles(temp);  // the other name stays
+        impl->openForWriting();
     } catch (...) {
         const std::string path = impl->path;
         impl.reset();
@@ -692,51 +855,63 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
 void SessionWriter::addInput(const InputRecord& r) {
     Impl& w = impl("addInput");
     w.checkOpen("addInput");
-    w.checkFollows(w.now.lastInputFrame, r.frame, "addInput");
-    w.insert(inputTable(), w.insertInput.get(), r, 0, "adding an input record");
-    w.now.lastInputFrame = r.frame;
-    ++w.now.inputRows;
-    hashRow(w.now.checksum.input, inputTable(), r);
+    w.checkFollows(w.lastInputFrame, r.frame, "addInput");
+    w.adding.inputs.push_back(r);
+    w.lastInputFrame = r.frame;
+    hashRow(w.addingChecksum.input, inputTable(), r);
 }
 
 void SessionWriter::addFrame(const FrameRecord& r) {
     Impl& w = impl("addFrame");
     w.checkOpen("addFrame");
-    w.checkFollows(w.now.lastFrameFrame, r.frame, "addFrame");
+    w.checkFollows(w.lastFrameFrame, r.frame, "addFrame");
     w.checkJson(frameTable(), r, "addFrame");
-    w.insert(frameTable(), w.insertFrame.get(), r, 0, "adding a frame record");
-    w.now.lastFrameFrame = r.frame;
-    ++w.now.frameRows;
-    hashRow(w.now.checksum.frames, frameTable(), r);
+    w.adding.frames.push_back(r);
+    w.lastFrameFrame = r.frame;
+    hashRow(w.addingChecksum.frames, frameTable(), r);
 }
 
 void SessionWriter::addEvent(const EventRecord& r) {
     Impl& w = impl("addEvent");
     w.checkOpen("addEvent");
     w.checkJson(eventTable(), r, "addEvent");
-    // Ids are assigned here, 1, 2, 3 ... in the order events were added, so a commit's
-    // event_rows is also its last event id.
-    w.insert(eventTable(), w.insertEvent.get(), r, w.now.eventRows + 1, "adding an event record");
-    ++w.now.eventRows;
-    hashRow(w.now.checksum.events, eventTable(), r);
+    w.adding.events.push_back(r);
+    hashRow(w.addingChecksum.events, eventTable(), r);
 }
 
-void SessionWriter::commit() {
+bool SessionWriter::commit() {
     Impl& w = impl("commit");
     w.checkOpen("commit");
-    w.commit(false);
+    w.commitAdded();
+    return w.writeHeld();
+}
+
+std::size_t SessionWriter::heldCommits() const { return impl("heldCommits").held.size(); }
+
+double SessionWriter::heldForSeconds() const {
+    const Impl& w = impl("heldForSeconds");
+    return w.heldSince ? std::chrono::duration<double>(Impl::Clock::now() - *w.heldSince).count()
+                       : 0.0;
+}
+
+void SessionWriter::flush(const WaitCallback& waiting) { impl("flush").waitForWrite(waiting); }
+
+std::vector<std::string> SessionWriter::takeNotices() {
+    return std::exchange(impl("takeNotices").notices, {});
 }
 
 void SessionWriter::flag(const std::string& name, const std::string& text) {
     Impl& w = impl("flag");
     w.checkOpen("flag");
-    w.flags[name] = text;
+    w.addingFlags[name] = text;
 }
 
-void SessionWriter::finish() {
+void SessionWriter::finish(const WaitCallback& waiting) {
     Impl& w = impl("finish");
     w.checkOpen("finish");
-    w.commit(true);
+    w.commitAdded();
+    w.completing = true;
+    w.waitForWrite(waiting);
     w.finished = true;
     // A finished session becomes one self-contained file (the WAL is folded in and removed),
     // so it can be copied, archived or read from read-only media. Best effort: a reader that
@@ -747,6 +922,82 @@ void SessionWriter::finish() {
 // ============================ reader ============================
 
 namespace {
+
+// What SQLite will not read back from a session's -wal. SQLite checks each log frame against
+// a running checksum and silently stops at the first one that fails (or does not belong to
+// the log), dropping every later commit with it. A kill never leaves that: what it cuts off
+// has no commit frame after it. So a commit frame of this log after the stop is committed
+// data lost to damage. The format is SQLite's (https://sqlite.org/fileformat2.html#walformat).
+struct WalLoss {
+    std::int64_t byte = 0;  // where the header or frame that fails starts
+    int commits = 0;        // commit frames of this log after it (0: the header itself failed)
+};
+
+std::uint32_t bigEndian32(const unsigned char* p) {
+    return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+}
+
+// SQLite's WAL checksum over n bytes (a multiple of 8), continuing from s[0], s[1]; words are
+// big-endian when the log's magic number says so, else little-endian.
+void walChecksum(bool bigEndianWords, const unsigned char* p, std::size_t n, std::uint32_t s[2]) {
+    for (std::size_t i = 0; i + 8 <= n; i += 8) {
+        std::uint32_t x0 = bigEndian32(p + i), x1 = bigEndian32(p + i + 4);
+        if (!bigEndianWords) {
+            x0 = __builtin_bswap32(x0);
+            x1 = __builtin_bswap32(x1);
+        }
+        s[0] += x0 + s[1];
+        s[1] += x1 + s[0];
+    }
+}
+
+std::optional<WalLoss> scanWal(const std::string& walPath) {
+    std::ifstream in(walPath, std::ios::binary);
+    const std::vector<unsigned char> log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    constexpr std::size_t kHeader = 32, kFrameHeader = 24;
+    if (log.size() < kHeader) return std::nullopt;  // nothing was logged yet
+    const std::uint32_t magic = bigEndian32(log.data());
+    std::uint32_t pageSize = bigEndian32(log.data() + 8);
+    if (pageSize == 1) pageSize = 65536;
+    std::uint32_t sum[2] = {0, 0};
+    walChecksum(magic & 1, log.data(), 24, sum);
+    const bool headerOk = (magic == 0x377f0682 || magic == 0x377f0683) && pageSize >= 512 &&
+                          pageSize <= 65536 && (pageSize & (pageSize - 1)) == 0 &&
+                          sum[0] == bigEndian32(log.data() + 24) && sum[1] == bigEndian32(log.data() + 28);
+    if (!headerOk)  // a header is only ever written whole, before any frame
+        return log.size() > kHeader + kFrameHeader ? std::optional<WalLoss>(WalLoss{0, 0}) : std::nullopt;
+
+    const std::uint32_t salt1 = bigEndian32(log.data() + 16), salt2 = bigEndian32(log.data() + 20);
+    const std::size_t frameSize = kFrameHeader + pageSize;
+    const auto ofThisLog = [&](std::size_t at) {
+        return bigEndian32(log.data() + at + 8) == salt1 && bigEndian32(log.data() + at + 12) == salt2;
+    };
+    std::size_t at = kHeader;
+    for (; at + frameSize <= log.size(); at += frameSize) {
+        const unsigned char* frame = log.data() + at;
+        if (!ofThisLog(at) || bigEndian32(frame) == 0) break;
+        walChecksum(magic & 1, frame, 8, sum);
+        walChecksum(magic & 1, frame + kFrameHeader, pageSize, sum);
+        if (sum[0] != bigEndian32(frame + 16) || sum[1] != bigEndian32(frame + 20)) break;
+    }
+    WalLoss loss{static_cast<std::int64_t>(at), 0};
+    for (std::size_t later = at + frameSize; later + frameSize <= log.size(); later += frameSize)
+        loss.commits += ofThisLog(later) && bigEndian32(log.data() + later + 4) != 0;
+    return loss.commits > 0 ? std::optional<WalLoss>(loss) : std::nullopt;
+}
+
+// A running writer may be half-way through a frame when we look; damage stays put. So a loss
+// counts only when two looks a moment apart agree.
+std::optional<WalLoss> lostInWal(const std::string& walPath) {
+    auto first = scanWal(walPath);
+    for (int look = 0; first && look < 3; ++look) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        auto again = scanWal(walPath);
+        if (again && again->byte == first->byte && again->commits == first->commits) return again;
+        first = std::move(again);
+    }
+    return std::nullopt;
+}
 
 class Reader {
 public:
@@ -780,15 +1031,16 @@ private:
         std::int64_t id = 0, inputRows = 0, frameRows = 0, eventRows = 0, checksum = 0;
         std::optional<std::int64_t> lastFrame;
     };
-    // Where reading a table stopped early, and why; empty when it read to the end.
+    // Where reading stopped early ("events table", "write-ahead log"), and why.
     struct Stop {
-        std::string table, why;
+        std::string where, why;
     };
 
     std::string path_;
     Db db_;
     int version_ = kSessionFormatVersion;  // the file's
     std::optional<Stop> firstStop_;
+    std::optional<WalLoss> walLoss_;  // committed data in the -wal that SQLite cannot read
     std::map<std::string, std::string> flags_;  // meta "flag:<name>" entries
 
     [[noreturn]] void fail(const std::string& sentence) const {
@@ -819,6 +1071,8 @@ private:
         const auto status = fs::status(path_, ec);
         if (!fs::exists(status)) fail("does not exist.");
         if (fs::is_directory(status)) fail("is a folder, not a session file.");
+        // A FIFO would block the open forever, a device could be anything.
+        if (!fs::is_regular_file(status)) fail("is not a regular file (a pipe, socket or device), not a session file.");
         sqlite3* raw = nullptr;
         // A WAL-mode file without its -wal beside it is whole (finished, or closed without
         // finishing): nothing is writing it. A plain read-only open would still create empty
@@ -826,6 +1080,7 @@ private:
         // untouched (export promises that). With a -wal present a writer may be running, so
         // the read takes part in SQLite's locking as usual.
         const bool whole = !fs::exists(path_ + "-wal", ec);
+        if (!whole) walLoss_ = lostInWal(path_ + "-wal");
         const std::string name = whole ? immutableUri(path_) : path_;
         const int rc = sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
         db_.reset(raw);
@@ -985,7 +1240,7 @@ private:
         return rows;
     }
     void stop(const char* table, const std::string& why) {
-        if (!firstStop_) firstStop_ = Stop{table, why};
+        if (!firstStop_) firstStop_ = Stop{std::string(table) + " table", why};
     }
 
     static bool column(sqlite3_stmt* s, int i, double& out) { return real(s, i, out); }
@@ -1087,19 +1342,48 @@ private:
 
         const std::string lastFrame =
             last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
+        if (walLoss_ && !firstStop_)
+            firstStop_ = Stop{"write-ahead log", walLoss_->commits == 0
+                                                     ? "its header fails its checksum"
+                                                     : "the frame at byte " + std::to_string(walLoss_->byte) +
+                                                           " fails its checksum"};
         if (firstStop_) {
             data.completed = false;
             data.damaged = true;
-            data.note = "damaged (" + firstStop_->table + " table: " + firstStop_->why + "): " +
+            data.note = "damaged (" + firstStop_->where + ": " + firstStop_->why + "): " +
                         (keptIndex == 0 ? std::string("no complete commit survives")
                                         : "kept the first " + std::to_string(keptIndex) +
-                                              " commits, ending after frame " + lastFrame);
+                                              " commits, ending after frame " + lastFrame) +
+                        lostText(commits, keptIndex);
         } else if (!data.completed) {
             data.note = keptIndex == 0 ? std::string("incomplete: no trial was committed")
                                        : "incomplete: ends after frame " + lastFrame +
                                              " (last commit, " + std::to_string(keptIndex) +
                                              " in all)";
         }
+    }
+
+    // What damage cost, as far as the file still tells: the commits the commits table lists
+    // past the last one kept, and those the -wal holds past its damage.
+    std::string lostText(const std::vector<Commit>& commits, std::size_t kept) const {
+        std::vector<std::string> parts;
+        if (commits.size() > kept) {
+            const std::int64_t keptEvents = kept == 0 ? 0 : commits[kept - 1].eventRows;
+            parts.push_back(
+                (commits.size() == kept + 1 ? "commit " + std::to_string(kept + 1)
+                                            : "commits " + std::to_string(kept + 1) + " to " +
+                                                  std::to_string(commits.size())) +
+                " (" + std::to_string(std::max<std::int64_t>(0, commits.back().eventRows - keptEvents)) +
+                " events)");
+        }
+        if (walLoss_)
+            parts.push_back(walLoss_->commits == 0
+                                ? std::string("everything in the write-ahead log")
+                                : std::to_string(walLoss_->commits) +
+                                      (walLoss_->commits == 1 ? " commit" : " commits") +
+                                      " in the write-ahead log");
+        if (parts.empty()) return "";
+        return "; lost " + parts[0] + (parts.size() > 1 ? " and " + parts[1] : "");
     }
 };
 

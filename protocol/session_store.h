@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -89,6 +90,7 @@ public:
     SessionWriter(const SessionWriter&) = delete;
     SessionWriter& operator=(const SessionWriter&) = delete;
     // Closes the file; whatever was added after the last commit is discarded, as in a crash.
+    // Held commits get one last try of up to 2 s to be written.
     ~SessionWriter();
 
     const std::string& path() const;
@@ -100,18 +102,34 @@ public:
     void addFrame(const FrameRecord& record);
     void addEvent(const EventRecord& record);
 
-    // Writes everything added since the last commit as ONE durable transaction: a kill or a
-    // power cut afterwards keeps it. Call it at the end of every trial and phase change.
-    // Write failures (disk full ...) throw SessionError; the failed commit's rows are lost.
-    void commit();
+    // Makes everything added since the last commit ONE commit and writes it, with any
+    // commits still held, as one durable transaction: a kill or a power cut afterwards keeps
+    // it. Call it at the end of every trial and phase change.
+    // Never waits, so a live session keeps its frame rate: while another program holds the
+    // file's write lock (a DB browser, `sqlite3` without -readonly, a script's BEGIN
+    // IMMEDIATE), it returns false and the commit is held in memory, in order, to be written
+    // by the next commit() or flush() that gets the lock. heldCommits() says how many wait;
+    // a kill meanwhile loses them, so the supervisor must be told.
+    // Other write failures (disk full ...) throw SessionError; the commit stays held.
+    bool commit();
+    std::size_t heldCommits() const;
+    double heldForSeconds() const;  // since the oldest held commit; 0 when none is held
+    // Waits as long as it takes until every held commit is written, calling
+    // waiting(seconds waited) about once a second meanwhile.
+    using WaitCallback = std::function<void(double secondsWaited)>;
+    void flush(const WaitCallback& waiting = {});
+    // What the supervisor must hear at once, each returned once: the session file or its
+    // -wal deleted or replaced by another program while it was written (the writer then
+    // saves every commit under the name again, or beside it, and flags the session).
+    std::vector<std::string> takeNotices();
     // Marks the session for its analysts (meta key "flag:<name>", written with the next
     // commit; a later flag of the same name replaces it), e.g. "missed_frames". Not part of
     // the header checksum: a flag describes how the session went, not what it ran.
     void flag(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
-    // the file, leaving one self-contained file. Adding or committing afterwards is a
-    // std::logic_error.
-    void finish();
+    // the file, leaving one self-contained file. Waits for the write lock like flush().
+    // Adding or committing afterwards is a std::logic_error.
+    void finish(const WaitCallback& waiting = {});
 
 private:
     struct Impl;

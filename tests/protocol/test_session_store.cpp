@@ -654,6 +654,204 @@ TEST(SessionStoreKill, KeepsEveryCommittedTrialAndNothingPartial) {
     EXPECT_GE(killedMidSession, 2);
 }
 
+// ============================ other programs at the same files ============================
+
+// The one session file in `dir`.
+std::string onlySession(const fs::path& dir) {
+    std::vector<fs::path> sessions;
+    for (const fs::path& p : filesIn(dir))
+        if (p.extension() == ".warplab-session") sessions.push_back(p);
+    EXPECT_EQ(sessions.size(), 1u);
+    return sessions.empty() ? std::string() : sessions[0].string();
+}
+
+// Another process takes the file's write lock, as `sqlite3` without -readonly, a DB browser or
+// a script's BEGIN IMMEDIATE does, and keeps it longer than SQLite's usual busy timeouts. The
+// writer never waits in commit() (a live frame must not stall), holds the commits, and writes
+// every one once the lock is free.
+TEST(SessionStoreLock, AnotherProgramsWriteLockDelaysCommitsAndLosesNone) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    writeTrial(w, 0);
+    ASSERT_TRUE(w.commit());
+
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::close(fds[0]);
+        sqlite3* db = nullptr;
+        if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK ||
+            sqlite3_exec(db, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr) != SQLITE_OK)
+            ::_exit(3);
+        if (::write(fds[1], "L", 1) != 1) ::_exit(4);
+        std::this_thread::sleep_for(std::chrono::seconds(6));
+        sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
+        sqlite3_close(db);
+        ::_exit(0);
+    }
+    ChildGuard guard{pid};
+    ::close(fds[1]);
+    char locked = 0;
+    ASSERT_EQ(::read(fds[0], &locked, 1), 1);
+    ::close(fds[0]);
+
+    const auto before = std::chrono::steady_clock::now();
+    writeTrial(w, 1);
+    EXPECT_FALSE(w.commit());
+    writeTrial(w, 2);
+    EXPECT_FALSE(w.commit());
+    EXPECT_LT(std::chrono::steady_clock::now() - before, std::chrono::seconds(1));  // never waited
+    EXPECT_EQ(w.heldCommits(), 2u);
+    EXPECT_EQ(expectWholeTrials(readSession(path)), 1);  // readers still see what was written
+
+    int waits = 0;
+    w.finish([&](double) { ++waits; });
+    EXPECT_GE(waits, 3);  // it waited out the lock instead of failing
+    EXPECT_EQ(w.heldCommits(), 0u);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    guard.pid = -1;
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+
+    const SessionData data = readSession(path);
+    EXPECT_EQ(expectWholeTrials(data), 3);
+    EXPECT_TRUE(data.completed) << data.note;
+}
+
+// How docs/session-format.md says to read a live session: read-only connections, even ones
+// that keep a read transaction open, never hold the writer up.
+TEST(SessionStoreLock, ReadOnlyReadersNeverDisturbTheWriter) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string uri = "file:" + w.path() + "?mode=ro";
+    sqlite3 *uriReader = nullptr, *flagReader = nullptr;
+    ASSERT_EQ(sqlite3_open_v2(uri.c_str(), &uriReader, SQLITE_OPEN_READONLY | SQLITE_OPEN_URI, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_open_v2(w.path().c_str(), &flagReader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(uriReader, "BEGIN; SELECT count(*) FROM frames;", nullptr, nullptr, nullptr), SQLITE_OK);
+    for (int t = 0; t < 5; ++t) {
+        writeTrial(w, t);
+        EXPECT_TRUE(w.commit());
+        EXPECT_EQ(sqlite3_exec(flagReader, "SELECT count(*) FROM events", nullptr, nullptr, nullptr), SQLITE_OK);
+    }
+    EXPECT_EQ(w.heldCommits(), 0u);
+    w.finish();
+    sqlite3_exec(uriReader, "COMMIT", nullptr, nullptr, nullptr);
+    sqlite3_close(uriReader);
+    sqlite3_close(flagReader);
+    const SessionData data = readSession(w.path());
+    EXPECT_EQ(expectWholeTrials(data), 5);
+    EXPECT_TRUE(data.completed);
+}
+
+// The -wal deleted by another program mid-session, then the process killed: SQLite alone
+// would keep writing the nameless log and lose every commit since the deletion (and the
+// ones not yet checkpointed before it). The writer notices, saves and says so.
+TEST(SessionStoreKill, ADeletedWalIsNoticedAndLosesNoCommit) {
+    TempDir dir;
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::close(fds[0]);
+        try {
+            SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+            for (int t = 0; t < 3; ++t) {
+                writeTrial(w, t);
+                w.commit();
+            }
+            if (::unlink((w.path() + "-wal").c_str()) != 0) ::_exit(3);
+            for (int t = 3; t < 6; ++t) {
+                writeTrial(w, t);
+                w.commit();
+            }
+            const std::string said = w.takeNotices().empty() ? "-" : "N";
+            if (::write(fds[1], said.data(), 1) != 1) ::_exit(4);
+        } catch (...) {
+            ::_exit(5);
+        }
+        ::_exit(0);  // no destructors, no close: as a kill leaves it
+    }
+    ChildGuard guard{pid};
+    ::close(fds[1]);
+    char said = 0;
+    EXPECT_EQ(::read(fds[0], &said, 1), 1);
+    ::close(fds[0]);
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    guard.pid = -1;
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+    EXPECT_EQ(said, 'N');  // the supervisor was told
+
+    const SessionData data = readSession(onlySession(dir.path()));
+    EXPECT_EQ(expectWholeTrials(data), 6);
+    EXPECT_FALSE(data.damaged) << data.note;
+    ASSERT_EQ(data.flags.count("wal_replaced"), 1u);
+    EXPECT_NE(data.flags.at("wal_replaced").find("-wal was deleted or replaced"), std::string::npos);
+}
+
+// The session file itself moved away (a sync tool, a careless `mv`): the writer saves a whole
+// copy beside the old name and goes on there.
+TEST(SessionStore, AReplacedSessionFileIsSavedAgainAndTheSessionGoesOn) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    writeTrial(w, 0);
+    ASSERT_TRUE(w.commit());
+    fs::rename(path, path + ".moved");
+    writeTrial(w, 1);
+    ASSERT_TRUE(w.commit());
+    const auto notices = w.takeNotices();
+    ASSERT_EQ(notices.size(), 1u);
+    EXPECT_NE(notices[0].find("was deleted or replaced"), std::string::npos) << notices[0];
+    EXPECT_NE(w.path(), path);
+    EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
+    writeTrial(w, 2);
+    w.finish();
+    const SessionData data = readSession(w.path());
+    EXPECT_EQ(expectWholeTrials(data), 3);
+    EXPECT_TRUE(data.completed) << data.note;
+    EXPECT_EQ(data.flags.count("file_replaced"), 1u);
+    EXPECT_TRUE(w.takeNotices().empty());  // each notice is given once
+}
+
+// Opening a FIFO blocks until someone writes to it: the read runs in a child, so a reader
+// that hangs fails the test in seconds rather than hanging it.
+TEST(SessionStore, RefusesAPipeAtOnceByName) {
+    TempDir dir;
+    const std::string fifo = (dir.path() / "p.warplab-session").string();
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    int fds[2];
+    ASSERT_EQ(::pipe(fds), 0);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        ::close(fds[0]);
+        std::string said = "read without an error";
+        try {
+            readSession(fifo);
+        } catch (const SessionError& e) {
+            said = e.what();
+        }
+        ::_exit(::write(fds[1], said.data(), said.size()) == static_cast<ssize_t>(said.size()) ? 0 : 3);
+    }
+    ChildGuard guard{pid};
+    ::close(fds[1]);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    int status = 0;
+    while (::waitpid(pid, &status, WNOHANG) == 0 && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::string said;
+    char buf[512];
+    ::fcntl(fds[0], F_SETFL, O_NONBLOCK);
+    for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;) said.append(buf, static_cast<std::size_t>(n));
+    ::close(fds[0]);
+    EXPECT_EQ(said, "Session file " + fifo + " is not a regular file (a pipe, socket or device), not a session file.");
+}
+
 // ============================ damaged files ============================
 
 // A finished session cut at many byte offsets, as a full disk or a bad copy leaves it.
@@ -691,17 +889,87 @@ TEST(SessionStoreDamage, TruncatedFileKeepsWholeCommitsOrFailsNamingThePath) {
     EXPECT_GT(refused, 0);
 }
 
-// A session killed with its WAL not yet checkpointed, then the WAL cut short or lost.
-TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
+// The writer folds the -wal into the file after every commit, so a -wal lost after a
+// commit loses nothing.
+TEST(SessionStoreDamage, AMissingWalLosesNoWrittenCommit) {
     TempDir dir;
     constexpr int kTrials = 12;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
     for (int t = 0; t < kTrials; ++t) {
         writeTrial(w, t);
-        w.commit();
+        ASSERT_TRUE(w.commit());
     }
     const std::string path = w.path();
     ASSERT_TRUE(fs::exists(path + "-wal"));
+    const std::string copy = (dir.path() / "copy.warplab-session").string();
+    copySession(path, copy, kWhole, kNoWal);
+    const SessionData data = readSession(copy);
+    EXPECT_EQ(expectWholeTrials(data), kTrials);
+    EXPECT_FALSE(data.damaged) << data.note;
+    w.finish();
+}
+
+// A byte flipped in the -wal: SQLite silently stops reading the log at the frame that fails
+// its checksum, so the commits after it would vanish and the session read as merely
+// incomplete. The reader finds them and calls the file damaged, naming what was lost.
+TEST(SessionStoreDamage, DamageInTheWalIsReportedNamingWhatWasLost) {
+    TempDir dir;
+    constexpr int kTrials = 10;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    // A reader's snapshot holds the checkpoint back, so the commits stay in the -wal.
+    sqlite3* reader = nullptr;
+    ASSERT_EQ(sqlite3_open_v2(path.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(reader, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr), SQLITE_OK);
+    for (int t = 0; t < kTrials; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());
+    }
+    const std::string copy = (dir.path() / "copy.warplab-session").string();
+    copySession(path, copy, kWhole, kWhole);
+    const SessionData intact = readSession(copy);
+    EXPECT_FALSE(intact.damaged) << intact.note;
+    EXPECT_EQ(expectWholeTrials(intact), kTrials);
+
+    // One byte in the page data of a frame a third of the way in.
+    const auto walSize = fs::file_size(copy + "-wal");
+    const std::uintmax_t frameSize = 24 + 4096;
+    const std::uintmax_t at = 32 + (walSize - 32) / frameSize / 3 * frameSize + 24 + 100;
+    {
+        std::fstream f(copy + "-wal", std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(static_cast<std::streamoff>(at));
+        const char c = static_cast<char>(f.get() ^ 0x5a);
+        f.seekp(static_cast<std::streamoff>(at));
+        f.put(c);
+    }
+    const SessionData data = readSession(copy);
+    const int trials = expectWholeTrials(data);
+    EXPECT_LT(trials, kTrials);
+    EXPECT_TRUE(data.damaged);
+    EXPECT_FALSE(data.completed);
+    EXPECT_EQ(data.note.rfind("damaged (write-ahead log: the frame at byte ", 0), 0u) << data.note;
+    EXPECT_NE(data.note.find(" in the write-ahead log"), std::string::npos) << data.note;
+    EXPECT_NE(data.note.find("; lost "), std::string::npos) << data.note;
+
+    sqlite3_exec(reader, "COMMIT", nullptr, nullptr, nullptr);
+    sqlite3_close(reader);
+    w.finish();
+}
+
+// A reader's snapshot can hold the checkpoint back, leaving commits only in the -wal; then a
+// -wal cut short or lost keeps whole commits.
+TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
+    TempDir dir;
+    constexpr int kTrials = 12;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    sqlite3* reader = nullptr;
+    ASSERT_EQ(sqlite3_open_v2(path.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    ASSERT_EQ(sqlite3_exec(reader, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr), SQLITE_OK);
+    for (int t = 0; t < kTrials; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());  // a reader never holds the writer up
+    }
     const auto walSize = static_cast<std::intmax_t>(fs::file_size(path + "-wal"));
     const std::string copy = (dir.path() / "copy.warplab-session").string();
 
@@ -712,7 +980,9 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     for (std::intmax_t cut = 0; cut < walSize; cut += 997) {
         SCOPED_TRACE("WAL cut at byte " + std::to_string(cut) + " of " + std::to_string(walSize));
         copySession(path, copy, kWhole, cut);
-        const int trials = expectWholeTrials(readSession(copy));
+        const SessionData shortened = readSession(copy);
+        EXPECT_FALSE(shortened.damaged) << shortened.note;  // a log cut short is what a kill leaves
+        const int trials = expectWholeTrials(shortened);
         EXPECT_GE(trials, previous);  // more log, never fewer trials
         previous = trials;
         if (::testing::Test::HasFailure()) break;
@@ -723,8 +993,11 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     copySession(path, copy, kWhole, kNoWal);
     const SessionData data = readSession(copy);
     EXPECT_GE(expectWholeTrials(data), 0);
+    EXPECT_LT(expectWholeTrials(data), kTrials);
     EXPECT_FALSE(data.completed);
     expectSame(data.header, sampleHeader());
+    sqlite3_exec(reader, "COMMIT", nullptr, nullptr, nullptr);
+    sqlite3_close(reader);
     w.finish();
 }
 
