@@ -13,6 +13,9 @@ packages=(
   libglm-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libsqlite3-dev
   # tests: GoogleTest, a virtual X server for the window test
   libgtest-dev xvfb xauth
+  # fuzzing (scripts/fuzz.sh): clang; libclang-rt-14-dev holds libFuzzer and the sanitizer
+  # runtimes (libclang_rt.fuzzer-x86_64.a ...); llvm-14 the symbolizer for readable reports
+  clang libclang-rt-14-dev llvm-14
   # analysis scripts run with Debian's /usr/bin/python3 and these (statsmodels: the click
   # game's repeated-measures ANOVA)
   python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest python3-statsmodels

@@ -11,6 +11,8 @@ asan="${WARPLAB_ASAN_BUILD_DIR:-build-asan}"
 cmake -S . -B "$asan" -DWARPLAB_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug -DWARPLAB_WERROR=ON >/dev/null
 cmake --build "$asan" --target warplab_unit_tests -j"$(nproc)"
 "$asan/tests/warplab_unit_tests" --gtest_brief=1
+# Fuzz smoke: the protocol parser and the session reader, 30 s each under ASan/UBSan (docs/fuzzing.md).
+scripts/fuzz.sh 30
 
 # Everything, optimised: unit, GL (headless), CLI, window (Xvfb) and analysis tests.
 scripts/build.sh -DWARPLAB_WERROR=ON
