@@ -1,11 +1,29 @@
 #include "app/cli.h"
 
 #include <cerrno>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
 namespace warplab::app {
+namespace {
+
+// strtod and strtoll skip leading white space; a value that starts with it was not typed as
+// meant (a stray quote in a script), so it is refused like trailing junk.
+bool startsBlank(const std::string& text) {
+    return text.empty() || std::isspace(static_cast<unsigned char>(text[0])) != 0;
+}
+
+// A limit as a person writes it: "-36000", "0.5", "1e+06".
+std::string limitText(double value) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.15g", value);
+    return buffer;
+}
+
+}  // namespace
 
 std::string ParsedArgs::string(const std::string& name, const std::string& fallback) const {
     const auto it = values_.find(name);
@@ -19,10 +37,27 @@ double ParsedArgs::number(const std::string& name, double fallback) const {
     char* end = nullptr;
     errno = 0;
     const double value = std::strtod(text, &end);
-    if (end == text || *end != '\0' || errno == ERANGE || !std::isfinite(value))
+    if (startsBlank(it->second) || end == text || *end != '\0' || errno == ERANGE || !std::isfinite(value))
         throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a number, got '" +
                          it->second + "'");
     return value;
+}
+
+double ParsedArgs::number(const std::string& name, double fallback, double min, double max) const {
+    const double value = number(name, fallback);
+    if (!(value >= min && value <= max))
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' must be between " +
+                         limitText(min) + " and " + limitText(max) + ", got " + string(name));
+    return value;
+}
+
+std::string ParsedArgs::path(const std::string& name, const std::string& fallback) const {
+    const auto it = values_.find(name);
+    if (it == values_.end()) return fallback;
+    if (it->second.find_first_not_of(" \t\n\r\v\f") == std::string::npos)
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a path, got '" +
+                         it->second + "'");
+    return it->second;
 }
 
 long long ParsedArgs::integer(const std::string& name, long long fallback, long long min, long long max) const {
@@ -33,7 +68,7 @@ long long ParsedArgs::integer(const std::string& name, long long fallback, long 
         char* end = nullptr;
         errno = 0;
         value = std::strtoll(text, &end, 10);
-        if (end == text || *end != '\0' || errno == ERANGE)
+        if (startsBlank(it->second) || end == text || *end != '\0' || errno == ERANGE)
             throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs an integer, got '" +
                              it->second + "'");
     }
@@ -48,7 +83,7 @@ long long wholeInteger(const std::string& text, const std::string& what) {
     char* end = nullptr;
     errno = 0;
     const long long value = std::strtoll(begin, &end, 10);
-    if (text.empty() || end == begin || *end != '\0' || errno == ERANGE || std::isspace(static_cast<unsigned char>(text[0])))
+    if (startsBlank(text) || end == begin || *end != '\0' || errno == ERANGE)
         throw UsageError(what + ", got '" + text + "'");
     return value;
 }

@@ -37,9 +37,16 @@ public:
     bool has(const std::string& name) const { return values_.count(name) != 0; }
     bool flag(const std::string& name) const { return has(name); }
     std::string string(const std::string& name, const std::string& fallback = "") const;
+    // A finite number written whole: "12abc", " 5", "" and "1e999" are a UsageError naming the option.
     double number(const std::string& name, double fallback) const;
+    // As number(), and within [min, max]: otherwise a UsageError naming the option, the range
+    // and the value as typed.
+    double number(const std::string& name, double fallback, double min, double max) const;
     // An integer in [min, max]; UsageError naming the option otherwise.
     long long integer(const std::string& name, long long fallback, long long min, long long max) const;
+    // A file path or prefix: empty or blank is a UsageError naming the option, since it would
+    // write a file named only by its suffix (or by spaces) into the working directory.
+    std::string path(const std::string& name, const std::string& fallback) const;
     const std::vector<std::string>& positional() const { return positional_; }
 
 private:

@@ -6,10 +6,22 @@
 
 #include "app/commands.h"
 #include "game/shooter_scene.h"
+#include "protocol/shooter_protocol.h"
 #include "renderer/upconvert.h"
 
 namespace warplab::app {
 namespace {
+
+// Where a flag's value stops making a frame worth looking at. The field of view, the pitch
+// and the speed are the protocols' own limits (protocol/shooter_protocol.h), so a frame a
+// protocol can ask for can always be rendered here, and the other way round.
+// 100 turns either way: the camera holds yaw as float radians, and at 628 rad a float still
+// resolves 0.0035 degrees, under a tenth of a pixel at 1080 lines over 60 degrees.
+constexpr double kMaxYawDeg = 36000;
+// 11.6 days of scene time, far past any session; at the fastest target (100 m/s) the 1e8 m
+// it has travelled still fold into the hallway to 1e-8 m. Time starts at 0, when it spawns.
+constexpr double kMaxSceneTimeS = 1e6;
+constexpr double kMaxShowS = 3600;  // a preview window, not a kiosk
 
 // Linear eye-space distance from window depth, for the false-colour depth image.
 renderer::ImageF linearDepth(const renderer::ImageF& windowDepth, float nearPlane, float farPlane) {
@@ -33,25 +45,42 @@ renderer::ImageF idsAsFloat(const renderer::ImageU32& ids) {
 }  // namespace
 
 int runRender(const ParsedArgs& args) {
+    // Every flag is read, and refused with its range, before any context or file is made.
     const int width = static_cast<int>(args.integer("width", 640, 1, 16384));
     const int height = static_cast<int>(args.integer("height", 360, 1, 16384));
-    const double time = args.number("time", 0.0);
-    const double fov = args.number("fov", 60.0);
-    if (!(fov > 1.0 && fov < 179.0)) throw UsageError("option --fov must be between 1 and 179 degrees");
-    const double speed = args.number("speed", 2.0);
-    if (speed < 0.0) throw UsageError("option --speed must not be negative");
+    const double time = args.number("time", 0.0, 0.0, kMaxSceneTimeS);
+    const double fov = args.number("fov", 60.0, protocol::kMinVerticalFovDeg, protocol::kMaxVerticalFovDeg);
+    const double speed = args.number("speed", 2.0, 0.0, protocol::kMaxBaseSpeedMPerS);
+    const double yaw = args.number("yaw", 0.0, -kMaxYawDeg, kMaxYawDeg);
+    const double pitch = args.number("pitch", 0.0, -protocol::kMaxCameraPitchDeg, protocol::kMaxCameraPitchDeg);
+    const double sourceTime = args.number("source-time", time, 0.0, kMaxSceneTimeS);
+    const double sourceYaw = args.number("source-yaw", yaw, -kMaxYawDeg, kMaxYawDeg);
+    const double sourcePitch =
+        args.number("source-pitch", pitch, -protocol::kMaxCameraPitchDeg, protocol::kMaxCameraPitchDeg);
+    // Without the flag it follows from the method's source rate, known once the method is made.
+    const double nextTime = args.number("next-time", 0.0, 0.0, kMaxSceneTimeS);
+    const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, (1LL << 62)));
+    const double show = args.number("show", 0.0, 0.0, kMaxShowS);
+    const std::string out = args.path("out", "frame.png");
+    const std::string depthPath = args.path("depth", ""), idsPath = args.path("ids", "");
+    const std::string velocityPath = args.path("velocity", ""), rawPrefix = args.path("raw", "");
+    const std::string truthPath = args.path("truth", "");
+    const std::string methodName = args.string("method", "");
+    if (args.has("method") && methodName.find_first_not_of(" \t") == std::string::npos)
+        throw UsageError("option --method of 'warplab render' needs a method name, got '" + methodName + "'");
+    if (methodName.empty() && (args.has("source-time") || args.has("truth") || args.has("source-yaw") ||
+                               args.has("source-pitch") || args.has("next-time")))
+        throw UsageError("options --source-time, --next-time, --source-yaw, --source-pitch and --truth need --method");
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
-    const double show = args.number("show", 0.0);
     const renderer::DataPaths paths = dataPathsFrom(args);
 
     game::ShooterSceneConfig config;
     config.verticalFovDeg = static_cast<float>(fov);
     config.aspect = static_cast<double>(width) / height;
     config.targetSpeed = speed;
-    config.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, (1LL << 62)));
+    config.seed = seed;
     const game::ShooterScene shooter(config);
 
-    const double yaw = args.number("yaw", 0.0), pitch = args.number("pitch", 0.0);
     auto frameAt = [&](double t, double yawDeg, double pitchDeg) {
         scene::FrameDescription f;
         f.camera = shooter.restingCamera();
@@ -67,12 +96,6 @@ int runRender(const ParsedArgs& args) {
         return f;
     };
     const scene::FrameDescription frame = frameAt(time, yaw, pitch);
-    // Upconversion: the frame at --time is made by a method from a source rendered at --source-time.
-    const std::string methodName = args.string("method", "");
-    const double sourceTime = args.number("source-time", time);
-    if (methodName.empty() && (args.has("source-time") || args.has("truth") || args.has("source-yaw") ||
-                               args.has("source-pitch") || args.has("next-time")))
-        throw UsageError("options --source-time, --next-time, --source-yaw, --source-pitch and --truth need --method");
 
     renderer::ContextOptions options;
     options.backend = backend;
@@ -87,9 +110,10 @@ int runRender(const ParsedArgs& args) {
     const renderer::GBuffer* onScreen = &gbuffer;
     std::unique_ptr<renderer::DisplayFrame> shown;
     if (!methodName.empty()) {
+        // Upconversion: the frame at --time is made by a method from a source rendered at --source-time.
         auto method = renderer::makeMethod(methodName, paths);
         renderer::SourceFrame previous(width, height), next(width, height);
-        previous.depicts = frameAt(sourceTime, args.number("source-yaw", yaw), args.number("source-pitch", pitch));
+        previous.depicts = frameAt(sourceTime, sourceYaw, sourcePitch);
         conventional.render(previous.depicts, previous.gbuffer);
         renderer::UpconversionInput input;
         input.displayTime = time;
@@ -97,16 +121,16 @@ int runRender(const ParsedArgs& args) {
         input.scene = &frame.scene;
         input.previous = &previous;
         if (method->info().needsNext) {
-            const double nextTime = args.number("next-time", sourceTime + 1.0 / method->info().sourceRateHz);
-            next.depicts = frameAt(nextTime, yaw, pitch);
+            next.depicts = frameAt(args.has("next-time") ? nextTime : sourceTime + 1.0 / method->info().sourceRateHz,
+                                   yaw, pitch);
             conventional.render(next.depicts, next.gbuffer);
             input.next = &next;
         }
         shown = std::make_unique<renderer::DisplayFrame>(width, height);
         method->produce(input, *shown);
-        if (args.has("truth")) {
-            renderer::writePng(args.string("truth"), images.colour);
-            std::cout << "wrote " << args.string("truth") << " (ground truth at t=" << time << " s)\n";
+        if (!truthPath.empty()) {
+            renderer::writePng(truthPath, images.colour);
+            std::cout << "wrote " << truthPath << " (ground truth at t=" << time << " s)\n";
         }
         // The displayed frame replaces the conventional one in every output below.
         const renderer::DisplayImages display = renderer::readBack(*shown);
@@ -116,7 +140,6 @@ int runRender(const ParsedArgs& args) {
         onScreen = &shown->buffer();
     }
 
-    const std::string out = args.string("out", "frame.png");
     if (context->hasWindow()) {
         // The window shows the G-buffer's colour; what we save is the window's own pixels.
         const int dw = context->drawableWidth(), dh = context->drawableHeight();
@@ -133,25 +156,24 @@ int runRender(const ParsedArgs& args) {
               << context->info().renderer << ")\n";
 
     const scene::CameraState& cam = frame.camera;
-    if (args.has("depth")) {
+    if (!depthPath.empty()) {
         // The ramp spans the nearest to the farthest geometry in view, not the whole frustum,
         // so the hallway's depth structure is visible; the far plane (sky) stays black.
         const renderer::ImageF distance = linearDepth(images.depth, cam.nearPlane, cam.farPlane);
         float farthest = cam.nearPlane * 2.0f;
         for (std::size_t i = 0; i < distance.data.size(); ++i)
             if (images.depth.data[i] < 1.0f) farthest = std::max(farthest, distance.data[i]);
-        renderer::writePng(args.string("depth"),
+        renderer::writePng(depthPath,
                            renderer::depthFalseColour(distance, cam.nearPlane, std::min(farthest * 1.001f, cam.farPlane)));
     }
-    if (args.has("ids")) renderer::writePng(args.string("ids"), renderer::idFalseColour(images.ids));
-    if (args.has("velocity"))
-        renderer::writePng(args.string("velocity"),
+    if (!idsPath.empty()) renderer::writePng(idsPath, renderer::idFalseColour(images.ids));
+    if (!velocityPath.empty())
+        renderer::writePng(velocityPath,
                            renderer::velocityFalseColour(images.velocity, static_cast<float>(std::max(speed, 1e-3))));
-    if (args.has("raw")) {
-        const std::string prefix = args.string("raw");
-        renderer::writePfm(prefix + "-depth.pfm", images.depth);
-        renderer::writePfm(prefix + "-ids.pfm", idsAsFloat(images.ids));
-        renderer::writePfm(prefix + "-velocity.pfm", images.velocity);
+    if (!rawPrefix.empty()) {
+        renderer::writePfm(rawPrefix + "-depth.pfm", images.depth);
+        renderer::writePfm(rawPrefix + "-ids.pfm", idsAsFloat(images.ids));
+        renderer::writePfm(rawPrefix + "-velocity.pfm", images.velocity);
     }
     return 0;
 }

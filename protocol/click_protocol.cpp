@@ -9,7 +9,8 @@ using detail::elementPath;
 using detail::formatNumber;
 using detail::joinPath;
 using detail::Json;
-using detail::kDurationLimitS;
+using detail::kCommitStretchLimitS;
+using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
 // Bounds that no study needs to exceed (json_fields.h says why they exist).
@@ -21,6 +22,16 @@ constexpr double kSpeedLimit = 100;         // m/s
 constexpr double kCursorPerCountLimit = 100;
 constexpr int kMatchesPerModeLimit = 100;
 constexpr int kRatingLimit = 100;           // either end of the scale, in magnitude
+// Positive is not enough where a tiny value breaks later maths. 1 cm, a 45th of the default
+// radius, is still drawn; a subnormal radius became a float 0, spheres no click could hit.
+constexpr double kRadiusMin = 0.01;
+// 0.001 pixels a count still crosses a 1920-pixel screen in 49 cm of hand travel at 100000
+// CPI; at 1e-310 the cursor could not move and the bot, dividing by it, never finished.
+constexpr double kCursorPerCountMin = 0.001;
+// Durations (docs/protocol.md, "Limits that keep a session's data safe"). A match is committed
+// when it starts and when it ends, so one match is the longest stretch of frames held.
+constexpr double kMatchLimitS = kCommitStretchLimitS;  // 5 minutes, 6.7 times the paper's 45 s
+constexpr double kSpawnDelayLimitS = 60;               // 120 times the default 0.5 s
 
 void readRounds(const detail::Reader& r, const Json* matches, std::vector<ClickRound>& out) {
     const Json* rounds = r.array(matches, "matches", "rounds", "rounds");
@@ -73,9 +84,11 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     if (const Json* display = r.object(document, "", "display")) {
         r.requireKnownKeys(*display, "display",
                            {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg", "refresh_mismatch"});
-        r.number(display, "display", "refresh_hz", {1, false, 1000, false}, p.refreshHz);
-        r.number(display, "display", "vertical_fov_deg", {1, false, 179, false}, p.verticalFovDeg);
-        r.number(display, "display", "camera_pitch_deg", {-89, false, 89, false}, p.cameraPitchDeg);
+        r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
+        r.number(display, "display", "vertical_fov_deg",
+                 {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
+        r.number(display, "display", "camera_pitch_deg",
+                 {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}, p.cameraPitchDeg);
         r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
     }
     if (const Json* physics = r.object(document, "", "physics")) {
@@ -84,25 +97,27 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
                            {"gravity_m_per_s2", "sphere_radius_m", "restitution", "step_rate_hz",
                             "sphere_count", "green_share", "spawn_delay_s", "spawn_speed_m_per_s"});
         r.number(physics, path, "gravity_m_per_s2", {0, false, kGravityLimit, false}, p.gravity);
-        r.number(physics, path, "sphere_radius_m", {0, true, kRadiusLimit, false}, p.sphereRadius);
+        r.number(physics, path, "sphere_radius_m", {kRadiusMin, false, kRadiusLimit, false},
+                 p.sphereRadius);
         r.number(physics, path, "restitution", {0, false, 1, false}, p.restitution);
         r.integer(physics, path, "step_rate_hz", 1, kStepRateLimit, p.stepRateHz);
         r.integer(physics, path, "sphere_count", 1, kSphereLimit, p.sphereCount);
         r.number(physics, path, "green_share", {0, false, 1, false}, p.greenShare);
-        r.number(physics, path, "spawn_delay_s", {0, false, kDurationLimitS, false}, p.spawnDelayS);
+        r.number(physics, path, "spawn_delay_s", {0, false, kSpawnDelayLimitS, false},
+                 p.spawnDelayS);
         r.number(physics, path, "spawn_speed_m_per_s", {0, false, kSpeedLimit, false},
                  p.spawnSpeedMPerS);
     }
     if (const Json* input = r.object(document, "", "input")) {
         r.requireKnownKeys(*input, "input", {"cursor_pixels_per_count", "click_timing"});
-        r.number(input, "input", "cursor_pixels_per_count", {0, true, kCursorPerCountLimit, false},
-                 p.cursorPixelsPerCount);
+        r.number(input, "input", "cursor_pixels_per_count",
+                 {kCursorPerCountMin, false, kCursorPerCountLimit, false}, p.cursorPixelsPerCount);
         r.choice(input, "input", "click_timing", {"display", "input_reads"}, p.clickTiming);
     }
     if (const Json* matches = r.object(document, "", "matches")) {
         r.requireKnownKeys(*matches, "matches",
                            {"match_s", "modes", "rounds", "shuffle", "scoring"});
-        r.number(matches, "matches", "match_s", {0, true, kDurationLimitS, false}, p.matchS);
+        r.number(matches, "matches", "match_s", {0, true, kMatchLimitS, false}, p.matchS);
         r.modeList(matches, "matches", "modes", p.modes);
         readRounds(r, matches, p.rounds);
         r.boolean(matches, "matches", "shuffle", p.shuffle);

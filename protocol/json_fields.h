@@ -26,8 +26,16 @@ using Json = nlohmann::ordered_json;
 
 // Bounds that no study needs to exceed; they exist so a slip of the keyboard (an extra zero, a
 // minus sign) is caught before a participant sits down, not to constrain designs.
-inline constexpr double kDurationLimitS = 86400;  // a day
-inline constexpr std::size_t kLineLimit = 200;    // bytes in a name or a one-line text
+inline constexpr std::size_t kLineLimit = 200;  // bytes in a name or a one-line text
+
+// Limits that keep a session's data safe (docs/protocol.md has the reasoning). The session
+// writer holds the rows of every frame since the last commit point (end of a trial, a match,
+// a phase) in memory and writes them as one transaction, so the longest stretch a game runs
+// between two of its commit points, times the refresh, is how many frames a crash can lose
+// and how big one commit, and the WAL it goes through, can grow. 300 s at the 1000 Hz ceiling
+// is 300000 frames: some 90 MB of rows at the click game's ~300 bytes a frame.
+inline constexpr double kRefreshLimitHz = 1000;
+inline constexpr double kCommitStretchLimitS = 300;
 
 // Shortest text that reads back as the same double; integers without a decimal point.
 std::string formatNumber(double value);

@@ -477,7 +477,8 @@ struct SessionWriter::Impl {
     std::map<std::string, std::string> heldFlags;
     bool completing = false;  // finish(): completed_at still to be written
     std::optional<Clock::time_point> heldSince;
-    Held totals;  // the cumulative counts of every commit so far, written or held
+    // Rows in every commit so far, written or held: a commit's counts are cumulative.
+    std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;
 
     // Names that must keep meaning the files this connection writes (checkWhereItWrites).
     std::optional<std::pair<dev_t, ino_t>> fileId, walId;
@@ -572,12 +573,9 @@ struct SessionWriter::Impl {
         addingFlags.clear();
         if (!rows) return;
         Held h;
-        totals.inputRows += static_cast<std::int64_t>(adding.inputs.size());
-        totals.frameRows += static_cast<std::int64_t>(adding.frames.size());
-        totals.eventRows += static_cast<std::int64_t>(adding.events.size());
-        h.inputRows = totals.inputRows;
-        h.frameRows = totals.frameRows;
-        h.eventRows = totals.eventRows;
+        h.inputRows = inputRows += static_cast<std::int64_t>(adding.inputs.size());
+        h.frameRows = frameRows += static_cast<std::int64_t>(adding.frames.size());
+        h.eventRows = eventRows += static_cast<std::int64_t>(adding.events.size());
         h.lastFrame = lastInputFrame;
         if (lastFrameFrame && (!h.lastFrame || *lastFrameFrame > *h.lastFrame)) h.lastFrame = lastFrameFrame;
         h.checksum = addingChecksum.value();

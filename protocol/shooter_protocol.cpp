@@ -6,16 +6,34 @@ namespace warplab::protocol {
 namespace {
 
 using detail::Json;
-using detail::kDurationLimitS;
+using detail::kCommitStretchLimitS;
+using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
 // Bounds that no study needs to exceed (json_fields.h says why they exist).
 constexpr int kLevelLimit = 120;           // v0 * 2^20: far beyond any hittable speed
 constexpr int kTargetsLimit = 100000;
 constexpr int kShotsLimit = 10000;
-constexpr double kSpeedLimit = 100;        // m/s at level 0
 constexpr double kMousePerCountLimit = 0.1;
 constexpr double kRadiusLimit = 3;         // well under half the 8 m high clear cross-section
+// Positive is not enough where a tiny value breaks later maths. 1e-6 rad a count is 6.3
+// million counts a turn, 160 cm of hand travel even at 100000 CPI (the thesis: 800 CPI at
+// 0.0022); below it the bot's and the live gain's division by it overflow, and 1e-310 ended
+// a session in "dir: must be non-zero and finite".
+constexpr double kMousePerCountMin = 1e-6;
+// 1 cm is 0.08 degrees at the target plane's 7.3 m, about a pixel and a half of a 1080-line
+// display; a subnormal radius became a float 0, an invisible target no shot can hit.
+constexpr double kRadiusMin = 0.01;
+
+// Durations (docs/protocol.md, "Limits that keep a session's data safe"). A trial is committed
+// when it ends, so the frames held between two commit points are at most a feedback pause
+// and the next trial up to its timeout, in every phase.
+constexpr double kTimeoutLimitS = 120;        // 40 times the thesis' 3 s
+constexpr double kPauseLimitS = 60;           // 60 times the thesis' 1 s
+static_assert(kTimeoutLimitS + kPauseLimitS <= kCommitStretchLimitS);
+// Whole phases, committed trial by trial: bounds on how long a session can be, not on memory.
+constexpr double kAcclimationLimitS = 1800;   // 6 times the thesis' 5 minutes
+constexpr double kTrainingLimitS = 3600;      // 5 times the thesis' 12 minutes
 
 }  // namespace
 
@@ -35,23 +53,25 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
 
     if (const Json* display = r.object(document, "", "display")) {
         r.requireKnownKeys(*display, "display", {"refresh_hz", "vertical_fov_deg", "refresh_mismatch"});
-        r.number(display, "display", "refresh_hz", {1, false, 1000, false}, p.refreshHz);
-        r.number(display, "display", "vertical_fov_deg", {1, false, 179, false}, p.verticalFovDeg);
+        r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
+        r.number(display, "display", "vertical_fov_deg",
+                 {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
         r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
     }
     if (const Json* target = r.object(document, "", "target")) {
         r.requireKnownKeys(*target, "target", {"radius_m"});
-        r.number(target, "target", "radius_m", {0, true, kRadiusLimit, true}, p.targetRadius);
+        r.number(target, "target", "radius_m", {kRadiusMin, false, kRadiusLimit, true},
+                 p.targetRadius);
     }
     if (const Json* input = r.object(document, "", "input")) {
         r.requireKnownKeys(*input, "input", {"mouse_radians_per_count"});
-        r.number(input, "input", "mouse_radians_per_count", {0, true, kMousePerCountLimit, false},
-                 p.mouseRadiansPerCount);
+        r.number(input, "input", "mouse_radians_per_count",
+                 {kMousePerCountMin, false, kMousePerCountLimit, false}, p.mouseRadiansPerCount);
     }
-    const NumberRange duration{0, true, kDurationLimitS, false};
     if (const Json* acclimation = r.object(document, "", "acclimation")) {
         r.requireKnownKeys(*acclimation, "acclimation", {"duration_s", "level", "mode"});
-        r.number(acclimation, "acclimation", "duration_s", duration, p.acclimationS);
+        r.number(acclimation, "acclimation", "duration_s", {0, true, kAcclimationLimitS, false},
+                 p.acclimationS);
         r.integer(acclimation, "acclimation", "level", 0, kLevelLimit, p.acclimationLevel);
         r.modeId(acclimation, "acclimation", "mode", p.acclimationMode);
     }
@@ -60,7 +80,7 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.requireKnownKeys(*training, "training",
                            {"base_speed_m_per_s", "start_level", "max_level", "shots_per_level_easy",
                             "shots_per_level_hard", "high_mode", "low_mode", "time_limit_s"});
-        r.number(training, "training", "base_speed_m_per_s", {0, true, kSpeedLimit, false},
+        r.number(training, "training", "base_speed_m_per_s", {0, true, kMaxBaseSpeedMPerS, false},
                  s.baseSpeed);
         r.integer(training, "training", "start_level", 0, kLevelLimit, s.startLevel);
         r.integer(training, "training", "max_level", 0, kLevelLimit, s.maxLevel);
@@ -68,7 +88,8 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.integer(training, "training", "shots_per_level_hard", 1, kShotsLimit, s.shotsPerLevelHard);
         r.modeId(training, "training", "high_mode", s.highMode);
         r.modeId(training, "training", "low_mode", s.lowMode);
-        r.number(training, "training", "time_limit_s", duration, s.timeLimitS);
+        r.number(training, "training", "time_limit_s", {0, true, kTrainingLimitS, false},
+                 s.timeLimitS);
     }
     if (const Json* test = r.object(document, "", "test")) {
         r.requireKnownKeys(*test, "test",
@@ -81,8 +102,8 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.modeList(test, "test", "conditions", p.conditions);
         r.integer(test, "test", "targets_per_condition", 1, kTargetsLimit, p.targetsPerCondition);
         r.boolean(test, "test", "interleave", p.interleaveConditions);
-        r.number(test, "test", "timeout_s", duration, p.timeoutS);
-        r.number(test, "test", "pause_s", duration, p.pauseS);
+        r.number(test, "test", "timeout_s", {0, true, kTimeoutLimitS, false}, p.timeoutS);
+        r.number(test, "test", "pause_s", {0, true, kPauseLimitS, false}, p.pauseS);
         r.choice(test, "test", "scoring", {"displayed", "world"}, p.scoring);
         r.boolean(test, "test", "supervisor_starts", p.supervisorStartsTest);
         r.choice(test, "test", "click_timing", {"display", "input_reads"}, p.clickTiming);

@@ -16,6 +16,9 @@ namespace warplab::protocol {
 // replay under the rules they were recorded with.
 inline constexpr int kShooterFormatVersion = 2;
 
+// training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
+inline constexpr double kMaxBaseSpeedMPerS = 100;
+
 // The training staircase (seed 004 section 5.3.3, figure 31).
 struct StaircaseSettings {
     double baseSpeed = 1.0;          // v0 in m/s, speed at difficulty 0 (v_d = v0 * 2^(d/6), eq. 12)

@@ -1,6 +1,9 @@
 // The `warplab` binary as a user meets it: bad command lines and bad data end in one clear
 // sentence naming the culprit and a non-zero exit, never a crash; good ones write files.
 #include <sys/stat.h>
+#include <chrono>
+#include <thread>
+#include <sqlite3.h>
 
 #include <array>
 #include <cstdio>
@@ -11,6 +14,7 @@
 
 #include "cli/cli_support.h"
 #include "protocol/session_store.h"
+#include "protocol/shooter_protocol.h"
 #include "renderer/image.h"
 
 namespace {
@@ -523,6 +527,45 @@ TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     EXPECT_GT(outcomes, 1000);
 }
 
+// Another program holding the session file's write lock for 10 s (a DB browser, sqlite3
+// without -readonly, a script's BEGIN IMMEDIATE) made the run exit 1 with "database is
+// locked" at 245 of 1,353 outcomes. The run must go on, say so, and lose nothing.
+TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
+    const std::string dir = scratch("write-lock");
+    warplab::testing::Result run;
+    std::thread runner([&] {
+        run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/shooter-thesis.json --participant P --out " + dir + " --headless --player bot:3");
+    });
+    // As soon as the session file exists, take its write lock, as such a program would.
+    std::string session;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    sqlite3* db = nullptr;
+    bool locked = !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK;
+    if (locked) {
+        sqlite3_busy_timeout(db, 2000);
+        locked = sqlite3_exec(db, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr) == SQLITE_OK;
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(10));
+    if (db) sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+    runner.join();
+    ASSERT_TRUE(locked) << "could not take the lock on '" << session << "': " << run.output;
+
+    EXPECT_EQ(run.status, 0) << run.output;
+    EXPECT_TRUE(contains(run.output, "holds the write lock")) << run.output;  // the supervisor was told
+    EXPECT_TRUE(contains(run.output, "no commit was lost")) << run.output;
+    const auto data = warplab::protocol::readSession(session);
+    EXPECT_TRUE(data.completed) << data.note;
+    int outcomes = 0;
+    for (const auto& e : data.events) outcomes += e.type == "shot" || e.type == "timeout";
+    EXPECT_GT(outcomes, 1000);
+    const auto replay = warplab("replay " + session);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+}
+
 // Protocol files a parser could be driven into the ground by: 100,000 levels of '[' took 54 s
 // and 9 GB before failing (and 30,000 overflowed the stack); an endless pipe hung the read.
 TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
@@ -580,6 +623,102 @@ TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
         EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
     }
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << "no session was started";
+}
+
+// `warplab render` run from inside `dir`, so a file written by a path left empty lands there.
+Result renderIn(const std::string& dir, const std::string& arguments) {
+    return warplab::testing::runCommand("cd '" + dir + "' && " + std::string(WARPLAB_BINARY) + " render " + arguments);
+}
+
+std::size_t filesIn(const std::string& dir) {
+    return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+// Each numeric flag of render is written whole and lies in a stated range. Out of range they
+// rendered a broken frame (--yaw 1e308 turned the camera by an infinite angle, --pitch 90 turned
+// the view over) or failed after the context was made without naming the flag (--time 1e308:
+// "t: must be finite"). Refused before anything is made, naming the flag, the range, the value.
+TEST(Cli, RenderNumbersOutsideTheirRangeAreRefusedWithTheRange) {
+    const std::string dir = scratch("render-ranges");
+    const std::string range = "of 'warplab render' must be between ";
+    const std::pair<std::string, std::string> cases[] = {
+        {"--yaw 1e308", "option --yaw " + range + "-36000 and 36000, got 1e308"},
+        {"--yaw -36000.5", "option --yaw " + range + "-36000 and 36000, got -36000.5"},
+        {"--pitch 90", "option --pitch " + range + "-89 and 89, got 90"},
+        {"--pitch -1e308", "option --pitch " + range + "-89 and 89, got -1e308"},
+        {"--time 1e308", "option --time " + range + "0 and 1000000, got 1e308"},
+        {"--time -0.5", "option --time " + range + "0 and 1000000, got -0.5"},
+        {"--speed 100.5", "option --speed " + range + "0 and 100, got 100.5"},
+        {"--speed -1", "option --speed " + range + "0 and 100, got -1"},
+        {"--fov 0.5", "option --fov " + range + "1 and 179, got 0.5"},
+        {"--show -1", "option --show " + range + "0 and 3600, got -1"},
+        {"--show 1e308", "option --show " + range + "0 and 3600, got 1e308"},
+        {"--method warp-sparse8 --source-yaw 1e308", "option --source-yaw " + range + "-36000 and 36000, got 1e308"},
+        {"--method warp-sparse8 --source-pitch -90", "option --source-pitch " + range + "-89 and 89, got -90"},
+        {"--method warp-sparse8 --source-time 1000001", "option --source-time " + range + "0 and 1000000, got 1000001"},
+        {"--method blend --next-time 1e308", "option --next-time " + range + "0 and 1000000, got 1e308"},
+        // Not numbers at all, or not only numbers.
+        {"--yaw 5deg", "option --yaw of 'warplab render' needs a number, got '5deg'"},
+        {"--yaw nan", "option --yaw of 'warplab render' needs a number, got 'nan'"},
+        {"--time ' 1'", "option --time of 'warplab render' needs a number, got ' 1'"},
+        {"--seed ' 64'", "option --seed of 'warplab render' needs an integer, got ' 64'"},
+        {"--method ''", "option --method of 'warplab render' needs a method name, got ''"},
+    };
+    for (const auto& [arguments, sentence] : cases) {
+        const auto r = renderIn(dir, "--width 16 --height 16 " + arguments);
+        EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
+        EXPECT_TRUE(contains(r.output, sentence)) << arguments << "\n" << r.output;
+        EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
+    }
+    EXPECT_EQ(filesIn(dir), 0u) << "a refused render wrote something";
+    // The ends of every range are frames worth rendering.
+    for (const std::string edges : {"--yaw -36000 --pitch -89 --time 0 --speed 0 --show 0",
+                                    "--yaw 36000 --pitch 89 --time 1000000 --speed 100"}) {
+        const auto r = renderIn(dir, "--width 16 --height 16 --out edge.png " + edges);
+        EXPECT_EQ(r.status, 0) << edges << "\n" << r.output;
+    }
+}
+
+// An empty or blank path named a file by its suffix alone: --raw '' wrote "-depth.pfm" into the
+// working directory, --out '' failed only after rendering. Now each is refused by name.
+TEST(Cli, RenderRefusesEmptyOrBlankPaths) {
+    const std::string dir = scratch("render-empty-paths");
+    for (const std::string flag : {"out", "depth", "ids", "velocity", "raw", "truth"}) {
+        for (const std::string value : {"''", "'  '"}) {
+            const std::string method = flag == "truth" ? "--method blend " : "";
+            const std::string arguments = "--width 16 --height 16 " + method + "--" + flag + " " + value;
+            const auto r = renderIn(dir, arguments);
+            EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
+            EXPECT_TRUE(contains(r.output, "option --" + flag + " of 'warplab render' needs a path, got " + value))
+                << arguments << "\n" << r.output;
+            EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
+        }
+    }
+    EXPECT_EQ(filesIn(dir), 0u) << "a refused render wrote something";
+}
+
+// render and the protocols share one field-of-view range (protocol/shooter_protocol.h): a view a
+// protocol may ask for can be rendered, and a value the one refuses the other refuses, naming
+// the same range. render once refused the ends 1 and 179 that protocols accept.
+TEST(Cli, RenderAndProtocolsShareTheFieldOfViewRange) {
+    const std::string dir = scratch("render-fov");
+    for (const double fov : {warplab::protocol::kMinVerticalFovDeg, warplab::protocol::kMaxVerticalFovDeg}) {
+        const auto r = renderIn(dir, "--width 16 --height 16 --out fov.png --fov " + std::to_string(fov));
+        EXPECT_EQ(r.status, 0) << fov << "\n" << r.output;
+    }
+    const std::string wide = "179.5";
+    const auto rendered = renderIn(dir, "--width 16 --height 16 --fov " + wide);
+    EXPECT_EQ(rendered.status, 2) << rendered.output;
+    EXPECT_TRUE(contains(rendered.output, "option --fov of 'warplab render' must be between 1 and 179, got " + wide))
+        << rendered.output;
+
+    const std::string protocol = dir + "/wide.json";
+    std::ofstream(protocol) << R"({"format_version": 2, "name": "wide", "game": "shooter",
+                                   "display": {"vertical_fov_deg": )" << wide << "}}";
+    const auto run = warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless");
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_TRUE(contains(run.output, "display.vertical_fov_deg must be a number between 1 and 179, got " + wide))
+        << run.output;
 }
 
 }  // namespace

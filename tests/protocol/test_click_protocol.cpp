@@ -3,6 +3,7 @@
 // bad input is refused with one sentence naming the file and the field (tests pin the words).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -261,7 +262,7 @@ TEST(ClickErrors, ZeroMatches) {
               kPrefix + "matches.rounds must have at least one round with \"scored\": true, or "
                         "the session measures nothing");
     EXPECT_EQ(messageFor(yangWith("/matches/match_s", 0)),
-              kPrefix + "matches.match_s must be a number greater than 0 and at most 86400, got 0");
+              kPrefix + "matches.match_s must be a number greater than 0 and at most 300, got 0");
 }
 
 // The reason after the path is game::checkMode's own: the mode table has one home.
@@ -391,20 +392,20 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/display/camera_pitch_deg", -90,
          "display.camera_pitch_deg must be a number between -89 and 89, got -90"},
         {"/physics/sphere_radius_m", 0,
-         "physics.sphere_radius_m must be a number greater than 0 and at most 2, got 0"},
+         "physics.sphere_radius_m must be a number between 0.01 and 2, got 0"},
         {"/physics/sphere_radius_m", 2.5,
-         "physics.sphere_radius_m must be a number greater than 0 and at most 2, got 2.5"},
+         "physics.sphere_radius_m must be a number between 0.01 and 2, got 2.5"},
         {"/physics/restitution", 1.1, "physics.restitution must be a number between 0 and 1, got 1.1"},
         {"/physics/sphere_count", 0, "physics.sphere_count must be an integer between 1 and 40, got 0"},
         {"/physics/sphere_count", 41, "physics.sphere_count must be an integer between 1 and 40, got 41"},
         {"/physics/green_share", -0.1, "physics.green_share must be a number between 0 and 1, got -0.1"},
         {"/physics/spawn_delay_s", -1,
-         "physics.spawn_delay_s must be a number between 0 and 86400, got -1"},
+         "physics.spawn_delay_s must be a number between 0 and 60, got -1"},
         {"/physics/spawn_speed_m_per_s", -2.0,
          "physics.spawn_speed_m_per_s must be a number between 0 and 100, got -2.0"},
         {"/physics/step_rate_hz", 0, "physics.step_rate_hz must be an integer between 1 and 100000, got 0"},
         {"/input/cursor_pixels_per_count", 0,
-         "input.cursor_pixels_per_count must be a number greater than 0 and at most 100, got 0"},
+         "input.cursor_pixels_per_count must be a number between 0.001 and 100, got 0"},
         {"/input/click_timing", "frame",
          "input.click_timing must be \"display\" or \"input_reads\", got string \"frame\""},
         {"/matches/scoring", "both", "matches.scoring must be \"world\" or \"displayed\", got string \"both\""},
@@ -419,6 +420,72 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         SCOPED_TRACE(c.pointer);
         EXPECT_EQ(messageFor(yangWith(c.pointer, c.value)), kPrefix + c.expected);
     }
+}
+
+// ---------------------------------------------------------------------------------------
+// Limits that keep a session's data safe (docs/protocol.md): each bound itself is accepted,
+// the next double past it is refused with the exact sentence.
+
+struct Bound {
+    const char* pointer;
+    double bound;          // allowed
+    double past;           // the next double beyond it: refused
+    const char* expected;  // after the prefix
+};
+
+void expectBounds(const std::vector<Bound>& bounds) {
+    for (const Bound& b : bounds) {
+        SCOPED_TRACE(b.pointer);
+        EXPECT_EQ(messageFor(yangWith(b.pointer, b.bound)), "");
+        EXPECT_EQ(messageFor(yangWith(b.pointer, b.past)), kPrefix + b.expected);
+    }
+}
+
+double above(double bound) { return std::nextafter(bound, INFINITY); }
+double below(double bound) { return std::nextafter(bound, -INFINITY); }
+
+TEST(ClickLimits, NoMatchRunsPastItsBound) {
+    // A match is committed when it starts and when it ends: one match is the longest stretch
+    // of frames a session holds in memory, 300000 at the 1000 Hz ceiling.
+    expectBounds({
+        {"/matches/match_s", 300, above(300),
+         "matches.match_s must be a number greater than 0 and at most 300, got 300.00000000000006"},
+        {"/physics/spawn_delay_s", 60, above(60),
+         "physics.spawn_delay_s must be a number between 0 and 60, got 60.00000000000001"},
+    });
+    // A day-long match, which the old limit allowed: 5.2 million frames uncommitted at 60 Hz.
+    EXPECT_EQ(messageFor(yangWith("/matches/match_s", 86400)),
+              kPrefix +
+                  "matches.match_s must be a number greater than 0 and at most 300, got 86400");
+}
+
+TEST(ClickLimits, TinyPositiveValuesThatBreakLaterMathsAreRefused) {
+    // At 1e-310 pixels a count the cursor could not move and the bot never finished a session;
+    // a subnormal radius was a float 0 on screen, spheres no click could hit.
+    EXPECT_EQ(messageFor(yangWith("/input/cursor_pixels_per_count", 1e-310)),
+              kPrefix +
+                  "input.cursor_pixels_per_count must be a number between 0.001 and 100, got 1e-310");
+    EXPECT_EQ(messageFor(yangWith("/physics/sphere_radius_m", 1e-310)),
+              kPrefix + "physics.sphere_radius_m must be a number between 0.01 and 2, got 1e-310");
+    expectBounds({
+        {"/input/cursor_pixels_per_count", 0.001, below(0.001),
+         "input.cursor_pixels_per_count must be a number between 0.001 and 100, got "
+         "0.0009999999999999998"},
+        {"/physics/sphere_radius_m", 0.01, below(0.01),
+         "physics.sphere_radius_m must be a number between 0.01 and 2, got 0.009999999999999998"},
+    });
+}
+
+TEST(ClickLimits, CameraLimitsAreTheSharedOnes) {
+    // The same field-of-view and pitch limits as the shooter and `warplab render`.
+    expectBounds({
+        {"/display/vertical_fov_deg", kMaxVerticalFovDeg, above(kMaxVerticalFovDeg),
+         "display.vertical_fov_deg must be a number between 1 and 179, got 179.00000000000003"},
+        {"/display/camera_pitch_deg", kMaxCameraPitchDeg, above(kMaxCameraPitchDeg),
+         "display.camera_pitch_deg must be a number between -89 and 89, got 89.00000000000001"},
+        {"/display/camera_pitch_deg", -kMaxCameraPitchDeg, below(-kMaxCameraPitchDeg),
+         "display.camera_pitch_deg must be a number between -89 and 89, got -89.00000000000001"},
+    });
 }
 
 TEST(ClickErrors, AnEmptyModeCheckIsAProgrammingError) {

@@ -366,14 +366,14 @@ TEST(ProtocolErrors, OutOfRangeValuesNameTheRange) {
          "display.refresh_hz must be a number between 1 and 1000, got 1200"},
         {"/display/vertical_fov_deg", 180,
          "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
-        {"/target/radius_m", 0, "target.radius_m must be a number greater than 0 and less than 3, got 0"},
+        {"/target/radius_m", 0,
+         "target.radius_m must be a number at least 0.01 and less than 3, got 0"},
         {"/target/radius_m", 3.0,
-         "target.radius_m must be a number greater than 0 and less than 3, got 3.0"},
+         "target.radius_m must be a number at least 0.01 and less than 3, got 3.0"},
         {"/input/mouse_radians_per_count", -0.0022,
-         "input.mouse_radians_per_count must be a number greater than 0 and at most 0.1, got "
-         "-0.0022"},
+         "input.mouse_radians_per_count must be a number between 1e-06 and 0.1, got -0.0022"},
         {"/acclimation/duration_s", 0,
-         "acclimation.duration_s must be a number greater than 0 and at most 86400, got 0"},
+         "acclimation.duration_s must be a number greater than 0 and at most 1800, got 0"},
         {"/acclimation/level", -1, "acclimation.level must be an integer between 0 and 120, got -1"},
         {"/training/base_speed_m_per_s", -1.0,
          "training.base_speed_m_per_s must be a number greater than 0 and at most 100, got -1.0"},
@@ -383,9 +383,11 @@ TEST(ProtocolErrors, OutOfRangeValuesNameTheRange) {
         {"/training/shots_per_level_hard", 0,
          "training.shots_per_level_hard must be an integer between 1 and 10000, got 0"},
         {"/training/time_limit_s", -720,
-         "training.time_limit_s must be a number greater than 0 and at most 86400, got -720"},
-        {"/test/timeout_s", 0, "test.timeout_s must be a number greater than 0 and at most 86400, got 0"},
-        {"/test/pause_s", -1, "test.pause_s must be a number greater than 0 and at most 86400, got -1"},
+         "training.time_limit_s must be a number greater than 0 and at most 3600, got -720"},
+        {"/test/timeout_s", 0,
+         "test.timeout_s must be a number greater than 0 and at most 120, got 0"},
+        {"/test/pause_s", -1,
+         "test.pause_s must be a number greater than 0 and at most 60, got -1"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);
@@ -395,6 +397,81 @@ TEST(ProtocolErrors, OutOfRangeValuesNameTheRange) {
     // The bounds themselves are allowed where the range is closed.
     EXPECT_NO_THROW(parse(thesisWith("/display/vertical_fov_deg", 179).dump()));
     EXPECT_NO_THROW(parse(thesisWith("/test/targets_per_condition", 100000).dump()));
+}
+
+// ---------------------------------------------------------------------------------------
+// Limits that keep a session's data safe (docs/protocol.md): each bound itself is accepted,
+// the next double past it is refused with the exact sentence.
+
+struct Bound {
+    const char* pointer;
+    double bound;      // allowed
+    double past;       // the next double beyond it: refused
+    const char* expected;  // after "protocol 'p.json': "
+};
+
+void expectBounds(const std::vector<Bound>& bounds) {
+    for (const Bound& b : bounds) {
+        SCOPED_TRACE(b.pointer);
+        EXPECT_NO_THROW(parse(thesisWith(b.pointer, b.bound).dump()));
+        EXPECT_EQ(errorOf(thesisWith(b.pointer, b.past)),
+                  std::string("protocol 'p.json': ") + b.expected);
+    }
+}
+
+double above(double bound) { return std::nextafter(bound, INFINITY); }
+double below(double bound) { return std::nextafter(bound, -INFINITY); }
+
+TEST(ProtocolLimits, NoTrialPauseOrPhaseRunsPastItsBound) {
+    // A trial is committed when it ends, so a pause and the next trial up to its timeout
+    // (at most 60 + 120 s, 180000 frames at the 1000 Hz ceiling) is the most a session holds
+    // in memory. The phases are committed trial by trial; their bounds bound the session.
+    expectBounds({
+        {"/test/timeout_s", 120, above(120),
+         "test.timeout_s must be a number greater than 0 and at most 120, got 120.00000000000001"},
+        {"/test/pause_s", 60, above(60),
+         "test.pause_s must be a number greater than 0 and at most 60, got 60.00000000000001"},
+        {"/acclimation/duration_s", 1800, above(1800),
+         "acclimation.duration_s must be a number greater than 0 and at most 1800, got "
+         "1800.0000000000002"},
+        {"/training/time_limit_s", 3600, above(3600),
+         "training.time_limit_s must be a number greater than 0 and at most 3600, got "
+         "3600.0000000000005"},
+    });
+    // The issue's case: a day-long feedback pause at 1000 Hz, 86.4 million frames uncommitted.
+    EXPECT_EQ(errorOf(thesisWith("/test/pause_s", 86400)),
+              "protocol 'p.json': test.pause_s must be a number greater than 0 and at most 60, "
+              "got 86400");
+}
+
+TEST(ProtocolLimits, TinyPositiveValuesThatBreakLaterMathsAreRefused) {
+    // 1e-310 rad a count was accepted and ended the session in "dir: must be non-zero and
+    // finite", naming neither the file nor the field.
+    EXPECT_EQ(errorOf(thesisWith("/input/mouse_radians_per_count", 1e-310)),
+              "protocol 'p.json': input.mouse_radians_per_count must be a number between 1e-06 "
+              "and 0.1, got 1e-310");
+    // A subnormal radius was a float 0 on screen: a target no one could see or hit.
+    EXPECT_EQ(errorOf(thesisWith("/target/radius_m", 1e-310)),
+              "protocol 'p.json': target.radius_m must be a number at least 0.01 and less than 3, "
+              "got 1e-310");
+    expectBounds({
+        {"/input/mouse_radians_per_count", 1e-6, below(1e-6),
+         "input.mouse_radians_per_count must be a number between 1e-06 and 0.1, got "
+         "9.999999999999997e-07"},
+        {"/target/radius_m", 0.01, below(0.01),
+         "target.radius_m must be a number at least 0.01 and less than 3, got "
+         "0.009999999999999998"},
+    });
+}
+
+TEST(ProtocolLimits, TheFieldOfViewRangeIsTheOneRenderUses) {
+    // Shared with `warplab render --fov` and the click protocol (shooter_protocol.h), both ends in.
+    expectBounds({
+        {"/display/vertical_fov_deg", kMaxVerticalFovDeg, above(kMaxVerticalFovDeg),
+         "display.vertical_fov_deg must be a number between 1 and 179, got 179.00000000000003"},
+        {"/display/vertical_fov_deg", kMinVerticalFovDeg, below(kMinVerticalFovDeg),
+         "display.vertical_fov_deg must be a number between 1 and 179, got 0.9999999999999999"},
+    });
 }
 
 TEST(ProtocolErrors, HugeNumbersAreRefusedNotWrapped) {
@@ -660,7 +737,7 @@ TEST(ProtocolLoad, ErrorsInAFileNameItsPath) {
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()),
                   "protocol '" + path +
-                      "': test.timeout_s must be a number greater than 0 and at most 86400, got 0");
+                      "': test.timeout_s must be a number greater than 0 and at most 120, got 0");
     }
 }
 
