@@ -47,7 +47,7 @@ const char* outcomeName(Outcome outcome) {
 }
 
 ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect)
-    : protocol_(protocol), seed_(seed), aspect_(aspect) {
+    : protocol_(protocol), seed_(seed) {
     using L = scene::HangarLayout;
     restingCamera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);

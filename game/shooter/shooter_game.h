@@ -84,7 +84,6 @@ private:
 
     protocol::ShooterProtocol protocol_;
     std::uint64_t seed_;
-    double aspect_;
     physics::TargetPlane plane_;
     scene::CameraState restingCamera_;
 
