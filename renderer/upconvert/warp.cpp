@@ -50,6 +50,10 @@ public:
         }
         stages.push_back({GL_FRAGMENT_SHADER, "warp.frag"});
         program_ = gl::buildProgram({paths.shaderDir, stages, defines});
+        fillProgram_ = gl::buildProgram({paths.shaderDir,
+                                         {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                          {GL_FRAGMENT_SHADER, "warp_border_fill.frag"}},
+                                         {}});
         primitives_ = gl::Query::create();
     }
 
@@ -70,6 +74,7 @@ public:
         // Inverted in double: float inversion of a perspective matrix with near 0.05 and far 200
         // costs several bits where depth is most compressed.
         const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
+        const glm::mat4 targetInverse = glm::mat4(glm::inverse(glm::dmat4(targetViewProjection)));
         const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
 
         if (settings_.patchSize != 0) classifyPatches(source, w, h);
@@ -77,18 +82,18 @@ public:
         auto& target = out.buffer().impl();
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
         glViewport(0, 0, w, h);
-        const GLfloat black[4] = {0.0f, 0.0f, 0.0f, 1.0f};
         const GLuint noId[4] = {0, 0, 0, 0};
         const GLfloat none[4] = {std::nanf(""), std::nanf(""), std::nanf(""), std::nanf("")};
-        glClearBufferfv(GL_COLOR, 0, black);  // what no source pixel covers stays black, as in the thesis
         glClearBufferuiv(GL_COLOR, 1, noId);
         glClearBufferfv(GL_COLOR, 2, none);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
+        fillBorder(source, input.camera, sourceViewProjection, targetInverse, w, h);
 
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
         glUseProgram(program_.id());
         auto u = [&](const char* name) { return gl::uniform(program_, name); };
         bindTexture(program_, "uSourceDepth", 0, src.depth);
@@ -137,6 +142,32 @@ public:
     }
 
 private:
+    // What no warped source pixel covers (content that was off-screen in the source) takes
+    // the nearest source edge instead of black. A fill drawn first, writing no depth, rather
+    // than a mesh ring stretched outwards: the mesh then overwrites it wherever it lands
+    // whatever its depth, so no depth value is reserved for the fill and no exact far-plane
+    // comparison is needed; and the sparse meshes' border patches keep their own geometry (a
+    // far-flung ring vertex would drag an unsubdivided patch's interior with it). It covers
+    // every pixel, so colour and id are never left at a clear value; its correspondence
+    // stays NaN, so coverage by the mesh is still told apart.
+    void fillBorder(const SourceFrame& source, const scene::CameraState& target, const glm::mat4& sourceViewProjection,
+                    const glm::mat4& targetInverse, int w, int h) {
+        const auto& src = source.gbuffer.impl();
+        glDisable(GL_DEPTH_TEST);
+        glDepthMask(GL_FALSE);
+        glUseProgram(fillProgram_.id());
+        auto u = [&](const char* name) { return gl::uniform(fillProgram_, name); };
+        bindTexture(fillProgram_, "uSourceColour", 0, src.colour);
+        bindTexture(fillProgram_, "uSourceIds", 1, src.ids);
+        glUniformMatrix4fv(u("uTargetInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(targetInverse));
+        glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
+        glUniform3fv(u("uTargetEye"), 1, glm::value_ptr(target.eye));
+        glUniform2f(u("uSize"), static_cast<float>(w), static_cast<float>(h));
+        fillPass_.draw();
+        glDepthMask(GL_TRUE);
+        gl::checkErrors(("filling the warp's border (" + info_.name + ")").c_str());
+    }
+
     struct FullMesh {
         gl::VertexArray vao;
         gl::Buffer indices;
@@ -212,6 +243,8 @@ private:
     WarpSettings settings_;
     gl::Program program_;
     gl::Program flagsProgram_;
+    gl::Program fillProgram_;
+    FullscreenPass fillPass_;
     gl::Query primitives_;
     FullMesh fullMesh_;
     gl::VertexArray emptyVao_ = gl::VertexArray::create();

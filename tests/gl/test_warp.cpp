@@ -1,5 +1,6 @@
 // Warp extrapolation (seed 004 sections 4.2.2-4.3.5, 5.2.4-5.2.6) on cases whose answer is
 // known, and on the hard cases, where it must stay finite and bounded.
+#include <algorithm>
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -208,6 +209,24 @@ TEST(Warp, DisocclusionFixLowersTheErrorWhereTheBackgroundIsRevealed) {
     }
 }
 
+// "Left black" robustly: the warp's colour is always a source colour or a blend of two, and the
+// scene is almost never black, so a black pixel (every channel below 8) where the truth is
+// not dark (some channel 32 or more) is one nothing was drawn into.
+int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth) {
+    int black = 0;
+    for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x) {
+            const std::uint8_t* s = shown.at(x, y);
+            const std::uint8_t* t = truth.at(x, y);
+            black += std::max({s[0], s[1], s[2]}) < 8 && std::max({t[0], t[1], t[2]}) >= 32;
+        }
+    return black;
+}
+
+// A few pixels may still be black where the truth is not: a dark source pixel sampled where a
+// bright one belongs. Measured: at most 3 of 20736 (the sky case) with the border fill.
+constexpr double kBlackShare = 0.001;
+
 // Hard cases: the output stays finite, and what it covers stays near the exact
 // correspondence -- no spikes or sheets across the screen.
 void expectBounded(const std::string& label, const scene::FrameDescription& from, const scene::FrameDescription& to,
@@ -230,6 +249,24 @@ void expectBounded(const std::string& label, const scene::FrameDescription& from
         }
         EXPECT_LE(wrong, maxWrongShare * std::max(covered, 1)) << label << " " << method << ": " << wrong << " of "
                                                                 << covered << " covered pixels off by 2+ px";
+        // A warp that draws nothing is finite and never wrong: it must also cover what the
+        // source saw. Pixels whose surface is visible inside the source (exact correspondence) are
+        // the ones the mesh can reach; at least 97% of them must be covered -- the rest are
+        // silhouette pixels where a fold or the disocclusion fix hands the pixel elsewhere.
+        int reachable = 0, reached = 0;
+        for (std::size_t i = 0; i < coords.size(); ++i) {
+            const glm::vec2 e = exact.coords[i];
+            if (!(e.x >= 1.0f && e.y >= 1.0f && e.x <= kW - 1.0f && e.y <= kH - 1.0f)) continue;  // not in the source
+            ++reachable;
+            reached += std::isfinite(coords[i].x);
+        }
+        ASSERT_GT(reachable, 0) << label;  // else the coverage check below would be vacuous
+        EXPECT_GE(reached, 0.97 * reachable) << label << " " << method << ": " << reached << " of " << reachable
+                                             << " pixels visible in the source are covered";
+        // ...and nothing is left black, including what turned into view (issue 12): the clear
+        // colour is black, the scene has hardly any black, so count black where the truth is not dark.
+        const int black = blackWhereTruthIsNot(shown.colour, truth.images.colour);
+        EXPECT_LE(black, kBlackShare * double(coords.size())) << label << " " << method << ": " << black << " black pixels";
     }
 }
 
@@ -279,6 +316,41 @@ TEST(WarpHardCases, VelocityPointingOffScreen) {
     b.scene.time = 1.0 / 15.0;
     b.scene.objects.front().position += a.scene.objects.front().velocity * (1.0f / 15.0f);
     expectBounded("off screen", a, b, 0.03);
+}
+
+// Issue 12, part 1: a pure 3 degree turn of the static scene (the case of `warplab render
+// --method warp-full --source-yaw 0 --yaw 3`) at the bench's quick size. What turned into view
+// was off-screen in the source; it must be filled from the nearest source edge, never black.
+TEST(Warp, CameraTurnLeavesNoPixelBlack) {
+    constexpr int w = 320, h = 180;
+    auto frame = testing::shooterScene(w, h, 1, 2.0);
+    scene::FrameDescription still{frame.restingCamera(), frame.snapshot(0.0)};
+    still.scene.objects.clear();
+    still.camera.yaw = 0.0f;
+    still.camera.pitch = 0.0f;
+    scene::FrameDescription turned = still;
+    turned.camera.yaw = glm::radians(3.0f);
+    const auto source = testing::renderSource(still, w, h);
+    const auto truth = testing::renderSource(turned, w, h);
+    ASSERT_LE(blackWhereTruthIsNot(source.images.colour, truth.images.colour), w * h / 1000);
+    for (const std::string method : {"warp-full", "warp-nofix", "warp-sparse8", "warp-sparse16"}) {
+        renderer::UpconversionInput input;
+        input.displayTime = 0.0;
+        input.camera = turned.camera;
+        input.previous = source.frame.get();
+        const auto shown = testing::produceFrame(method, input, w, h);
+        int meshCovered = 0;
+        for (std::size_t i = 0; i < shown.ids.data.size(); ++i) meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
+        // The strip that turned into view (about 3/60 of the width) is the fill's, not the mesh's.
+        EXPECT_LT(meshCovered, w * h * 97 / 100) << method << ": the turn should bring uncovered pixels into view";
+        EXPECT_EQ(blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
+        const double db = renderer::psnr(shown.colour, truth.images.colour);
+        // Floor: measured 26.1 dB (warp-full, warp-sparse16) to 26.7 dB (warp-nofix) on llvmpipe;
+        // with the band left black it was about 20 dB. 25 dB leaves a margin for another rasteriser's
+        // aliasing of the panel seams (the interior error is mostly aliasing, see issue 12).
+        EXPECT_GE(db, 25.0) << method;
+        RecordProperty(method + "_turn_psnr", std::to_string(db));
+    }
 }
 
 }  // namespace
