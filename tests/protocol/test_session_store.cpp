@@ -854,6 +854,27 @@ TEST(SessionStore, RefusesAPipeAtOnceByName) {
 
 // ============================ damaged files ============================
 
+// A read-only connection that keeps a read transaction open, as an analyst's DB browser may:
+// it holds the writer's checkpoint back, so commits made meanwhile stay in the -wal.
+class SnapshotReader {
+public:
+    explicit SnapshotReader(const std::string& path) {
+        ok_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
+              sqlite3_exec(db_, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+    }
+    ~SnapshotReader() {
+        sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
+        sqlite3_close(db_);
+    }
+    SnapshotReader(const SnapshotReader&) = delete;
+    SnapshotReader& operator=(const SnapshotReader&) = delete;
+    bool ok() const { return ok_; }
+
+private:
+    sqlite3* db_ = nullptr;
+    bool ok_ = false;
+};
+
 // A finished session cut at many byte offsets, as a full disk or a bad copy leaves it.
 TEST(SessionStoreDamage, TruncatedFileKeepsWholeCommitsOrFailsNamingThePath) {
     TempDir dir;
@@ -917,10 +938,8 @@ TEST(SessionStoreDamage, DamageInTheWalIsReportedNamingWhatWasLost) {
     constexpr int kTrials = 10;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
     const std::string path = w.path();
-    // A reader's snapshot holds the checkpoint back, so the commits stay in the -wal.
-    sqlite3* reader = nullptr;
-    ASSERT_EQ(sqlite3_open_v2(path.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(reader, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr), SQLITE_OK);
+    const SnapshotReader reader(path);  // the commits stay in the -wal
+    ASSERT_TRUE(reader.ok());
     for (int t = 0; t < kTrials; ++t) {
         writeTrial(w, t);
         ASSERT_TRUE(w.commit());
@@ -951,8 +970,6 @@ TEST(SessionStoreDamage, DamageInTheWalIsReportedNamingWhatWasLost) {
     EXPECT_NE(data.note.find(" in the write-ahead log"), std::string::npos) << data.note;
     EXPECT_NE(data.note.find("; lost "), std::string::npos) << data.note;
 
-    sqlite3_exec(reader, "COMMIT", nullptr, nullptr, nullptr);
-    sqlite3_close(reader);
     w.finish();
 }
 
@@ -963,9 +980,8 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     constexpr int kTrials = 12;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
     const std::string path = w.path();
-    sqlite3* reader = nullptr;
-    ASSERT_EQ(sqlite3_open_v2(path.c_str(), &reader, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-    ASSERT_EQ(sqlite3_exec(reader, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr), SQLITE_OK);
+    const SnapshotReader reader(path);
+    ASSERT_TRUE(reader.ok());
     for (int t = 0; t < kTrials; ++t) {
         writeTrial(w, t);
         ASSERT_TRUE(w.commit());  // a reader never holds the writer up
@@ -996,8 +1012,6 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     EXPECT_LT(expectWholeTrials(data), kTrials);
     EXPECT_FALSE(data.completed);
     expectSame(data.header, sampleHeader());
-    sqlite3_exec(reader, "COMMIT", nullptr, nullptr, nullptr);
-    sqlite3_close(reader);
     w.finish();
 }
 
