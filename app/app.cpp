@@ -110,7 +110,7 @@ const std::vector<Command>& commands() {
           "time each pass and compare it with a conventional render at the same instant.",
           "warplab bench [--quick] [--out DIR] [options]",
           {
-              {"quick", "", "320x180, 8 frames per sequence, 2 repeats: a few minutes at most", ""},
+              {"quick", "", "320x180, 8 frames per sequence, 3 repeats: a few minutes at most", ""},
               {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
               {"width", "PIXELS", "frame width", "1920 (320 with --quick)"},
               {"height", "PIXELS", "frame height", "1080 (180 with --quick)"},
@@ -118,7 +118,7 @@ const std::vector<Command>& commands() {
               {"methods", "A,B", "which methods (see the summary for the list)", "all"},
               {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all", "16"},
               {"duration-scale", "X", "scale the sequences' length", "1"},
-              {"repeats", "N", "timed runs of each pass; medians are reported", "3"},
+              {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported", "5 (3 with --quick)"},
               {"shading-cost", "N", "extra per-fragment shading work in every conventional frame", "0"},
               {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame", "0,64,256,1024"},
               {"seed", "N", "target spawn seed of the sequences", "1"},

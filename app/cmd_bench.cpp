@@ -25,7 +25,7 @@ int runBench(const ParsedArgs& args) {
         options.width = 320;
         options.height = 180;
         options.framesPerSequence = 8;
-        options.repeats = 2;
+        options.repeats = 3;
         options.shadingSweep = {0, 256};
     }
     options.width = static_cast<int>(args.integer("width", options.width, 16, 16384));

@@ -19,7 +19,7 @@ struct BenchOptions {
     std::vector<std::string> methods;       // empty = all
     int framesPerSequence = 16;             // sampled display frames; 0 = every frame
     double durationScale = 1.0;             // shortens (< 1) or lengthens the sequences
-    int repeats = 3;                        // timed runs of each pass; the median is reported
+    int repeats = 5;                        // timed runs of each pass (after an untimed one); the median is reported
     int shadingCost = 0;                    // ShadingOptions::shadingCost for every conventional frame
     std::vector<int> shadingSweep{0, 64, 256, 1024};  // costs at which the summary times a conventional frame
     std::string outDir;

@@ -120,6 +120,8 @@ Correspondence trueCorrespondence(const scene::FrameDescription& display, const 
     Correspondence out;
     out.width = w;
     out.height = h;
+    out.sourceWidth = sw;
+    out.sourceHeight = sh;
     out.coords.assign(std::size_t(w) * h, glm::vec2(float(kNaN)));
     out.visible.assign(std::size_t(w) * h, 0);
 
@@ -180,22 +182,53 @@ Correspondence trueCorrespondence(const scene::FrameDescription& display, const 
     return out;
 }
 
-std::vector<std::uint8_t> disoccludedMask(const std::vector<const Correspondence*>& perSource) {
-    if (perSource.empty()) throw std::invalid_argument("disoccludedMask: needs at least one source's correspondence, got none.");
+namespace {
+
+// The sources a mask is made of: at least one, none null, all of one display size.
+void checkSources(const std::vector<const Correspondence*>& perSource, const char* caller) {
+    if (perSource.empty())
+        throw std::invalid_argument(std::string(caller) + ": needs at least one source's correspondence, got none.");
     for (std::size_t s = 0; s < perSource.size(); ++s) {
         const Correspondence* c = perSource[s];
-        if (c == nullptr) throw std::invalid_argument("disoccludedMask: source " + std::to_string(s) + " is null.");
+        if (c == nullptr) throw std::invalid_argument(std::string(caller) + ": source " + std::to_string(s) + " is null.");
         const std::size_t n = std::size_t(std::max(c->width, 0)) * std::size_t(std::max(c->height, 0));
-        if (c->width != perSource[0]->width || c->height != perSource[0]->height || c->visible.size() != n)
-            throw std::invalid_argument("disoccludedMask: source " + std::to_string(s) + " is " + sizeText(c->width, c->height) +
-                                        " with " + std::to_string(c->visible.size()) + " visibility entries; source 0 is " +
-                                        sizeText(perSource[0]->width, perSource[0]->height) + ".");
+        if (c->width != perSource[0]->width || c->height != perSource[0]->height || c->visible.size() != n ||
+            c->coords.size() != n)
+            throw std::invalid_argument(std::string(caller) + ": source " + std::to_string(s) + " is " +
+                                        sizeText(c->width, c->height) + " with " + std::to_string(c->visible.size()) +
+                                        " visibility entries and " + std::to_string(c->coords.size()) +
+                                        " coordinates; source 0 is " + sizeText(perSource[0]->width, perSource[0]->height) +
+                                        ".");
     }
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> disoccludedMask(const std::vector<const Correspondence*>& perSource) {
+    checkSources(perSource, "disoccludedMask");
     std::vector<std::uint8_t> mask(perSource[0]->visible.size(), 1);
     for (const Correspondence* c : perSource)
         for (std::size_t i = 0; i < mask.size(); ++i)
             if (c->visible[i]) mask[i] = 0;
     return mask;
+}
+
+UnseenMasks unseenMasks(const std::vector<const Correspondence*>& perSource) {
+    checkSources(perSource, "unseenMasks");
+    const std::vector<std::uint8_t> unseen = disoccludedMask(perSource);
+    UnseenMasks out;
+    out.border.assign(unseen.size(), 0);
+    out.occluded.assign(unseen.size(), 0);
+    for (std::size_t i = 0; i < unseen.size(); ++i) {
+        if (!unseen[i]) continue;
+        bool inside = false;
+        for (const Correspondence* c : perSource) {
+            const glm::vec2 p = c->coords[i];  // NaN compares false: no position is outside
+            inside = inside || (p.x >= 0.0f && p.y >= 0.0f && p.x <= float(c->sourceWidth) && p.y <= float(c->sourceHeight));
+        }
+        (inside ? out.occluded : out.border)[i] = 1;
+    }
+    return out;
 }
 
 double maskedMeanAbsoluteError(const renderer::ImageRGBA8& method, const renderer::ImageRGBA8& truth,

@@ -23,6 +23,7 @@ namespace warplab::bench {
 // Where each display pixel's surface point was in one source frame.
 struct Correspondence {
     int width = 0, height = 0;  // the display frame's size
+    int sourceWidth = 0, sourceHeight = 0;  // the source image's size, which coords are in
     // Source-image coordinates per display pixel (row-major, top-down). May lie outside the
     // image. NaN where the point has no position in the source: its object is absent from the
     // source snapshot, or the point is behind the source camera.
@@ -63,6 +64,16 @@ Correspondence trueCorrespondence(const scene::FrameDescription& display, const 
 // 1 for pixels whose ground-truth surface point is visible in none of the given sources (all
 // the same size; at least one).
 std::vector<std::uint8_t> disoccludedMask(const std::vector<const Correspondence*>& perSource);
+
+// The pixels a frame's sources cannot show, split by why, so that one pair of masks serves
+// every method of the frame (the bench passes the latest 15 Hz source). `border`: the true surface point lies outside every source image (or has no
+// position there: behind the camera, absent): content turned or moved into view, which no
+// source holds. `occluded`: inside at least one source image but visible in none: hidden
+// behind something there, a true disocclusion. Together they are disoccludedMask(perSource).
+struct UnseenMasks {
+    std::vector<std::uint8_t> border, occluded;
+};
+UnseenMasks unseenMasks(const std::vector<const Correspondence*>& perSource);
 
 // Mean absolute error over R, G and B (0..255 units) between a method's frame and the ground
 // truth, over pixels whose mask entry is non-zero; NaN when none is (callers write an empty

@@ -169,10 +169,17 @@ TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "| pan | hold15 |")) << r.output;
     EXPECT_TRUE(contains(r.output, "| **all** | blend |")) << r.output;
+    // A pan turns content into view that the latest 15 Hz source lacks: the border mask is not
+    // empty, and holding at the display rate (the truth itself) has no error on it.
+    const std::size_t panTruth = r.output.find("| pan | hold120 |");
+    ASSERT_NE(panTruth, std::string::npos) << r.output;
+    const std::string panTruthRow = r.output.substr(panTruth, r.output.find('\n', panTruth) - panTruth);
+    EXPECT_TRUE(contains(panTruthRow, "| inf (exact) | 1.0000 | 0.00 | 0.00 |")) << panTruthRow;
     std::ifstream csv(dir + "/bench.csv");
     std::string header;
     std::getline(csv, header);
-    EXPECT_EQ(header.rfind("sequence,method,frame,time_s,psnr_db,ssim,disocc_mae,corr_all_lt_0p1,corr_all_lt_0p5,"
+    EXPECT_EQ(header.rfind("sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,"
+                           "corr_all_lt_0p1,corr_all_lt_0p5,"
                            "corr_all_lt_1,corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,",
                            0),
               0u)
