@@ -21,6 +21,14 @@ uniform float uGrazingCosine;  // |cos(normal, view ray)| below this = nearly pa
 // a real surface seen at a grazing angle (the hallway's far floor) spans little depth between
 // neighbouring pixels, a sheet across a silhouette spans the jump.
 uniform float uSheetDepthRatio;
+uniform vec2 uSize;  // display size in pixels (the source's too)
+
+// A sheet needs fixing only where it opens: its corners spread apart in the *target* view, as
+// the foreground moves across the background. Where it does not (the identity warp, a pure
+// camera turn) its pixels are the foreground's and the background's own, and recolouring them
+// would erode the silhouette. Half a pixel of spread is well above a turn's distortion between
+// neighbouring pixels and well below any parallax that uncovers a pixel.
+const float kOpensPx = 0.5;
 
 void main() {
     vec3 a = vSourceWorld[0], b = vSourceWorld[1], c = vSourceWorld[2];
@@ -35,6 +43,12 @@ void main() {
     vec2 pa = vSourceH[0].xy / vSourceH[0].z, pb = vSourceH[1].xy / vSourceH[1].z, pc = vSourceH[2].xy / vSourceH[2].z;
     float extent = max(max(distance(pa, pb), distance(pb, pc)), distance(pc, pa));
     bool sheet = extent < 1.5 && lengths > 0.0 && abs(dot(normal, ray)) < uGrazingCosine * lengths;
+    vec4 qa = gl_in[0].gl_Position, qb = gl_in[1].gl_Position, qc = gl_in[2].gl_Position;
+    if (sheet && qa.w > 0.0 && qb.w > 0.0 && qc.w > 0.0) {
+        vec2 ta = qa.xy / qa.w * 0.5 * uSize, tb = qb.xy / qb.w * 0.5 * uSize, tc = qc.xy / qc.w * 0.5 * uSize;
+        float targetExtent = max(max(distance(ta, tb), distance(tb, tc)), distance(tc, ta));
+        sheet = targetExtent > extent + kOpensPx;
+    }
 
     vec3 sourceH[3] = vec3[3](vSourceH[0], vSourceH[1], vSourceH[2]);
     float foreground[3] = float[3](0.0, 0.0, 0.0);
