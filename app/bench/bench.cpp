@@ -457,9 +457,21 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     if (spread > 1.3 || runSpread > 3.0)
         md << "\n**Warning:** the conventional frame's time varied " << (spread > 1.3 ? "between repeats" : "over the run")
            << " more than content explains: something else is loading this machine, so the times are noisy.\n";
-    md << "\n| sequence | method | median pass ms | ratio to conventional | PSNR dB | mean SSIM | border MAE | disocc MAE | "
-          "corr all <0.5 px | corr hit <0.5 px | triangles |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    auto summarise = [&](const std::string& seq, const std::string& method) {
+    md << "\n| sequence | method | sources | median pass ms | ratio to conventional | PSNR dB | mean SSIM | border MAE | "
+          "disocc MAE | corr all <0.5 px | corr hit <0.5 px | triangles |\n"
+          "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    // What a method is given, so methods are compared at equal cost in renders: the rate of its
+    // conventional sources, "+ next" when it also waits for the next one (a frame of latency),
+    // and how many times the lowest rate's renders it needs.
+    const auto sourcesText = [&](const renderer::MethodInfo& info) {
+        std::string text = field(info.sourceRateHz, 0) + " Hz";
+        if (info.needsNext) text += " + next";
+        if (info.sourceRateHz > maskRateHz)
+            text += " (" + field(info.sourceRateHz / maskRateHz, 0) + "x the renders)";
+        return text;
+    };
+    auto summarise = [&](const std::string& seq, const renderer::MethodInfo& info) {
+        const std::string& method = info.name;
         std::vector<double> pass, conv, psnr, ssim, all05, hit05, triangles;
         double borderSum = 0, disoccSum = 0;
         std::size_t borderPx = 0, disoccPx = 0;
@@ -478,15 +490,22 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
         const double combined = psnrOfMeanMse(psnr);
         const std::string psnrText = std::isinf(combined) ? "inf (exact)" : field(combined, 2);
         auto pct = [](double v) { return std::isnan(v) ? std::string("") : field(100.0 * v, 1) + "%"; };
-        md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << field(p, 3) << " | "
+        md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << sourcesText(info) << " | "
+           << field(p, 3) << " | "
            << field(p / c, 3) << " | " << psnrText << " | " << field(mean(ssim), 4) << " | "
            << field(borderPx > 0 ? borderSum / borderPx : kNaN, 2) << " | "
            << field(disoccPx > 0 ? disoccSum / disoccPx : kNaN, 2)
            << " | " << pct(mean(all05)) << " | " << pct(mean(hit05)) << " | " << field(median(triangles), 0) << " |\n";
     };
     for (const auto& s : sequences)
-        for (const auto& m : methods) summarise(s->name(), m->info().name);
-    for (const auto& m : methods) summarise("", m->info().name);
+        for (const auto& m : methods) summarise(s->name(), m->info());
+    // Over all sequences, methods of equal source rate together, lowest first.
+    std::vector<const renderer::MethodInfo*> byRate;
+    for (const auto& m : methods) byRate.push_back(&m->info());
+    std::stable_sort(byRate.begin(), byRate.end(), [](const auto* a, const auto* b) {
+        return a->sourceRateHz < b->sourceRateHz || (a->sourceRateHz == b->sourceRateHz && !a->needsNext && b->needsNext);
+    });
+    for (const auto* info : byRate) summarise("", *info);
 
     md << "\nA 15->120 Hz method renders one conventional frame and makes seven, so per displayed frame it costs "
           "(C + 7M)/8 against C for rendering every frame: it pays whenever its pass M is cheaper than a "
