@@ -71,7 +71,7 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
         const auto shown = warp(method, source, turned.camera, 0.0);
         const auto coords = reported(shown);
         double sum = 0.0;
-        int covered = 0, off = 0;
+        int covered = 0, off = 0, offHalf = 0;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
                 const std::size_t i = static_cast<std::size_t>(y * kW + x);
@@ -79,6 +79,7 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
                 if (c.x < 1.0f || c.y < 1.0f || c.x > kW - 1.0f || c.y > kH - 1.0f) continue;  // entered the view
                 ++covered;
                 off += !(glm::length(coords[i] - c) < 0.1f);
+                offHalf += !(glm::length(coords[i] - c) < 0.5f);
                 int worst = 0;
                 for (int k = 0; k < 3; ++k)
                     worst = std::max(worst, std::abs(shown.colour.at(x, y)[k] - truth.images.colour.at(x, y)[k]));
@@ -86,6 +87,10 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
             }
         ASSERT_GT(covered, kW * kH * 8 / 10);
         EXPECT_LE(off, covered / 20) << method << ": pixels whose source is 0.1 px or more from the exact one";
+        // Issue 12: a turn opens no sheet, so no silhouette may be recoloured: 99.5 % within
+        // half a pixel (the old source-only sheet rule left warp-full at 97.8 % on `pan`).
+        EXPECT_LE(offHalf * 1000, covered * 5) << method << ": " << offHalf << " of " << covered
+                                               << " pixels 0.5 px or more from their exact source";
         EXPECT_LE(sum / covered, 12.0) << method;
         RecordProperty(method + "_rotation_off", off);
     }
