@@ -13,6 +13,7 @@
 #include "renderer/gl/program.h"
 #include "renderer/mesh.h"
 #include "renderer/scene_geometry.h"
+#include "renderer/upconvert/fullscreen.h"
 #include "scene/camera.h"
 #include "scene/hangar_layout.h"
 #include "scene/motion.h"
@@ -175,6 +176,62 @@ std::vector<Lamp> hangarLamps() {
 
 constexpr int kMaxLamps = 16;  // matches MAX_LAMPS in conventional.frag
 
+constexpr int kMaxSupersampling = 4;
+
+const ShadingOptions& checked(const ShadingOptions& shading) {
+    if (shading.supersampling < 1 || shading.supersampling > kMaxSupersampling)
+        throw std::invalid_argument("ConventionalRenderer: supersampling " + std::to_string(shading.supersampling) +
+                                    " is outside 1.." + std::to_string(kMaxSupersampling) +
+                                    " (samples per pixel side; 1 = off)");
+    return shading;
+}
+
+// Supersampling's N x N samples per pixel: colour and depth only, since ids, velocity and flow
+// come from the 1x pass; a whole G-buffer at 4x4 of full HD would be about 1 GB.
+struct SampleBuffer {
+    int width = 0, height = 0;
+    gl::Texture colour;  // GL_RGBA8, read by texelFetch in ssaa_resolve.frag
+    // GL_DEPTH_COMPONENT32F like the G-buffer's, so surfaces that nearly touch hide each other
+    // as they would in a direct render at this size.
+    gl::Renderbuffer depth;
+    gl::Framebuffer framebuffer;
+};
+
+SampleBuffer makeSampleBuffer(int width, int height, int factor) {
+    GLint maxTexture = 0, maxRenderbuffer = 0, maxViewport[2] = {0, 0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTexture);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+    glGetIntegerv(GL_MAX_VIEWPORT_DIMS, maxViewport);
+    const int limit = std::min({maxTexture, maxRenderbuffer, maxViewport[0], maxViewport[1]});
+    if (width > limit || height > limit)
+        throw std::invalid_argument("ConventionalRenderer: supersampling " + std::to_string(factor) + " needs a " +
+                                    std::to_string(width) + "x" + std::to_string(height) +
+                                    " sample buffer, over this driver's limit of " + std::to_string(limit));
+    SampleBuffer b;
+    b.width = width;
+    b.height = height;
+    b.colour = makeTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    b.depth = gl::Renderbuffer::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, b.depth.id());
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT32F, width, height);
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    b.framebuffer = gl::Framebuffer::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, b.framebuffer.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, b.colour.id(), 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, b.depth.id());
+    // conventional.frag's id, velocity and flow outputs (locations 1..3) go nowhere.
+    const GLenum colourOnly[] = {GL_COLOR_ATTACHMENT0};
+    glDrawBuffers(1, colourOnly);
+    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gl::checkErrors("creating the supersampling buffer");
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw gl::GlError("ConventionalRenderer: the driver rejects the supersampling colour/depth framebuffer "
+                          "(status 0x" + std::to_string(status) + ")");
+    return b;
+}
+
 }  // namespace
 
 // Space beyond the far door: a dark blue-black, no id, no motion, depth at the far plane.
@@ -185,8 +242,12 @@ struct ConventionalRenderer::Impl {
     gl::Program program;
     SceneGeometry geometry;
     std::vector<Lamp> lamps;
-    explicit Impl(const DataPaths& paths) : geometry(paths) {}
+    gl::Program resolve;  // ssaa_resolve.frag
+    FullscreenPass fullscreen;
+    SampleBuffer samples;  // kept while the target size and supersampling stay the same
+    Impl(const DataPaths& paths, const ShadingOptions& options) : shading(options), geometry(paths) {}
     void render(const scene::FrameDescription& frame, GBuffer& target, const scene::FrameDescription* flowTo);
+    void resolveSamples(GBuffer::Impl& g);
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
             panelPattern, lampCount, lampPosition, lampColour, shadingCost;
@@ -194,9 +255,8 @@ struct ConventionalRenderer::Impl {
 };
 
 ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOptions shading)
-    : impl_(std::make_unique<Impl>(paths)) {
+    : impl_(std::make_unique<Impl>(paths, checked(shading))) {
     auto& m = *impl_;
-    m.shading = shading;
     m.program = gl::buildProgram(
         {paths.shaderDir,
          {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag", {"flow_common.glsl"}}},
@@ -209,11 +269,16 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
            gl::uniform(p, "uPanelPattern"),   gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
            gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost")};
     m.lamps = hangarLamps();
+    m.resolve = gl::buildProgram(
+        {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "ssaa_resolve.frag"}}, {}});
 }
 
 ConventionalRenderer::~ConventionalRenderer() = default;
 
-void ConventionalRenderer::setShading(const ShadingOptions& shading) { impl_->shading = shading; }
+void ConventionalRenderer::setShading(const ShadingOptions& shading) {
+    impl_->shading = checked(shading);
+    if (shading.supersampling == 1) impl_->samples = {};  // up to 16x the frame's size: give it back
+}
 
 void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer& target) {
     impl_->render(frame, target, nullptr);
@@ -228,6 +293,10 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
                                         const scene::FrameDescription* flowTo) {
     auto& m = *this;
     auto& g = target.impl();
+    // Made before anything is drawn, so a size the driver refuses throws with the state untouched.
+    const int n = m.shading.supersampling;
+    if (n > 1 && (m.samples.width != n * g.width || m.samples.height != n * g.height))
+        m.samples = makeSampleBuffer(n * g.width, n * g.height, n);
     glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
     glViewport(0, 0, g.width, g.height);
     glEnable(GL_DEPTH_TEST);
@@ -275,6 +344,25 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     }
     glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
     glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
+    const auto drawScene = [&] {
+        m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
+            const scene::ObjectState* o = item.object;
+            const glm::mat4 there = o == nullptr || flowTo == nullptr
+                                        ? item.model
+                                        : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
+            glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
+            const glm::vec3 zero(0.0f);
+            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
+            glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
+            glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+            glUniform1ui(m.u.objectId, item.id);
+            glUniform3fv(m.u.centre, 1, glm::value_ptr(o ? o->position : zero));
+            glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(o ? o->velocity : zero));
+            glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(o ? o->angularVelocity : zero));
+            glUniform3fv(m.u.tint, 1, glm::value_ptr(o ? o->colour : glm::vec3(1.0f)));
+            glUniform1i(m.u.panelPattern, o == nullptr && m.shading.panelPattern ? 1 : 0);
+        });
+    };
 
     if (flowTo != nullptr) {
         // The flow goes into a fourth target, made the first time it is asked for; the sky's
@@ -293,25 +381,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glDrawBuffers(4, four);
         m.geometry.drawSky(m.program);
     }
-    m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
-        const scene::ObjectState* o = item.object;
-        const glm::mat4 there =
-            o == nullptr || flowTo == nullptr ? item.model
-                                              : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
-        glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
-        const glm::vec3 zero(0.0f);
-        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
-        glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
-        glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-        glUniform1ui(m.u.objectId, item.id);
-        glUniform3fv(m.u.centre, 1, glm::value_ptr(o ? o->position : zero));
-        glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(o ? o->velocity : zero));
-        glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(o ? o->angularVelocity : zero));
-        glUniform3fv(m.u.tint, 1, glm::value_ptr(o ? o->colour : glm::vec3(1.0f)));
-        glUniform1i(m.u.panelPattern, o == nullptr && m.shading.panelPattern ? 1 : 0);
-    });
-    glBindVertexArray(0);
-    glUseProgram(0);
+    drawScene();
     if (flowTo != nullptr) {
         const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                 GBuffer::Impl::kVelocityAttachment};
@@ -320,8 +390,45 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     } else {
         g.flowTo.reset();  // whatever flow the target held belongs to its previous frame
     }
+
+    // Supersampling: the pass above made depth, ids, velocity and flow at the pixel centres,
+    // which scoring and the warp need exactly; now the same scene with the same uniforms at N x N
+    // times the size, into a colour-and-depth buffer only, whose N x N blocks are then averaged
+    // into the target's colour. The camera and aspect are unchanged, so sample (N x + i, N y + j)
+    // lies at the centre of sub-pixel (i, j) of pixel (x, y).
+    if (n > 1) {
+        glBindFramebuffer(GL_FRAMEBUFFER, m.samples.framebuffer.id());
+        glViewport(0, 0, m.samples.width, m.samples.height);
+        glClearBufferfv(GL_COLOR, 0, kSky);
+        glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+        drawScene();
+        resolveSamples(g);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("rendering a conventional frame");
+}
+
+// Writes the mean of each N x N block of samples into the target's colour attachment only.
+void ConventionalRenderer::Impl::resolveSamples(GBuffer::Impl& g) {
+    glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
+    const GLenum colourOnly[] = {GBuffer::Impl::kColourAttachment};
+    glDrawBuffers(1, colourOnly);
+    glViewport(0, 0, g.width, g.height);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glUseProgram(resolve.id());
+    bindTexture(resolve, "uSamples", 0, samples.colour);
+    glUniform1i(gl::uniform(resolve, "uFactor"), shading.supersampling);
+    fullscreen.draw();
+    glBindTexture(GL_TEXTURE_2D, 0);
+    // Back to what every other pass assumes of a G-buffer and of the context.
+    const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
+                            GBuffer::Impl::kVelocityAttachment};
+    glDrawBuffers(3, three);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
 }
 
 }  // namespace warplab::renderer
