@@ -36,7 +36,7 @@ THESIS_TABLE2 = {
 # Seed 004 Table 3: min, 25 %, median, 75 %, max.
 THESIS_TABLE3 = {"conv15": (-0.004, 0.070, 0.093, 0.128, 0.196), "conv120": (-0.178, -0.129, -0.098, -0.083, -0.044)}
 SIGN_TEST_KEYS = {"game", "a", "b", "n", "positive", "negative", "ties", "p_greater", "p_less", "p_two_sided",
-                  "diff_quartiles"}
+                  "diff_quartiles", "planning"}
 
 
 def write(path, lines):
@@ -341,6 +341,8 @@ def test_click_report_and_figures(click):
     assert "F(1, n − 1) = t²" in md and "](click_measures.png)" in md
     assert "Sessions (sessions.csv): 5 of 6 included" in md
     assert "Table 1 (click)" in md  # hit rates: green hits / clicks, with their sign tests
+    assert "#### Planning (click): participants for 80 % power" in md  # and what a study would need
+    assert all(t["planning"]["pilot_participants"] == t["participants"] for t in report["sign_tests"])
     assert (out / "click_measures.png").stat().st_size > 10_000
     assert "Pulkkinen" not in md  # no shooter data, no shooter section
     assert [t["game"] for t in report["sign_tests"]] == ["click"] * 3

@@ -2,11 +2,14 @@
 
 Shooter (and any other game): the thesis's layout (seed 004 §6–§7): Table 1 hits and rates per
 participant, the hit-rate figure, sign tests for every pair of modes, Table 2 differences of
-each upconversion mode, Table 3 quartiles, histograms. Click game: the layout of Yang et al.'s
+each upconversion mode, Table 3 quartiles, histograms, then a planning table (participants a
+study would need, this data as pilot). Click game: the layout of Yang et al.'s
 Table 2 (seed 000 §8) first, then the same hit-rate sections on green hits / clicks.
 Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
 """
 import math
+
+from . import planning
 
 MODE_DESCRIPTIONS = {
     "warp15to120": "rendered at 15 Hz, warped to 120 Hz",
@@ -110,6 +113,42 @@ def hit_rate_sections(out, game, summary, tests, level):
     if "differences" in summary["figures"]:
         out.append(f"![{cell(game)}: histograms of upconversion hit-rate differences]"
                    f"({summary['figures']['differences']})\n")
+    planning_section(out, game, tests, h)
+
+
+def planning_section(out, game, tests, h):
+    """Participants a new study needs per pair, this data as its pilot (planning.sample_size)."""
+    first = tests[0]["planning"]
+    alpha, target, cap = first["alpha"], first["target_power"], first["cap"]
+    fewest = planning.fewest_untied(cap, alpha)
+    out.append(f"{h} Planning ({cell(game)}): participants for {target * 100:g} % power\n")
+    out.append(
+        "How many participants a new study would need for the two-sided exact sign test above "
+        f"(α = {alpha:g}, ties dropped) to find each difference with power {target:g}, taking this data as its "
+        "pilot. Assumptions: participants are independent; each one's difference is tied with probability t "
+        "(the pilot's tie share) and otherwise positive, a > b, with probability p+ (the pilot's share among "
+        "untied participants); and those two pilot shares are the true ones. They are only estimates, the "
+        "more uncertain the fewer the pilot's participants (19 of 20 also fits a true p+ of 0.8), and a true p+ "
+        "nearer ½ needs more participants: each number is what the pilot's shares imply, not a guarantee. "
+        "Computed exactly: with M ~ Binomial(n, 1 − t) untied participants and X ~ Binomial(M, p+) of them "
+        "positive, power(n) = Σ_m P(M = m) · P(the test rejects at X | M = m), rejecting where the table's "
+        f"two-sided p ≤ {alpha:g}. Exact power saw-tooths: one more participant can lower it. Needed is the "
+        f"smallest n with power ≥ {target:g} at n and at every larger n up to {cap} (power: at that n); "
+        f"first ≥ {target:g} is the smallest n with power ≥ {target:g}, which a larger n can fall below again.\n")
+    rows = []
+    for t in tests:
+        p = t["planning"]
+        rows.append([t["a"], t["b"], str(p["pilot_participants"]), fmt(p["p_plus"], ".3f"), fmt(p["tie_share"], ".3f"),
+                     str(p["needed"]) if p["needed"] is not None else cell(p["note"]), fmt(p["power_at_needed"], ".3f"),
+                     fmt(p["first"], "d")])
+    out.append(table(["a", "b", "pilot n", "p+ (a > b)", "tie share", "needed", "power", f"first ≥ {target:g}"],
+                     rows))
+    extreme = [f"{t['a']} against {t['b']}" for t in tests if t["planning"]["extreme"]]
+    if extreme:
+        out.append(f"An extreme estimate, used as is: every untied pilot participant went one way (p+ = 0 or 1) in "
+                   f"{'; '.join(extreme)}. Any {fewest} untied participants then reject (2 · 0.5^{fewest} = "
+                   f"{2 * 0.5 ** fewest:g} < {alpha:g}), so the number needed there is the fewest any difference "
+                   "could need at that tie share, and optimistic: a true p+ just short of 0 or 1 needs more.\n")
 
 
 def click_sections(out, click, level):

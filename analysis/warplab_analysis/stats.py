@@ -31,6 +31,16 @@ def conventional_rate(mode):
     return None
 
 
+def sign_test_two_sided_p(positive, n):
+    """Two-sided p of `positive` successes in n fair coin flips: scipy's binomtest; 1.0 when n = 0.
+
+    On its own so that planning.py's power computation rejects exactly where the report's test does.
+    """
+    if n == 0:
+        return 1.0
+    return float(scipy.stats.binomtest(positive, n, 0.5, alternative="two-sided").pvalue)
+
+
 def sign_test_p(positive, n):
     """(p_greater, p_less, p_two_sided) of `positive` successes in n fair coin flips; all 1.0 when n = 0."""
     if n == 0:
@@ -38,8 +48,7 @@ def sign_test_p(positive, n):
     total = 2 ** n
     p_greater = float(Fraction(sum(math.comb(n, k) for k in range(positive, n + 1)), total))
     p_less = float(Fraction(sum(math.comb(n, k) for k in range(0, positive + 1)), total))
-    p_two_sided = float(scipy.stats.binomtest(positive, n, 0.5, alternative="two-sided").pvalue)
-    return p_greater, p_less, p_two_sided
+    return p_greater, p_less, sign_test_two_sided_p(positive, n)
 
 
 def quartiles(values):
@@ -60,7 +69,8 @@ def rate_difference(counts_a, counts_b):
 
 
 def hit_rate_sign_test(game, a, b, participants):
-    """Sign test of hit rate a − b over the participants with both modes, in the order given.
+    """Sign test of hit rate a − b over the participants with both modes, in the order given, and the
+    sample size a study would need to find this difference (planning.sample_size, this data as pilot).
 
     participants: {participant: {mode: (hits, shots)}}; `differences` keeps its order.
     """
@@ -73,11 +83,13 @@ def hit_rate_sign_test(game, a, b, participants):
     positive, negative, ties = signs[1], signs[-1], signs[0]
     n = positive + negative
     p_greater, p_less, p_two_sided = sign_test_p(positive, n)
+    from . import planning  # here, not at the top: planning builds on this module's sign test
     return {
         "game": game, "a": a, "b": b, "n": n, "positive": positive, "negative": negative, "ties": ties,
         "p_greater": p_greater, "p_less": p_less, "p_two_sided": p_two_sided,
         "diff_quartiles": quartiles(list(differences.values())),
         "participants": len(differences), "differences": differences,
+        "planning": planning.sample_size(positive, negative, ties),
     }
 
 
