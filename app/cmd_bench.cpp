@@ -33,6 +33,8 @@ int runBench(const ParsedArgs& args) {
     options.framesPerSequence = static_cast<int>(args.integer("frames", options.framesPerSequence, 0, 1000000));
     options.repeats = static_cast<int>(args.integer("repeats", options.repeats, 1, 1000));
     options.shadingCost = static_cast<int>(args.integer("shading-cost", 0, 0, 1 << 20));
+    options.guardBand = args.number("guard-band", options.guardBand, 0.0, 0.5);
+    options.supersampling = static_cast<int>(args.integer("ssaa", options.supersampling, 1, 4));
     options.durationScale = args.number("duration-scale", 1.0);
     if (!(options.durationScale > 0.0 && options.durationScale <= 100.0))
         throw UsageError("option --duration-scale must be in (0, 100]");

@@ -64,13 +64,21 @@ int runRender(const ParsedArgs& args) {
     const std::string out = args.path("out", "frame.png");
     const std::string depthPath = args.path("depth", ""), idsPath = args.path("ids", "");
     const std::string velocityPath = args.path("velocity", ""), rawPrefix = args.path("raw", "");
-    const std::string truthPath = args.path("truth", "");
+    const std::string truthPath = args.path("truth", ""), errorPath = args.path("error", "");
+    // As a study's warp mode renders its sources (protocol display.guard_band, .supersampling).
+    const protocol::RenderSettings studyDefaults;
+    const double guardBand = args.number("guard-band", studyDefaults.guardBand, 0.0, protocol::kMaxGuardBandFraction);
+    const int supersampling =
+        static_cast<int>(args.integer("ssaa", studyDefaults.supersampling, 1, protocol::kMaxSupersampling));
     const std::string methodName = args.string("method", "");
     if (args.has("method") && methodName.find_first_not_of(" \t") == std::string::npos)
         throw UsageError("option --method of 'warplab render' needs a method name, got '" + methodName + "'");
     if (methodName.empty() && (args.has("source-time") || args.has("truth") || args.has("source-yaw") ||
-                               args.has("source-pitch") || args.has("next-time")))
-        throw UsageError("options --source-time, --next-time, --source-yaw, --source-pitch and --truth need --method");
+                               args.has("source-pitch") || args.has("next-time") || args.has("error") ||
+                               args.has("guard-band")))
+        throw UsageError(
+            "options --source-time, --next-time, --source-yaw, --source-pitch, --truth, --error and --guard-band need "
+            "--method");
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
     const renderer::DataPaths paths = dataPathsFrom(args);
 
@@ -103,7 +111,9 @@ int runRender(const ParsedArgs& args) {
     options.height = height;
     options.title = "warplab render";
     const auto context = renderer::createContext(options);
-    renderer::ConventionalRenderer conventional(paths);
+    renderer::ShadingOptions shading;
+    shading.supersampling = supersampling;
+    renderer::ConventionalRenderer conventional(paths, shading);
     renderer::GBuffer gbuffer(width, height);
     conventional.render(frame, gbuffer);
     renderer::GBufferImages images = renderer::readBack(gbuffer);
@@ -112,18 +122,21 @@ int runRender(const ParsedArgs& args) {
     if (!methodName.empty()) {
         // Upconversion: the frame at --time is made by a method from a source rendered at --source-time.
         auto method = renderer::makeMethod(methodName, paths);
-        renderer::SourceFrame previous(width, height), next(width, height);
-        previous.depicts = frameAt(sourceTime, sourceYaw, sourcePitch);
-        conventional.render(previous.depicts, previous.gbuffer);
+        const renderer::GuardBand band = method->info().takesGuardBand
+                                             ? renderer::guardBandFor(width, height, guardBand)
+                                             : renderer::GuardBand{};
+        renderer::SourceFrame previous(width, height, band), next(width, height, band);
+        renderer::renderSource(conventional, frameAt(sourceTime, sourceYaw, sourcePitch), previous);
         renderer::UpconversionInput input;
         input.displayTime = time;
         input.camera = frame.camera;
         input.scene = &frame.scene;
         input.previous = &previous;
         if (method->info().needsNext) {
-            next.depicts = frameAt(args.has("next-time") ? nextTime : sourceTime + 1.0 / method->info().sourceRateHz,
-                                   yaw, pitch);
-            conventional.render(next.depicts, next.gbuffer);
+            renderer::renderSource(
+                conventional,
+                frameAt(args.has("next-time") ? nextTime : sourceTime + 1.0 / method->info().sourceRateHz, yaw, pitch),
+                next);
             input.next = &next;
         }
         shown = std::make_unique<renderer::DisplayFrame>(width, height);
@@ -135,6 +148,11 @@ int runRender(const ParsedArgs& args) {
         // The displayed frame replaces the conventional one in every output below.
         const renderer::DisplayImages display = renderer::readBack(*shown);
         std::cout << methodName << ": PSNR " << renderer::psnr(display.colour, images.colour) << " dB against ground truth\n";
+        if (!errorPath.empty()) {
+            // x4: the few-unit errors of a good warp show, a wrong surface saturates.
+            renderer::writePng(errorPath, renderer::absoluteErrorImage(display.colour, images.colour, 4));
+            std::cout << "wrote " << errorPath << " (|error| x4 against ground truth)\n";
+        }
         images.colour = display.colour;
         images.ids = display.ids;
         onScreen = &shown->buffer();

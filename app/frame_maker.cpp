@@ -25,18 +25,37 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     return content;
 }
 
+FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
+                       const protocol::RenderSettings& rendering)
+    : paths_(paths),
+      conventional_(paths, [&] {
+          renderer::ShadingOptions shading;
+          shading.supersampling = rendering.supersampling;
+          return shading;
+      }()),
+      width_(width),
+      height_(height),
+      warpBand_(renderer::guardBandFor(width, height, rendering.guardBand)) {}
+
+FrameMaker::Kept FrameMaker::render(const scene::FrameDescription& frame, renderer::GuardBand band,
+                                    const scene::FrameDescription* flowTo) {
+    Kept kept{std::make_unique<renderer::SourceFrame>(width_, height_, band), frame};
+    renderer::renderSource(conventional_, frame, *kept.frame, flowTo);
+    return kept;
+}
+
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
-        auto source = std::make_unique<renderer::SourceFrame>(width_, height_);
-        source->depicts = shown.render;
+        const game::Upconversion upconversion =
+            shown.mode.empty() ? game::Upconversion::None : game::modeSpec(shown.mode).upconversion;
+        // Warp modes render beyond the displayed field of view, so what a turn brings into view
+        // is really there; the frames they show as rendered are the band's inside (hold).
+        const renderer::GuardBand band = upconversion == game::Upconversion::Warp ? warpBand_ : renderer::GuardBand{};
         // Bidirectional reprojection's I-frames carry their backward flow towards the previous
         // I-frame, drawn in the same pass (seed 000 section 5).
-        const bool flow = !shown.mode.empty() &&
-                          game::modeSpec(shown.mode).upconversion == game::Upconversion::Bidirectional &&
-                          !sources_.empty() && method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
-        if (flow) conventional_.render(shown.render, source->gbuffer, sources_.rbegin()->second->depicts);
-        else conventional_.render(shown.render, source->gbuffer);
-        sources_[shown.frame] = std::move(source);
+        const bool flow = upconversion == game::Upconversion::Bidirectional && !sources_.empty() &&
+                          method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
+        sources_[shown.frame] = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
     }
     // None older than what the frame on screen is made from will be needed again.
     if (!shown.blank)
@@ -44,29 +63,30 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 }
 
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
-    auto it = sources_.find(shown.sourceFrame);
-    if (it == sources_.end()) {
-        // Lag modes open with frames queued before the mode started: the scene as it was.
-        auto before = std::make_unique<renderer::SourceFrame>(width_, height_);
-        before->depicts = {shown.camera, shown.scene};
-        conventional_.render(before->depicts, before->gbuffer);
-        it = sources_.emplace(shown.sourceFrame, std::move(before)).first;
-    }
-    renderer::UpconversionInput input;
-    input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
-    input.camera = shown.camera;
-    input.previous = it->second.get();
-    input.scene = &shown.scene;
     std::string name = "hold120";
     const auto kind = shown.schedule.kind;
     if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {
         name = game::modeSpec(shown.mode).method;
     }
+    renderer::UpconversionMethod& shows = method(name);
+    auto it = sources_.find(shown.sourceFrame);
+    if (it == sources_.end()) {
+        // Lag modes open with frames queued before the mode started: the scene as it was.
+        it = sources_.emplace(shown.sourceFrame, render({shown.camera, shown.scene}, {})).first;
+    } else if (!shows.info().acceptsGuardBand && !(it->second.frame->band == renderer::GuardBand{})) {
+        // A warp mode's source shown by a method that takes no band (at a change of mode).
+        it->second = render(it->second.shows, {});
+    }
+    renderer::UpconversionInput input;
+    input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
+    input.camera = shown.camera;
+    input.previous = it->second.frame.get();
+    input.scene = &shown.scene;
     if (kind == game::FrameKind::Interpolated) {
         const auto next = sources_.find(shown.nextSourceFrame);
-        input.next = next == sources_.end() ? it->second.get() : next->second.get();
+        input.next = next == sources_.end() ? it->second.frame.get() : next->second.frame.get();
     }
-    method(name).produce(input, display);
+    shows.produce(input, display);
 }
 
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {

@@ -22,8 +22,8 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 // frames use the mode's method.
 class FrameMaker {
 public:
-    FrameMaker(const renderer::DataPaths& paths, int width, int height)
-        : paths_(paths), conventional_(paths), width_(width), height_(height) {}
+    // `rendering`: the protocol's guard band (warp modes' sources) and supersampling.
+    FrameMaker(const renderer::DataPaths& paths, int width, int height, const protocol::RenderSettings& rendering);
 
     // Call for every frame the game steps, shown or not: held, lagged and warped frames need
     // the sources rendered before them.
@@ -33,11 +33,19 @@ public:
 
 private:
     renderer::UpconversionMethod& method(const std::string& name);
+    // A source as rendered, and the frame it was asked to show (its camera not widened).
+    struct Kept {
+        std::unique_ptr<renderer::SourceFrame> frame;
+        scene::FrameDescription shows;
+    };
+    Kept render(const scene::FrameDescription& frame, renderer::GuardBand band,
+                const scene::FrameDescription* flowTo = nullptr);
 
     renderer::DataPaths paths_;
     renderer::ConventionalRenderer conventional_;
     int width_, height_;
-    std::map<std::int64_t, std::unique_ptr<renderer::SourceFrame>> sources_;  // by session frame
+    renderer::GuardBand warpBand_;  // for the sources of warp modes
+    std::map<std::int64_t, Kept> sources_;  // by session frame
     std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
 };
 

@@ -230,7 +230,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     const bool human = run.player == "human";
     const auto player = human ? nullptr : makePlayer(run.player, run.seed, *study, display);
 
-    FrameMaker maker(paths, width, height);
+    FrameMaker maker(paths, width, height, study->rendering());
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(width, height);
     FeedbackSounds sounds;
@@ -374,7 +374,7 @@ void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostr
     std::string mode = run.freePlayMode.empty() ? study->modes().front() : run.freePlayMode;
     int level = run.freePlayLevel;
     auto game = study->newFreePlay(run.seed, display, mode, level);
-    FrameMaker maker(paths, display.width, display.height);
+    FrameMaker maker(paths, display.width, display.height, study->rendering());
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(display.width, display.height);
     FeedbackSounds sounds;

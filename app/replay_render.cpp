@@ -96,7 +96,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     options.backend = backend;
     options.visible = false;
     const auto context = renderer::createContext(options);
-    FrameMaker maker(paths, width, height);
+    FrameMaker maker(paths, width, height, study->rendering());
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame displayFrame(width, height);
     const auto game = study->newGame(data.header.seed, display);

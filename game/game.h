@@ -18,6 +18,7 @@
 #include "game/modes.h"
 #include "game/results.h"
 #include "protocol/session_store.h"
+#include "protocol/study_protocol.h"
 #include "scene/scene.h"
 
 namespace warplab::game {
@@ -176,6 +177,8 @@ public:
     virtual double mouseRadiansPerCount() const { return 0.0; }
     // A live session on a display known to run at another refresh: warn (true) or refuse.
     virtual bool warnsOnRefreshMismatch() const = 0;
+    // How the session's frames are rendered: the protocol's guard band and supersampling.
+    virtual protocol::RenderSettings rendering() const = 0;
     // A stored session's events (of a session run with this protocol) as export's rows.
     // Events of other types are skipped; a session cut short gives what it has.
     virtual SessionResults results(const std::vector<protocol::EventRecord>& events) const = 0;

@@ -83,13 +83,15 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 
     if (const Json* display = r.object(document, "", "display")) {
         r.requireKnownKeys(*display, "display",
-                           {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg", "refresh_mismatch"});
+                           {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg", "refresh_mismatch", "guard_band",
+                            "supersampling"});
         r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
         r.number(display, "display", "vertical_fov_deg",
                  {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
         r.number(display, "display", "camera_pitch_deg",
                  {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}, p.cameraPitchDeg);
         r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
+        detail::readRenderSettings(r, display, p.rendering);
     }
     if (const Json* physics = r.object(document, "", "physics")) {
         const char* const path = "physics";
@@ -162,6 +164,7 @@ std::string toJson(const ClickProtocol& p) {
     display["vertical_fov_deg"] = p.verticalFovDeg;
     display["camera_pitch_deg"] = p.cameraPitchDeg;
     display["refresh_mismatch"] = p.refreshMismatch;
+    detail::writeRenderSettings(display, p.rendering, p.formatVersion);
     Json& physics = document["physics"];
     physics["gravity_m_per_s2"] = p.gravity;
     physics["sphere_radius_m"] = p.sphereRadius;

@@ -30,8 +30,9 @@ struct ClickProtocol {
     std::string game = "click";
     double refreshHz = 60;             // display.refresh_hz
     double verticalFovDeg = 60;        // display.vertical_fov_deg
-    double cameraPitchDeg = -10;
-    std::string refreshMismatch = "refuse";  // display.refresh_mismatch: "refuse" or "warn", as the shooter's       // display.camera_pitch_deg, looks down at the box floor
+    double cameraPitchDeg = -10;       // display.camera_pitch_deg, looks down at the box floor
+    std::string refreshMismatch = "refuse";  // display.refresh_mismatch: "refuse" or "warn", as the shooter's
+    RenderSettings rendering;          // display.guard_band, display.supersampling
     // physics.* (the game maps these onto physics::FallingSphereSettings; keep the same defaults)
     double gravity = 9.81;             // m/s^2, >= 0
     double sphereRadius = 0.45;        // m, (0, 2]

@@ -123,6 +123,18 @@ bool wholeMultiple(double value, double unit) {
     return whole >= 1 && std::abs(ratio - whole) <= 1e-9;
 }
 
+void readRenderSettings(const Reader& r, const Json* display, RenderSettings& out) {
+    r.number(display, "display", "guard_band", {0, false, kMaxGuardBandFraction, false}, out.guardBand);
+    r.integer(display, "display", "supersampling", 1, kMaxSupersampling, out.supersampling);
+}
+
+void writeRenderSettings(Json& display, const RenderSettings& settings, int formatVersion) {
+    const RenderSettings defaults;
+    if (formatVersion >= 2 || settings.guardBand != defaults.guardBand) display["guard_band"] = settings.guardBand;
+    if (formatVersion >= 2 || settings.supersampling != defaults.supersampling)
+        display["supersampling"] = settings.supersampling;
+}
+
 Json headerJson(int formatVersion, const std::string& name, const std::string& description,
                 const std::string& game) {
     return Json{{"format_version", formatVersion},

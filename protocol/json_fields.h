@@ -131,6 +131,12 @@ private:
     ModeCheck modes_;
 };
 
+// display.guard_band and display.supersampling (RenderSettings), read and written alike by
+// every game. Written for format `formatVersion` >= 2 always, for older ones only when not
+// the defaults (which such files meant).
+void readRenderSettings(const Reader& r, const Json* display, RenderSettings& out);
+void writeRenderSettings(Json& display, const RenderSettings& settings, int formatVersion);
+
 // path[i], the JSON path of an array element.
 std::string elementPath(const std::string& path, std::size_t index);
 

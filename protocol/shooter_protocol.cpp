@@ -52,11 +52,13 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
     r.nameAndDescription(document, p.name, p.description);
 
     if (const Json* display = r.object(document, "", "display")) {
-        r.requireKnownKeys(*display, "display", {"refresh_hz", "vertical_fov_deg", "refresh_mismatch"});
+        r.requireKnownKeys(*display, "display",
+                           {"refresh_hz", "vertical_fov_deg", "refresh_mismatch", "guard_band", "supersampling"});
         r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
         r.number(display, "display", "vertical_fov_deg",
                  {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
         r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
+        detail::readRenderSettings(r, display, p.rendering);
     }
     if (const Json* target = r.object(document, "", "target")) {
         r.requireKnownKeys(*target, "target", {"radius_m"});
@@ -145,6 +147,7 @@ std::string toJson(const ShooterProtocol& p) {
     document["display"]["vertical_fov_deg"] = p.verticalFovDeg;
     // Like click_timing below: new with format 2, written for version 1 only when it says more.
     if (p.formatVersion >= 2 || p.refreshMismatch != "refuse") document["display"]["refresh_mismatch"] = p.refreshMismatch;
+    detail::writeRenderSettings(document["display"], p.rendering, p.formatVersion);
     document["target"]["radius_m"] = p.targetRadius;
     document["input"]["mouse_radians_per_count"] = p.mouseRadiansPerCount;
     document["acclimation"]["duration_s"] = p.acclimationS;

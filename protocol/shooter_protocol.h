@@ -41,6 +41,7 @@ struct ShooterProtocol {
     // A live session on a display whose refresh is known to differ: "refuse" to start, or
     // "warn" and pace frames by timer (quick protocols, so they run anywhere).
     std::string refreshMismatch = "refuse";
+    RenderSettings rendering;             // display.guard_band, display.supersampling
     double targetRadius = 0.35;            // metres
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
     double acclimationS = 300;

@@ -17,6 +17,19 @@ inline constexpr double kMaxVerticalFovDeg = 179;  // the projection degenerates
 // Straight up or down (90) turns the world-up view basis over; the game itself clamps to ~86.
 inline constexpr double kMaxCameraPitchDeg = 89;
 
+// How a session's frames are rendered (the protocol's display.guard_band and
+// display.supersampling, both games alike). They change what a participant sees, never the
+// game's state: the outcomes a session logs replay the same whatever they say.
+struct RenderSettings {
+    // Warp modes render their sources this fraction of the displayed width and height beyond
+    // each side, so what a turn brings into view is really there (renderer::GuardBand).
+    double guardBand = 0.1;
+    // Samples per pixel side for every conventional frame's colour (1 = none, 2 = 2x2 ...).
+    int supersampling = 1;
+};
+inline constexpr double kMaxGuardBandFraction = 0.5;  // renderer::kMaxGuardBand
+inline constexpr int kMaxSupersampling = 4;           // 4x4: 16 samples per pixel
+
 // A bad protocol file: one sentence naming the file and the JSON path of the culprit.
 class ProtocolError : public std::runtime_error {
 public:

@@ -422,6 +422,20 @@ void checkSameSize(const ImageRGBA8& a, const ImageRGBA8& b, const char* what) {
 }
 }  // namespace
 
+ImageRGBA8 absoluteErrorImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain) {
+    checkSameSize(a, b, "absoluteErrorImage");
+    ImageRGBA8 out = ImageRGBA8::make(a.width, a.height);
+    const std::size_t n = pixelCount(a.width, a.height, "absoluteErrorImage");
+    for (std::size_t i = 0; i < n; ++i) {
+        int sum = 0;
+        for (int c = 0; c < 3; ++c) sum += std::abs(int(a.pixels[4 * i + c]) - int(b.pixels[4 * i + c]));
+        const auto grey = static_cast<std::uint8_t>(std::min(255, sum * gain / 3));
+        const std::uint8_t g[4] = {grey, grey, grey, 255};
+        setPixel(&out.pixels[4 * i], g);
+    }
+    return out;
+}
+
 ImageDiff compareImages(const ImageRGBA8& a, const ImageRGBA8& b, int perPixelThreshold) {
     checkSameSize(a, b, "compareImages");
     ImageDiff diff;

@@ -87,6 +87,10 @@ struct ImageDiff {
 };
 ImageDiff compareImages(const ImageRGBA8& a, const ImageRGBA8& b, int perPixelThreshold);
 
+// |a - b| as a grey image for looking at a method's error: each pixel's mean absolute RGB
+// difference times `gain`, clamped to 255 (black = exact, white = 255 / gain or more off).
+ImageRGBA8 absoluteErrorImage(const ImageRGBA8& a, const ImageRGBA8& b, int gain);
+
 // PSNR in dB over R, G and B (alpha ignored), peak 255; +infinity for identical images.
 double psnr(const ImageRGBA8& a, const ImageRGBA8& b);
 // Mean SSIM (Wang et al. 2004) on Rec. 601 luma (0.299 R + 0.587 G + 0.114 B, not rounded),

@@ -4,6 +4,7 @@
 // interface, so the benchmark and the study modes treat them alike.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -15,12 +16,38 @@
 
 namespace warplab::renderer {
 
+// Pixels a source frame is rendered beyond the displayed frame on each side, at the same
+// pixel pitch (a guard band): content a warp turns into view is then really there instead of
+// invented at the edge. Only methods whose MethodInfo::acceptsGuardBand say so accept one.
+struct GuardBand {
+    int x = 0, y = 0;
+    bool operator==(const GuardBand& o) const { return x == o.x && y == o.y; }
+};
+// `fraction` of the displayed width and height on each side, in whole pixels (0.1 = 10 %).
+// Throws std::invalid_argument outside [0, kMaxGuardBand].
+GuardBand guardBandFor(int width, int height, double fraction);
+inline constexpr double kMaxGuardBand = 0.5;
+
 // A frame rendered conventionally at one instant, kept with what it depicts.
 struct SourceFrame {
-    SourceFrame(int width, int height) : gbuffer(width, height) {}
+    // `width` x `height` is the displayed frame's size; the G-buffer adds the band on each side.
+    SourceFrame(int width, int height, GuardBand band = {})
+        : band(band), gbuffer(width + 2 * band.x, height + 2 * band.y) {}
+    // As rendered: with a guard band, the camera's field of view is widened to cover it.
     scene::FrameDescription depicts;
+    GuardBand band;
     GBuffer gbuffer;
+    // Which render the G-buffer holds, new for each renderSource: what methods cache per source
+    // (bidirectional reprojection's flows) is keyed on it, so a source frame re-rendered with
+    // other content is never mistaken for the old one.
+    std::uint64_t serial = 0;
 };
+
+// Renders `frame` conventionally into `source` (widening the camera by the source's band) and
+// gives it a new serial. With flowTo, the same pass also writes the backward flow towards that
+// frame (ConventionalRenderer::render with flowTo).
+void renderSource(ConventionalRenderer& renderer, const scene::FrameDescription& frame, SourceFrame& source,
+                  const scene::FrameDescription* flowTo = nullptr);
 
 // The frame a method shows. Attachments as a G-buffer's, but the third holds the method's
 // claimed correspondences instead of velocity: xy = the continuous source-image coordinate
@@ -74,6 +101,12 @@ struct MethodInfo {
     // interval [previous, next] (the exposure). The bench compares it with the mean of as
     // many conventional renders (brute force). 0 = an instant, as every other method.
     int exposureSamples = 0;
+    // Shows what a source's guard band (SourceFrame::band) holds as the view turns: the warps.
+    // The bench renders such a method's sources with the band, as a study's warp mode does.
+    bool takesGuardBand = false;
+    // Accepts a banded source at all: the methods above, and the holds, which show its inside
+    // (a warp mode's frames at its render instants).
+    bool acceptsGuardBand = false;
 };
 
 class UpconversionMethod {
@@ -91,6 +124,10 @@ public:
     // image-space methods that draw no mesh.
     virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }
 };
+
+// Throws std::invalid_argument naming the method when `source` does not fit `out`: its G-buffer
+// must be the display's size plus its band, and a band only where info.acceptsGuardBand.
+void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const MethodInfo& info);
 
 // All registered method names, in the order the bench reports them.
 std::vector<std::string> methodNames();

@@ -22,6 +22,13 @@ glm::mat4 projectionMatrix(const CameraState& camera, float aspect) {
                             camera.farPlane);
 }
 
+CameraState widenedByRows(const CameraState& camera, int height, int marginY) {
+    CameraState wide = camera;
+    const double tanHalf = std::tan(camera.verticalFovDeg * M_PI / 360.0) * (height + 2.0 * marginY) / height;
+    wide.verticalFovDeg = static_cast<float>(std::atan(tanHalf) * 360.0 / M_PI);
+    return wide;
+}
+
 glm::vec3 rayDirection(const CameraState& camera, float aspect, glm::vec2 ndc) {
     const glm::mat4 invView = glm::inverse(viewMatrix(camera));
     const float tanHalf = std::tan(glm::radians(camera.verticalFovDeg) * 0.5f);

@@ -13,6 +13,11 @@ glm::mat4 viewMatrix(const CameraState& camera);
 // OpenGL clip convention (z in [-1, 1]), aspect = width / height.
 glm::mat4 projectionMatrix(const CameraState& camera, float aspect);
 
+// The camera of an image `marginY` rows taller at the top and at the bottom than one of
+// `height` rows, with the same centre and pixel pitch: a source rendered with a guard band.
+// A horizontal margin needs nothing more: the wider image's aspect keeps the pitch.
+CameraState widenedByRows(const CameraState& camera, int height, int marginY);
+
 // Direction of the ray through a point of the image, given in normalised device coordinates
 // (x, y in [-1, 1], y up). (0, 0) is the reticle.
 glm::vec3 rayDirection(const CameraState& camera, float aspect, glm::vec2 ndc);

@@ -9,7 +9,7 @@ uniform mat4 uSourceInverseViewProjection;
 uniform mat4 uSourceViewProjection;
 uniform mat4 uTargetViewProjection;
 uniform vec3 uSourceEye;
-uniform vec2 uSize;       // source (and display) size in pixels
+uniform vec2 uSize;       // source size in pixels (the display's plus any guard band)
 uniform float uDt;        // display time - source time, seconds
 uniform float uSkyDistance;  // far-plane pixels are placed this far from the source eye
 

@@ -21,7 +21,7 @@ uniform float uGrazingCosine;  // |cos(normal, view ray)| below this = nearly pa
 // a real surface seen at a grazing angle (the hallway's far floor) spans little depth between
 // neighbouring pixels, a sheet across a silhouette spans the jump.
 uniform float uSheetDepthRatio;
-uniform vec2 uSize;  // display size in pixels (the source's too)
+uniform vec2 uTargetSize;  // display size in pixels (a source with a guard band is larger; same pixel pitch)
 
 // A sheet needs fixing only where it opens: its corners spread apart in the *target* view, as
 // the foreground moves across the background. Where it does not (the identity warp, a pure
@@ -45,7 +45,7 @@ void main() {
     bool sheet = extent < 1.5 && lengths > 0.0 && abs(dot(normal, ray)) < uGrazingCosine * lengths;
     vec4 qa = gl_in[0].gl_Position, qb = gl_in[1].gl_Position, qc = gl_in[2].gl_Position;
     if (sheet && qa.w > 0.0 && qb.w > 0.0 && qc.w > 0.0) {
-        vec2 ta = qa.xy / qa.w * 0.5 * uSize, tb = qb.xy / qb.w * 0.5 * uSize, tc = qc.xy / qc.w * 0.5 * uSize;
+        vec2 ta = qa.xy / qa.w * 0.5 * uTargetSize, tb = qb.xy / qb.w * 0.5 * uTargetSize, tc = qc.xy / qc.w * 0.5 * uTargetSize;
         float targetExtent = max(max(distance(ta, tb), distance(tb, tc)), distance(tc, ta));
         sheet = targetExtent > extent + kOpensPx;
     }

@@ -88,6 +88,27 @@ struct BruteForce {
     double ms = 0.0;
 };
 
+// Source frames allocated once and reused: a freshly allocated texture costs first-touch work
+// that would otherwise be timed in whichever pass samples it first (a warp-full pass took
+// 104-143 ms or 23-32 ms on llvmpipe depending on the source it read).
+class SourcePool {
+public:
+    SourcePool(int width, int height, renderer::GuardBand band) : width_(width), height_(height), band_(band) {}
+    std::unique_ptr<renderer::SourceFrame> take() {
+        if (free_.empty()) return std::make_unique<renderer::SourceFrame>(width_, height_, band_);
+        auto frame = std::move(free_.back());
+        free_.pop_back();
+        return frame;
+    }
+    void giveBack(std::unique_ptr<renderer::SourceFrame> frame) { free_.push_back(std::move(frame)); }
+    renderer::GuardBand band() const { return band_; }
+
+private:
+    int width_, height_;
+    renderer::GuardBand band_;
+    std::vector<std::unique_ptr<renderer::SourceFrame>> free_;
+};
+
 struct Row {
     std::string sequence, method;
     int frame = 0;
@@ -99,12 +120,13 @@ struct Row {
     CorrespondenceStats corr;
     bool hasCorr = false;
     double passMs = kNaN, gpuMs = kNaN, conventionalMs = kNaN;
+    double sourceMs = kNaN;  // one of the method's own source frames (with its guard band)
     double triangles = kNaN;
 };
 
 const char* kCsvHeader =
     "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_0p5,corr_all_lt_1,"
-    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,triangles";
+    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles";
 
 void writeRow(std::ostream& csv, const Row& r) {
     auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
@@ -113,7 +135,7 @@ void writeRow(std::ostream& csv, const Row& r) {
         << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5)
         << ',' << c(r.corr.allLt1) << ',' << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ','
         << c(r.corr.hitLt1) << ',' << field(r.passMs, 3) << ',' << field(r.gpuMs, 3) << ','
-        << field(r.conventionalMs, 3) << ',' << field(r.triangles, 0) << '\n';
+        << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ',' << field(r.triangles, 0) << '\n';
 }
 
 // The plot is matplotlib's job; Debian's interpreter has it (python3 earlier on PATH may not).
@@ -194,10 +216,18 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
 
     renderer::ShadingOptions shading;
     shading.shadingCost = options.shadingCost;
+    shading.supersampling = options.supersampling;
     renderer::ConventionalRenderer conventional(paths, shading);
     renderer::PassTimer timer;
     renderer::SourceFrame truthFrame(options.width, options.height);
     renderer::DisplayFrame display(options.width, options.height);
+    // Two kinds of source: plain, and with the guard band for the methods that take one.
+    const renderer::GuardBand band = renderer::guardBandFor(options.width, options.height, options.guardBand);
+    const bool anyBanded = !(band == renderer::GuardBand{}) &&
+                           std::any_of(methods.begin(), methods.end(), [](const auto& m) { return m->info().takesGuardBand; });
+    SourcePool plainPool(options.width, options.height, {}), bandedPool(options.width, options.height, band);
+    std::unique_ptr<renderer::SourceFrame> bandedTruth;  // times a banded source at the truth instant
+    if (anyBanded) bandedTruth = bandedPool.take();
 
     // Sources carry the backward flow towards the source one period earlier when a method takes
     // it from them (bidirectional reprojection's I-frames, drawn in the same pass); untimed,
@@ -206,12 +236,11 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     for (const auto& m : methods)
         if (m->info().usesSourceFlow)
             flowPeriod = static_cast<int>(std::lround(options.refreshHz / m->info().sourceRateHz));
-    auto renderSource = [&](const scene::FrameDescription& depicts, const scene::FrameDescription* flowTo) {
+    auto renderSource = [&](SourcePool& pool, const scene::FrameDescription& depicts,
+                            const scene::FrameDescription* flowTo) {
         RenderedSource s;
-        s.frame = std::make_unique<renderer::SourceFrame>(options.width, options.height);
-        s.frame->depicts = depicts;
-        if (flowTo != nullptr) conventional.render(depicts, s.frame->gbuffer, *flowTo);
-        else conventional.render(depicts, s.frame->gbuffer);
+        s.frame = pool.take();
+        renderer::renderSource(conventional, depicts, *s.frame, flowTo);
         s.images = renderer::readBack(s.frame->gbuffer);
         return s;
     };
@@ -220,9 +249,11 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     // allocations (27 ms against 8 ms later for the same pan frame on llvmpipe).
     conventional.render(sequences.front()->at(0.0), truthFrame.gbuffer);
     renderer::readBack(truthFrame.gbuffer);
+    if (bandedTruth) renderer::renderSource(conventional, sequences.front()->at(0.0), *bandedTruth);
     std::set<const renderer::UpconversionMethod*> warmed;  // methods whose first pass was untimed
     std::vector<double> conventionalSpread;  // per truth frame: slowest / fastest of its repeats
     std::vector<double> conventionalFrames;  // per truth frame: its median
+    std::vector<double> bandedFrames;        // per truth frame: a banded source's median
 
     // The shared masks: what the latest source at the lowest source rate among the methods
     // (15 Hz for the study's) does not show when the frame is displayed -- what an extrapolating
@@ -261,29 +292,45 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
             conventionalFrames.push_back(conventionalMedian);
             conventionalSpread.push_back(*std::max_element(conventionalMs.begin(), conventionalMs.end()) /
                                          *std::min_element(conventionalMs.begin(), conventionalMs.end()));
+            // The guard band's cost: the same instant rendered as a banded source.
+            double bandedMedian = kNaN;
+            if (bandedTruth) {
+                std::vector<double> ms;
+                for (int r = 0; r < options.repeats; ++r) {
+                    timer.begin();
+                    renderer::renderSource(conventional, truthDesc, *bandedTruth);
+                    ms.push_back(timer.end().wallMs);
+                }
+                bandedMedian = median(ms);
+                bandedFrames.push_back(bandedMedian);
+            }
 
-            std::map<int, RenderedSource> sources;  // by display-frame index
-            std::map<int, Correspondence> truthCorrespondence;
-            auto source = [&](int index) -> const RenderedSource& {
-                auto it = sources.find(index);
+            // Sources by display-frame index and whether they have the guard band.
+            using SourceKey = std::pair<int, bool>;
+            std::map<SourceKey, RenderedSource> sources;
+            std::map<SourceKey, Correspondence> truthCorrespondence;
+            auto source = [&](int index, bool banded) -> const RenderedSource& {
+                auto it = sources.find({index, banded});
                 if (it == sources.end()) {
                     std::optional<scene::FrameDescription> before;
                     if (flowPeriod > 0 && index >= flowPeriod)
                         before = sequence.at((index - flowPeriod) / options.refreshHz);
                     it = sources
-                             .emplace(index, renderSource(sequence.at(index / options.refreshHz),
-                                                          before ? &*before : nullptr))
+                             .emplace(SourceKey{index, banded},
+                                      renderSource(banded ? bandedPool : plainPool, sequence.at(index / options.refreshHz),
+                                                   before ? &*before : nullptr))
                              .first;
                 }
                 return it->second;
             };
-            auto correspondenceTo = [&](int index) -> const Correspondence& {
-                auto it = truthCorrespondence.find(index);
+            auto correspondenceTo = [&](int index, bool banded) -> const Correspondence& {
+                auto it = truthCorrespondence.find({index, banded});
                 if (it == truthCorrespondence.end()) {
-                    const RenderedSource& s = source(index);
+                    const RenderedSource& s = source(index, banded);
                     it = truthCorrespondence
-                             .emplace(index, trueCorrespondence(truthDesc, truth.depth, truth.ids, s.frame->depicts,
-                                                                s.images.depth, s.images.ids))
+                             .emplace(SourceKey{index, banded},
+                                      trueCorrespondence(truthDesc, truth.depth, truth.ids, s.frame->depicts,
+                                                         s.images.depth, s.images.ids))
                              .first;
                 }
                 return it->second;
@@ -321,7 +368,8 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
             };
 
             const int maskPrevious = k - k % maskPeriod;
-            const UnseenMasks unseen = unseenMasks({&correspondenceTo(maskPrevious)});
+            // Judged on what the displayed field of view's source lacks, with or without a band.
+            const UnseenMasks unseen = unseenMasks({&correspondenceTo(maskPrevious, false)});
             const auto count = [](const std::vector<std::uint8_t>& mask) {
                 return static_cast<std::size_t>(std::count(mask.begin(), mask.end(), std::uint8_t{1}));
             };
@@ -331,11 +379,12 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 const int perSource = static_cast<int>(std::lround(options.refreshHz / info.sourceRateHz));
                 const int previous = k - k % perSource;
                 const int next = previous + perSource;
+                const bool banded = anyBanded && info.takesGuardBand;
                 renderer::UpconversionInput input;
                 input.displayTime = t;
                 input.camera = truthDesc.camera;
-                input.previous = source(previous).frame.get();
-                if (info.needsNext) input.next = source(next).frame.get();
+                input.previous = source(previous, banded).frame.get();
+                if (info.needsNext) input.next = source(next, banded).frame.get();
                 input.scene = &truthDesc.scene;
 
                 // Per-interval work (flow fields) and, for methods that start from the previous
@@ -385,9 +434,10 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 }
                 if (info.reportsCorrespondence) {
                     CorrespondenceAccumulator accumulator;
-                    accumulator.add(reportedCoordinates(shown.correspondence, 0), correspondenceTo(previous));
+                    accumulator.add(reportedCoordinates(shown.correspondence, 0), correspondenceTo(previous, banded));
                     const auto intoNext = reportedCoordinates(shown.correspondence, 2);
-                    if (info.needsNext && anyFinite(intoNext)) accumulator.add(intoNext, correspondenceTo(next));
+                    if (info.needsNext && anyFinite(intoNext))
+                        accumulator.add(intoNext, correspondenceTo(next, banded));
                     row.corr = accumulator.stats();
                     row.hasCorr = true;
                 }
@@ -396,9 +446,11 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 row.gpuMs = median(gpu);
                 row.conventionalMs =
                     info.exposureSamples > 0 ? bruteForce(previous, next, info.exposureSamples).ms : conventionalMedian;
+                row.sourceMs = banded ? bandedMedian : conventionalMedian;
                 writeRow(csv, row);
                 rows.push_back(row);
             }
+            for (auto& [key, rendered] : sources) (key.second ? bandedPool : plainPool).giveBack(std::move(rendered.frame));
             csv.flush();
             ++doneFrames;
             const double elapsed =
@@ -437,6 +489,10 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
        << "- size: " << options.width << "x" << options.height << ", display " << options.refreshHz << " Hz, "
        << "shading cost " << options.shadingCost << ", " << options.repeats
        << " timed repeats per pass after an untimed one (medians)\n"
+       << "- antialiasing: " << (options.supersampling > 1 ? std::to_string(options.supersampling) + "x" +
+                                                                    std::to_string(options.supersampling) + " supersampling"
+                                                              : std::string("none"))
+       << " for every conventional frame, ground truth included\n"
        << "- frames: " << totalFrames << " sampled display frames over " << sequences.size() << " sequences\n"
        << "- masks: border MAE over pixels off-screen in the frame's latest " << maskRateHz
        << " Hz source, disocc MAE over pixels hidden there; the same pixels for every method, weighted by pixel "
@@ -452,6 +508,15 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
         return sortedFrames[static_cast<std::size_t>(q * static_cast<double>(sortedFrames.size() - 1))];
     };
     const double runSpread = sortedFrames.empty() ? 1.0 : percentile(0.9) / percentile(0.1);
+    if (anyBanded) {
+        const double plain = median(conventionalFrames), banded = median(bandedFrames);
+        const double pixels = static_cast<double>(options.width + 2 * band.x) * (options.height + 2 * band.y) /
+                              (static_cast<double>(options.width) * options.height);
+        md << "- guard band: " << options.guardBand * 100 << " % per side (" << band.x << " and " << band.y
+           << " px) for the sources of the methods that take one, " << field(pixels, 2)
+           << "x the pixels; such a source costs " << field(banded, 3) << " ms against " << field(plain, 3)
+           << " ms without (median over the frames, ratio " << field(banded / plain, 2) << ")\n";
+    }
     md << "- conventional frames: repeats of one frame median slowest/fastest " << field(spread, 3)
        << "; over the run 90th/10th percentile " << field(runSpread, 3) << "\n";
     if (spread > 1.3 || runSpread > 3.0)

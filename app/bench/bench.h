@@ -21,6 +21,12 @@ struct BenchOptions {
     double durationScale = 1.0;             // shortens (< 1) or lengthens the sequences
     int repeats = 5;                        // timed runs of each pass (after an untimed one); the median is reported
     int shadingCost = 0;                    // ShadingOptions::shadingCost for every conventional frame
+    // Sources of the methods that take one (the warps) are rendered this fraction of the size
+    // beyond each side, as a study's warp mode renders them (protocol display.guard_band).
+    double guardBand = 0.1;
+    // Samples per pixel side for every conventional frame -- truth, sources, brute force -- so
+    // that errors measure the method rather than aliasing (protocol display.supersampling).
+    int supersampling = 1;
     std::vector<int> shadingSweep{0, 64, 256, 1024};  // costs at which the summary times a conventional frame
     std::string outDir;
     std::uint64_t seed = 1;

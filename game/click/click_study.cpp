@@ -35,6 +35,7 @@ public:
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
+    protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
         SessionResults out;
         // Ratings follow their match's "match" event; match indices are unique in a session.

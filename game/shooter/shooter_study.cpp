@@ -28,6 +28,7 @@ public:
         return std::make_unique<ShooterBot>(seed, protocol_);
     }
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
+    protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     double mouseRadiansPerCount() const override { return protocol_.mouseRadiansPerCount; }
     std::vector<std::string> modes() const override {
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode, protocol_.training.highMode};

@@ -24,10 +24,12 @@ namespace {
 struct PairKey {
     const SourceFrame* previous = nullptr;
     const SourceFrame* next = nullptr;
+    std::uint64_t previousSerial = 0, nextSerial = 0;  // which renders they hold (renderSource)
     double previousTime = 0, nextTime = 0;
     float previousYaw = 0, previousPitch = 0, nextYaw = 0, nextPitch = 0;
     bool operator==(const PairKey& o) const {
-        return previous == o.previous && next == o.next && previousTime == o.previousTime && nextTime == o.nextTime &&
+        return previous == o.previous && next == o.next && previousSerial == o.previousSerial &&
+               nextSerial == o.nextSerial && previousTime == o.previousTime && nextTime == o.nextTime &&
                previousYaw == o.previousYaw && previousPitch == o.previousPitch && nextYaw == o.nextYaw &&
                nextPitch == o.nextPitch;
     }
@@ -36,6 +38,8 @@ struct PairKey {
 PairKey keyOf(const UpconversionInput& in) {
     return {in.previous,
             in.next,
+            in.previous->serial,
+            in.next->serial,
             in.previous->depicts.scene.time,
             in.next->depicts.scene.time,
             in.previous->depicts.camera.yaw,
@@ -115,8 +119,8 @@ public:
         prepare(input);
         const auto& p = input.previous->gbuffer.impl();
         const auto& n = input.next->gbuffer.impl();
-        if (out.width() != p.width || out.height() != p.height)
-            throw std::invalid_argument(info_.name + ": source and display sizes differ");
+        checkSourceSize(*input.previous, out, info_);
+        checkSourceSize(*input.next, out, info_);
         const double t0 = input.previous->depicts.scene.time, t1 = input.next->depicts.scene.time;
         const float alpha = static_cast<float>(std::clamp((input.displayTime - t0) / (t1 - t0), 0.0, 1.0));
 

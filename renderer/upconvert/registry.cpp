@@ -1,5 +1,6 @@
 // The one list of upconversion methods. A new method registers here and is then available to
 // the bench (--methods) and, through its name, to the study modes.
+#include <cmath>
 #include <functional>
 #include <stdexcept>
 
@@ -10,6 +11,7 @@
 #include "renderer/upconvert/simple_methods.h"
 #include "renderer/upconvert/warp.h"
 #include "renderer/upconvert/warp_search.h"
+#include "scene/camera.h"
 
 namespace warplab::renderer {
 namespace {
@@ -85,6 +87,32 @@ std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const Da
     std::string known;
     for (const auto& e : registry()) known += std::string(known.empty() ? "" : ", ") + e.name;
     throw std::invalid_argument("unknown method '" + name + "' (known: " + known + ")");
+}
+
+GuardBand guardBandFor(int width, int height, double fraction) {
+    if (!(fraction >= 0.0 && fraction <= kMaxGuardBand))
+        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0..0.5 of the displayed size");
+    return {static_cast<int>(std::lround(fraction * width)), static_cast<int>(std::lround(fraction * height))};
+}
+
+void renderSource(ConventionalRenderer& renderer, const scene::FrameDescription& frame, SourceFrame& source,
+                  const scene::FrameDescription* flowTo) {
+    static std::uint64_t renders = 0;  // GL work is single-threaded: one context per process
+    source.depicts = frame;
+    const int displayedHeight = source.gbuffer.height() - 2 * source.band.y;
+    if (source.band.y > 0)
+        source.depicts.camera = scene::widenedByRows(frame.camera, displayedHeight, source.band.y);
+    if (flowTo != nullptr) renderer.render(source.depicts, source.gbuffer, *flowTo);
+    else renderer.render(source.depicts, source.gbuffer);
+    source.serial = ++renders;
+}
+
+void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const MethodInfo& info) {
+    const GuardBand band = source.band;
+    if (!info.acceptsGuardBand && !(band == GuardBand{}))
+        throw std::invalid_argument(info.name + " does not take sources with a guard band");
+    if (source.gbuffer.width() != out.width() + 2 * band.x || source.gbuffer.height() != out.height() + 2 * band.y)
+        throw std::invalid_argument(info.name + ": source and display sizes differ");
 }
 
 DisplayImages readBack(const DisplayFrame& frame) {

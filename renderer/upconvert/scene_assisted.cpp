@@ -52,8 +52,8 @@ public:
         const auto& p = a.gbuffer.impl();
         const auto& n = b.gbuffer.impl();
         auto& target = out.buffer().impl();
-        if (p.width != target.width || p.height != target.height || n.width != p.width || n.height != p.height)
-            throw std::invalid_argument("scene-assisted: source and display sizes differ");
+        checkSourceSize(a, out, info_);
+        checkSourceSize(b, out, info_);
         const double t0 = a.depicts.scene.time, t1 = b.depicts.scene.time;
         if (!(t1 > t0)) throw std::invalid_argument("scene-assisted: the next source frame is not later than the previous");
         const float alpha = static_cast<float>(std::clamp((input.displayTime - t0) / (t1 - t0), 0.0, 1.0));

@@ -30,10 +30,9 @@ void unbind() {
     glEnable(GL_DEPTH_TEST);
 }
 
-void requireSource(const SourceFrame* source, const DisplayFrame& out, const char* method, const char* which) {
-    if (source == nullptr) throw std::invalid_argument(std::string(method) + ": no " + which + " source frame");
-    if (source->gbuffer.width() != out.width() || source->gbuffer.height() != out.height())
-        throw std::invalid_argument(std::string(method) + ": source and display sizes differ");
+void requireSource(const SourceFrame* source, const DisplayFrame& out, const MethodInfo& info, const char* which) {
+    if (source == nullptr) throw std::invalid_argument(info.name + ": no " + which + " source frame");
+    checkSourceSize(*source, out, info);
 }
 
 class HoldMethod final : public UpconversionMethod {
@@ -43,19 +42,21 @@ public:
         info_.description = "conventional " + std::to_string(static_cast<int>(rateHz)) +
                             " Hz, each frame held until the next (sample and hold)";
         info_.sourceRateHz = rateHz;
-        info_.reportsCorrespondence = true;  // pixel (x, y) shows source pixel (x, y)
+        info_.reportsCorrespondence = true;  // pixel (x, y) shows source pixel (x, y) (past any band)
+        info_.acceptsGuardBand = true;       // shows the displayed part of a banded source
         program_ = gl::buildProgram(
             {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "hold.frag"}}, {}});
     }
     const MethodInfo& info() const override { return info_; }
     void produce(const UpconversionInput& input, DisplayFrame& out) override {
-        requireSource(input.previous, out, info_.name.c_str(), "previous");
+        requireSource(input.previous, out, info_, "previous");
         bindTarget(out);
         glUseProgram(program_.id());
         const auto& src = input.previous->gbuffer.impl();
         bindTexture(program_, "uColour", 0, src.colour);
         bindTexture(program_, "uIds", 1, src.ids);
-        glUniform1i(gl::uniform(program_, "uHeight"), out.height());
+        glUniform2i(gl::uniform(program_, "uBand"), input.previous->band.x, input.previous->band.y);
+        glUniform1i(gl::uniform(program_, "uSourceHeight"), src.height);
         pass_.draw();
         unbind();
         gl::checkErrors("holding a frame");
@@ -79,8 +80,8 @@ public:
     }
     const MethodInfo& info() const override { return info_; }
     void produce(const UpconversionInput& input, DisplayFrame& out) override {
-        requireSource(input.previous, out, "blend", "previous");
-        requireSource(input.next, out, "blend", "next");
+        requireSource(input.previous, out, info_, "previous");
+        requireSource(input.next, out, info_, "next");
         const double t0 = input.previous->depicts.scene.time, t1 = input.next->depicts.scene.time;
         if (!(t1 > t0)) throw std::invalid_argument("blend: the next source frame is not later than the previous");
         const double alpha = std::clamp((input.displayTime - t0) / (t1 - t0), 0.0, 1.0);

@@ -23,6 +23,8 @@ public:
         info_.name = name;
         info_.sourceRateHz = 15.0;
         info_.reportsCorrespondence = true;
+        info_.takesGuardBand = true;
+        info_.acceptsGuardBand = true;
         info_.description =
             settings.patchSize == 0
                 ? std::string("warp extrapolation from the latest 15 Hz frame, full-density mesh") +
@@ -64,20 +66,24 @@ public:
         const SourceFrame& source = *input.previous;
         const auto& src = source.gbuffer.impl();
         const int w = out.width(), h = out.height();
-        if (src.width != w || src.height != h) throw std::invalid_argument(info_.name + ": source and display sizes differ");
-        const float aspect = static_cast<float>(w) / static_cast<float>(h);
+        checkSourceSize(source, out, info_);
+        // A source with a guard band is larger, its camera widened to the same pixel pitch: the
+        // mesh spans all its pixels, and the target view keeps the displayed field of view.
+        const int sw = src.width, sh = src.height;
         const scene::CameraState& sourceCamera = source.depicts.camera;
         const glm::mat4 sourceViewProjection =
-            scene::projectionMatrix(sourceCamera, aspect) * scene::viewMatrix(sourceCamera);
+            scene::projectionMatrix(sourceCamera, static_cast<float>(sw) / static_cast<float>(sh)) *
+            scene::viewMatrix(sourceCamera);
         const glm::mat4 targetViewProjection =
-            scene::projectionMatrix(input.camera, aspect) * scene::viewMatrix(input.camera);
+            scene::projectionMatrix(input.camera, static_cast<float>(w) / static_cast<float>(h)) *
+            scene::viewMatrix(input.camera);
         // Inverted in double: float inversion of a perspective matrix with near 0.05 and far 200
         // costs several bits where depth is most compressed.
         const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
         const glm::mat4 targetInverse = glm::mat4(glm::inverse(glm::dmat4(targetViewProjection)));
         const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
 
-        if (settings_.patchSize != 0) classifyPatches(source, w, h);
+        if (settings_.patchSize != 0) classifyPatches(source, sw, sh);
 
         auto& target = out.buffer().impl();
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
@@ -104,7 +110,8 @@ public:
         glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
         glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
         glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
-        glUniform2f(u("uSize"), static_cast<float>(w), static_cast<float>(h));
+        glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
+        glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
         glUniform1f(u("uDt"), dt);
         glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
         glUniform1f(u("uGrazingCosine"), std::cos(glm::radians(settings_.sheetAngleDeg)));
@@ -112,7 +119,7 @@ public:
 
         glBeginQuery(GL_PRIMITIVES_GENERATED, primitives_.id());
         if (settings_.patchSize == 0) {
-            const GLsizei count = fullMeshIndices(w, h);
+            const GLsizei count = fullMeshIndices(sw, sh);
             glEnable(GL_PRIMITIVE_RESTART);
             glPrimitiveRestartIndex(kRestart);
             glBindVertexArray(fullMesh_.vao.id());
@@ -162,7 +169,8 @@ private:
         glUniformMatrix4fv(u("uTargetInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(targetInverse));
         glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
         glUniform3fv(u("uTargetEye"), 1, glm::value_ptr(target.eye));
-        glUniform2f(u("uSize"), static_cast<float>(w), static_cast<float>(h));
+        glUniform2f(u("uSourceSize"), static_cast<float>(src.width), static_cast<float>(src.height));
+        glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
         fillPass_.draw();
         glDepthMask(GL_TRUE);
         gl::checkErrors(("filling the warp's border (" + info_.name + ")").c_str());

@@ -48,7 +48,7 @@ public:
         const SourceFrame& source = *input.previous;
         const auto& src = source.gbuffer.impl();
         const int w = out.width(), h = out.height();
-        if (src.width != w || src.height != h) throw std::invalid_argument(info_.name + ": source and display sizes differ");
+        checkSourceSize(source, out, info_);
         const float aspect = static_cast<float>(w) / static_cast<float>(h);
         const scene::CameraState& sourceCamera = source.depicts.camera;
         const glm::mat4 sourceViewProjection =

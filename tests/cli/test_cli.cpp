@@ -163,6 +163,32 @@ TEST(Cli, MissingOrMalformedModelIsNamed) {
 
 namespace {
 
+// The warps' sources get the guard band, and its cost is reported; --guard-band 0 turns it off.
+TEST(CliBench, TheWarpsGuardBandIsRenderedAndItsCostReported) {
+    const std::string dir = scratch("bench-band");
+    const auto r = warplab("bench --quick --frames 4 --repeats 1 --sequences pan --methods hold15,warp-full --out " + dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "- guard band: 10 % per side (32 and 18 px) for the sources of the methods that take "
+                                   "one, 1.44x the pixels; such a source costs "))
+        << r.output;
+    const auto off = warplab("bench --quick --frames 4 --repeats 1 --sequences pan --methods warp-full --guard-band 0 "
+                             "--out " + dir + "-off");
+    ASSERT_EQ(off.status, 0) << off.output;
+    EXPECT_FALSE(contains(off.output, "- guard band:")) << off.output;
+    // A pan turns content into view: the band shows it, so the border error drops.
+    auto borderMae = [](const std::string& output) {
+        const std::size_t row = output.find("| pan | warp-full |");
+        std::stringstream cells(output.substr(row, output.find('\n', row) - row));
+        std::string cell;
+        for (int i = 0; i <= 8; ++i) std::getline(cells, cell, '|');  // "", pan, method, sources ... border MAE
+        return std::stod(cell);
+    };
+    EXPECT_LT(borderMae(r.output), 0.5 * borderMae(off.output)) << r.output << off.output;
+    const auto bad = warplab("bench --quick --guard-band 0.7 --out " + dir + "-bad");
+    EXPECT_EQ(bad.status, 2) << bad.output;
+    EXPECT_TRUE(contains(bad.output, "--guard-band")) << bad.output;
+}
+
 TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     const std::string dir = scratch("bench");
     const auto r = warplab("bench --quick --frames 2 --repeats 1 --sequences pan,thin --methods hold15,hold120,blend --out " + dir);
@@ -194,6 +220,8 @@ TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     EXPECT_EQ(exact, 4);
     EXPECT_TRUE(fs::exists(dir + "/summary.md"));
     EXPECT_GT(fs::file_size(dir + "/speed_vs_error.png"), 1000u);
+    // Holds take no guard band: nothing in this run has one to report.
+    EXPECT_FALSE(contains(r.output, "- guard band:")) << r.output;
 }
 
 TEST(CliBench, UnknownSequenceOrMethodIsNamed) {

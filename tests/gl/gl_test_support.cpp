@@ -43,13 +43,11 @@ renderer::GBufferImages renderFrame(const scene::FrameDescription& frame, int wi
 }
 
 RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height,
-                            const scene::FrameDescription* flowTo) {
-    auto& renderer = conventional();
+                            const scene::FrameDescription* flowTo, renderer::GuardBand band) {
+    auto& renderer = conventional();  // makes the context first
     RenderedSource source;
-    source.frame = std::make_unique<renderer::SourceFrame>(width, height);
-    source.frame->depicts = frame;
-    if (flowTo != nullptr) renderer.render(frame, source.frame->gbuffer, *flowTo);
-    else renderer.render(frame, source.frame->gbuffer);
+    source.frame = std::make_unique<renderer::SourceFrame>(width, height, band);
+    renderer::renderSource(renderer, frame, *source.frame, flowTo);
     source.images = renderer::readBack(source.frame->gbuffer);
     return source;
 }

@@ -28,8 +28,9 @@ struct RenderedSource {
 };
 // With flowTo, the render also writes its backward flow towards that frame (bidirectional
 // reprojection's I-frame pass).
+// With a band, the source is rendered that far beyond the width x height view on each side.
 RenderedSource renderSource(const scene::FrameDescription& frame, int width, int height,
-                            const scene::FrameDescription* flowTo = nullptr);
+                            const scene::FrameDescription* flowTo = nullptr, renderer::GuardBand band = {});
 
 // Makes the displayed frame with a registered method (methods are built once per name).
 renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input,

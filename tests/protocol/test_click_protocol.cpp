@@ -51,6 +51,8 @@ Json yangWith(const std::string& pointer, const Json& value) {
 Json minimal() { return Json{{"format_version", 1}, {"name", "t"}, {"game", "click"}}; }
 
 void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
+    EXPECT_EQ(a.rendering.guardBand, b.rendering.guardBand);
+    EXPECT_EQ(a.rendering.supersampling, b.rendering.supersampling);
     EXPECT_EQ(a.name, b.name);
     EXPECT_EQ(a.description, b.description);
     EXPECT_EQ(a.formatVersion, b.formatVersion);
@@ -90,6 +92,8 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
 // default and fails the comparison.
 ClickProtocol everyFieldChanged() {
     ClickProtocol p;
+    p.rendering.guardBand = 0.1 + 0.2;  // not a short decimal
+    p.rendering.supersampling = 3;
     p.name = "all \"changed\" \xc3\xa9";
     p.description = "two\nlines";
     p.refreshHz = 120;

@@ -74,6 +74,8 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     // Doubles compared with ==: the round trip promises the same bits, not nearly.
     EXPECT_EQ(a.refreshHz, b.refreshHz);
     EXPECT_EQ(a.verticalFovDeg, b.verticalFovDeg);
+    EXPECT_EQ(a.rendering.guardBand, b.rendering.guardBand);
+    EXPECT_EQ(a.rendering.supersampling, b.rendering.supersampling);
     EXPECT_EQ(a.targetRadius, b.targetRadius);
     EXPECT_EQ(a.mouseRadiansPerCount, b.mouseRadiansPerCount);
     EXPECT_EQ(a.acclimationS, b.acclimationS);
@@ -106,6 +108,8 @@ ShooterProtocol everyFieldChanged() {
     p.description = "line one\nline two\t\\";
     p.refreshHz = 240;
     p.verticalFovDeg = 0.1 + 0.2 + 70;  // not a short decimal
+    p.rendering.guardBand = 0.1 + 0.2;  // not a short decimal
+    p.rendering.supersampling = 2;
     p.targetRadius = 1.0 / 3.0;
     p.mouseRadiansPerCount = std::nextafter(0.0022, 1.0);
     p.acclimationS = 12.5;
@@ -629,6 +633,8 @@ Json thesisVersion1() {
     Json document = thesisWith("/format_version", 1);
     document["test"].erase("click_timing");
     document["display"].erase("refresh_mismatch");  // also new with format 2
+    document["display"].erase("guard_band");  // new since, and written for format 2 only
+    document["display"].erase("supersampling");
     return document;
 }
 
@@ -683,6 +689,33 @@ TEST(ProtocolVersions, RefreshMismatchIsRefuseOrWarn) {
     EXPECT_EQ(parse(thesisWith("/display/refresh_mismatch", "warn").dump()).refreshMismatch, "warn");
     EXPECT_EQ(ShooterProtocol{}.refreshMismatch, "refuse");
     expectContains(errorOf(thesisWith("/display/refresh_mismatch", "ignore")), {"display.refresh_mismatch"});
+}
+
+// How frames are rendered (issue 12): a guard band for warp modes' sources and supersampling.
+TEST(ProtocolRendering, GuardBandAndSupersamplingAreReadAndBounded) {
+    EXPECT_EQ(ShooterProtocol{}.rendering.guardBand, 0.1);
+    EXPECT_EQ(ShooterProtocol{}.rendering.supersampling, 1);
+    EXPECT_EQ(parse(thesisWith("/display/guard_band", 0).dump()).rendering.guardBand, 0.0);
+    EXPECT_EQ(parse(thesisWith("/display/guard_band", 0.25).dump()).rendering.guardBand, 0.25);
+    EXPECT_EQ(parse(thesisWith("/display/supersampling", 4).dump()).rendering.supersampling, 4);
+    EXPECT_EQ(errorOf(thesisWith("/display/guard_band", 0.6)),
+              "protocol 'p.json': display.guard_band must be a number between 0 and 0.5, got 0.6");
+    expectContains(errorOf(thesisWith("/display/guard_band", -0.1)), {"display.guard_band"});
+    EXPECT_EQ(errorOf(thesisWith("/display/supersampling", 5)),
+              "protocol 'p.json': display.supersampling must be an integer between 1 and 4, got 5");
+    expectContains(errorOf(thesisWith("/display/supersampling", 1.5)), {"display.supersampling"});
+}
+
+// A version 1 file said nothing of either and meant the defaults; its canonical copy stays
+// as it was unless a value differs.
+TEST(ProtocolRendering, Version1CopiesNameThemOnlyWhenNotDefault) {
+    ShooterProtocol p = parse(thesisVersion1().dump());
+    EXPECT_EQ(Json::parse(toJson(p)).at("display").count("guard_band"), 0u);
+    p.rendering.supersampling = 2;
+    const Json written = Json::parse(toJson(p));
+    EXPECT_EQ(written.at("display").at("supersampling"), 2);
+    EXPECT_EQ(parse(written.dump()).rendering.supersampling, 2);
+    EXPECT_EQ(Json::parse(toJson(ShooterProtocol{})).at("display").at("guard_band"), 0.1);
 }
 
 TEST(ProtocolVersions, ClickTimingIsDisplayOrInputReads) {
