@@ -1,9 +1,9 @@
 #version 410 core
 // One fragment per sparse-mesh patch: does the source depth (or velocity) jump between
-// horizontal neighbours (r) or vertical neighbours (g) anywhere inside the patch? Linear eye
-// depths are compared relative to the nearer one, so a wall far away and a crate close by
-// are judged alike; a velocity jump counts too, or a moving object resting against a static
-// one at the same depth would be stretched across their boundary.
+// horizontal or vertical neighbours anywhere inside the patch (r)? Linear eye depths are
+// compared relative to the nearer one, so a wall far away and a crate close by are judged
+// alike; a velocity jump counts too, or a moving object resting against a static one at the
+// same depth would be stretched across their boundary.
 
 uniform sampler2D uSourceDepth;
 uniform sampler2D uSourceVelocity;
@@ -16,30 +16,42 @@ uniform float uVelocityThreshold;  // m/s
 
 layout(location = 0) out vec4 outFlags;
 
+const int kMaxPatchSize = 16;  // warp-sparse16's, the largest the registry makes
+
 float linearDepth(float d) {
     float ndc = 2.0 * d - 1.0;
     return 2.0 * uNear * uFar / (uFar + uNear - ndc * (uFar - uNear));
 }
 
-bool jump(ivec2 a, ivec2 b) {
-    ivec2 hi = ivec2(uSize) - 1;
-    a = clamp(a, ivec2(0), hi);
-    b = clamp(b, ivec2(0), hi);
-    float za = linearDepth(texelFetch(uSourceDepth, a, 0).r);
-    float zb = linearDepth(texelFetch(uSourceDepth, b, 0).r);
-    if (abs(za - zb) > uDepthThreshold * min(za, zb)) return true;
-    vec3 va = texelFetch(uSourceVelocity, a, 0).xyz, vb = texelFetch(uSourceVelocity, b, 0).xyz;
-    return distance(va, vb) > uVelocityThreshold;
+bool jump(float za, vec3 va, float zb, vec3 vb) {
+    return abs(za - zb) > uDepthThreshold * min(za, zb) || distance(va, vb) > uVelocityThreshold;
 }
 
 void main() {
+    // The patch's (N + 1) x (N + 1) pixels, its vertices, from one before its origin: every
+    // pair of horizontal or vertical neighbours among them. Pairs on a shared edge row or
+    // column count for both patches beside it, as either patch's triangles may span them.
+    // Each pixel is read once, row by row, against its left neighbour and the one below it
+    // (kept from the previous row): the pass reads a quarter of what testing each pair
+    // afresh would.
     ivec2 origin = ivec2(gl_FragCoord.xy) * uPatchSize - 1;
-    bool horizontal = false, vertical = false;
-    for (int j = 0; j <= uPatchSize; ++j) {
-        for (int i = 0; i < uPatchSize; ++i) {
-            horizontal = horizontal || jump(origin + ivec2(i, j), origin + ivec2(i + 1, j));
-            vertical = vertical || jump(origin + ivec2(j, i), origin + ivec2(j, i + 1));
+    ivec2 last = ivec2(uSize) - 1;
+    float zBelow[kMaxPatchSize + 1];
+    vec3 vBelow[kMaxPatchSize + 1];
+    bool discontinuity = false;
+    for (int j = 0; j <= uPatchSize && !discontinuity; ++j) {
+        float zLeft = 0.0;
+        vec3 vLeft = vec3(0.0);
+        for (int i = 0; i <= uPatchSize && !discontinuity; ++i) {
+            ivec2 p = clamp(origin + ivec2(i, j), ivec2(0), last);
+            float z = linearDepth(texelFetch(uSourceDepth, p, 0).r);
+            vec3 v = texelFetch(uSourceVelocity, p, 0).xyz;
+            discontinuity = (i > 0 && jump(zLeft, vLeft, z, v)) || (j > 0 && jump(zBelow[i], vBelow[i], z, v));
+            zLeft = z;
+            vLeft = v;
+            zBelow[i] = z;
+            vBelow[i] = v;
         }
     }
-    outFlags = vec4(horizontal ? 1.0 : 0.0, vertical ? 1.0 : 0.0, 0.0, 1.0);
+    outFlags = vec4(discontinuity ? 1.0 : 0.0, 0.0, 0.0, 1.0);
 }

@@ -2,6 +2,7 @@
 // known, and on the hard cases, where it must stay finite and bounded.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -180,11 +181,15 @@ TEST(Warp, SparseMeshesCoverEverythingTheFullMeshCovers) {
     EXPECT_LE(totalCracks, checked / 100000 + 1);
 }
 
-double disoccludedError(const std::string& method, const std::string& sequenceName) {
+// Mean absolute error over the truly disoccluded pixels (hidden in the source, not the border)
+// of each method, over the frames of a sequence that have any: 9 sources 1/3 s apart, each
+// warped 3, 5 and 7 display frames ahead. Every method warps the same source to the same frame.
+std::map<std::string, double> disoccludedErrors(const std::vector<std::string>& methods,
+                                                const std::string& sequenceName) {
     game::SequenceConfig config;
     config.aspect = double(kW) / kH;
     const auto sequence = game::makeSequence(sequenceName, config);
-    double sum = 0.0;
+    std::map<std::string, double> sums;
     int frames = 0;
     for (int source = 0; source < 3 * 120; source += 40) {
         const auto src = testing::renderSource(sequence->at(source / 120.0), kW, kH);
@@ -193,27 +198,76 @@ double disoccludedError(const std::string& method, const std::string& sequenceNa
             const auto truth = testing::renderSource(display, kW, kH);
             const auto exact = bench::trueCorrespondence(display, truth.images.depth, truth.images.ids,
                                                          src.frame->depicts, src.images.depth, src.images.ids);
-            const double mae = bench::maskedMeanAbsoluteError(
-                warp(method, src, display.camera, display.scene.time).colour, truth.images.colour,
-                bench::unseenMasks({&exact}).occluded);  // true disocclusions, not the border
-            if (std::isnan(mae)) continue;
-            sum += mae;
+            const auto disoccluded = bench::unseenMasks({&exact}).occluded;  // true disocclusions, not the border
+            if (std::none_of(disoccluded.begin(), disoccluded.end(), [](std::uint8_t m) { return m != 0; })) continue;
+            for (const auto& method : methods)
+                sums[method] += bench::maskedMeanAbsoluteError(
+                    warp(method, src, display.camera, display.scene.time).colour, truth.images.colour, disoccluded);
             ++frames;
         }
     }
-    EXPECT_GT(frames, 10);
-    return sum / frames;
+    EXPECT_GT(frames, 10) << sequenceName;
+    for (auto& [method, sum] : sums) sum /= frames;
+    return sums;
 }
 
 // Where a moving object uncovers the background (a sphere crossing a wall in `spheres`, the
 // camera's parallax in `translate` and `track`), the fix fills the opened sheet from the
-// background side: closer to the truth there than the naive warp's smear.
+// background side: closer to the truth there than the naive warp's smear. Every mesh takes the
+// same fix, so every sparse mesh must fill the same sheets as the full mesh (issue 12): a patch
+// re-densified in one direction only used to stretch one-pixel-wide slivers across the jump,
+// which the fix does not take for sheets (measured then on `translate`: sparse4 31.5 and
+// sparse8 29.9 against the full mesh's 27.2).
 TEST(Warp, DisocclusionFixLowersTheErrorWhereTheBackgroundIsRevealed) {
+    const std::vector<std::string> methods = {"warp-full", "warp-nofix", "warp-sparse4", "warp-sparse8",
+                                              "warp-sparse16"};
     for (const std::string sequence : {"translate", "track", "spheres"}) {
-        const double fixed = disoccludedError("warp-full", sequence);
-        const double naive = disoccludedError("warp-nofix", sequence);
-        EXPECT_LT(fixed, naive) << sequence;
-        RecordProperty(sequence + "_fix_vs_nofix", std::to_string(fixed) + " vs " + std::to_string(naive));
+        auto error = disoccludedErrors(methods, sequence);
+        const double full = error["warp-full"], naive = error["warp-nofix"];
+        EXPECT_LT(full, naive) << sequence;
+        for (const std::string sparse : {"warp-sparse4", "warp-sparse8", "warp-sparse16"}) {
+            EXPECT_LT(error[sparse], naive) << sparse << " on " << sequence;
+            // Within 5 % of the full mesh's error: a re-densified patch is the full mesh's grid,
+            // but the tessellator splits its quads along its own diagonals, and a sheet split
+            // the other way recolours a slightly different pixel set (measured: from 3 % below
+            // to 1.3 % above warp-full on llvmpipe).
+            EXPECT_LE(error[sparse], 1.05 * full) << sparse << " on " << sequence << " against warp-full's " << full;
+        }
+        std::string recorded;
+        for (const auto& method : methods) recorded += method + " " + std::to_string(error[method]) + "; ";
+        RecordProperty(sequence + "_disoccluded_mae", recorded);
+    }
+}
+
+// Issue 12: the sparse meshes found each patch's flags by gl_PrimitiveID, which llvmpipe
+// restarts every 1024 patches of a draw, so every later patch took another's flags and a moving
+// silhouette there could stay two triangles stretched across the background. At 640x360 sparse4
+// draws 14,651 patches and sparse8 3,726; on this frame (the target crossing the hallway, the
+// camera following it) they lost 0.49 and 0.09 dB against warp-full. Every discontinuity is
+// re-densified, so a sparse mesh must now warp as well as the full mesh: within 0.05 dB. The
+// meshes differ only in how a quad is split into triangles (measured since: 0.007 to 0.03 dB
+// better than warp-full). Not at 960x540 and above on llvmpipe: see the note in
+// warp_sparse.tesc about sparse16.
+TEST(Warp, SparseMeshesWarpLargeFramesAsWellAsTheFullMesh) {
+    constexpr int w = 640, h = 360;
+    const auto shooter = testing::shooterScene(w, h, 1, 6.0);
+    auto at = [&](double t) {
+        scene::FrameDescription frame{shooter.restingCamera(), shooter.snapshot(t)};
+        frame.camera = testing::aimedAt(frame.camera, frame.scene.objects.front().position);
+        return frame;
+    };
+    const auto source = testing::renderSource(at(1.0), w, h);
+    const scene::FrameDescription display = at(1.0 + 7.0 / 120.0);
+    const auto truth = testing::renderFrame(display, w, h);
+    renderer::UpconversionInput input;
+    input.displayTime = display.scene.time;
+    input.camera = display.camera;
+    input.previous = source.frame.get();
+    const double full = renderer::psnr(testing::produceFrame("warp-full", input, w, h).colour, truth.colour);
+    for (const std::string method : {"warp-sparse4", "warp-sparse8", "warp-sparse16"}) {
+        const double db = renderer::psnr(testing::produceFrame(method, input, w, h).colour, truth.colour);
+        EXPECT_GE(db, full - 0.05) << method << " against warp-full's " << full << " dB";
+        RecordProperty(method + "_large_frame_psnr", std::to_string(db) + " (warp-full " + std::to_string(full) + ")");
     }
 }
 
