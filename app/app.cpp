@@ -137,14 +137,16 @@ const std::vector<Command>& commands() {
           "headlessly with a simulated or recorded player. Writes the session store into the\n"
           "results folder (one file per session) as it runs, then prints its path. In the window:\n"
           "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
-          "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot[:SEED]]",
+          "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]",
           {
               {"protocol", "FILE", "study protocol (JSON), e.g. protocol/shooter-quick.json", ""},
               {"participant", "ID", "participant id: stored as data, never used as a path", ""},
               {"out", "DIR", "results folder (must exist and be writable)", "results"},
               {"headless", "", "no window: the player is simulated or replayed", ""},
-              {"player", "human|bot[:SEED]|replay:SESSION",
-               "who plays: the participant (window only), the scripted bot, or a recorded session's input",
+              {"player", "human|bot[:SEED]|sim[:SEED]|replay:SESSION",
+               "who plays: the participant (window only), the scripted bot (reads the game's state), the "
+               "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
+               "SEED: its motor noise, default the session seed), or a recorded session's input",
                "human in a window, bot headless"},
               {"seed", "N", "session seed: trial order and target spawns", "1"},
               {"width", "PIXELS", "headless: display width the session stands for; window: its width", "1920 / 1280"},
@@ -166,6 +168,8 @@ const std::vector<Command>& commands() {
               {"level", "N", "with --free-play: the difficulty (shooter: staircase level) to start at", "0"},
               {"input-script", "FILE", "window, tests: input given as if by the participant (see docs/live-sessions.md)",
                ""},
+              {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
+               "osmesa"},
               dataDirOption(),
           }},
          &runRun},
@@ -197,6 +201,22 @@ const std::vector<Command>& commands() {
           },
           true},
          &runExport},
+        {{"demo",
+          "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
+          "participants who see only the displayed frames play shooter-quick and click-quick in\n"
+          "every mode; each session is replayed and checked, all are exported, and the analysis\n"
+          "writes a report with figures and the participants a real study would need.",
+          "warplab demo [--out DIR] [--participants N]",
+          {
+              {"out", "DIR", "results/, export/ and report/ go here (results/ must hold no sessions yet)",
+               "demo-out"},
+              {"participants", "N", "simulated participants, each plays both protocols, 2..100", "8"},
+              {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
+               "sim"},
+              glOption("osmesa"),
+              dataDirOption(),
+          }},
+         &runDemo},
     };
     return list;
 }

@@ -38,6 +38,9 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
 int runWindowed(const ParsedArgs& args) {
     LiveRun run;
     readSessionOptions(args, "human", run, !args.flag("free-play"));
+    if (args.has("gl")) throw UsageError("option --gl only applies with --headless --player sim");
+    if (isSimulatedParticipant(run.player))
+        throw UsageError("--player " + run.player + " (the simulated participant) runs headless only: add --headless");
     run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
     run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
     run.fullscreen = args.flag("fullscreen");
@@ -80,6 +83,15 @@ int runRun(const ParsedArgs& args) {
     readSessionOptions(args, "bot", run);
     run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
     run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
+    if (isSimulatedParticipant(run.player)) {
+        // It draws what it sees: the shaders, and a headless context.
+        run.dataPaths = dataPathsFrom(args);
+        run.glBackend = backendFrom(args, renderer::GlBackend::OSMesa);
+        if (run.glBackend == renderer::GlBackend::Window)
+            throw UsageError("option --gl: the simulated participant draws headless (osmesa or egl)");
+    } else if (args.has("gl")) {
+        throw UsageError("option --gl only applies with --headless --player sim");
+    }
     const std::string path = runHeadless(run, std::cerr);
     std::cout << path << "\n";
     return 0;

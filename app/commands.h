@@ -23,6 +23,7 @@ int runBench(const ParsedArgs& args);
 int runRun(const ParsedArgs& args);
 int runReplay(const ParsedArgs& args);
 int runExport(const ParsedArgs& args);
+int runDemo(const ParsedArgs& args);
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/simulated_participant.h"
 #include "game/registry.h"
 #include "protocol/records.h"
 #include "protocol/session_store.h"
@@ -29,24 +30,42 @@ protocol::InputRecord toRecord(std::int64_t frame, double time, const game::Fram
     return r;
 }
 
+namespace {
+
+// The seed after "NAME:" in a player spec, or `fallback` for the bare name.
+std::uint64_t playerSeed(const std::string& player, std::size_t nameLength, std::uint64_t fallback) {
+    if (player.size() <= nameLength) return fallback;
+    const std::string name = player.substr(0, nameLength - 1);
+    const std::string digits = player.substr(nameLength);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)
+        throw std::invalid_argument("--player " + name + ":SEED needs a whole number, got '" + digits + "'");
+    return std::stoull(digits);
+}
+
+}  // namespace
+
+bool isSimulatedParticipant(const std::string& player) { return player == "sim" || player.rfind("sim:", 0) == 0; }
+
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
-                                         const game::Study& study, const game::DisplaySize& display) {
-    if (player == "bot" || player.rfind("bot:", 0) == 0) {
-        std::uint64_t botSeed = sessionSeed;
-        if (player.size() > 4) {
-            const std::string digits = player.substr(4);
-            if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)
-                throw std::invalid_argument("--player bot:SEED needs a whole number, got '" + digits + "'");
-            botSeed = std::stoull(digits);
-        }
-        return study.newBot(botSeed, display);
+                                         const game::Study& study, const game::DisplaySize& display,
+                                         const PerceptionSetup* perception) {
+    if (player == "bot" || player.rfind("bot:", 0) == 0) return study.newBot(playerSeed(player, 4, sessionSeed), display);
+    if (isSimulatedParticipant(player)) {
+        const std::uint64_t seed = playerSeed(player, 4, sessionSeed);
+        if (perception == nullptr)
+            throw std::invalid_argument("--player " + player + " (the simulated participant) runs headless only: add --headless");
+        renderer::ContextOptions options;
+        options.backend = perception->backend;
+        options.visible = false;
+        return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display,
+                                                  perception->dataPaths, seed);
     }
     if (player.rfind("replay:", 0) == 0) {
         auto source = protocol::readSession(player.substr(7));
         if (source.inputs.empty()) throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
         return std::make_unique<game::RecordedPlayer>(std::move(source.inputs));
     }
-    throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED or replay:SESSION)");
+    throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)");
 }
 
 protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
@@ -120,10 +139,13 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
     const game::DisplaySize display{run.displayWidth, run.displayHeight};
-    const auto player = makePlayer(run.player, run.seed, *study, display);
+    const PerceptionSetup perception{run.dataPaths, run.glBackend};
+    const auto player = makePlayer(run.player, run.seed, *study, display, &perception);
 
-    auto writer =
-        protocol::SessionWriter::create(run.resultsDir, sessionHeader(*study, run.participant, run.seed, run.player, display));
+    protocol::SessionHeader header = sessionHeader(*study, run.participant, run.seed, run.player, display);
+    // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
+    if (const auto* sees = dynamic_cast<const PerceptualPlayer*>(player.get())) header.glRenderer = sees->glDescription();
+    auto writer = protocol::SessionWriter::create(run.resultsDir, header);
 
     const auto game = study->newGame(run.seed, display);
     SessionCommits commits(writer, study->refreshHz(), progress);
