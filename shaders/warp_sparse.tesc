@@ -1,6 +1,6 @@
 #version 410 core
 // Sparse mesh, tessellation control: a patch where the patch flags pass found a depth (or
-// velocity) discontinuity is subdivided back to full resolution in both directions, so its
+// velocity) discontinuity that this warp opens (warp_patch_flags.frag) is subdivided back to full resolution in both directions, so its
 // triangles are the full mesh's, one pixel square, and the disocclusion fix (warp_fix.geom)
 // finds the same sheets in it as on the full mesh. Subdividing only along the jump, as
 // before issue 12, left one-pixel-wide slivers a whole patch long across it: the fix cannot
@@ -18,7 +18,7 @@ layout(vertices = 4) out;
 in vec2 vOrigin[];
 patch out vec2 tcOrigin;
 
-uniform sampler2D uPatchFlags;  // r: a discontinuity between neighbouring pixels of the patch
+uniform sampler2D uPatchFlags;  // r: a jump between neighbouring pixels of the patch that the warp opens
 uniform int uPatchSize;
 uniform ivec2 uPatchCount;
 

@@ -41,7 +41,7 @@ public:
             stages.push_back({GL_TESS_EVALUATION_SHADER, "warp_sparse.tese", common});
             flagsProgram_ = gl::buildProgram({paths.shaderDir,
                                               {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                               {GL_FRAGMENT_SHADER, "warp_patch_flags.frag"}},
+                                               {GL_FRAGMENT_SHADER, "warp_patch_flags.frag", common}},
                                               {}});
         }
         std::vector<std::string> defines;
@@ -82,8 +82,22 @@ public:
         const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
         const glm::mat4 targetInverse = glm::mat4(glm::inverse(glm::dmat4(targetViewProjection)));
         const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
+        // What warp_common.glsl needs, for the mesh and for the patch flags alike.
+        const auto setWarpUniforms = [&](const gl::Program& program) {
+            auto u = [&](const char* name) { return gl::uniform(program, name); };
+            bindTexture(program, "uSourceDepth", 0, src.depth);
+            bindTexture(program, "uSourceVelocity", 1, src.velocity);
+            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceInverse));
+            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
+            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
+            glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
+            glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
+            glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
+            glUniform1f(u("uDt"), dt);
+            glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
+        };
 
-        if (settings_.patchSize != 0) classifyPatches(source, sw, sh);
+        if (settings_.patchSize != 0) classifyPatches(source, sw, sh, setWarpUniforms);
 
         auto& target = out.buffer().impl();
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
@@ -102,18 +116,9 @@ public:
         glDepthMask(GL_TRUE);
         glUseProgram(program_.id());
         auto u = [&](const char* name) { return gl::uniform(program_, name); };
-        bindTexture(program_, "uSourceDepth", 0, src.depth);
-        bindTexture(program_, "uSourceVelocity", 1, src.velocity);
+        setWarpUniforms(program_);
         bindTexture(program_, "uSourceColour", 2, src.colour);
         bindTexture(program_, "uSourceIds", 3, src.ids);
-        glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceInverse));
-        glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
-        glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
-        glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
-        glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
-        glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
-        glUniform1f(u("uDt"), dt);
-        glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
         glUniform1f(u("uGrazingCosine"), std::cos(glm::radians(settings_.sheetAngleDeg)));
         glUniform1f(u("uSheetDepthRatio"), settings_.sheetDepthRatio);
 
@@ -211,9 +216,11 @@ private:
         return fullMesh_.count;
     }
 
-    // One texel per patch saying where the depth (or velocity) jumps; the tessellation
-    // control stage reads it for the patch and its four neighbours.
-    void classifyPatches(const SourceFrame& source, int w, int h) {
+    // One texel per patch saying where the depth (or velocity) jumps and this warp moves the
+    // patch's pixels apart; the tessellation control stage reads it for the patch and its four
+    // neighbours. `setWarpUniforms` gives the pass the warp's own (warp_common.glsl).
+    template <typename SetWarpUniforms>
+    void classifyPatches(const SourceFrame& source, int w, int h, const SetWarpUniforms& setWarpUniforms) {
         const int n = settings_.patchSize;
         const int px = (w + 1 + n - 1) / n, py = (h + 1 + n - 1) / n;  // cover pixels -1 .. w
         if (px != patchCountX_ || py != patchCountY_) {
@@ -230,14 +237,11 @@ private:
             if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
                 throw gl::GlError(info_.name + ": the patch-flag framebuffer is incomplete");
         }
-        const auto& src = source.gbuffer.impl();
         glBindFramebuffer(GL_FRAMEBUFFER, flagsFramebuffer_.id());
         glViewport(0, 0, px, py);
         glDisable(GL_DEPTH_TEST);
         glUseProgram(flagsProgram_.id());
-        bindTexture(flagsProgram_, "uSourceDepth", 0, src.depth);
-        bindTexture(flagsProgram_, "uSourceVelocity", 1, src.velocity);
-        glUniform2f(gl::uniform(flagsProgram_, "uSize"), static_cast<float>(w), static_cast<float>(h));
+        setWarpUniforms(flagsProgram_);
         glUniform1i(gl::uniform(flagsProgram_, "uPatchSize"), n);
         glUniform1f(gl::uniform(flagsProgram_, "uNear"), source.depicts.camera.nearPlane);
         glUniform1f(gl::uniform(flagsProgram_, "uFar"), source.depicts.camera.farPlane);
