@@ -131,6 +131,12 @@ ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& ar
     return parsed;
 }
 
+std::string shellQuoted(const std::string& text) {
+    std::string quoted = "'";
+    for (char ch : text) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return quoted + "'";
+}
+
 std::string helpText(const CommandSpec& spec) {
     std::ostringstream out;
     out << "usage: " << spec.usage << "\n\n" << spec.summary << "\n";

@@ -65,4 +65,8 @@ long long wholeInteger(const std::string& text, const std::string& what);
 ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args);
 std::string helpText(const CommandSpec& spec);
 
+// `text` as one POSIX shell word, single-quoted, for the commands warplab hands to the shell
+// (the bench's plot, the demo's analysis).
+std::string shellQuoted(const std::string& text);
+
 }  // namespace warplab::app

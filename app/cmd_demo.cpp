@@ -19,12 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-    return q + "'";
-}
-
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -108,8 +102,8 @@ int runDemo(const ParsedArgs& args) {
     ExportOptions options;
     exportResults(results.string(), exportDir, options, std::cerr);
     const std::string reportDir = (fs::path(out) / "report").string();
-    const std::string command = shellQuote(paths.analysisDir + "/analyze") + " " + shellQuote(exportDir) +
-                                " --out " + shellQuote(reportDir) + " 1>&2";
+    const std::string command = shellQuoted(paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) +
+                                " --out " + shellQuoted(reportDir) + " 1>&2";
     std::cerr << "demo: analysing " << exportDir << "\n";
     const int status = std::system(command.c_str());
     if (status != 0) {

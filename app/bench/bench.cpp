@@ -17,6 +17,7 @@
 #include <stdexcept>
 
 #include "app/bench/ground_truth.h"
+#include "app/cli.h"
 #include "game/sequences.h"
 #include "renderer/timing.h"
 #include "renderer/upconvert.h"
@@ -101,7 +102,6 @@ public:
         return frame;
     }
     void giveBack(std::unique_ptr<renderer::SourceFrame> frame) { free_.push_back(std::move(frame)); }
-    renderer::GuardBand band() const { return band_; }
 
 private:
     int width_, height_;
@@ -145,11 +145,7 @@ std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, 
     const char* python = "/usr/bin/python3";
     if (!std::filesystem::exists(script)) return "not written: " + script + " is missing";
     if (!std::filesystem::exists(python)) return "not written: /usr/bin/python3 is missing (scripts/install-deps.sh)";
-    auto quote = [](const std::string& s) {
-        std::string q = "'";
-        for (char ch : s) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
-        return q + "'";
-    };
+    const auto quote = app::shellQuoted;
     const std::string command = std::string(python) + " " + quote(script) + " " + quote(csv) + " " + quote(png) +
                                 " --title " + quote(title) + " 2>&1";
     std::string output;

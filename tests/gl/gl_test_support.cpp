@@ -1,5 +1,6 @@
 #include "gl/gl_test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -69,6 +70,17 @@ game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, doubl
     config.seed = seed;
     config.targetSpeed = speed;
     return game::ShooterScene(config);
+}
+
+int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth) {
+    int black = 0;
+    for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x) {
+            const std::uint8_t* s = shown.at(x, y);
+            const std::uint8_t* t = truth.at(x, y);
+            black += std::max({s[0], s[1], s[2]}) < 8 && std::max({t[0], t[1], t[2]}) >= 32;
+        }
+    return black;
 }
 
 scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point) {

@@ -39,6 +39,12 @@ renderer::DisplayImages produceFrame(const std::string& method, const renderer::
 // The shooter scene sized for a width x height image, target spawned from `seed`.
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);
 
+// Pixels left black by a method where the ground truth is not. "Black" robustly: a method's
+// colour is a source colour or a blend of two and the scene is almost never black, so a black
+// pixel (every channel below 8) where the truth is not dark (some channel 32 or more) is one
+// nothing was drawn into.
+int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth);
+
 // Camera turned so the reticle (image centre) is on `point`.
 scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point);
 

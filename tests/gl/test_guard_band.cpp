@@ -37,16 +37,6 @@ double stripError(const renderer::ImageRGBA8& a, const renderer::ImageRGBA8& b, 
     return sum / (3.0 * a.height * (x1 - x0));
 }
 
-int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth) {
-    int n = 0;
-    for (std::size_t i = 0; i + 3 < shown.pixels.size(); i += 4) {
-        const bool black = shown.pixels[i] + shown.pixels[i + 1] + shown.pixels[i + 2] == 0;
-        const bool truthBlack = truth.pixels[i] + truth.pixels[i + 1] + truth.pixels[i + 2] == 0;
-        n += black && !truthBlack;
-    }
-    return n;
-}
-
 // The widened camera keeps the pixel pitch: a point shown at display pixel (x, y) lands at
 // (x + band.x, y + band.y) of the banded image. Checked through the projection matrices, the
 // way the renderer builds them (float, aspect = width / height).
@@ -160,7 +150,7 @@ TEST(GuardBand, ATurnShowsRealContentWhereTheSourceEnded) {
             for (int x = x0; x < w; ++x)
                 covered += std::isfinite(withBand.correspondence.data[4 * (static_cast<std::size_t>(y) * w + x)]);
         EXPECT_EQ(covered, h * (w - x0)) << method;
-        EXPECT_EQ(blackWhereTruthIsNot(withBand.colour, truth.images.colour), 0) << method;
+        EXPECT_EQ(testing::blackWhereTruthIsNot(withBand.colour, truth.images.colour), 0) << method;
     }
 }
 
@@ -182,7 +172,7 @@ TEST(GuardBand, BeyondTheBandTheEdgeIsClampedNeverBlack) {
         int meshCovered = 0;
         for (std::size_t i = 0; i < shown.ids.data.size(); ++i) meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
         EXPECT_LT(meshCovered, w * h * 95 / 100) << method << ": a 25 degree turn should pass the band";
-        EXPECT_EQ(blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
+        EXPECT_EQ(testing::blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
     }
 }
 

@@ -271,20 +271,6 @@ TEST(Warp, SparseMeshesWarpLargeFramesAsWellAsTheFullMesh) {
     }
 }
 
-// "Left black" robustly: the warp's colour is always a source colour or a blend of two, and the
-// scene is almost never black, so a black pixel (every channel below 8) where the truth is
-// not dark (some channel 32 or more) is one nothing was drawn into.
-int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth) {
-    int black = 0;
-    for (int y = 0; y < shown.height; ++y)
-        for (int x = 0; x < shown.width; ++x) {
-            const std::uint8_t* s = shown.at(x, y);
-            const std::uint8_t* t = truth.at(x, y);
-            black += std::max({s[0], s[1], s[2]}) < 8 && std::max({t[0], t[1], t[2]}) >= 32;
-        }
-    return black;
-}
-
 // A few pixels may still be black where the truth is not: a dark source pixel sampled where a
 // bright one belongs. Measured: at most 3 of 20736 (the sky case) with the border fill.
 constexpr double kBlackShare = 0.001;
@@ -327,7 +313,7 @@ void expectBounded(const std::string& label, const scene::FrameDescription& from
                                              << " pixels visible in the source are covered";
         // ...and nothing is left black, including what turned into view (issue 12): the clear
         // colour is black, the scene has hardly any black, so count black where the truth is not dark.
-        const int black = blackWhereTruthIsNot(shown.colour, truth.images.colour);
+        const int black = testing::blackWhereTruthIsNot(shown.colour, truth.images.colour);
         EXPECT_LE(black, kBlackShare * double(coords.size())) << label << " " << method << ": " << black << " black pixels";
     }
 }
@@ -424,7 +410,7 @@ TEST(Warp, CameraTurnLeavesNoPixelBlack) {
     turned.camera.yaw = glm::radians(3.0f);
     const auto source = testing::renderSource(still, w, h);
     const auto truth = testing::renderSource(turned, w, h);
-    ASSERT_LE(blackWhereTruthIsNot(source.images.colour, truth.images.colour), w * h / 1000);
+    ASSERT_LE(testing::blackWhereTruthIsNot(source.images.colour, truth.images.colour), w * h / 1000);
     for (const std::string method : {"warp-full", "warp-nofix", "warp-sparse8", "warp-sparse16"}) {
         renderer::UpconversionInput input;
         input.displayTime = 0.0;
@@ -435,7 +421,7 @@ TEST(Warp, CameraTurnLeavesNoPixelBlack) {
         for (std::size_t i = 0; i < shown.ids.data.size(); ++i) meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
         // The strip that turned into view (about 3/60 of the width) is the fill's, not the mesh's.
         EXPECT_LT(meshCovered, w * h * 97 / 100) << method << ": the turn should bring uncovered pixels into view";
-        EXPECT_EQ(blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
+        EXPECT_EQ(testing::blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
         const double db = renderer::psnr(shown.colour, truth.images.colour);
         // Floor: measured 26.1 dB (warp-full, warp-sparse16) to 26.7 dB (warp-nofix) on llvmpipe;
         // with the band left black it was about 20 dB. 25 dB leaves a margin for another rasteriser's
