@@ -344,8 +344,11 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     }
     glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
     glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
-    const auto drawScene = [&] {
-        m.geometry.draw(frame.scene, [&](const SceneGeometry::Item& item) {
+    // Each pass draws its spheres as finely as its own pixels need: the 1x pass as any render
+    // of this size does (so a flow pass of the same frame draws the same triangles), the
+    // samples as a render N times the size.
+    const auto drawScene = [&](int passHeight) {
+        m.geometry.draw(frame.scene, frame.camera, passHeight, [&](const SceneGeometry::Item& item) {
             const scene::ObjectState* o = item.object;
             const glm::mat4 there = o == nullptr || flowTo == nullptr
                                         ? item.model
@@ -381,7 +384,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glDrawBuffers(4, four);
         m.geometry.drawSky(m.program);
     }
-    drawScene();
+    drawScene(g.height);
     if (flowTo != nullptr) {
         const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                 GBuffer::Impl::kVelocityAttachment};
@@ -401,7 +404,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glViewport(0, 0, m.samples.width, m.samples.height);
         glClearBufferfv(GL_COLOR, 0, kSky);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        drawScene();
+        drawScene(m.samples.height);
         resolveSamples(g);
     }
     glBindVertexArray(0);

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include <tiny_obj_loader.h>
@@ -143,6 +144,13 @@ MeshData makeUnitSphere(int slices, int stacks) {
     }
     computeBounds(mesh);
     return mesh;
+}
+
+int sphereSlicesFor(float radiusPixels) {
+    constexpr double kMaxShortfallPixels = 0.125;
+    for (int slices : kSphereSlices)
+        if (radiusPixels * (1.0 - std::cos(M_PI / slices)) <= kMaxShortfallPixels) return slices;
+    return kSphereSlices[std::size(kSphereSlices) - 1];
 }
 
 MeshData makeUnitBox() {

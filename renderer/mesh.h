@@ -37,4 +37,14 @@ MeshData loadObj(const std::string& path);
 MeshData makeUnitSphere(int slices, int stacks);  // radius 1, centred at the origin
 MeshData makeUnitBox();                           // half extents 1, centred at the origin
 
+// The sphere's tessellations, coarsest first: `slices` around, slices / 2 stacks.
+inline constexpr int kSphereSlices[] = {8, 16, 32, 64};
+// The coarsest of kSphereSlices whose silhouette, for a sphere `radiusPixels` in radius on
+// screen, lies within an eighth of a pixel of the true sphere's (its vertices are on the sphere,
+// so the polygon falls short by radius * (1 - cos(pi / slices)) at most); the finest beyond
+// that. Its id mask, sampled at pixel centres, then differs from the true sphere's only where a
+// centre lies that close to the edge. Spheres a few pixels across -- the simulated participant's
+// small percepts, distant targets -- cost 128 or 512 triangles, not 4096.
+int sphereSlicesFor(float radiusPixels);
+
 }  // namespace warplab::renderer

@@ -5,6 +5,7 @@
 #include "renderer/gl/check.h"
 #include "renderer/gl/program.h"
 #include "renderer/mesh.h"
+#include "scene/camera.h"
 #include "scene/motion.h"
 
 namespace warplab::renderer {
@@ -37,9 +38,10 @@ GpuMesh upload(const MeshData& mesh) {
 
 SceneGeometry::SceneGeometry(const DataPaths& paths)
     : hangar_(upload(loadObj(paths.assetDir + "/hangar.obj"))),
-      sphere_(upload(makeUnitSphere(64, 32))),
       box_(upload(makeUnitBox())),
-      empty_(gl::VertexArray::create()) {}
+      empty_(gl::VertexArray::create()) {
+    for (int slices : kSphereSlices) spheres_.push_back(upload(makeUnitSphere(slices, slices / 2)));
+}
 
 void SceneGeometry::drawSky(const gl::Program& program) const {
     glDisable(GL_DEPTH_TEST);
@@ -55,7 +57,8 @@ void SceneGeometry::drawSky(const gl::Program& program) const {
     glUniform1i(gl::uniform(program, "uSky"), 0);
 }
 
-void SceneGeometry::draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const {
+void SceneGeometry::draw(const scene::SceneSnapshot& scene, const scene::CameraState& camera, int height,
+                         const std::function<void(const Item&)>& prepare) const {
     auto drawMesh = [](const GpuMesh& mesh) {
         glBindVertexArray(mesh.vao.id());
         glDrawArrays(GL_TRIANGLES, 0, mesh.vertexCount);
@@ -64,7 +67,16 @@ void SceneGeometry::draw(const scene::SceneSnapshot& scene, const std::function<
     drawMesh(hangar_);
     for (const auto& object : scene.objects) {
         prepare({object.id, scene::modelMatrix(object), &object});
-        drawMesh(object.shape == scene::Shape::Sphere ? sphere_ : box_);
+        if (object.shape == scene::Shape::Sphere) {
+            const float onScreen =
+                scene::projectedSphereRadiusPixels(camera, height, object.position, object.halfExtents.x);
+            const int slices = sphereSlicesFor(onScreen);
+            std::size_t level = 0;
+            while (kSphereSlices[level] != slices) ++level;
+            drawMesh(spheres_[level]);
+        } else {
+            drawMesh(box_);
+        }
     }
     glBindVertexArray(0);
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -35,7 +36,11 @@ public:
     };
     // Draws the hangar, then every object of `scene`, calling `prepare` before each draw so
     // the caller can set its program's per-draw uniforms. The caller binds program and target.
-    void draw(const scene::SceneSnapshot& scene, const std::function<void(const Item&)>& prepare) const;
+    // `camera` and `height` (the target's rows) are what the scene is seen with: each sphere is
+    // drawn with the tessellation its size on screen needs (sphereSlicesFor), so every pass
+    // that draws one frame's scene with one camera at one size draws the same triangles.
+    void draw(const scene::SceneSnapshot& scene, const scene::CameraState& camera, int height,
+              const std::function<void(const Item&)>& prepare) const;
     // For passes that give pixels with no surface a value too (flow fields, scene-assisted
     // reprojection): one far-plane triangle over the whole target, drawn with `program`'s
     // uSky = 1 and uObjectId = none, depth test and writes off; then depth testing is restored
@@ -43,7 +48,8 @@ public:
     void drawSky(const gl::Program& program) const;
 
 private:
-    GpuMesh hangar_, sphere_, box_;
+    GpuMesh hangar_, box_;
+    std::vector<GpuMesh> spheres_;  // one per kSphereSlices, coarsest first
     gl::VertexArray empty_;  // the sky triangle's positions come from gl_VertexID
 };
 

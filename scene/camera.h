@@ -22,4 +22,10 @@ CameraState widenedByRows(const CameraState& camera, int height, int marginY);
 // (x, y in [-1, 1], y up). (0, 0) is the reticle.
 glm::vec3 rayDirection(const CameraState& camera, float aspect, glm::vec2 ndc);
 
+// The long semi-axis, in pixels of an image `height` rows tall, of the ellipse that `camera`
+// projects the sphere at `centre` with `radius` to: exact for the cone of rays that touch it,
+// so it grows off the view axis as perspective stretches the sphere. 0 for a sphere wholly
+// behind the eye; infinity for one that reaches the eye's side plane or holds the eye.
+float projectedSphereRadiusPixels(const CameraState& camera, int height, glm::vec3 centre, float radius);
+
 }  // namespace warplab::scene

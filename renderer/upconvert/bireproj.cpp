@@ -217,7 +217,7 @@ private:
 
         geometry_.drawSky(flowProgram_);  // the sky first, everywhere; then the scene over it
         const GLint model = u("uModel"), otherModel = u("uOtherModel"), objectId = u("uObjectId");
-        geometry_.draw(from.scene, [&](const SceneGeometry::Item& item) {
+        geometry_.draw(from.scene, from.camera, g.height, [&](const SceneGeometry::Item& item) {
             const glm::mat4 there =
                 item.object == nullptr ? item.model
                                        : scene::modelMatrix(scene::objectAt(*item.object, from.scene.time, to.scene));

@@ -90,7 +90,7 @@ public:
         geometry_.drawSky(program_);  // the sky everywhere first; then the scene's surfaces over it
         const GLint model = u("uModel"), model0 = u("uModel0"), model1 = u("uModel1"), objectId = u("uObjectId");
         const double now = input.displayTime;
-        geometry_.draw(*input.scene, [&](const SceneGeometry::Item& item) {
+        geometry_.draw(*input.scene, input.camera, target.height, [&](const SceneGeometry::Item& item) {
             glm::mat4 m0 = item.model, m1 = item.model;
             if (item.object != nullptr) {
                 m0 = scene::modelMatrix(scene::objectAt(*item.object, now, a.depicts.scene));

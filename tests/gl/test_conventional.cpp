@@ -103,8 +103,10 @@ double pointTriangleDistance(const glm::dvec3& p, const glm::dvec3& a, const glm
 // triangles, or on the target sphere. Tolerance: one step of 32-bit depth near 1 is 2^-24,
 // worth d^2 * 2^-24 / near = 1.2e-6 d^2 metres at distance d (near = 0.05 m); the rasteriser's
 // interpolated depth may be off by a couple of steps, so allow two (5 mm at 45 m), plus 1 mm
-// for the rest of the arithmetic. The sphere is drawn as a 64x32 polygon whose faces lie up to
-// r (1 - cos(pi/32)) = 1.7 mm inside the true sphere.
+// for the rest of the arithmetic. The sphere is drawn as a polygon of N slices and N / 2 stacks
+// (N as its size on screen asks, renderer::sphereSlicesFor) whose vertices lie on the true
+// sphere; its triangles' legs span 2 pi / N, so no point of one lies deeper inside than its
+// circumcircle's centre, r (1 - cos(pi sqrt(2) / N)): 0.8 mm at N = 64, 13 mm at N = 16.
 TEST(ConventionalRenderer, DepthUnprojectsOntoTheSurfaceItCameFrom) {
     const renderer::MeshData hangar = renderer::loadObj(std::string(WARPLAB_SOURCE_DIR) + "/assets/hangar.obj");
     const auto shooter = shooterScene(kW, kH, 11);
@@ -116,11 +118,18 @@ TEST(ConventionalRenderer, DepthUnprojectsOntoTheSurfaceItCameFrom) {
     turned.yaw = glm::radians(-90.0f);
     turned.pitch = glm::radians(-20.0f);
     cameras.push_back(turned);
-
     const auto& target = frame.scene.objects.front();
+    // Close enough that the target is drawn with more than the coarsest polygon.
+    scene::CameraState close = frame.camera;
+    close.eye = target.position + 3.0f * glm::normalize(frame.camera.eye - target.position);
+    cameras.push_back(aimedAt(close, target.position));
+
     for (const auto& camera : cameras) {
         frame.camera = camera;
         const auto g = renderFrame(frame, kW, kH);
+        const int slices = renderer::sphereSlicesFor(
+            scene::projectedSphereRadiusPixels(camera, kH, target.position, target.halfExtents.x));
+        const double inside = target.halfExtents.x * (1.0 - std::cos(M_PI * std::sqrt(2.0) / slices));
         int checked = 0;
         for (int y = 0; y < kH; ++y) {
             for (int x = 0; x < kW; ++x) {
@@ -137,7 +146,8 @@ TEST(ConventionalRenderer, DepthUnprojectsOntoTheSurfaceItCameFrom) {
                 const double tolerance = 1e-3 + 2.4e-6 * d * d;
                 if (id == scene::kIdTarget) {
                     const double off = glm::length(p - glm::dvec3(target.position)) - target.halfExtents.x;
-                    EXPECT_NEAR(off, -0.0008, 0.0010 + tolerance) << "target pixel " << x << "," << y;
+                    EXPECT_LE(off, tolerance) << "target pixel " << x << "," << y;
+                    EXPECT_GE(off, -inside - tolerance) << "target pixel " << x << "," << y;
                 } else {
                     ASSERT_EQ(id, scene::kIdHangar);
                     double best = 1e30;

@@ -161,9 +161,12 @@ TEST(SimulatedParticipant, EyeFindsTheFallingSpheresAndTellsGreenFromRed) {
             const app::SeenObject* seen = nullptr;
             for (const auto& s : percept.objects)
                 if (s.id == o.id) seen = &s;
-            // Spheres hide each other: judge only those seen whole (their area the exact image's).
+            // Spheres hide each other: judge only those seen whole, their area-equivalent radius
+            // within 0.55 percept px of the exact image's. (Seen whole, 3 to 5 px in radius, they
+            // measure 0.3 to 0.5 px short -- pixel centres at the edge, and a polygon up to an
+            // eighth of a pixel inside the sphere; at 0.6, spheres partly hidden slip in.)
             const double radiusPx = imageRadiusPx(screen, centre, o.halfExtents.x);
-            if (!truth || seen == nullptr || std::abs(seen->radiusPx - radiusPx) > 0.5 * perceptPx) continue;
+            if (!truth || seen == nullptr || std::abs(seen->radiusPx - radiusPx) > 0.55 * perceptPx) continue;
             EXPECT_LE(glm::length(seen->centre - *truth) / perceptPx, kCentroidTolerancePx) << "sphere " << o.id;
             worst = std::max(worst, glm::length(seen->centre - *truth) / perceptPx);
             EXPECT_EQ(seen->greenish(), o.colour.g > o.colour.r) << "sphere " << o.id;
