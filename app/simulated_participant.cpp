@@ -289,7 +289,10 @@ void SimulatedParticipant::remember(const Percept& percept) {
     const bool reticle = percept.pointer == game::PointerKind::Reticle;
     if (reticle) {
         s.picture = percept.picture;
-        if (!home_ && s.valid) home_ = percept.picture;  // the view it starts with, hand at rest
+        if (!home_ && s.valid) {  // the view it starts with, and where its hand was then
+            home_ = percept.picture;
+            homeHand_ = hand_;
+        }
         // The view turns as the scene moves in the picture: a frame held on screen is a view
         // that stands still, whatever the hand does meanwhile. Where the pictures cannot be
         // lined up (a new scene), the hand's own turn stands in.
@@ -398,12 +401,19 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     }
     homeSeen_.reset();
     std::vector<Sample> samples;
+    const double maxSeenSpeed = handUnitsPerRadian() * glm::radians(params_.maxSeenSpeedDegPerS);
     for (const auto& s : sightings_) {
         if (s.time > view->time) break;
         if (s.time < view->time - params_.motionWindowS - 1e-9) continue;
-        // A frame held on screen shows nothing new: motion is judged from the changes seen.
-        if (const Thing* t = sees(s, *target_); t && (samples.empty() || samples.back().position != t->where))
-            samples.push_back({s.time, t->where});
+        // A frame held on screen shows nothing new: motion is judged from the changes seen. A
+        // change faster than any target moves is a jump, not motion -- a new target, or the
+        // view misjudged (the hall repeats itself) -- and the motion is judged afresh from it.
+        const Thing* t = sees(s, *target_);
+        if (!t || (!samples.empty() && samples.back().position == t->where)) continue;
+        if (!samples.empty() && glm::length(t->where - samples.back().position) >
+                                    maxSeenSpeed * (s.time - samples.back().time))
+            samples.clear();
+        samples.push_back({s.time, t->where});
     }
     MotionEstimate seen = estimateMotion(samples, params_.perceivesAcceleration, 0.5 * params_.motionWindowS);
     const double maxAcceleration = handUnitsPerRadian() * glm::radians(params_.maxAccelerationDegPerS2);
@@ -439,8 +449,12 @@ glm::dvec2 SimulatedParticipant::homeward(const Sighting& view, glm::dvec2 aim, 
         lastHomeLook_ = now;
         const auto shift = whereViewIs(*home_, view.picture);
         if (!shift) {
+            // Too far off to recognise it: back by how far the hand has turned since (the view
+            // turns with the hand, but for the pitch the game stops at its limit).
             homeSeen_.reset();
-            return glm::dvec2(0.0);
+            const glm::dvec2 back = homeHand_ - hand_;
+            return glm::length(back) <= glm::radians(params_.homeWithinDeg) ? glm::dvec2(0.0)
+                                                                           : params_.correctionPerS * back;
         }
         homeSeen_ = view.view + offsetFromPointer(knowledge_, view.pointer, view.pointerAt, view.pointerAt + *shift);
     }
@@ -591,7 +605,7 @@ Percept Eye::see(const game::ShownFrame& shown) {
     const bool same = haveImage_ && (shown.frozen || (kind == game::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
     if (!same) {
         maker_.make(shown, frame_);
-        const renderer::DisplayImages images = renderer::readBack(frame_);
+        const renderer::DisplayImages images = renderer::readBack(frame_, false);
         const glm::dvec2 toDisplay(static_cast<double>(display_.width) / width_,
                                    static_cast<double>(display_.height) / height_);
         lastObjects_ = findObjects(images.ids, images.colour, toDisplay);

@@ -144,6 +144,10 @@ struct ParticipantParams {
     // as people do (an internal model of gravity: McIntyre, Zago, Berthoz & Lacquaniti 2001,
     // Nat. Neurosci. 4:693-694) -- once the positions span half the window; a line before.
     bool perceivesAcceleration = true;
+    // A seen change of place faster than this, in degrees of view per second, is a jump, not
+    // motion (a new target where the last one was, or the view misjudged). Model choice: five
+    // times the upper limit of smooth pursuit below, far above any target's speed.
+    double maxSeenSpeedDegPerS = 500.0;
     // ... of gravity-like size: an acceleration judged larger (a bounce inside the window, a
     // jerky low-rate picture) is taken as this much. Model choice: gravity seen from the
     // click game's camera is about 70 deg/s^2.
@@ -285,7 +289,8 @@ private:
     std::optional<std::uint32_t> target_;
     double aimingSince_ = 0.0;
     std::map<std::uint32_t, double> clicked_;
-    std::optional<Thumbnail> home_;  // the view it started with
+    std::optional<Thumbnail> home_;  // the view it started with ...
+    glm::dvec2 homeHand_{0.0};       // ... and where its hand was then
     // Reticle: the direction of the view as the frames show it, followed by how far the scene
     // has moved in the picture since a key frame.
     glm::dvec2 view_{0.0};

@@ -70,7 +70,8 @@ struct DisplayImages {
     ImageU32 ids;             // the object each displayed pixel shows (for scoring cross-checks)
     ImageF correspondence;    // 4 channels, see DisplayFrame
 };
-DisplayImages readBack(const DisplayFrame& frame);
+// `correspondence` false leaves it empty: what a viewer sees is colour and objects only.
+DisplayImages readBack(const DisplayFrame& frame, bool correspondence = true);
 
 struct UpconversionInput {
     double displayTime = 0.0;

@@ -115,9 +115,9 @@ void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const M
         throw std::invalid_argument(info.name + ": source and display sizes differ");
 }
 
-DisplayImages readBack(const DisplayFrame& frame) {
+DisplayImages readBack(const DisplayFrame& frame, bool correspondence) {
     const auto& g = frame.buffer().impl();
-    return {readColourAttachment(g), readIdAttachment(g), readVectorAttachment(g, 4)};
+    return {readColourAttachment(g), readIdAttachment(g), correspondence ? readVectorAttachment(g, 4) : ImageF{}};
 }
 
 }  // namespace warplab::renderer

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -336,6 +337,78 @@ TEST(SimulatedParticipant, ALongerReactionTimeLowersItsHitRate) {
     const double slowRate = hitRate(*study, "conv60", 12, 12, slow);
     // Measured: 12/12 against 5/12 (20 targets: 1.00 against 0.40).
     EXPECT_LT(slowRate, quickRate - 0.3) << "hit rate " << quickRate << " without delay, " << slowRate << " with 0.4 s";
+}
+
+// A reticle game made by hand: targets at fixed directions in the world, the view turned by the
+// participant's own counts, and the percepts it would get -- the target where the view puts it,
+// the pictures left empty, so the view can only be judged by the hand's own turn.
+struct HandMadeShooter {
+    app::TaskKnowledge knowledge;
+    double yaw = 0.0;  // where the view looks, radians (positive: right)
+    HandMadeShooter() {
+        knowledge.display = kDisplay;
+        knowledge.refreshHz = 60.0;
+        knowledge.radiansPerCount = 0.0022;
+    }
+    double focal() const { return 0.5 * kDisplay.height / std::tan(glm::radians(knowledge.verticalFovDeg) / 2.0); }
+    app::Percept see(double time, std::optional<double> targetYaw) const {
+        app::Percept p;
+        p.time = time;
+        p.pointer = game::PointerKind::Reticle;
+        p.pointerAt = {kDisplay.width * 0.5, kDisplay.height * 0.5};
+        if (targetYaw && std::abs(*targetYaw - yaw) < 0.9) {
+            const glm::dvec2 at(kDisplay.width * 0.5 + focal() * std::tan(*targetYaw - yaw), kDisplay.height * 0.5);
+            p.objects.push_back({scene::kIdTarget, at, 25.0, {0.9, 0.25, 0.15}, 40});
+        }
+        return p;
+    }
+    // Acts on the percept; returns the hand's turn this frame, radians per second.
+    double act(app::SimulatedParticipant& participant, const app::Percept& percept) {
+        const game::FrameInput input = participant.act(percept);
+        yaw += input.mouseDx * knowledge.radiansPerCount;
+        clicked = (input.buttons & game::kButtonLeft) != 0;
+        return std::abs(input.mouseDx) * knowledge.radiansPerCount * knowledge.refreshHz;
+    }
+    bool clicked = false;  // in the last act()
+};
+
+// A target that is suddenly elsewhere -- a new one where the last was shot, or the view
+// misjudged -- is a jump, not a speed: aiming at it must not fling the view (before, a 0.5 rad
+// jump between two frames was fitted as 30 rad/s and the view turned away for good).
+TEST(SimulatedParticipant, AJumpInWhatItSeesIsNotTakenForMotion) {
+    HandMadeShooter world;
+    app::ParticipantParams params = ideal();
+    params.reactionS = 0.2;
+    app::SimulatedParticipant participant(world.knowledge, params, 3);
+    double fastest = 0.0;
+    int clicksOnTarget = 0;
+    for (int frame = 0; frame < 120; ++frame) {
+        // Appearing at 1 s, drifting right at 0.2 rad/s (every frame shows it somewhere new),
+        // and two frames later suddenly half a radian to the left.
+        const double t = frame / 60.0;
+        const double targetYaw = (frame < 63 ? 0.1 : -0.4) + 0.2 * t;
+        const std::optional<double> shown = frame < 60 ? std::nullopt : std::optional<double>(targetYaw);
+        fastest = std::max(fastest, world.act(participant, world.see(t, shown)));
+        // On it at the next frame, where the press counts (the target's radius: 25 px, 0.027 rad).
+        clicksOnTarget += world.clicked && std::abs(world.yaw - (targetYaw + 0.2 / 60.0)) < 0.027;
+    }
+    // Following at 0.2 rad/s and closing the 0.5 rad seen at correctionPerS (8/s): 4.2 rad/s.
+    EXPECT_LE(fastest, 4.5);
+    EXPECT_EQ(clicksOnTarget, 1) << "it did not shoot the target where it jumped to";
+}
+
+// Turned far from where it started, with nothing in view and no picture it recognises, it turns
+// back by how far its hand has turned, to where targets appear.
+TEST(SimulatedParticipant, LostItTurnsBackByItsHandsOwnTurn) {
+    HandMadeShooter world;
+    app::SimulatedParticipant participant(world.knowledge, ideal(), 5);
+    int frame = 0;
+    for (; frame < 120 && world.yaw < 0.6; ++frame)  // a target draws it far right ...
+        world.act(participant, world.see(frame / 60.0, 0.7));
+    ASSERT_GE(world.yaw, 0.6);
+    const int gone = frame;
+    for (; frame < gone + 120; ++frame) world.act(participant, world.see(frame / 60.0, std::nullopt));  // ... and is gone
+    EXPECT_LE(std::abs(world.yaw), glm::radians(ideal().homeWithinDeg) + 0.01);
 }
 
 // ---------------------------------------------------------------------------------------------
