@@ -1,5 +1,7 @@
 #include "app/frame_maker.h"
 
+#include <algorithm>
+
 namespace warplab::app {
 
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY) {
@@ -39,9 +41,20 @@ FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
 
 FrameMaker::Kept FrameMaker::render(const scene::FrameDescription& frame, renderer::GuardBand band,
                                     const scene::FrameDescription* flowTo) {
-    Kept kept{std::make_unique<renderer::SourceFrame>(width_, height_, band), frame};
+    Kept kept{nullptr, frame};
+    const auto spare = std::find_if(spare_.begin(), spare_.end(), [&](const auto& f) { return f->band == band; });
+    if (spare != spare_.end()) {
+        kept.frame = std::move(*spare);
+        spare_.erase(spare);
+    } else {
+        kept.frame = std::make_unique<renderer::SourceFrame>(width_, height_, band);
+    }
     renderer::renderSource(conventional_, frame, *kept.frame, flowTo);
     return kept;
+}
+
+void FrameMaker::release(Kept& kept) {
+    if (kept.frame) spare_.push_back(std::move(kept.frame));
 }
 
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
@@ -55,11 +68,17 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
         // I-frame, drawn in the same pass (seed 000 section 5).
         const bool flow = upconversion == game::Upconversion::Bidirectional && !sources_.empty() &&
                           method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
-        sources_[shown.frame] = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
+        Kept kept = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
+        auto [it, fresh] = sources_.try_emplace(shown.frame);
+        if (!fresh) release(it->second);
+        it->second = std::move(kept);
     }
     // None older than what the frame on screen is made from will be needed again.
     if (!shown.blank)
-        while (!sources_.empty() && sources_.begin()->first < shown.sourceFrame) sources_.erase(sources_.begin());
+        while (!sources_.empty() && sources_.begin()->first < shown.sourceFrame) {
+            release(sources_.begin()->second);
+            sources_.erase(sources_.begin());
+        }
 }
 
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
@@ -75,7 +94,9 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
         it = sources_.emplace(shown.sourceFrame, render({shown.camera, shown.scene}, {})).first;
     } else if (!shows.info().acceptsGuardBand && !(it->second.frame->band == renderer::GuardBand{})) {
         // A warp mode's source shown by a method that takes no band (at a change of mode).
-        it->second = render(it->second.shows, {});
+        Kept plain = render(it->second.shows, {});
+        release(it->second);
+        it->second = std::move(plain);
     }
     renderer::UpconversionInput input;
     input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "game/game.h"
 #include "renderer/conventional.h"
@@ -46,6 +47,10 @@ private:
     int width_, height_;
     renderer::GuardBand warpBand_;  // for the sources of warp modes
     std::map<std::int64_t, Kept> sources_;  // by session frame
+    // Source frames no longer needed, for the next renders: a G-buffer made anew per render (its
+    // textures and framebuffer) costs llvmpipe more than drawing a small frame into it.
+    std::vector<std::unique_ptr<renderer::SourceFrame>> spare_;
+    void release(Kept& kept);
     std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
 };
 
