@@ -1,17 +1,35 @@
 // `warplab demo [--out DIR]`: the main job on a fresh machine -- a small simulated study run
 // headlessly end to end: simulated participants who see only the displayed frames play the
-// quick shooter and click-game protocols, every session is replayed and checked, exported,
-// and analysed into a report with figures and a sample-size plan for a real study.
+// demo protocols, every session is replayed and checked, exported, and analysed into a report
+// with figures and a sample-size plan for a real study.
+//
+// Sessions run in child processes, as many at once as --jobs says (the machine's cores by
+// default): a simulated participant's eye renders every displayed frame, and llvmpipe keeps
+// only about one and a half of two cores busy with such small frames. Each child is forked
+// before this process has made any GL context or thread, runs one session exactly as
+// `warplab run --headless` does, and writes its progress to DIR/logs/; the sessions do not
+// depend on one another or on the order they finish in.
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <deque>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
+#include <thread>
 
 #include "app/commands.h"
 #include "app/export/export.h"
 #include "app/session_runner.h"
+#include "game/registry.h"
 #include "renderer/mesh.h"
 
 namespace warplab::app {
@@ -32,6 +50,66 @@ bool holdsSessions(const fs::path& dir) {
     return false;
 }
 
+// --protocols: names of the protocols shipped in protocol/, or paths to protocol files.
+std::vector<fs::path> protocolPaths(const std::string& list, const fs::path& root) {
+    std::vector<fs::path> paths;
+    std::size_t at = 0;
+    while (at <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', at), list.size());
+        const std::string item = list.substr(at, comma - at);
+        at = comma + 1;
+        if (item.empty()) throw UsageError("option --protocols needs protocol names or files separated by commas");
+        const bool named = item.find('/') == std::string::npos && fs::path(item).extension() != ".json";
+        const fs::path path = named ? root / "protocol" / (item + ".json") : fs::path(item);
+        if (!fs::is_regular_file(path))
+            throw renderer::AssetError("cannot find the demo's protocol '" + path.string() + "'" +
+                                       (named ? " (set --data-dir or WARPLAB_DATA_DIR)" : ""));
+        game::loadStudy(path.string());  // a malformed protocol is refused now, naming its field
+        paths.push_back(path);
+    }
+    return paths;
+}
+
+struct Job {
+    int participant = 0;
+    fs::path protocol;
+    fs::path log;  // the session's progress; its last line names the session file
+    std::chrono::steady_clock::time_point started;
+};
+
+constexpr const char* kSessionLine = "demo-session\t";
+
+// In the forked child: one session, as `warplab run --headless` runs it; never returns.
+[[noreturn]] void runChild(const HeadlessRun& run, const fs::path& logPath) {
+    int code = 1;
+    {
+        std::ofstream log(logPath);
+        try {
+            const std::string session = runHeadless(run, log);
+            log << kSessionLine << session << "\n";
+            code = log ? 0 : 1;
+        } catch (const std::exception& e) {
+            log << "error: " << e.what() << "\n";
+        }
+    }
+    std::_Exit(code);  // no atexit handlers or static destructors of the parent's copy
+}
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// The session file a finished child's log names, or "".
+std::string sessionOf(const std::string& log) {
+    const std::size_t at = log.rfind(kSessionLine);
+    if (at == std::string::npos) return "";
+    const std::size_t start = at + std::string(kSessionLine).size();
+    return log.substr(start, log.find('\n', start) - start);
+}
+
 }  // namespace
 
 int runDemo(const ParsedArgs& args) {
@@ -41,60 +119,91 @@ int runDemo(const ParsedArgs& args) {
     const std::string player = args.string("player", "sim");
     if (player != "sim" && player != "bot")
         throw UsageError("option --player of 'warplab demo' needs sim or bot, got '" + player + "'");
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int jobs = static_cast<int>(args.integer("jobs", std::min(cores, 64), 1, 64));
     const renderer::DataPaths paths = dataPathsFrom(args);
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
     if (backend == renderer::GlBackend::Window)
         throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
     const fs::path root = fs::path(paths.shaderDir).parent_path();
-    const std::vector<std::string> protocols{"shooter-quick", "click-quick"};
-    for (const auto& name : protocols)
-        if (!fs::is_regular_file(root / "protocol" / (name + ".json")))
-            throw renderer::AssetError("cannot find the demo's protocol '" + (root / "protocol" / (name + ".json")).string() +
-                                       "' (set --data-dir or WARPLAB_DATA_DIR)");
-    const fs::path results = fs::path(out) / "results";
+    const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
+    const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";
     if (holdsSessions(results))
         throw UsageError("'" + results.string() +
                          "' already holds sessions; a demo analyses only its own, so choose another --out");
     fs::create_directories(results);
+    fs::create_directories(logs);
 
+    std::deque<Job> waiting;
+    for (int i = 1; i <= participants; ++i)
+        for (const auto& protocol : protocols)
+            waiting.push_back({i, protocol,
+                               logs / (player + "-" + std::to_string(i) + "-" + protocol.stem().string() + ".log"), {}});
+    const std::size_t total = waiting.size();
     const auto started = std::chrono::steady_clock::now();
-    std::cerr << "demo: " << participants << " simulated participants (" << player << ") x "
-              << protocols.size() << " protocols into " << results.string() << "\n";
-    int sessions = 0, reproduced = 0;
-    for (int i = 1; i <= participants; ++i) {
-        for (const auto& name : protocols) {
+    std::cerr << "demo: " << participants << " simulated participants (" << player << ") x " << protocols.size()
+              << (protocols.size() == 1 ? " protocol, " : " protocols, ") << std::min<std::size_t>(jobs, total) << " at a time, into " << results.string()
+              << "\n";
+
+    std::map<pid_t, Job> running;
+    std::size_t finished = 0, reproduced = 0;
+    std::string failure;  // the first session that could not be run or replayed
+    while (!running.empty() || (!waiting.empty() && failure.empty())) {
+        while (failure.empty() && !waiting.empty() && static_cast<int>(running.size()) < jobs) {
+            Job job = waiting.front();
+            waiting.pop_front();
             HeadlessRun run;
-            run.protocolPath = (root / "protocol" / (name + ".json")).string();
-            run.participant = player + "-" + std::to_string(i);
+            run.protocolPath = job.protocol.string();
+            run.participant = player + "-" + std::to_string(job.participant);
             run.resultsDir = results.string();
-            run.player = player + ":" + std::to_string(i);
-            run.seed = static_cast<std::uint64_t>(i);
+            run.player = player + ":" + std::to_string(job.participant);
+            run.seed = static_cast<std::uint64_t>(job.participant);
             run.dataPaths = paths;
             run.glBackend = backend;
-            std::ostringstream quiet;  // the session's own progress lines; shown only on failure
-            const auto t0 = std::chrono::steady_clock::now();
-            std::string session;
-            try {
-                session = runHeadless(run, quiet);
-            } catch (...) {
-                std::cerr << quiet.str();
-                throw;
-            }
-            // Every outcome must replay from the log alone, as a reviewer would check it.
-            const ReplayResult replay = replaySession(session);
-            ++sessions;
-            if (replayExitCode(replay) == kReplayReproduced) ++reproduced;
-            else
-                std::cerr << "demo: " << session << " did not replay: "
-                          << (replay.difference.empty() ? replay.note : replay.difference) << "\n";
-            std::cerr << "demo: participant " << i << "/" << participants << ", " << name << ": "
-                      << replay.outcomes << " outcomes, " << std::fixed << std::setprecision(0)
-                      << secondsSince(t0) << " s; " << secondsSince(started) << " s elapsed\n"
-                      << std::defaultfloat;
+            std::cout.flush();
+            std::cerr.flush();
+            const pid_t pid = fork();
+            if (pid < 0) throw std::runtime_error("demo: cannot start a session process (fork failed)");
+            if (pid == 0) runChild(run, job.log);
+            job.started = std::chrono::steady_clock::now();
+            running.emplace(pid, job);
         }
+        int status = 0;
+        const pid_t pid = waitpid(-1, &status, 0);
+        if (pid < 0) throw std::runtime_error("demo: lost track of its session processes (waitpid failed)");
+        const auto it = running.find(pid);
+        if (it == running.end()) continue;
+        const Job job = it->second;
+        running.erase(it);
+        ++finished;
+        const std::string log = readFile(job.log);
+        const std::string session = sessionOf(log);
+        const std::string name = player + "-" + std::to_string(job.participant) + ", " + job.protocol.stem().string();
+        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || session.empty()) {
+            std::cerr << log;
+            if (failure.empty())
+                failure = "the session of " + name + " failed (" +
+                          (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                               : "exit status " + std::to_string(WEXITSTATUS(status))) +
+                          "); its log is " + job.log.string();
+            continue;
+        }
+        // Every outcome must replay from the log alone, as a reviewer would check it.
+        const ReplayResult replay = replaySession(session);
+        if (replayExitCode(replay) == kReplayReproduced) {
+            ++reproduced;
+        } else if (failure.empty()) {
+            failure = session + " did not replay: " + (replay.difference.empty() ? replay.note : replay.difference);
+        }
+        std::cerr << "demo: [" << finished << "/" << total << "] " << name << ": " << replay.reproduced << "/"
+                  << replay.outcomes << " outcomes replayed, " << std::fixed << std::setprecision(0)
+                  << secondsSince(job.started) << " s; " << secondsSince(started) << " s elapsed\n"
+                  << std::defaultfloat;
     }
-    if (reproduced != sessions) {
-        std::cerr << "demo: " << sessions - reproduced << " of " << sessions << " sessions did not replay\n";
+    if (!failure.empty()) {
+        std::cerr << "demo: " << failure << "\n"
+                  << "demo: stopped after " << finished << " of " << total << " sessions (" << reproduced
+                  << " replayed); they are kept in " << results.string() << "\n";
         return 1;
     }
 
@@ -111,7 +220,7 @@ int runDemo(const ParsedArgs& args) {
                   << "/analyze exited non-zero); the sessions and CSVs are kept in " << out << "\n";
         return 1;
     }
-    std::cout << "demo: " << sessions << " sessions in " << results.string() << ", every outcome replayed\n"
+    std::cout << "demo: " << total << " sessions in " << results.string() << ", every outcome replayed\n"
               << "demo: CSVs in " << exportDir << "\n"
               << "demo: the report in " << reportDir << "/report.md, with its figures\n";
     std::cerr << "demo: done in " << std::fixed << std::setprecision(0) << secondsSince(started) << " s\n";
