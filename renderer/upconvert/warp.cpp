@@ -1,5 +1,6 @@
 #include "renderer/upconvert/warp.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -136,7 +137,15 @@ public:
             bindTexture(program_, "uPatchFlags", 4, flags_);
             glPatchParameteri(GL_PATCH_VERTICES, 4);
             glBindVertexArray(emptyVao_.id());
-            glDrawArrays(GL_PATCHES, 0, 4 * patchCountX_ * patchCountY_);
+            // Mesa's llvmpipe (draw_tess.c, 22.3) numbers the tessellated vertices of the patches
+            // of one run with 16 bits; past 65535 of them -- 227 fully subdivided 16 x 16 patches,
+            // 809 of 8 x 8 -- they wrap and the run's triangles join the wrong vertices. So at
+            // most that many patches per draw. The control stage finds each patch from its origin
+            // (gl_VertexID counts on across draws), so the batches draw what one call would.
+            const GLint perDraw = 65535 / ((settings_.patchSize + 1) * (settings_.patchSize + 1));
+            const GLint patches = patchCountX_ * patchCountY_;
+            for (GLint first = 0; first < patches; first += perDraw)
+                glDrawArrays(GL_PATCHES, 4 * first, 4 * std::min(perDraw, patches - first));
         }
         glEndQuery(GL_PRIMITIVES_GENERATED);
         glBindVertexArray(0);
