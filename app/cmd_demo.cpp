@@ -142,8 +142,8 @@ int runDemo(const ParsedArgs& args) {
     const std::size_t total = waiting.size();
     const auto started = std::chrono::steady_clock::now();
     std::cerr << "demo: " << participants << " simulated participants (" << player << ") x " << protocols.size()
-              << (protocols.size() == 1 ? " protocol, " : " protocols, ") << std::min<std::size_t>(jobs, total) << " at a time, into " << results.string()
-              << "\n";
+              << (protocols.size() == 1 ? " protocol, " : " protocols, ") << std::min<std::size_t>(jobs, total)
+              << " at a time, into " << results.string() << "\n";
 
     std::map<pid_t, Job> running;
     std::size_t finished = 0, reproduced = 0;
