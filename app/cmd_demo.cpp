@@ -29,6 +29,7 @@
 #include "app/commands.h"
 #include "app/export/export.h"
 #include "app/session_runner.h"
+#include "app/simulated_participant.h"
 #include "game/registry.h"
 #include "renderer/mesh.h"
 
@@ -158,8 +159,7 @@ int runDemo(const ParsedArgs& args) {
             run.resultsDir = results.string();
             run.player = player + ":" + std::to_string(job.participant);
             run.seed = static_cast<std::uint64_t>(job.participant);
-            run.dataPaths = paths;
-            run.glBackend = backend;
+            run.seeingPlayer = perceptualPlayerMaker(paths, backend);
             std::cout.flush();
             std::cerr.flush();
             const pid_t pid = fork();

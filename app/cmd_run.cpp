@@ -6,6 +6,7 @@
 #include "app/live_session.h"
 #include "app/replay_render.h"
 #include "app/session_runner.h"
+#include "app/simulated_participant.h"
 
 namespace warplab::app {
 
@@ -85,10 +86,10 @@ int runRun(const ParsedArgs& args) {
     run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
     if (isSimulatedParticipant(run.player)) {
         // It draws what it sees: the shaders, and a headless context.
-        run.dataPaths = dataPathsFrom(args);
-        run.glBackend = backendFrom(args, renderer::GlBackend::OSMesa);
-        if (run.glBackend == renderer::GlBackend::Window)
+        const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
+        if (backend == renderer::GlBackend::Window)
             throw UsageError("option --gl: the simulated participant draws headless (osmesa or egl)");
+        run.seeingPlayer = perceptualPlayerMaker(dataPathsFrom(args), backend);
     } else if (args.has("gl")) {
         throw UsageError("option --gl only applies with --headless --player sim");
     }

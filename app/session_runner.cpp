@@ -8,7 +8,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/simulated_participant.h"
 #include "game/registry.h"
 #include "protocol/records.h"
 #include "protocol/session_store.h"
@@ -48,17 +47,13 @@ bool isSimulatedParticipant(const std::string& player) { return player == "sim" 
 
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
                                          const game::Study& study, const game::DisplaySize& display,
-                                         const PerceptionSetup* perception) {
+                                         const game::SeeingPlayerMaker& seeing) {
     if (player == "bot" || player.rfind("bot:", 0) == 0) return study.newBot(playerSeed(player, 4, sessionSeed), display);
     if (isSimulatedParticipant(player)) {
         const std::uint64_t seed = playerSeed(player, 4, sessionSeed);
-        if (perception == nullptr)
+        if (!seeing)
             throw std::invalid_argument("--player " + player + " (the simulated participant) runs headless only: add --headless");
-        renderer::ContextOptions options;
-        options.backend = perception->backend;
-        options.visible = false;
-        return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display,
-                                                  perception->dataPaths, seed);
+        return seeing(seed, study, display);
     }
     if (player.rfind("replay:", 0) == 0) {
         auto source = protocol::readSession(player.substr(7));
@@ -139,12 +134,11 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
     const game::DisplaySize display{run.displayWidth, run.displayHeight};
-    const PerceptionSetup perception{run.dataPaths, run.glBackend};
-    const auto player = makePlayer(run.player, run.seed, *study, display, &perception);
+    const auto player = makePlayer(run.player, run.seed, *study, display, run.seeingPlayer);
 
     protocol::SessionHeader header = sessionHeader(*study, run.participant, run.seed, run.player, display);
     // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
-    if (const auto* sees = dynamic_cast<const PerceptualPlayer*>(player.get())) header.glRenderer = sees->glDescription();
+    if (const std::string drawn = player->perceivedWith(); !drawn.empty()) header.glRenderer = drawn;
     auto writer = protocol::SessionWriter::create(run.resultsDir, header);
 
     const auto game = study->newGame(run.seed, display);

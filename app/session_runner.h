@@ -10,8 +10,6 @@
 
 #include "game/game.h"
 #include "protocol/session_store.h"
-#include "renderer/context.h"
-#include "renderer/conventional.h"
 
 namespace warplab::app {
 
@@ -23,26 +21,18 @@ struct HeadlessRun {
     std::uint64_t seed = 1;    // the session seed: trial order and target spawns
     int displayWidth = 1920;   // the display the session stands for (fits the target plane)
     int displayHeight = 1080;
-    // Players that see (sim): the shaders they draw their percepts with, and the headless
-    // context they draw in.
-    renderer::DataPaths dataPaths;
-    renderer::GlBackend glBackend = renderer::GlBackend::OSMesa;
-};
-
-// What a player that sees the displayed frames (sim) needs: it makes its own headless context.
-struct PerceptionSetup {
-    renderer::DataPaths dataPaths;
-    renderer::GlBackend backend = renderer::GlBackend::OSMesa;
+    // Makes the "sim" players, which draw what they see; unset: "sim" is refused.
+    game::SeeingPlayerMaker seeingPlayer;
 };
 
 // True for the player specs of the perceptual simulated participant ("sim", "sim:SEED").
 bool isSimulatedParticipant(const std::string& player);
 
-// What headless and live runs share. `perception`: for "sim" players, which only run headless
-// (null: "sim" is refused with a sentence saying so).
+// What headless and live runs share. `seeing` makes the "sim" players, which only run headless
+// (unset: "sim" is refused with a sentence saying so).
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
                                          const game::Study& study, const game::DisplaySize& display,
-                                         const PerceptionSetup* perception = nullptr);
+                                         const game::SeeingPlayerMaker& seeing = {});
 protocol::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                       const std::string& player, const game::DisplaySize& display);
 protocol::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);

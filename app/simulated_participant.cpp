@@ -633,7 +633,16 @@ PerceptualPlayer::PerceptualPlayer(std::unique_ptr<renderer::GlContext> context,
 
 game::FrameInput PerceptualPlayer::next(const game::ShownFrame& shown) { return participant_.act(eye_->see(shown)); }
 
-std::string PerceptualPlayer::glDescription() const {
+game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend) {
+    return [paths, backend](std::uint64_t seed, const game::Study& study, const game::DisplaySize& display) {
+        renderer::ContextOptions options;
+        options.backend = backend;
+        options.visible = false;
+        return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display, paths, seed);
+    };
+}
+
+std::string PerceptualPlayer::perceivedWith() const {
     std::string text = context_ ? context_->info().renderer + ", OpenGL " + context_->info().version : "current context";
     return text + " (the simulated participant's percepts, " + std::to_string(eye_->width()) + "x" +
            std::to_string(eye_->height()) + ")";

@@ -344,6 +344,10 @@ private:
     std::int64_t lastMadeSource_ = -1;  // the source it copies (rendered or held), else -1
 };
 
+// Makes PerceptualPlayers for the GL-free runner, each with a headless context of its own
+// (`backend`: OSMesa or EGL) and the shaders under `paths`.
+game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend);
+
 // A game::Player that sees with an Eye and acts as a SimulatedParticipant.
 class PerceptualPlayer final : public game::Player {
 public:
@@ -355,7 +359,7 @@ public:
     game::FrameInput next(const game::ShownFrame& shown) override;
     // The GL implementation the percepts come from (sessions record it: percepts, and so the
     // inputs, are reproducible on the same one).
-    std::string glDescription() const;
+    std::string perceivedWith() const override;
 
 private:
     std::unique_ptr<renderer::GlContext> context_;  // first: destroyed after the GL objects below

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -125,6 +126,8 @@ public:
     virtual void switchTo(const std::string& mode, int difficulty) = 0;
 };
 
+class Study;
+
 class Player {
 public:
     virtual ~Player() = default;
@@ -134,7 +137,15 @@ public:
     virtual FrameInput next(const ShownFrame& shown) = 0;
     // False once a recorded player has no more input: the session ends there.
     virtual bool hasMore() const { return true; }
+    // What drew the frames this player looked at, "" for a player that sees none. Sessions
+    // record it: such a player's inputs are reproducible on the same GL implementation.
+    virtual std::string perceivedWith() const { return {}; }
 };
+
+// Makes a player that sees (the perceptual simulated participant) from its seed. It draws
+// what it sees, so it is made where GL is: the GL-free runner is handed one of these.
+using SeeingPlayerMaker =
+    std::function<std::unique_ptr<Player>(std::uint64_t seed, const Study& study, const DisplaySize& display)>;
 
 // Plays back the input record of a stored session, frame by frame.
 class RecordedPlayer final : public Player {
