@@ -1,10 +1,10 @@
-#include "app/app.h"
+#include "app.h"
 
 #include <cstdlib>
 #include <iostream>
 #include <sys/stat.h>
 
-#include "app/commands.h"
+#include "commands.h"
 #include "renderer/mesh.h"
 
 #ifndef WARPLAB_DEFAULT_DATA_DIR

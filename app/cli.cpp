@@ -1,4 +1,4 @@
-#include "app/cli.h"
+#include "cli.h"
 
 #include <cerrno>
 #include <cctype>

@@ -1,8 +1,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "app/bench/bench.h"
-#include "app/commands.h"
+#include "bench/bench.h"
+#include "commands.h"
 
 namespace warplab::app {
 namespace {

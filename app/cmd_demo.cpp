@@ -26,10 +26,10 @@
 #include <sstream>
 #include <thread>
 
-#include "app/commands.h"
-#include "app/export/export.h"
-#include "app/session_runner.h"
-#include "app/simulated_participant.h"
+#include "commands.h"
+#include "export/export.h"
+#include "study/session_runner.h"
+#include "participants/simulated_participant.h"
 #include "game/registry.h"
 #include "renderer/mesh.h"
 

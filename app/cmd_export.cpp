@@ -1,8 +1,8 @@
 // `warplab export RESULTS --out DIR`: the session files of a results folder as tidy CSVs.
 #include <iostream>
 
-#include "app/commands.h"
-#include "app/export/export.h"
+#include "commands.h"
+#include "export/export.h"
 
 namespace warplab::app {
 

@@ -1,6 +1,6 @@
 #include <iostream>
 
-#include "app/commands.h"
+#include "commands.h"
 
 namespace warplab::app {
 

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <thread>
 
-#include "app/commands.h"
+#include "commands.h"
 #include "game/shooter_scene.h"
 #include "protocol/shooter_protocol.h"
 #include "renderer/upconvert.h"
@@ -24,8 +24,8 @@ constexpr double kMaxSceneTimeS = 1e6;
 constexpr double kMaxShowS = 3600;  // a preview window, not a kiosk
 
 // Linear eye-space distance from window depth, for the false-colour depth image.
-renderer::ImageF linearDepth(const renderer::ImageF& windowDepth, float nearPlane, float farPlane) {
-    renderer::ImageF out = windowDepth;
+image::ImageF linearDepth(const image::ImageF& windowDepth, float nearPlane, float farPlane) {
+    image::ImageF out = windowDepth;
     for (float& d : out.data) {
         const float ndc = 2.0f * d - 1.0f;
         d = 2.0f * nearPlane * farPlane / (farPlane + nearPlane - ndc * (farPlane - nearPlane));
@@ -33,8 +33,8 @@ renderer::ImageF linearDepth(const renderer::ImageF& windowDepth, float nearPlan
     return out;
 }
 
-renderer::ImageF idsAsFloat(const renderer::ImageU32& ids) {
-    renderer::ImageF out;
+image::ImageF idsAsFloat(const image::ImageU32& ids) {
+    image::ImageF out;
     out.width = ids.width;
     out.height = ids.height;
     out.channels = 1;
@@ -142,15 +142,15 @@ int runRender(const ParsedArgs& args) {
         shown = std::make_unique<renderer::DisplayFrame>(width, height);
         method->produce(input, *shown);
         if (!truthPath.empty()) {
-            renderer::writePng(truthPath, images.colour);
+            image::writePng(truthPath, images.colour);
             std::cout << "wrote " << truthPath << " (ground truth at t=" << time << " s)\n";
         }
         // The displayed frame replaces the conventional one in every output below.
         const renderer::DisplayImages display = renderer::readBack(*shown);
-        std::cout << methodName << ": PSNR " << renderer::psnr(display.colour, images.colour) << " dB against ground truth\n";
+        std::cout << methodName << ": PSNR " << image::psnr(display.colour, images.colour) << " dB against ground truth\n";
         if (!errorPath.empty()) {
             // x4: the few-unit errors of a good warp show, a wrong surface saturates.
-            renderer::writePng(errorPath, renderer::absoluteErrorImage(display.colour, images.colour, 4));
+            image::writePng(errorPath, image::absoluteErrorImage(display.colour, images.colour, 4));
             std::cout << "wrote " << errorPath << " (|error| x4 against ground truth)\n";
         }
         images.colour = display.colour;
@@ -162,13 +162,13 @@ int runRender(const ParsedArgs& args) {
         // The window shows the G-buffer's colour; what we save is the window's own pixels.
         const int dw = context->drawableWidth(), dh = context->drawableHeight();
         renderer::blitToDefaultFramebuffer(*onScreen, dw, dh);
-        renderer::writePng(out, renderer::readDefaultFramebuffer(dw, dh));
+        image::writePng(out, renderer::readDefaultFramebuffer(dw, dh));
         context->swapBuffers();
         const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(show);
         while (std::chrono::steady_clock::now() < until && context->pumpEvents())
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
     } else {
-        renderer::writePng(out, images.colour);
+        image::writePng(out, images.colour);
     }
     std::cout << "wrote " << out << " (" << width << "x" << height << ", t=" << time << " s, "
               << context->info().renderer << ")\n";
@@ -177,21 +177,21 @@ int runRender(const ParsedArgs& args) {
     if (!depthPath.empty()) {
         // The ramp spans the nearest to the farthest geometry in view, not the whole frustum,
         // so the hallway's depth structure is visible; the far plane (sky) stays black.
-        const renderer::ImageF distance = linearDepth(images.depth, cam.nearPlane, cam.farPlane);
+        const image::ImageF distance = linearDepth(images.depth, cam.nearPlane, cam.farPlane);
         float farthest = cam.nearPlane * 2.0f;
         for (std::size_t i = 0; i < distance.data.size(); ++i)
             if (images.depth.data[i] < 1.0f) farthest = std::max(farthest, distance.data[i]);
-        renderer::writePng(depthPath,
-                           renderer::depthFalseColour(distance, cam.nearPlane, std::min(farthest * 1.001f, cam.farPlane)));
+        image::writePng(depthPath,
+                           image::depthFalseColour(distance, cam.nearPlane, std::min(farthest * 1.001f, cam.farPlane)));
     }
-    if (!idsPath.empty()) renderer::writePng(idsPath, renderer::idFalseColour(images.ids));
+    if (!idsPath.empty()) image::writePng(idsPath, image::idFalseColour(images.ids));
     if (!velocityPath.empty())
-        renderer::writePng(velocityPath,
-                           renderer::velocityFalseColour(images.velocity, static_cast<float>(std::max(speed, 1e-3))));
+        image::writePng(velocityPath,
+                           image::velocityFalseColour(images.velocity, static_cast<float>(std::max(speed, 1e-3))));
     if (!rawPrefix.empty()) {
-        renderer::writePfm(rawPrefix + "-depth.pfm", images.depth);
-        renderer::writePfm(rawPrefix + "-ids.pfm", idsAsFloat(images.ids));
-        renderer::writePfm(rawPrefix + "-velocity.pfm", images.velocity);
+        image::writePfm(rawPrefix + "-depth.pfm", images.depth);
+        image::writePfm(rawPrefix + "-ids.pfm", idsAsFloat(images.ids));
+        image::writePfm(rawPrefix + "-velocity.pfm", images.velocity);
     }
     return 0;
 }

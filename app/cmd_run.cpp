@@ -1,12 +1,12 @@
 #include <algorithm>
 #include <iostream>
 
-#include "app/commands.h"
-#include "app/export/csv.h"
-#include "app/live_session.h"
-#include "app/replay_render.h"
-#include "app/session_runner.h"
-#include "app/simulated_participant.h"
+#include "commands.h"
+#include "export/csv.h"
+#include "live/live_session.h"
+#include "present/replay_render.h"
+#include "study/session_runner.h"
+#include "participants/simulated_participant.h"
 
 namespace warplab::app {
 
@@ -129,7 +129,7 @@ int runReplay(const ParsedArgs& args) {
     ReplayResult r;
     try {
         r = replaySession(path);
-    } catch (const protocol::SessionError& e) {
+    } catch (const session::SessionError& e) {
         std::cerr << "warplab replay: " << e.what() << "\n";
         return kReplayDamaged;
     }

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
+#include "cli.h"
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 

@@ -1,6 +1,6 @@
 #include <csignal>
 
-#include "app/app.h"
+#include "app.h"
 
 int main(int argc, char** argv) {
     // A session must outlive its output: when whoever reads stdout or stderr goes away (`| head`,

@@ -5,12 +5,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 
-# Sanitizer tier: the tests that need no GL context, built with AddressSanitizer and
-# UndefinedBehaviorSanitizer (Mesa's JIT is left out of it on purpose).
+# Sanitizer tier: the tests that need no GL context (every module's label "unit" binary),
+# built with AddressSanitizer and UndefinedBehaviorSanitizer (Mesa's JIT is left out of it on
+# purpose).
 asan="${WARPLAB_ASAN_BUILD_DIR:-build-asan}"
 cmake -S . -B "$asan" -DWARPLAB_SANITIZE=ON -DCMAKE_BUILD_TYPE=Debug -DWARPLAB_WERROR=ON >/dev/null
 cmake --build "$asan" --target warplab_unit_tests -j"$(nproc)"
-"$asan/tests/warplab_unit_tests" --gtest_brief=1
+ctest --test-dir "$asan" -L unit -j"$(nproc)" --output-on-failure
 # Fuzz smoke: the protocol parser and the session reader, 30 s each under ASan/UBSan (docs/fuzzing.md).
 scripts/fuzz.sh 30
 

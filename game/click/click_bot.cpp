@@ -1,4 +1,4 @@
-#include "game/click/click_bot.h"
+#include "click/click_bot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "game/click/click_game.h"
+#include "click/click_game.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,23 +109,23 @@ std::string ClickGame::phase() const {
     return "?";
 }
 
-std::vector<protocol::EventRecord> ClickGame::takeEvents() {
-    std::vector<protocol::EventRecord> out;
+std::vector<session::EventRecord> ClickGame::takeEvents() {
+    std::vector<session::EventRecord> out;
     out.swap(events_);
     return out;
 }
 
-void ClickGame::emit(protocol::EventRecord event) {
+void ClickGame::emit(session::EventRecord event) {
     event.frame = frame_;
     event.eventTime = now();
     if (event.phase.empty()) event.phase = phase();
     events_.push_back(std::move(event));
 }
 
-protocol::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json detail) const {
+session::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json detail) const {
     const Match& m = matches_[matchIndex_];
     const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
-    protocol::EventRecord e;
+    session::EventRecord e;
     e.type = type;
     e.phase = round.name;
     e.trial = m.index;
@@ -200,7 +200,7 @@ void ClickGame::answerRating(int value, const char* how) {
     if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
     if (++matchIndex_ < matches_.size()) return beginMatch();
     phase_ = Phase::Done;
-    protocol::EventRecord done;
+    session::EventRecord done;
     done.type = "phase";
     done.phase = "done";
     emit(done);
@@ -341,7 +341,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
         redHits_ += scored == "red";
         misses_ += scored == "miss";
         auto idOf = [](const ClickHit& h) { return h.sphere ? static_cast<std::int64_t>(h.sphere->id) : -1; };
-        protocol::EventRecord e = matchEvent("click", {{"scored", scored},
+        session::EventRecord e = matchEvent("click", {{"scored", scored},
                                                        {"match_time", static_cast<double>(k) / refresh},
                                                        {"cursor_x", cursor_.x},
                                                        {"cursor_y", cursor_.y},
@@ -372,7 +372,7 @@ ShownFrame ClickGame::step(const FrameInput& input) {
                            static_cast<double>(display_.height));
 
     if (frame_ == 0) {
-        protocol::EventRecord e;
+        session::EventRecord e;
         e.type = "phase";
         emit(e);
         commitPoint_ = true;
@@ -399,8 +399,8 @@ ShownFrame ClickGame::step(const FrameInput& input) {
     return screenFrame();
 }
 
-protocol::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
-    protocol::FrameRecord r;
+session::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
+    session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
     r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : frameKindName(shown.schedule.kind));
@@ -441,7 +441,7 @@ PointerProbe ClickGame::probePointer(const ShownFrame& shown) const {
     return probe;
 }
 
-std::optional<std::uint32_t> ClickGame::displayedObject(const protocol::EventRecord& event) const {
+std::optional<std::uint32_t> ClickGame::displayedObject(const session::EventRecord& event) const {
     if (event.type != "click") return std::nullopt;
     const auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
     if (detail.is_discarded() || !detail.contains("displayed_sphere")) return std::nullopt;

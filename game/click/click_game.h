@@ -38,12 +38,12 @@ public:
     ShownFrame step(const FrameInput& input) override;
     bool finished() const override { return phase_ == Phase::Done; }
     std::string phase() const override;
-    std::vector<protocol::EventRecord> takeEvents() override;
+    std::vector<session::EventRecord> takeEvents() override;
     bool atCommitPoint() const override { return commitPoint_; }
-    protocol::FrameRecord frameRecord(const ShownFrame& shown) const override;
-    bool isOutcome(const protocol::EventRecord& event) const override { return event.type == "click"; }
+    session::FrameRecord frameRecord(const ShownFrame& shown) const override;
+    bool isOutcome(const session::EventRecord& event) const override { return event.type == "click"; }
     PointerProbe probePointer(const ShownFrame& shown) const override;
-    std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const override;
+    std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const override;
     // Free play: one endless match in `mode` (the click game has no difficulty levels).
     void switchTo(const std::string& mode, int difficulty) override;
 
@@ -68,10 +68,10 @@ private:
     ShownFrame matchFrame(bool click);
     ShownFrame screenFrame();  // ready, rating and done screens
     std::vector<physics::Sphere> depictedSpheres(const ScheduledFrame& f) const;
-    void emit(protocol::EventRecord event);
+    void emit(session::EventRecord event);
     // An event of the match in progress: its round, index and mode, and the detail with the
     // round's name and whether it is scored (unless the detail says what "scored" means).
-    protocol::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
+    session::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     RatingPrompt ratingPrompt() const;
 
@@ -100,7 +100,7 @@ private:
 
     bool freePlay_ = false;
 
-    std::vector<protocol::EventRecord> events_;
+    std::vector<session::EventRecord> events_;
     bool commitPoint_ = false;
 };
 

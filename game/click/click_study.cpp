@@ -1,13 +1,13 @@
-#include "game/click/click_study.h"
+#include "click/click_study.h"
 
 #include <cctype>
 #include <cstring>
 #include <map>
 #include <utility>
 
-#include "game/click/click_bot.h"
-#include "game/event_detail.h"
-#include "game/click/click_game.h"
+#include "click/click_bot.h"
+#include "event_detail.h"
+#include "click/click_game.h"
 #include "protocol/click_protocol.h"
 #include "protocol/study_protocol.h"
 
@@ -36,7 +36,7 @@ public:
     std::vector<std::string> modes() const override { return protocol_.modes; }
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
-    SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
+    SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         // Ratings follow their match's "match" event; match indices are unique in a session.
         std::map<int, std::size_t> matchAt;

@@ -1,5 +1,5 @@
 // The click game's registration: its protocol section parsed and bound to ClickGame and
-// ClickBot. game/registry.cpp lists it; nothing else names the click game.
+// ClickBot. game/src/registry.cpp lists it; nothing else names the click game.
 #pragma once
 
 #include <memory>

@@ -1,4 +1,4 @@
-#include "game/shooter/shooter_bot.h"
+#include "shooter/shooter_bot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "game/shooter/shooter_game.h"
+#include "shooter/shooter_game.h"
 
 #include <algorithm>
 #include <cmath>
@@ -75,9 +75,9 @@ void ShooterGame::switchTo(const std::string& mode, int difficulty) {
     if (frame_ >= 0) pauseUntil_ = frame_ + 1;  // before the first frame, the first frame starts it
 }
 
-bool ShooterGame::isOutcome(const protocol::EventRecord& e) const { return e.type == "shot" || e.type == "timeout"; }
+bool ShooterGame::isOutcome(const session::EventRecord& e) const { return e.type == "shot" || e.type == "timeout"; }
 
-std::optional<std::uint32_t> ShooterGame::displayedObject(const protocol::EventRecord& e) const {
+std::optional<std::uint32_t> ShooterGame::displayedObject(const session::EventRecord& e) const {
     if (e.type != "shot") return std::nullopt;
     return e.displayedOutcome == "hit" ? scene::kIdTarget : scene::kIdNone;
 }
@@ -96,13 +96,13 @@ PointerProbe ShooterGame::probePointer(const ShownFrame& shown) const {
     return probe;
 }
 
-std::vector<protocol::EventRecord> ShooterGame::takeEvents() {
-    std::vector<protocol::EventRecord> out;
+std::vector<session::EventRecord> ShooterGame::takeEvents() {
+    std::vector<session::EventRecord> out;
     out.swap(events_);
     return out;
 }
 
-void ShooterGame::emit(protocol::EventRecord event) {
+void ShooterGame::emit(session::EventRecord event) {
     event.frame = frame_;
     event.phase = phaseName(phase_);
     events_.push_back(std::move(event));
@@ -167,7 +167,7 @@ void ShooterGame::beginPhase(Phase phase) {
     phaseStartFrame_ = frame_;
     trialsInPhase_ = 0;
     commitPoint_ = true;
-    protocol::EventRecord event;
+    session::EventRecord event;
     event.type = "phase";
     event.eventTime = now();
     event.detailJson = detailText({{"difficulty", phase == Phase::Test ? testLevel_ : level_}});
@@ -222,7 +222,7 @@ void ShooterGame::startTrial(const std::string& mode, int level) {
 void ShooterGame::finishTrainingLevel() {
     const double lowHit = levelShots_[0] ? double(levelHits_[0]) / levelShots_[0] : 1.0;
     const double highMiss = levelShots_[1] ? 1.0 - double(levelHits_[1]) / levelShots_[1] : 0.0;
-    protocol::EventRecord event;
+    session::EventRecord event;
     event.type = "level";
     event.eventTime = now();
     event.detailJson = detailText({{"difficulty", level_},
@@ -266,7 +266,7 @@ void ShooterGame::scheduleNextTrial() {
             }
             if (elapsed >= protocol_.training.timeLimitS) {
                 testLevel_ = level_;
-                protocol::EventRecord event;
+                session::EventRecord event;
                 event.type = "training_limit";
                 event.eventTime = now();
                 event.detailJson = detailText({{"difficulty", level_}});
@@ -300,7 +300,7 @@ void ShooterGame::scheduleNextTrial() {
 void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg) {
     const Trial& t = *trial_;
     const double spawn = static_cast<double>(t.spawnFrame) / protocol_.refreshHz;
-    protocol::EventRecord event;
+    session::EventRecord event;
     event.type = world == Outcome::Timeout ? "timeout" : "shot";
     event.trial = t.index;
     event.mode = t.mode;
@@ -456,8 +456,8 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     return shown;
 }
 
-protocol::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
-    protocol::FrameRecord r;
+session::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
+    session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
     r.kind = shown.frozen ? "frozen" : frameKindName(shown.schedule.kind);

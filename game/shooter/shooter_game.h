@@ -16,7 +16,7 @@
 #include "game/game.h"
 #include "game/modes.h"
 #include "physics/bouncing_target.h"
-#include "protocol/session_store.h"
+#include "session/session_store.h"
 #include "protocol/shooter_protocol.h"
 #include "scene/scene.h"
 
@@ -36,12 +36,12 @@ public:
     ShownFrame step(const FrameInput& input) override;
     bool finished() const override { return phase_ == Phase::Done; }
     std::string phase() const override { return phaseName(phase_); }
-    std::vector<protocol::EventRecord> takeEvents() override;
+    std::vector<session::EventRecord> takeEvents() override;
     bool atCommitPoint() const override { return commitPoint_; }
-    protocol::FrameRecord frameRecord(const ShownFrame& shown) const override;
-    bool isOutcome(const protocol::EventRecord& event) const override;
+    session::FrameRecord frameRecord(const ShownFrame& shown) const override;
+    bool isOutcome(const session::EventRecord& event) const override;
     PointerProbe probePointer(const ShownFrame& shown) const override;
-    std::optional<std::uint32_t> displayedObject(const protocol::EventRecord& event) const override;
+    std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const override;
     // Free play: endless targets at `difficulty` (the staircase's level) in `mode`.
     void switchTo(const std::string& mode, int difficulty) override;
 
@@ -80,7 +80,7 @@ private:
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     double speedFor(int level) const;
     std::uint64_t trialSeed(int phaseTag, int index) const;
-    void emit(protocol::EventRecord event);
+    void emit(session::EventRecord event);
 
     protocol::ShooterProtocol protocol_;
     std::uint64_t seed_;
@@ -121,7 +121,7 @@ private:
     std::string freeMode_;
     int freeLevel_ = 0;
 
-    std::vector<protocol::EventRecord> events_;
+    std::vector<session::EventRecord> events_;
     bool commitPoint_ = false;
 };
 

@@ -1,8 +1,8 @@
-#include "game/shooter/shooter_study.h"
+#include "shooter/shooter_study.h"
 
-#include "game/event_detail.h"
-#include "game/shooter/shooter_bot.h"
-#include "game/shooter/shooter_game.h"
+#include "event_detail.h"
+#include "shooter/shooter_bot.h"
+#include "shooter/shooter_game.h"
 #include "protocol/shooter_protocol.h"
 
 namespace warplab::game {
@@ -35,7 +35,7 @@ public:
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
-    SessionResults results(const std::vector<protocol::EventRecord>& events) const override {
+    SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         out.canTimeOut = true;
         for (const auto& e : events) {

@@ -1,4 +1,4 @@
-// The benchmark's ground truth (app/bench/ground_truth.h) on G-buffers made by an analytic ray
+// The benchmark's ground truth (bench/ground_truth.h) on G-buffers made by an analytic ray
 // caster here -- a floor and a back wall (the hangar, id 1), spheres from the snapshot, sky
 // elsewhere -- so every expected coordinate comes from closed-form geometry and an
 // independently built camera basis, not from the matrices the code under test inverts.
@@ -16,8 +16,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "app/bench/ground_truth.h"
-#include "renderer/image.h"
+#include "bench/ground_truth.h"
+#include "image/image.h"
 #include "scene/scene.h"
 
 namespace warplab::bench {
@@ -103,15 +103,15 @@ Hit castRay(const glm::dvec3& o, const glm::dvec3& d, const scene::SceneSnapshot
 }
 
 struct GBuffer {
-    renderer::ImageF depth;
-    renderer::ImageU32 ids;
+    image::ImageF depth;
+    image::ImageU32 ids;
 };
 
 // Window depth as GL stores it for glm::perspective (OpenGL clip, depth range [0, 1]), rounded
 // to float as a DEPTH_COMPONENT32F attachment does.
 GBuffer render(const scene::FrameDescription& frame) {
     const Basis b = basisOf(frame.camera);
-    GBuffer g{renderer::ImageF::make(kW, kH, 1), renderer::ImageU32::make(kW, kH)};
+    GBuffer g{image::ImageF::make(kW, kH, 1), image::ImageU32::make(kW, kH)};
     const double n = b.nearPlane, f = b.farPlane;
     for (int y = 0; y < kH; ++y) {
         for (int x = 0; x < kW; ++x) {
@@ -154,7 +154,7 @@ std::size_t index(int x, int y) { return std::size_t(y) * kW + x; }
 
 // True when every source pixel within 1.5 px of c shows `id`: then the point at c must be
 // judged visible (or, for another id, hidden) whatever the rounding at the footprint's edge.
-bool surroundedBy(const renderer::ImageU32& ids, glm::dvec2 c, std::uint32_t id) {
+bool surroundedBy(const image::ImageU32& ids, glm::dvec2 c, std::uint32_t id) {
     for (int y = int(std::floor(c.y - 1.5)); y <= int(std::floor(c.y + 1.5)); ++y)
         for (int x = int(std::floor(c.x - 1.5)); x <= int(std::floor(c.x + 1.5)); ++x)
             if (x < 0 || y < 0 || x >= ids.width || y >= ids.height || ids.at(x, y) != id) return false;
@@ -359,7 +359,7 @@ TEST(GroundTruth, NoSourcePositionGivesNaNAndNotVisible) {
 TEST(GroundTruth, RejectsMismatchedSizesAndUnknownIds) {
     const auto frame = frameAt(0.0, {});
     const GBuffer g = render(frame);
-    auto smallIds = renderer::ImageU32::make(kW - 1, kH);
+    auto smallIds = image::ImageU32::make(kW - 1, kH);
     try {
         trueCorrespondence(frame, g.depth, smallIds, frame, g.depth, g.ids);
         FAIL() << "expected std::invalid_argument";
@@ -367,7 +367,7 @@ TEST(GroundTruth, RejectsMismatchedSizesAndUnknownIds) {
         EXPECT_NE(std::string(e.what()).find("trueCorrespondence"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("159x90"), std::string::npos) << e.what();
     }
-    auto rgb = renderer::ImageF::make(kW, kH, 3);
+    auto rgb = image::ImageF::make(kW, kH, 3);
     EXPECT_THROW(trueCorrespondence(frame, g.depth, g.ids, frame, rgb, g.ids), std::invalid_argument);
     // An id on screen that the display snapshot does not list: its motion is unknown.
     auto strayIds = g.ids;
@@ -427,7 +427,7 @@ TEST(Disocclusion, UnseenPixelsAreSplitIntoBorderAndOccluded) {
 }
 
 TEST(Disocclusion, MaskedMeanAbsoluteErrorOverRgbOfMaskedPixels) {
-    auto a = renderer::ImageRGBA8::make(3, 1), b = renderer::ImageRGBA8::make(3, 1);
+    auto a = image::ImageRGBA8::make(3, 1), b = image::ImageRGBA8::make(3, 1);
     const std::uint8_t pa[12] = {10, 20, 30, 255, 100, 100, 100, 0, 0, 0, 0, 0};
     const std::uint8_t pb[12] = {13, 14, 39, 0, 70, 100, 100, 9, 200, 200, 200, 0};  // alpha ignored
     std::copy(pa, pa + 12, a.pixels.begin());
@@ -437,7 +437,7 @@ TEST(Disocclusion, MaskedMeanAbsoluteErrorOverRgbOfMaskedPixels) {
     EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {0, 0, 1}), 200.0);
     EXPECT_TRUE(std::isnan(maskedMeanAbsoluteError(a, b, {0, 0, 0})));
     EXPECT_THROW(maskedMeanAbsoluteError(a, b, {1, 1}), std::invalid_argument);
-    EXPECT_THROW(maskedMeanAbsoluteError(a, renderer::ImageRGBA8::make(1, 3), {1, 1, 1}), std::invalid_argument);
+    EXPECT_THROW(maskedMeanAbsoluteError(a, image::ImageRGBA8::make(1, 3), {1, 1, 1}), std::invalid_argument);
 }
 
 // Errors chosen away from the thresholds except where the strict "<" is the point: an error of

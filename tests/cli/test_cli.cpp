@@ -13,9 +13,9 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.h"
-#include "protocol/session_store.h"
+#include "session/session_store.h"
 #include "protocol/shooter_protocol.h"
-#include "renderer/image.h"
+#include "image/image.h"
 
 namespace {
 
@@ -98,14 +98,14 @@ TEST(Cli, RenderWritesTheFrameAndBuffers) {
                            "/raw");
     ASSERT_EQ(r.status, 0) << r.output;
     for (const std::string f : {"frame.png", "depth.png", "ids.png", "velocity.png"}) {
-        const auto image = warplab::renderer::readPng(dir + "/" + f);
+        const auto image = warplab::image::readPng(dir + "/" + f);
         EXPECT_EQ(image.width, 64) << f;
         EXPECT_EQ(image.height, 36) << f;
     }
-    const auto depth = warplab::renderer::readPfm(dir + "/raw-depth.pfm");
+    const auto depth = warplab::image::readPfm(dir + "/raw-depth.pfm");
     EXPECT_EQ(depth.channels, 1);
-    EXPECT_EQ(warplab::renderer::readPfm(dir + "/raw-velocity.pfm").channels, 3);
-    EXPECT_EQ(warplab::renderer::readPfm(dir + "/raw-ids.pfm").width, 64);
+    EXPECT_EQ(warplab::image::readPfm(dir + "/raw-velocity.pfm").channels, 3);
+    EXPECT_EQ(warplab::image::readPfm(dir + "/raw-ids.pfm").width, 64);
 }
 
 TEST(Cli, UnwritableOutputIsNamed) {
@@ -386,7 +386,7 @@ TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
     EXPECT_EQ(check.events, 1) << r.output;  // the shot itself
     EXPECT_EQ(check.disagreed, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "outcomes reproduced")) << r.output;
-    const auto image = warplab::renderer::readPng(frames + "/frame_0000040.png");
+    const auto image = warplab::image::readPng(frames + "/frame_0000040.png");
     EXPECT_EQ(image.width, 320);
     EXPECT_TRUE(fs::exists(frames + "/frame_0000059.png"));
     EXPECT_FALSE(fs::exists(frames + "/frame_0000060.png"));
@@ -425,7 +425,7 @@ TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
                              " --headless --player bot:4 --seed 8");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_FALSE(contains(run.output, "stand")) << "every mode has its own renderer now: " << run.output;
-    const auto data = warplab::protocol::readSession(sessionIn(dir));
+    const auto data = warplab::session::readSession(sessionIn(dir));
     EXPECT_TRUE(data.completed) << data.note;
     int matches = 0, ratings = 0, clicks = 0;
     for (const auto& e : data.events) {
@@ -496,7 +496,7 @@ TEST(CliClick, KilledRunsKeepEveryCompletedMatch) {
         (void)std::system(command.c_str());
         const std::string session = sessionIn(dir);
         if (session.empty()) continue;
-        const auto data = warplab::protocol::readSession(session);
+        const auto data = warplab::session::readSession(session);
         if (data.completed) continue;  // finished before the kill
         int matches = 0, matchStarts = 0;
         for (const auto& e : data.events) matches += e.type == "match", matchStarts += e.type == "match_start";
@@ -555,7 +555,7 @@ TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     EXPECT_EQ(r.lines(), 1) << r.output;  // the pipe really closed after one line
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty());
-    const auto data = warplab::protocol::readSession(session);
+    const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed) << data.note;
     int outcomes = 0;
     for (const auto& e : data.events) outcomes += e.type == "shot" || e.type == "timeout";
@@ -592,7 +592,7 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
     EXPECT_EQ(run.status, 0) << run.output;
     EXPECT_TRUE(contains(run.output, "holds the write lock")) << run.output;  // the supervisor was told
     EXPECT_TRUE(contains(run.output, "no commit was lost")) << run.output;
-    const auto data = warplab::protocol::readSession(session);
+    const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed) << data.note;
     int outcomes = 0;
     for (const auto& e : data.events) outcomes += e.type == "shot" || e.type == "timeout";

@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_support.h"
-#include "protocol/session_store.h"
+#include "session/session_store.h"
 
 namespace {
 
@@ -50,7 +50,7 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     // participant -> mode -> test-phase hits as displayed, from the sessions themselves.
     std::map<std::string, std::map<std::string, int>> shooterHits;
     for (const auto& path : sessions) {
-        const auto data = warplab::protocol::readSession(path.string());
+        const auto data = warplab::session::readSession(path.string());
         EXPECT_TRUE(data.completed) << path;
         EXPECT_EQ(data.header.player, "sim:" + data.header.participant.substr(4)) << path;
         if (nlohmann::json::parse(data.header.protocolJson).at("name") != "shooter-quick") continue;

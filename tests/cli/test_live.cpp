@@ -12,9 +12,9 @@
 
 #include "cli/cli_support.h"
 #include "gl/gl_test_support.h"
-#include "protocol/records.h"
-#include "protocol/session_store.h"
-#include "renderer/image.h"
+#include "session/records.h"
+#include "session/session_store.h"
+#include "image/image.h"
 
 namespace {
 
@@ -70,7 +70,7 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
     EXPECT_TRUE(contains(r.output, "paced by a timer")) << r.output;
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty()) << r.output;
-    const auto data = warplab::protocol::readSession(session);
+    const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed) << data.note;
     EXPECT_TRUE(contains(data.header.player, "human")) << data.header.player;
     EXPECT_EQ(data.header.displayWidth, 192);
@@ -96,17 +96,17 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
     // The screens: start, the frame of the shot (reticle on the hallway), the HIT/MISS pause, the end.
     for (const char* name : {"start", "frame_12", "frame_20", "end"})
         EXPECT_TRUE(fs::exists(dir + "/" + name + ".png")) << name;
-    const auto start = warplab::renderer::readPng(dir + "/start.png");
+    const auto start = warplab::image::readPng(dir + "/start.png");
     EXPECT_EQ(start.width, 192);
-    const auto shot = warplab::renderer::readPng(dir + "/frame_12.png");
+    const auto shot = warplab::image::readPng(dir + "/frame_12.png");
     const std::uint8_t* centre = shot.at(96, 54);
     EXPECT_GT(centre[0] + centre[1] + centre[2], 600) << "no reticle at the centre";
     // Each screen against its approved reference (scripts/approve-references.sh), with the GL
     // tests' thresholds: the frames are the same offscreen renders the window shows.
     EXPECT_TRUE(warplab::testing::matchesReference("live_start", start));
     EXPECT_TRUE(warplab::testing::matchesReference("live_shot", shot));
-    EXPECT_TRUE(warplab::testing::matchesReference("live_miss_pause", warplab::renderer::readPng(dir + "/frame_20.png")));
-    EXPECT_TRUE(warplab::testing::matchesReference("live_end", warplab::renderer::readPng(dir + "/end.png")));
+    EXPECT_TRUE(warplab::testing::matchesReference("live_miss_pause", warplab::image::readPng(dir + "/frame_20.png")));
+    EXPECT_TRUE(warplab::testing::matchesReference("live_end", warplab::image::readPng(dir + "/end.png")));
 }
 
 TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
@@ -116,7 +116,7 @@ TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
                             " --width 160 --height 90 --input-script " + dir + "/script.txt");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 79")) << r.output;
-    const auto data = warplab::protocol::readSession(sessionIn(dir));
+    const auto data = warplab::session::readSession(sessionIn(dir));
     EXPECT_FALSE(data.completed);
     EXPECT_EQ(data.inputs.size(), 80u) << "every frame up to the pause is kept";
     EXPECT_TRUE(contains(replayOf(sessionIn(dir)), "outcomes reproduced"));
@@ -134,19 +134,19 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
         const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
                                headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
         ASSERT_EQ(plain.status, 0) << plain.output;
-        const auto a = warplab::protocol::readSession(sessionIn(dir));
-        const auto b = warplab::protocol::readSession(sessionIn(headless));
+        const auto a = warplab::session::readSession(sessionIn(dir));
+        const auto b = warplab::session::readSession(sessionIn(headless));
         EXPECT_TRUE(a.completed) << a.note;
         ASSERT_EQ(a.events.size(), b.events.size()) << protocol;
         for (std::size_t i = 0; i < a.events.size(); ++i)
-            ASSERT_EQ(warplab::protocol::firstDifference(a.events[i], b.events[i]), "") << protocol << " event " << i;
+            ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << protocol << " event " << i;
         ASSERT_EQ(a.inputs.size(), b.inputs.size());
         for (std::size_t i = 0; i < a.inputs.size(); ++i)
-            ASSERT_EQ(warplab::protocol::firstDifference(a.inputs[i], b.inputs[i]), "") << protocol << " input " << i;
+            ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << protocol << " input " << i;
     }
     // Frame 100 of the tiny click session is on the first rating screen: the dark backdrop
     // (its top-left corner) and the seven boxes across the middle.
-    const auto rating = warplab::renderer::readPng(
+    const auto rating = warplab::image::readPng(
         (fs::path(WARPLAB_BINARY_DIR) / "test-output" / "live" / "bot-click-tiny" / "frame_100.png").string());
     ASSERT_EQ(rating.width, 160);
     const std::uint8_t* corner = rating.at(1, 1);

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.h"
-#include "protocol/session_store.h"
+#include "session/session_store.h"
 
 namespace {
 
@@ -24,7 +24,7 @@ TEST(CliSimulatedParticipant, PlaysShooterQuickToTheEndAndTheSessionReplays) {
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty()) << run.output;
-    const auto data = warplab::protocol::readSession(session);
+    const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed);
     EXPECT_EQ(data.header.player, "sim:1");
     // The header says which GL drew its percepts: the input log is reproducible on that one.
@@ -48,7 +48,7 @@ TEST(CliSimulatedParticipant, PlaysClickQuickToTheEndAndTheSessionReplays) {
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty()) << run.output;
-    const auto data = warplab::protocol::readSession(session);
+    const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed);
     int matches = 0, ratings = 0, clicks = 0;
     for (const auto& e : data.events) {

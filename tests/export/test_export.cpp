@@ -22,10 +22,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "app/export/csv.h"
-#include "app/export/export.h"
-#include "app/session_runner.h"
-#include "protocol/session_store.h"
+#include "export/csv.h"
+#include "export/export.h"
+#include "study/session_runner.h"
+#include "session/session_store.h"
 
 namespace warplab::app {
 namespace {
@@ -128,7 +128,7 @@ using Key = std::tuple<std::string, std::string, std::string>;  // participant, 
 // Scored-phase shots and clicks per participant x game x mode. The shooter's scored phase is
 // "test"; a click counts when its match event says the round was scored. The outcome that
 // counts is the one the protocol's "scoring" names (world or displayed).
-void countScored(const protocol::SessionData& data, std::map<Key, Counts>& into) {
+void countScored(const session::SessionData& data, std::map<Key, Counts>& into) {
     const auto protocol = nlohmann::json::parse(data.header.protocolJson);
     const std::string gameName = protocol.value("game", "shooter");
     const std::string scoring = gameName == "shooter" ? protocol.at("test").at("scoring").get<std::string>()
@@ -222,7 +222,7 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     std::map<Key, Counts> expected;
     int scoredMatches = 0, ratingEvents = 0;
     for (const auto& f : files) {
-        const auto data = protocol::readSession(f);
+        const auto data = session::readSession(f);
         countScored(data, expected);
         for (const auto& e : data.events) {
             if (e.type == "match" && nlohmann::json::parse(e.detailJson).at("scored").get<bool>()) ++scoredMatches;
@@ -301,12 +301,12 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
 }
 
 // A session's results with a new participant id (and start time), as if run again.
-std::string rewrite(const protocol::SessionData& data, const std::string& dir, const std::string& participant,
+std::string rewrite(const session::SessionData& data, const std::string& dir, const std::string& participant,
                     std::size_t events, bool finish, const std::string& flag = "") {
-    protocol::SessionHeader header = data.header;
+    session::SessionHeader header = data.header;
     header.participant = participant;
     header.startedAt = "";  // now: another session
-    protocol::SessionWriter w = protocol::SessionWriter::create(dir, header);
+    session::SessionWriter w = session::SessionWriter::create(dir, header);
     for (std::size_t i = 0; i < events && i < data.events.size(); ++i) w.addEvent(data.events[i]);
     if (!flag.empty()) w.flag(flag, "12.5 % of frames missed their vsync");
     if (finish) w.finish();
@@ -334,7 +334,7 @@ std::map<std::string, std::string> snapshot(const std::string& dir) {
 
 TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnlessAskedFor) {
     const std::string results = scratch("mixed/results"), source = scratch("mixed/source");
-    const auto data = protocol::readSession(headless("shooter-quick.json", "OK", source, 4));
+    const auto data = session::readSession(headless("shooter-quick.json", "OK", source, 4));
     // Cut in the middle of the test phase: some scored trials survive, not all.
     std::vector<std::size_t> testShots;
     for (std::size_t i = 0; i < data.events.size(); ++i)
@@ -354,11 +354,11 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     { std::ofstream(results + "/notes.txt") << "ignored"; }
     ASSERT_EQ(::mkfifo((results + "/pipe.warplab-session").c_str(), 0600), 0);  // must not block the export
     // A session still being written: its writer holds the file open with a WAL beside it.
-    protocol::SessionWriter running = [&] {
-        protocol::SessionHeader header = data.header;
+    session::SessionWriter running = [&] {
+        session::SessionHeader header = data.header;
         header.participant = "LIVE";
         header.startedAt = "";
-        protocol::SessionWriter w = protocol::SessionWriter::create(results, header);
+        session::SessionWriter w = session::SessionWriter::create(results, header);
         for (std::size_t i = 0; i < cut; ++i) w.addEvent(data.events[i]);
         w.commit();
         return w;
@@ -428,7 +428,7 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
 
 TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
     const std::string results = scratch("ids/results"), source = scratch("ids/source");
-    const auto data = protocol::readSession(headless("shooter-quick.json", "x", source, 5));
+    const auto data = session::readSession(headless("shooter-quick.json", "x", source, 5));
     for (const char* id : {"=1+2", "-5", "@cmd", "+A1", "a,b \"c\"", "caf\xC3\xA9", "bad\xFFid"})
         rewrite(data, results, id, data.events.size(), true);
     const std::string out = scratch("ids/out");
@@ -444,7 +444,7 @@ TEST(Export, AVersion1SessionExportsItsScoredTrials) {
     const std::string fixture = std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session";
     fs::copy_file(fixture, results + "/v1.warplab-session");
     std::map<Key, Counts> expected;
-    countScored(protocol::readSession(fixture), expected);
+    countScored(session::readSession(fixture), expected);
     ASSERT_FALSE(expected.empty());
     const std::string out = scratch("v1/out");
     exportQuietly(results, out);
@@ -462,8 +462,8 @@ TEST(Export, AVersion1SessionExportsItsScoredTrials) {
 // what was played), and export says which matches were drawn so.
 TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     const std::string source = scratch("stand-in/source"), results = scratch("stand-in/results");
-    const auto data = protocol::readSession(headless("click-quick.json", "S", source, 6));
-    protocol::SessionWriter w = protocol::SessionWriter::create(results, data.header);
+    const auto data = session::readSession(headless("click-quick.json", "S", source, 6));
+    session::SessionWriter w = session::SessionWriter::create(results, data.header);
     for (const auto& r : data.inputs) w.addInput(r);
     for (const auto& r : data.frames) w.addFrame(r);
     int marked = 0;

@@ -1,7 +1,7 @@
 // libFuzzer target: arbitrary bytes as a session file (docs/fuzzing.md).
 //
 // Each input is written to one regular file, <private temp folder>/input.warplab-session, and
-// read with protocol::readSession. SessionError (one sentence naming the path) is the
+// read with session::readSession. SessionError (one sentence naming the path) is the
 // documented failure; anything else is a bug: another exception, a crash, a sanitizer report,
 // a leak, a hang. Beyond not crashing, the reader keeps the promises session_store.h makes:
 //   - a completed session is neither damaged nor annotated; an incomplete one says why;
@@ -21,12 +21,12 @@
 
 #include <stdlib.h>  // mkdtemp
 
-#include "protocol/session_store.h"
+#include "session/session_store.h"
 
 namespace {
 
 namespace fs = std::filesystem;
-using warplab::protocol::SessionData;
+using warplab::session::SessionData;
 
 [[noreturn]] void bug(const char* what, const std::string& detail) {
     std::fprintf(stderr, "fuzz_session: %s\n%s\n", what, detail.c_str());
@@ -90,8 +90,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Scratch& s = scratch();
     s.write(data, size);
     try {
-        checkPromises(warplab::protocol::readSession(s.file().string()));
-    } catch (const warplab::protocol::SessionError&) {
+        checkPromises(warplab::session::readSession(s.file().string()));
+    } catch (const warplab::session::SessionError&) {
         // The documented failure: a file that is not a readable session.
     } catch (const std::exception& e) {
         bug("readSession threw something other than SessionError:", e.what());

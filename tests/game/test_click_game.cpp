@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "game/click/click_bot.h"
-#include "game/click/click_game.h"
+#include "click/click_bot.h"
+#include "click/click_game.h"
 #include "game/screen.h"
 #include "protocol/click_protocol.h"
-#include "protocol/records.h"
+#include "session/records.h"
 
 namespace warplab::game {
 namespace {
@@ -25,11 +25,11 @@ protocol::ClickProtocol quick() {
     return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json", checkMode);
 }
 
-nlohmann::json detail(const protocol::EventRecord& e) { return nlohmann::json::parse(e.detailJson); }
+nlohmann::json detail(const session::EventRecord& e) { return nlohmann::json::parse(e.detailJson); }
 
 struct Played {
     std::vector<FrameInput> inputs;
-    std::vector<protocol::EventRecord> events;
+    std::vector<session::EventRecord> events;
 };
 
 Played playWithBot(const protocol::ClickProtocol& p, std::uint64_t seed, std::uint64_t botSeed) {
@@ -94,19 +94,19 @@ TEST(ClickGame, SameSeedAndInputSameEventsBitForBit) {
     const auto p = quick();
     const Played a = playWithBot(p, 11, 2);
     ClickGame game(p, 11, kDisplay);
-    std::vector<protocol::EventRecord> replayed;
+    std::vector<session::EventRecord> replayed;
     for (const auto& in : a.inputs) {
         game.step(in);
         for (auto& e : game.takeEvents()) replayed.push_back(e);
     }
     ASSERT_EQ(a.events.size(), replayed.size());
     for (std::size_t i = 0; i < replayed.size(); ++i)
-        ASSERT_EQ(protocol::firstDifference(a.events[i], replayed[i]), "") << "event " << i;
+        ASSERT_EQ(session::firstDifference(a.events[i], replayed[i]), "") << "event " << i;
     // Another session seed: other spheres, other match order, other outcomes.
     const Played b = playWithBot(p, 12, 2);
     bool differ = a.events.size() != b.events.size();
     for (std::size_t i = 0; !differ && i < a.events.size(); ++i)
-        differ = !protocol::firstDifference(a.events[i], b.events[i]).empty();
+        differ = !session::firstDifference(a.events[i], b.events[i]).empty();
     EXPECT_TRUE(differ);
 }
 

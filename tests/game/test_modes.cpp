@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include "game/modes.h"
-#include "renderer/upconvert.h"
 
 namespace warplab::game {
 namespace {
@@ -26,23 +25,6 @@ TEST(Modes, KnownIdsAndUnknownOnesNamed) {
         EXPECT_NE(std::string(e.what()).find("conv16"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("warp15to120"), std::string::npos);
     }
-}
-
-// Every mode must be drawable: the frames a mode makes between its renders use the method it
-// names, and held or rendered frames are copied by hold120 (app/replay_render.cpp).
-TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
-    const auto methods = renderer::methodNames();
-    auto has = [&](const std::string& name) { return std::find(methods.begin(), methods.end(), name) != methods.end(); };
-    EXPECT_TRUE(has("hold120"));
-    for (const auto& id : modeIds()) {
-        const ModeSpec& mode = modeSpec(id);
-        if (mode.upconversion == Upconversion::None) {
-            EXPECT_TRUE(mode.method.empty()) << id << " makes no frames between renders";
-            continue;
-        }
-        EXPECT_TRUE(has(mode.method)) << id << " names method '" << mode.method << "', which the renderer lacks";
-    }
-    EXPECT_EQ(modeSpec("bireproj15to60").method, "bireproj");
 }
 
 TEST(Modes, CheckModeNamesTheProblem) {

@@ -7,9 +7,9 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "game/shooter/shooter_bot.h"
-#include "game/shooter/shooter_game.h"
-#include "protocol/records.h"
+#include "shooter/shooter_bot.h"
+#include "shooter/shooter_game.h"
+#include "session/records.h"
 #include "protocol/shooter_protocol.h"
 #include "scene/camera.h"
 
@@ -22,7 +22,7 @@ protocol::ShooterProtocol quick() {
 
 struct Played {
     std::vector<FrameInput> inputs;
-    std::vector<protocol::EventRecord> events;
+    std::vector<session::EventRecord> events;
     int frames = 0;
 };
 
@@ -42,15 +42,15 @@ Played playWithBot(const protocol::ShooterProtocol& p, std::uint64_t seed, std::
 }
 
 // "" when both runs logged the same events bit for bit, else the first difference.
-std::string eventDifference(const std::vector<protocol::EventRecord>& a, const std::vector<protocol::EventRecord>& b) {
+std::string eventDifference(const std::vector<session::EventRecord>& a, const std::vector<session::EventRecord>& b) {
     if (a.size() != b.size()) return std::to_string(a.size()) + " events against " + std::to_string(b.size());
     for (std::size_t i = 0; i < a.size(); ++i)
-        if (const std::string d = protocol::firstDifference(a[i], b[i]); !d.empty())
+        if (const std::string d = session::firstDifference(a[i], b[i]); !d.empty())
             return "event " + std::to_string(i) + ": " + d;
     return "";
 }
 
-double detailNumber(const protocol::EventRecord& e, const char* key) {
+double detailNumber(const session::EventRecord& e, const char* key) {
     return nlohmann::json::parse(e.detailJson).at(key).get<double>();
 }
 
@@ -83,7 +83,7 @@ TEST(ShooterGame, SameSeedAndInputSameEventsBitForBit) {
     const Played a = playWithBot(p, 11, 2);
     // Replaying the recorded input into a fresh game gives the same events.
     ShooterGame game(p, 11, 16.0 / 9.0);
-    std::vector<protocol::EventRecord> replayed;
+    std::vector<session::EventRecord> replayed;
     for (const auto& in : a.inputs) {
         game.step(in);
         for (auto& e : game.takeEvents()) replayed.push_back(e);

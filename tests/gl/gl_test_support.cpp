@@ -72,7 +72,7 @@ game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, doubl
     return game::ShooterScene(config);
 }
 
-int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth) {
+int blackWhereTruthIsNot(const image::ImageRGBA8& shown, const image::ImageRGBA8& truth) {
     int black = 0;
     for (int y = 0; y < shown.height; ++y)
         for (int x = 0; x < shown.width; ++x) {
@@ -97,19 +97,19 @@ std::string testOutputDir() {
     return dir;
 }
 
-::testing::AssertionResult imagesMatch(const renderer::ImageRGBA8& expected, const renderer::ImageRGBA8& actual,
+::testing::AssertionResult imagesMatch(const image::ImageRGBA8& expected, const image::ImageRGBA8& actual,
                                        const std::string& label, const ImageThresholds& t) {
     if (expected.width != actual.width || expected.height != actual.height)
         return ::testing::AssertionFailure() << label << ": size " << actual.width << "x" << actual.height
                                              << " differs from the expected " << expected.width << "x"
                                              << expected.height;
-    const auto diff = renderer::compareImages(expected, actual, t.pixelThreshold);
+    const auto diff = image::compareImages(expected, actual, t.pixelThreshold);
     const double share = static_cast<double>(diff.pixelsOverThreshold) / (double(actual.width) * actual.height);
     if (diff.meanChannelDiff <= t.mean && share <= t.maxShareOver) return ::testing::AssertionSuccess();
     const std::string base = testOutputDir() + "/" + label;
-    renderer::writePng(base + ".actual.png", actual);
-    renderer::writePng(base + ".expected.png", expected);
-    renderer::writePng(base + ".diff.png", diff.diffImage);
+    image::writePng(base + ".actual.png", actual);
+    image::writePng(base + ".expected.png", expected);
+    image::writePng(base + ".diff.png", diff.diffImage);
     return ::testing::AssertionFailure()
            << label << ": mean channel difference " << diff.meanChannelDiff << " (limit " << t.mean << "), "
            << diff.pixelsOverThreshold << " pixels over " << t.pixelThreshold << " = " << share * 100.0
@@ -117,21 +117,21 @@ std::string testOutputDir() {
            << ".{actual,expected,diff}.png";
 }
 
-::testing::AssertionResult matchesReference(const std::string& name, const renderer::ImageRGBA8& actual,
+::testing::AssertionResult matchesReference(const std::string& name, const image::ImageRGBA8& actual,
                                             const ImageThresholds& thresholds) {
     const std::string path = std::string(WARPLAB_SOURCE_DIR) + "/tests/references/" + name + ".png";
     const char* approve = std::getenv("WARPLAB_APPROVE");
     if (approve != nullptr && std::string(approve) == "1") {
-        renderer::writePng(path, actual);
+        image::writePng(path, actual);
         return ::testing::AssertionSuccess() << "approved " << path;
     }
     if (!std::filesystem::exists(path)) {
-        renderer::writePng(testOutputDir() + "/" + name + ".actual.png", actual);
+        image::writePng(testOutputDir() + "/" + name + ".actual.png", actual);
         return ::testing::AssertionFailure() << "no reference image " << path
                                              << " (run scripts/approve-references.sh after checking "
                                              << testOutputDir() << "/" << name << ".actual.png)";
     }
-    return imagesMatch(renderer::readPng(path), actual, name, thresholds);
+    return imagesMatch(image::readPng(path), actual, name, thresholds);
 }
 
 }  // namespace warplab::testing

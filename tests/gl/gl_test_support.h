@@ -43,7 +43,7 @@ game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, d
 // colour is a source colour or a blend of two and the scene is almost never black, so a black
 // pixel (every channel below 8) where the truth is not dark (some channel 32 or more) is one
 // nothing was drawn into.
-int blackWhereTruthIsNot(const renderer::ImageRGBA8& shown, const renderer::ImageRGBA8& truth);
+int blackWhereTruthIsNot(const image::ImageRGBA8& shown, const image::ImageRGBA8& truth);
 
 // Camera turned so the reticle (image centre) is on `point`.
 scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point);
@@ -64,9 +64,9 @@ struct ImageThresholds {
 // Compares `actual` with tests/references/<name>.png. On failure writes actual and diff PNGs
 // to the test output folder and names them. With WARPLAB_APPROVE=1 it (re)writes the
 // reference instead and passes; scripts/approve-references.sh does that.
-::testing::AssertionResult matchesReference(const std::string& name, const renderer::ImageRGBA8& actual,
+::testing::AssertionResult matchesReference(const std::string& name, const image::ImageRGBA8& actual,
                                             const ImageThresholds& thresholds = {});
-::testing::AssertionResult imagesMatch(const renderer::ImageRGBA8& expected, const renderer::ImageRGBA8& actual,
+::testing::AssertionResult imagesMatch(const image::ImageRGBA8& expected, const image::ImageRGBA8& actual,
                                        const std::string& label, const ImageThresholds& thresholds = {});
 
 std::string testOutputDir();

@@ -18,8 +18,8 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench/ground_truth.h"
-#include "game/sequences.h"
+#include "bench/ground_truth.h"
+#include "bench/sequences.h"
 #include "gl/gl_test_support.h"
 
 namespace warplab {
@@ -94,7 +94,7 @@ bool identical(const renderer::DisplayImages& a, const renderer::DisplayImages& 
                        a.correspondence.data.size() * sizeof(float)) == 0;
 }
 
-glm::dvec2 centroid(const renderer::ImageU32& ids, std::uint32_t id, int& count) {
+glm::dvec2 centroid(const image::ImageU32& ids, std::uint32_t id, int& count) {
     glm::dvec2 sum(0.0);
     count = 0;
     for (int y = 0; y < ids.height; ++y)
@@ -211,7 +211,7 @@ TEST(Bireproj, TranslatingSphereSitsAtTheInterpolatedPosition) {
 // 3. The bench's sequences against ground truth, scored as the bench scores them.
 
 struct Score {
-    double hitLt0p5 = 0, allLt0p5 = 0, psnr = 0;
+    double hitLt0p5 = 0, allLt0p5 = 0, image::psnr = 0;
     std::vector<renderer::DisplayImages> frames;  // the interval's B-frames, in order
     // Per sample, in the order they were pooled: 0 = not visible in that source, 1 = visible
     // and claimed 0.5 px or more off (or not claimed), 2 = visible and within 0.5 px.
@@ -224,7 +224,7 @@ struct Score {
 constexpr std::uint32_t kNoFocus = 0xffffffffu;
 
 void judge(Score& score, const std::vector<glm::vec2>& claimed, const bench::Correspondence& truth,
-           const renderer::ImageU32& truthIds, std::uint32_t focus) {
+           const image::ImageU32& truthIds, std::uint32_t focus) {
     for (std::size_t i = 0; i < claimed.size(); ++i) {
         if (!truth.visible[i]) {
             score.verdicts.push_back(0);
@@ -239,7 +239,7 @@ void judge(Score& score, const std::vector<glm::vec2>& claimed, const bench::Cor
 // One 15 Hz interval per entry of `intervals` (I-frames at 120 Hz frames 8i and 8i + 8); in
 // each, every method makes the seven 120 Hz B-frames in order, as a session would (so
 // latest-frame initialisation has its earlier frames), and each is scored against a render at
-// its instant: correspondence pooled over both sources as app/bench/bench.cpp pools it, PSNR
+// its instant: correspondence pooled over both sources as bench/src/bench.cpp pools it, PSNR
 // of the mean squared error over the frames.
 std::map<std::string, Score> scoreSequence(const std::string& sequenceName, const std::vector<std::string>& methods,
                                            const std::vector<int>& intervals, std::uint32_t focus = kNoFocus) {
@@ -277,7 +277,7 @@ std::map<std::string, Score> scoreSequence(const std::string& sequenceName, cons
                     acc.add(next, intoNext[j]);
                     judge(out[name], next, intoNext[j], truth.images.ids, focus);
                 }
-                const double p = renderer::psnr(shown.colour, truth.images.colour);
+                const double p = image::psnr(shown.colour, truth.images.colour);
                 squaredErrors[name].first += std::isinf(p) ? 0.0 : 255.0 * 255.0 / std::pow(10.0, p / 10.0);
                 squaredErrors[name].second += 1;
                 out[name].frames.push_back(std::move(shown));
@@ -292,7 +292,7 @@ std::map<std::string, Score> scoreSequence(const std::string& sequenceName, cons
                                       ? std::numeric_limits<double>::quiet_NaN()
                                       : double(out[name].focusRight) / double(out[name].focusHitSamples);
         const double mse = squaredErrors[name].first / squaredErrors[name].second;
-        out[name].psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
+        out[name].image::psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
     }
     return out;
 }
@@ -302,7 +302,7 @@ std::string figures(const std::map<std::string, Score>& scores) {
     s << std::fixed << std::setprecision(2);
     for (const auto& [name, score] : scores)
         s << name << ": hit<0.5px " << 100.0 * score.hitLt0p5 << "%, all<0.5px " << 100.0 * score.allLt0p5
-          << "%, PSNR " << score.psnr << " dB"
+          << "%, PSNR " << score.image::psnr << " dB"
           << (score.focusHitSamples ? ", on the focus object hit<0.5px " + std::to_string(100.0 * score.focusHitLt0p5) +
                                           "% of " + std::to_string(score.focusHitSamples)
                                     : std::string())
@@ -320,8 +320,8 @@ void expectBeatsBaselines(const std::string& sequence, double hitFloor) {
     std::cout << "[" << sequence << "] " << text << "\n";
     const Score& bi = scores.at("bireproj");
     EXPECT_GT(bi.hitLt0p5, hitFloor) << sequence << ": share of visible pixels within 0.5 px";
-    EXPECT_GT(bi.psnr, scores.at("blend").psnr) << sequence;
-    EXPECT_GT(bi.psnr, scores.at("hold15").psnr) << sequence;
+    EXPECT_GT(bi.image::psnr, scores.at("blend").image::psnr) << sequence;
+    EXPECT_GT(bi.image::psnr, scores.at("hold15").image::psnr) << sequence;
 }
 
 // Floors a percentage point under what this test measured (Mesa llvmpipe, 192x108, intervals
@@ -343,7 +343,7 @@ TEST(BireprojBench, ThinGeometryIsReported) {
     RecordProperty("thin", text);
     std::cout << "[thin] " << text << "\n";
     const Score& bi = scores.at("bireproj");
-    EXPECT_TRUE(std::isfinite(bi.hitLt0p5) && std::isfinite(bi.psnr));
+    EXPECT_TRUE(std::isfinite(bi.hitLt0p5) && std::isfinite(bi.image::psnr));
     EXPECT_GT(bi.hitLt0p5, scores.at("blend").hitLt0p5);
     ASSERT_GT(bi.focusHitSamples, 0u);
     EXPECT_GT(bi.focusHitLt0p5, scores.at("hold15").focusHitLt0p5);
@@ -563,7 +563,7 @@ TEST(SceneAssisted, CorrespondencesAreExactAndBeatTheSearch) {
         std::cout << "[scene-assisted " << sequence << "] " << figures(scores) << "\n";
         // Measured: 100 % on both (the claims are the scene's own projections).
         EXPECT_GT(exact.hitLt0p5, 0.999) << sequence;
-        EXPECT_GT(exact.psnr, scores.at("bireproj").psnr) << sequence;
+        EXPECT_GT(exact.image::psnr, scores.at("bireproj").image::psnr) << sequence;
     }
 }
 
@@ -603,10 +603,10 @@ TEST(BireprojBlur, MatchesBruteForceOverTheInterval) {
         const Rendered r = render(sequence->at(t0 + (t1 - t0) * (k + 0.5) / 10.0));
         for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += r.images.colour.pixels[i];
     }
-    renderer::ImageRGBA8 brute = a.images.colour;
+    image::ImageRGBA8 brute = a.images.colour;
     for (std::size_t i = 0; i < sum.size(); ++i) brute.pixels[i] = static_cast<std::uint8_t>(std::lround(sum[i] / 10.0));
-    const double blurPsnr = renderer::psnr(blurred(a, b).colour, brute);
-    const double holdPsnr = renderer::psnr(a.images.colour, brute);  // no blur at all
+    const double blurPsnr = image::psnr(blurred(a, b).colour, brute);
+    const double holdPsnr = image::psnr(a.images.colour, brute);  // no blur at all
     std::cout << "[blur spheres] PSNR against brute force " << blurPsnr << " dB, the I-frame alone " << holdPsnr
               << " dB\n";
     EXPECT_GT(blurPsnr, 40.0);

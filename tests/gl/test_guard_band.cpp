@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_support.h"
-#include "renderer/image.h"
+#include "image/image.h"
 #include "scene/camera.h"
 
 namespace warplab {
@@ -26,7 +26,7 @@ scene::FrameDescription stillHangar(int w, int h) {
 }
 
 // Mean |difference| over RGB of the pixels in columns [x0, x1).
-double stripError(const renderer::ImageRGBA8& a, const renderer::ImageRGBA8& b, int x0, int x1) {
+double stripError(const image::ImageRGBA8& a, const image::ImageRGBA8& b, int x0, int x1) {
     double sum = 0.0;
     for (int y = 0; y < a.height; ++y)
         for (int x = x0; x < x1; ++x)
@@ -83,11 +83,11 @@ TEST(GuardBand, HoldShowsTheDisplayedPartOfABandedSource) {
     input.camera = at.camera;
     input.previous = banded.frame.get();
     const auto shown = testing::produceFrame("hold120", input, w, h);
-    const auto diff = renderer::compareImages(shown.colour, plain.images.colour, 24);
+    const auto diff = image::compareImages(shown.colour, plain.images.colour, 24);
     RecordProperty("pixels_over_24", diff.pixelsOverThreshold);
-    RecordProperty("psnr", std::to_string(renderer::psnr(shown.colour, plain.images.colour)));
+    RecordProperty("image::psnr", std::to_string(image::psnr(shown.colour, plain.images.colour)));
     EXPECT_LE(diff.pixelsOverThreshold, w * h / 1000);
-    EXPECT_GE(renderer::psnr(shown.colour, plain.images.colour), 40.0);
+    EXPECT_GE(image::psnr(shown.colour, plain.images.colour), 40.0);
     int sameIds = 0;
     for (std::size_t i = 0; i < shown.ids.data.size(); ++i) sameIds += shown.ids.data[i] == plain.images.ids.data[i];
     EXPECT_GE(sameIds, w * h * 999 / 1000);
@@ -108,7 +108,7 @@ TEST(GuardBand, IdentityWarpFromABandedSourceReproducesTheDisplayedPart) {
         const auto inside = testing::produceFrame("hold120", input, w, h);
         for (const std::string method : {"warp-full", "warp-sparse4", "warp-sparse8", "warp-sparse16"}) {
             const auto shown = testing::produceFrame(method, input, w, h);
-            const double db = renderer::psnr(shown.colour, inside.colour);
+            const double db = image::psnr(shown.colour, inside.colour);
             EXPECT_GE(db, 60.0) << method << " at " << w << "x" << h;
             RecordProperty(method + "_banded_identity_psnr_" + std::to_string(w), std::to_string(db));
         }

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench/bench.h"
-#include "app/bench/ground_truth.h"
+#include "bench/bench.h"
+#include "bench/ground_truth.h"
 #include "gl/gl_test_support.h"
 #include "renderer/upconvert.h"
 
@@ -38,8 +38,8 @@ TEST(Methods, Hold120EqualsGroundTruthExactly) {
     const auto shown = produce("hold120", input);
     EXPECT_EQ(shown.colour.pixels, truth.images.colour.pixels);
     EXPECT_EQ(shown.ids.data, truth.images.ids.data);
-    EXPECT_TRUE(std::isinf(renderer::psnr(shown.colour, truth.images.colour)));
-    EXPECT_EQ(renderer::ssimLuminance(shown.colour, truth.images.colour), 1.0);
+    EXPECT_TRUE(std::isinf(image::psnr(shown.colour, truth.images.colour)));
+    EXPECT_EQ(image::ssimLuminance(shown.colour, truth.images.colour), 1.0);
 }
 
 TEST(Methods, HoldOfAMovingTargetDiffersFromGroundTruth) {
@@ -51,7 +51,7 @@ TEST(Methods, HoldOfAMovingTargetDiffersFromGroundTruth) {
     input.previous = source.frame.get();
     const auto shown = produce("hold15", input);
     EXPECT_EQ(shown.colour.pixels, source.images.colour.pixels);  // held, not re-rendered
-    EXPECT_LT(renderer::psnr(shown.colour, truth.images.colour), 60.0);
+    EXPECT_LT(image::psnr(shown.colour, truth.images.colour), 60.0);
 }
 
 // A static scene and a still camera: every held pixel is exactly where the scene says it is.

@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "gl/gl_test_support.h"
-#include "renderer/gl/check.h"
-#include "renderer/gl/program.h"
+#include "gl/check.h"
+#include "gl/program.h"
 
 namespace warplab {
 namespace {

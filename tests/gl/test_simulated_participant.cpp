@@ -13,8 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include "app/simulated_participant.h"
-#include "game/click/click_game.h"
+#include "participants/simulated_participant.h"
+#include "click/click_game.h"
 #include "game/registry.h"
 #include "game/screen.h"
 #include "gl/gl_test_support.h"

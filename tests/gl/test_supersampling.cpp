@@ -16,8 +16,8 @@
 #include "gl/gl_test_support.h"
 // Renderer-private, for the flow attachment alone: nothing outside renderer/ reads flow back,
 // so there is no public read-back to use.
-#include "renderer/gbuffer_gl.h"
-#include "renderer/gl/check.h"
+#include "gbuffer_gl.h"
+#include "gl/check.h"
 
 namespace warplab {
 namespace {
@@ -100,8 +100,8 @@ int maxChannelDiff(const std::uint8_t* a, const std::uint8_t* b) {
 }
 
 // The oracle: each n x n block of a render at n times the size, averaged and rounded.
-renderer::ImageRGBA8 boxMean(const renderer::ImageRGBA8& big, int n) {
-    auto small = renderer::ImageRGBA8::make(big.width / n, big.height / n);
+image::ImageRGBA8 boxMean(const image::ImageRGBA8& big, int n) {
+    auto small = image::ImageRGBA8::make(big.width / n, big.height / n);
     for (int y = 0; y < small.height; ++y)
         for (int x = 0; x < small.width; ++x)
             for (int c = 0; c < 4; ++c) {

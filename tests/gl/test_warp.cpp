@@ -6,10 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench/ground_truth.h"
-#include "game/sequences.h"
+#include "bench/ground_truth.h"
+#include "bench/sequences.h"
 #include "gl/gl_test_support.h"
-#include "renderer/upconvert/warp.h"
+#include "upconvert/warp.h"
 #include "scene/camera.h"
 
 namespace warplab {
@@ -47,7 +47,7 @@ TEST(Warp, ZeroDtFromTheSourceCameraReproducesTheSource) {
     const auto source = testing::renderSource(shooterAt(1.0), kW, kH);
     for (const auto& method : kWarps) {
         const auto shown = warp(method, source, source.frame->depicts.camera, 1.0);
-        const auto diff = renderer::compareImages(source.images.colour, shown.colour, 8);
+        const auto diff = image::compareImages(source.images.colour, shown.colour, 8);
         EXPECT_LE(diff.meanChannelDiff, 0.05) << method;
         EXPECT_LE(diff.pixelsOverThreshold, kW * kH / 1000) << method;
         EXPECT_EQ(shown.ids.data, source.images.ids.data) << method;
@@ -99,7 +99,7 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
     }
 }
 
-glm::dvec2 centroid(const renderer::ImageU32& ids, std::uint32_t id, int& count) {
+glm::dvec2 centroid(const image::ImageU32& ids, std::uint32_t id, int& count) {
     glm::dvec2 sum(0.0);
     count = 0;
     for (int y = 0; y < ids.height; ++y)
@@ -265,9 +265,9 @@ TEST(Warp, SparseMeshesWarpLargeFramesAsWellAsTheFullMesh) {
     input.displayTime = display.scene.time;
     input.camera = display.camera;
     input.previous = source.frame.get();
-    const double full = renderer::psnr(testing::produceFrame("warp-full", input, w, h).colour, truth.colour);
+    const double full = image::psnr(testing::produceFrame("warp-full", input, w, h).colour, truth.colour);
     for (const std::string method : {"warp-sparse4", "warp-sparse8", "warp-sparse16"}) {
-        const double db = renderer::psnr(testing::produceFrame(method, input, w, h).colour, truth.colour);
+        const double db = image::psnr(testing::produceFrame(method, input, w, h).colour, truth.colour);
         EXPECT_GE(db, full - 0.05) << method << " against warp-full's " << full << " dB";
         RecordProperty(method + "_large_frame_psnr", std::to_string(db) + " (warp-full " + std::to_string(full) + ")");
     }
@@ -373,7 +373,7 @@ TEST(Warp, ASparseMeshSubdividedEverywhereWarpsAsWellAsTheFullMesh) {
     renderer::WarpSettings everywhere;
     everywhere.depthJump = 0.0f;
     everywhere.velocityJump = 0.0f;
-    const double full = renderer::psnr(testing::produceFrame("warp-full", input, w, h).colour, truth.colour);
+    const double full = image::psnr(testing::produceFrame("warp-full", input, w, h).colour, truth.colour);
     for (const int n : {8, 16}) {
         everywhere.patchSize = n;
         auto sparse = renderer::makeWarp(testing::sourceDataPaths(), "warp-sparse" + std::to_string(n), everywhere);
@@ -382,7 +382,7 @@ TEST(Warp, ASparseMeshSubdividedEverywhereWarpsAsWellAsTheFullMesh) {
         // Nearly every patch dense (2 n^2 triangles): the draw is far past 65535 vertices.
         const double patches = double((w + 1 + n - 1) / n) * double((h + 1 + n - 1) / n);
         EXPECT_GT(sparse->lastTriangleCount(), 0.9 * patches * 2.0 * n * n) << "sparse" << n;
-        const double db = renderer::psnr(renderer::readBack(frame).colour, truth.colour);
+        const double db = image::psnr(renderer::readBack(frame).colour, truth.colour);
         EXPECT_GE(db, full - 0.1) << "sparse" << n << " against warp-full's " << full << " dB";
     }
 }
@@ -461,7 +461,7 @@ TEST(Warp, CameraTurnLeavesNoPixelBlack) {
         // The strip that turned into view (about 3/60 of the width) is the fill's, not the mesh's.
         EXPECT_LT(meshCovered, w * h * 97 / 100) << method << ": the turn should bring uncovered pixels into view";
         EXPECT_EQ(testing::blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
-        const double db = renderer::psnr(shown.colour, truth.images.colour);
+        const double db = image::psnr(shown.colour, truth.images.colour);
         // Floor: measured 26.1 dB (warp-full, warp-sparse16) to 26.7 dB (warp-nofix) on llvmpipe;
         // with the band left black it was about 20 dB. 25 dB leaves a margin for another rasteriser's
         // aliasing of the panel seams (the interior error is mostly aliasing, see issue 12).
@@ -487,7 +487,7 @@ TEST(Warp, IdentityWarpReproducesItsSource) {
             input.camera = at.camera;
             input.previous = source.frame.get();
             const auto shown = testing::produceFrame(method, input, w, h);
-            const double db = renderer::psnr(shown.colour, source.images.colour);
+            const double db = image::psnr(shown.colour, source.images.colour);
             EXPECT_GE(db, 60.0) << method << " at " << w << "x" << h;
             RecordProperty(method + "_identity_psnr_" + std::to_string(w), std::to_string(db));
         }

@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "app/bench/ground_truth.h"
+#include "bench/ground_truth.h"
 #include "gl/gl_test_support.h"
 
 namespace warplab {
@@ -52,7 +52,7 @@ TEST(WarpSearch, ZeroDtFromTheSourceCameraReproducesTheSource) {
     const auto source = testing::renderSource(shooterAt(1.0), kW, kH);
     const auto shown = extrapolate(source, source.frame->depicts.camera, 1.0);
     EXPECT_EQ(shown.ids.data, source.images.ids.data);
-    const auto diff = renderer::compareImages(source.images.colour, shown.colour, 1);
+    const auto diff = image::compareImages(source.images.colour, shown.colour, 1);
     EXPECT_LE(diff.maxChannelDiff, 1);
     int claimed = 0;
     for (const auto& c : reported(shown)) claimed += std::isfinite(c.x) && std::isfinite(c.y);
@@ -96,7 +96,7 @@ TEST(WarpSearch, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere)
     RecordProperty("rotation_hit_lt0p5", std::to_string(stats.hitLt0p5));
 }
 
-glm::dvec2 centroid(const renderer::ImageU32& ids, std::uint32_t id, int& count) {
+glm::dvec2 centroid(const image::ImageU32& ids, std::uint32_t id, int& count) {
     glm::dvec2 sum(0.0);
     count = 0;
     for (int y = 0; y < ids.height; ++y)

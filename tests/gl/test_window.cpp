@@ -12,7 +12,7 @@ TEST(Window, ScreenshotMatchesHeadlessRender) {
     const auto shooter = testing::shooterScene(kW, kH, 1);
     scene::FrameDescription frame{shooter.restingCamera(), shooter.snapshot(1.0)};
 
-    renderer::ImageRGBA8 headless;
+    image::ImageRGBA8 headless;
     {
         auto context = renderer::createContext({renderer::GlBackend::OSMesa});
         renderer::ConventionalRenderer conventional(testing::sourceDataPaths());
@@ -34,7 +34,7 @@ TEST(Window, ScreenshotMatchesHeadlessRender) {
     renderer::GBuffer gbuffer(kW, kH);
     conventional.render(frame, gbuffer);
     renderer::blitToDefaultFramebuffer(gbuffer, kW, kH);
-    const renderer::ImageRGBA8 screenshot = renderer::readDefaultFramebuffer(kW, kH);
+    const image::ImageRGBA8 screenshot = renderer::readDefaultFramebuffer(kW, kH);
     window->swapBuffers();
     window->pumpEvents();
     EXPECT_TRUE(testing::imagesMatch(headless, screenshot, "window_vs_headless"));

@@ -1,6 +1,6 @@
-// Tests for renderer/image.h: file round-trips and orientation, error messages, false colour,
+// Tests for image/image.h: file round-trips and orientation, error messages, false colour,
 // comparison and metrics. No GL context needed.
-#include "renderer/image.h"
+#include "image/image.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@
 #endif
 
 namespace fs = std::filesystem;
-using namespace warplab::renderer;
+using namespace warplab::image;
 
 namespace {
 

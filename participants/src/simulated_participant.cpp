@@ -1,0 +1,651 @@
+#include "participants/simulated_participant.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "game/modes.h"
+#include "protocol/click_protocol.h"
+#include "protocol/shooter_protocol.h"
+#include "renderer/upconvert.h"
+#include "scene/scene.h"
+
+namespace warplab::app {
+namespace {
+
+constexpr double kMaxPitch = 1.5;  // the shooter's camera never pitches further (radians)
+constexpr int kPictureBlock = 4;   // percept pixels per side of a Thumbnail cell
+
+double focalPixels(const TaskKnowledge& knowledge) {
+    return 0.5 * knowledge.display.height / std::tan(glm::radians(knowledge.verticalFovDeg) * 0.5);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Perception
+
+std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::ImageRGBA8& colour,
+                                    glm::dvec2 toDisplay) {
+    struct Sum {
+        double x = 0.0, y = 0.0;
+        glm::dvec3 colour{0.0};
+        int n = 0;
+    };
+    std::map<std::uint32_t, Sum> sums;
+    for (int y = 0; y < ids.height; ++y)
+        for (int x = 0; x < ids.width; ++x) {
+            const std::uint32_t id = ids.at(x, y);
+            if (id < scene::kIdTarget) continue;  // hangar, sky: background
+            Sum& s = sums[id];
+            s.x += x + 0.5;
+            s.y += y + 0.5;
+            const std::uint8_t* c = colour.at(x, y);
+            s.colour += glm::dvec3(c[0], c[1], c[2]) / 255.0;
+            ++s.n;
+        }
+    std::vector<SeenObject> objects;
+    for (const auto& [id, s] : sums) {
+        SeenObject o;
+        o.id = id;
+        o.centre = glm::dvec2(s.x / s.n * toDisplay.x, s.y / s.n * toDisplay.y);
+        o.radiusPx = std::sqrt(s.n * toDisplay.x * toDisplay.y / glm::pi<double>());
+        o.colour = s.colour / static_cast<double>(s.n);
+        o.pixels = s.n;
+        objects.push_back(o);
+    }
+    return objects;
+}
+
+Thumbnail thumbnailOf(const image::ImageRGBA8& colour, const image::ImageU32& ids, int block,
+                      glm::dvec2 toDisplay) {
+    Thumbnail t;
+    t.width = colour.width / block;
+    t.height = colour.height / block;
+    t.cellPx = toDisplay * static_cast<double>(block);
+    std::vector<float> sum(static_cast<std::size_t>(t.width) * t.height, 0.0f);
+    std::vector<int> count(sum.size(), 0);
+    for (int y = 0; y < t.height * block; ++y)
+        for (int x = 0; x < t.width * block; ++x) {
+            if (ids.at(x, y) >= scene::kIdTarget) continue;  // the scene only: objects move on their own
+            const std::uint8_t* c = colour.at(x, y);
+            const std::size_t cell = static_cast<std::size_t>(y / block) * t.width + x / block;
+            sum[cell] += (0.299f * c[0] + 0.587f * c[1] + 0.114f * c[2]) / 255.0f;
+            ++count[cell];
+        }
+    t.luma.resize(sum.size());
+    for (std::size_t i = 0; i < sum.size(); ++i)
+        t.luma[i] = count[i] > 0 ? sum[i] / count[i] : std::numeric_limits<float>::quiet_NaN();
+    return t;
+}
+
+std::optional<glm::dvec2> bestShift(const Thumbnail& before, const Thumbnail& now, glm::ivec2 guess, glm::ivec2 radius,
+                                    double centreShare, double minOverlapShare) {
+    if (before.width != now.width || before.height != now.height || now.width < 3 || now.height < 3)
+        return std::nullopt;
+    const int w = now.width, h = now.height;
+    // The cells of `now` compared: the central share of the picture (its edges stretch most when
+    // the view turns, and hold what the turn brought into view).
+    const int mx = static_cast<int>(std::lround(w * (1.0 - centreShare) * 0.5));
+    const int my = static_cast<int>(std::lround(h * (1.0 - centreShare) * 0.5));
+    const double minCells = minOverlapShare * (w - 2 * mx) * (h - 2 * my);
+    const auto cost = [&](int sx, int sy) {
+        double sum = 0.0;
+        int n = 0;
+        for (int y = std::max(my, sy); y < std::min(h - my, h + sy); ++y)
+            for (int x = std::max(mx, sx); x < std::min(w - mx, w + sx); ++x) {
+                const float a = now.at(x, y), b = before.at(x - sx, y - sy);
+                if (std::isnan(a) || std::isnan(b)) continue;
+                sum += (a - b) * (a - b);
+                ++n;
+            }
+        return n >= std::max(1.0, minCells) ? sum / n : std::numeric_limits<double>::infinity();
+    };
+    double best = std::numeric_limits<double>::infinity();
+    glm::ivec2 at = guess;
+    for (int sy = guess.y - radius.y; sy <= guess.y + radius.y; ++sy)
+        for (int sx = guess.x - radius.x; sx <= guess.x + radius.x; ++sx)
+            if (const double c = cost(sx, sy); c < best) {
+                best = c;
+                at = {sx, sy};
+            }
+    if (!std::isfinite(best)) return std::nullopt;
+    const auto refine = [&](double minus, double plus) {
+        const double curvature = minus - 2.0 * best + plus;
+        if (!std::isfinite(curvature) || curvature <= 1e-12) return 0.0;
+        return std::clamp(0.5 * (minus - plus) / curvature, -0.5, 0.5);
+    };
+    return glm::dvec2(at.x + refine(cost(at.x - 1, at.y), cost(at.x + 1, at.y)),
+                      at.y + refine(cost(at.x, at.y - 1), cost(at.x, at.y + 1)));
+}
+
+std::optional<glm::dvec2> whereViewIs(const Thumbnail& before, const Thumbnail& now) {
+    const auto cells = bestShift(before, now, {0, 0}, {now.width / 2, now.height / 2}, 1.0, 1.0 / 3.0);
+    if (!cells) return std::nullopt;
+    return *cells * now.cellPx;
+}
+
+std::optional<glm::dvec2> howFarViewMoved(const Percept& before, const Percept& now, glm::dvec2 guessPx) {
+    // Coarse over the blurred pictures (within a sixth of the view of the guess), then within a
+    // cell of that over the sharp ones.
+    const glm::ivec2 around(static_cast<int>(std::lround(guessPx.x / now.picture.cellPx.x)),
+                            static_cast<int>(std::lround(guessPx.y / now.picture.cellPx.y)));
+    const auto coarse = bestShift(before.picture, now.picture, around,
+                                  {now.picture.width / 6, now.picture.height / 6}, 0.6, 0.5);
+    if (!coarse) return std::nullopt;
+    const glm::dvec2 ratio = now.picture.cellPx / now.detail.cellPx;
+    const glm::ivec2 guess(static_cast<int>(std::lround(coarse->x * ratio.x)),
+                           static_cast<int>(std::lround(coarse->y * ratio.y)));
+    const glm::ivec2 radius(static_cast<int>(std::ceil(ratio.x)) + 1, static_cast<int>(std::ceil(ratio.y)) + 1);
+    const auto fine = bestShift(before.detail, now.detail, guess, radius, 0.5, 0.5);
+    if (!fine) return *coarse * now.picture.cellPx;
+    return *fine * now.detail.cellPx;
+}
+
+TaskKnowledge taskKnowledge(const game::Study& study, const game::DisplaySize& display) {
+    TaskKnowledge k;
+    k.display = display;
+    k.refreshHz = study.refreshHz();
+    k.radiansPerCount = study.mouseRadiansPerCount();
+    // The instructions of each game, as a participant is told them. (A Study::instructions()
+    // in game/ would let a new game bring its own.)
+    if (study.game() == "shooter") {
+        const auto p = protocol::parseShooterProtocol(study.protocolJson(), study.name(), game::checkMode);
+        k.verticalFovDeg = p.verticalFovDeg;
+    } else if (study.game() == "click") {
+        const auto p = protocol::parseClickProtocol(study.protocolJson(), study.name(), game::checkMode);
+        k.verticalFovDeg = p.verticalFovDeg;
+        k.pixelsPerCount = p.cursorPixelsPerCount;
+        k.greenOnly = true;
+    } else {
+        throw std::invalid_argument("the simulated participant has no instructions for the game '" + study.game() +
+                                    "' (it plays shooter and click)");
+    }
+    return k;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The control law's parts
+
+glm::dvec2 offsetFromPointer(const TaskKnowledge& knowledge, game::PointerKind pointer, glm::dvec2 pointerAt,
+                             glm::dvec2 point) {
+    if (pointer != game::PointerKind::Reticle) return point - pointerAt;
+    // The turn that brings the point under the reticle: its direction in the view, as yaw
+    // (right) and pitch (up) offsets. Exact for a level view; near enough otherwise, and the
+    // loop closes on what it sees next.
+    const double f = focalPixels(knowledge);
+    const double dx = (point.x - pointerAt.x) / f, dy = -(point.y - pointerAt.y) / f;
+    return {std::atan(dx), std::atan2(dy, std::sqrt(1.0 + dx * dx))};
+}
+
+double sizeInHandUnits(const TaskKnowledge& knowledge, game::PointerKind pointer, double radiusPx) {
+    if (pointer != game::PointerKind::Reticle) return radiusPx;
+    return std::atan(radiusPx / focalPixels(knowledge));
+}
+
+MotionEstimate estimateMotion(const std::vector<Sample>& samples, bool acceleration, double minSpanForAcceleration) {
+    if (samples.empty()) throw std::invalid_argument("estimateMotion: needs at least one sample");
+    MotionEstimate e;
+    e.time = samples.back().time;
+    e.position = samples.back().position;
+    const double span = samples.back().time - samples.front().time;
+    if (samples.size() < 2 || span <= 1e-9) return e;
+    // Least squares in time relative to the last sample: p(s) = c0 + c1 s (+ c2 s^2).
+    const bool parabola = acceleration && samples.size() >= 4 && span >= minSpanForAcceleration;
+    const int n = parabola ? 3 : 2;
+    double m[3][3] = {};
+    glm::dvec2 r[3] = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
+    for (const auto& sample : samples) {
+        const double t = sample.time - e.time;
+        const double powers[3] = {1.0, t, t * t};
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j < n; ++j) m[i][j] += powers[i] * powers[j];
+            r[i] += powers[i] * sample.position;
+        }
+    }
+    // Gaussian elimination (the matrix is symmetric positive definite for distinct times).
+    for (int k = 0; k < n; ++k)
+        for (int i = k + 1; i < n; ++i) {
+            const double f = m[i][k] / m[k][k];
+            for (int j = k; j < n; ++j) m[i][j] -= f * m[k][j];
+            r[i] -= f * r[k];
+        }
+    glm::dvec2 c[3] = {glm::dvec2(0.0), glm::dvec2(0.0), glm::dvec2(0.0)};
+    for (int i = n - 1; i >= 0; --i) {
+        glm::dvec2 sum = r[i];
+        for (int j = i + 1; j < n; ++j) sum -= m[i][j] * c[j];
+        c[i] = sum / m[i][i];
+    }
+    e.position = c[0];
+    e.velocity = c[1];
+    if (parabola) e.acceleration = 2.0 * c[2];
+    return e;
+}
+
+glm::dvec2 pursuitVelocity(const MotionEstimate& target, double now, glm::dvec2 hand, const ParticipantParams& params) {
+    // Where the target is now, predicted from what was seen a reaction time ago (the delay
+    // bridged by an internal model; cf. Miall, Weir, Wolpert & Stein 1993, J. Motor Behav.
+    // 25:203-216), and where the hand is now (efference copy; Wolpert, Ghahramani & Jordan
+    // 1995, Science 269:1880-1882).
+    return params.pursuitGain * target.velocityAt(now) + params.correctionPerS * (target.positionAt(now) - hand);
+}
+
+bool decidesToClick(glm::dvec2 predictedError, glm::dvec2 seenError, double targetRadius, double aimedForS,
+                    const ParticipantParams& params) {
+    const double within = params.clickWithin * targetRadius;
+    return aimedForS >= params.minAimS && glm::length(predictedError) < within && glm::length(seenError) < within;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The participant
+
+SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const ParticipantParams& params,
+                                           std::uint64_t seed)
+    : knowledge_(knowledge), params_(params), random_(game::mix(seed ^ 0x5133A1E7ULL)) {
+    if (knowledge.radiansPerCount > 0.0) {
+        // Mouse right turns right (+yaw); mouse down (+y) pitches down.
+        unitsPerCount_ = {knowledge.radiansPerCount, -knowledge.radiansPerCount};
+    } else {
+        unitsPerCount_ = {knowledge.pixelsPerCount, knowledge.pixelsPerCount};
+        hand_ = {knowledge.display.width * 0.5, knowledge.display.height * 0.5};
+    }
+}
+
+void SimulatedParticipant::move(game::FrameInput& input, glm::dvec2 velocity, double dt, bool pursuing) {
+    if (!pursuing) {
+        velocity = glm::dvec2(0.0);
+        noise_ = glm::dvec2(0.0);  // a hand at rest on the mouse
+    } else {
+        // Signal-dependent noise, smooth in time (an Ornstein-Uhlenbeck process whose spread
+        // follows the commanded speed), so the frame rate does not change how much there is.
+        const double a = std::exp(-dt / params_.motorNoiseCorrelationS);
+        const double spread =
+            params_.motorNoise * glm::length(velocity) + params_.motorNoiseFloorCountsPerS * std::abs(unitsPerCount_.x);
+        const glm::dvec2 kick(random_.gaussian(), random_.gaussian());
+        noise_ = a * noise_ + std::sqrt(1.0 - a * a) * spread * kick;
+    }
+    const glm::dvec2 intended = velocity * dt;
+    hand_ += intended;
+    if (knowledge_.radiansPerCount > 0.0) {
+        hand_.y = std::clamp(hand_.y, -kMaxPitch, kMaxPitch);
+    } else {
+        // The cursor stops at the display's edges, and the participant knows it.
+        const glm::dvec2 edge(knowledge_.display.width, knowledge_.display.height);
+        hand_ = glm::clamp(hand_ + calibration_, glm::dvec2(0.0), edge) - calibration_;
+    }
+    // Mice send whole counts; what is left over goes with the next frame.
+    const glm::dvec2 counts = (intended + noise_ * dt) / unitsPerCount_ + carry_;
+    const glm::dvec2 sent = glm::round(counts);
+    carry_ = counts - sent;
+    input.mouseDx = sent.x;
+    input.mouseDy = sent.y;
+}
+
+void SimulatedParticipant::remember(const Percept& percept) {
+    Sighting s{percept.time, percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {}, percept.pointer,
+               percept.pointerAt};
+    const bool reticle = percept.pointer == game::PointerKind::Reticle;
+    if (reticle) {
+        s.picture = percept.picture;
+        if (!home_ && s.valid) {  // the view it starts with, and where its hand was then
+            home_ = percept.picture;
+            homeHand_ = hand_;
+        }
+        // The view turns as the scene moves in the picture: a frame held on screen is a view
+        // that stands still, whatever the hand does meanwhile. Where the pictures cannot be
+        // lined up (a new scene), the hand's own turn stands in.
+        // Against a key frame rather than frame by frame, so that small errors do not add up;
+        // a new key frame once the view has turned a tenth of the picture away from it.
+        const double f = focalPixels(knowledge_);
+        const auto toTurn = [&](glm::dvec2 shift) { return glm::dvec2(std::atan(-shift.x / f), std::atan(shift.y / f)); };
+        std::optional<glm::dvec2> moved;
+        // Searched around where the hand's turn since the last frame would put it.
+        const glm::dvec2 turn = hand_ - previousHand_;
+        const glm::dvec2 guess = keyShift_ + glm::dvec2(-f * std::tan(turn.x), f * std::tan(turn.y));
+        if (key_ && percept.sceneShown) moved = howFarViewMoved(*key_, percept, guess);
+        if (moved) {
+            view_ = keyView_ + toTurn(*moved);
+            keyShift_ = *moved;
+        } else {
+            view_ = key_ ? view_ + (hand_ - previousHand_) : hand_;
+        }
+        const double far = 0.1 * knowledge_.display.width;
+        if (!moved || std::abs(keyShift_.x) > far || std::abs(keyShift_.y) > far) {
+            key_ = percept;
+            keyView_ = view_;
+            keyShift_ = glm::dvec2(0.0);
+        }
+        s.view = view_;
+        previousHand_ = hand_;
+    }
+    for (const SeenObject& o : percept.objects) {
+        const glm::dvec2 offset = offsetFromPointer(knowledge_, percept.pointer, percept.pointerAt, o.centre);
+        // Where it is in the world as the participant sees it. A turning view: the view's
+        // direction as seen plus the turn that would bring it under the reticle. A fixed view
+        // with a cursor: where it is on the screen, which does not move.
+        const glm::dvec2 where = reticle ? view_ + offset : o.centre;
+        s.things.push_back({o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
+    }
+    sightings_.push_back(std::move(s));
+    const double keepFrom = percept.time - params_.reactionS - params_.motionWindowS - 0.05;
+    while (sightings_.size() > 1 && sightings_[1].time <= keepFrom) sightings_.pop_front();
+}
+
+game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
+    game::FrameInput input;
+    // What it has seen of the frames shown so far (in hand coordinates, from the hand as it was
+    // when each was on screen), and the one it acts on: a reaction time old.
+    remember(percept);
+    const double now = percept.time;
+    const Sighting* view = nullptr;
+    for (const auto& s : sightings_)
+        if (s.time <= now - params_.reactionS + 1e-9) view = &s;
+
+    // What the match feels like, for the ratings after it.
+    bool changed = percept.objects.size() != previousObjects_.size();
+    for (std::size_t i = 0; !changed && i < percept.objects.size(); ++i)
+        changed = percept.objects[i].id != previousObjects_[i].id ||
+                  glm::length(percept.objects[i].centre - previousObjects_[i].centre) > 1e-3;
+    previousObjects_ = percept.objects;
+    if (percept.pointer == game::PointerKind::Cursor) match_.push_back({percept.pointerAt, hand_, changed});
+    // Where the cursor is, it knows from its hand and corrects by what it sees: the cursor in the
+    // frame it acts on against where its hand was when that frame was shown, slowly.
+    if (view != nullptr && view->valid && view->pointer == game::PointerKind::Cursor) {
+        const double rate = 1.0 - std::exp(-dt / params_.recalibrationS);
+        calibration_ += rate * ((view->pointerAt - view->hand) - calibration_);
+    }
+    judged_ = false;
+    statement_ = -1;
+
+    if (view == nullptr) {
+        move(input, {}, dt, false);
+        return input;
+    }
+    // Where it points now: with a reticle, the view the frame it acts on showed, turned on by
+    // what the hand has done since (efference copy); with a cursor, its hand, corrected by what
+    // it has seen of the cursor.
+    const glm::dvec2 pointer = view->pointer == game::PointerKind::Reticle ? view->view + (hand_ - view->hand)
+                                                                            : hand_ + calibration_;
+    aim_ = pointer;
+    const glm::dvec2 handBefore = hand_;
+    const auto sees = [&](const Sighting& s, std::uint32_t id) -> const Thing* {
+        if (!s.valid) return nullptr;
+        for (const auto& t : s.things)
+            if (t.id == id) return &t;
+        return nullptr;
+    };
+    // A clicked object is left alone until it has been seen gone (or for a while).
+    for (auto it = clicked_.begin(); it != clicked_.end();) {
+        const bool gone = view->time > it->second && sees(*view, it->first) == nullptr;
+        it = gone || now - it->second > params_.forgetClickedS ? clicked_.erase(it) : std::next(it);
+    }
+    if (target_ && (sees(*view, *target_) == nullptr || clicked_.count(*target_))) target_.reset();
+    if (!target_ && view->valid) {
+        double best = std::numeric_limits<double>::infinity();
+        for (const auto& t : view->things) {
+            if ((knowledge_.greenOnly && !t.green) || clicked_.count(t.id)) continue;
+            const double d = glm::length(t.where - pointer);
+            if (d < best) {
+                best = d;
+                target_ = t.id;
+                aimingSince_ = now;
+            }
+        }
+    }
+    if (!target_) {
+        const glm::dvec2 home = homeward(*view, pointer, now);
+        move(input, home, dt, home != glm::dvec2(0.0));
+        return input;
+    }
+    homeSeen_.reset();
+    std::vector<Sample> samples;
+    const double maxSeenSpeed = handUnitsPerRadian() * glm::radians(params_.maxSeenSpeedDegPerS);
+    for (const auto& s : sightings_) {
+        if (s.time > view->time) break;
+        if (s.time < view->time - params_.motionWindowS - 1e-9) continue;
+        // A frame held on screen shows nothing new: motion is judged from the changes seen. A
+        // change faster than any target moves is a jump, not motion -- a new target, or the
+        // view misjudged (the hall repeats itself) -- and the motion is judged afresh from it.
+        const Thing* t = sees(s, *target_);
+        if (!t || (!samples.empty() && samples.back().position == t->where)) continue;
+        if (!samples.empty() && glm::length(t->where - samples.back().position) >
+                                    maxSeenSpeed * (s.time - samples.back().time))
+            samples.clear();
+        samples.push_back({s.time, t->where});
+    }
+    MotionEstimate seen = estimateMotion(samples, params_.perceivesAcceleration, 0.5 * params_.motionWindowS);
+    const double maxAcceleration = handUnitsPerRadian() * glm::radians(params_.maxAccelerationDegPerS2);
+    if (glm::length(seen.acceleration) > maxAcceleration)
+        seen.acceleration *= maxAcceleration / glm::length(seen.acceleration);
+    glm::dvec2 velocity = pursuitVelocity(seen, now, pointer, params_);
+    // Pursuit saturates (Meyer, Lasker & Robinson 1985): the part that follows the target's
+    // motion is no faster than maxPursuitDegPerS.
+    const glm::dvec2 follow = params_.pursuitGain * seen.velocityAt(now);
+    const double maxSpeed = handUnitsPerRadian() * glm::radians(params_.maxPursuitDegPerS);
+    if (glm::length(follow) > maxSpeed) velocity -= follow * (1.0 - maxSpeed / glm::length(follow));
+    move(input, velocity, dt, true);
+    // The press counts at the next frame, with the hand where it has just been sent.
+    const glm::dvec2 predicted = seen.positionAt(now + dt);
+    const Thing& inView = *sees(*view, *target_);
+    aim_ = pointer + (hand_ - handBefore);
+    if (decidesToClick(predicted - aim_, inView.offset, inView.radius, now - aimingSince_, params_)) {
+        input.buttons = game::kButtonLeft;
+        clicked_[*target_] = now;
+        target_.reset();
+    }
+    return input;
+}
+
+double SimulatedParticipant::handUnitsPerRadian() const {
+    return knowledge_.radiansPerCount > 0.0 ? 1.0 : focalPixels(knowledge_);
+}
+
+glm::dvec2 SimulatedParticipant::homeward(const Sighting& view, glm::dvec2 aim, double now) {
+    if (!home_ || !view.valid || view.pointer != game::PointerKind::Reticle) return glm::dvec2(0.0);
+    // Looks for the start view in the picture a few times a second, not every frame.
+    if (!homeSeen_ || now - lastHomeLook_ >= 0.1) {
+        lastHomeLook_ = now;
+        const auto shift = whereViewIs(*home_, view.picture);
+        if (!shift) {
+            // Too far off to recognise it: back by how far the hand has turned since (the view
+            // turns with the hand, but for the pitch the game stops at its limit).
+            homeSeen_.reset();
+            const glm::dvec2 back = homeHand_ - hand_;
+            return glm::length(back) <= glm::radians(params_.homeWithinDeg) ? glm::dvec2(0.0)
+                                                                           : params_.correctionPerS * back;
+        }
+        homeSeen_ = view.view + offsetFromPointer(knowledge_, view.pointer, view.pointerAt, view.pointerAt + *shift);
+    }
+    const glm::dvec2 off = *homeSeen_ - aim;
+    if (glm::length(off) <= glm::radians(params_.homeWithinDeg)) return glm::dvec2(0.0);
+    return params_.correctionPerS * off;
+}
+
+void SimulatedParticipant::judgeMatch() {
+    judged_ = true;
+    if (match_.size() < 3) return;
+    const double dt = 1.0 / knowledge_.refreshHz;
+    // Smooth: how often the picture changed (a new image per display frame at best).
+    int changes = 0;
+    for (const auto& m : match_) changes += m.changed;
+    const double imagesPerS = changes / (match_.size() * dt);
+    smoothness_ = 1.0 + 6.0 * std::min(1.0, imagesPerS / 60.0);
+    // Responsive: how late the cursor on screen follows the hand -- the delay that best lines
+    // up the cursor's movements with the hand's (over a quarter-second baseline, so that the
+    // slow drift between where the hand thinks it is and where it is does not count).
+    const auto n = static_cast<std::int64_t>(match_.size());
+    const std::int64_t baseline = std::max<std::int64_t>(1, std::llround(0.25 / dt));
+    const std::int64_t maxLag = std::llround(0.5 / dt);
+    double bestError = std::numeric_limits<double>::infinity();
+    std::int64_t bestLag = 0;
+    for (std::int64_t lag = 0; lag <= maxLag && lag + baseline < n; ++lag) {
+        double error = 0.0;
+        for (std::int64_t j = lag + baseline; j < n; ++j) {
+            const glm::dvec2 shown = match_[j].pointerAt - match_[j - baseline].pointerAt;
+            const glm::dvec2 moved = match_[j - lag].hand - match_[j - lag - baseline].hand;
+            const glm::dvec2 d = shown - moved;
+            error += glm::dot(d, d);
+        }
+        error /= static_cast<double>(n - lag - baseline);
+        if (error < bestError - 1e-9) {
+            bestError = error;
+            bestLag = lag;
+        }
+    }
+    responsiveness_ = std::clamp(7.0 - bestLag * dt * 1000.0 / 25.0, 1.0, 7.0);
+    match_.clear();
+}
+
+int SimulatedParticipant::ratingFor(const std::string& statement, int min, int max) {
+    std::string text = statement;
+    for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const double enjoyed = (smoothness_ + responsiveness_) / 2.0;
+    double value = 4.0;  // on 1..7; neither agree nor disagree with what it has no feeling about
+    if (text.find("enjoy") != std::string::npos) value = enjoyed;
+    else if (text.find("difficult") != std::string::npos) value = 8.0 - enjoyed;
+    else if (text.find("responsive") != std::string::npos) value = responsiveness_;
+    else if (text.find("smooth") != std::string::npos) value = smoothness_;
+    return std::clamp(static_cast<int>(std::lround(min + (value - 1.0) / 6.0 * (max - min))), min, max);
+}
+
+game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
+    game::FrameInput input;
+    if (!judged_) judgeMatch();
+    const game::RatingPrompt& r = *percept.rating;
+    if (r.index != statement_) {
+        statement_ = r.index;
+        statementSince_ = percept.time;
+    }
+    if (percept.time - statementSince_ < params_.answerAfterS) return input;
+    const int value = ratingFor(r.statement, r.min, r.max);
+    if (value >= 1 && value <= 9) {
+        input.keys = game::digitKey(value);
+        return input;
+    }
+    // No digit key for it: click its box (the cursor is live on the rating screen).
+    const auto box = r.boxes.at(static_cast<std::size_t>(value - r.min));
+    const glm::dvec2 centre(box.x + box.z * 0.5, box.y + box.w * 0.5);
+    calibration_ = percept.pointerAt - hand_;  // the cursor is live here: seen where it is
+    move(input, params_.correctionPerS * (centre - percept.pointerAt), 1.0 / knowledge_.refreshHz, true);
+    const glm::dvec2 off = glm::abs(percept.pointerAt - centre);
+    if (off.x < box.z * 0.3 && off.y < box.w * 0.3) input.buttons = game::kButtonLeft;
+    return input;
+}
+
+game::FrameInput SimulatedParticipant::act(const Percept& percept) {
+    const double dt = lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
+    lastTime_ = percept.time;
+    game::FrameInput input;
+    if (percept.rating) {
+        input = rate(percept);
+    } else if (percept.sceneShown) {
+        input = play(percept, dt);
+    } else {
+        // A screen between matches: nothing to aim at; where a cursor shows live, the hand
+        // sees where it is.
+        if (percept.pointer == game::PointerKind::Cursor) calibration_ = percept.pointerAt - hand_;
+        sightings_.clear();
+        target_.reset();
+        move(input, {}, dt, false);
+    }
+    // The supervisor's Enter, once per prompt.
+    if (percept.promptsEnter) {
+        if (promptSince_ < 0.0) promptSince_ = percept.time;
+        if (percept.time - promptSince_ >= params_.enterAfterS && !enterPressed_) {
+            input.keys |= game::kKeyEnter;
+            enterPressed_ = true;
+        }
+    } else {
+        promptSince_ = -1.0;
+        enterPressed_ = false;
+    }
+    // Presses last one frame: the games count the press, not the hold.
+    if (buttonDown_) input.buttons = 0;
+    buttonDown_ = input.buttons != 0;
+    input.keys &= ~keysDown_;
+    keysDown_ = input.keys;
+    return input;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The eye
+
+Eye::Eye(const renderer::DataPaths& paths, const game::DisplaySize& display, const protocol::RenderSettings& rendering,
+         int perceptWidth)
+    : display_(display),
+      width_(std::max(16, perceptWidth)),
+      height_(std::max(9, static_cast<int>(std::lround(static_cast<double>(width_) * display.height / display.width)))),
+      maker_(paths, width_, height_, rendering),
+      frame_(width_, height_) {}
+
+Percept Eye::see(const game::ShownFrame& shown) {
+    // What is read of the ShownFrame is listed at Eye in the header; FrameMaker (the same code
+    // that draws a participant's window) reads what it needs to draw the frame.
+    maker_.keepSource(shown);
+    Percept p;
+    p.time = shown.time;
+    p.sceneShown = !shown.blank;
+    p.pointer = shown.pointer;
+    if (shown.pointer == game::PointerKind::Reticle) p.pointerAt = {display_.width * 0.5, display_.height * 0.5};
+    if (shown.pointer == game::PointerKind::Cursor) p.pointerAt = shown.cursor;
+    p.phaseText = shown.phaseText;
+    p.banner = shown.banner;
+    p.promptsEnter = shown.promptsEnter;
+    p.rating = shown.rating;
+    if (shown.blank) {
+        haveImage_ = false;
+        return p;
+    }
+    // A frozen frame, or a held one of the source last shown as it was rendered, is the image
+    // already on screen pixel for pixel (a hold copies its source): the same percept, without
+    // drawing it again.
+    const auto kind = shown.schedule.kind;
+    const bool same = haveImage_ && (shown.frozen || (kind == game::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
+    if (!same) {
+        maker_.make(shown, frame_);
+        const renderer::DisplayImages images = renderer::readBack(frame_, false);
+        const glm::dvec2 toDisplay(static_cast<double>(display_.width) / width_,
+                                   static_cast<double>(display_.height) / height_);
+        lastObjects_ = findObjects(images.ids, images.colour, toDisplay);
+        lastPicture_ = thumbnailOf(images.colour, images.ids, kPictureBlock, toDisplay);
+        lastDetail_ = thumbnailOf(images.colour, images.ids, 1, toDisplay);
+        haveImage_ = true;
+        const bool copy = !shown.frozen && (kind == game::FrameKind::Held || kind == game::FrameKind::Rendered);
+        lastMadeSource_ = copy ? shown.sourceFrame : -1;
+    }
+    p.objects = lastObjects_;
+    p.picture = lastPicture_;
+    p.detail = lastDetail_;
+    return p;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The player
+
+PerceptualPlayer::PerceptualPlayer(std::unique_ptr<renderer::GlContext> context, const game::Study& study,
+                                   const game::DisplaySize& display, const renderer::DataPaths& paths,
+                                   std::uint64_t seed, const ParticipantParams& params)
+    : context_(std::move(context)),
+      eye_(std::make_unique<Eye>(paths, display, study.rendering(), params.perceptWidth)),
+      participant_(taskKnowledge(study, display), params, seed) {}
+
+game::FrameInput PerceptualPlayer::next(const game::ShownFrame& shown) { return participant_.act(eye_->see(shown)); }
+
+game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend) {
+    return [paths, backend](std::uint64_t seed, const game::Study& study, const game::DisplaySize& display) {
+        renderer::ContextOptions options;
+        options.backend = backend;
+        options.visible = false;
+        return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display, paths, seed);
+    };
+}
+
+std::string PerceptualPlayer::perceivedWith() const {
+    std::string text = context_ ? context_->info().renderer + ", OpenGL " + context_->info().version : "current context";
+    return text + " (the simulated participant's percepts, " + std::to_string(eye_->width()) + "x" +
+           std::to_string(eye_->height()) + ")";
+}
+
+}  // namespace warplab::app

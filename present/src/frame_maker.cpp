@@ -1,0 +1,119 @@
+#include "present/frame_maker.h"
+
+#include <algorithm>
+
+namespace warplab::app {
+
+renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY) {
+    renderer::HudContent content;
+    content.backdrop = shown.blank;
+    content.reticle = shown.pointer == game::PointerKind::Reticle;
+    if (shown.pointer == game::PointerKind::Cursor)
+        content.cursor = glm::vec2(static_cast<float>(shown.cursor.x * toFrameX), static_cast<float>(shown.cursor.y * toFrameY));
+    content.banner = shown.banner;
+    content.bannerGood = shown.bannerGood;
+    content.status = shown.phaseText;
+    if (shown.rating) {
+        renderer::HudRating r;
+        r.statement = shown.rating->statement;
+        for (const auto& b : shown.rating->boxes)
+            r.boxes.emplace_back(b.x * toFrameX, b.y * toFrameY, b.z * toFrameX, b.w * toFrameY);
+        r.highlighted = shown.rating->highlighted;
+        r.firstValue = shown.rating->min;
+        r.minLabel = shown.rating->minLabel;
+        r.maxLabel = shown.rating->maxLabel;
+        content.rating = r;
+    }
+    return content;
+}
+
+FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
+                       const protocol::RenderSettings& rendering)
+    : paths_(paths),
+      conventional_(paths, [&] {
+          renderer::ShadingOptions shading;
+          shading.supersampling = rendering.supersampling;
+          return shading;
+      }()),
+      width_(width),
+      height_(height),
+      warpBand_(renderer::guardBandFor(width, height, rendering.guardBand)) {}
+
+FrameMaker::Kept FrameMaker::render(const scene::FrameDescription& frame, renderer::GuardBand band,
+                                    const scene::FrameDescription* flowTo) {
+    Kept kept{nullptr, frame};
+    const auto spare = std::find_if(spare_.begin(), spare_.end(), [&](const auto& f) { return f->band == band; });
+    if (spare != spare_.end()) {
+        kept.frame = std::move(*spare);
+        spare_.erase(spare);
+    } else {
+        kept.frame = std::make_unique<renderer::SourceFrame>(width_, height_, band);
+    }
+    renderer::renderSource(conventional_, frame, *kept.frame, flowTo);
+    return kept;
+}
+
+void FrameMaker::release(Kept& kept) {
+    if (kept.frame) spare_.push_back(std::move(kept.frame));
+}
+
+void FrameMaker::keepSource(const game::ShownFrame& shown) {
+    if (shown.rendersNow) {
+        const game::Upconversion upconversion =
+            shown.mode.empty() ? game::Upconversion::None : game::modeSpec(shown.mode).upconversion;
+        // Warp modes render beyond the displayed field of view, so what a turn brings into view
+        // is really there; the frames they show as rendered are the band's inside (hold).
+        const renderer::GuardBand band = upconversion == game::Upconversion::Warp ? warpBand_ : renderer::GuardBand{};
+        // Bidirectional reprojection's I-frames carry their backward flow towards the previous
+        // I-frame, drawn in the same pass (seed 000 section 5).
+        const bool flow = upconversion == game::Upconversion::Bidirectional && !sources_.empty() &&
+                          method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
+        Kept kept = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
+        auto [it, fresh] = sources_.try_emplace(shown.frame);
+        if (!fresh) release(it->second);
+        it->second = std::move(kept);
+    }
+    // None older than what the frame on screen is made from will be needed again.
+    if (!shown.blank)
+        while (!sources_.empty() && sources_.begin()->first < shown.sourceFrame) {
+            release(sources_.begin()->second);
+            sources_.erase(sources_.begin());
+        }
+}
+
+void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
+    std::string name = "hold120";
+    const auto kind = shown.schedule.kind;
+    if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {
+        name = game::modeSpec(shown.mode).method;
+    }
+    renderer::UpconversionMethod& shows = method(name);
+    auto it = sources_.find(shown.sourceFrame);
+    if (it == sources_.end()) {
+        // Lag modes open with frames queued before the mode started: the scene as it was.
+        it = sources_.emplace(shown.sourceFrame, render({shown.camera, shown.scene}, {})).first;
+    } else if (!shows.info().acceptsGuardBand && !(it->second.frame->band == renderer::GuardBand{})) {
+        // A warp mode's source shown by a method that takes no band (at a change of mode).
+        Kept plain = render(it->second.shows, {});
+        release(it->second);
+        it->second = std::move(plain);
+    }
+    renderer::UpconversionInput input;
+    input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
+    input.camera = shown.camera;
+    input.previous = it->second.frame.get();
+    input.scene = &shown.scene;
+    if (kind == game::FrameKind::Interpolated) {
+        const auto next = sources_.find(shown.nextSourceFrame);
+        input.next = next == sources_.end() ? it->second.frame.get() : next->second.frame.get();
+    }
+    shows.produce(input, display);
+}
+
+renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {
+    auto& m = methods_[name];
+    if (!m) m = renderer::makeMethod(name, paths_);
+    return *m;
+}
+
+}  // namespace warplab::app

@@ -1,0 +1,138 @@
+// Upconversion methods: given the conventionally rendered source frames a mode would have,
+// make the frame displayed at some instant. Every method -- sample-and-hold, blend, and (in
+// their issues) warp extrapolation and bidirectional reprojection -- sits behind this one
+// interface, so the benchmark and the study modes treat them alike.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "renderer/conventional.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace warplab::renderer {
+
+// Pixels a source frame is rendered beyond the displayed frame on each side, at the same
+// pixel pitch (a guard band): content a warp turns into view is then really there instead of
+// invented at the edge. Only methods whose MethodInfo::acceptsGuardBand say so accept one.
+struct GuardBand {
+    int x = 0, y = 0;
+    bool operator==(const GuardBand& o) const { return x == o.x && y == o.y; }
+};
+// `fraction` of the displayed width and height on each side, in whole pixels (0.1 = 10 %).
+// Throws std::invalid_argument outside [0, kMaxGuardBand].
+GuardBand guardBandFor(int width, int height, double fraction);
+inline constexpr double kMaxGuardBand = 0.5;
+
+// A frame rendered conventionally at one instant, kept with what it depicts.
+struct SourceFrame {
+    // `width` x `height` is the displayed frame's size; the G-buffer adds the band on each side.
+    SourceFrame(int width, int height, GuardBand band = {})
+        : band(band), gbuffer(width + 2 * band.x, height + 2 * band.y) {}
+    // As rendered: with a guard band, the camera's field of view is widened to cover it.
+    scene::FrameDescription depicts;
+    GuardBand band;
+    GBuffer gbuffer;
+    // Which render the G-buffer holds, new for each renderSource: what methods cache per source
+    // (bidirectional reprojection's flows) is keyed on it, so a source frame re-rendered with
+    // other content is never mistaken for the old one.
+    std::uint64_t serial = 0;
+};
+
+// Renders `frame` conventionally into `source` (widening the camera by the source's band) and
+// gives it a new serial. With flowTo, the same pass also writes the backward flow towards that
+// frame (ConventionalRenderer::render with flowTo).
+void renderSource(ConventionalRenderer& renderer, const scene::FrameDescription& frame, SourceFrame& source,
+                  const scene::FrameDescription* flowTo = nullptr);
+
+// The frame a method shows. Attachments as a G-buffer's, but the third holds the method's
+// claimed correspondences instead of velocity: xy = the continuous source-image coordinate
+// (top-down, pixel centres at +0.5) in the previous source, zw = in the next source, NaN
+// where the method claims none (bench measures these against the scene's exact ones).
+class DisplayFrame {
+public:
+    DisplayFrame(int width, int height) : buffer_(width, height) {}
+    int width() const { return buffer_.width(); }
+    int height() const { return buffer_.height(); }
+    GBuffer& buffer() { return buffer_; }
+    const GBuffer& buffer() const { return buffer_; }
+
+private:
+    GBuffer buffer_;
+};
+
+struct DisplayImages {
+    image::ImageRGBA8 colour;
+    image::ImageU32 ids;             // the object each displayed pixel shows (for scoring cross-checks)
+    image::ImageF correspondence;    // 4 channels, see DisplayFrame
+};
+// `correspondence` false leaves it empty: what a viewer sees is colour and objects only.
+DisplayImages readBack(const DisplayFrame& frame, bool correspondence = true);
+
+struct UpconversionInput {
+    double displayTime = 0.0;
+    scene::CameraState camera;            // the view sampled at this display frame
+    const SourceFrame* previous = nullptr;  // latest source at or before displayTime
+    const SourceFrame* next = nullptr;      // the one after; only for methods with needsNext
+    // The scene at the displayed instant; only for methods with needsScene, which rasterise it
+    // again (scene-assisted reprojection). Everything else works from the sources' images.
+    const scene::SceneSnapshot* scene = nullptr;
+};
+
+struct MethodInfo {
+    std::string name;
+    std::string description;
+    double sourceRateHz = 15.0;   // how often sources are rendered conventionally
+    bool needsNext = false;       // uses the following source frame (so shows content later)
+    bool reportsCorrespondence = false;
+    // Starts from what it computed for the previous displayed frame of the same source
+    // interval (bidirectional reprojection's latest-frame initialisation): the bench makes
+    // those frames, untimed, before timing one.
+    bool usesEarlierFrames = false;
+    bool needsScene = false;  // reads UpconversionInput::scene
+    // Takes the next source's backward flow from its own render when it was rendered with one
+    // towards the previous source (ConventionalRenderer::render with flowTo, seed 000's MRT
+    // I-frame pass); draws it itself otherwise.
+    bool usesSourceFlow = false;
+    // A motion-blurred frame: the mean of this many instants spread evenly over the source
+    // interval [previous, next] (the exposure). The bench compares it with the mean of as
+    // many conventional renders (brute force). 0 = an instant, as every other method.
+    int exposureSamples = 0;
+    // Shows what a source's guard band (SourceFrame::band) holds as the view turns: the warps.
+    // The bench renders such a method's sources with the band, as a study's warp mode does.
+    bool takesGuardBand = false;
+    // Accepts a banded source at all: the methods above, and the holds, which show its inside
+    // (a warp mode's frames at its render instants).
+    bool acceptsGuardBand = false;
+};
+
+class UpconversionMethod {
+public:
+    virtual ~UpconversionMethod() = default;
+    virtual const MethodInfo& info() const = 0;
+    // Draws the displayed frame into `out` (same size as the sources). GL state it changes
+    // is restored to the defaults the other passes assume.
+    virtual void produce(const UpconversionInput& input, DisplayFrame& out) = 0;
+    // Work done once per source frame (or pair) rather than per displayed frame -- e.g. the
+    // flow fields of bidirectional reprojection's I-frames. produce() does it when needed;
+    // the bench calls it first so that the displayed frame's own pass is timed alone.
+    virtual void prepare(const UpconversionInput& /*input*/) {}
+    // Triangles the last produce() drew (after tessellation), for the bench; NaN for
+    // image-space methods that draw no mesh.
+    virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }
+};
+
+// Throws std::invalid_argument naming the method when `source` does not fit `out`: its G-buffer
+// must be the display's size plus its band, and a band only where info.acceptsGuardBand.
+void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const MethodInfo& info);
+
+// All registered method names, in the order the bench reports them.
+std::vector<std::string> methodNames();
+// Throws std::invalid_argument naming the unknown method and listing the known ones.
+std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths);
+
+}  // namespace warplab::renderer

@@ -1,0 +1,142 @@
+// The study window: SDL2 with a GL 4.1 core context and vsync.
+#include <SDL.h>
+
+#include "context_backends.h"
+
+namespace warplab::renderer {
+namespace {
+
+void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
+
+class WindowContext final : public GlContext {
+public:
+    explicit WindowContext(const ContextOptions& options) {
+        if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
+            throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
+        videoInitialised_ = true;
+        SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 4);
+        SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);
+        SDL_GL_SetAttribute(SDL_GL_CONTEXT_PROFILE_MASK, SDL_GL_CONTEXT_PROFILE_CORE);
+        SDL_GL_SetAttribute(SDL_GL_CONTEXT_FLAGS, SDL_GL_CONTEXT_FORWARD_COMPATIBLE_FLAG);
+        SDL_GL_SetAttribute(SDL_GL_DOUBLEBUFFER, 1);
+        SDL_GL_SetAttribute(SDL_GL_DEPTH_SIZE, 0);  // the renderer has its own depth buffers
+        Uint32 flags = SDL_WINDOW_OPENGL | (options.visible ? SDL_WINDOW_SHOWN : SDL_WINDOW_HIDDEN);
+        if (options.fullscreen) flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
+        if (options.display < 0 || options.display >= SDL_GetNumVideoDisplays())
+            throw ContextError("there is no display " + std::to_string(options.display) + " (this machine has " +
+                               std::to_string(SDL_GetNumVideoDisplays()) + ")");
+        window_ = SDL_CreateWindow(options.title.c_str(), SDL_WINDOWPOS_CENTERED_DISPLAY(options.display),
+                                   SDL_WINDOWPOS_CENTERED_DISPLAY(options.display), options.width, options.height,
+                                   flags);
+        if (window_ == nullptr) throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
+        context_ = SDL_GL_CreateContext(window_);
+        if (context_ == nullptr)
+            throw ContextError(std::string("the window system offers no OpenGL 4.1 core context: ") + SDL_GetError());
+        // Adaptive vsync is not what a study wants (it tears); plain vsync or, if refused, none,
+        // which the frame log will show as measured frame times.
+        vsync_ = SDL_GL_SetSwapInterval(options.vsync ? 1 : 0) == 0 && options.vsync && SDL_GL_GetSwapInterval() == 1;
+        initialise(&loadProc, "window");
+    }
+
+    ~WindowContext() override {
+        if (context_ != nullptr) SDL_GL_DeleteContext(context_);
+        if (window_ != nullptr) SDL_DestroyWindow(window_);
+        if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
+    }
+
+    bool hasWindow() const override { return true; }
+    void swapBuffers() override { SDL_GL_SwapWindow(window_); }
+    bool pumpEvents() override { return !pollInput().closed; }
+    WindowInput pollInput() override {
+        WindowInput in;
+        bool pressed = false;
+        SDL_Event event;
+        while (SDL_PollEvent(&event)) {
+            switch (event.type) {
+                case SDL_QUIT: in.closed = true; break;
+                case SDL_MOUSEBUTTONDOWN:
+                    if (event.button.button == SDL_BUTTON_LEFT) pressed = true;
+                    break;
+                case SDL_MOUSEMOTION:
+                    in.mouseDx += event.motion.xrel;
+                    in.mouseDy += event.motion.yrel;
+                    break;
+                case SDL_KEYDOWN: {
+                    if (event.key.repeat) break;
+                    const SDL_Keycode k = event.key.keysym.sym;
+                    if (k == SDLK_RETURN || k == SDLK_KP_ENTER) in.keysPressed += '\r';
+                    else if (k == SDLK_ESCAPE) in.keysPressed += static_cast<char>(27);
+                    else if ((k >= SDLK_0 && k <= SDLK_9) || (k >= SDLK_a && k <= SDLK_z)) in.keysPressed += static_cast<char>(k);
+                    else if (k >= SDLK_KP_1 && k <= SDLK_KP_9) in.keysPressed += static_cast<char>('1' + (k - SDLK_KP_1));
+                    break;
+                }
+                default: break;
+            }
+        }
+        // Held now, or pressed since the last poll: a click shorter than a frame still shows as
+        // one frame held, and the game scores presses.
+        in.leftHeld = pressed || (SDL_GetMouseState(nullptr, nullptr) & SDL_BUTTON(SDL_BUTTON_LEFT)) != 0;
+        return in;
+    }
+    void injectInput(const WindowInput& in) override {
+        SDL_Event e{};
+        if (in.mouseDx != 0.0 || in.mouseDy != 0.0) {
+            e = SDL_Event{};
+            e.type = SDL_MOUSEMOTION;
+            e.motion.xrel = static_cast<Sint32>(in.mouseDx);
+            e.motion.yrel = static_cast<Sint32>(in.mouseDy);
+            SDL_PushEvent(&e);
+        }
+        if (in.leftHeld) {
+            e = SDL_Event{};
+            e.type = SDL_MOUSEBUTTONDOWN;
+            e.button.button = SDL_BUTTON_LEFT;
+            e.button.state = SDL_PRESSED;
+            SDL_PushEvent(&e);
+        }
+        for (const char c : in.keysPressed) {
+            e = SDL_Event{};
+            e.type = SDL_KEYDOWN;
+            e.key.state = SDL_PRESSED;
+            e.key.keysym.sym = c == '\r' ? SDLK_RETURN : static_cast<SDL_Keycode>(c);
+            SDL_PushEvent(&e);
+        }
+    }
+    void setRelativeMouse(bool on) override {
+        // Raw deltas: relative mode without the OS pointer's acceleration (SDL's default warps
+        // the pointer on some systems, which would add acceleration).
+        SDL_SetHint(SDL_HINT_MOUSE_RELATIVE_MODE_WARP, "0");
+        SDL_SetRelativeMouseMode(on ? SDL_TRUE : SDL_FALSE);
+    }
+    double refreshHz() const override {
+        SDL_DisplayMode mode;
+        const int display = SDL_GetWindowDisplayIndex(window_);
+        if (display < 0 || SDL_GetCurrentDisplayMode(display, &mode) != 0) return 0.0;
+        return mode.refresh_rate;
+    }
+    bool vsyncOn() const override { return vsync_; }
+    int drawableWidth() const override {
+        int w = 0, h = 0;
+        SDL_GL_GetDrawableSize(window_, &w, &h);
+        return w;
+    }
+    int drawableHeight() const override {
+        int w = 0, h = 0;
+        SDL_GL_GetDrawableSize(window_, &w, &h);
+        return h;
+    }
+
+private:
+    bool vsync_ = false;
+    bool videoInitialised_ = false;
+    SDL_Window* window_ = nullptr;
+    SDL_GLContext context_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<GlContext> createWindowContext(const ContextOptions& options) {
+    return std::make_unique<WindowContext>(options);
+}
+
+}  // namespace warplab::renderer

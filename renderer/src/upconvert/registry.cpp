@@ -1,0 +1,123 @@
+// The one list of upconversion methods. A new method registers here and is then available to
+// the bench (--methods) and, through its name, to the study modes.
+#include <cmath>
+#include <functional>
+#include <stdexcept>
+
+#include "gbuffer_gl.h"
+#include "renderer/upconvert.h"
+#include "upconvert/bireproj.h"
+#include "upconvert/scene_assisted.h"
+#include "upconvert/simple_methods.h"
+#include "upconvert/warp.h"
+#include "upconvert/warp_search.h"
+#include "scene/camera.h"
+
+namespace warplab::renderer {
+namespace {
+
+struct Entry {
+    const char* name;
+    std::function<std::unique_ptr<UpconversionMethod>(const DataPaths&)> make;
+};
+
+WarpSettings sparse(int patchSize) {
+    WarpSettings s;
+    s.patchSize = patchSize;
+    return s;
+}
+
+// Motion blur from B-frames: ten per I-frame interval, as seed 000's Figure 10.
+constexpr int kBlurSamplesPerInterval = 10;
+
+BireprojSettings bireproj(int iterations, bool dual, bool latest) {
+    BireprojSettings s;
+    s.iterations = iterations;
+    s.dualInit = dual;
+    s.latestInit = latest;
+    return s;
+}
+
+const std::vector<Entry>& registry() {
+    static const std::vector<Entry> entries = {
+        {"hold15", [](const DataPaths& p) { return makeHold(p, 15.0); }},
+        {"hold30", [](const DataPaths& p) { return makeHold(p, 30.0); }},
+        {"hold60", [](const DataPaths& p) { return makeHold(p, 60.0); }},
+        {"hold120", [](const DataPaths& p) { return makeHold(p, 120.0); }},
+        {"blend", [](const DataPaths& p) { return makeBlend(p); }},
+        {"warp-full", [](const DataPaths& p) { return makeWarp(p, "warp-full", {}); }},
+        {"warp-nofix",
+         [](const DataPaths& p) {
+             WarpSettings s;
+             s.disocclusionFix = false;
+             return makeWarp(p, "warp-nofix", s);
+         }},
+        {"warp-sparse4", [](const DataPaths& p) { return makeWarp(p, "warp-sparse4", sparse(4)); }},
+        {"warp-sparse8", [](const DataPaths& p) { return makeWarp(p, "warp-sparse8", sparse(8)); }},
+        {"warp-sparse16", [](const DataPaths& p) { return makeWarp(p, "warp-sparse16", sparse(16)); }},
+        {"warp-search", [](const DataPaths& p) { return makeWarpSearch(p, "warp-search", {}); }},
+        {"bireproj", [](const DataPaths& p) { return makeBireproj(p, "bireproj", {}); }},
+        {"bireproj-m1", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m1", bireproj(1, true, true)); }},
+        {"bireproj-m2", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m2", bireproj(2, true, true)); }},
+        {"bireproj-m4", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m4", bireproj(4, true, true)); }},
+        {"bireproj-nodual",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nodual", bireproj(3, false, true)); }},
+        {"bireproj-nolatest",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nolatest", bireproj(3, true, false)); }},
+        {"bireproj-noinit",
+         [](const DataPaths& p) { return makeBireproj(p, "bireproj-noinit", bireproj(3, false, false)); }},
+        {"scene-assisted", [](const DataPaths& p) { return makeSceneAssisted(p); }},
+        {"bireproj-blur",
+         [](const DataPaths& p) { return makeBireprojBlur(p, "bireproj-blur", {}, kBlurSamplesPerInterval); }},
+    };
+    return entries;
+}
+
+}  // namespace
+
+std::vector<std::string> methodNames() {
+    std::vector<std::string> names;
+    for (const auto& e : registry()) names.emplace_back(e.name);
+    return names;
+}
+
+std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths) {
+    for (const auto& e : registry())
+        if (name == e.name) return e.make(paths);
+    std::string known;
+    for (const auto& e : registry()) known += std::string(known.empty() ? "" : ", ") + e.name;
+    throw std::invalid_argument("unknown method '" + name + "' (known: " + known + ")");
+}
+
+GuardBand guardBandFor(int width, int height, double fraction) {
+    if (!(fraction >= 0.0 && fraction <= kMaxGuardBand))
+        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0..0.5 of the displayed size");
+    return {static_cast<int>(std::lround(fraction * width)), static_cast<int>(std::lround(fraction * height))};
+}
+
+void renderSource(ConventionalRenderer& renderer, const scene::FrameDescription& frame, SourceFrame& source,
+                  const scene::FrameDescription* flowTo) {
+    static std::uint64_t renders = 0;  // GL work is single-threaded: one context per process
+    source.depicts = frame;
+    const int displayedHeight = source.gbuffer.height() - 2 * source.band.y;
+    if (source.band.y > 0)
+        source.depicts.camera = scene::widenedByRows(frame.camera, displayedHeight, source.band.y);
+    if (flowTo != nullptr) renderer.render(source.depicts, source.gbuffer, *flowTo);
+    else renderer.render(source.depicts, source.gbuffer);
+    source.serial = ++renders;
+}
+
+void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const MethodInfo& info) {
+    const GuardBand band = source.band;
+    if (!info.acceptsGuardBand && !(band == GuardBand{}))
+        throw std::invalid_argument(info.name + " does not take sources with a guard band");
+    if (source.gbuffer.width() != out.width() + 2 * band.x || source.gbuffer.height() != out.height() + 2 * band.y)
+        throw std::invalid_argument(info.name + ": source and display sizes differ");
+}
+
+DisplayImages readBack(const DisplayFrame& frame, bool correspondence) {
+    const auto& g = frame.buffer().impl();
+    return {readColourAttachment(g), readIdAttachment(g), correspondence ? readVectorAttachment(g, 4) : image::ImageF{}};
+}
+
+}  // namespace warplab::renderer

@@ -1,0 +1,162 @@
+// The session store: one SQLite file per session, written while the session runs, that
+// survives a kill at any instant with every committed trial intact (DESIGN.md "Session data").
+// The schema, its version and how to query it are documented in docs/session-format.md.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace warplab::session {
+
+// 2: game-neutral frame and event rows (game-specific fields in detail_json). Version 1 files
+// (shooter only) are still read: their shooter columns are folded into detail_json exactly as
+// the shooter writes them today, so they replay (docs/session-format.md, "Version 1").
+inline constexpr int kSessionFormatVersion = 2;
+inline constexpr int kOldestSessionFormatVersion = 1;
+
+// Bad or unreadable session files and results folders: one sentence naming the path.
+class SessionError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+struct SessionHeader {
+    std::string protocolJson;   // the protocol copied in full
+    std::uint64_t seed = 0;
+    std::string participant;    // data, never a path
+    std::string appVersion, glRenderer, glVersion;
+    double refreshHz = 120;
+    // The display the session ran on (or stands for): its aspect ratio shapes the view, so
+    // replay needs it to reproduce what was under the reticle.
+    int displayWidth = 1920, displayHeight = 1080;
+    std::string startedAt;      // ISO 8601 UTC; when empty, create() stores the current time
+    std::string player;         // "human", "bot:7", "replay:<path>"
+    int formatVersion = kSessionFormatVersion;   // as read; the writer writes only this one
+};
+
+// One row per displayed frame: enough to replay the session exactly.
+struct InputRecord {
+    std::int64_t frame = 0;
+    double displayTime = 0;     // seconds on the display clock
+    double mouseDx = 0, mouseDy = 0;
+    std::uint32_t buttons = 0;
+    std::uint32_t keys = 0;
+};
+
+// Per displayed frame: what was shown and how it went.
+struct FrameRecord {
+    std::int64_t frame = 0;
+    std::string mode;           // mode id, e.g. "warp15to120"
+    std::string kind;           // "rendered" | "held" | "warped" | "interpolated" | "frozen"
+    double frameMs = 0;         // measured present to present (live sessions); 0 headless
+    double renderMs = 0;        // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
+    int missedVsyncs = 0;
+    double cameraYaw = 0, cameraPitch = 0;          // radians, scene::CameraState convention
+    std::string detailJson;     // the game's own per-frame state, a JSON object ("" = none):
+                                // shooter {"target":[x,y,z]}, click {"cursor":[x,y],"spheres":[...]}
+};
+
+// One row per trial/shot/click/match/rating/phase change. The columns every game shares are
+// typed; everything game-specific (difficulty, target speed, aim time, cursor, ratings ...)
+// is in detailJson, whose keys each game documents in docs/session-format.md.
+struct EventRecord {
+    std::int64_t frame = 0;
+    std::string type;           // "shot", "timeout", "phase", "level", "click", "match", "rating" ...
+    std::string phase;
+    int trial = -1;             // trial (shooter) or match (click) index; -1: not part of one
+    std::string mode;
+    double eventTime = 0;       // seconds on the display clock
+    std::string worldOutcome, displayedOutcome;     // "hit" | "miss" | "timeout" | "green" | "red" | ""
+    std::string detailJson;     // a JSON object text ("" = none), keys sorted (nlohmann dump)
+};
+
+// Doubles round-trip bit for bit (-0.0 and infinities included); NaN is stored as SQL NULL
+// and reads back as a quiet NaN.
+class SessionWriter {
+public:
+    // Creates RESULTS/<participant>_<start time>[-N].warplab-session (SQLite, WAL) and commits
+    // the header. Only [A-Za-z0-9_-] of the participant id reach the file name; the raw id is
+    // kept in the header only. Throws SessionError naming the path, before creating anything,
+    // when the results folder is missing or unwritable.
+    static SessionWriter create(const std::string& resultsDir, const SessionHeader& header);
+
+    SessionWriter(SessionWriter&&) noexcept;
+    SessionWriter& operator=(SessionWriter&&) noexcept;
+    SessionWriter(const SessionWriter&) = delete;
+    SessionWriter& operator=(const SessionWriter&) = delete;
+    // Closes the file; whatever was added after the last commit is discarded, as in a crash.
+    // Held commits get one last try of up to 2 s to be written.
+    ~SessionWriter();
+
+    const std::string& path() const;
+
+    // Frame numbers must increase from one input (or frame) record to the next, so that a
+    // table's rows in key order are the order they were committed in. Violations, and a
+    // detailJson that is not a JSON object, throw std::invalid_argument.
+    void addInput(const InputRecord& record);
+    void addFrame(const FrameRecord& record);
+    void addEvent(const EventRecord& record);
+
+    // Makes everything added since the last commit ONE commit and writes it, with any
+    // commits still held, as one durable transaction: a kill or a power cut afterwards keeps
+    // it. Call it at the end of every trial and phase change.
+    // Never waits, so a live session keeps its frame rate: while another program holds the
+    // file's write lock (a DB browser, `sqlite3` without -readonly, a script's BEGIN
+    // IMMEDIATE), it returns false and the commit is held in memory, in order, to be written
+    // by the next commit() or flush() that gets the lock. heldCommits() says how many wait;
+    // a kill meanwhile loses them, so the supervisor must be told.
+    // Other write failures (disk full ...) throw SessionError; the commit stays held.
+    bool commit();
+    std::size_t heldCommits() const;
+    double heldForSeconds() const;  // since the oldest held commit; 0 when none is held
+    // Waits as long as it takes until every held commit is written, calling
+    // waiting(seconds waited) about once a second meanwhile.
+    using WaitCallback = std::function<void(double secondsWaited)>;
+    void flush(const WaitCallback& waiting = {});
+    // What the supervisor must hear at once, each returned once: the session file or its
+    // -wal deleted or replaced by another program while it was written (the writer then
+    // saves every commit under the name again, or beside it, and flags the session).
+    std::vector<std::string> takeNotices();
+    // Marks the session for its analysts (meta key "flag:<name>", written with the next
+    // commit; a later flag of the same name replaces it), e.g. "missed_frames". Not part of
+    // the header checksum: a flag describes how the session went, not what it ran.
+    void flag(const std::string& name, const std::string& text);
+    // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
+    // the file, leaving one self-contained file. Waits for the write lock like flush().
+    // Adding or committing afterwards is a std::logic_error.
+    void finish(const WaitCallback& waiting = {});
+
+private:
+    struct Impl;
+    explicit SessionWriter(std::unique_ptr<Impl> impl);
+    Impl& impl(const char* caller) const;
+    std::unique_ptr<Impl> impl_;
+};
+
+struct SessionData {
+    SessionHeader header;
+    std::vector<InputRecord> inputs;
+    std::vector<FrameRecord> frames;
+    std::vector<EventRecord> events;   // in the order they were added
+    bool completed = false;            // finish() was committed and nothing was lost to damage
+    // Committed data was lost or altered (a row or commit failing its checksum, a cut-off
+    // table): `note` says where reading stopped. An incomplete session that is not damaged
+    // (killed, or still running) holds every trial it committed.
+    bool damaged = false;
+    std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
+    std::string note;                  // "" when complete; else why not and where it ends
+};
+
+// Opens read-only (a running session may be read too). Checks the format version and schema.
+// A truncated or corrupted file yields the commits before the damage, each checked against
+// its checksum, and a note saying where it stopped. Throws SessionError naming the path for
+// a file that is missing, not a SQLite database, not a warplab session, another format
+// version, or whose header is unreadable or fails its checksum.
+SessionData readSession(const std::string& path);
+
+}  // namespace warplab::session

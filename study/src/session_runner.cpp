@@ -1,0 +1,230 @@
+#include "study/session_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "game/registry.h"
+#include "session/records.h"
+#include "session/session_store.h"
+
+#ifndef WARPLAB_VERSION
+#define WARPLAB_VERSION "0"
+#endif
+
+namespace warplab::app {
+
+session::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in) {
+    session::InputRecord r;
+    r.frame = frame;
+    r.displayTime = time;
+    r.mouseDx = in.mouseDx;
+    r.mouseDy = in.mouseDy;
+    r.buttons = in.buttons;
+    r.keys = in.keys;
+    return r;
+}
+
+namespace {
+
+// The seed after "NAME:" in a player spec, or `fallback` for the bare name.
+std::uint64_t playerSeed(const std::string& player, std::size_t nameLength, std::uint64_t fallback) {
+    if (player.size() <= nameLength) return fallback;
+    const std::string name = player.substr(0, nameLength - 1);
+    const std::string digits = player.substr(nameLength);
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)
+        throw std::invalid_argument("--player " + name + ":SEED needs a whole number, got '" + digits + "'");
+    return std::stoull(digits);
+}
+
+}  // namespace
+
+bool isSimulatedParticipant(const std::string& player) { return player == "sim" || player.rfind("sim:", 0) == 0; }
+
+std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
+                                         const game::Study& study, const game::DisplaySize& display,
+                                         const game::SeeingPlayerMaker& seeing) {
+    if (player == "bot" || player.rfind("bot:", 0) == 0) return study.newBot(playerSeed(player, 4, sessionSeed), display);
+    if (isSimulatedParticipant(player)) {
+        const std::uint64_t seed = playerSeed(player, 4, sessionSeed);
+        if (!seeing)
+            throw std::invalid_argument("--player " + player + " (the simulated participant) runs headless only: add --headless");
+        return seeing(seed, study, display);
+    }
+    if (player.rfind("replay:", 0) == 0) {
+        auto source = session::readSession(player.substr(7));
+        if (source.inputs.empty()) throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
+        return std::make_unique<game::RecordedPlayer>(std::move(source.inputs));
+    }
+    throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)");
+}
+
+session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
+                                      const std::string& player, const game::DisplaySize& display) {
+    session::SessionHeader header;
+    header.protocolJson = study.protocolJson();
+    header.seed = seed;
+    header.participant = participant;
+    header.appVersion = WARPLAB_VERSION;
+    header.glRenderer = "none (headless simulation, nothing rendered)";
+    header.refreshHz = study.refreshHz();
+    header.displayWidth = display.width;
+    header.displayHeight = display.height;
+    header.player = player;
+    return header;
+}
+
+SessionCommits::SessionCommits(session::SessionWriter& writer, double refreshHz, std::ostream& progress)
+    : writer_(writer),
+      progress_(progress),
+      maxFrames_(std::max<std::int64_t>(1, static_cast<std::int64_t>(kMaxSecondsBetweenCommits * refreshHz))),
+      retryFrames_(std::max<std::int64_t>(1, static_cast<std::int64_t>(refreshHz))) {}
+
+void SessionCommits::afterFrame(std::int64_t frame, bool commitPoint) {
+    const bool due = commitPoint || frame - lastCommit_ >= maxFrames_ ||
+                     (writer_.heldCommits() > 0 && frame - lastTry_ >= retryFrames_);
+    if (!due) return;
+    if (commitPoint || frame - lastCommit_ >= maxFrames_) lastCommit_ = frame;
+    lastTry_ = frame;
+    writer_.commit();
+    tell();
+}
+
+std::string SessionCommits::waitingText() const {
+    if (writer_.heldCommits() == 0) return "";
+    std::ostringstream text;
+    text << "Another program holds the write lock on the session file: " << writer_.heldCommits()
+         << " commit(s) wait in memory (" << static_cast<long>(writer_.heldForSeconds())
+         << " s). Close it (a DB browser, or sqlite3 without -readonly).";
+    return text.str();
+}
+
+void SessionCommits::tell() {
+    for (const std::string& notice : writer_.takeNotices()) progress_ << "warning: " << notice << "\n";
+    const bool held = writer_.heldCommits() > 0;
+    if (held && !waiting_)
+        progress_ << "warning: another program holds the write lock on " << writer_.path()
+                  << " (a DB browser, or sqlite3 without -readonly?); the session goes on and keeps "
+                     "its commits in memory until the lock is free: a crash meanwhile would lose them\n";
+    if (!held && waiting_) progress_ << "note: " << writer_.path() << " is written again; no commit was lost\n";
+    waiting_ = held;
+}
+
+void SessionCommits::end(bool completed, const std::function<void(const std::string&)>& show) {
+    const auto waiting = [&](double seconds) {
+        const std::string line = "Saving the session: another program has held the write lock on " +
+                                 writer_.path() + " for " + std::to_string(static_cast<long>(seconds)) +
+                                 " s. Close it (a DB browser, or sqlite3 without -readonly).";
+        if (show) show(line);
+        if (static_cast<long>(seconds) % 5 == 1) progress_ << "waiting: " << line << "\n";
+    };
+    if (completed) {
+        writer_.finish(waiting);
+    } else {
+        writer_.commit();
+        writer_.flush(waiting);
+    }
+    tell();
+}
+
+std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
+    const auto study = game::loadStudy(run.protocolPath);
+    const game::DisplaySize display{run.displayWidth, run.displayHeight};
+    const auto player = makePlayer(run.player, run.seed, *study, display, run.seeingPlayer);
+
+    session::SessionHeader header = sessionHeader(*study, run.participant, run.seed, run.player, display);
+    // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
+    if (const std::string drawn = player->perceivedWith(); !drawn.empty()) header.glRenderer = drawn;
+    auto writer = session::SessionWriter::create(run.resultsDir, header);
+
+    const auto game = study->newGame(run.seed, display);
+    SessionCommits commits(writer, study->refreshHz(), progress);
+    game::FrameInput input = player->first();
+    std::int64_t lastReport = 0;
+    const auto reportEvery = static_cast<std::int64_t>(60.0 * study->refreshHz());
+    while (!game->finished() && player->hasMore()) {
+        const game::ShownFrame shown = game->step(input);
+        writer.addInput(toRecord(shown.frame, shown.time, input));
+        writer.addFrame(game->frameRecord(shown));
+        for (auto& e : game->takeEvents()) writer.addEvent(e);
+        commits.afterFrame(shown.frame, game->atCommitPoint());
+        input = player->next(shown);
+        if (shown.frame - lastReport >= reportEvery) {
+            lastReport = shown.frame;
+            progress << "run: " << static_cast<long long>(shown.time) << " s of display time, phase " << game->phase()
+                     << "\n";
+        }
+    }
+    commits.end(game->finished());
+    return writer.path();
+}
+
+namespace {
+
+// Click sessions recorded before bidirectional reprojection existed say in each match event
+// that a stand-in drew the mode's frames ("stand_in"). That describes the rendering, which
+// replay does not redo, not what was played: it is left out of the comparison, so those
+// sessions still replay (and export still reports it).
+session::EventRecord withoutRenderNotes(session::EventRecord event) {
+    if (event.detailJson.find("\"stand_in\"") == std::string::npos) return event;
+    auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
+    if (!detail.is_object()) return event;
+    detail.erase("stand_in");
+    event.detailJson = detail.dump();
+    return event;
+}
+
+}  // namespace
+
+int replayExitCode(const ReplayResult& result) {
+    if (!result.difference.empty()) return kReplayDiffers;
+    if (result.damaged) return kReplayDamaged;
+    if (!result.completed) return kReplayIncomplete;
+    return kReplayReproduced;
+}
+
+ReplayResult replaySession(const std::string& sessionPath) {
+    const auto started = std::chrono::steady_clock::now();
+    const session::SessionData data = session::readSession(sessionPath);
+    const auto study = game::parseStudy(data.header.protocolJson, sessionPath);
+    const auto game = study->newGame(data.header.seed, {data.header.displayWidth, data.header.displayHeight});
+
+    ReplayResult result;
+    result.note = data.note;
+    result.completed = data.completed;
+    result.damaged = data.damaged;
+    for (const auto& e : data.events) result.outcomes += game->isOutcome(e);
+    std::size_t eventIndex = 0;
+    for (const auto& in : data.inputs) {
+        const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
+        for (const auto& replayed : game->takeEvents()) {
+            if (eventIndex >= data.events.size()) {
+                // The store ends before this event was committed: nothing more to check.
+                break;
+            }
+            const std::string diff = session::firstDifference(withoutRenderNotes(data.events[eventIndex]), replayed);
+            const auto& logged = data.events[eventIndex];
+            if (!diff.empty() && result.difference.empty()) {
+                result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +
+                                    std::to_string(logged.frame) + "): " + diff;
+            }
+            if (diff.empty() && game->isOutcome(logged)) ++result.reproduced;
+            ++result.events;
+            ++eventIndex;
+        }
+        result.displaySeconds = shown.time;
+        if (!result.difference.empty()) break;
+    }
+    if (result.difference.empty() && eventIndex < data.events.size())
+        result.difference = "record " + std::to_string(eventIndex + 1) + " (" + data.events[eventIndex].type +
+                            " at frame " + std::to_string(data.events[eventIndex].frame) +
+                            ") was logged but the replay never produced it";
+    result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return result;
+}
+
+}  // namespace warplab::app

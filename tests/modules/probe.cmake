@@ -1,0 +1,15 @@
+# Builds one include probe (tests/modules/CMakeLists.txt) and checks the outcome it expects.
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${BUILD_DIR} --target ${TARGET}
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(EXPECT STREQUAL "allowed")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "module ${MODULE} may include \"${HEADER}\", but the probe did not compile:\n${out}")
+  endif()
+else()
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "module ${MODULE} must not see \"${HEADER}\", yet it compiled: an arrow is broken")
+  endif()
+  if(NOT out MATCHES "${HEADER}: No such file")
+    message(FATAL_ERROR "the probe of ${MODULE} including \"${HEADER}\" failed, but not for want of the header:\n${out}")
+  endif()
+endif()
