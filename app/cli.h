@@ -9,13 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace warplab::app {
+#include "scene/usage_error.h"  // UsageError: a wrong command line, exit status 2
 
-// Wrong command line: the message is shown with a pointer to --help, exit status 2.
-class UsageError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
+namespace warplab::app {
 
 struct OptionSpec {
     std::string name;       // without the leading "--"

@@ -81,12 +81,12 @@ struct Job {
 constexpr const char* kSessionLine = "demo-session\t";
 
 // In the forked child: one session, as `warplab run --headless` runs it; never returns.
-[[noreturn]] void runChild(const HeadlessRun& run, const fs::path& logPath) {
+[[noreturn]] void runChild(const study::HeadlessRun& run, const fs::path& logPath) {
     int code = 1;
     {
         std::ofstream log(logPath);
         try {
-            const std::string session = runHeadless(run, log);
+            const std::string session = study::runHeadless(run, log);
             log << kSessionLine << session << "\n";
             code = log ? 0 : 1;
         } catch (const std::exception& e) {
@@ -153,13 +153,13 @@ int runDemo(const ParsedArgs& args) {
         while (failure.empty() && !waiting.empty() && static_cast<int>(running.size()) < jobs) {
             Job job = waiting.front();
             waiting.pop_front();
-            HeadlessRun run;
+            study::HeadlessRun run;
             run.protocolPath = job.protocol.string();
             run.participant = player + "-" + std::to_string(job.participant);
             run.resultsDir = results.string();
             run.player = player + ":" + std::to_string(job.participant);
             run.seed = static_cast<std::uint64_t>(job.participant);
-            run.seeingPlayer = perceptualPlayerMaker(paths, backend);
+            run.seeingPlayer = participants::perceptualPlayerMaker(paths, backend);
             std::cout.flush();
             std::cerr.flush();
             const pid_t pid = fork();
@@ -189,8 +189,8 @@ int runDemo(const ParsedArgs& args) {
             continue;
         }
         // Every outcome must replay from the log alone, as a reviewer would check it.
-        const ReplayResult replay = replaySession(session);
-        if (replayExitCode(replay) == kReplayReproduced) {
+        const study::ReplayResult replay = study::replaySession(session);
+        if (study::replayExitCode(replay) == study::kReplayReproduced) {
             ++reproduced;
         } else if (failure.empty()) {
             failure = session + " did not replay: " + (replay.difference.empty() ? replay.note : replay.difference);
@@ -208,8 +208,8 @@ int runDemo(const ParsedArgs& args) {
     }
 
     const std::string exportDir = (fs::path(out) / "export").string();
-    ExportOptions options;
-    exportResults(results.string(), exportDir, options, std::cerr);
+    exporter::ExportOptions options;
+    exporter::exportResults(results.string(), exportDir, options, std::cerr);
     const std::string reportDir = (fs::path(out) / "report").string();
     const std::string command = shellQuoted(paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) +
                                 " --out " + shellQuoted(reportDir) + " 1>&2";

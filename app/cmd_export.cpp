@@ -11,11 +11,11 @@ int runExport(const ParsedArgs& args) {
         throw UsageError(args.positional().empty() ? "name the results folder to export"
                                                    : "export takes one results folder, got " +
                                                          std::to_string(args.positional().size()) + " arguments");
-    ExportOptions options;
+    exporter::ExportOptions options;
     options.allPhases = args.flag("all-phases");
     options.includeIncomplete = args.flag("include-incomplete");
     options.includeFlagged = args.flag("include-flagged");
-    const ExportSummary summary = exportResults(args.positional()[0], args.string("out", "export"), options, std::cerr);
+    const exporter::ExportSummary summary = exporter::exportResults(args.positional()[0], args.string("out", "export"), options, std::cerr);
     for (const auto& path : summary.written) std::cout << path << "\n";
     return 0;
 }

@@ -19,7 +19,7 @@ void checkParticipant(const std::string& id) {
     const std::string what = "option --participant ";
     if (id.find_first_not_of(" \t") == std::string::npos) throw UsageError(what + "must not be empty or blank");
     if (id.size() > 128) throw UsageError(what + "must be at most 128 bytes, got " + std::to_string(id.size()));
-    if (!isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text");
+    if (!exporter::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text");
     for (const char c : id)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) throw UsageError(what + "must not hold control characters");
 }
@@ -37,10 +37,10 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
 }
 
 int runWindowed(const ParsedArgs& args) {
-    LiveRun run;
+    live::LiveRun run;
     readSessionOptions(args, "human", run, !args.flag("free-play"));
     if (args.has("gl")) throw UsageError("option --gl only applies with --headless --player sim");
-    if (isSimulatedParticipant(run.player))
+    if (study::isSimulatedParticipant(run.player))
         throw UsageError("--player " + run.player + " (the simulated participant) runs headless only: add --headless");
     run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
     run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
@@ -66,10 +66,10 @@ int runWindowed(const ParsedArgs& args) {
     if (args.flag("free-play")) {
         run.freePlayMode = args.string("mode", "");
         run.freePlayLevel = static_cast<int>(args.integer("level", 0, 0, 120));
-        runFreePlay(run, dataPathsFrom(args), std::cerr);
+        live::runFreePlay(run, dataPathsFrom(args), std::cerr);
         return 0;
     }
-    const std::string path = runLive(run, dataPathsFrom(args), std::cerr);
+    const std::string path = live::runLive(run, dataPathsFrom(args), std::cerr);
     if (!path.empty()) std::cout << path << "\n";
     return 0;
 }
@@ -80,20 +80,20 @@ int runRun(const ParsedArgs& args) {
     if (!args.flag("headless")) return runWindowed(args);
     if (args.string("player", "bot") == "human")
         throw UsageError("a human player needs the window; leave out --headless");
-    HeadlessRun run;
+    study::HeadlessRun run;
     readSessionOptions(args, "bot", run);
     run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
     run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
-    if (isSimulatedParticipant(run.player)) {
+    if (study::isSimulatedParticipant(run.player)) {
         // It draws what it sees: the shaders, and a headless context.
         const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
         if (backend == renderer::GlBackend::Window)
             throw UsageError("option --gl: the simulated participant draws headless (osmesa or egl)");
-        run.seeingPlayer = perceptualPlayerMaker(dataPathsFrom(args), backend);
+        run.seeingPlayer = participants::perceptualPlayerMaker(dataPathsFrom(args), backend);
     } else if (args.has("gl")) {
         throw UsageError("option --gl only applies with --headless --player sim");
     }
-    const std::string path = runHeadless(run, std::cerr);
+    const std::string path = study::runHeadless(run, std::cerr);
     std::cout << path << "\n";
     return 0;
 }
@@ -105,7 +105,7 @@ int runReplay(const ParsedArgs& args) {
             if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies with --render");
     const std::string& path = args.positional().front();
     if (args.has("render")) {
-        ReplayRender request;
+        present::ReplayRender request;
         request.sessionPath = path;
         request.outDir = args.string("render");
         const std::string range = args.string("frames", "0:599");
@@ -118,32 +118,32 @@ int runReplay(const ParsedArgs& args) {
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
         request.width = static_cast<int>(args.integer("width", 0, 0, 16384));
         request.height = static_cast<int>(args.integer("height", 0, 0, 16384));
-        const ReplayRenderResult rendered =
-            renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+        const present::ReplayRenderResult rendered =
+            present::renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
             return 1;
         }
     }
-    ReplayResult r;
+    study::ReplayResult r;
     try {
-        r = replaySession(path);
+        r = study::replaySession(path);
     } catch (const session::SessionError& e) {
         std::cerr << "warplab replay: " << e.what() << "\n";
-        return kReplayDamaged;
+        return study::kReplayDamaged;
     }
     if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";
     if (!r.difference.empty()) {
         std::cout << "replay differs at " << r.difference << "\n"
                   << r.reproduced << "/" << r.outcomes << " outcomes reproduced before it\n";
-        return replayExitCode(r);
+        return study::replayExitCode(r);
     }
     std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, "
               << static_cast<long long>(r.displaySeconds) << " s of display time replayed in " << r.seconds
               << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0)
               << "x real time)\n";
-    return replayExitCode(r);
+    return study::replayExitCode(r);
 }
 
 }  // namespace warplab::app

@@ -16,8 +16,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "bench/ground_truth.h"
-#include "app/cli.h"
 #include "bench/sequences.h"
 #include "renderer/timing.h"
 #include "renderer/upconvert.h"
@@ -112,7 +114,7 @@ private:
 struct Row {
     std::string sequence, method;
     int frame = 0;
-    double time = 0, image::psnr = kNaN, ssim = kNaN;
+    double time = 0, psnr = kNaN, ssim = kNaN;
     // Over the frame's shared masks (unseenMasks): content no source holds (border) and true
     // disocclusions (occluded), with their pixel counts so the summary weights frames by them.
     double borderMae = kNaN, disoccMae = kNaN;
@@ -130,7 +132,7 @@ const char* kCsvHeader =
 
 void writeRow(std::ostream& csv, const Row& r) {
     auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
-    csv << r.sequence << ',' << r.method << ',' << r.frame << ',' << field(r.time, 6) << ',' << field(r.image::psnr, 3) << ','
+    csv << r.sequence << ',' << r.method << ',' << r.frame << ',' << field(r.time, 6) << ',' << field(r.psnr, 3) << ','
         << field(r.ssim, 5) << ',' << field(r.borderMae, 3) << ',' << r.borderPx << ',' << field(r.disoccMae, 3) << ','
         << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5)
         << ',' << c(r.corr.allLt1) << ',' << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ','
@@ -139,25 +141,41 @@ void writeRow(std::ostream& csv, const Row& r) {
 }
 
 // The plot is matplotlib's job; Debian's interpreter has it (python3 earlier on PATH may not).
+// Run without a shell, so no path needs quoting; its output (stdout and stderr) is the reason
+// when it fails.
 std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, const std::string& png,
                       const std::string& title) {
     const std::string script = paths.analysisDir + "/plot_bench.py";
     const char* python = "/usr/bin/python3";
     if (!std::filesystem::exists(script)) return "not written: " + script + " is missing";
     if (!std::filesystem::exists(python)) return "not written: /usr/bin/python3 is missing (scripts/install-deps.sh)";
-    const auto quote = app::shellQuoted;
-    const std::string command = std::string(python) + " " + quote(script) + " " + quote(csv) + " " + quote(png) +
-                                " --title " + quote(title) + " 2>&1";
-    std::string output;
-    if (FILE* pipe = popen(command.c_str(), "r")) {
-        char buffer[512];
-        while (fgets(buffer, sizeof buffer, pipe)) output += buffer;
-        const int status = pclose(pipe);
-        if (status == 0) return "";
-        while (!output.empty() && output.back() == '\n') output.pop_back();
-        return "not written: " + output;
+    int out[2];
+    if (pipe(out) != 0) return "not written: cannot run " + std::string(python);
+    const pid_t pid = fork();
+    if (pid < 0) {
+        close(out[0]);
+        close(out[1]);
+        return "not written: cannot run " + std::string(python);
     }
-    return "not written: cannot run " + std::string(python);
+    if (pid == 0) {
+        dup2(out[1], STDOUT_FILENO);
+        dup2(out[1], STDERR_FILENO);
+        close(out[0]);
+        close(out[1]);
+        const char* argv[] = {python, script.c_str(), csv.c_str(), png.c_str(), "--title", title.c_str(), nullptr};
+        execv(python, const_cast<char* const*>(argv));
+        _exit(127);
+    }
+    close(out[1]);
+    std::string output;
+    char buffer[512];
+    for (ssize_t n; (n = read(out[0], buffer, sizeof buffer)) > 0;) output.append(buffer, static_cast<std::size_t>(n));
+    close(out[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+    while (!output.empty() && output.back() == '\n') output.pop_back();
+    return "not written: " + (output.empty() ? "cannot run " + std::string(python) : output);
 }
 
 }  // namespace
@@ -418,10 +436,10 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                     // Motion blur: judged against brute force, the mean of as many conventional
                     // renders over the same exposure, whose total time is the reference cost.
                     const BruteForce& reference = bruteForce(previous, next, info.exposureSamples);
-                    row.image::psnr = image::psnr(shown.colour, reference.colour);
+                    row.psnr = image::psnr(shown.colour, reference.colour);
                     row.ssim = image::ssimLuminance(shown.colour, reference.colour);
                 } else {
-                    row.image::psnr = image::psnr(shown.colour, truth.colour);
+                    row.psnr = image::psnr(shown.colour, truth.colour);
                     row.ssim = image::ssimLuminance(shown.colour, truth.colour);
                     row.borderMae = maskedMeanAbsoluteError(shown.colour, truth.colour, unseen.border);
                     row.borderPx = count(unseen.border);
@@ -533,14 +551,14 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     };
     auto summarise = [&](const std::string& seq, const renderer::MethodInfo& info) {
         const std::string& method = info.name;
-        std::vector<double> pass, conv, image::psnr, ssim, all05, hit05, triangles;
+        std::vector<double> pass, conv, psnr, ssim, all05, hit05, triangles;
         double borderSum = 0, disoccSum = 0;
         std::size_t borderPx = 0, disoccPx = 0;
         for (const Row& r : rows) {
             if ((!seq.empty() && r.sequence != seq) || r.method != method) continue;
             pass.push_back(r.passMs);
             conv.push_back(r.conventionalMs);
-            image::psnr.push_back(r.image::psnr);
+            psnr.push_back(r.psnr);
             ssim.push_back(r.ssim);
             if (r.borderPx > 0 && !std::isnan(r.borderMae)) borderSum += r.borderMae * r.borderPx, borderPx += r.borderPx;
             if (r.disoccPx > 0 && !std::isnan(r.disoccMae)) disoccSum += r.disoccMae * r.disoccPx, disoccPx += r.disoccPx;
@@ -548,7 +566,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
             if (r.hasCorr) all05.push_back(r.corr.allLt0p5), hit05.push_back(r.corr.hitLt0p5);
         }
         const double p = median(pass), c = median(conv);
-        const double combined = psnrOfMeanMse(image::psnr);
+        const double combined = psnrOfMeanMse(psnr);
         const std::string psnrText = std::isinf(combined) ? "inf (exact)" : field(combined, 2);
         auto pct = [](double v) { return std::isnan(v) ? std::string("") : field(100.0 * v, 1) + "%"; };
         md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << sourcesText(info) << " | "

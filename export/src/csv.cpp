@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
-namespace warplab::app {
+namespace warplab::exporter {
 namespace {
 
 // Length of the valid UTF-8 sequence starting at s[i], or 0 when it is not one (overlong
@@ -137,4 +137,4 @@ void CsvFile::close() {
     closed_ = true;
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::exporter

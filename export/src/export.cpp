@@ -13,7 +13,7 @@
 #include "game/registry.h"
 #include "session/session_store.h"
 
-namespace warplab::app {
+namespace warplab::exporter {
 namespace fs = std::filesystem;
 
 namespace {
@@ -265,4 +265,4 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     return summary;
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::exporter

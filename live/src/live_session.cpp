@@ -21,7 +21,7 @@
 #include "image/image.h"
 #include "renderer/timing.h"
 
-namespace warplab::app {
+namespace warplab::live {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -228,9 +228,9 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         playerText << " (cm_per_360=" << run.cmPer360 << ", dpi=" << run.mouseDpi
                    << ", invert_y=" << (run.invertY ? 1 : 0) << ")";
     const bool human = run.player == "human";
-    const auto player = human ? nullptr : makePlayer(run.player, run.seed, *study, display);
+    const auto player = human ? nullptr : study::makePlayer(run.player, run.seed, *study, display);
 
-    FrameMaker maker(paths, width, height, study->rendering());
+    present::FrameMaker maker(paths, width, height, study->rendering());
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(width, height);
     FeedbackSounds sounds;
@@ -247,7 +247,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     if (human && waitFor(hud, frame, *window, "warplab", who + ". Press Enter to start, Esc to leave.", "\r\x1b") != '\r')
         return "";
 
-    auto header = sessionHeader(*study, run.participant, run.seed, playerText.str(), display);
+    auto header = study::sessionHeader(*study, run.participant, run.seed, playerText.str(), display);
     header.glRenderer = window->info().renderer;
     header.glVersion = window->info().version;
     header.refreshHz = opened.byVsync ? opened.measuredHz : study->refreshHz();
@@ -256,7 +256,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     if (human) window->setRelativeMouse(true);
 
     const auto game = study->newGame(run.seed, display);
-    SessionCommits commits(writer, study->refreshHz(), progress);
+    study::SessionCommits commits(writer, study->refreshHz(), progress);
     std::map<std::string, std::pair<long, long>> missedPerMode;  // mode -> missed vsyncs, frames
     std::map<std::string, long> lateFramesPerMode;               // mode -> frames that missed one
     game::ShownFrame shown;
@@ -292,7 +292,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
 
         shown = game->step(input);
         nextFrame = shown.frame + 1;
-        writer.addInput(toRecord(shown.frame, shown.time, input));
+        writer.addInput(study::toRecord(shown.frame, shown.time, input));
         for (auto& e : game->takeEvents()) writer.addEvent(e);
 
         // Making the frame, timed to glFinish: what must fit in one refresh. (The glFinish
@@ -300,7 +300,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         timer.begin();
         maker.keepSource(shown);
         if (!shown.blank) maker.make(shown, frame);
-        renderer::HudContent content = hudFor(shown, 1.0, 1.0);
+        renderer::HudContent content = present::hudFor(shown, 1.0, 1.0);
         const std::string waiting = commits.waitingText();  // the supervisor must see it
         if (!waiting.empty()) content.status = waiting;
         hud.draw(content, frame.buffer());
@@ -369,12 +369,12 @@ void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostr
     const game::DisplaySize display = opened.display;
     const double countScale = countScaleFor(run, *study);
     const bool human = run.player == "human";
-    const auto player = human ? nullptr : makePlayer(run.player, run.seed, *study, display);
+    const auto player = human ? nullptr : study::makePlayer(run.player, run.seed, *study, display);
 
     std::string mode = run.freePlayMode.empty() ? study->modes().front() : run.freePlayMode;
     int level = run.freePlayLevel;
     auto game = study->newFreePlay(run.seed, display, mode, level);
-    FrameMaker maker(paths, display.width, display.height, study->rendering());
+    present::FrameMaker maker(paths, display.width, display.height, study->rendering());
     renderer::HudRenderer hud(paths);
     renderer::DisplayFrame frame(display.width, display.height);
     FeedbackSounds sounds;
@@ -426,7 +426,7 @@ void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostr
         game->takeEvents();
         maker.keepSource(shown);
         if (!shown.blank) maker.make(shown, frame);
-        renderer::HudContent content = hudFor(shown, 1.0, 1.0);
+        renderer::HudContent content = present::hudFor(shown, 1.0, 1.0);
         std::vector<double> sorted = recentMs;
         std::sort(sorted.begin(), sorted.end());
         char stats[160];
@@ -449,4 +449,4 @@ void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostr
     progress << "free play ended: " << late << " late frames\n";
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::live

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace warplab::app {
+namespace warplab::live {
 namespace {
 
 // A tone gliding from f0 to f1 Hz with a 5 ms fade in and out (no clicks).
@@ -72,4 +72,4 @@ void FeedbackSounds::play(const std::string& which) {
     SDL_QueueAudio(device_, s.data(), static_cast<Uint32>(s.size() * sizeof(float)));
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::live

@@ -1,4 +1,4 @@
-// Private to app/: the feedback sounds of a live session (seed 004 section 5.3.4: a sound with
+// The feedback sounds of a live session (seed 004 section 5.3.4: a sound with
 // every HIT, MISS and TIMEOUT), generated rather than shipped: short sine tones through SDL
 // audio. Where no audio device opens (a server, Xvfb in CI), sounds are off and say so once.
 #pragma once
@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::app {
+namespace warplab::live {
 
 class FeedbackSounds {
 public:
@@ -30,4 +30,4 @@ private:
     std::string why_;
 };
 
-}  // namespace warplab::app
+}  // namespace warplab::live

@@ -12,7 +12,7 @@
 #include "renderer/upconvert.h"
 #include "scene/scene.h"
 
-namespace warplab::app {
+namespace warplab::participants {
 namespace {
 
 constexpr double kMaxPitch = 1.5;  // the shooter's camera never pitches further (radians)
@@ -648,4 +648,4 @@ std::string PerceptualPlayer::perceivedWith() const {
            std::to_string(eye_->height()) + ")";
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::participants

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace warplab::app {
+namespace warplab::present {
 
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY) {
     renderer::HudContent content;
@@ -116,4 +116,4 @@ renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {
     return *m;
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::present

@@ -1,7 +1,5 @@
 #include "present/replay_render.h"
 
-#include "app/cli.h"
-
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -14,8 +12,9 @@
 #include "present/frame_maker.h"
 #include "renderer/hud.h"
 #include "renderer/upconvert.h"
+#include "scene/usage_error.h"
 
-namespace warplab::app {
+namespace warplab::present {
 namespace {
 
 // How close to a silhouette (in pixels of the re-rendered frame) the pointer may be before
@@ -128,4 +127,4 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     return result;
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::present

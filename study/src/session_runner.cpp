@@ -16,7 +16,7 @@
 #define WARPLAB_VERSION "0"
 #endif
 
-namespace warplab::app {
+namespace warplab::study {
 
 session::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in) {
     session::InputRecord r;
@@ -227,4 +227,4 @@ ReplayResult replaySession(const std::string& sessionPath) {
     return result;
 }
 
-}  // namespace warplab::app
+}  // namespace warplab::study

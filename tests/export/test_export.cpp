@@ -100,20 +100,20 @@ std::vector<std::string> headerOf(const std::string& path) {
 
 std::string headless(const std::string& protocol, const std::string& participant, const std::string& dir,
                      std::uint64_t seed) {
-    HeadlessRun run;
+    study::HeadlessRun run;
     run.protocolPath = std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + protocol;
     run.participant = participant;
     run.resultsDir = dir;
     run.player = "bot:" + std::to_string(seed);
     run.seed = seed;
     std::ostringstream quiet;
-    return runHeadless(run, quiet);
+    return study::runHeadless(run, quiet);
 }
 
-ExportSummary exportQuietly(const std::string& results, const std::string& out, const ExportOptions& options = {},
+exporter::ExportSummary exportQuietly(const std::string& results, const std::string& out, const exporter::ExportOptions& options = {},
                             std::string* log = nullptr) {
     std::ostringstream lines;
-    ExportSummary summary = exportResults(results, out, options, lines);
+    exporter::ExportSummary summary = exporter::exportResults(results, out, options, lines);
     if (log != nullptr) *log = lines.str();
     return summary;
 }
@@ -151,30 +151,30 @@ void countScored(const session::SessionData& data, std::map<Key, Counts>& into) 
 // ---- cells ----
 
 TEST(ExportCsv, TextThatASpreadsheetWouldRunIsDefused) {
-    EXPECT_EQ(csvText("=1+2"), "'=1+2");
-    EXPECT_EQ(csvText("+41"), "'+41");
-    EXPECT_EQ(csvText("-5"), "'-5");
-    EXPECT_EQ(csvText("@SUM(A1)"), "'@SUM(A1)");
-    EXPECT_EQ(csvText("\tx"), "'\tx");
-    EXPECT_EQ(csvText("P-01"), "P-01");  // only the first character matters
-    EXPECT_EQ(csvText("=HYPERLINK(\"x\",\"y\")"), "\"'=HYPERLINK(\"\"x\"\",\"\"y\"\")\"");
+    EXPECT_EQ(exporter::csvText("=1+2"), "'=1+2");
+    EXPECT_EQ(exporter::csvText("+41"), "'+41");
+    EXPECT_EQ(exporter::csvText("-5"), "'-5");
+    EXPECT_EQ(exporter::csvText("@SUM(A1)"), "'@SUM(A1)");
+    EXPECT_EQ(exporter::csvText("\tx"), "'\tx");
+    EXPECT_EQ(exporter::csvText("P-01"), "P-01");  // only the first character matters
+    EXPECT_EQ(exporter::csvText("=HYPERLINK(\"x\",\"y\")"), "\"'=HYPERLINK(\"\"x\"\",\"\"y\"\")\"");
 }
 
 TEST(ExportCsv, TextIsQuotedOnlyWhereRfc4180NeedsIt) {
-    EXPECT_EQ(csvText("plain text"), "plain text");
-    EXPECT_EQ(csvText("a,b"), "\"a,b\"");
-    EXPECT_EQ(csvText("say \"hi\""), "\"say \"\"hi\"\"\"");
-    EXPECT_EQ(csvText("two\nlines"), "\"two\nlines\"");
-    EXPECT_EQ(csvText(""), "");
+    EXPECT_EQ(exporter::csvText("plain text"), "plain text");
+    EXPECT_EQ(exporter::csvText("a,b"), "\"a,b\"");
+    EXPECT_EQ(exporter::csvText("say \"hi\""), "\"say \"\"hi\"\"\"");
+    EXPECT_EQ(exporter::csvText("two\nlines"), "\"two\nlines\"");
+    EXPECT_EQ(exporter::csvText(""), "");
 }
 
 TEST(ExportCsv, InvalidUtf8BecomesTheReplacementCharacterAndValidUtf8Stays) {
-    EXPECT_EQ(csvText("caf\xC3\xA9"), "caf\xC3\xA9");
-    EXPECT_EQ(csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");                  // U+1F600
-    EXPECT_EQ(csvText("a\xFFz"), "a\xEF\xBF\xBDz");                              // stray byte
-    EXPECT_EQ(csvText("\xC3"), "\xEF\xBF\xBD");                                  // cut sequence
-    EXPECT_EQ(csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");                  // overlong '/'
-    EXPECT_EQ(csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
+    EXPECT_EQ(exporter::csvText("caf\xC3\xA9"), "caf\xC3\xA9");
+    EXPECT_EQ(exporter::csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");                  // U+1F600
+    EXPECT_EQ(exporter::csvText("a\xFFz"), "a\xEF\xBF\xBDz");                              // stray byte
+    EXPECT_EQ(exporter::csvText("\xC3"), "\xEF\xBF\xBD");                                  // cut sequence
+    EXPECT_EQ(exporter::csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");                  // overlong '/'
+    EXPECT_EQ(exporter::csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
 }
 
 TEST(ExportCsv, NumbersReadBackBitForBit) {
@@ -187,21 +187,21 @@ TEST(ExportCsv, NumbersReadBackBitForBit) {
         if (std::isfinite(d)) values.push_back(d);
     }
     for (const double v : values) {
-        const std::string text = csvNumber(v);
+        const std::string text = exporter::csvNumber(v);
         EXPECT_EQ(text.find(','), std::string::npos) << text;
         const double back = std::strtod(text.c_str(), nullptr);
         EXPECT_EQ(std::memcmp(&back, &v, sizeof v), 0) << text;
     }
-    EXPECT_EQ(csvNumber(0.1), "0.1");  // shortest, not 0.10000000000000001
-    EXPECT_EQ(csvNumber(std::nan("")), "");
-    EXPECT_EQ(csvNumber(HUGE_VAL), "Inf");
-    EXPECT_EQ(csvNumber(-HUGE_VAL), "-Inf");
+    EXPECT_EQ(exporter::csvNumber(0.1), "0.1");  // shortest, not 0.10000000000000001
+    EXPECT_EQ(exporter::csvNumber(std::nan("")), "");
+    EXPECT_EQ(exporter::csvNumber(HUGE_VAL), "Inf");
+    EXPECT_EQ(exporter::csvNumber(-HUGE_VAL), "-Inf");
 }
 
 TEST(ExportCsv, ARowWithTheWrongNumberOfCellsIsRefusedAndNoFileIsLeft) {
     const std::string dir = scratch("wrong-cells");
     {
-        CsvFile f(dir + "/t.csv", {"a", "b"});
+        exporter::CsvFile f(dir + "/t.csv", {"a", "b"});
         f.text("x");
         EXPECT_THROW(f.endRow(), std::logic_error);
     }
@@ -231,7 +231,7 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     }
     ASSERT_GE(expected.size(), 6u);
 
-    const ExportSummary summary = exportQuietly(results, out);
+    const exporter::ExportSummary summary = exportQuietly(results, out);
     ASSERT_EQ(summary.sessions.size(), 3u);
     for (const auto& s : summary.sessions) EXPECT_TRUE(s.included) << s.file << ": " << s.status << " " << s.why;
     EXPECT_EQ(summary.sessions[0].file, "P01_" + fs::path(files[0]).filename().string().substr(4));
@@ -292,7 +292,7 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
 
     // --all-phases adds acclimation, training and the practice round to shots.csv, not to hit rates.
     const std::string all = scratch("real/all");
-    ExportOptions options;
+    exporter::ExportOptions options;
     options.allPhases = true;
     exportQuietly(results, all, options);
     EXPECT_GT(readCsv(all + "/shots.csv").size(), shots.size());
@@ -367,7 +367,7 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     const auto before = snapshot(results);
     std::string log;
     const std::string out = scratch("mixed/out");
-    const ExportSummary summary = exportQuietly(results, out, {}, &log);
+    const exporter::ExportSummary summary = exportQuietly(results, out, {}, &log);
     EXPECT_EQ(snapshot(results), before) << "export changed the results folder";
 
     std::map<std::string, std::string> status;
@@ -412,7 +412,7 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     EXPECT_EQ(scoredShots.size(), 1u) << "only the complete session (once) by default";
     EXPECT_EQ(scoredShots["OK"], perSession);
 
-    ExportOptions more;
+    exporter::ExportOptions more;
     more.includeIncomplete = more.includeFlagged = true;
     const std::string outAll = scratch("mixed/out-all");
     exportQuietly(results, outAll, more);
@@ -478,13 +478,13 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     }
     ASSERT_GT(marked, 0);
     w.finish();
-    const ReplayResult replay = replaySession(w.path());
+    const study::ReplayResult replay = study::replaySession(w.path());
     EXPECT_EQ(replay.difference, "");
     EXPECT_EQ(replay.reproduced, replay.outcomes);
     EXPECT_GT(replay.outcomes, 0u);
 
     const std::string out = scratch("stand-in/out");
-    ExportOptions all;
+    exporter::ExportOptions all;
     all.allPhases = true;
     exportQuietly(results, out, all);
     int standIns = 0;

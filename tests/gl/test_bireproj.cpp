@@ -211,7 +211,7 @@ TEST(Bireproj, TranslatingSphereSitsAtTheInterpolatedPosition) {
 // 3. The bench's sequences against ground truth, scored as the bench scores them.
 
 struct Score {
-    double hitLt0p5 = 0, allLt0p5 = 0, image::psnr = 0;
+    double hitLt0p5 = 0, allLt0p5 = 0, psnr = 0;
     std::vector<renderer::DisplayImages> frames;  // the interval's B-frames, in order
     // Per sample, in the order they were pooled: 0 = not visible in that source, 1 = visible
     // and claimed 0.5 px or more off (or not claimed), 2 = visible and within 0.5 px.
@@ -292,7 +292,7 @@ std::map<std::string, Score> scoreSequence(const std::string& sequenceName, cons
                                       ? std::numeric_limits<double>::quiet_NaN()
                                       : double(out[name].focusRight) / double(out[name].focusHitSamples);
         const double mse = squaredErrors[name].first / squaredErrors[name].second;
-        out[name].image::psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
+        out[name].psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
     }
     return out;
 }
@@ -302,7 +302,7 @@ std::string figures(const std::map<std::string, Score>& scores) {
     s << std::fixed << std::setprecision(2);
     for (const auto& [name, score] : scores)
         s << name << ": hit<0.5px " << 100.0 * score.hitLt0p5 << "%, all<0.5px " << 100.0 * score.allLt0p5
-          << "%, PSNR " << score.image::psnr << " dB"
+          << "%, PSNR " << score.psnr << " dB"
           << (score.focusHitSamples ? ", on the focus object hit<0.5px " + std::to_string(100.0 * score.focusHitLt0p5) +
                                           "% of " + std::to_string(score.focusHitSamples)
                                     : std::string())
@@ -320,8 +320,8 @@ void expectBeatsBaselines(const std::string& sequence, double hitFloor) {
     std::cout << "[" << sequence << "] " << text << "\n";
     const Score& bi = scores.at("bireproj");
     EXPECT_GT(bi.hitLt0p5, hitFloor) << sequence << ": share of visible pixels within 0.5 px";
-    EXPECT_GT(bi.image::psnr, scores.at("blend").image::psnr) << sequence;
-    EXPECT_GT(bi.image::psnr, scores.at("hold15").image::psnr) << sequence;
+    EXPECT_GT(bi.psnr, scores.at("blend").psnr) << sequence;
+    EXPECT_GT(bi.psnr, scores.at("hold15").psnr) << sequence;
 }
 
 // Floors a percentage point under what this test measured (Mesa llvmpipe, 192x108, intervals
@@ -343,7 +343,7 @@ TEST(BireprojBench, ThinGeometryIsReported) {
     RecordProperty("thin", text);
     std::cout << "[thin] " << text << "\n";
     const Score& bi = scores.at("bireproj");
-    EXPECT_TRUE(std::isfinite(bi.hitLt0p5) && std::isfinite(bi.image::psnr));
+    EXPECT_TRUE(std::isfinite(bi.hitLt0p5) && std::isfinite(bi.psnr));
     EXPECT_GT(bi.hitLt0p5, scores.at("blend").hitLt0p5);
     ASSERT_GT(bi.focusHitSamples, 0u);
     EXPECT_GT(bi.focusHitLt0p5, scores.at("hold15").focusHitLt0p5);
@@ -563,7 +563,7 @@ TEST(SceneAssisted, CorrespondencesAreExactAndBeatTheSearch) {
         std::cout << "[scene-assisted " << sequence << "] " << figures(scores) << "\n";
         // Measured: 100 % on both (the claims are the scene's own projections).
         EXPECT_GT(exact.hitLt0p5, 0.999) << sequence;
-        EXPECT_GT(exact.image::psnr, scores.at("bireproj").image::psnr) << sequence;
+        EXPECT_GT(exact.psnr, scores.at("bireproj").psnr) << sequence;
     }
 }
 

@@ -85,7 +85,7 @@ TEST(GuardBand, HoldShowsTheDisplayedPartOfABandedSource) {
     const auto shown = testing::produceFrame("hold120", input, w, h);
     const auto diff = image::compareImages(shown.colour, plain.images.colour, 24);
     RecordProperty("pixels_over_24", diff.pixelsOverThreshold);
-    RecordProperty("image::psnr", std::to_string(image::psnr(shown.colour, plain.images.colour)));
+    RecordProperty("psnr", std::to_string(image::psnr(shown.colour, plain.images.colour)));
     EXPECT_LE(diff.pixelsOverThreshold, w * h / 1000);
     EXPECT_GE(image::psnr(shown.colour, plain.images.colour), 40.0);
     int sameIds = 0;

@@ -42,15 +42,15 @@ std::unique_ptr<game::Study> shooterAt60() {
                             "sim-test");
 }
 
-app::PerceptualPlayer playerFor(const game::Study& study, std::uint64_t seed, const app::ParticipantParams& params = {}) {
+participants::PerceptualPlayer playerFor(const game::Study& study, std::uint64_t seed, const participants::ParticipantParams& params = {}) {
     testing::glContext();  // the player draws in the context current on this thread
-    return app::PerceptualPlayer(nullptr, study, kDisplay, testing::sourceDataPaths(), seed, params);
+    return participants::PerceptualPlayer(nullptr, study, kDisplay, testing::sourceDataPaths(), seed, params);
 }
 
 // Plays free-play targets at `level` in `mode` until `targets` trials have ended; the share of
 // them hit as displayed (the scored outcome of the shooter's protocols).
 double hitRate(const game::Study& study, const std::string& mode, int level, int targets,
-               const app::ParticipantParams& params, std::uint64_t seed = 1) {
+               const participants::ParticipantParams& params, std::uint64_t seed = 1) {
     auto game = study.newFreePlay(seed, kDisplay, mode, level);
     auto player = playerFor(study, seed, params);
     game::FrameInput input = player.first();
@@ -68,8 +68,8 @@ double hitRate(const game::Study& study, const std::string& mode, int level, int
     return static_cast<double>(hits) / targets;
 }
 
-app::ParticipantParams ideal() {
-    app::ParticipantParams p;
+participants::ParticipantParams ideal() {
+    participants::ParticipantParams p;
     p.reactionS = 0.0;
     p.motorNoise = 0.0;
     p.motorNoiseFloorCountsPerS = 0.0;
@@ -107,7 +107,7 @@ bool wellInView(const glm::dvec2& p, double radiusPx) {
 TEST(SimulatedParticipant, EyeFindsTheShooterTargetWhereItProjects) {
     const auto study = game::loadStudy(protocolPath("shooter-quick"));
     testing::glContext();
-    app::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
+    participants::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
     const double perceptPx = static_cast<double>(kDisplay.width) / eye.width();
     auto game = study->newGame(3, kDisplay);
     int checked = 0, sized = 0;
@@ -115,7 +115,7 @@ TEST(SimulatedParticipant, EyeFindsTheShooterTargetWhereItProjects) {
     for (int frame = 0; frame < 240; ++frame) {
         // Turn a little every frame, so the target is seen in many places in the view.
         const game::ShownFrame shown = game->step({frame % 80 < 40 ? 2.0 : -2.0, frame % 40 < 20 ? 1.0 : -1.0, 0, 0});
-        const app::Percept percept = eye.see(shown);
+        const participants::Percept percept = eye.see(shown);
         if (frame % 4 != 0 || shown.scene.objects.empty() || shown.frozen) continue;
         const game::ScreenMapping screen(shown.camera, kDisplay);
         const glm::dvec3 centre(shown.scene.objects.front().position);
@@ -126,7 +126,7 @@ TEST(SimulatedParticipant, EyeFindsTheShooterTargetWhereItProjects) {
         const glm::dvec2 middle(kDisplay.width * 0.5, kDisplay.height * 0.5);
         if (!wellInView(*truth, radiusPx) || std::abs(truth->x - middle.x) > 0.3 * kDisplay.width) continue;
         ASSERT_EQ(percept.objects.size(), 1u) << "frame " << frame;
-        const app::SeenObject& seen = percept.objects.front();
+        const participants::SeenObject& seen = percept.objects.front();
         EXPECT_EQ(seen.id, scene::kIdTarget);
         EXPECT_LE(glm::length(seen.centre - *truth) / perceptPx, kCentroidTolerancePx)
             << "frame " << frame << ": seen at (" << seen.centre.x << ", " << seen.centre.y << "), projects to ("
@@ -146,20 +146,20 @@ TEST(SimulatedParticipant, EyeFindsTheShooterTargetWhereItProjects) {
 TEST(SimulatedParticipant, EyeFindsTheFallingSpheresAndTellsGreenFromRed) {
     const auto study = game::loadStudy(protocolPath("click-quick"));
     testing::glContext();
-    app::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
+    participants::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
     const double perceptPx = static_cast<double>(kDisplay.width) / eye.width();
     auto game = study->newFreePlay(2, kDisplay, "conv60", 0);
     int checked = 0, green = 0;
     double worst = 0.0;
     for (int frame = 0; frame < 150; ++frame) {
         const game::ShownFrame shown = game->step({});
-        const app::Percept percept = eye.see(shown);
+        const participants::Percept percept = eye.see(shown);
         if (frame % 10 != 0) continue;
         const game::ScreenMapping screen(shown.camera, kDisplay);
         for (const auto& o : shown.scene.objects) {
             const glm::dvec3 centre(o.position);
             const auto truth = screen.project(centre);
-            const app::SeenObject* seen = nullptr;
+            const participants::SeenObject* seen = nullptr;
             for (const auto& s : percept.objects)
                 if (s.id == o.id) seen = &s;
             // Spheres hide each other: judge only those seen whole, their area-equivalent radius
@@ -184,9 +184,9 @@ TEST(SimulatedParticipant, EyeFindsTheFallingSpheresAndTellsGreenFromRed) {
 TEST(SimulatedParticipant, PictureRegistrationFindsHowFarTheViewTurned) {
     const auto study = game::loadStudy(protocolPath("shooter-quick"));
     testing::glContext();
-    app::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
+    participants::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
     auto game = study->newGame(3, kDisplay);
-    const app::Percept home = eye.see(game->step({}));
+    const participants::Percept home = eye.see(game->step({}));
     // Turn by a known number of counts, then compare the views: the start view's centre must be
     // found where the turn puts it, within a cell of the picture (4 percept pixels, ~2.7 degrees:
     // enough to turn back to where targets appear).
@@ -194,9 +194,9 @@ TEST(SimulatedParticipant, PictureRegistrationFindsHowFarTheViewTurned) {
     const double f = 0.5 * kDisplay.height / std::tan(glm::radians(30.0));
     for (const glm::dvec2 counts : {glm::dvec2(40, 0), glm::dvec2(-90, 0), glm::dvec2(0, 40), glm::dvec2(60, -50)}) {
         auto turned = study->newGame(3, kDisplay);
-        app::Eye eye2(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
-        const app::Percept now = eye2.see(turned->step({counts.x, counts.y, 0, 0}));
-        const auto shift = app::whereViewIs(home.picture, now.picture);
+        participants::Eye eye2(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
+        const participants::Percept now = eye2.see(turned->step({counts.x, counts.y, 0, 0}));
+        const auto shift = participants::whereViewIs(home.picture, now.picture);
         ASSERT_TRUE(shift.has_value());
         const double yaw = counts.x * radiansPerCount, pitch = -counts.y * radiansPerCount;
         const glm::dvec2 expected(-f * std::tan(yaw), f * std::tan(pitch) / std::cos(yaw));
@@ -211,54 +211,54 @@ TEST(SimulatedParticipant, PictureRegistrationFindsHowFarTheViewTurned) {
 
 TEST(SimulatedParticipant, MotionEstimateRecoversAParabolaAndALine) {
     const glm::dvec2 p0(100.0, 50.0), v(300.0, -40.0), a(0.0, 1150.0);
-    std::vector<app::Sample> samples;
+    std::vector<participants::Sample> samples;
     for (int i = 0; i <= 12; ++i) {
         const double t = 2.0 + i / 60.0;
         const double s = t - 2.2;
         samples.push_back({t, p0 + v * s + 0.5 * a * s * s});
     }
-    const app::MotionEstimate parabola = app::estimateMotion(samples, true);
+    const participants::MotionEstimate parabola = participants::estimateMotion(samples, true);
     EXPECT_NEAR(glm::length(parabola.position - p0), 0.0, 1e-6);
     EXPECT_NEAR(glm::length(parabola.velocity - v), 0.0, 1e-6);
     EXPECT_NEAR(glm::length(parabola.acceleration - a), 0.0, 1e-6);
     EXPECT_NEAR(glm::length(parabola.positionAt(2.4) - (p0 + v * 0.2 + 0.5 * a * 0.04)), 0.0, 1e-6);
     // Without acceleration, a line: exact for a line, and no acceleration from a parabola.
-    const app::MotionEstimate line = app::estimateMotion(samples, false);
+    const participants::MotionEstimate line = participants::estimateMotion(samples, false);
     EXPECT_EQ(line.acceleration, glm::dvec2(0.0));
     EXPECT_NEAR(line.velocity.x, v.x, 1e-6);
     // One sample: where it was, at rest.
-    const app::MotionEstimate one = app::estimateMotion({{1.0, {3.0, 4.0}}}, true);
+    const participants::MotionEstimate one = participants::estimateMotion({{1.0, {3.0, 4.0}}}, true);
     EXPECT_EQ(one.position, glm::dvec2(3.0, 4.0));
     EXPECT_EQ(one.velocity, glm::dvec2(0.0));
 }
 
 TEST(SimulatedParticipant, ItClicksOnlyWhenBothThePredictedAndTheSeenErrorAreSmall) {
-    app::ParticipantParams p;
+    participants::ParticipantParams p;
     const double r = 10.0;  // within 0.7 * 10
-    EXPECT_TRUE(app::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.5, p));
-    EXPECT_FALSE(app::decidesToClick({8.0, 0.0}, {0.0, 3.0}, r, 0.5, p));  // predicted off
-    EXPECT_FALSE(app::decidesToClick({3.0, 0.0}, {0.0, 8.0}, r, 0.5, p));  // seen off
-    EXPECT_FALSE(app::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.05, p));  // not aimed long enough
+    EXPECT_TRUE(participants::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.5, p));
+    EXPECT_FALSE(participants::decidesToClick({8.0, 0.0}, {0.0, 3.0}, r, 0.5, p));  // predicted off
+    EXPECT_FALSE(participants::decidesToClick({3.0, 0.0}, {0.0, 8.0}, r, 0.5, p));  // seen off
+    EXPECT_FALSE(participants::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.05, p));  // not aimed long enough
 }
 
 // The participant alone, fed percepts made by hand: a green object on screen and the cursor
 // where its own counts have moved it. It gets there and clicks it -- from percepts alone.
 TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndClicks) {
-    app::TaskKnowledge knowledge;
+    participants::TaskKnowledge knowledge;
     knowledge.display = kDisplay;
     knowledge.pixelsPerCount = 1.0;
     knowledge.greenOnly = true;
-    app::SimulatedParticipant participant(knowledge, {}, 7);
+    participants::SimulatedParticipant participant(knowledge, {}, 7);
     glm::dvec2 cursor(960.0, 540.0);
     const glm::dvec2 target(1400.0, 300.0);
     int clickedAt = -1;
     for (int frame = 0; frame < 120 && clickedAt < 0; ++frame) {
-        app::Percept percept;
+        participants::Percept percept;
         percept.time = frame / 60.0;
         percept.pointer = game::PointerKind::Cursor;
         percept.pointerAt = cursor;
-        app::SeenObject red{scene::kIdFirstSphere, {900.0, 520.0}, 50.0, {0.8, 0.1, 0.1}, 60};
-        app::SeenObject green{scene::kIdFirstSphere + 1, target, 50.0, {0.1, 0.8, 0.1}, 60};
+        participants::SeenObject red{scene::kIdFirstSphere, {900.0, 520.0}, 50.0, {0.8, 0.1, 0.1}, 60};
+        participants::SeenObject green{scene::kIdFirstSphere + 1, target, 50.0, {0.1, 0.8, 0.1}, 60};
         percept.objects = {red, green};
         const game::FrameInput input = participant.act(percept);
         EXPECT_EQ(input.mouseDx, std::round(input.mouseDx));  // whole counts, as a mouse sends
@@ -277,16 +277,16 @@ TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndC
 
 // act() takes a Percept and nothing else; a ShownFrame (the world as the game keeps it) does not
 // convert to one. Only the Eye reads ShownFrames.
-static_assert(std::is_invocable_r_v<game::FrameInput, decltype(&app::SimulatedParticipant::act),
-                                    app::SimulatedParticipant&, const app::Percept&>);
-static_assert(!std::is_invocable_v<decltype(&app::SimulatedParticipant::act), app::SimulatedParticipant&,
+static_assert(std::is_invocable_r_v<game::FrameInput, decltype(&participants::SimulatedParticipant::act),
+                                    participants::SimulatedParticipant&, const participants::Percept&>);
+static_assert(!std::is_invocable_v<decltype(&participants::SimulatedParticipant::act), participants::SimulatedParticipant&,
                                    const game::ShownFrame&>);
-static_assert(!std::is_convertible_v<game::ShownFrame, app::Percept>);
+static_assert(!std::is_convertible_v<game::ShownFrame, participants::Percept>);
 
 TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {
     const auto study = game::loadStudy(protocolPath("shooter-quick"));
     testing::glContext();
-    app::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
+    participants::Eye eye(testing::sourceDataPaths(), kDisplay, study->rendering(), 160);
     auto game = study->newGame(3, kDisplay);
     // Turned half round: the game's frame still holds the target, the picture does not.
     const game::ShownFrame shown = game->step({3.14159 / study->mouseRadiansPerCount(), 0, 0, 0});
@@ -296,10 +296,10 @@ TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {
     // screen depicts it, not where the world has it.
     const auto click = game::loadStudy(protocolPath("click-quick"));
     auto lagged = click->newFreePlay(4, kDisplay, "lag200", 0);
-    app::Eye eye2(testing::sourceDataPaths(), kDisplay, click->rendering(), 160);
+    participants::Eye eye2(testing::sourceDataPaths(), kDisplay, click->rendering(), 160);
     game::ShownFrame last;
     for (int frame = 0; frame < 60; ++frame) eye2.see(last = lagged->step({}));
-    const app::Percept percept = eye2.see(last = lagged->step({}));
+    const participants::Percept percept = eye2.see(last = lagged->step({}));
     const game::ScreenMapping screen(last.camera, kDisplay);
     const auto* world = dynamic_cast<const game::ClickGame&>(*lagged).world();
     ASSERT_NE(world, nullptr);
@@ -329,9 +329,9 @@ TEST(SimulatedParticipant, ALongerReactionTimeLowersItsHitRate) {
     // A fast target (level 12, 4 m/s: it bounces about every second), with the default motor
     // noise: predicting it across a longer delay fails more often, at the bounces above all.
     const auto study = shooterAt60();
-    app::ParticipantParams quick;
+    participants::ParticipantParams quick;
     quick.reactionS = 0.0;
-    app::ParticipantParams slow;
+    participants::ParticipantParams slow;
     slow.reactionS = 0.4;
     const double quickRate = hitRate(*study, "conv60", 12, 12, quick);
     const double slowRate = hitRate(*study, "conv60", 12, 12, slow);
@@ -343,7 +343,7 @@ TEST(SimulatedParticipant, ALongerReactionTimeLowersItsHitRate) {
 // participant's own counts, and the percepts it would get -- the target where the view puts it,
 // the pictures left empty, so the view can only be judged by the hand's own turn.
 struct HandMadeShooter {
-    app::TaskKnowledge knowledge;
+    participants::TaskKnowledge knowledge;
     double yaw = 0.0;  // where the view looks, radians (positive: right)
     HandMadeShooter() {
         knowledge.display = kDisplay;
@@ -351,8 +351,8 @@ struct HandMadeShooter {
         knowledge.radiansPerCount = 0.0022;
     }
     double focal() const { return 0.5 * kDisplay.height / std::tan(glm::radians(knowledge.verticalFovDeg) / 2.0); }
-    app::Percept see(double time, std::optional<double> targetYaw) const {
-        app::Percept p;
+    participants::Percept see(double time, std::optional<double> targetYaw) const {
+        participants::Percept p;
         p.time = time;
         p.pointer = game::PointerKind::Reticle;
         p.pointerAt = {kDisplay.width * 0.5, kDisplay.height * 0.5};
@@ -363,7 +363,7 @@ struct HandMadeShooter {
         return p;
     }
     // Acts on the percept; returns the hand's turn this frame, radians per second.
-    double act(app::SimulatedParticipant& participant, const app::Percept& percept) {
+    double act(participants::SimulatedParticipant& participant, const participants::Percept& percept) {
         const game::FrameInput input = participant.act(percept);
         yaw += input.mouseDx * knowledge.radiansPerCount;
         clicked = (input.buttons & game::kButtonLeft) != 0;
@@ -377,9 +377,9 @@ struct HandMadeShooter {
 // jump between two frames was fitted as 30 rad/s and the view turned away for good).
 TEST(SimulatedParticipant, AJumpInWhatItSeesIsNotTakenForMotion) {
     HandMadeShooter world;
-    app::ParticipantParams params = ideal();
+    participants::ParticipantParams params = ideal();
     params.reactionS = 0.2;
-    app::SimulatedParticipant participant(world.knowledge, params, 3);
+    participants::SimulatedParticipant participant(world.knowledge, params, 3);
     double fastest = 0.0;
     int clicksOnTarget = 0;
     for (int frame = 0; frame < 120; ++frame) {
@@ -401,7 +401,7 @@ TEST(SimulatedParticipant, AJumpInWhatItSeesIsNotTakenForMotion) {
 // back by how far its hand has turned, to where targets appear.
 TEST(SimulatedParticipant, LostItTurnsBackByItsHandsOwnTurn) {
     HandMadeShooter world;
-    app::SimulatedParticipant participant(world.knowledge, ideal(), 5);
+    participants::SimulatedParticipant participant(world.knowledge, ideal(), 5);
     int frame = 0;
     for (; frame < 120 && world.yaw < 0.6; ++frame)  // a target draws it far right ...
         world.act(participant, world.see(frame / 60.0, 0.7));

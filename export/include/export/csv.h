@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::app {
+namespace warplab::exporter {
 
 // True when `text` is well-formed UTF-8 (no stray, cut, overlong or surrogate sequences).
 bool isValidUtf8(const std::string& text);
@@ -52,4 +52,4 @@ private:
     bool closed_ = false;
 };
 
-}  // namespace warplab::app
+}  // namespace warplab::exporter

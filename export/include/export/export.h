@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::app {
+namespace warplab::exporter {
 
 struct ExportOptions {
     bool allPhases = false;          // also practice rounds, acclimation and training
@@ -35,4 +35,4 @@ struct ExportSummary {
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
                             std::ostream& log);
 
-}  // namespace warplab::app
+}  // namespace warplab::exporter

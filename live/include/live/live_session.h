@@ -1,4 +1,4 @@
-// Private to app/: a study session in a real window (seed 004 section 5.2 and Appendix B;
+// A study session in a real window (seed 004 section 5.2 and Appendix B;
 // seed 000 section 8): the participant's mouse in relative mode, one frame per vsync (or per
 // timer tick where vsync or the refresh rate cannot be had), the frames made as the mode makes
 // them with the HUD over them, feedback sounds, and the supervisor's start, pause, abort and
@@ -13,7 +13,7 @@
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 
-namespace warplab::app {
+namespace warplab::live {
 
 struct LiveRun {
     std::string protocolPath;
@@ -56,4 +56,4 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
 // mode and the frame times; Esc pauses, Q ends. Returns when it ends.
 void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
-}  // namespace warplab::app
+}  // namespace warplab::live

@@ -1,4 +1,4 @@
-// Private to app/: a perceptual simulated participant (issue 14). It sees only what a person
+// A perceptual simulated participant. It sees only what a person
 // sees -- the displayed frames, made exactly as the session's mode makes them, at a reduced
 // resolution, plus the pointer and the text drawn on screen -- and acts through the same input
 // as a person: mouse counts and button and key presses, once per displayed frame. Its hit
@@ -34,7 +34,7 @@
 #include "renderer/context.h"
 #include "image/image.h"
 
-namespace warplab::app {
+namespace warplab::participants {
 
 // ---------------------------------------------------------------------------------------------
 // Perception
@@ -336,7 +336,7 @@ public:
 private:
     game::DisplaySize display_;
     int width_, height_;
-    FrameMaker maker_;
+    present::FrameMaker maker_;
     renderer::DisplayFrame frame_;
     std::vector<SeenObject> lastObjects_;
     Thumbnail lastPicture_, lastDetail_;
@@ -367,4 +367,4 @@ private:
     SimulatedParticipant participant_;
 };
 
-}  // namespace warplab::app
+}  // namespace warplab::participants

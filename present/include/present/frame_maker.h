@@ -1,4 +1,4 @@
-// Private to app/: making the frames a session displayed, shared by `replay --render` and live
+// Making the frames a session displayed, shared by `replay --render` and live
 // sessions in a window, so both show exactly what the mode makes.
 #pragma once
 
@@ -12,7 +12,7 @@
 #include "renderer/hud.h"
 #include "renderer/upconvert.h"
 
-namespace warplab::app {
+namespace warplab::present {
 
 // The HUD of a shown frame: reticle or cursor, banner, phase text, rating screen. Display
 // pixels are scaled to the frame's by toFrameX/Y.
@@ -54,4 +54,4 @@ private:
     std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
 };
 
-}  // namespace warplab::app
+}  // namespace warplab::present

@@ -1,4 +1,4 @@
-// Private to app/: re-rendering a stored session's displayed frames (warplab replay --render).
+// Re-rendering a stored session's displayed frames (warplab replay --render).
 #pragma once
 
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 
-namespace warplab::app {
+namespace warplab::present {
 
 struct ReplayRender {
     std::string sessionPath;
@@ -36,4 +36,4 @@ struct ReplayRenderResult {
 ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
                                 renderer::GlBackend backend, std::ostream& out);
 
-}  // namespace warplab::app
+}  // namespace warplab::present

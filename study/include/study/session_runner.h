@@ -1,4 +1,4 @@
-// Private to app/: playing a protocol headlessly (bot or recorded input) into a session store,
+// Playing a protocol headlessly (bot or recorded input) into a session store,
 // and replaying a stored session to check every logged outcome.
 #pragma once
 
@@ -11,7 +11,7 @@
 #include "game/game.h"
 #include "session/session_store.h"
 
-namespace warplab::app {
+namespace warplab::study {
 
 struct HeadlessRun {
     std::string protocolPath;
@@ -96,4 +96,4 @@ int replayExitCode(const ReplayResult& result);
 // Re-runs the session from its store without a window and without rendering.
 ReplayResult replaySession(const std::string& sessionPath);
 
-}  // namespace warplab::app
+}  // namespace warplab::study
