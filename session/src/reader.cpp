@@ -1,3 +1,5 @@
+// readSession on the sqlite3 C API: any format version from kOldestSessionFormatVersion on,
+// kept to the commits that verify (checksum.h) and handed on as today's records.
 #include "session/session_store.h"
 
 #include "session/records.h"

@@ -1,10 +1,8 @@
-// The session store on the sqlite3 C API. The record tables' columns come from
-// protocol/records.h; docs/session-format.md is the contract with analysts. Keep the three in
-// step, and bump kSessionFormatVersion (keeping a frozen description of the old version here
-// for the reader) when the schema changes.
-//
 // Private to session/: the tables, the meta entries and how numbers are written into them,
-// shared by the writer and the reader.
+// shared by the writer and the reader. The record tables' columns come from session/records.h;
+// docs/session-format.md is the contract with analysts. Keep the three in step, and bump
+// kSessionFormatVersion (keeping a frozen description of the old version for the reader, as
+// v1_format.h does for version 1) when the schema changes.
 #pragma once
 
 #include "session/records.h"
@@ -30,7 +28,7 @@ template <typename Row>
 struct Table {
     const char* name;
     bool numbered;                          // an `id INTEGER PRIMARY KEY` comes first
-    const std::vector<Field<Row>>& fields;  // records.h, or the version-1 ones below
+    const std::vector<Field<Row>>& fields;  // records.h, or v1_format.h's version-1 ones
 
     const char* key() const { return numbered ? "id" : fields.front().column; }
     int columnCount() const { return static_cast<int>(fields.size()) + (numbered ? 1 : 0); }

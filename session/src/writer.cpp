@@ -1,3 +1,4 @@
+// SessionWriter on the sqlite3 C API: the tables it writes are schema.h's.
 #include "session/session_store.h"
 
 #include "session/records.h"
