@@ -1,0 +1,21 @@
+// Private to session/: the names session files get in the results folder, and the files
+// SQLite keeps beside them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace warplab::session::detail {
+
+inline constexpr const char* kExtension = ".warplab-session";
+inline constexpr std::size_t kMaxNameBytes = 64;
+
+// Only [A-Za-z0-9_-] reach the file system; every run of anything else becomes one '_'.
+// The id cannot then name a folder ('/' and '.' are gone), so it cannot be "." or "..", and
+// a leading '-' is replaced too so the file name never reads as a command-line option.
+std::string safeName(const std::string& raw, std::size_t maxBytes);
+std::string timeForName(const std::string& iso);
+bool anyExists(const std::string& path);
+void removeSessionFiles(const std::string& path);
+
+}  // namespace warplab::session::detail

@@ -1,0 +1,451 @@
+// readSession on the sqlite3 C API: any format version from kOldestSessionFormatVersion on,
+// kept to the commits that verify (checksum.h) and handed on as today's records.
+#include "session/session_store.h"
+
+#include "session/records.h"
+
+#include "checksum.h"
+#include "schema.h"
+#include "sqlite_handles.h"
+#include "v1_format.h"
+#include "wal_scan.h"
+
+#include <sqlite3.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace warplab::session {
+namespace {
+
+namespace fs = std::filesystem;
+
+using detail::Checksum;
+using detail::columnText;
+using detail::CommitChecksum;
+using detail::Db;
+using detail::eventTable;
+using detail::frameTable;
+using detail::hashRow;
+using detail::headerEntries;
+using detail::inputTable;
+using detail::kApplicationId;
+using detail::kCommitColumns;
+using detail::Layout;
+using detail::lostInWal;
+using detail::parseNumber;
+using detail::rowValid;
+using detail::Stmt;
+using detail::Table;
+using detail::toRecord;
+using detail::V1EventRow;
+using detail::V1FrameRow;
+using detail::v1EventFields;
+using detail::v1FrameFields;
+using detail::v1InputFields;
+using detail::WalLoss;
+
+class Reader {
+public:
+    explicit Reader(std::string path) : path_(std::move(path)) {}
+
+    SessionData read() {
+        open();
+        SessionData data;
+        // One read transaction: a session still being written is seen as one consistent
+        // snapshot across all tables, never a commits table older than the rows.
+        exec("BEGIN");
+        data.header = readHeader(data.completed);
+        data.flags = flags_;
+        version_ = data.header.formatVersion;
+        if (version_ == 1)
+            readTables(data, Layout<InputRecord, V1FrameRow, V1EventRow>{
+                                 {"input", false, v1InputFields()},
+                                 {"frames", false, v1FrameFields()},
+                                 {"events", true, v1EventFields()}});
+        else
+            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{
+                                 inputTable(), frameTable(), eventTable()});
+        // Ending a read transaction writes nothing; after damage SQLite may report the damage
+        // again here, which readTables has already accounted for.
+        sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+        return data;
+    }
+
+private:
+    struct Commit {
+        std::int64_t id = 0, inputRows = 0, frameRows = 0, eventRows = 0, checksum = 0;
+        std::optional<std::int64_t> lastFrame;
+    };
+    // Where reading stopped early ("events table", "write-ahead log"), and why.
+    struct Stop {
+        std::string where, why;
+    };
+
+    std::string path_;
+    Db db_;
+    int version_ = kSessionFormatVersion;  // the file's
+    std::optional<Stop> firstStop_;
+    std::optional<WalLoss> walLoss_;  // committed data in the -wal that SQLite cannot read
+    std::map<std::string, std::string> flags_;  // meta "flag:<name>" entries
+
+    [[noreturn]] void fail(const std::string& sentence) const {
+        throw SessionError("Session file " + path_ + " " + sentence);
+    }
+    std::string errmsg() const { return sqlite3_errmsg(db_.get()); }
+
+    // file:/abs/path?immutable=1, every byte outside [A-Za-z0-9/._~-] percent-encoded.
+    static std::string immutableUri(const std::string& path) {
+        const std::string absolute = fs::absolute(path).lexically_normal().string();
+        std::string uri = "file:";
+        for (const char c : absolute) {
+            const auto b = static_cast<unsigned char>(c);
+            if (std::isalnum(b) || std::strchr("/._~-", c) != nullptr) {
+                uri += c;
+            } else {
+                static const char* hex = "0123456789ABCDEF";
+                uri += '%';
+                uri += hex[b >> 4];
+                uri += hex[b & 15];
+            }
+        }
+        return uri + "?immutable=1";
+    }
+
+    void open() {
+        std::error_code ec;
+        const auto status = fs::status(path_, ec);
+        if (!fs::exists(status)) fail("does not exist.");
+        if (fs::is_directory(status)) fail("is a folder, not a session file.");
+        // A FIFO would block the open forever, a device could be anything.
+        if (!fs::is_regular_file(status)) fail("is not a regular file (a pipe, socket or device), not a session file.");
+        sqlite3* raw = nullptr;
+        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
+        // finishing): nothing is writing it. A plain read-only open would still create empty
+        // -wal and -shm files next to it; "immutable" reads it as it is and leaves the folder
+        // untouched (export promises that). With a -wal present a writer may be running, so
+        // the read takes part in SQLite's locking as usual.
+        const bool whole = !fs::exists(path_ + "-wal", ec);
+        if (!whole) walLoss_ = lostInWal(path_ + "-wal");
+        const std::string name = whole ? immutableUri(path_) : path_;
+        const int rc = sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
+        db_.reset(raw);
+        if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
+        sqlite3_busy_timeout(db_.get(), 5000);
+        // Extra structural checks while walking pages: damaged files fail cleanly sooner.
+        sqlite3_exec(db_.get(), "PRAGMA cell_size_check=ON", nullptr, nullptr, nullptr);
+        // SQLite refuses a whole file that is shorter than its header says, unless the schema
+        // is "writable". On this read-only connection that writes nothing; it lets a cut-off
+        // file be read page by page up to the damage, where the checksums take over.
+        sqlite3_exec(db_.get(), "PRAGMA writable_schema=ON", nullptr, nullptr, nullptr);
+
+        Stmt s = prepareOrNull("PRAGMA application_id");
+        const int step = s ? sqlite3_step(s.get()) : sqlite3_errcode(db_.get());
+        if (step != SQLITE_ROW) {
+            if ((sqlite3_errcode(db_.get()) & 0xff) == SQLITE_NOTADB)
+                fail("is not a SQLite database.");
+            fail("has an unreadable header: " + errmsg() + ".");
+        }
+        if (sqlite3_column_int(s.get(), 0) != kApplicationId)
+            fail(std::filesystem::file_size(path_, ec) == 0
+                     ? "is empty, not a warplab session."
+                     : "is a SQLite database but not a warplab session (wrong application_id).");
+    }
+
+    void exec(const char* sql) {
+        if (sqlite3_exec(db_.get(), sql, nullptr, nullptr, nullptr) != SQLITE_OK)
+            fail("cannot be read: " + errmsg() + ".");
+    }
+    Stmt prepareOrNull(const std::string& sql) {
+        sqlite3_stmt* raw = nullptr;
+        sqlite3_prepare_v2(db_.get(), sql.c_str(), -1, &raw, nullptr);
+        return Stmt(raw);
+    }
+    // A table whose SELECT does not compile is missing or lacks a column: a schema mismatch,
+    // or damage to the schema page itself.
+    Stmt prepareTable(const char* table, const char* columns, const char* key) {
+        Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table +
+                               " ORDER BY " + key);
+        if (!s)
+            fail("does not match the session format " + std::to_string(version_) +
+                 " schema: " + errmsg() + ".");
+        return s;
+    }
+
+    SessionHeader readHeader(bool& completed) {
+        Stmt s = prepareOrNull("SELECT key, value FROM meta");
+        if (!s) fail("has an unreadable header: " + errmsg() + ".");
+        std::map<std::string, std::string> meta;
+        int rc;
+        while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+            if (sqlite3_column_type(s.get(), 0) != SQLITE_TEXT ||
+                sqlite3_column_type(s.get(), 1) != SQLITE_TEXT)
+                fail("has an unreadable header: a meta entry is not text.");
+            meta[columnText(s.get(), 0)] = columnText(s.get(), 1);
+        }
+        if (rc != SQLITE_DONE) fail("has an unreadable header: " + errmsg() + ".");
+
+        const auto get = [&](const char* key) -> const std::string& {
+            const auto it = meta.find(key);
+            if (it == meta.end())
+                fail(std::string("has an unreadable header: no '") + key + "' entry in meta.");
+            return it->second;
+        };
+        SessionHeader h;
+        // The version first: a newer format may have moved everything else.
+        if (!parseNumber(get("format_version"), h.formatVersion))
+            fail("has an unreadable header: format_version is '" + get("format_version") + "'.");
+        if (h.formatVersion < kOldestSessionFormatVersion ||
+            h.formatVersion > kSessionFormatVersion) {
+            std::string versions = std::to_string(kOldestSessionFormatVersion);
+            for (int v = kOldestSessionFormatVersion + 1; v <= kSessionFormatVersion; ++v)
+                versions += (v == kSessionFormatVersion ? " and " : ", ") + std::to_string(v);
+            fail("is session format version " + std::to_string(h.formatVersion) +
+                 "; this warplab reads session format versions " + versions + ".");
+        }
+        Checksum checksum;
+        for (const auto& entry : headerEntries(SessionHeader{})) {
+            checksum.text(entry.first);
+            checksum.text(get(entry.first));
+        }
+        std::uint64_t stored = 0;
+        if (!parseNumber(get("header_checksum"), stored) || stored != checksum.value())
+            fail("has a damaged header: its checksum does not match its contents.");
+        h.protocolJson = get("protocol_json");
+        if (!parseNumber(get("seed"), h.seed))
+            fail("has an unreadable header: seed is '" + get("seed") + "'.");
+        h.participant = get("participant");
+        h.appVersion = get("app_version");
+        h.glRenderer = get("gl_renderer");
+        h.glVersion = get("gl_version");
+        if (!parseNumber(get("refresh_hz"), h.refreshHz))
+            fail("has an unreadable header: refresh_hz is '" + get("refresh_hz") + "'.");
+        if (!parseNumber(get("display_width"), h.displayWidth))
+            fail("has an unreadable header: display_width is '" + get("display_width") + "'.");
+        if (!parseNumber(get("display_height"), h.displayHeight))
+            fail("has an unreadable header: display_height is '" + get("display_height") + "'.");
+        h.startedAt = get("started_at");
+        h.player = get("player");
+        completed = meta.count("completed_at") > 0;
+        for (const auto& [key, value] : meta)
+            if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;
+        return h;
+    }
+
+    // Row readers return false for a value of the wrong storage class: damage that SQLite's
+    // own page checks cannot see.
+    static bool real(sqlite3_stmt* s, int i, double& out) {
+        switch (sqlite3_column_type(s, i)) {
+        case SQLITE_FLOAT: out = sqlite3_column_double(s, i); return true;
+        case SQLITE_NULL: out = std::numeric_limits<double>::quiet_NaN(); return true;
+        case SQLITE_INTEGER: out = static_cast<double>(sqlite3_column_int64(s, i)); return true;
+        default: return false;
+        }
+    }
+    template <typename T>
+    static bool integer(sqlite3_stmt* s, int i, T& out) {
+        if (sqlite3_column_type(s, i) != SQLITE_INTEGER) return false;
+        const std::int64_t v = sqlite3_column_int64(s, i);
+        if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+            v > static_cast<std::int64_t>(std::numeric_limits<T>::max()))
+            return false;
+        out = static_cast<T>(v);
+        return true;
+    }
+    static bool text(sqlite3_stmt* s, int i, std::string& out) {
+        if (sqlite3_column_type(s, i) != SQLITE_TEXT) return false;
+        out = columnText(s, i);
+        return true;
+    }
+    static bool optionalInteger(sqlite3_stmt* s, int i, std::optional<std::int64_t>& out) {
+        if (sqlite3_column_type(s, i) == SQLITE_NULL) {
+            out.reset();
+            return true;
+        }
+        std::int64_t v = 0;
+        if (!integer(s, i, v)) return false;
+        out = v;
+        return true;
+    }
+
+    // Reads rows in key order -- the order they were committed in -- until the end or the
+    // first unreadable row; what was read before the damage is kept.
+    template <typename Row, typename Parse>
+    std::vector<Row> readPrefix(const char* table, Stmt s, Parse parse) {
+        std::vector<Row> rows;
+        int rc;
+        while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
+            Row row;
+            if (!parse(s.get(), row)) {
+                stop(table, "row " + std::to_string(rows.size() + 1) + " has a value of the wrong type");
+                return rows;
+            }
+            rows.push_back(std::move(row));
+        }
+        if (rc != SQLITE_DONE) stop(table, errmsg());
+        return rows;
+    }
+    void stop(const char* table, const std::string& why) {
+        if (!firstStop_) firstStop_ = Stop{std::string(table) + " table", why};
+    }
+
+    static bool column(sqlite3_stmt* s, int i, double& out) { return real(s, i, out); }
+    static bool column(sqlite3_stmt* s, int i, std::string& out) { return text(s, i, out); }
+    template <typename T>
+    static bool column(sqlite3_stmt* s, int i, T& out) {
+        return integer(s, i, out);
+    }
+
+    template <typename Row>
+    std::vector<Row> readRows(const Table<Row>& table) {
+        std::int64_t rowsRead = 0;
+        return readPrefix<Row>(
+            table.name, prepareTable(table.name, table.columns().c_str(), table.key()),
+            [&](sqlite3_stmt* s, Row& r) {
+                int i = 0;
+                std::int64_t id = 0;
+                // Ids are 1, 2, 3 ...: a gap means rows were lost.
+                if (table.numbered && (!integer(s, i++, id) || id != ++rowsRead)) return false;
+                for (const Field<Row>& field : table.fields)
+                    if (!std::visit([&](auto member) { return column(s, i++, r.*member); },
+                                    field.member))
+                        return false;
+                return rowValid(r);
+            });
+    }
+
+    template <typename Row>
+    static auto toRecords(std::vector<Row>&& rows) {
+        std::vector<decltype(toRecord(std::move(rows.front())))> out;
+        out.reserve(rows.size());
+        for (Row& r : rows) out.push_back(toRecord(std::move(r)));
+        return out;
+    }
+
+    // Reads the rows of a file laid out as `layout` (the file's format version), keeps the
+    // commits that verify, and hands them on as today's records.
+    template <typename InputRow, typename FrameRow, typename EventRow>
+    void readTables(SessionData& data, const Layout<InputRow, FrameRow, EventRow>& layout) {
+        auto commits = readPrefix<Commit>(
+            "commits", prepareTable("commits", kCommitColumns, "id"),
+            [](sqlite3_stmt* s, Commit& c) {
+                return integer(s, 0, c.id) && integer(s, 1, c.inputRows) &&
+                       integer(s, 2, c.frameRows) && integer(s, 3, c.eventRows) &&
+                       optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
+            });
+        auto inputs = readRows(layout.input);
+        auto frames = readRows(layout.frames);
+        auto events = readRows(layout.events);
+
+        // The last commit whose rows are all here. Counts are cumulative and rows are read in
+        // commit order, so "all here" is "the table has at least that many rows".
+        const auto rowCount = [](const auto& v) { return static_cast<std::int64_t>(v.size()); };
+        std::optional<Commit> kept;
+        std::size_t keptIndex = 0;
+        for (std::size_t i = 0; i < commits.size(); ++i) {
+            const Commit& c = commits[i];
+            const bool ordered = !kept || (c.inputRows >= kept->inputRows &&
+                                           c.frameRows >= kept->frameRows &&
+                                           c.eventRows >= kept->eventRows);
+            if (!ordered) {
+                stop("commits", "commit " + std::to_string(c.id) + " counts fewer rows than the one before");
+                break;
+            }
+            if (c.inputRows > rowCount(inputs) || c.frameRows > rowCount(frames) ||
+                c.eventRows > rowCount(events)) {
+                stop(c.inputRows > rowCount(inputs)   ? "input"
+                     : c.frameRows > rowCount(frames) ? "frames"
+                                                      : "events",
+                     "rows of commit " + std::to_string(c.id) + " are missing");
+                break;
+            }
+            const Commit before = kept.value_or(Commit{});
+            CommitChecksum sum;
+            for (auto r = before.inputRows; r < c.inputRows; ++r)
+                hashRow(sum.input, layout.input, inputs[static_cast<std::size_t>(r)]);
+            for (auto r = before.frameRows; r < c.frameRows; ++r)
+                hashRow(sum.frames, layout.frames, frames[static_cast<std::size_t>(r)]);
+            for (auto r = before.eventRows; r < c.eventRows; ++r)
+                hashRow(sum.events, layout.events, events[static_cast<std::size_t>(r)]);
+            if (sum.value() != c.checksum) {
+                stop("commits", "the rows of commit " + std::to_string(c.id) +
+                                    " do not match its checksum");
+                break;
+            }
+            kept = c;
+            keptIndex = i + 1;
+        }
+        const Commit last = kept.value_or(Commit{});
+        if (rowCount(inputs) > last.inputRows || rowCount(frames) > last.frameRows ||
+            rowCount(events) > last.eventRows)
+            stop("commits", "rows after the last readable commit");
+        inputs.resize(static_cast<std::size_t>(last.inputRows));
+        frames.resize(static_cast<std::size_t>(last.frameRows));
+        events.resize(static_cast<std::size_t>(last.eventRows));
+        data.inputs = toRecords(std::move(inputs));
+        data.frames = toRecords(std::move(frames));
+        data.events = toRecords(std::move(events));
+
+        const std::string lastFrame =
+            last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
+        if (walLoss_ && !firstStop_)
+            firstStop_ = Stop{"write-ahead log", walLoss_->commits == 0
+                                                     ? "its header fails its checksum"
+                                                     : "the frame at byte " + std::to_string(walLoss_->byte) +
+                                                           " fails its checksum"};
+        if (firstStop_) {
+            data.completed = false;
+            data.damaged = true;
+            data.note = "damaged (" + firstStop_->where + ": " + firstStop_->why + "): " +
+                        (keptIndex == 0 ? std::string("no complete commit survives")
+                                        : "kept the first " + std::to_string(keptIndex) +
+                                              " commits, ending after frame " + lastFrame) +
+                        lostText(commits, keptIndex);
+        } else if (!data.completed) {
+            data.note = keptIndex == 0 ? std::string("incomplete: no trial was committed")
+                                       : "incomplete: ends after frame " + lastFrame +
+                                             " (last commit, " + std::to_string(keptIndex) +
+                                             " in all)";
+        }
+    }
+
+    // What damage cost, as far as the file still tells: the commits the commits table lists
+    // past the last one kept, and those the -wal holds past its damage.
+    std::string lostText(const std::vector<Commit>& commits, std::size_t kept) const {
+        std::vector<std::string> parts;
+        if (commits.size() > kept) {
+            const std::int64_t keptEvents = kept == 0 ? 0 : commits[kept - 1].eventRows;
+            parts.push_back(
+                (commits.size() == kept + 1 ? "commit " + std::to_string(kept + 1)
+                                            : "commits " + std::to_string(kept + 1) + " to " +
+                                                  std::to_string(commits.size())) +
+                " (" + std::to_string(std::max<std::int64_t>(0, commits.back().eventRows - keptEvents)) +
+                " events)");
+        }
+        if (walLoss_)
+            parts.push_back(walLoss_->commits == 0
+                                ? std::string("everything in the write-ahead log")
+                                : std::to_string(walLoss_->commits) +
+                                      (walLoss_->commits == 1 ? " commit" : " commits") +
+                                      " in the write-ahead log");
+        if (parts.empty()) return "";
+        return "; lost " + parts[0] + (parts.size() > 1 ? " and " + parts[1] : "");
+    }
+};
+
+}  // namespace
+
+SessionData readSession(const std::string& path) { return Reader(path).read(); }
+
+}  // namespace warplab::session
