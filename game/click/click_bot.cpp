@@ -11,10 +11,12 @@ namespace warplab::game {
 int botRating(const std::string& mode, int statement, int min, int max) {
     const ModeSpec& m = modeSpec(mode);
     const double shownRate = m.upconversion == Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
-    // Average time from an input to its frame: half a render period of holding, the queue,
-    // and for bidirectional reprojection the I-frame period it waits for the next I-frame.
-    double latencyMs = 500.0 / m.renderRateHz + m.lagMs;
-    if (m.upconversion == Upconversion::Bidirectional) latencyMs += 1000.0 / m.renderRateHz;
+    // Average time from an input to its frame: what the schedule shows a mouse step at a render
+    // with (the queue; bidirectional reprojection's wait for the next I-frame), plus half a
+    // render period of holding. The rating is the mode's, not the display's: the schedule runs
+    // at the rate the mode shows frames, where every mode's lag is whole frames.
+    const ModeSchedule schedule(m, shownRate);
+    const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / m.renderRateHz;
     const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
     const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
     const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));

@@ -69,7 +69,11 @@ ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const st
 std::uint32_t ClickGame::objectId(const physics::Sphere& sphere) { return scene::kIdFirstSphere + sphere.id; }
 
 ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed, const DisplaySize& display)
-    : protocol_(protocol), seed_(seed), display_(display), physics_(physicsFrom(protocol)) {
+    : protocol_(protocol),
+      seed_(seed),
+      display_(display),
+      physics_(physicsFrom(protocol)),
+      clickGate_(protocol.clickTiming == "input_reads") {
     using L = scene::HangarLayout;
     camera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     camera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -109,17 +113,13 @@ std::string ClickGame::phase() const {
     return "?";
 }
 
-std::vector<session::EventRecord> ClickGame::takeEvents() {
-    std::vector<session::EventRecord> out;
-    out.swap(events_);
-    return out;
-}
+std::vector<session::EventRecord> ClickGame::takeEvents() { return events_.take(); }
 
 void ClickGame::emit(session::EventRecord event) {
     event.frame = frame_;
     event.eventTime = now();
     if (event.phase.empty()) event.phase = phase();
-    events_.push_back(std::move(event));
+    events_.push(std::move(event));
 }
 
 session::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json detail) const {
@@ -149,7 +149,7 @@ void ClickGame::beginMatch() {
     // history (lag, bireproj) show it where the match found it.
     cursorHistory_.clear();
     greenHits_ = redHits_ = misses_ = 0;
-    clickPending_ = false;
+    clickGate_.clear();
     emit(matchEvent("match_start", nlohmann::json::object()));
     commitPoint_ = true;
 }
@@ -207,47 +207,36 @@ void ClickGame::answerRating(int value, const char* how) {
 }
 
 std::vector<physics::Sphere> ClickGame::depictedSpheres(const ScheduledFrame& f) const {
-    const double refresh = protocol_.refreshHz;
-    auto frameOf = [&](double localTime) { return matchStart_ + std::llround(localTime * refresh); };
-    const ModeSpec& mode = schedule_->mode();
-    switch (mode.upconversion) {
-        case Upconversion::None: return worldHistory_.at(frameOf(f.sceneTime));
-        case Upconversion::Warp: {
-            // The source's spheres moved on by their velocities, as the warp moves pixels.
-            const double dt = f.sceneTime - f.worldSampleTime;
-            auto spheres = worldHistory_.at(frameOf(f.worldSampleTime));
-            for (auto& s : spheres) s.position += s.velocity * dt;
-            return spheres;
-        }
-        case Upconversion::Bidirectional: {
-            if (f.nextSourceIndex < 0) return worldHistory_.at(frameOf(f.sceneTime));
-            const auto& before = worldHistory_.at(matchStart_ + f.sourceIndex);
-            const auto& after = worldHistory_.at(matchStart_ + f.nextSourceIndex);
-            const double a = static_cast<double>(std::llround(f.sceneTime * refresh) - f.sourceIndex) /
-                             static_cast<double>(f.nextSourceIndex - f.sourceIndex);
-            // B-frames move what both I-frames show linearly between them; a sphere only one
-            // of them has (clicked away, or newly entered) is shown from the nearer one.
-            std::vector<physics::Sphere> out;
-            for (const auto& s : before) {
-                const auto other = std::find_if(after.begin(), after.end(), [&](const auto& o) { return o.id == s.id; });
-                if (other == after.end()) {
-                    if (a < 0.5) out.push_back(s);
-                    continue;
-                }
-                physics::Sphere m = s;
-                m.position = s.position + (other->position - s.position) * a;
-                m.velocity = (other->position - s.position) /
-                             (static_cast<double>(f.nextSourceIndex - f.sourceIndex) / refresh);
-                out.push_back(m);
+    using Spheres = std::vector<physics::Sphere>;
+    auto at = [&](std::int64_t frame) -> std::optional<Spheres> { return worldHistory_.at(frame); };
+    auto move = [](Spheres spheres, double dt) {
+        for (auto& s : spheres) s.position += s.velocity * dt;
+        return spheres;
+    };
+    auto blend = [](const Spheres& before, const Spheres& after, double a, double spanS) {
+        // A sphere only one of the I-frames has (clicked away, or newly entered) is shown from
+        // the nearer one.
+        Spheres out;
+        for (const auto& s : before) {
+            const auto other = std::find_if(after.begin(), after.end(), [&](const auto& o) { return o.id == s.id; });
+            if (other == after.end()) {
+                if (a < 0.5) out.push_back(s);
+                continue;
             }
-            for (const auto& s : after)
-                if (a >= 0.5 && std::none_of(before.begin(), before.end(), [&](const auto& o) { return o.id == s.id; }))
-                    out.push_back(s);
-            std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
-            return out;
+            physics::Sphere m = s;
+            m.position = s.position + (other->position - s.position) * a;
+            m.velocity = (other->position - s.position) / spanS;
+            out.push_back(m);
         }
-    }
-    return {};
+        for (const auto& s : after)
+            if (a >= 0.5 && std::none_of(before.begin(), before.end(), [&](const auto& o) { return o.id == s.id; }))
+                out.push_back(s);
+        std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
+        return out;
+    };
+    const WorldDepiction d =
+        depictWorld(schedule_->mode(), f, {matchStart_, protocol_.refreshHz}, WorldClock::Schedule);
+    return *depictedState<Spheres>(d, at, move, blend);
 }
 
 ShownFrame ClickGame::screenFrame() {
@@ -288,21 +277,14 @@ ShownFrame ClickGame::matchFrame(bool click) {
     worldHistory_.record(frame_, world_->spheres());
     cursorHistory_.record(frame_, cursor_);
 
-    ShownFrame shown;
-    shown.frame = frame_;
-    shown.time = now();
-    shown.mode = match.mode;
+    const SchedulePlacement placement{matchStart_, refresh};
     const ScheduledFrame f = schedule_->frame(k);
-    shown.schedule = f;
+    ShownFrame shown = scheduledShownFrame(frame_, match.mode, f, placement);
     shown.camera = camera_;
     shown.pointer = PointerKind::Cursor;
-    shown.cursor = cursorHistory_.at(matchStart_ + std::llround(f.cameraTime * refresh));
-    shown.sourceFrame = matchStart_ + f.sourceIndex;
-    shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : matchStart_ + f.nextSourceIndex;
-    shown.scene.time = static_cast<double>(matchStart_ + std::llround(f.sceneTime * refresh)) / refresh;
+    shown.cursor = cursorHistory_.at(cameraFrame(f, placement));
     const auto depicted = depictedSpheres(f);
     for (const auto& s : depicted) shown.scene.objects.push_back(objectFor(s, physics_.radius));
-    shown.rendersNow = f.rendersNow;
     if (f.rendersNow) {
         shown.render.camera = camera_;
         shown.render.scene.time = now();
@@ -312,12 +294,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
     shown.phaseText = "Match " + std::to_string(match.index + 1) + " of " + std::to_string(matches_.size()) +
                       (round.scored ? "" : " (practice)");
 
-    if (protocol_.clickTiming == "input_reads") {
-        // The press waits for the next frame at which the mode reads its input.
-        clickPending_ = clickPending_ || click;
-        click = clickPending_ && f.samplesInput;
-        if (click) clickPending_ = false;
-    }
+    click = clickGate_.pass(click, f);
     if (click) {
         // World: the cursor where the mouse has it now, against the world now. Displayed:
         // the cursor and spheres as the frame on screen shows them.

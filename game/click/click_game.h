@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
 #include "physics/falling_spheres.h"
@@ -85,7 +86,7 @@ private:
     std::int64_t frame_ = -1;
     glm::dvec2 cursor_;
     std::uint32_t previousButtons_ = 0, previousKeys_ = 0;
-    bool clickPending_ = false;  // click_timing "input_reads": pressed, not yet read
+    ClickGate clickGate_;
 
     Phase phase_ = Phase::Ready;
     std::vector<Match> matches_;
@@ -100,7 +101,7 @@ private:
 
     bool freePlay_ = false;
 
-    std::vector<session::EventRecord> events_;
+    EventQueue events_;
     bool commitPoint_ = false;
 };
 

@@ -35,6 +35,15 @@ public:
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
+    Instructions instructions() const override {
+        Instructions i;
+        i.pointer = PointerKind::Cursor;
+        i.verticalFovDeg = protocol_.verticalFovDeg;
+        i.pixelsPerCount = protocol_.cursorPixelsPerCount;
+        i.targets = Instructions::Targets::GreenOnly;
+        i.task = "click the green spheres, never the red ones";
+        return i;
+    }
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;

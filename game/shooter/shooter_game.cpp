@@ -47,7 +47,7 @@ const char* outcomeName(Outcome outcome) {
 }
 
 ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect)
-    : protocol_(protocol), seed_(seed) {
+    : protocol_(protocol), seed_(seed), clickGate_(protocol.clickTiming == "input_reads") {
     using L = scene::HangarLayout;
     restingCamera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -96,16 +96,12 @@ PointerProbe ShooterGame::probePointer(const ShownFrame& shown) const {
     return probe;
 }
 
-std::vector<session::EventRecord> ShooterGame::takeEvents() {
-    std::vector<session::EventRecord> out;
-    out.swap(events_);
-    return out;
-}
+std::vector<session::EventRecord> ShooterGame::takeEvents() { return events_.take(); }
 
 void ShooterGame::emit(session::EventRecord event) {
     event.frame = frame_;
     event.phase = phaseName(phase_);
-    events_.push_back(std::move(event));
+    events_.push(std::move(event));
 }
 
 double ShooterGame::speedFor(int level) const {
@@ -133,33 +129,29 @@ std::optional<glm::dvec3> ShooterGame::targetAt(double time) const {
 
 std::optional<glm::dvec3> ShooterGame::displayedTarget(const ScheduledFrame& f) const {
     const double refresh = protocol_.refreshHz;
-    auto global = [&](double localTime) {
-        return static_cast<double>(scheduleStart_ + std::llround(localTime * refresh)) / refresh;
+    // The target at a session frame: where it is, and the velocity a warp moves it on by.
+    struct Target {
+        glm::dvec3 position;
+        glm::dvec3 velocity;
     };
-    const ModeSpec& mode = schedule_->mode();
-    switch (mode.upconversion) {
-        case Upconversion::None: return targetAt(global(f.sceneTime));
-        case Upconversion::Warp: {
-            // What the warp shows: the source's target moved on by the source's velocity.
-            const double source = global(f.worldSampleTime);
-            const auto p = targetAt(source);
-            if (!p) return std::nullopt;
-            const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
-            const glm::dvec2 v = physics::velocityAt(plane_, trial_->motion, source - spawn);
-            return *p + glm::dvec3(v, 0.0) * (global(f.sceneTime) - source);
-        }
-        case Upconversion::Bidirectional: {
-            const double depicted = global(f.sceneTime);
-            if (f.nextSourceIndex < 0) return targetAt(depicted);
-            const double t0 = static_cast<double>(scheduleStart_ + f.sourceIndex) / refresh;
-            const double t1 = static_cast<double>(scheduleStart_ + f.nextSourceIndex) / refresh;
-            const auto p0 = targetAt(t0), p1 = targetAt(t1);
-            if (!p0 || !p1) return targetAt(depicted);
-            const double a = (depicted - t0) / (t1 - t0);
-            return *p0 + (*p1 - *p0) * a;  // B-frames interpolate linearly between I-frames
-        }
-    }
-    return std::nullopt;
+    auto at = [&](std::int64_t frame) -> std::optional<Target> {
+        const double time = static_cast<double>(frame) / refresh;
+        const auto p = targetAt(time);
+        if (!p) return std::nullopt;
+        const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
+        return Target{*p, glm::dvec3(physics::velocityAt(plane_, trial_->motion, time - spawn), 0.0)};
+    };
+    auto move = [](Target t, double dt) {
+        t.position = t.position + t.velocity * dt;
+        return t;
+    };
+    auto blend = [](const Target& before, const Target& after, double weight, double) {
+        return Target{before.position + (after.position - before.position) * weight, before.velocity};
+    };
+    const WorldDepiction d = depictWorld(schedule_->mode(), f, {scheduleStart_, refresh}, WorldClock::Session);
+    const auto shown = depictedState<Target>(d, at, move, blend);
+    if (!shown) return std::nullopt;
+    return shown->position;
 }
 
 void ShooterGame::beginPhase(Phase phase) {
@@ -355,7 +347,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     if (phase_ == Phase::AwaitingSupervisor && enter) beginPhase(Phase::Training);
 
     if (frozenFrame_) {
-        clickPending_ = false;
+        clickGate_.clear();
         ShownFrame shown = *frozenFrame_;
         shown.frame = frame_;
         shown.time = now();
@@ -366,16 +358,10 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         return shown;
     }
 
-    ShownFrame shown;
-    shown.frame = frame_;
-    shown.time = now();
-    shown.mode = mode_;
+    const SchedulePlacement placement{scheduleStart_, refresh};
     const ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
-    shown.schedule = f;
-    shown.camera = cameraHistory_.at(scheduleStart_ + std::llround(f.cameraTime * refresh));
-    shown.sourceFrame = scheduleStart_ + f.sourceIndex;
-    shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : scheduleStart_ + f.nextSourceIndex;
-    shown.scene.time = static_cast<double>(scheduleStart_ + std::llround(f.sceneTime * refresh)) / refresh;
+    ShownFrame shown = scheduledShownFrame(frame_, mode_, f, placement);
+    shown.camera = cameraHistory_.at(cameraFrame(f, placement));
     if (const auto p = displayedTarget(f)) {
         // Position as the frame depicts it; velocity the world's at that instant.
         const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
@@ -384,7 +370,6 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         target.position = glm::vec3(*p);
         shown.scene.objects.push_back(target);
     }
-    shown.rendersNow = f.rendersNow;
     if (f.rendersNow) {
         shown.render.camera = camera_;
         shown.render.scene.time = now();
@@ -417,13 +402,8 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
 
-    if (protocol_.clickTiming == "input_reads") {
-        // The press waits for the next frame at which the mode reads its input (conv15/30/60
-        // read it only at their renders), as a game polling input at its frame rate would.
-        clickPending_ = (clickPending_ || click) && trial_.has_value();
-        click = clickPending_ && f.samplesInput;
-        if (click) clickPending_ = false;
-    }
+    // A press while no target is up never waits for the next target.
+    click = clickGate_.pass(click, f, trial_.has_value());
     if (trial_) {
         if (click) {
             // World: the aim the mouse really has now against the world now. Displayed: what is

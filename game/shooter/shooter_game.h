@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
 #include "game/modes.h"
@@ -91,7 +92,7 @@ private:
     scene::CameraState camera_;             // where the mouse points now
     FrameHistory<scene::CameraState> cameraHistory_;  // the true camera at recent frames
     std::uint32_t previousButtons_ = 0, previousKeys_ = 0;
-    bool clickPending_ = false;             // click_timing "input_reads": pressed, not yet read
+    ClickGate clickGate_;
 
     Phase phase_ = Phase::Acclimation;
     std::int64_t phaseStartFrame_ = 0;
@@ -121,7 +122,7 @@ private:
     std::string freeMode_;
     int freeLevel_ = 0;
 
-    std::vector<session::EventRecord> events_;
+    EventQueue events_;
     bool commitPoint_ = false;
 };
 

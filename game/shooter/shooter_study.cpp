@@ -30,6 +30,15 @@ public:
     bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     double mouseRadiansPerCount() const override { return protocol_.mouseRadiansPerCount; }
+    Instructions instructions() const override {
+        Instructions i;
+        i.pointer = PointerKind::Reticle;
+        i.verticalFovDeg = protocol_.verticalFovDeg;
+        i.radiansPerCount = protocol_.mouseRadiansPerCount;
+        i.targets = Instructions::Targets::All;
+        i.task = "shoot the target";
+        return i;
+    }
     std::vector<std::string> modes() const override {
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode, protocol_.training.highMode};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());

@@ -7,8 +7,6 @@
 #include <stdexcept>
 
 #include "game/modes.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
 #include "renderer/upconvert.h"
 #include "scene/scene.h"
 
@@ -145,24 +143,14 @@ std::optional<glm::dvec2> howFarViewMoved(const Percept& before, const Percept& 
 }
 
 TaskKnowledge taskKnowledge(const game::Study& study, const game::DisplaySize& display) {
+    const game::Instructions told = study.instructions();
     TaskKnowledge k;
     k.display = display;
     k.refreshHz = study.refreshHz();
-    k.radiansPerCount = study.mouseRadiansPerCount();
-    // The instructions of each game, as a participant is told them. (A Study::instructions()
-    // in game/ would let a new game bring its own.)
-    if (study.game() == "shooter") {
-        const auto p = protocol::parseShooterProtocol(study.protocolJson(), study.name(), game::checkMode);
-        k.verticalFovDeg = p.verticalFovDeg;
-    } else if (study.game() == "click") {
-        const auto p = protocol::parseClickProtocol(study.protocolJson(), study.name(), game::checkMode);
-        k.verticalFovDeg = p.verticalFovDeg;
-        k.pixelsPerCount = p.cursorPixelsPerCount;
-        k.greenOnly = true;
-    } else {
-        throw std::invalid_argument("the simulated participant has no instructions for the game '" + study.game() +
-                                    "' (it plays shooter and click)");
-    }
+    k.verticalFovDeg = told.verticalFovDeg;
+    k.radiansPerCount = told.pointer == game::PointerKind::Reticle ? told.radiansPerCount : 0.0;
+    k.pixelsPerCount = told.pixelsPerCount;
+    k.greenOnly = told.targets == game::Instructions::Targets::GreenOnly;
     return k;
 }
 

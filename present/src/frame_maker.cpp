@@ -59,15 +59,15 @@ void FrameMaker::release(Kept& kept) {
 
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
-        const game::Upconversion upconversion =
-            shown.mode.empty() ? game::Upconversion::None : game::modeSpec(shown.mode).upconversion;
-        // Warp modes render beyond the displayed field of view, so what a turn brings into view
-        // is really there; the frames they show as rendered are the band's inside (hold).
-        const renderer::GuardBand band = upconversion == game::Upconversion::Warp ? warpBand_ : renderer::GuardBand{};
+        // The method that makes the mode's in-between frames says what its sources need.
+        const std::string name = shown.mode.empty() ? std::string() : game::modeSpec(shown.mode).method;
+        const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
+        // Warps render beyond the displayed field of view, so what a turn brings into view is
+        // really there; the frames they show as rendered are the band's inside (hold).
+        const renderer::GuardBand band = info && info->takesGuardBand ? warpBand_ : renderer::GuardBand{};
         // Bidirectional reprojection's I-frames carry their backward flow towards the previous
         // I-frame, drawn in the same pass (seed 000 section 5).
-        const bool flow = upconversion == game::Upconversion::Bidirectional && !sources_.empty() &&
-                          method(game::modeSpec(shown.mode).method).info().usesSourceFlow;
+        const bool flow = info && info->usesSourceFlow && !sources_.empty();
         Kept kept = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
         auto [it, fresh] = sources_.try_emplace(shown.frame);
         if (!fresh) release(it->second);

@@ -3,9 +3,11 @@
 // cursor and spheres on screen are as late as each mode's schedule says, and clicks are
 // judged against the world and against the frame on screen.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -354,6 +356,27 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
         if (e.type == "rating") values.push_back(detail(e)["value"]), how.push_back(detail(e)["answered_with"]);
     EXPECT_EQ(values, (std::vector<int>{3, 6}));
     EXPECT_EQ(how, (std::vector<std::string>{"key", "mouse"}));
+}
+
+TEST(ClickBot, RatesEachModeByItsSchedulesLatencyAsTheFormerFormulaDid) {
+    // The formula the bot used before it asked the schedule, the oracle: the ratings, whole
+    // numbers, must not move for any mode, statement or scale.
+    auto former = [](const std::string& mode, int statement, int min, int max) {
+        const ModeSpec& m = modeSpec(mode);
+        const double shownRate = m.upconversion == Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
+        double latencyMs = 500.0 / m.renderRateHz + m.lagMs;
+        if (m.upconversion == Upconversion::Bidirectional) latencyMs += 1000.0 / m.renderRateHz;
+        const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
+        const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
+        const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));
+        const int values[4] = {enjoyed, 8 - enjoyed, responsive, smooth};
+        return std::clamp(values[statement % 4], min, max);
+    };
+    for (const std::string& mode : modeIds())
+        for (int statement = 0; statement < 8; ++statement)
+            for (const auto& [min, max] : {std::pair{1, 7}, std::pair{1, 5}, std::pair{0, 10}, std::pair{3, 4}})
+                EXPECT_EQ(botRating(mode, statement, min, max), former(mode, statement, min, max))
+                    << mode << " statement " << statement << " on " << min << ".." << max;
 }
 
 }  // namespace

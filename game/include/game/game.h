@@ -168,6 +168,22 @@ private:
     std::size_t next_ = 0;
 };
 
+// What a participant is told before a study, and learns in its practice: what they point
+// with, the view's geometry, how far the mouse moves the pointer, and which objects to go for.
+// A simulated participant plays from this alone, never from the game's name or its protocol.
+struct Instructions {
+    enum class Targets : std::uint8_t {
+        All,        // shoot the target
+        GreenOnly,  // click the green spheres, never the red
+    };
+    PointerKind pointer = PointerKind::Reticle;
+    double verticalFovDeg = 60.0;  // the view's geometry: turns a pixel offset into a turn
+    double radiansPerCount = 0.0;  // reticle: how far one mouse count turns the view
+    double pixelsPerCount = 1.0;   // cursor: how far one mouse count moves the cursor
+    Targets targets = Targets::All;
+    std::string task;              // the rule in words, as the participant hears it
+};
+
 // A protocol file parsed and bound to its game.
 class Study {
 public:
@@ -186,6 +202,7 @@ public:
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
     // (the click game's cursor). Live sessions scale a participant's counts to it.
     virtual double mouseRadiansPerCount() const { return 0.0; }
+    virtual Instructions instructions() const = 0;
     // A live session on a display known to run at another refresh: warn (true) or refuse.
     virtual bool warnsOnRefreshMismatch() const = 0;
     // How the session's frames are rendered: the protocol's guard band and supersampling.

@@ -115,7 +115,7 @@ struct TaskKnowledge {
     bool greenOnly = false;           // the click game's instruction: click green, never red
 };
 
-// The instructions for the study's game; throws std::invalid_argument for a game it has none for.
+// What the study tells its participants (Study::instructions), as the participant uses it.
 TaskKnowledge taskKnowledge(const game::Study& study, const game::DisplaySize& display);
 
 // The participant's parameters. Defaults are published human values where the literature gives

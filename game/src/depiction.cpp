@@ -1,0 +1,58 @@
+#include "game/depiction.h"
+
+namespace warplab::game {
+
+ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const ScheduledFrame& f,
+                               const SchedulePlacement& placement) {
+    ShownFrame shown;
+    shown.frame = frame;
+    shown.time = static_cast<double>(frame) / placement.refreshHz;
+    shown.mode = mode;
+    shown.schedule = f;
+    shown.sourceFrame = placement.start + f.sourceIndex;
+    shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : placement.start + f.nextSourceIndex;
+    shown.scene.time = placement.timeAt(f.sceneTime);
+    shown.rendersNow = f.rendersNow;
+    return shown;
+}
+
+std::int64_t cameraFrame(const ScheduledFrame& f, const SchedulePlacement& placement) {
+    return placement.frameAt(f.cameraTime);
+}
+
+WorldDepiction depictWorld(const ModeSpec& mode, const ScheduledFrame& f, const SchedulePlacement& placement,
+                           WorldClock clock) {
+    const double refresh = placement.refreshHz;
+    auto sessionTime = [&](std::int64_t frame) { return static_cast<double>(frame) / refresh; };
+    WorldDepiction d;
+    d.depictedFrame = placement.frameAt(f.sceneTime);
+    d.frame = d.depictedFrame;
+    switch (mode.upconversion) {
+        case Upconversion::None: break;
+        case Upconversion::Warp:
+            // The source's world moved on by its velocities, as the warp moves its pixels.
+            d.how = Depicted::Extrapolated;
+            d.frame = placement.frameAt(f.worldSampleTime);
+            d.dt = clock == WorldClock::Session ? sessionTime(d.depictedFrame) - sessionTime(d.frame)
+                                                : f.sceneTime - f.worldSampleTime;
+            break;
+        case Upconversion::Bidirectional:
+            // B-frames move what the I-frames before and after show linearly between them.
+            if (f.nextSourceIndex < 0) break;
+            d.how = Depicted::Interpolated;
+            d.frame = placement.start + f.sourceIndex;
+            d.nextFrame = placement.start + f.nextSourceIndex;
+            if (clock == WorldClock::Session) {
+                const double t0 = sessionTime(d.frame), t1 = sessionTime(d.nextFrame);
+                d.weight = (sessionTime(d.depictedFrame) - t0) / (t1 - t0);
+                d.spanS = t1 - t0;
+            } else {
+                d.weight = static_cast<double>(d.depictedFrame - d.frame) / static_cast<double>(d.nextFrame - d.frame);
+                d.spanS = static_cast<double>(d.nextFrame - d.frame) / refresh;
+            }
+            break;
+    }
+    return d;
+}
+
+}  // namespace warplab::game
