@@ -29,7 +29,7 @@
 #include "commands.h"
 #include "export/export.h"
 #include "study/session_runner.h"
-#include "participants/simulated_participant.h"
+#include "participants/eye.h"
 #include "game/registry.h"
 #include "renderer/mesh.h"
 

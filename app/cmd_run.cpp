@@ -6,7 +6,7 @@
 #include "live/live_session.h"
 #include "present/replay_render.h"
 #include "study/session_runner.h"
-#include "participants/simulated_participant.h"
+#include "participants/eye.h"
 
 namespace warplab::app {
 

@@ -5,11 +5,13 @@
 // rates therefore depend on what each mode shows and when it shows it.
 //
 // Two halves, so that "it never reads the world" is a property of the types, not a promise:
-//   Eye                  -- GL. The only code that reads a game::ShownFrame. It draws the
+//   Eye                  -- GL (participants/eye.h, library warplab_participants_eye). The
+//                           only code that reads a game::ShownFrame. It draws the
 //                           frame with FrameMaker (as `replay --render` and live sessions do),
 //                           reads colour and object ids back and keeps the objects it finds;
 //                           of the ShownFrame itself it copies only what is on screen (see see()).
-//   SimulatedParticipant -- no GL, no game state: act(Percept) -> FrameInput. A Percept holds
+//   SimulatedParticipant -- no GL, no game state (this header and participants/perception.h,
+//                           library warplab_participants): act(Percept) -> FrameInput. A Percept holds
 //                           pixels-derived objects, the drawn pointer and the screen's text.
 // PerceptualPlayer joins them as a game::Player for the runner ("--player sim[:SEED]").
 //
@@ -21,87 +23,17 @@
 #include <cstdint>
 #include <deque>
 #include <map>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "present/frame_maker.h"
 #include "game/game.h"
 #include "game/random.h"
-#include "renderer/context.h"
-#include "image/image.h"
+#include "participants/perception.h"
 
 namespace warplab::participants {
-
-// ---------------------------------------------------------------------------------------------
-// Perception
-
-// One object as the displayed image shows it. The id image is the frame's segmentation into
-// objects -- what a person sees as one thing -- so identity across frames is the id; where it
-// is and how big and what colour come from its pixels only.
-struct SeenObject {
-    std::uint32_t id = 0;
-    glm::dvec2 centre{0.0};  // centroid of its pixels, display pixels (x right, y down, centres at +0.5)
-    double radiusPx = 0.0;   // radius of the disc with its area, display pixels
-    glm::dvec3 colour{0.0};  // mean displayed colour, 0..1
-    int pixels = 0;          // percept pixels it covers
-    bool greenish() const { return colour.g > colour.r; }
-};
-
-// The game objects (ids from scene::kIdTarget up; hangar and sky are background) in a displayed
-// frame read back at the percept resolution, by id. `toDisplay`: display pixels per image pixel
-// in x and y. Image rows are top-down (renderer/image.h).
-std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::ImageRGBA8& colour,
-                                    glm::dvec2 toDisplay);
-
-// The displayed image's scene -- without the objects in it, which move on their own -- as a
-// grey picture of block means: blurred, enough to recognise a view seen before and how far it
-// has turned, or sharp, to tell how far it turned since the last frame.
-struct Thumbnail {
-    int width = 0, height = 0;
-    std::vector<float> luma;         // 0..1, rows top-down; NaN where objects cover the cell
-    glm::dvec2 cellPx{1.0};          // display pixels per cell in x and y
-    float at(int x, int y) const { return luma[static_cast<std::size_t>(y) * width + x]; }
-};
-// Block means of the luminance over `block` x `block` pixels, leaving out game objects' pixels.
-Thumbnail thumbnailOf(const image::ImageRGBA8& colour, const image::ImageU32& ids, int block,
-                      glm::dvec2 toDisplay);
-// The shift, in cells, that best lines `before` up with `now` (content at c in `before` is at
-// c + shift in `now`): least mean squared difference over the cells of the central
-// `centreShare` of `now` that overlap `before`, searched within `radius` of `guess`, refined
-// below a cell by a parabola through the best cost and its neighbours. Shifts whose overlap
-// covers less than `minOverlapShare` of that central part do not count; nullopt if none does.
-std::optional<glm::dvec2> bestShift(const Thumbnail& before, const Thumbnail& now, glm::ivec2 guess, glm::ivec2 radius,
-                                    double centreShare, double minOverlapShare);
-// Where the centre of the view `before` lies in the view `now`, in display pixels from the
-// centre of `now`, over the blurred pictures: shifts up to half the picture each way.
-std::optional<glm::dvec2> whereViewIs(const Thumbnail& before, const Thumbnail& now);
-
-// Everything the participant gets of one displayed frame.
-struct Percept {
-    double time = 0.0;                 // when the frame was on screen (the display clock)
-    bool sceneShown = true;            // false: a screen without the scene (ready, rating, done)
-    std::vector<SeenObject> objects;   // found in the displayed image
-    Thumbnail picture;                 // the scene, blurred (4 x 4 pixel cells)
-    Thumbnail detail;                  // the scene, sharp (one cell per percept pixel)
-    // The pointer drawn into the frame: the reticle at the centre, or the cursor where this
-    // frame draws it (so it has the mode's frame rate and lag). Display pixels.
-    game::PointerKind pointer = game::PointerKind::None;
-    glm::dvec2 pointerAt{0.0};
-    // Text on screen.
-    std::string phaseText;
-    std::string banner;                // "HIT", "MISS", "TIMEOUT" or ""
-    bool promptsEnter = false;         // "Press Enter to begin"
-    std::optional<game::RatingPrompt> rating;
-};
-
-// How far the scene moved on screen from the frame `before` to the frame `now`, display pixels,
-// searched around `guessPx` (coarse over the blurred pictures, then sharp): a turn of the view,
-// seen in the pictures.
-std::optional<glm::dvec2> howFarViewMoved(const Percept& before, const Percept& now, glm::dvec2 guessPx = {});
 
 // ---------------------------------------------------------------------------------------------
 // What the participant knows before it starts: the instructions and what practice teaches
@@ -312,59 +244,6 @@ private:
     bool judged_ = true;
     int statement_ = -1;
     double statementSince_ = 0.0;
-};
-
-// ---------------------------------------------------------------------------------------------
-// The eye: GL. Makes each displayed frame as the mode makes it, at the percept resolution.
-// What it reads of a ShownFrame, all of it: (1) whatever FrameMaker reads to draw the frame --
-// the same drawing a participant's window shows; (2) what the HUD draws over it: the pointer
-// (reticle or cursor position), banner, phase text, Enter prompt, rating screen, and whether
-// the scene is shown at all (`blank`); (3) its display time; (4) to skip drawing an image that
-// is already on screen, whether the frame is frozen or a held copy of the source last drawn
-// (`frozen`, `schedule.kind`, `sourceFrame`): the same pixels either way. Never the scene's
-// objects, the camera, the mode or the outcome for itself.
-class Eye {
-public:
-    // Needs a current GL context. `rendering`: the protocol's (study.rendering()).
-    Eye(const renderer::DataPaths& paths, const game::DisplaySize& display, const protocol::RenderSettings& rendering,
-        int perceptWidth);
-    // Call for every frame the game steps, in order.
-    Percept see(const game::ShownFrame& shown);
-    int width() const { return width_; }
-    int height() const { return height_; }
-
-private:
-    game::DisplaySize display_;
-    int width_, height_;
-    present::FrameMaker maker_;
-    renderer::DisplayFrame frame_;
-    std::vector<SeenObject> lastObjects_;
-    Thumbnail lastPicture_, lastDetail_;
-    bool haveImage_ = false;            // an image of the scene is on screen (no screen since)
-    std::int64_t lastMadeSource_ = -1;  // the source it copies (rendered or held), else -1
-};
-
-// Makes PerceptualPlayers for the GL-free runner, each with a headless context of its own
-// (`backend`: OSMesa or EGL) and the shaders under `paths`.
-game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend);
-
-// A game::Player that sees with an Eye and acts as a SimulatedParticipant.
-class PerceptualPlayer final : public game::Player {
-public:
-    // `context`: the GL context the eye draws with, owned for the player's lifetime; null to use
-    // the one current on this thread (tests).
-    PerceptualPlayer(std::unique_ptr<renderer::GlContext> context, const game::Study& study,
-                     const game::DisplaySize& display, const renderer::DataPaths& paths, std::uint64_t seed,
-                     const ParticipantParams& params = {});
-    game::FrameInput next(const game::ShownFrame& shown) override;
-    // The GL implementation the percepts come from (sessions record it: percepts, and so the
-    // inputs, are reproducible on the same one).
-    std::string perceivedWith() const override;
-
-private:
-    std::unique_ptr<renderer::GlContext> context_;  // first: destroyed after the GL objects below
-    std::unique_ptr<Eye> eye_;
-    SimulatedParticipant participant_;
 };
 
 }  // namespace warplab::participants
