@@ -132,7 +132,10 @@ void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const M
 
 // All registered method names, in the order the bench reports them.
 std::vector<std::string> methodNames();
-// Throws std::invalid_argument naming the unknown method and listing the known ones.
+// Throws std::invalid_argument naming the unknown method and listing the known ones; needs no
+// GL context, so a command line can be checked before one is made.
+void requireMethod(const std::string& name);
+// Throws as requireMethod for an unknown name.
 std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths);
 
 }  // namespace warplab::renderer
