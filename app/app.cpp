@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "app/commands.h"
+#include "app/session_runner.h"
 #include "renderer/mesh.h"
 
 #ifndef WARPLAB_DEFAULT_DATA_DIR
@@ -175,7 +176,8 @@ const std::vector<Command>& commands() {
          &runRun},
         {{"replay",
           "Re-run a session from its store without a window or rendering, check every logged\n"
-          "outcome and print how many were reproduced, or the first difference (exit 1).",
+          "outcome and print how many were reproduced, or the first difference (exit " +
+              std::to_string(kReplayDiffers) + ").",
           "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
           {
               {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},

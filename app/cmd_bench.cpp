@@ -3,6 +3,8 @@
 
 #include "app/bench/bench.h"
 #include "app/commands.h"
+#include "game/sequences.h"
+#include "renderer/upconvert.h"
 
 namespace warplab::app {
 namespace {
@@ -41,6 +43,13 @@ int runBench(const ParsedArgs& args) {
     options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
     if (args.has("sequences")) options.sequences = splitList(args.string("sequences"));
     if (args.has("methods")) options.methods = splitList(args.string("methods"));
+    // Unknown names are a wrong command line (exit 2), found before a context is made.
+    try {
+        for (const auto& name : options.sequences) game::makeSequence(name, {});
+        for (const auto& name : options.methods) renderer::requireMethod(name);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     if (args.has("shading-sweep")) {
         options.shadingSweep.clear();
         for (const auto& item : splitList(args.string("shading-sweep"))) {

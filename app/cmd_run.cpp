@@ -32,6 +32,11 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     if (recorded) checkParticipant(run.participant);
     run.resultsDir = args.string("out", "results");
     run.player = args.string("player", defaultPlayer);
+    try {
+        checkPlayer(run.player);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
 }
 
@@ -122,7 +127,7 @@ int runReplay(const ParsedArgs& args) {
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
-            return 1;
+            return kReplayFailed;
         }
     }
     ReplayResult r;
