@@ -1,4 +1,4 @@
-// Private to app/: a perceptual simulated participant (issue 14). It sees only what a person
+// Private to app/: a perceptual simulated participant. It sees only what a person
 // sees -- the displayed frames, made exactly as the session's mode makes them, at a reduced
 // resolution, plus the pointer and the text drawn on screen -- and acts through the same input
 // as a person: mouse counts and button and key presses, once per displayed frame. Its hit

@@ -1,7 +1,7 @@
 // Upconversion methods: given the conventionally rendered source frames a mode would have,
-// make the frame displayed at some instant. Every method -- sample-and-hold, blend, and (in
-// their issues) warp extrapolation and bidirectional reprojection -- sits behind this one
-// interface, so the benchmark and the study modes treat them alike.
+// make the frame displayed at some instant. Every method -- sample-and-hold, blend, warp
+// extrapolation, bidirectional reprojection and the rest -- sits behind this one interface,
+// so the benchmark and the study modes treat them alike.
 #pragma once
 
 #include <cstdint>

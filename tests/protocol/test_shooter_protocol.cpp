@@ -442,7 +442,7 @@ TEST(ProtocolLimits, NoTrialPauseOrPhaseRunsPastItsBound) {
          "training.time_limit_s must be a number greater than 0 and at most 3600, got "
          "3600.0000000000005"},
     });
-    // The issue's case: a day-long feedback pause at 1000 Hz, 86.4 million frames uncommitted.
+    // The case that set the limit: a day-long feedback pause at 1000 Hz, 86.4 million frames uncommitted.
     EXPECT_EQ(errorOf(thesisWith("/test/pause_s", 86400)),
               "protocol 'p.json': test.pause_s must be a number greater than 0 and at most 60, "
               "got 86400");
@@ -691,7 +691,7 @@ TEST(ProtocolVersions, RefreshMismatchIsRefuseOrWarn) {
     expectContains(errorOf(thesisWith("/display/refresh_mismatch", "ignore")), {"display.refresh_mismatch"});
 }
 
-// How frames are rendered (issue 12): a guard band for warp modes' sources and supersampling.
+// How frames are rendered: a guard band for warp modes' sources and supersampling.
 TEST(ProtocolRendering, GuardBandAndSupersamplingAreReadAndBounded) {
     EXPECT_EQ(ShooterProtocol{}.rendering.guardBand, 0.1);
     EXPECT_EQ(ShooterProtocol{}.rendering.supersampling, 1);
