@@ -6,6 +6,7 @@
 #include "app/live_session.h"
 #include "app/replay_render.h"
 #include "app/session_runner.h"
+#include "scene/limits.h"
 
 namespace warplab::app {
 
@@ -46,8 +47,8 @@ int runWindowed(const ParsedArgs& args) {
     if (args.has("gl")) throw UsageError("option --gl only applies with --headless --player sim");
     if (isSimulatedParticipant(run.player))
         throw UsageError("--player " + run.player + " (the simulated participant) runs headless only: add --headless");
-    run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
-    run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
+    run.width = static_cast<int>(args.integer("width", run.width, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.height = static_cast<int>(args.integer("height", run.height, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.fullscreen = args.flag("fullscreen");
     run.display = static_cast<int>(args.integer("display", 0, 0, 63));
     run.cmPer360 = args.number("cm-per-360", 0.0);
@@ -86,8 +87,10 @@ int runRun(const ParsedArgs& args) {
         throw UsageError("a human player needs the window; leave out --headless");
     HeadlessRun run;
     readSessionOptions(args, "bot", run);
-    run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
-    run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
+    run.displayWidth =
+        static_cast<int>(args.integer("width", run.displayWidth, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.displayHeight =
+        static_cast<int>(args.integer("height", run.displayHeight, scene::kMinDisplaySize, scene::kMaxImageSize));
     if (isSimulatedParticipant(run.player)) {
         // It draws what it sees: the shaders, and a headless context.
         run.dataPaths = dataPathsFrom(args);
@@ -120,8 +123,8 @@ int runReplay(const ParsedArgs& args) {
         request.lastFrame = wholeInteger(range.substr(colon + 1), what);
         if (request.firstFrame < 0 || request.lastFrame < request.firstFrame)
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
-        request.width = static_cast<int>(args.integer("width", 0, 0, 16384));
-        request.height = static_cast<int>(args.integer("height", 0, 0, 16384));
+        request.width = static_cast<int>(args.integer("width", 0, 0, scene::kMaxImageSize));
+        request.height = static_cast<int>(args.integer("height", 0, 0, scene::kMaxImageSize));
         const ReplayRenderResult rendered =
             renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
         if (rendered.disagreed > 0) {

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "scene/limits.h"
+
 namespace warplab::protocol::detail {
 namespace {
 
@@ -124,8 +126,8 @@ bool wholeMultiple(double value, double unit) {
 }
 
 void readRenderSettings(const Reader& r, const Json* display, RenderSettings& out) {
-    r.number(display, "display", "guard_band", {0, false, kMaxGuardBandFraction, false}, out.guardBand);
-    r.integer(display, "display", "supersampling", 1, kMaxSupersampling, out.supersampling);
+    r.number(display, "display", "guard_band", {0, false, scene::kMaxGuardBand, false}, out.guardBand);
+    r.integer(display, "display", "supersampling", 1, scene::kMaxSupersampling, out.supersampling);
 }
 
 void writeRenderSettings(Json& display, const RenderSettings& settings, int formatVersion) {

@@ -27,8 +27,7 @@ struct RenderSettings {
     // Samples per pixel side for every conventional frame's colour (1 = none, 2 = 2x2 ...).
     int supersampling = 1;
 };
-inline constexpr double kMaxGuardBandFraction = 0.5;  // renderer::kMaxGuardBand
-inline constexpr int kMaxSupersampling = 4;           // 4x4: 16 samples per pixel
+// Their ranges are scene/limits.h's, which the renderer and the command line share.
 
 // A bad protocol file: one sentence naming the file and the JSON path of the culprit.
 class ProtocolError : public std::runtime_error {

@@ -24,9 +24,8 @@ struct GuardBand {
     bool operator==(const GuardBand& o) const { return x == o.x && y == o.y; }
 };
 // `fraction` of the displayed width and height on each side, in whole pixels (0.1 = 10 %).
-// Throws std::invalid_argument outside [0, kMaxGuardBand].
+// Throws std::invalid_argument outside [0, scene::kMaxGuardBand].
 GuardBand guardBandFor(int width, int height, double fraction);
-inline constexpr double kMaxGuardBand = 0.5;
 
 // A frame rendered conventionally at one instant, kept with what it depicts.
 struct SourceFrame {

@@ -2,6 +2,7 @@
 // the bench (--methods) and, through its name, to the study modes.
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <stdexcept>
 
 #include "renderer/gbuffer_gl.h"
@@ -12,6 +13,7 @@
 #include "renderer/upconvert/warp.h"
 #include "renderer/upconvert/warp_search.h"
 #include "scene/camera.h"
+#include "scene/limits.h"
 
 namespace warplab::renderer {
 namespace {
@@ -75,6 +77,13 @@ const std::vector<Entry>& registry() {
     return entries;
 }
 
+// Shortest text of a limit for a message: 0.5, not 0.500000.
+std::string formatted(double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
 const Entry& entryNamed(const std::string& name) {
     for (const auto& e : registry())
         if (name == e.name) return e;
@@ -99,8 +108,9 @@ std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const Da
 }
 
 GuardBand guardBandFor(int width, int height, double fraction) {
-    if (!(fraction >= 0.0 && fraction <= kMaxGuardBand))
-        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0..0.5 of the displayed size");
+    if (!(fraction >= 0.0 && fraction <= scene::kMaxGuardBand))
+        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0.." +
+                                    formatted(scene::kMaxGuardBand) + " of the displayed size");
     return {static_cast<int>(std::lround(fraction * width)), static_cast<int>(std::lround(fraction * height))};
 }
 
