@@ -90,7 +90,7 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
                  {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
         r.number(display, "display", "camera_pitch_deg",
                  {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}, p.cameraPitchDeg);
-        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
+        r.choice(display, "display", "refresh_mismatch", p.refreshMismatch);
         detail::readRenderSettings(r, display, p.rendering);
     }
     if (const Json* physics = r.object(document, "", "physics")) {
@@ -114,7 +114,7 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
         r.requireKnownKeys(*input, "input", {"cursor_pixels_per_count", "click_timing"});
         r.number(input, "input", "cursor_pixels_per_count",
                  {kCursorPerCountMin, false, kCursorPerCountLimit, false}, p.cursorPixelsPerCount);
-        r.choice(input, "input", "click_timing", {"display", "input_reads"}, p.clickTiming);
+        r.choice(input, "input", "click_timing", p.clickTiming);
     }
     if (const Json* matches = r.object(document, "", "matches")) {
         r.requireKnownKeys(*matches, "matches",
@@ -123,7 +123,7 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
         r.modeList(matches, "matches", "modes", p.modes);
         readRounds(r, matches, p.rounds);
         r.boolean(matches, "matches", "shuffle", p.shuffle);
-        r.choice(matches, "matches", "scoring", {"world", "displayed"}, p.scoring);
+        r.choice(matches, "matches", "scoring", p.scoring);
     }
     if (const Json* ratings = r.object(document, "", "ratings")) {
         r.requireKnownKeys(*ratings, "ratings", {"enabled", "statements", "min", "max"});
@@ -163,7 +163,7 @@ std::string toJson(const ClickProtocol& p) {
     display["refresh_hz"] = p.refreshHz;
     display["vertical_fov_deg"] = p.verticalFovDeg;
     display["camera_pitch_deg"] = p.cameraPitchDeg;
-    display["refresh_mismatch"] = p.refreshMismatch;
+    display["refresh_mismatch"] = nameOf(p.refreshMismatch);
     detail::writeRenderSettings(display, p.rendering, p.formatVersion);
     Json& physics = document["physics"];
     physics["gravity_m_per_s2"] = p.gravity;
@@ -175,7 +175,7 @@ std::string toJson(const ClickProtocol& p) {
     physics["spawn_delay_s"] = p.spawnDelayS;
     physics["spawn_speed_m_per_s"] = p.spawnSpeedMPerS;
     document["input"]["cursor_pixels_per_count"] = p.cursorPixelsPerCount;
-    document["input"]["click_timing"] = p.clickTiming;
+    document["input"]["click_timing"] = nameOf(p.clickTiming);
     Json& matches = document["matches"];
     matches["match_s"] = p.matchS;
     matches["modes"] = p.modes;
@@ -185,7 +185,7 @@ std::string toJson(const ClickProtocol& p) {
                                          {"scored", round.scored},
                                          {"matches_per_mode", round.matchesPerMode}});
     matches["shuffle"] = p.shuffle;
-    matches["scoring"] = p.scoring;
+    matches["scoring"] = nameOf(p.scoring);
     Json& ratings = document["ratings"];
     ratings["enabled"] = p.ratingsEnabled;
     ratings["statements"] = p.ratingStatements;

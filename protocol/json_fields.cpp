@@ -78,7 +78,7 @@ const Json* find(const Json* parent, const char* key) {
 }
 
 // "a", "b" or "c": how a message lists the allowed spellings.
-std::string alternatives(std::initializer_list<const char*> allowed) {
+std::string alternatives(const std::vector<const char*>& allowed) {
     std::string text;
     std::size_t i = 0;
     for (const char* value : allowed) {
@@ -335,7 +335,7 @@ void Reader::string(const Json* parent, const std::string& path, const char* key
 }
 
 void Reader::choice(const Json* parent, const std::string& path, const char* key,
-                    std::initializer_list<const char*> allowed, std::string& out) const {
+                    const std::vector<const char*>& allowed, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
     if (value->is_string())

@@ -106,7 +106,19 @@ public:
                 std::string& out) const;
     // One of `allowed`, spelt exactly.
     void choice(const Json* parent, const std::string& path, const char* key,
-                std::initializer_list<const char*> allowed, std::string& out) const;
+                const std::vector<const char*>& allowed, std::string& out) const;
+    // One of EnumNames<E>, spelt exactly; a message lists them with `out`'s value (the field's
+    // default, since nothing has set it yet) first.
+    template <class E>
+    void choice(const Json* parent, const std::string& path, const char* key, E& out) const {
+        std::vector<const char*> allowed{nameOf(out)};
+        for (const auto& entry : EnumNames<E>::list)
+            if (entry.value != out) allowed.push_back(entry.name);
+        std::string name;
+        choice(parent, path, key, allowed, name);
+        for (const auto& entry : EnumNames<E>::list)
+            if (name == entry.name) out = entry.value;
+    }
     // A non-empty single line of at most kLineLimit bytes (names, labels, statements).
     std::string line(const Json& value, const std::string& where) const;
 

@@ -57,7 +57,7 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
         r.number(display, "display", "vertical_fov_deg",
                  {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
-        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
+        r.choice(display, "display", "refresh_mismatch", p.refreshMismatch);
         detail::readRenderSettings(r, display, p.rendering);
     }
     if (const Json* target = r.object(document, "", "target")) {
@@ -106,9 +106,9 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.boolean(test, "test", "interleave", p.interleaveConditions);
         r.number(test, "test", "timeout_s", {0, true, kTimeoutLimitS, false}, p.timeoutS);
         r.number(test, "test", "pause_s", {0, true, kPauseLimitS, false}, p.pauseS);
-        r.choice(test, "test", "scoring", {"displayed", "world"}, p.scoring);
+        r.choice(test, "test", "scoring", p.scoring);
         r.boolean(test, "test", "supervisor_starts", p.supervisorStartsTest);
-        r.choice(test, "test", "click_timing", {"display", "input_reads"}, p.clickTiming);
+        r.choice(test, "test", "click_timing", p.clickTiming);
     }
 
     // Relations between fields, checked once every field holds its final value.
@@ -146,7 +146,8 @@ std::string toJson(const ShooterProtocol& p) {
     document["display"]["refresh_hz"] = p.refreshHz;
     document["display"]["vertical_fov_deg"] = p.verticalFovDeg;
     // Like click_timing below: new with format 2, written for version 1 only when it says more.
-    if (p.formatVersion >= 2 || p.refreshMismatch != "refuse") document["display"]["refresh_mismatch"] = p.refreshMismatch;
+    if (p.formatVersion >= 2 || p.refreshMismatch != RefreshMismatch::Refuse)
+        document["display"]["refresh_mismatch"] = nameOf(p.refreshMismatch);
     detail::writeRenderSettings(document["display"], p.rendering, p.formatVersion);
     document["target"]["radius_m"] = p.targetRadius;
     document["input"]["mouse_radians_per_count"] = p.mouseRadiansPerCount;
@@ -168,11 +169,11 @@ std::string toJson(const ShooterProtocol& p) {
     test["interleave"] = p.interleaveConditions;
     test["timeout_s"] = p.timeoutS;
     test["pause_s"] = p.pauseS;
-    test["scoring"] = p.scoring;
+    test["scoring"] = nameOf(p.scoring);
     test["supervisor_starts"] = p.supervisorStartsTest;
     // Version 1 has no click_timing and means "display". Any other value is written anyway, so
     // that parsing the copy refuses the struct instead of quietly replaying it differently.
-    if (p.formatVersion >= 2 || p.clickTiming != "display") test["click_timing"] = p.clickTiming;
+    if (p.formatVersion >= 2 || p.clickTiming != ClickTiming::Display) test["click_timing"] = nameOf(p.clickTiming);
     return detail::canonicalText(document);
 }
 

@@ -312,7 +312,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
     shown.phaseText = "Match " + std::to_string(match.index + 1) + " of " + std::to_string(matches_.size()) +
                       (round.scored ? "" : " (practice)");
 
-    if (protocol_.clickTiming == "input_reads") {
+    if (protocol_.clickTiming == protocol::ClickTiming::InputReads) {
         // The press waits for the next frame at which the mode reads its input.
         clickPending_ = clickPending_ || click;
         click = clickPending_ && f.samplesInput;
@@ -330,7 +330,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
             const auto p = s.green ? screen.project(s.position) : std::nullopt;
             if (p && !(glm::length(*p - cursor_) >= nearestGreenPx)) nearestGreenPx = glm::length(*p - cursor_);
         }
-        const ClickHit& judged = protocol_.scoring == "world" ? world : displayed;
+        const ClickHit& judged = protocol_.scoring == protocol::Scoring::World ? world : displayed;
         std::string scored = judged.outcome();
         // A clicked sphere vanishes, red or green ("circles disappear when clicked", seed 000
         // section 8), and can be clicked away only once: under lag its image lingers after it

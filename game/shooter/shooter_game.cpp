@@ -312,7 +312,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
                                    {"spawn_time", spawn},
                                    {"aim_time", shotTime - spawn},
                                    {"angular_error_deg", angularErrorDeg},
-                                   {"scored", protocol_.scoring == "world" ? outcomeName(world) : outcomeName(displayed)},
+                                   {"scored", protocol_.scoring == protocol::Scoring::World ? outcomeName(world) : outcomeName(displayed)},
                                    {"start_x", t.motion.start.x},
                                    {"start_y", t.motion.start.y},
                                    {"velocity_x", t.motion.velocity.x},
@@ -320,7 +320,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
                                    {"plane_z", plane_.z}});
     emit(event);
 
-    const Outcome scored = protocol_.scoring == "world" ? world : displayed;
+    const Outcome scored = protocol_.scoring == protocol::Scoring::World ? world : displayed;
     banner_ = scored == Outcome::Hit ? "HIT" : (scored == Outcome::Timeout ? "TIMEOUT" : "MISS");
     if (phase_ == Phase::Training) {
         const int which = t.mode == protocol_.training.lowMode ? 0 : 1;
@@ -417,7 +417,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
 
-    if (protocol_.clickTiming == "input_reads") {
+    if (protocol_.clickTiming == protocol::ClickTiming::InputReads) {
         // The press waits for the next frame at which the mode reads its input (conv15/30/60
         // read it only at their renders), as a game polling input at its frame rate would.
         clickPending_ = (clickPending_ || click) && trial_.has_value();

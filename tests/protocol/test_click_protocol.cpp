@@ -108,7 +108,7 @@ ClickProtocol everyFieldChanged() {
     p.spawnDelayS = 0;
     p.spawnSpeedMPerS = 3.5;
     p.cursorPixelsPerCount = 2.5;
-    p.clickTiming = "input_reads";
+    p.clickTiming = ClickTiming::InputReads;
     p.matchS = 30.5;
     p.modes = {"conv120", "warp15to120"};
     p.rounds = {{"warm-up", false, 3}, {"a", true, 1}, {"b", true, 4}};
@@ -117,7 +117,7 @@ ClickProtocol everyFieldChanged() {
     p.ratingStatements = {"Only one"};
     p.ratingMin = 0;
     p.ratingMax = 10;
-    p.scoring = "displayed";
+    p.scoring = Scoring::Displayed;
     return p;
 }
 
