@@ -62,6 +62,10 @@ struct ClickProtocol {
 // the refresh (pass game::checkMode). Throws ProtocolError.
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
                                  const ModeCheck& modes);
+// Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
+// "matches.rounds[].name" for a round's), in file order: the parser's table, which
+// docs/protocol.md must document.
+std::vector<std::string> clickProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
 ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it

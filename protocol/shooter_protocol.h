@@ -69,6 +69,9 @@ struct ShooterProtocol {
 // the refresh (pass game::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
                                      const ModeCheck& modes);
+// Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:
+// the parser's table, which docs/protocol.md must document.
+std::vector<std::string> shooterProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
 ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& modes);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
