@@ -2,10 +2,16 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 #include <sys/stat.h>
 
+#include "bench/bench.h"
 #include "commands.h"
+#include "live/live_session.h"
+#include "protocol/shooter_protocol.h"
+#include "study/session_runner.h"
 #include "renderer/mesh.h"
+#include "scene/limits.h"
 
 #ifndef WARPLAB_DEFAULT_DATA_DIR
 #define WARPLAB_DEFAULT_DATA_DIR "."
@@ -32,6 +38,27 @@ std::string overview() {
         name.resize(12, ' ');
         text += name + c.spec.summary.substr(0, c.spec.summary.find('\n')) + "\n";
     }
+    return text;
+}
+
+// A number as --help shows it: the shortest form, 0.5 rather than 0.500000.
+template <class T>
+std::string shown(T value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+std::string range(double low, double high) { return shown(low) + ".." + shown(high); }
+
+template <class T>
+std::string withQuick(const T& normal, const T& quick) {
+    return shown(normal) + " (" + shown(quick) + " with --quick)";
+}
+
+std::string listed(const std::vector<int>& values) {
+    std::string text;
+    for (const int v : values) text += (text.empty() ? "" : ",") + std::to_string(v);
     return text;
 }
 
@@ -68,6 +95,12 @@ renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
 }
 
 const std::vector<Command>& commands() {
+    // Defaults and limits as the commands use them, so that --help cannot tell another story.
+    const protocol::RenderSettings study;
+    const bench::BenchOptions bench;
+    const bench::BenchOptions quick = bench::quickBenchOptions();
+    const study::HeadlessRun headless;
+    const live::LiveRun live;
     static const std::vector<Command> list = {
         {{"info",
           "Print the vendor, renderer and version of the OpenGL context a backend gives.",
@@ -81,13 +114,18 @@ const std::vector<Command>& commands() {
           {
               {"time", "SECONDS", "scene time of the frame, 0..1e6", "0"},
               {"yaw", "DEGREES", "camera yaw, positive turns right, -36000..36000", "0"},
-              {"pitch", "DEGREES", "camera pitch, positive looks up, -89..89", "0"},
+              {"pitch", "DEGREES",
+               "camera pitch, positive looks up, " + range(-protocol::kMaxCameraPitchDeg, protocol::kMaxCameraPitchDeg),
+               "0"},
               {"aim-at-target", "", "turn the camera to the target's centre (overrides --yaw/--pitch)", ""},
-              {"fov", "DEGREES", "vertical field of view, 1..179 (as in protocols)", "60"},
-              {"width", "PIXELS", "image width, 1..16384", "640"},
-              {"height", "PIXELS", "image height, 1..16384", "360"},
+              {"fov", "DEGREES",
+               "vertical field of view, " + range(protocol::kMinVerticalFovDeg, protocol::kMaxVerticalFovDeg) +
+                   " (as in protocols)",
+               "60"},
+              {"width", "PIXELS", "image width, " + range(1, scene::kMaxImageSize), "640"},
+              {"height", "PIXELS", "image height, " + range(1, scene::kMaxImageSize), "360"},
               {"seed", "N", "target spawn seed", "1"},
-              {"speed", "M/S", "target speed, 0..100", "2"},
+              {"speed", "M/S", "target speed, " + range(0, protocol::kMaxBaseSpeedMPerS), "2"},
               {"out", "PATH", "colour image (PNG)", "frame.png"},
               {"depth", "PATH", "false-colour depth image (PNG)", ""},
               {"ids", "PATH", "false-colour object-id image (PNG)", ""},
@@ -102,9 +140,12 @@ const std::vector<Command>& commands() {
               {"next-time", "SECONDS", "with --method blend: the next source frame's time, 0..1e6", "source + 1/15 s"},
               {"truth", "PATH", "with --method: also write the ground truth (conventional at --time)", ""},
               {"error", "PATH", "with --method: also write |method - ground truth| x4 as a grey image", ""},
-              {"guard-band", "FRACTION", "with --method: a warp's sources reach this much further each side, 0..0.5",
-               "0.1"},
-              {"ssaa", "N", "supersample every conventional frame NxN (antialiasing), 1..4", "1"},
+              {"guard-band", "FRACTION",
+               "with --method: a warp's sources reach this much further each side, " + range(0, scene::kMaxGuardBand),
+               shown(study.guardBand)},
+              {"ssaa", "N",
+               "supersample every conventional frame NxN (antialiasing), " + range(1, scene::kMaxSupersampling),
+               shown(study.supersampling)},
               glOption("osmesa"),
               dataDirOption(),
           }},
@@ -114,20 +155,33 @@ const std::vector<Command>& commands() {
           "time each pass and compare it with a conventional render at the same instant.",
           "warplab bench [--quick] [--out DIR] [options]",
           {
-              {"quick", "", "320x180, 8 frames per sequence, 3 repeats: a few minutes at most", ""},
+              {"quick", "",
+               shown(quick.width) + "x" + shown(quick.height) + ", " + shown(quick.framesPerSequence) +
+                   " frames per sequence, " + shown(quick.repeats) + " repeats: a few minutes at most",
+               ""},
               {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
-              {"width", "PIXELS", "frame width", "1920 (320 with --quick)"},
-              {"height", "PIXELS", "frame height", "1080 (180 with --quick)"},
+              {"width", "PIXELS", "frame width, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+               withQuick(bench.width, quick.width)},
+              {"height", "PIXELS", "frame height, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+               withQuick(bench.height, quick.height)},
               {"sequences", "A,B", "which sequences (pan, track, translate, spheres, thin)", "all"},
               {"methods", "A,B", "which methods (see the summary for the list)", "all"},
-              {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all", "16"},
+              {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all",
+               withQuick(bench.framesPerSequence, quick.framesPerSequence)},
               {"duration-scale", "X", "scale the sequences' length", "1"},
-              {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported", "5 (3 with --quick)"},
-              {"shading-cost", "N", "extra per-fragment shading work in every conventional frame", "0"},
-              {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame", "0,64,256,1024"},
-              {"guard-band", "FRACTION", "sources of the warps reach this much further each side, 0..0.5", "0.1"},
-              {"ssaa", "N", "supersample every conventional frame NxN, ground truth included, 1..4", "1"},
-              {"seed", "N", "target spawn seed of the sequences", "1"},
+              {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported",
+               withQuick(bench.repeats, quick.repeats)},
+              {"shading-cost", "N", "extra per-fragment shading work in every conventional frame",
+               shown(bench.shadingCost)},
+              {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame",
+               withQuick(listed(bench.shadingSweep), listed(quick.shadingSweep))},
+              {"guard-band", "FRACTION",
+               "sources of the warps reach this much further each side, " + range(0, scene::kMaxGuardBand),
+               shown(bench.guardBand)},
+              {"ssaa", "N",
+               "supersample every conventional frame NxN, ground truth included, " + range(1, scene::kMaxSupersampling),
+               shown(bench.supersampling)},
+              {"seed", "N", "target spawn seed of the sequences", shown(bench.seed)},
               glOption("osmesa"),
               dataDirOption(),
           }},
@@ -148,9 +202,12 @@ const std::vector<Command>& commands() {
                "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
                "SEED: its motor noise, default the session seed), or a recorded session's input",
                "human in a window, bot headless"},
-              {"seed", "N", "session seed: trial order and target spawns", "1"},
-              {"width", "PIXELS", "headless: display width the session stands for; window: its width", "1920 / 1280"},
-              {"height", "PIXELS", "display height", "1080 / 720"},
+              {"seed", "N", "session seed: trial order and target spawns", shown(headless.seed)},
+              {"width", "PIXELS",
+               "headless: display width the session stands for; window: its width, " +
+                   range(scene::kMinDisplaySize, scene::kMaxImageSize),
+               shown(headless.displayWidth) + " / " + shown(live.width)},
+              {"height", "PIXELS", "display height", shown(headless.displayHeight) + " / " + shown(live.height)},
               {"fullscreen", "", "window: fill the display (borderless, at its own mode)", ""},
               {"display", "N", "window: which display to open on", "0"},
               {"cm-per-360", "CM", "window, shooter: mouse travel for a full turn (the participant's sensitivity)",
@@ -175,7 +232,8 @@ const std::vector<Command>& commands() {
          &runRun},
         {{"replay",
           "Re-run a session from its store without a window or rendering, check every logged\n"
-          "outcome and print how many were reproduced, or the first difference (exit 1).",
+          "outcome and print how many were reproduced, or the first difference (exit " +
+              std::to_string(study::kReplayDiffers) + ").",
           "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
           {
               {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},

@@ -2,7 +2,10 @@
 #include <sstream>
 
 #include "bench/bench.h"
+#include "bench/sequences.h"
 #include "commands.h"
+#include "renderer/upconvert.h"
+#include "scene/limits.h"
 
 namespace warplab::app {
 namespace {
@@ -18,29 +21,28 @@ std::vector<std::string> splitList(const std::string& text) {
 }  // namespace
 
 int runBench(const ParsedArgs& args) {
-    bench::BenchOptions options;
-    const bool quick = args.flag("quick");
-    if (quick) {
-        // Small and short: the whole table in well under 3 minutes on two cores.
-        options.width = 320;
-        options.height = 180;
-        options.framesPerSequence = 8;
-        options.repeats = 3;
-        options.shadingSweep = {0, 256};
-    }
-    options.width = static_cast<int>(args.integer("width", options.width, 16, 16384));
-    options.height = static_cast<int>(args.integer("height", options.height, 16, 16384));
+    bench::BenchOptions options = args.flag("quick") ? bench::quickBenchOptions() : bench::BenchOptions{};
+    options.width = static_cast<int>(args.integer("width", options.width, scene::kMinDisplaySize, scene::kMaxImageSize));
+    options.height =
+        static_cast<int>(args.integer("height", options.height, scene::kMinDisplaySize, scene::kMaxImageSize));
     options.framesPerSequence = static_cast<int>(args.integer("frames", options.framesPerSequence, 0, 1000000));
     options.repeats = static_cast<int>(args.integer("repeats", options.repeats, 1, 1000));
     options.shadingCost = static_cast<int>(args.integer("shading-cost", 0, 0, 1 << 20));
-    options.guardBand = args.number("guard-band", options.guardBand, 0.0, 0.5);
-    options.supersampling = static_cast<int>(args.integer("ssaa", options.supersampling, 1, 4));
+    options.guardBand = args.number("guard-band", options.guardBand, 0.0, scene::kMaxGuardBand);
+    options.supersampling = static_cast<int>(args.integer("ssaa", options.supersampling, 1, scene::kMaxSupersampling));
     options.durationScale = args.number("duration-scale", 1.0);
     if (!(options.durationScale > 0.0 && options.durationScale <= 100.0))
         throw UsageError("option --duration-scale must be in (0, 100]");
-    options.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    options.seed = static_cast<std::uint64_t>(args.integer("seed", static_cast<long long>(options.seed), 0, 1LL << 62));
     if (args.has("sequences")) options.sequences = splitList(args.string("sequences"));
     if (args.has("methods")) options.methods = splitList(args.string("methods"));
+    // Unknown names are a wrong command line (exit 2), found before a context is made.
+    try {
+        for (const auto& name : options.sequences) game::makeSequence(name, {});
+        for (const auto& name : options.methods) renderer::requireMethod(name);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     if (args.has("shading-sweep")) {
         options.shadingSweep.clear();
         for (const auto& item : splitList(args.string("shading-sweep"))) {

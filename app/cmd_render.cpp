@@ -8,6 +8,7 @@
 #include "game/shooter_scene.h"
 #include "protocol/shooter_protocol.h"
 #include "renderer/upconvert.h"
+#include "scene/limits.h"
 
 namespace warplab::app {
 namespace {
@@ -46,8 +47,8 @@ image::ImageF idsAsFloat(const image::ImageU32& ids) {
 
 int runRender(const ParsedArgs& args) {
     // Every flag is read, and refused with its range, before any context or file is made.
-    const int width = static_cast<int>(args.integer("width", 640, 1, 16384));
-    const int height = static_cast<int>(args.integer("height", 360, 1, 16384));
+    const int width = static_cast<int>(args.integer("width", 640, 1, scene::kMaxImageSize));
+    const int height = static_cast<int>(args.integer("height", 360, 1, scene::kMaxImageSize));
     const double time = args.number("time", 0.0, 0.0, kMaxSceneTimeS);
     const double fov = args.number("fov", 60.0, protocol::kMinVerticalFovDeg, protocol::kMaxVerticalFovDeg);
     const double speed = args.number("speed", 2.0, 0.0, protocol::kMaxBaseSpeedMPerS);
@@ -67,9 +68,9 @@ int runRender(const ParsedArgs& args) {
     const std::string truthPath = args.path("truth", ""), errorPath = args.path("error", "");
     // As a study's warp mode renders its sources (protocol display.guard_band, .supersampling).
     const protocol::RenderSettings studyDefaults;
-    const double guardBand = args.number("guard-band", studyDefaults.guardBand, 0.0, protocol::kMaxGuardBandFraction);
+    const double guardBand = args.number("guard-band", studyDefaults.guardBand, 0.0, scene::kMaxGuardBand);
     const int supersampling =
-        static_cast<int>(args.integer("ssaa", studyDefaults.supersampling, 1, protocol::kMaxSupersampling));
+        static_cast<int>(args.integer("ssaa", studyDefaults.supersampling, 1, scene::kMaxSupersampling));
     const std::string methodName = args.string("method", "");
     if (args.has("method") && methodName.find_first_not_of(" \t") == std::string::npos)
         throw UsageError("option --method of 'warplab render' needs a method name, got '" + methodName + "'");

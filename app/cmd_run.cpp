@@ -7,6 +7,7 @@
 #include "present/replay_render.h"
 #include "study/session_runner.h"
 #include "participants/eye.h"
+#include "scene/limits.h"
 
 namespace warplab::app {
 
@@ -33,6 +34,11 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     if (recorded) checkParticipant(run.participant);
     run.resultsDir = args.string("out", "results");
     run.player = args.string("player", defaultPlayer);
+    try {
+        study::checkPlayer(run.player);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
     run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
 }
 
@@ -42,8 +48,8 @@ int runWindowed(const ParsedArgs& args) {
     if (args.has("gl")) throw UsageError("option --gl only applies with --headless --player sim");
     if (study::isSimulatedParticipant(run.player))
         throw UsageError("--player " + run.player + " (the simulated participant) runs headless only: add --headless");
-    run.width = static_cast<int>(args.integer("width", 1280, 16, 16384));
-    run.height = static_cast<int>(args.integer("height", 720, 16, 16384));
+    run.width = static_cast<int>(args.integer("width", run.width, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.height = static_cast<int>(args.integer("height", run.height, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.fullscreen = args.flag("fullscreen");
     run.display = static_cast<int>(args.integer("display", 0, 0, 63));
     run.cmPer360 = args.number("cm-per-360", 0.0);
@@ -82,8 +88,10 @@ int runRun(const ParsedArgs& args) {
         throw UsageError("a human player needs the window; leave out --headless");
     study::HeadlessRun run;
     readSessionOptions(args, "bot", run);
-    run.displayWidth = static_cast<int>(args.integer("width", 1920, 16, 16384));
-    run.displayHeight = static_cast<int>(args.integer("height", 1080, 16, 16384));
+    run.displayWidth =
+        static_cast<int>(args.integer("width", run.displayWidth, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.displayHeight =
+        static_cast<int>(args.integer("height", run.displayHeight, scene::kMinDisplaySize, scene::kMaxImageSize));
     if (study::isSimulatedParticipant(run.player)) {
         // It draws what it sees: the shaders, and a headless context.
         const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
@@ -116,14 +124,14 @@ int runReplay(const ParsedArgs& args) {
         request.lastFrame = wholeInteger(range.substr(colon + 1), what);
         if (request.firstFrame < 0 || request.lastFrame < request.firstFrame)
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
-        request.width = static_cast<int>(args.integer("width", 0, 0, 16384));
-        request.height = static_cast<int>(args.integer("height", 0, 0, 16384));
+        request.width = static_cast<int>(args.integer("width", 0, 0, scene::kMaxImageSize));
+        request.height = static_cast<int>(args.integer("height", 0, 0, scene::kMaxImageSize));
         const present::ReplayRenderResult rendered =
             present::renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
-            return 1;
+            return study::kReplayFailed;
         }
     }
     study::ReplayResult r;

@@ -3,7 +3,7 @@
 // velocity) discontinuity that this warp opens (warp_patch_flags.frag) is subdivided back to full resolution in both directions, so its
 // triangles are the full mesh's, one pixel square, and the disocclusion fix (warp_fix.geom)
 // finds the same sheets in it as on the full mesh. Subdividing only along the jump, as
-// before issue 12, left one-pixel-wide slivers a whole patch long across it: the fix cannot
+// this shader once did, left one-pixel-wide slivers a whole patch long across it: the fix cannot
 // tell those from a surface seen at a grazing angle, so the revealed background showed their
 // smear. An edge is subdivided when either patch beside it is, decided alike from both
 // sides, so the two tessellations meet vertex for vertex: no cracks.

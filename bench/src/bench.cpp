@@ -23,6 +23,7 @@
 #include "bench/sequences.h"
 #include "renderer/timing.h"
 #include "renderer/upconvert.h"
+#include "scene/limits.h"
 
 namespace warplab::bench {
 namespace {
@@ -197,11 +198,23 @@ std::vector<int> sampleFrames(int frameCount, int samples, int phases) {
     return frames;
 }
 
+BenchOptions quickBenchOptions() {
+    BenchOptions options;
+    options.width = 320;
+    options.height = 180;
+    options.framesPerSequence = 8;
+    options.repeats = 3;
+    options.shadingSweep = {0, 256};
+    return options;
+}
+
 void runBench(const BenchOptions& options, const renderer::DataPaths& paths, const renderer::GlInfo& gl,
               std::ostream& out, std::ostream& progress) {
     namespace fs = std::filesystem;
-    if (options.width < 16 || options.height < 16 || options.width > 16384 || options.height > 16384)
-        throw std::invalid_argument("bench size must be between 16x16 and 16384x16384");
+    constexpr int lo = scene::kMinDisplaySize, hi = scene::kMaxImageSize;
+    if (options.width < lo || options.height < lo || options.width > hi || options.height > hi)
+        throw std::invalid_argument("bench size must be between " + std::to_string(lo) + "x" + std::to_string(lo) +
+                                    " and " + std::to_string(hi) + "x" + std::to_string(hi));
     if (options.repeats < 1) throw std::invalid_argument("bench repeats must be at least 1");
     const std::vector<std::string> sequenceNames =
         options.sequences.empty() ? game::sequenceNames() : options.sequences;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -60,19 +61,197 @@ struct Tally {
     std::int64_t shots = 0, hits = 0, timeouts = 0;
 };
 
+// One column of a CSV: its header name and how a row's cell is written. Each file's columns
+// are one table, which its header and every row walk, so the two cannot drift apart, and
+// docs/export.md is checked against the tables.
+template <class Row>
+struct Column {
+    const char* name;
+    std::function<void(CsvFile&, const Row&)> write;
+};
+
+template <class Row>
+std::vector<std::string> headerOf(const std::vector<Column<Row>>& columns) {
+    std::vector<std::string> names;
+    for (const auto& c : columns) names.emplace_back(c.name);
+    return names;
+}
+
+template <class Row>
+void writeCells(CsvFile& file, const std::vector<Column<Row>>& columns, const Row& row) {
+    for (const auto& c : columns) c.write(file, row);
+}
+
+// A session file as sessions.csv lists it. An unreadable one has only its name and what
+// became of it; every other cell is empty.
+struct SessionRow {
+    const std::string& file;
+    const ExportedSession& outcome;
+    const session::SessionData* data = nullptr;  // null: unreadable
+    const game::Study* study = nullptr;
+    const game::SessionResults* results = nullptr;
+};
+
+// A cell that only a readable session has.
+template <class F>
+std::function<void(CsvFile&, const SessionRow&)> whenRead(F cell) {
+    return [cell](CsvFile& f, const SessionRow& r) {
+        if (r.data == nullptr) f.empty();
+        else cell(f, r);
+    };
+}
+
+const std::vector<Column<SessionRow>>& sessionColumns() {
+    using F = CsvFile;
+    using R = SessionRow;
+    static const std::vector<Column<R>> columns = {
+        {"file", [](F& f, const R& r) { f.text(r.file); }},
+        {"participant", whenRead([](F& f, const R& r) { f.text(r.data->header.participant); })},
+        {"game", whenRead([](F& f, const R& r) { f.text(r.study->game()); })},
+        {"protocol", whenRead([](F& f, const R& r) { f.text(r.study->name()); })},
+        {"seed", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->header.seed)); })},
+        {"started_at", whenRead([](F& f, const R& r) { f.text(r.data->header.startedAt); })},
+        {"player", whenRead([](F& f, const R& r) { f.text(r.data->header.player); })},
+        {"completed", whenRead([](F& f, const R& r) { f.boolean(r.data->completed); })},
+        {"flags", whenRead([](F& f, const R& r) { f.text(joined(r.data->flags)); })},
+        {"status", [](F& f, const R& r) { f.text(r.outcome.status); }},
+        {"included", [](F& f, const R& r) { f.boolean(r.outcome.included); }},
+        {"trials", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->shots.size())); })},
+        {"matches",
+         whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->matches.size())); })},
+        {"note", [](F& f, const R& r) { f.text(r.outcome.why); }},
+    };
+    return columns;
+}
+
+// Who and where a shot, match or rating comes from.
+struct Origin {
+    const std::string& participant;
+    const std::string& session;
+    const std::string& game;
+};
+
+struct ShotRow {
+    Origin from;
+    const game::ShotResult& shot;
+};
+
+const std::vector<Column<ShotRow>>& shotColumns() {
+    using F = CsvFile;
+    using R = ShotRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"game", [](F& f, const R& r) { f.text(r.from.game); }},
+        {"phase", [](F& f, const R& r) { f.text(r.shot.phase); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.shot.scoredPhase); }},
+        {"trial", [](F& f, const R& r) { f.integer(r.shot.trial); }},
+        {"mode", [](F& f, const R& r) { f.text(r.shot.mode); }},
+        {"outcome", [](F& f, const R& r) { f.text(r.shot.outcome); }},
+        {"hit", [](F& f, const R& r) { f.boolean(r.shot.hit); }},
+        {"world_outcome", [](F& f, const R& r) { f.text(r.shot.worldOutcome); }},
+        {"displayed_outcome", [](F& f, const R& r) { f.text(r.shot.displayedOutcome); }},
+        {"time_s", [](F& f, const R& r) { f.number(r.shot.time); }},
+        {"spawn_time_s", [](F& f, const R& r) { f.number(r.shot.spawnTime); }},
+        {"aim_time_s", [](F& f, const R& r) { f.number(r.shot.aimTime); }},
+        {"angular_error_deg", [](F& f, const R& r) { f.number(r.shot.angularErrorDeg); }},
+        {"error_px", [](F& f, const R& r) { f.number(r.shot.errorPx); }},
+        {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
+        {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
+    };
+    return columns;
+}
+
+struct RatingRow {
+    Origin from;
+    const game::MatchResult& match;
+    const game::RatingResult& rating;
+};
+
+const std::vector<Column<RatingRow>>& ratingColumns() {
+    using F = CsvFile;
+    using R = RatingRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
+        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
+        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"statement_index", [](F& f, const R& r) { f.integer(r.rating.statementIndex); }},
+        {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
+        {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
+        {"answered_with", [](F& f, const R& r) { f.text(r.rating.answeredWith); }},
+    };
+    return columns;
+}
+
+struct HitRateRow {
+    const std::string& participant;
+    const std::string& game;
+    const std::string& mode;
+    const Tally& tally;
+    bool canTimeOut;
+};
+
+const std::vector<Column<HitRateRow>>& hitRateColumns() {
+    using F = CsvFile;
+    using R = HitRateRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"mode", [](F& f, const R& r) { f.text(r.mode); }},
+        {"shots", [](F& f, const R& r) { f.integer(r.tally.shots); }},
+        {"hits", [](F& f, const R& r) { f.integer(r.tally.hits); }},
+        // The click game has no timeouts: an empty cell, not a zero that claims it measured some.
+        {"timeouts",
+         [](F& f, const R& r) {
+             if (r.canTimeOut) f.integer(r.tally.timeouts);
+             else f.empty();
+         }},
+        {"hit_rate",
+         [](F& f, const R& r) { f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots)); }},
+    };
+    return columns;
+}
+
+struct MatchRow {
+    const std::string& participant;
+    const std::string& session;
+    const game::MatchResult& match;
+};
+
+// matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
+// longest list seen.
+constexpr const char* kRatingColumn = "rating_";
+
+const std::vector<Column<MatchRow>>& matchColumns() {
+    using F = CsvFile;
+    using R = MatchRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.session); }},
+        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
+        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
+        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"stand_in", [](F& f, const R& r) { f.text(r.match.standIn); }},
+        {"green_hits", [](F& f, const R& r) { f.integer(r.match.greenHits); }},
+        {"red_hits", [](F& f, const R& r) { f.integer(r.match.redHits); }},
+        {"misses", [](F& f, const R& r) { f.integer(r.match.misses); }},
+        {"clicks", [](F& f, const R& r) { f.integer(r.match.clicks); }},
+        {"duration_s", [](F& f, const R& r) { f.number(r.match.durationS); }},
+    };
+    return columns;
+}
+
 class Exporter {
 public:
     Exporter(const fs::path& outDir, const ExportOptions& options)
         : options_(options),
-          sessions_(file(outDir, "sessions.csv"), {"file", "participant", "game", "protocol", "seed", "started_at",
-                                                   "player", "completed", "flags", "status", "included", "trials",
-                                                   "matches", "note"}),
-          shots_(file(outDir, "shots.csv"),
-                 {"participant", "session", "game", "phase", "scored_phase", "trial", "mode", "outcome", "hit",
-                  "world_outcome", "displayed_outcome", "time_s", "spawn_time_s", "aim_time_s", "angular_error_deg",
-                  "error_px", "difficulty", "target_speed"}),
-          ratings_(file(outDir, "ratings.csv"), {"participant", "session", "round", "scored_phase", "match", "mode",
-                                                 "statement_index", "statement", "value", "answered_with"}) {}
+          sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
+          shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
+          ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())) {}
 
     ExportedSession add(const fs::path& path, const std::string& name) {
         ExportedSession out{name, "ok", false, ""};
@@ -84,8 +263,7 @@ public:
         } catch (const std::exception& e) {
             out.status = "damaged";
             out.why = e.what();
-            sessions_.text(name).empty().empty().empty().empty().empty().empty().empty().empty()
-                .text(out.status).boolean(false).empty().empty().text(out.why);
+            writeCells(sessions_, sessionColumns(), SessionRow{name, out});
             sessions_.endRow();
             return out;
         }
@@ -126,11 +304,7 @@ public:
         }
 
         const game::SessionResults results = study->results(data.events);
-        sessions_.text(name).text(h.participant).text(study->game()).text(study->name())
-            .integer(static_cast<std::int64_t>(h.seed)).text(h.startedAt).text(h.player).boolean(data.completed)
-            .text(joined(data.flags)).text(out.status).boolean(out.included)
-            .integer(static_cast<std::int64_t>(results.shots.size()))
-            .integer(static_cast<std::int64_t>(results.matches.size())).text(out.why);
+        writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
         if (out.included) write(h.participant, name, study->game(), results);
         return out;
@@ -140,26 +314,19 @@ public:
     const std::vector<std::string>& warnings() const { return warnings_; }
 
     std::vector<std::string> close(const fs::path& outDir) {
-        CsvFile hitrates(file(outDir, "hitrates.csv"),
-                         {"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate"});
+        CsvFile hitrates(file(outDir, "hitrates.csv"), headerOf(hitRateColumns()));
         for (const auto& [key, t] : tallies_) {
             const auto& [participant, gameName, mode] = key;
-            hitrates.text(participant).text(gameName).text(mode).integer(t.shots).integer(t.hits);
-            // The click game has no timeouts: an empty cell, not a zero that claims it measured some.
-            if (timeoutGames_.count(gameName) != 0) hitrates.integer(t.timeouts);
-            else hitrates.empty();
-            hitrates.number(static_cast<double>(t.hits) / static_cast<double>(t.shots));
+            writeCells(hitrates, hitRateColumns(),
+                       HitRateRow{participant, gameName, mode, t, timeoutGames_.count(gameName) != 0});
             hitrates.endRow();
         }
         // One rating column per statement of the longest list seen (rating_1 is statement 0).
-        std::vector<std::string> header{"participant", "session", "round", "scored_phase", "match", "mode",
-                                        "stand_in", "green_hits", "red_hits", "misses", "clicks", "duration_s"};
-        for (int k = 1; k <= ratingColumns_; ++k) header.push_back("rating_" + std::to_string(k));
+        std::vector<std::string> header = headerOf(matchColumns());
+        for (int k = 1; k <= ratingColumns_; ++k) header.push_back(kRatingColumn + std::to_string(k));
         CsvFile matches(file(outDir, "matches.csv"), header);
         for (const auto& [participant, session, m] : matches_) {
-            matches.text(participant).text(session).text(m.round).boolean(m.scoredPhase).integer(m.match)
-                .text(m.mode).text(m.standIn).integer(m.greenHits).integer(m.redHits).integer(m.misses)
-                .integer(m.clicks).number(m.durationS);
+            writeCells(matches, matchColumns(), MatchRow{participant, session, m});
             for (int k = 0; k < ratingColumns_; ++k) {
                 const auto r = std::find_if(m.ratings.begin(), m.ratings.end(),
                                             [&](const game::RatingResult& x) { return x.statementIndex == k; });
@@ -184,10 +351,7 @@ private:
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            shots_.text(participant).text(session).text(gameName).text(s.phase).boolean(s.scoredPhase)
-                .integer(s.trial).text(s.mode).text(s.outcome).boolean(s.hit).text(s.worldOutcome)
-                .text(s.displayedOutcome).number(s.time).number(s.spawnTime).number(s.aimTime)
-                .number(s.angularErrorDeg).number(s.errorPx).number(s.difficulty).number(s.targetSpeed);
+            writeCells(shots_, shotColumns(), ShotRow{{participant, session, gameName}, s});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
             Tally& t = tallies_[{participant, gameName, s.mode}];
@@ -199,8 +363,7 @@ private:
             if (!m.scoredPhase && !options_.allPhases) continue;
             for (const auto& r : m.ratings) {
                 ratingColumns_ = std::max(ratingColumns_, r.statementIndex + 1);
-                ratings_.text(participant).text(session).text(m.round).boolean(m.scoredPhase).integer(m.match)
-                    .text(m.mode).integer(r.statementIndex).text(r.statement).integer(r.value).text(r.answeredWith);
+                writeCells(ratings_, ratingColumns(), RatingRow{{participant, session, gameName}, m, r});
                 ratings_.endRow();
             }
             matches_.emplace_back(participant, session, m);
@@ -220,6 +383,14 @@ private:
 };
 
 }  // namespace
+
+std::vector<CsvColumns> exportColumns() {
+    return {{"sessions.csv", headerOf(sessionColumns()), ""},
+            {"shots.csv", headerOf(shotColumns()), ""},
+            {"hitrates.csv", headerOf(hitRateColumns()), ""},
+            {"matches.csv", headerOf(matchColumns()), kRatingColumn},
+            {"ratings.csv", headerOf(ratingColumns()), ""}};
+}
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
                             std::ostream& log) {

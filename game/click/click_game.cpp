@@ -73,7 +73,7 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
       seed_(seed),
       display_(display),
       physics_(physicsFrom(protocol)),
-      clickGate_(protocol.clickTiming == "input_reads") {
+      clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads) {
     using L = scene::HangarLayout;
     camera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     camera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -307,7 +307,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
             const auto p = s.green ? screen.project(s.position) : std::nullopt;
             if (p && !(glm::length(*p - cursor_) >= nearestGreenPx)) nearestGreenPx = glm::length(*p - cursor_);
         }
-        const ClickHit& judged = protocol_.scoring == "world" ? world : displayed;
+        const ClickHit& judged = protocol_.scoring == protocol::Scoring::World ? world : displayed;
         std::string scored = judged.outcome();
         // A clicked sphere vanishes, red or green ("circles disappear when clicked", seed 000
         // section 8), and can be clicked away only once: under lag its image lingers after it

@@ -1,8 +1,8 @@
 // A scripted player for headless runs: it looks at what is on screen (the displayed target
 // and camera, after a reaction delay), turns towards where it predicts the target to be,
 // with aiming noise, and clicks when the reticle seems to be on it. Enough for realistic hits
-// and misses -- and for 15 Hz to be harder than 120 Hz -- not a model of perception (a later
-// issue brings simulated participants). Deterministic from its seed.
+// and misses -- and for 15 Hz to be harder than 120 Hz -- not a model of perception (the
+// simulated participant, participants/participant.h, is one). Deterministic from its seed.
 #pragma once
 
 #include <cstdint>

@@ -47,7 +47,7 @@ const char* outcomeName(Outcome outcome) {
 }
 
 ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect)
-    : protocol_(protocol), seed_(seed), clickGate_(protocol.clickTiming == "input_reads") {
+    : protocol_(protocol), seed_(seed), clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads) {
     using L = scene::HangarLayout;
     restingCamera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -304,7 +304,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
                                    {"spawn_time", spawn},
                                    {"aim_time", shotTime - spawn},
                                    {"angular_error_deg", angularErrorDeg},
-                                   {"scored", protocol_.scoring == "world" ? outcomeName(world) : outcomeName(displayed)},
+                                   {"scored", protocol_.scoring == protocol::Scoring::World ? outcomeName(world) : outcomeName(displayed)},
                                    {"start_x", t.motion.start.x},
                                    {"start_y", t.motion.start.y},
                                    {"velocity_x", t.motion.velocity.x},
@@ -312,7 +312,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
                                    {"plane_z", plane_.z}});
     emit(event);
 
-    const Outcome scored = protocol_.scoring == "world" ? world : displayed;
+    const Outcome scored = protocol_.scoring == protocol::Scoring::World ? world : displayed;
     banner_ = scored == Outcome::Hit ? "HIT" : (scored == Outcome::Timeout ? "TIMEOUT" : "MISS");
     if (phase_ == Phase::Training) {
         const int which = t.mode == protocol_.training.lowMode ? 0 : 1;

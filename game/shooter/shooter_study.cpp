@@ -27,7 +27,7 @@ public:
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
         return std::make_unique<ShooterBot>(seed, protocol_);
     }
-    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == "warn"; }
+    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn; }
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     double mouseRadiansPerCount() const override { return protocol_.mouseRadiansPerCount; }
     Instructions instructions() const override {
@@ -57,7 +57,7 @@ public:
             r.mode = e.mode;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
-            r.outcome = d.text("scored", protocol_.scoring == "world" ? e.worldOutcome : e.displayedOutcome);
+            r.outcome = d.text("scored", protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
             r.hit = r.outcome == "hit";
             r.timeout = r.outcome == "timeout";
             r.time = e.eventTime;

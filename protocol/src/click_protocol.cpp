@@ -33,8 +33,30 @@ constexpr double kCursorPerCountMin = 0.001;
 constexpr double kMatchLimitS = kCommitStretchLimitS;  // 5 minutes, 6.7 times the paper's 45 s
 constexpr double kSpawnDelayLimitS = 60;               // 120 times the default 0.5 s
 
-void readRounds(const detail::Reader& r, const Json* matches, std::vector<ClickRound>& out) {
-    const Json* rounds = r.array(matches, "matches", "rounds", "rounds");
+using P = ClickProtocol;
+using K = detail::Keys<P>;
+using detail::at;
+
+// The keys of each element of matches.rounds. "name" is required.
+const std::vector<detail::Key<ClickRound>>& roundKeys() {
+    using R = ClickRound;
+    static const std::vector<detail::Key<R>> keys = [] {
+        detail::Key<R> name = detail::Keys<R>::make(
+            "name", at(&R::name), [](const detail::Reader& r, const Json* item, const std::string& where, R& round) {
+                if (!item->contains("name")) r.fail(joinPath(where, "name"), "is required but missing");
+                round.name = r.line(item->at("name"), joinPath(where, "name"));
+            });
+        return std::vector<detail::Key<R>>{
+            name,
+            detail::Keys<R>::boolean("scored", at(&R::scored)),
+            detail::Keys<R>::integer("matches_per_mode", at(&R::matchesPerMode), 1, kMatchesPerModeLimit),
+        };
+    }();
+    return keys;
+}
+
+void readRounds(const detail::Reader& r, const Json* matches, const std::string& path, P& p) {
+    const Json* rounds = r.array(matches, path, "rounds", "rounds");
     if (!rounds) return;
     std::vector<ClickRound> read;
     std::vector<std::string> names;
@@ -42,32 +64,90 @@ void readRounds(const detail::Reader& r, const Json* matches, std::vector<ClickR
         const Json& item = (*rounds)[i];
         const std::string where = elementPath("matches.rounds", i);
         if (!item.is_object()) r.fail(where, "must be an object, got " + detail::describe(item));
-        r.requireKnownKeys(item, where, {"name", "scored", "matches_per_mode"});
-        if (!item.contains("name")) r.fail(joinPath(where, "name"), "is required but missing");
         ClickRound round;
-        round.name = r.line(item.at("name"), joinPath(where, "name"));
-        r.boolean(&item, where, "scored", round.scored);
-        r.integer(&item, where, "matches_per_mode", 1, kMatchesPerModeLimit, round.matchesPerMode);
+        detail::readKeys(r, item, where, roundKeys(), p.formatVersion, round);
         names.push_back(round.name);
         read.push_back(round);
     }
     r.requireDistinct(names,
                       [](std::size_t i) { return elementPath("matches.rounds", i) + ".name"; });
-    out = std::move(read);
+    p.rounds = std::move(read);
 }
 
-void readStatements(const detail::Reader& r, const Json* ratings, std::vector<std::string>& out) {
+void writeRounds(Json& matches, const P& p) {
+    matches["rounds"] = Json::array();
+    for (const ClickRound& round : p.rounds) {
+        Json item = Json::object();
+        detail::writeKeys(item, roundKeys(), p.formatVersion, round);
+        matches["rounds"].push_back(item);
+    }
+}
+
+void readStatements(const detail::Reader& r, const Json* ratings, const std::string& path, P& p) {
     // May be empty, but only with ratings off (checked once both are final).
-    const Json* statements = r.array(ratings, "ratings", "statements", "statements", true);
+    const Json* statements = r.array(ratings, path, "statements", "statements", true);
     if (!statements) return;
     std::vector<std::string> read;
     for (std::size_t i = 0; i < statements->size(); ++i)
         read.push_back(r.line((*statements)[i], elementPath("ratings.statements", i)));
     r.requireDistinct(read, [](std::size_t i) { return elementPath("ratings.statements", i); });
-    out = std::move(read);
+    p.ratingStatements = std::move(read);
+}
+
+// Every key of a click protocol below the top level, once (docs/protocol.md lists each).
+const std::vector<detail::Section<P>>& sections() {
+    static const std::vector<detail::Section<P>> list = [] {
+        std::vector<detail::Key<P>> display = {
+            K::number("refresh_hz", at(&P::refreshHz), {1, false, kRefreshLimitHz, false}),
+            K::number("vertical_fov_deg", at(&P::verticalFovDeg),
+                      {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}),
+            K::number("camera_pitch_deg", at(&P::cameraPitchDeg),
+                      {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}),
+            K::choice("refresh_mismatch", at(&P::refreshMismatch)),
+        };
+        for (auto& k : detail::renderKeys<P>()) display.push_back(k);
+        return std::vector<detail::Section<P>>{
+            {"display", display},
+            {"physics",
+             {K::number("gravity_m_per_s2", at(&P::gravity), {0, false, kGravityLimit, false}),
+              K::number("sphere_radius_m", at(&P::sphereRadius), {kRadiusMin, false, kRadiusLimit, false}),
+              K::number("restitution", at(&P::restitution), {0, false, 1, false}),
+              K::integer("step_rate_hz", at(&P::stepRateHz), 1, kStepRateLimit),
+              K::integer("sphere_count", at(&P::sphereCount), 1, kSphereLimit),
+              K::number("green_share", at(&P::greenShare), {0, false, 1, false}),
+              K::number("spawn_delay_s", at(&P::spawnDelayS), {0, false, kSpawnDelayLimitS, false}),
+              K::number("spawn_speed_m_per_s", at(&P::spawnSpeedMPerS), {0, false, kSpeedLimit, false})}},
+            {"input",
+             {K::number("cursor_pixels_per_count", at(&P::cursorPixelsPerCount),
+                        {kCursorPerCountMin, false, kCursorPerCountLimit, false}),
+              K::choice("click_timing", at(&P::clickTiming))}},
+            {"matches",
+             {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}),
+              K::modeList("modes", at(&P::modes)), K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
+              K::choice("scoring", at(&P::scoring))}},
+            {"ratings",
+             {K::boolean("enabled", at(&P::ratingsEnabled)),
+              K::custom("statements", readStatements,
+                        [](Json& o, const P& p) { o["statements"] = p.ratingStatements; }),
+              K::integer("min", at(&P::ratingMin), -kRatingLimit, kRatingLimit),
+              K::integer("max", at(&P::ratingMax), -kRatingLimit, kRatingLimit)}},
+        };
+    }();
+    return list;
 }
 
 }  // namespace
+
+std::vector<std::string> clickProtocolKeys() {
+    // A round's keys follow the matches section's own, as the page documents them.
+    std::vector<std::string> paths;
+    for (const std::string& path : detail::keyPaths(sections())) {
+        if (!paths.empty() && paths.back().rfind("matches.", 0) == 0 && path.rfind("matches.", 0) != 0)
+            for (const auto& k : roundKeys()) paths.push_back(std::string("matches.rounds[].") + k.name);
+        paths.push_back(path);
+    }
+    return paths;
+}
 
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
                                  const ModeCheck& modes) {
@@ -76,62 +156,9 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     ClickProtocol p;
     r.requireGame(document, "click");
     p.formatVersion = r.formatVersion(document, kClickFormatVersion);
-    r.requireKnownKeys(document, "",
-                       {"format_version", "name", "description", "game", "display", "physics",
-                        "input", "matches", "ratings"});
+    r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
-
-    if (const Json* display = r.object(document, "", "display")) {
-        r.requireKnownKeys(*display, "display",
-                           {"refresh_hz", "vertical_fov_deg", "camera_pitch_deg", "refresh_mismatch", "guard_band",
-                            "supersampling"});
-        r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
-        r.number(display, "display", "vertical_fov_deg",
-                 {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
-        r.number(display, "display", "camera_pitch_deg",
-                 {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}, p.cameraPitchDeg);
-        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
-        detail::readRenderSettings(r, display, p.rendering);
-    }
-    if (const Json* physics = r.object(document, "", "physics")) {
-        const char* const path = "physics";
-        r.requireKnownKeys(*physics, path,
-                           {"gravity_m_per_s2", "sphere_radius_m", "restitution", "step_rate_hz",
-                            "sphere_count", "green_share", "spawn_delay_s", "spawn_speed_m_per_s"});
-        r.number(physics, path, "gravity_m_per_s2", {0, false, kGravityLimit, false}, p.gravity);
-        r.number(physics, path, "sphere_radius_m", {kRadiusMin, false, kRadiusLimit, false},
-                 p.sphereRadius);
-        r.number(physics, path, "restitution", {0, false, 1, false}, p.restitution);
-        r.integer(physics, path, "step_rate_hz", 1, kStepRateLimit, p.stepRateHz);
-        r.integer(physics, path, "sphere_count", 1, kSphereLimit, p.sphereCount);
-        r.number(physics, path, "green_share", {0, false, 1, false}, p.greenShare);
-        r.number(physics, path, "spawn_delay_s", {0, false, kSpawnDelayLimitS, false},
-                 p.spawnDelayS);
-        r.number(physics, path, "spawn_speed_m_per_s", {0, false, kSpeedLimit, false},
-                 p.spawnSpeedMPerS);
-    }
-    if (const Json* input = r.object(document, "", "input")) {
-        r.requireKnownKeys(*input, "input", {"cursor_pixels_per_count", "click_timing"});
-        r.number(input, "input", "cursor_pixels_per_count",
-                 {kCursorPerCountMin, false, kCursorPerCountLimit, false}, p.cursorPixelsPerCount);
-        r.choice(input, "input", "click_timing", {"display", "input_reads"}, p.clickTiming);
-    }
-    if (const Json* matches = r.object(document, "", "matches")) {
-        r.requireKnownKeys(*matches, "matches",
-                           {"match_s", "modes", "rounds", "shuffle", "scoring"});
-        r.number(matches, "matches", "match_s", {0, true, kMatchLimitS, false}, p.matchS);
-        r.modeList(matches, "matches", "modes", p.modes);
-        readRounds(r, matches, p.rounds);
-        r.boolean(matches, "matches", "shuffle", p.shuffle);
-        r.choice(matches, "matches", "scoring", {"world", "displayed"}, p.scoring);
-    }
-    if (const Json* ratings = r.object(document, "", "ratings")) {
-        r.requireKnownKeys(*ratings, "ratings", {"enabled", "statements", "min", "max"});
-        r.boolean(ratings, "ratings", "enabled", p.ratingsEnabled);
-        readStatements(r, ratings, p.ratingStatements);
-        r.integer(ratings, "ratings", "min", -kRatingLimit, kRatingLimit, p.ratingMin);
-        r.integer(ratings, "ratings", "max", -kRatingLimit, kRatingLimit, p.ratingMax);
-    }
+    detail::readSections(r, document, sections(), p.formatVersion, p);
 
     // Relations between fields, checked once every field holds its final value.
     if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))
@@ -159,38 +186,7 @@ ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes)
 
 std::string toJson(const ClickProtocol& p) {
     Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
-    Json& display = document["display"];
-    display["refresh_hz"] = p.refreshHz;
-    display["vertical_fov_deg"] = p.verticalFovDeg;
-    display["camera_pitch_deg"] = p.cameraPitchDeg;
-    display["refresh_mismatch"] = p.refreshMismatch;
-    detail::writeRenderSettings(display, p.rendering, p.formatVersion);
-    Json& physics = document["physics"];
-    physics["gravity_m_per_s2"] = p.gravity;
-    physics["sphere_radius_m"] = p.sphereRadius;
-    physics["restitution"] = p.restitution;
-    physics["step_rate_hz"] = p.stepRateHz;
-    physics["sphere_count"] = p.sphereCount;
-    physics["green_share"] = p.greenShare;
-    physics["spawn_delay_s"] = p.spawnDelayS;
-    physics["spawn_speed_m_per_s"] = p.spawnSpeedMPerS;
-    document["input"]["cursor_pixels_per_count"] = p.cursorPixelsPerCount;
-    document["input"]["click_timing"] = p.clickTiming;
-    Json& matches = document["matches"];
-    matches["match_s"] = p.matchS;
-    matches["modes"] = p.modes;
-    matches["rounds"] = Json::array();
-    for (const ClickRound& round : p.rounds)
-        matches["rounds"].push_back(Json{{"name", round.name},
-                                         {"scored", round.scored},
-                                         {"matches_per_mode", round.matchesPerMode}});
-    matches["shuffle"] = p.shuffle;
-    matches["scoring"] = p.scoring;
-    Json& ratings = document["ratings"];
-    ratings["enabled"] = p.ratingsEnabled;
-    ratings["statements"] = p.ratingStatements;
-    ratings["min"] = p.ratingMin;
-    ratings["max"] = p.ratingMax;
+    detail::writeSections(document, sections(), p.formatVersion, p);
     return detail::canonicalText(document);
 }
 

@@ -76,7 +76,7 @@ const Json* find(const Json* parent, const char* key) {
 }
 
 // "a", "b" or "c": how a message lists the allowed spellings.
-std::string alternatives(std::initializer_list<const char*> allowed) {
+std::string alternatives(const std::vector<const char*>& allowed) {
     std::string text;
     std::size_t i = 0;
     for (const char* value : allowed) {
@@ -123,24 +123,14 @@ bool wholeMultiple(double value, double unit) {
     return whole >= 1 && std::abs(ratio - whole) <= 1e-9;
 }
 
-void readRenderSettings(const Reader& r, const Json* display, RenderSettings& out) {
-    r.number(display, "display", "guard_band", {0, false, kMaxGuardBandFraction, false}, out.guardBand);
-    r.integer(display, "display", "supersampling", 1, kMaxSupersampling, out.supersampling);
-}
-
-void writeRenderSettings(Json& display, const RenderSettings& settings, int formatVersion) {
-    const RenderSettings defaults;
-    if (formatVersion >= 2 || settings.guardBand != defaults.guardBand) display["guard_band"] = settings.guardBand;
-    if (formatVersion >= 2 || settings.supersampling != defaults.supersampling)
-        display["supersampling"] = settings.supersampling;
-}
-
 Json headerJson(int formatVersion, const std::string& name, const std::string& description,
                 const std::string& game) {
-    return Json{{"format_version", formatVersion},
-                {"name", name},
-                {"description", description},
-                {"game", game}};
+    Json header;
+    header[kHeaderKeys[0]] = formatVersion;
+    header[kHeaderKeys[1]] = name;
+    header[kHeaderKeys[2]] = description;
+    header[kHeaderKeys[3]] = game;
+    return header;
 }
 
 std::string canonicalText(const Json& document) {
@@ -257,7 +247,7 @@ void Reader::nameAndDescription(const Json& document, std::string& name,
 }
 
 void Reader::requireKnownKeys(const Json& object, const std::string& path,
-                              std::initializer_list<const char*> known) const {
+                              const std::vector<const char*>& known) const {
     for (auto it = object.begin(); it != object.end(); ++it) {
         bool found = false;
         for (const char* key : known) found = found || it.key() == key;
@@ -333,7 +323,7 @@ void Reader::string(const Json* parent, const std::string& path, const char* key
 }
 
 void Reader::choice(const Json* parent, const std::string& path, const char* key,
-                    std::initializer_list<const char*> allowed, std::string& out) const {
+                    const std::vector<const char*>& allowed, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
     if (value->is_string())

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "protocol/study_protocol.h"
+#include "scene/limits.h"
 
 namespace warplab::protocol::detail {
 
@@ -90,7 +91,7 @@ public:
 
     // Unknown keys are errors: a misspelt field would otherwise silently take its default.
     void requireKnownKeys(const Json& object, const std::string& path,
-                          std::initializer_list<const char*> known) const;
+                          const std::vector<const char*>& known) const;
     // A nested object; absent means every field in it takes its default.
     const Json* object(const Json& parent, const std::string& path, const char* key) const;
     // An array, non-empty unless allowEmpty; `of` names its elements in the message.
@@ -106,7 +107,19 @@ public:
                 std::string& out) const;
     // One of `allowed`, spelt exactly.
     void choice(const Json* parent, const std::string& path, const char* key,
-                std::initializer_list<const char*> allowed, std::string& out) const;
+                const std::vector<const char*>& allowed, std::string& out) const;
+    // One of EnumNames<E>, spelt exactly; a message lists them with `out`'s value (the field's
+    // default, since nothing has set it yet) first.
+    template <class E>
+    void choice(const Json* parent, const std::string& path, const char* key, E& out) const {
+        std::vector<const char*> allowed{nameOf(out)};
+        for (const auto& entry : EnumNames<E>::list)
+            if (entry.value != out) allowed.push_back(entry.name);
+        std::string name;
+        choice(parent, path, key, allowed, name);
+        for (const auto& entry : EnumNames<E>::list)
+            if (name == entry.name) out = entry.value;
+    }
     // A non-empty single line of at most kLineLimit bytes (names, labels, statements).
     std::string line(const Json& value, const std::string& where) const;
 
@@ -131,11 +144,181 @@ private:
     ModeCheck modes_;
 };
 
-// display.guard_band and display.supersampling (RenderSettings), read and written alike by
-// every game. Written for format `formatVersion` >= 2 always, for older ones only when not
-// the defaults (which such files meant).
-void readRenderSettings(const Reader& r, const Json* display, RenderSettings& out);
-void writeRenderSettings(Json& display, const RenderSettings& settings, int formatVersion);
+// ---------------------------------------------------------------- field tables
+// Each protocol object's keys are one table (as records.h is for the session's columns): a
+// key's name, how it is read and how it is written, each once. The object's known-key list,
+// its reading (in table order, which is also the order errors are found in) and toJson all
+// walk the table.
+template <class P>
+struct Key {
+    const char* name;
+    std::function<void(const Reader&, const Json* object, const std::string& path, P&)> read;
+    std::function<void(Json& object, const P&)> write;
+    std::function<bool(const P&)> isDefault;
+    // The format version that added the key: a file of an older version is written without it
+    // unless it differs from the default (which such files meant), and with refusedBefore it
+    // may not set it either.
+    int newIn = 1;
+    bool refusedBefore = false;
+
+    Key since(int version, bool refused = false) const {
+        Key k = *this;
+        k.newIn = version;
+        k.refusedBefore = refused;
+        return k;
+    }
+};
+
+// A top-level object of a protocol (display, test, ...) and its keys.
+template <class P>
+struct Section {
+    const char* name;
+    std::vector<Key<P>> keys;
+};
+
+// The member a key reads and writes: p.*m, or (p.*s).*m for a nested struct. The accessor
+// works on const and non-const P alike.
+template <class P, class T>
+auto at(T P::*m) {
+    return [m](auto& p) -> auto& { return p.*m; };
+}
+template <class P, class S, class T>
+auto at(S P::*s, T S::*m) {
+    return [s, m](auto& p) -> auto& { return (p.*s).*m; };
+}
+
+// The keys of the usual kinds, each read with the Reader function of the same name.
+template <class P>
+struct Keys {
+    template <class Get>
+    static Key<P> make(const char* name, Get get,
+                       std::function<void(const Reader&, const Json*, const std::string&, P&)> read) {
+        return {name, std::move(read), [name, get](Json& o, const P& p) { o[name] = get(p); },
+                [get](const P& p) {
+                    const P defaults{};
+                    return get(p) == get(defaults);
+                }};
+    }
+    // A key read and written its own way (an array of objects, of checked lines); there since
+    // version 1, so it needs no default to compare with.
+    static Key<P> custom(const char* name,
+                         std::function<void(const Reader&, const Json*, const std::string&, P&)> read,
+                         std::function<void(Json&, const P&)> write) {
+        return {name, std::move(read), std::move(write), {}};
+    }
+    template <class Get>
+    static Key<P> number(const char* name, Get get, NumberRange range) {
+        return make(name, get, [name, get, range](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.number(o, path, name, range, get(p));
+        });
+    }
+    template <class Get>
+    static Key<P> integer(const char* name, Get get, int low, int high) {
+        return make(name, get, [name, get, low, high](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.integer(o, path, name, low, high, get(p));
+        });
+    }
+    template <class Get>
+    static Key<P> boolean(const char* name, Get get) {
+        return make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.boolean(o, path, name, get(p));
+        });
+    }
+    // An enum with EnumNames, written as its JSON spelling.
+    template <class Get>
+    static Key<P> choice(const char* name, Get get) {
+        Key<P> k = make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.choice(o, path, name, get(p));
+        });
+        k.write = [name, get](Json& o, const P& p) { o[name] = nameOf(get(p)); };
+        return k;
+    }
+    template <class Get>
+    static Key<P> modeId(const char* name, Get get) {
+        return make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.modeId(o, path, name, get(p));
+        });
+    }
+    template <class Get>
+    static Key<P> modeList(const char* name, Get get) {
+        return make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
+            r.modeList(o, path, name, get(p));
+        });
+    }
+};
+
+template <class P>
+std::vector<const char*> keyNames(const std::vector<Key<P>>& keys) {
+    std::vector<const char*> names;
+    for (const Key<P>& k : keys) names.push_back(k.name);
+    return names;
+}
+
+// The keys every protocol's top level starts with, in the documented order; headerJson
+// writes them and the game's sections follow.
+inline const std::vector<const char*> kHeaderKeys{"format_version", "name", "description", "game"};
+
+// The top level's known keys: the header's, then the sections'.
+template <class P>
+std::vector<const char*> topLevelKeys(const std::vector<Section<P>>& sections) {
+    std::vector<const char*> names = kHeaderKeys;
+    for (const Section<P>& s : sections) names.push_back(s.name);
+    return names;
+}
+
+// One object's keys read from `object` at `path` (absent keys keep their defaults): unknown
+// keys first, then keys this format version may not have, then each key in table order.
+template <class P>
+void readKeys(const Reader& r, const Json& object, const std::string& path, const std::vector<Key<P>>& keys,
+              int formatVersion, P& out) {
+    r.requireKnownKeys(object, path, keyNames(keys));
+    for (const Key<P>& k : keys)
+        if (k.refusedBefore && formatVersion < k.newIn && object.contains(k.name))
+            r.fail(joinPath(path, k.name), "is new in format_version " + std::to_string(k.newIn) +
+                                               ", but this file is format_version " + std::to_string(formatVersion));
+    for (const Key<P>& k : keys) k.read(r, &object, path, out);
+}
+
+template <class P>
+void writeKeys(Json& object, const std::vector<Key<P>>& keys, int formatVersion, const P& p) {
+    for (const Key<P>& k : keys)
+        if (formatVersion >= k.newIn || !k.isDefault(p)) k.write(object, p);
+}
+
+// Every section present in `document`, read in table order.
+template <class P>
+void readSections(const Reader& r, const Json& document, const std::vector<Section<P>>& sections, int formatVersion,
+                  P& out) {
+    for (const Section<P>& s : sections)
+        if (const Json* object = r.object(document, "", s.name)) readKeys(r, *object, s.name, s.keys, formatVersion, out);
+}
+
+template <class P>
+void writeSections(Json& document, const std::vector<Section<P>>& sections, int formatVersion, const P& p) {
+    for (const Section<P>& s : sections) writeKeys(document[s.name], s.keys, formatVersion, p);
+}
+
+// Every key as a JSON path ("display.refresh_hz"), header first, in table order.
+template <class P>
+std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections) {
+    std::vector<std::string> paths(kHeaderKeys.begin(), kHeaderKeys.end());
+    for (const Section<P>& s : sections)
+        for (const Key<P>& k : s.keys) paths.push_back(joinPath(s.name, k.name));
+    return paths;
+}
+
+// display.guard_band and display.supersampling (RenderSettings), alike in every game: new with
+// format 2, so older files are written with them only when they are not the defaults.
+template <class P>
+std::vector<Key<P>> renderKeys() {
+    using K = Keys<P>;
+    return {K::number("guard_band", at(&P::rendering, &RenderSettings::guardBand),
+                      {0, false, scene::kMaxGuardBand, false})
+                .since(2),
+            K::integer("supersampling", at(&P::rendering, &RenderSettings::supersampling), 1,
+                       scene::kMaxSupersampling)
+                .since(2)};
+}
 
 // path[i], the JSON path of an array element.
 std::string elementPath(const std::string& path, std::size_t index);

@@ -35,7 +35,60 @@ static_assert(kTimeoutLimitS + kPauseLimitS <= kCommitStretchLimitS);
 constexpr double kAcclimationLimitS = 1800;   // 6 times the thesis' 5 minutes
 constexpr double kTrainingLimitS = 3600;      // 5 times the thesis' 12 minutes
 
+using P = ShooterProtocol;
+using K = detail::Keys<P>;
+using detail::at;
+
+// Every key of a shooter protocol below the top level, once (docs/protocol.md lists each).
+const std::vector<detail::Section<P>>& sections() {
+    static const std::vector<detail::Section<P>> list = [] {
+        std::vector<detail::Key<P>> display = {
+            K::number("refresh_hz", at(&P::refreshHz), {1, false, kRefreshLimitHz, false}),
+            K::number("vertical_fov_deg", at(&P::verticalFovDeg),
+                      {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}),
+            K::choice("refresh_mismatch", at(&P::refreshMismatch)).since(2),
+        };
+        for (auto& k : detail::renderKeys<P>()) display.push_back(k);
+        using S = StaircaseSettings;
+        return std::vector<detail::Section<P>>{
+            {"display", display},
+            {"target", {K::number("radius_m", at(&P::targetRadius), {kRadiusMin, false, kRadiusLimit, true})}},
+            {"input",
+             {K::number("mouse_radians_per_count", at(&P::mouseRadiansPerCount),
+                        {kMousePerCountMin, false, kMousePerCountLimit, false})}},
+            {"acclimation",
+             {K::number("duration_s", at(&P::acclimationS), {0, true, kAcclimationLimitS, false}),
+              K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit),
+              K::modeId("mode", at(&P::acclimationMode))}},
+            {"training",
+             {K::number("base_speed_m_per_s", at(&P::training, &S::baseSpeed), {0, true, kMaxBaseSpeedMPerS, false}),
+              K::integer("start_level", at(&P::training, &S::startLevel), 0, kLevelLimit),
+              K::integer("max_level", at(&P::training, &S::maxLevel), 0, kLevelLimit),
+              K::integer("shots_per_level_easy", at(&P::training, &S::shotsPerLevelEasy), 1, kShotsLimit),
+              K::integer("shots_per_level_hard", at(&P::training, &S::shotsPerLevelHard), 1, kShotsLimit),
+              K::modeId("high_mode", at(&P::training, &S::highMode)),
+              K::modeId("low_mode", at(&P::training, &S::lowMode)),
+              K::number("time_limit_s", at(&P::training, &S::timeLimitS), {0, true, kTrainingLimitS, false})}},
+            {"test",
+             {K::modeList("conditions", at(&P::conditions)),
+              K::integer("targets_per_condition", at(&P::targetsPerCondition), 1, kTargetsLimit),
+              K::boolean("interleave", at(&P::interleaveConditions)),
+              K::number("timeout_s", at(&P::timeoutS), {0, true, kTimeoutLimitS, false}),
+              K::number("pause_s", at(&P::pauseS), {0, true, kPauseLimitS, false}),
+              K::choice("scoring", at(&P::scoring)),
+              K::boolean("supervisor_starts", at(&P::supervisorStartsTest)),
+              // Version 1 has no click_timing and means "display". A struct that says otherwise
+              // is written anyway, so that parsing the copy refuses it instead of quietly
+              // replaying it differently.
+              K::choice("click_timing", at(&P::clickTiming)).since(2, true)}},
+        };
+    }();
+    return list;
+}
+
 }  // namespace
+
+std::vector<std::string> shooterProtocolKeys() { return detail::keyPaths(sections()); }
 
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
                                      const ModeCheck& modes) {
@@ -46,70 +99,10 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
     p.formatVersion = r.formatVersion(document, kShooterFormatVersion);
     p.legacyRules = p.formatVersion == 1;
 
-    r.requireKnownKeys(document, "",
-                       {"format_version", "name", "description", "game", "display", "target",
-                        "input", "acclimation", "training", "test"});
+    r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
-
-    if (const Json* display = r.object(document, "", "display")) {
-        r.requireKnownKeys(*display, "display",
-                           {"refresh_hz", "vertical_fov_deg", "refresh_mismatch", "guard_band", "supersampling"});
-        r.number(display, "display", "refresh_hz", {1, false, kRefreshLimitHz, false}, p.refreshHz);
-        r.number(display, "display", "vertical_fov_deg",
-                 {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}, p.verticalFovDeg);
-        r.choice(display, "display", "refresh_mismatch", {"refuse", "warn"}, p.refreshMismatch);
-        detail::readRenderSettings(r, display, p.rendering);
-    }
-    if (const Json* target = r.object(document, "", "target")) {
-        r.requireKnownKeys(*target, "target", {"radius_m"});
-        r.number(target, "target", "radius_m", {kRadiusMin, false, kRadiusLimit, true},
-                 p.targetRadius);
-    }
-    if (const Json* input = r.object(document, "", "input")) {
-        r.requireKnownKeys(*input, "input", {"mouse_radians_per_count"});
-        r.number(input, "input", "mouse_radians_per_count",
-                 {kMousePerCountMin, false, kMousePerCountLimit, false}, p.mouseRadiansPerCount);
-    }
-    if (const Json* acclimation = r.object(document, "", "acclimation")) {
-        r.requireKnownKeys(*acclimation, "acclimation", {"duration_s", "level", "mode"});
-        r.number(acclimation, "acclimation", "duration_s", {0, true, kAcclimationLimitS, false},
-                 p.acclimationS);
-        r.integer(acclimation, "acclimation", "level", 0, kLevelLimit, p.acclimationLevel);
-        r.modeId(acclimation, "acclimation", "mode", p.acclimationMode);
-    }
-    StaircaseSettings& s = p.training;
-    if (const Json* training = r.object(document, "", "training")) {
-        r.requireKnownKeys(*training, "training",
-                           {"base_speed_m_per_s", "start_level", "max_level", "shots_per_level_easy",
-                            "shots_per_level_hard", "high_mode", "low_mode", "time_limit_s"});
-        r.number(training, "training", "base_speed_m_per_s", {0, true, kMaxBaseSpeedMPerS, false},
-                 s.baseSpeed);
-        r.integer(training, "training", "start_level", 0, kLevelLimit, s.startLevel);
-        r.integer(training, "training", "max_level", 0, kLevelLimit, s.maxLevel);
-        r.integer(training, "training", "shots_per_level_easy", 1, kShotsLimit, s.shotsPerLevelEasy);
-        r.integer(training, "training", "shots_per_level_hard", 1, kShotsLimit, s.shotsPerLevelHard);
-        r.modeId(training, "training", "high_mode", s.highMode);
-        r.modeId(training, "training", "low_mode", s.lowMode);
-        r.number(training, "training", "time_limit_s", {0, true, kTrainingLimitS, false},
-                 s.timeLimitS);
-    }
-    if (const Json* test = r.object(document, "", "test")) {
-        r.requireKnownKeys(*test, "test",
-                           {"conditions", "targets_per_condition", "interleave", "timeout_s",
-                            "pause_s", "scoring", "supervisor_starts", "click_timing"});
-        if (p.formatVersion < 2 && test->contains("click_timing"))
-            r.fail("test.click_timing",
-                   "is new in format_version 2, but this file is format_version " +
-                       std::to_string(p.formatVersion));
-        r.modeList(test, "test", "conditions", p.conditions);
-        r.integer(test, "test", "targets_per_condition", 1, kTargetsLimit, p.targetsPerCondition);
-        r.boolean(test, "test", "interleave", p.interleaveConditions);
-        r.number(test, "test", "timeout_s", {0, true, kTimeoutLimitS, false}, p.timeoutS);
-        r.number(test, "test", "pause_s", {0, true, kPauseLimitS, false}, p.pauseS);
-        r.choice(test, "test", "scoring", {"displayed", "world"}, p.scoring);
-        r.boolean(test, "test", "supervisor_starts", p.supervisorStartsTest);
-        r.choice(test, "test", "click_timing", {"display", "input_reads"}, p.clickTiming);
-    }
+    detail::readSections(r, document, sections(), p.formatVersion, p);
+    const StaircaseSettings& s = p.training;
 
     // Relations between fields, checked once every field holds its final value.
     if (s.startLevel > s.maxLevel)
@@ -141,38 +134,8 @@ ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& mo
 }
 
 std::string toJson(const ShooterProtocol& p) {
-    const StaircaseSettings& s = p.training;
     Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
-    document["display"]["refresh_hz"] = p.refreshHz;
-    document["display"]["vertical_fov_deg"] = p.verticalFovDeg;
-    // Like click_timing below: new with format 2, written for version 1 only when it says more.
-    if (p.formatVersion >= 2 || p.refreshMismatch != "refuse") document["display"]["refresh_mismatch"] = p.refreshMismatch;
-    detail::writeRenderSettings(document["display"], p.rendering, p.formatVersion);
-    document["target"]["radius_m"] = p.targetRadius;
-    document["input"]["mouse_radians_per_count"] = p.mouseRadiansPerCount;
-    document["acclimation"]["duration_s"] = p.acclimationS;
-    document["acclimation"]["level"] = p.acclimationLevel;
-    document["acclimation"]["mode"] = p.acclimationMode;
-    Json& training = document["training"];
-    training["base_speed_m_per_s"] = s.baseSpeed;
-    training["start_level"] = s.startLevel;
-    training["max_level"] = s.maxLevel;
-    training["shots_per_level_easy"] = s.shotsPerLevelEasy;
-    training["shots_per_level_hard"] = s.shotsPerLevelHard;
-    training["high_mode"] = s.highMode;
-    training["low_mode"] = s.lowMode;
-    training["time_limit_s"] = s.timeLimitS;
-    Json& test = document["test"];
-    test["conditions"] = p.conditions;
-    test["targets_per_condition"] = p.targetsPerCondition;
-    test["interleave"] = p.interleaveConditions;
-    test["timeout_s"] = p.timeoutS;
-    test["pause_s"] = p.pauseS;
-    test["scoring"] = p.scoring;
-    test["supervisor_starts"] = p.supervisorStartsTest;
-    // Version 1 has no click_timing and means "display". Any other value is written anyway, so
-    // that parsing the copy refuses the struct instead of quietly replaying it differently.
-    if (p.formatVersion >= 2 || p.clickTiming != "display") test["click_timing"] = p.clickTiming;
+    detail::writeSections(document, sections(), p.formatVersion, p);
     return detail::canonicalText(document);
 }
 

@@ -16,6 +16,7 @@
 #include "upconvert/fullscreen.h"
 #include "scene/camera.h"
 #include "scene/hangar_layout.h"
+#include "scene/limits.h"
 #include "scene/motion.h"
 
 namespace warplab::renderer {
@@ -23,8 +24,6 @@ namespace warplab::renderer {
 // ---------------------------------------------------------------------------- GBuffer
 
 namespace {
-
-constexpr int kMaxSize = 16384;
 
 gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int width, int height) {
     gl::Texture texture = gl::Texture::create();
@@ -43,9 +42,9 @@ gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int wi
 
 GBuffer::GBuffer(int width, int height) : impl_(std::make_unique<Impl>()) {
     if (glGenTextures == nullptr) throw std::logic_error("GBuffer: no OpenGL context has been created yet");
-    if (width < 1 || height < 1 || width > kMaxSize || height > kMaxSize)
+    if (width < 1 || height < 1 || width > scene::kMaxImageSize || height > scene::kMaxImageSize)
         throw std::invalid_argument("GBuffer: size " + std::to_string(width) + "x" + std::to_string(height) +
-                                    " is outside 1..16384");
+                                    " is outside 1.." + std::to_string(scene::kMaxImageSize));
     impl_->width = width;
     impl_->height = height;
     impl_->colour = makeTexture(GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, width, height);
@@ -176,12 +175,10 @@ std::vector<Lamp> hangarLamps() {
 
 constexpr int kMaxLamps = 16;  // matches MAX_LAMPS in conventional.frag
 
-constexpr int kMaxSupersampling = 4;
-
 const ShadingOptions& checked(const ShadingOptions& shading) {
-    if (shading.supersampling < 1 || shading.supersampling > kMaxSupersampling)
+    if (shading.supersampling < 1 || shading.supersampling > scene::kMaxSupersampling)
         throw std::invalid_argument("ConventionalRenderer: supersampling " + std::to_string(shading.supersampling) +
-                                    " is outside 1.." + std::to_string(kMaxSupersampling) +
+                                    " is outside 1.." + std::to_string(scene::kMaxSupersampling) +
                                     " (samples per pixel side; 1 = off)");
     return shading;
 }

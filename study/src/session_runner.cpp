@@ -41,26 +41,38 @@ std::uint64_t playerSeed(const std::string& player, std::size_t nameLength, std:
     return std::stoull(digits);
 }
 
+bool isBot(const std::string& player) { return player == "bot" || player.rfind("bot:", 0) == 0; }
+bool isReplay(const std::string& player) { return player.rfind("replay:", 0) == 0; }
+
+std::string unknownPlayer(const std::string& player) {
+    return "unknown player '" + player + "' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)";
+}
+
 }  // namespace
 
 bool isSimulatedParticipant(const std::string& player) { return player == "sim" || player.rfind("sim:", 0) == 0; }
 
+void checkPlayer(const std::string& player) {
+    if (isBot(player) || isSimulatedParticipant(player)) playerSeed(player, 4, 0);
+    else if (player != "human" && !isReplay(player)) throw std::invalid_argument(unknownPlayer(player));
+}
+
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
                                          const game::Study& study, const game::DisplaySize& display,
                                          const game::SeeingPlayerMaker& seeing) {
-    if (player == "bot" || player.rfind("bot:", 0) == 0) return study.newBot(playerSeed(player, 4, sessionSeed), display);
+    if (isBot(player)) return study.newBot(playerSeed(player, 4, sessionSeed), display);
     if (isSimulatedParticipant(player)) {
         const std::uint64_t seed = playerSeed(player, 4, sessionSeed);
         if (!seeing)
             throw std::invalid_argument("--player " + player + " (the simulated participant) runs headless only: add --headless");
         return seeing(seed, study, display);
     }
-    if (player.rfind("replay:", 0) == 0) {
+    if (isReplay(player)) {
         auto source = session::readSession(player.substr(7));
         if (source.inputs.empty()) throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
         return std::make_unique<game::RecordedPlayer>(std::move(source.inputs));
     }
-    throw std::invalid_argument("unknown player '" + player + "' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)");
+    throw std::invalid_argument(unknownPlayer(player));
 }
 
 session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,

@@ -405,7 +405,7 @@ TEST(Disocclusion, MaskIsPixelsVisibleInNoSource) {
 
 // What no source shows, split by why: off-screen in every source (border) against inside one
 // but hidden in all (a true disocclusion). Mixing them let border fill pass for disocclusion
-// quality (issue 12: 96 % of the old mask was border on `pan`).
+// quality (96 % of the old, mixed mask was border on `pan`).
 TEST(Disocclusion, UnseenPixelsAreSplitIntoBorderAndOccluded) {
     const float f = float(kNaN);
     // Sources 4x2 pixels; four display pixels.

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <gtest/gtest.h>
 
@@ -224,13 +225,16 @@ TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     EXPECT_FALSE(contains(r.output, "- guard band:")) << r.output;
 }
 
+// A name the bench does not know is a wrong command line: exit 2, as README promises.
 TEST(CliBench, UnknownSequenceOrMethodIsNamed) {
     auto r = warplab("bench --quick --sequences orbit --out " + scratch("bench-bad"));
-    EXPECT_EQ(r.status, 1);
-    EXPECT_TRUE(contains(r.output, "orbit")) << r.output;
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "unknown bench sequence 'orbit' (valid: pan, track, translate, spheres, thin)"))
+        << r.output;
     r = warplab("bench --quick --methods hold15,warp-magic --out " + scratch("bench-bad"));
-    EXPECT_EQ(r.status, 1);
-    EXPECT_TRUE(contains(r.output, "warp-magic")) << r.output;
+    EXPECT_EQ(r.status, 2);
+    EXPECT_TRUE(contains(r.output, "unknown method 'warp-magic' (known: hold15,")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
 }
 
 }  // namespace
@@ -341,6 +345,63 @@ TEST(CliSession, TruncatedStoreReplaysUpToItsLastCompleteRecord) {
         EXPECT_TRUE(contains(replay.output, copy)) << replay.output;
         EXPECT_LE(replay.lines(), 3) << replay.output;
     }
+}
+
+// `session` written again into `dir` as if recorded so, `doctor` having changed its data first:
+// a whole, finished session whose every commit verifies.
+std::string rewritten(const std::string& session, const std::string& dir,
+                      const std::function<void(warplab::session::SessionData&)>& doctor) {
+    warplab::session::SessionData data = warplab::session::readSession(session);
+    doctor(data);
+    auto writer = warplab::session::SessionWriter::create(dir, data.header);
+    for (const auto& input : data.inputs) writer.addInput(input);
+    for (const auto& frame : data.frames) writer.addFrame(frame);
+    for (const auto& event : data.events) writer.addEvent(event);
+    writer.finish();
+    return writer.path();
+}
+
+// A script archiving sessions must tell "the game no longer plays as recorded" from any other
+// failure: a record that differs exits 5, an error that is not the session's exits 1.
+TEST(CliSession, ReplayTellsADifferenceFromAnError) {
+    const std::string dir = scratch("session-doctored");
+    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/shooter-quick.json --participant D --out " + dir + " --headless --player bot:4")
+                  .status,
+              0);
+    const std::string session = sessionIn(dir);
+    ASSERT_EQ(warplab("replay " + session).status, 0);
+
+    const std::string differs = rewritten(session, scratch("session-doctored-input"), [](auto& data) {
+        for (auto& input : data.inputs) input.buttons = 0;  // the bot's shots never happened
+    });
+    auto r = warplab("replay " + differs);
+    EXPECT_EQ(r.status, 5) << r.output;
+    EXPECT_TRUE(contains(r.output, "replay differs at record ")) << r.output;
+
+    const std::string unreadable = rewritten(session, scratch("session-doctored-protocol"), [](auto& data) {
+        data.header.protocolJson = R"({"format_version": 99, "name": "future", "game": "shooter"})";
+    });
+    r = warplab("replay " + unreadable);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "format_version 99 is newer than this warplab supports")) << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+}
+
+// A player the run does not know is a wrong command line (exit 2), said before anything starts.
+TEST(CliSession, UnknownPlayerIsABadCommandLine) {
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
+    const std::string dir = scratch("session-bad-player");
+    for (const char* player : {"wizard", "bot:x", "sim:-1"}) {
+        const auto r = warplab("run --protocol " + protocol + " --participant P --out " + dir +
+                               " --headless --player " + std::string(player));
+        EXPECT_EQ(r.status, 2) << player << ": " << r.output;
+        EXPECT_EQ(r.lines(), 1) << r.output;
+    }
+    const auto r = warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless --player wizard");
+    EXPECT_TRUE(contains(r.output, "unknown player 'wizard' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)"))
+        << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty());
 }
 
 TEST(CliSession, BadResultsFolderOrParticipantNeverEscapes) {

@@ -1,5 +1,5 @@
-// `warplab demo`: a tiny simulated study through run -> replay -> export -> analyse, end to end
-// (issue 14), and what it does with bad input. The numbers are carried through: every hit
+// `warplab demo`: a tiny simulated study through run -> replay -> export -> analyse, end to end,
+// and what it does with bad input. The numbers are carried through: every hit
 // count the report gives is the one the session logged.
 #include <filesystem>
 #include <fstream>

@@ -513,5 +513,72 @@ TEST(Export, AMissingOrEmptyResultsFolderIsNamed) {
     EXPECT_TRUE(fs::is_empty(out)) << "nothing is written when there is nothing to export";
 }
 
+// ============================ the documented columns ============================
+
+// docs/export.md's column list for `file` ("### sessions.csv -- ..."): the backticked names
+// in the first cell of its table's rows, or, for a file described in a sentence, the names of
+// the backticked list that opens it ("`a, b (unit), c`"). "x_1 ... x_N" is given as "x_" in
+// `numbered`.
+struct DocumentedColumns {
+    std::vector<std::string> columns;
+    std::string numbered;
+};
+
+DocumentedColumns documentedColumns(const std::string& file) {
+    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/export.md");
+    EXPECT_TRUE(doc.good());
+    DocumentedColumns out;
+    std::string line, list;
+    bool inSection = false, inList = false, listDone = false;
+    while (std::getline(doc, line)) {
+        if (line.rfind("#", 0) == 0) {
+            if (inSection) break;
+            inSection = line.rfind("### " + file + " ", 0) == 0;
+            continue;
+        }
+        if (!inSection) continue;
+        if (line.rfind("| `", 0) == 0) {
+            const std::string cell = line.substr(1, line.find('|', 1) - 1);
+            for (std::size_t open = cell.find('`'); open != std::string::npos;) {
+                const std::size_t close = cell.find('`', open + 1);
+                out.columns.push_back(cell.substr(open + 1, close - open - 1));
+                open = cell.find('`', close + 1);
+            }
+        } else if (!listDone && (inList || line.rfind("`", 0) == 0)) {
+            const std::size_t from = inList ? 0 : 1;
+            const std::size_t close = line.find('`', from);
+            list += " " + line.substr(from, close == std::string::npos ? std::string::npos : close - from);
+            inList = close == std::string::npos;
+            listDone = !inList;
+        }
+    }
+    std::stringstream items(list);
+    for (std::string item; std::getline(items, item, ',');) {
+        if (const auto paren = item.find('('); paren != std::string::npos) item.erase(paren);
+        item.erase(0, item.find_first_not_of(' '));
+        item.erase(item.find_last_not_of(' ') + 1);
+        if (const auto dots = item.find(" ... "); dots != std::string::npos) {
+            out.numbered = item.substr(0, item.find('1'));
+            EXPECT_EQ(item, out.numbered + "1 ... " + out.numbered + "N");
+        } else if (!item.empty()) {
+            out.columns.push_back(item);
+        }
+    }
+    return out;
+}
+
+// The page analysts read is the contract: each CSV's documented columns are exactly the
+// columns its table writes, in the same order.
+TEST(ExportColumns, MatchDocsExportMd) {
+    const auto written = exporter::exportColumns();
+    ASSERT_EQ(written.size(), 5u);
+    for (const exporter::CsvColumns& csv : written) {
+        SCOPED_TRACE("docs/export.md, " + csv.file);
+        const DocumentedColumns documented = documentedColumns(csv.file);
+        EXPECT_EQ(documented.columns, csv.columns);
+        EXPECT_EQ(documented.numbered, csv.numbered);
+    }
+}
+
 }  // namespace
 }  // namespace warplab::app

@@ -242,7 +242,7 @@ struct ClickTally {
     int removedAfterGreen = 0, greens = 0;
 };
 
-ClickTally aimAtTheWorld(const std::string& mode, const std::string& scoring) {
+ClickTally aimAtTheWorld(const std::string& mode, protocol::Scoring scoring) {
     auto p = quick();
     p.modes = {mode};
     p.rounds = {{"only", true, 1}};
@@ -262,7 +262,7 @@ ClickTally aimAtTheWorld(const std::string& mode, const std::string& scoring) {
             ++tally.scored[scored];
             if (scored == "green") {
                 ++tally.greens;
-                const std::int64_t id = detail(e)[scoring == "world" ? "world_sphere" : "displayed_sphere"];
+                const std::int64_t id = detail(e)[scoring == protocol::Scoring::World ? "world_sphere" : "displayed_sphere"];
                 const auto& now = game.world()->spheres();
                 tally.removedAfterGreen += std::none_of(now.begin(), now.end(), [&](auto& s) { return s.id == id; });
             }
@@ -273,18 +273,18 @@ ClickTally aimAtTheWorld(const std::string& mode, const std::string& scoring) {
 
 TEST(ClickGame, ClicksAreJudgedAgainstTheWorldAndAgainstTheFrameOnScreen) {
     // At 60 fps the frame on screen is the world of this very frame: both agree on nearly every click.
-    ClickTally now = aimAtTheWorld("conv60", "world");
+    ClickTally now = aimAtTheWorld("conv60", protocol::Scoring::World);
 
     EXPECT_GT(now.world.at("green"), 20);
     EXPECT_GE(now.world.at("green"), now.displayed["green"]);
     EXPECT_LE(now.world["miss"] + now.world["red"], now.world.at("green") / 10);
     EXPECT_EQ(now.removedAfterGreen, now.greens) << "a clicked sphere vanishes";
     // 200 ms late, the spheres on screen are elsewhere: aiming at the world hits far less on screen.
-    ClickTally late = aimAtTheWorld("lag200", "world");
+    ClickTally late = aimAtTheWorld("lag200", protocol::Scoring::World);
     EXPECT_GT(late.world.at("green"), 20);
     EXPECT_LT(late.displayed["green"], late.world.at("green") / 2);
     // Scored as displayed, the same clicks mostly miss.
-    ClickTally judgedOnScreen = aimAtTheWorld("lag200", "displayed");
+    ClickTally judgedOnScreen = aimAtTheWorld("lag200", protocol::Scoring::Displayed);
     EXPECT_LT(judgedOnScreen.scored["green"], judgedOnScreen.world.at("green") / 2);
     EXPECT_EQ(judgedOnScreen.removedAfterGreen, judgedOnScreen.greens);
 }
@@ -297,7 +297,7 @@ TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     auto p = quick();
     p.modes = {"lag200"};
     p.rounds = {{"only", true, 1}};
-    p.scoring = "displayed";
+    p.scoring = protocol::Scoring::Displayed;
     p.matchS = 20;
     ClickGame game(p, 4, kDisplay);
     startFirstMatch(game);

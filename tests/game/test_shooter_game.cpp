@@ -262,7 +262,7 @@ int unevaluatedTrainingShots(bool legacy, double timeLimitS) {
     auto p = quick();
     p.legacyRules = legacy;
     p.acclimationS = 0.0;
-    p.scoring = "world";
+    p.scoring = protocol::Scoring::World;
     p.pauseS = 0.1;
     p.training.timeLimitS = timeLimitS;
     ShooterGame game(p, 4, 16.0 / 9.0);
@@ -298,7 +298,7 @@ TEST(ShooterGame, ALevelFinishedBeforeTheTimeLimitIsEvaluated) {
 // click_timing "input_reads": a press at a frame where conv15 does not read input counts at
 // its next render; "display" counts it at once.
 TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
-    for (const std::string timing : {"display", "input_reads"}) {
+    for (const auto timing : {protocol::ClickTiming::Display, protocol::ClickTiming::InputReads}) {
         auto p = quick();
         p.clickTiming = timing;
         p.acclimationS = 0.0;
@@ -319,7 +319,7 @@ TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
                 if (e.type == "shot") counted = e.frame;
             if (counted < 0) game.step({});
         }
-        EXPECT_EQ(counted - pressed, timing == "display" ? 0 : 5) << timing;  // pressed at index 3, read at 8
+        EXPECT_EQ(counted - pressed, timing == protocol::ClickTiming::Display ? 0 : 5) << protocol::nameOf(timing);  // pressed at index 3, read at 8
     }
 }
 

@@ -1,4 +1,4 @@
-// The warp's guard band (issue 12): sources rendered beyond the displayed field of view at the
+// The warp's guard band: sources rendered beyond the displayed field of view at the
 // same pixel pitch, so content a camera turn brings into view is real rather than an edge
 // smeared outwards; the displayed frame keeps exactly the displayed view.
 #include <cmath>

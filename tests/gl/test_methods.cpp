@@ -131,6 +131,14 @@ TEST(Methods, UnknownMethodIsNamed) {
     }
 }
 
+// The bench's CSV, the summary and the modes name a method by its registry name; a method
+// that called itself anything else would be measured under one name and reported under another.
+TEST(Methods, EveryMethodCallsItselfByItsRegistryName) {
+    testing::glContext();
+    for (const std::string& name : renderer::methodNames())
+        EXPECT_EQ(renderer::makeMethod(name, testing::sourceDataPaths())->info().name, name);
+}
+
 TEST(BenchSampling, EveryPhaseOfTheSourceCycleIsSampled) {
     const auto frames = bench::sampleFrames(360, 16, 8);
     ASSERT_EQ(frames.size(), 16u);

@@ -1,4 +1,4 @@
-// The perceptual simulated participant (issue 14): it finds objects in the displayed frame where
+// The perceptual simulated participant: it finds objects in the displayed frame where
 // they really project, it cannot know what the frame does not show, it plays well when it is
 // given no delay and no noise and worse with a human delay, and the same seed gives the same
 // inputs.

@@ -1,4 +1,4 @@
-// Supersampling as a setting of the conventional renderer (issue 12): depth, ids, velocity and
+// Supersampling as a setting of the conventional renderer: depth, ids, velocity and
 // flow stay the pixel centre's bit for bit, and colour is the box mean of N x N sub-pixel
 // samples, checked against an independent oracle -- the same frame rendered directly at N times
 // the size, averaged on the CPU.

@@ -90,7 +90,7 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
             }
         ASSERT_GT(covered, kW * kH * 8 / 10);
         EXPECT_LE(off, covered / 20) << method << ": pixels whose source is 0.1 px or more from the exact one";
-        // Issue 12: a turn opens no sheet, so no silhouette may be recoloured: 99.5 % within
+        // A turn opens no sheet, so no silhouette may be recoloured: 99.5 % within
         // half a pixel (the old source-only sheet rule left warp-full at 97.8 % on `pan`).
         EXPECT_LE(offHalf * 1000, covered * 5) << method << ": " << offHalf << " of " << covered
                                                << " pixels 0.5 px or more from their exact source";
@@ -216,7 +216,7 @@ std::map<std::string, double> disoccludedErrors(const std::vector<std::string>& 
 // Where a moving object uncovers the background (a sphere crossing a wall in `spheres`, the
 // camera's parallax in `translate` and `track`), the fix fills the opened sheet from the
 // background side: closer to the truth there than the naive warp's smear. Every mesh takes the
-// same fix, so every sparse mesh must fill the same sheets as the full mesh (issue 12): a patch
+// same fix, so every sparse mesh must fill the same sheets as the full mesh: a patch
 // re-densified in one direction only used to stretch one-pixel-wide slivers across the jump,
 // which the fix does not take for sheets (measured then on `translate`: sparse4 31.5 and
 // sparse8 29.9 against the full mesh's 27.2).
@@ -241,7 +241,7 @@ TEST(Warp, DisocclusionFixLowersTheErrorWhereTheBackgroundIsRevealed) {
     }
 }
 
-// Issue 12: the sparse meshes found each patch's flags by gl_PrimitiveID, which llvmpipe
+// The sparse meshes once found each patch's flags by gl_PrimitiveID, which llvmpipe
 // restarts every 1024 patches of a draw, so every later patch took another's flags and a moving
 // silhouette there could stay two triangles stretched across the background. At 640x360 sparse4
 // draws 14,651 patches and sparse8 3,726; on this frame (the target crossing the hallway, the
@@ -313,7 +313,7 @@ void expectBounded(const std::string& label, const scene::FrameDescription& from
         ASSERT_GT(reachable, 0) << label;  // else the coverage check below would be vacuous
         EXPECT_GE(reached, 0.97 * reachable) << label << " " << method << ": " << reached << " of " << reachable
                                              << " pixels visible in the source are covered";
-        // ...and nothing is left black, including what turned into view (issue 12): the clear
+        // ...and nothing is left black, including what turned into view: the clear
         // colour is black, the scene has hardly any black, so count black where the truth is not dark.
         const int black = testing::blackWhereTruthIsNot(shown.colour, truth.images.colour);
         EXPECT_LE(black, kBlackShare * double(coords.size())) << label << " " << method << ": " << black << " black pixels";
@@ -435,7 +435,7 @@ TEST(WarpHardCases, VelocityPointingOffScreen) {
     expectBounded("off screen", a, b, 0.03);
 }
 
-// Issue 12, part 1: a pure 3 degree turn of the static scene (the case of `warplab render
+// A pure 3 degree turn of the static scene (the case of `warplab render
 // --method warp-full --source-yaw 0 --yaw 3`) at the bench's quick size. What turned into view
 // was off-screen in the source; it must be filled from the nearest source edge, never black.
 TEST(Warp, CameraTurnLeavesNoPixelBlack) {
@@ -464,7 +464,7 @@ TEST(Warp, CameraTurnLeavesNoPixelBlack) {
         const double db = image::psnr(shown.colour, truth.images.colour);
         // Floor: measured 26.1 dB (warp-full, warp-sparse16) to 26.7 dB (warp-nofix) on llvmpipe;
         // with the band left black it was about 20 dB. 25 dB leaves a margin for another rasteriser's
-        // aliasing of the panel seams (the interior error is mostly aliasing, see issue 12).
+        // aliasing of the panel seams (the interior error is mostly aliasing: docs/bench.md, "Warp quality, part 4").
         EXPECT_GE(db, 25.0) << method;
         RecordProperty(method + "_turn_psnr", std::to_string(db));
     }

@@ -12,7 +12,8 @@ using namespace warplab::game;
 namespace renderer = warplab::renderer;
 
 // Every mode must be drawable: the frames a mode makes between its renders use the method it
-// names, and held or rendered frames are copied by hold120 (app/replay_render.cpp).
+// names, and held or rendered frames are copied by hold120 (present/src/frame_maker.cpp, which
+// live sessions, replay --render and the simulated participant's eye all draw with).
 TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
     const auto methods = renderer::methodNames();
     auto has = [&](const std::string& name) { return std::find(methods.begin(), methods.end(), name) != methods.end(); };

@@ -1,6 +1,8 @@
 // The click game's protocol file and the loader every protocol shares: the shipped files say
 // what Yang et al. 2011 section 8 says, the writer and the reader are exact inverses, and each
 // bad input is refused with one sentence naming the file and the field (tests pin the words).
+#include <fstream>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -108,7 +110,7 @@ ClickProtocol everyFieldChanged() {
     p.spawnDelayS = 0;
     p.spawnSpeedMPerS = 3.5;
     p.cursorPixelsPerCount = 2.5;
-    p.clickTiming = "input_reads";
+    p.clickTiming = ClickTiming::InputReads;
     p.matchS = 30.5;
     p.modes = {"conv120", "warp15to120"};
     p.rounds = {{"warm-up", false, 3}, {"a", true, 1}, {"b", true, 4}};
@@ -117,7 +119,7 @@ ClickProtocol everyFieldChanged() {
     p.ratingStatements = {"Only one"};
     p.ratingMin = 0;
     p.ratingMax = 10;
-    p.scoring = "displayed";
+    p.scoring = Scoring::Displayed;
     return p;
 }
 
@@ -542,6 +544,46 @@ TEST(SharedLoader, ReadingAFileNamesThePath) {
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + protocolDir() + "': is a directory, not a file");
     }
+}
+
+// ============================ the documented keys ============================
+
+// docs/protocol.md's keys for the game whose part starts at the heading `part` ("# The
+// falling-sphere click game"), as JSON paths: each "| key |" table's rows, under "## Top
+// level" (no prefix), "## `section`" ("section.") or "Each element of `array`:"
+// ("section.array[].").
+std::vector<std::string> documentedKeys(const std::string& part) {
+    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/protocol.md");
+    EXPECT_TRUE(doc.good());
+    std::vector<std::string> keys;
+    std::string line, section, prefix;
+    bool inPart = false, inTable = false;
+    while (std::getline(doc, line)) {
+        if (line.rfind("# ", 0) == 0) {
+            if (inPart) break;
+            inPart = line == part;
+            continue;
+        }
+        if (!inPart) continue;
+        if (line.rfind("## ", 0) == 0) {
+            const auto open = line.find('`');
+            section = open == std::string::npos ? "" : line.substr(open + 1, line.find('`', open + 1) - open - 1);
+            prefix = line == "## Top level" ? "" : section.empty() ? "-" : section + ".";
+        } else if (line.rfind("Each element of `", 0) == 0) {
+            prefix = section + "." + line.substr(17, line.find('`', 17) - 17) + "[].";
+        }
+        if (line.rfind("| key |", 0) == 0) inTable = prefix != "-";
+        else if (line.rfind("|", 0) != 0) inTable = false;
+        if (inTable && line.rfind("| `", 0) == 0) keys.push_back(prefix + line.substr(3, line.find('`', 3) - 3));
+    }
+    return keys;
+}
+
+// The page a researcher writes a protocol from is the contract: it documents exactly the keys
+// the parsers' tables read, in the same order.
+TEST(ProtocolDocs, EveryKeyOfEachGameIsDocumentedInOrder) {
+    EXPECT_EQ(documentedKeys("# The bouncing-target shooter"), shooterProtocolKeys());
+    EXPECT_EQ(documentedKeys("# The falling-sphere click game"), clickProtocolKeys());
 }
 
 }  // namespace

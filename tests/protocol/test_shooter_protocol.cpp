@@ -128,9 +128,9 @@ ShooterProtocol everyFieldChanged() {
     p.interleaveConditions = false;
     p.timeoutS = 2.25;
     p.pauseS = 0.1;
-    p.scoring = "world";
+    p.scoring = Scoring::World;
     p.supervisorStartsTest = false;
-    p.clickTiming = "input_reads";
+    p.clickTiming = ClickTiming::InputReads;
     return p;
 }
 
@@ -143,7 +143,7 @@ TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
     EXPECT_EQ(p.game, "shooter");
     EXPECT_EQ(p.formatVersion, 2);
     EXPECT_FALSE(p.legacyRules);
-    EXPECT_EQ(p.clickTiming, "display");  // a click counts where the button goes down
+    EXPECT_EQ(p.clickTiming, ClickTiming::Display);  // a click counts where the button goes down
     EXPECT_EQ(p.refreshHz, 120.0);              // App. B step 4
     EXPECT_EQ(p.acclimationS, 300.0);           // 5.3.4: 5 minutes
     EXPECT_EQ(p.acclimationLevel, 0);           // "with the easiest difficulty"
@@ -442,7 +442,7 @@ TEST(ProtocolLimits, NoTrialPauseOrPhaseRunsPastItsBound) {
          "training.time_limit_s must be a number greater than 0 and at most 3600, got "
          "3600.0000000000005"},
     });
-    // The issue's case: a day-long feedback pause at 1000 Hz, 86.4 million frames uncommitted.
+    // The case that set the limit: a day-long feedback pause at 1000 Hz, 86.4 million frames uncommitted.
     EXPECT_EQ(errorOf(thesisWith("/test/pause_s", 86400)),
               "protocol 'p.json': test.pause_s must be a number greater than 0 and at most 60, "
               "got 86400");
@@ -572,7 +572,7 @@ TEST(ProtocolErrors, ScoringIsDisplayedOrWorld) {
     EXPECT_EQ(errorOf(thesisWith("/test/scoring", "Displayed")),
               "protocol 'p.json': test.scoring must be \"displayed\" or \"world\", got string "
               "\"Displayed\"");
-    EXPECT_EQ(parse(thesisWith("/test/scoring", "world").dump()).scoring, "world");
+    EXPECT_EQ(parse(thesisWith("/test/scoring", "world").dump()).scoring, Scoring::World);
 }
 
 TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
@@ -643,7 +643,7 @@ TEST(ProtocolVersions, NewStructsAreVersion2WithNewRules) {
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
     EXPECT_EQ(kShooterFormatVersion, 2);
     EXPECT_FALSE(p.legacyRules);
-    EXPECT_EQ(p.clickTiming, "display");
+    EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);
 }
 
@@ -651,7 +651,7 @@ TEST(ProtocolVersions, Version1MeansLegacyRules) {
     const ShooterProtocol p = parse(thesisVersion1().dump());
     EXPECT_EQ(p.formatVersion, 1);
     EXPECT_TRUE(p.legacyRules);
-    EXPECT_EQ(p.clickTiming, "display");
+    EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     Json document = minimal();
     document["format_version"] = 1;
     EXPECT_TRUE(parse(document.dump()).legacyRules);
@@ -679,19 +679,19 @@ TEST(ProtocolVersions, Version1RoundTripsAsVersion1) {
 
 TEST(ProtocolVersions, Version1StructCannotQuietlyLoseClickTiming) {
     ShooterProtocol p = parse(thesisVersion1().dump());
-    p.clickTiming = "input_reads";  // a value version 1 cannot say
+    p.clickTiming = ClickTiming::InputReads;  // a value version 1 cannot say
     expectContains(errorOfText(toJson(p)), {"test.click_timing is new in format_version 2"});
 }
 
 // A live session on a display at another refresh: refuse (the published studies) or warn
 // (the quick protocols, so they run anywhere).
 TEST(ProtocolVersions, RefreshMismatchIsRefuseOrWarn) {
-    EXPECT_EQ(parse(thesisWith("/display/refresh_mismatch", "warn").dump()).refreshMismatch, "warn");
-    EXPECT_EQ(ShooterProtocol{}.refreshMismatch, "refuse");
+    EXPECT_EQ(parse(thesisWith("/display/refresh_mismatch", "warn").dump()).refreshMismatch, RefreshMismatch::Warn);
+    EXPECT_EQ(ShooterProtocol{}.refreshMismatch, RefreshMismatch::Refuse);
     expectContains(errorOf(thesisWith("/display/refresh_mismatch", "ignore")), {"display.refresh_mismatch"});
 }
 
-// How frames are rendered (issue 12): a guard band for warp modes' sources and supersampling.
+// How frames are rendered: a guard band for warp modes' sources and supersampling.
 TEST(ProtocolRendering, GuardBandAndSupersamplingAreReadAndBounded) {
     EXPECT_EQ(ShooterProtocol{}.rendering.guardBand, 0.1);
     EXPECT_EQ(ShooterProtocol{}.rendering.supersampling, 1);
@@ -720,10 +720,10 @@ TEST(ProtocolRendering, Version1CopiesNameThemOnlyWhenNotDefault) {
 
 TEST(ProtocolVersions, ClickTimingIsDisplayOrInputReads) {
     EXPECT_EQ(parse(thesisWith("/test/click_timing", "input_reads").dump()).clickTiming,
-              "input_reads");
+              ClickTiming::InputReads);
     Json document = thesisWith("/format_version", 2);
     document["test"].erase("click_timing");
-    EXPECT_EQ(parse(document.dump()).clickTiming, "display");
+    EXPECT_EQ(parse(document.dump()).clickTiming, ClickTiming::Display);
     EXPECT_EQ(errorOf(thesisWith("/test/click_timing", "frame")),
               "protocol 'p.json': test.click_timing must be \"display\" or \"input_reads\", got "
               "string \"frame\"");

@@ -84,7 +84,7 @@ SessionHeader sampleHeader(const std::string& participant = "P07") {
     return h;
 }
 
-// ---- records built and compared through the field tables (protocol/records.h) ----
+// ---- records built and compared through the field tables (session/records.h) ----
 // Nothing here names a record's fields: a field added to a table is written, read, compared
 // and checksummed by every test below without a change here.
 

@@ -32,6 +32,10 @@ struct BenchOptions {
     std::uint64_t seed = 1;
 };
 
+// `warplab bench --quick`: small and short, the whole table in well under 3 minutes on two
+// cores; the other fields as BenchOptions' defaults.
+BenchOptions quickBenchOptions();
+
 // Runs the benchmark in the current GL context; writes bench.csv, summary.md and
 // speed_vs_error.png into options.outDir; prints progress to `progress` and the summary to
 // `out`. Throws on bad options (naming them) or unwritable output.

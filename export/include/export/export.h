@@ -27,6 +27,15 @@ struct ExportSummary {
     std::vector<std::string> written;        // the CSV paths
 };
 
+// The columns of each CSV exportResults writes, in order, as docs/export.md lists them.
+struct CsvColumns {
+    std::string file;                  // "shots.csv"
+    std::vector<std::string> columns;  // the fixed ones
+    // Non-empty: then one column per item, named this plus 1, 2, ... (matches.csv's rating_k).
+    std::string numbered;
+};
+std::vector<CsvColumns> exportColumns();
+
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
 // sessions.csv, shots.csv, hitrates.csv, matches.csv and ratings.csv into outDir (created
 // when missing). Progress and one line per excluded or damaged session go to `log`.

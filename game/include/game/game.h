@@ -3,8 +3,8 @@
 // bench's study paths use without naming a game:
 //   Study  -- a parsed protocol bound to its game: makes games and bots;
 //   Game   -- a deterministic state machine stepped once per displayed frame;
-//   Player -- whoever produces the input: a bot, a recorded session, later a person.
-// A game is one folder (game/shooter/, game/click/) plus one line in game/registry.cpp.
+//   Player -- whoever produces the input: a bot, the simulated participant, a recorded session.
+// A game is one folder (game/shooter/, game/click/) plus one line in game/src/registry.cpp (or a registerGame call).
 #pragma once
 
 #include <cstdint>

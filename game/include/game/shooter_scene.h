@@ -1,6 +1,6 @@
 // The shooter study's scene at any instant: the camera at the hallway's end and the target
-// bouncing in its plane (seed 004 section 5.3.2). The study's game loop (later) drives the
-// camera from the mouse; `warplab render` and the tests set it directly.
+// bouncing in its plane (seed 004 section 5.3.2). The shooter game drives the camera from
+// the mouse; `warplab render` and the tests set it directly.
 #pragma once
 
 #include <cstdint>

@@ -33,7 +33,7 @@ struct SeenObject {
 
 // The game objects (ids from scene::kIdTarget up; hangar and sky are background) in a displayed
 // frame read back at the percept resolution, by id. `toDisplay`: display pixels per image pixel
-// in x and y. Image rows are top-down (renderer/image.h).
+// in x and y. Image rows are top-down (image/image.h).
 std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::ImageRGBA8& colour,
                                     glm::dvec2 toDisplay);
 

@@ -31,7 +31,7 @@ struct ClickProtocol {
     double refreshHz = 60;             // display.refresh_hz
     double verticalFovDeg = 60;        // display.vertical_fov_deg
     double cameraPitchDeg = -10;       // display.camera_pitch_deg, looks down at the box floor
-    std::string refreshMismatch = "refuse";  // display.refresh_mismatch: "refuse" or "warn", as the shooter's
+    RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;  // display.refresh_mismatch, as the shooter's
     RenderSettings rendering;          // display.guard_band, display.supersampling
     // physics.* (the game maps these onto physics::FallingSphereSettings; keep the same defaults)
     double gravity = 9.81;             // m/s^2, >= 0
@@ -44,7 +44,7 @@ struct ClickProtocol {
     double spawnSpeedMPerS = 2.0;      // >= 0
     // input.*
     double cursorPixelsPerCount = 1.0; // cursor movement per mouse count on the session's display, (0, 100]
-    std::string clickTiming = "display";  // or "input_reads", as for the shooter
+    ClickTiming clickTiming = ClickTiming::Display;  // or InputReads, as for the shooter
     // matches.*
     double matchS = 45;                // > 0
     std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
@@ -55,13 +55,17 @@ struct ClickProtocol {
     std::vector<std::string> ratingStatements{"I enjoyed playing this game", "This game was difficult to play",
         "This game was responsive to my input", "The animation was smooth"};
     int ratingMin = 1, ratingMax = 7;  // 1 = strongly disagree, 7 = strongly agree
-    std::string scoring = "world";     // matches.scoring: or "displayed" (DESIGN.md "Scoring")
+    Scoring scoring = Scoring::World;  // matches.scoring: or Displayed (DESIGN.md "Scoring")
 };
 
 // sourceName is what messages call the file (its path); `modes` judges every mode id against
 // the refresh (pass game::checkMode). Throws ProtocolError.
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
                                  const ModeCheck& modes);
+// Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
+// "matches.rounds[].name" for a round's), in file order: the parser's table, which
+// docs/protocol.md must document.
+std::vector<std::string> clickProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
 ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it

@@ -38,9 +38,9 @@ struct ShooterProtocol {
     std::string game = "shooter";
     double refreshHz = 120;
     double verticalFovDeg = 60;
-    // A live session on a display whose refresh is known to differ: "refuse" to start, or
-    // "warn" and pace frames by timer (quick protocols, so they run anywhere).
-    std::string refreshMismatch = "refuse";
+    // A live session on a display whose refresh is known to differ: refuse to start, or warn
+    // and pace frames by timer (quick protocols, so they run anywhere).
+    RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;
     RenderSettings rendering;             // display.guard_band, display.supersampling
     double targetRadius = 0.35;            // metres
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
@@ -53,12 +53,12 @@ struct ShooterProtocol {
     bool interleaveConditions = true;      // random order drawn from the session seed
     double timeoutS = 3;
     double pauseS = 1;
-    std::string scoring = "displayed";     // or "world" (DESIGN.md "Scoring")
+    Scoring scoring = Scoring::Displayed;  // or World (DESIGN.md "Scoring")
     bool supervisorStartsTest = true;      // the supervisor's Enter starts the recorded part
-    // "display": a click counts at the display frame where the button goes down;
-    // "input_reads": only at frames where the mode reads input (conv15/30/60 read it only at
-    // their renders), so a press counts at the next such frame. Format 2 and later.
-    std::string clickTiming = "display";
+    // Display: a click counts at the display frame where the button goes down; InputReads:
+    // only at frames where the mode reads input (conv15/30/60 read it only at their renders),
+    // so a press counts at the next such frame. Format 2 and later.
+    ClickTiming clickTiming = ClickTiming::Display;
     // Not in the JSON: true for a format_version 1 file, whose sessions were recorded under the
     // old trial-timeout and training-evaluation rules and must replay under them. toJson writes
     // the form of formatVersion, so keep the two together in a hand-built struct.
@@ -69,6 +69,9 @@ struct ShooterProtocol {
 // the refresh (pass game::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
                                      const ModeCheck& modes);
+// Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:
+// the parser's table, which docs/protocol.md must document.
+std::vector<std::string> shooterProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
 ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& modes);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it

@@ -17,6 +17,48 @@ inline constexpr double kMaxVerticalFovDeg = 179;  // the projection degenerates
 // Straight up or down (90) turns the world-up view basis over; the game itself clamps to ~86.
 inline constexpr double kMaxCameraPitchDeg = 89;
 
+// The protocols' fields that pick one of a few spellings, parsed once into an enum. Each
+// value's JSON spelling is written once, in EnumNames below, which parsing, the messages that
+// list the allowed values and toJson all read.
+// Which outcome scores, both games alike (DESIGN.md "Scoring"); both are always logged.
+enum class Scoring { Displayed, World };
+// When a click counts (docs/protocol.md, "Click timing"): at the display frame where the button
+// goes down, or only at frames where the mode reads input.
+enum class ClickTiming { Display, InputReads };
+// A live session on a display whose refresh is known to differ from the protocol's: refuse to
+// start, or warn and pace frames by timer.
+enum class RefreshMismatch { Refuse, Warn };
+
+template <class E>
+struct EnumName {
+    E value;
+    const char* name;
+};
+template <class E>
+struct EnumNames;
+template <>
+struct EnumNames<Scoring> {
+    static constexpr EnumName<Scoring> list[] = {{Scoring::Displayed, "displayed"}, {Scoring::World, "world"}};
+};
+template <>
+struct EnumNames<ClickTiming> {
+    static constexpr EnumName<ClickTiming> list[] = {{ClickTiming::Display, "display"},
+                                                     {ClickTiming::InputReads, "input_reads"}};
+};
+template <>
+struct EnumNames<RefreshMismatch> {
+    static constexpr EnumName<RefreshMismatch> list[] = {{RefreshMismatch::Refuse, "refuse"},
+                                                         {RefreshMismatch::Warn, "warn"}};
+};
+
+// The JSON spelling of `value`.
+template <class E>
+const char* nameOf(E value) {
+    for (const auto& entry : EnumNames<E>::list)
+        if (entry.value == value) return entry.name;
+    return "?";  // not reached for a value of the enum
+}
+
 // How a session's frames are rendered (the protocol's display.guard_band and
 // display.supersampling, both games alike). They change what a participant sees, never the
 // game's state: the outcomes a session logs replay the same whatever they say.
@@ -27,8 +69,7 @@ struct RenderSettings {
     // Samples per pixel side for every conventional frame's colour (1 = none, 2 = 2x2 ...).
     int supersampling = 1;
 };
-inline constexpr double kMaxGuardBandFraction = 0.5;  // renderer::kMaxGuardBand
-inline constexpr int kMaxSupersampling = 4;           // 4x4: 16 samples per pixel
+// Their ranges are scene/limits.h's, which the renderer and the command line share.
 
 // A bad protocol file: one sentence naming the file and the JSON path of the culprit.
 class ProtocolError : public std::runtime_error {

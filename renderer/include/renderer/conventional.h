@@ -23,7 +23,7 @@ struct DataPaths {
 // (xyz used). Owns GL objects, so create and destroy it while the context is current.
 class GBuffer {
 public:
-    GBuffer(int width, int height);  // throws std::invalid_argument outside 1..16384
+    GBuffer(int width, int height);  // throws std::invalid_argument outside 1..scene::kMaxImageSize
     ~GBuffer();
     GBuffer(GBuffer&&) noexcept;
     GBuffer& operator=(GBuffer&&) noexcept;
@@ -57,8 +57,8 @@ struct ShadingOptions {
     // expensive as a real game's and show where upconversion starts to pay. 0 = none.
     int shadingCost = 0;
     // Supersampling antialiasing: colour is the box-filter mean of N x N samples per pixel, at
-    // the centres of its N x N sub-pixels; N = 1 is off, 1..4 are valid. Depth, ids, velocity
-    // and flow stay those of the pixel centre, bit for bit as with N = 1, since the game scores
+    // the centres of its N x N sub-pixels; N = 1 is off, 1..scene::kMaxSupersampling are
+    // valid. Depth, ids, velocity and flow stay those of the pixel centre, bit for bit as with N = 1, since the game scores
     // the reticle's pixel and the warp reads them there; only colour is antialiased, so that a
     // method's bilinear resampling is judged against an antialiased truth.
     int supersampling = 1;
@@ -68,8 +68,8 @@ class ConventionalRenderer {
 public:
     // Loads the hangar model and builds the shader programs; throws AssetError or
     // gl::GlError with a message naming the file.
-    // A supersampling outside 1..4 throws std::invalid_argument naming the value, here and in
-    // setShading.
+    // A supersampling outside 1..scene::kMaxSupersampling throws std::invalid_argument naming
+    // the value, here and in setShading.
     explicit ConventionalRenderer(const DataPaths& paths, ShadingOptions shading = {});
     ~ConventionalRenderer();
     ConventionalRenderer(const ConventionalRenderer&) = delete;

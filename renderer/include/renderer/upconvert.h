@@ -1,7 +1,7 @@
 // Upconversion methods: given the conventionally rendered source frames a mode would have,
-// make the frame displayed at some instant. Every method -- sample-and-hold, blend, and (in
-// their issues) warp extrapolation and bidirectional reprojection -- sits behind this one
-// interface, so the benchmark and the study modes treat them alike.
+// make the frame displayed at some instant. Every method -- sample-and-hold, blend, warp
+// extrapolation, bidirectional reprojection and the rest -- sits behind this one interface,
+// so the benchmark and the study modes treat them alike.
 #pragma once
 
 #include <cstdint>
@@ -24,9 +24,8 @@ struct GuardBand {
     bool operator==(const GuardBand& o) const { return x == o.x && y == o.y; }
 };
 // `fraction` of the displayed width and height on each side, in whole pixels (0.1 = 10 %).
-// Throws std::invalid_argument outside [0, kMaxGuardBand].
+// Throws std::invalid_argument outside [0, scene::kMaxGuardBand].
 GuardBand guardBandFor(int width, int height, double fraction);
-inline constexpr double kMaxGuardBand = 0.5;
 
 // A frame rendered conventionally at one instant, kept with what it depicts.
 struct SourceFrame {
@@ -132,7 +131,10 @@ void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const M
 
 // All registered method names, in the order the bench reports them.
 std::vector<std::string> methodNames();
-// Throws std::invalid_argument naming the unknown method and listing the known ones.
+// Throws std::invalid_argument naming the unknown method and listing the known ones; needs no
+// GL context, so a command line can be checked before one is made.
+void requireMethod(const std::string& name);
+// Throws as requireMethod for an unknown name.
 std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths);
 
 }  // namespace warplab::renderer

@@ -2,6 +2,7 @@
 // the bench (--methods) and, through its name, to the study modes.
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <stdexcept>
 
 #include "gbuffer_gl.h"
@@ -12,13 +13,16 @@
 #include "upconvert/warp.h"
 #include "upconvert/warp_search.h"
 #include "scene/camera.h"
+#include "scene/limits.h"
 
 namespace warplab::renderer {
 namespace {
 
+// `make` is handed the entry's name, so that a method named by its settings is named once.
+using Name = const std::string&;
 struct Entry {
     const char* name;
-    std::function<std::unique_ptr<UpconversionMethod>(const DataPaths&)> make;
+    std::function<std::unique_ptr<UpconversionMethod>(const DataPaths&, Name)> make;
 };
 
 WarpSettings sparse(int patchSize) {
@@ -40,37 +44,52 @@ BireprojSettings bireproj(int iterations, bool dual, bool latest) {
 
 const std::vector<Entry>& registry() {
     static const std::vector<Entry> entries = {
-        {"hold15", [](const DataPaths& p) { return makeHold(p, 15.0); }},
-        {"hold30", [](const DataPaths& p) { return makeHold(p, 30.0); }},
-        {"hold60", [](const DataPaths& p) { return makeHold(p, 60.0); }},
-        {"hold120", [](const DataPaths& p) { return makeHold(p, 120.0); }},
-        {"blend", [](const DataPaths& p) { return makeBlend(p); }},
-        {"warp-full", [](const DataPaths& p) { return makeWarp(p, "warp-full", {}); }},
+        {"hold15", [](const DataPaths& p, Name) { return makeHold(p, 15.0); }},
+        {"hold30", [](const DataPaths& p, Name) { return makeHold(p, 30.0); }},
+        {"hold60", [](const DataPaths& p, Name) { return makeHold(p, 60.0); }},
+        {"hold120", [](const DataPaths& p, Name) { return makeHold(p, 120.0); }},
+        {"blend", [](const DataPaths& p, Name) { return makeBlend(p); }},
+        {"warp-full", [](const DataPaths& p, Name name) { return makeWarp(p, name, {}); }},
         {"warp-nofix",
-         [](const DataPaths& p) {
+         [](const DataPaths& p, Name name) {
              WarpSettings s;
              s.disocclusionFix = false;
-             return makeWarp(p, "warp-nofix", s);
+             return makeWarp(p, name, s);
          }},
-        {"warp-sparse4", [](const DataPaths& p) { return makeWarp(p, "warp-sparse4", sparse(4)); }},
-        {"warp-sparse8", [](const DataPaths& p) { return makeWarp(p, "warp-sparse8", sparse(8)); }},
-        {"warp-sparse16", [](const DataPaths& p) { return makeWarp(p, "warp-sparse16", sparse(16)); }},
-        {"warp-search", [](const DataPaths& p) { return makeWarpSearch(p, "warp-search", {}); }},
-        {"bireproj", [](const DataPaths& p) { return makeBireproj(p, "bireproj", {}); }},
-        {"bireproj-m1", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m1", bireproj(1, true, true)); }},
-        {"bireproj-m2", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m2", bireproj(2, true, true)); }},
-        {"bireproj-m4", [](const DataPaths& p) { return makeBireproj(p, "bireproj-m4", bireproj(4, true, true)); }},
+        {"warp-sparse4", [](const DataPaths& p, Name name) { return makeWarp(p, name, sparse(4)); }},
+        {"warp-sparse8", [](const DataPaths& p, Name name) { return makeWarp(p, name, sparse(8)); }},
+        {"warp-sparse16", [](const DataPaths& p, Name name) { return makeWarp(p, name, sparse(16)); }},
+        {"warp-search", [](const DataPaths& p, Name name) { return makeWarpSearch(p, name, {}); }},
+        {"bireproj", [](const DataPaths& p, Name name) { return makeBireproj(p, name, {}); }},
+        {"bireproj-m1", [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(1, true, true)); }},
+        {"bireproj-m2", [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(2, true, true)); }},
+        {"bireproj-m4", [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(4, true, true)); }},
         {"bireproj-nodual",
-         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nodual", bireproj(3, false, true)); }},
+         [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(3, false, true)); }},
         {"bireproj-nolatest",
-         [](const DataPaths& p) { return makeBireproj(p, "bireproj-nolatest", bireproj(3, true, false)); }},
+         [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(3, true, false)); }},
         {"bireproj-noinit",
-         [](const DataPaths& p) { return makeBireproj(p, "bireproj-noinit", bireproj(3, false, false)); }},
-        {"scene-assisted", [](const DataPaths& p) { return makeSceneAssisted(p); }},
+         [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(3, false, false)); }},
+        {"scene-assisted", [](const DataPaths& p, Name) { return makeSceneAssisted(p); }},
         {"bireproj-blur",
-         [](const DataPaths& p) { return makeBireprojBlur(p, "bireproj-blur", {}, kBlurSamplesPerInterval); }},
+         [](const DataPaths& p, Name name) { return makeBireprojBlur(p, name, {}, kBlurSamplesPerInterval); }},
     };
     return entries;
+}
+
+// Shortest text of a limit for a message: 0.5, not 0.500000.
+std::string formatted(double value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+
+const Entry& entryNamed(const std::string& name) {
+    for (const auto& e : registry())
+        if (name == e.name) return e;
+    std::string known;
+    for (const auto& e : registry()) known += std::string(known.empty() ? "" : ", ") + e.name;
+    throw std::invalid_argument("unknown method '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace
@@ -81,17 +100,17 @@ std::vector<std::string> methodNames() {
     return names;
 }
 
+void requireMethod(const std::string& name) { entryNamed(name); }
+
 std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths) {
-    for (const auto& e : registry())
-        if (name == e.name) return e.make(paths);
-    std::string known;
-    for (const auto& e : registry()) known += std::string(known.empty() ? "" : ", ") + e.name;
-    throw std::invalid_argument("unknown method '" + name + "' (known: " + known + ")");
+    const Entry& e = entryNamed(name);
+    return e.make(paths, e.name);
 }
 
 GuardBand guardBandFor(int width, int height, double fraction) {
-    if (!(fraction >= 0.0 && fraction <= kMaxGuardBand))
-        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0..0.5 of the displayed size");
+    if (!(fraction >= 0.0 && fraction <= scene::kMaxGuardBand))
+        throw std::invalid_argument("guard band " + std::to_string(fraction) + " is outside 0.." +
+                                    formatted(scene::kMaxGuardBand) + " of the displayed size");
     return {static_cast<int>(std::lround(fraction * width)), static_cast<int>(std::lround(fraction * height))};
 }
 

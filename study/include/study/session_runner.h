@@ -27,6 +27,9 @@ struct HeadlessRun {
 
 // True for the player specs of the perceptual simulated participant ("sim", "sim:SEED").
 bool isSimulatedParticipant(const std::string& player);
+// Throws std::invalid_argument, in the words makePlayer would use, when `player` is not a form
+// run --player takes (human, bot[:SEED], sim[:SEED], replay:SESSION); reads no file.
+void checkPlayer(const std::string& player);
 
 // What headless and live runs share. `seeing` makes the "sim" players, which only run headless
 // (unset: "sim" is refused with a sentence saying so).
@@ -85,11 +88,14 @@ struct ReplayResult {
 
 // What `warplab replay` exits with, so that a script can tell a session worth keeping from one
 // that is not (README "Exit codes"): 0 only for an intact session whose every outcome replayed.
+// A difference has a code of its own: it says the game no longer plays as it was recorded,
+// where any other error (exit 1) says nothing about the session.
 enum ReplayExit : int {
     kReplayReproduced = 0,
-    kReplayDiffers = 1,     // a logged record differs from the replayed one
+    kReplayFailed = 1,      // an error that is not the session's: as for every command (2 is a bad command line)
     kReplayIncomplete = 3,  // the session never finished (killed, ended early, still running); all it holds replays
     kReplayDamaged = 4,     // committed data was lost or altered, or the file is unreadable
+    kReplayDiffers = 5,     // a logged record differs from the replayed one
 };
 int replayExitCode(const ReplayResult& result);
 
