@@ -20,6 +20,7 @@
 #include "renderer/hud.h"
 #include "image/image.h"
 #include "renderer/timing.h"
+#include "renderer/window.h"
 
 namespace warplab::live {
 namespace {
@@ -35,7 +36,7 @@ struct Polled {
     std::string keys;
 };
 
-Polled poll(renderer::GlContext& window, double countScale, bool invertY) {
+Polled poll(renderer::Window& window, double countScale, bool invertY) {
     const renderer::WindowInput in = window.pollInput();
     Polled p;
     p.closed = in.closed;
@@ -52,7 +53,7 @@ Polled poll(renderer::GlContext& window, double countScale, bool invertY) {
 }
 
 // A screen of the supervisor's flow (not part of the session): a dark backdrop and text.
-void showScreen(renderer::HudRenderer& hud, renderer::DisplayFrame& frame, renderer::GlContext& window,
+void showScreen(renderer::HudRenderer& hud, renderer::DisplayFrame& frame, renderer::Window& window,
                 const std::string& banner, const std::string& status) {
     renderer::HudContent content;
     content.backdrop = true;
@@ -67,7 +68,7 @@ void showScreen(renderer::HudRenderer& hud, renderer::DisplayFrame& frame, rende
 
 // Waits on a screen until one of `keys` is pressed (or the window closes: returns 0).
 // `pending`: keys already read with the one that opened the screen (a fast typist, a script).
-char waitFor(renderer::HudRenderer& hud, renderer::DisplayFrame& frame, renderer::GlContext& window,
+char waitFor(renderer::HudRenderer& hud, renderer::DisplayFrame& frame, renderer::Window& window,
              const std::string& banner, const std::string& status, const std::string& keys,
              const std::string& pending = "") {
     for (const char c : pending)
@@ -118,7 +119,7 @@ public:
             }
         }
     }
-    void inject(renderer::GlContext& window, const std::string& when) const {
+    void inject(renderer::Window& window, const std::string& when) const {
         const auto it = at_.find(when);
         if (it != at_.end()) window.injectInput(it->second);
     }
@@ -134,7 +135,7 @@ void screenshot(const LiveRun& run, const renderer::DisplayFrame& frame, const s
 // One present per vsync, or per timer tick where vsync cannot keep the protocol's rate.
 class DisplayClock {
 public:
-    DisplayClock(renderer::GlContext& window, double refreshHz, bool byVsync)
+    DisplayClock(renderer::Window& window, double refreshHz, bool byVsync)
         : window_(window), period_(1.0 / refreshHz), byVsync_(byVsync), last_(Clock::now()), deadline_(last_) {}
 
     struct Presented {
@@ -161,15 +162,15 @@ public:
     }
 
 private:
-    renderer::GlContext& window_;
+    renderer::Window& window_;
     double period_;
     bool byVsync_;
     Clock::time_point last_, deadline_;
     bool first_ = true;
 };
 
-struct Window {
-    std::unique_ptr<renderer::GlContext> context;
+struct OpenedWindow {
+    std::unique_ptr<renderer::WindowContext> context;
     game::DisplaySize display;
     bool byVsync = false;
     double measuredHz = 0.0;
@@ -177,16 +178,15 @@ struct Window {
 
 // Opens the window and decides the display clock: vsync at the protocol's refresh, else a
 // timer at it; a known refresh that differs refuses unless allowed.
-Window openWindow(const LiveRun& run, const game::Study& study, std::ostream& progress) {
+OpenedWindow openWindow(const LiveRun& run, const game::Study& study, std::ostream& progress) {
     renderer::ContextOptions options;
-    options.backend = renderer::GlBackend::Window;
     options.width = run.width;
     options.height = run.height;
     options.fullscreen = run.fullscreen;
     options.display = run.display;
     options.title = "warplab: " + study.name();
-    Window w;
-    w.context = renderer::createContext(options);
+    OpenedWindow w;
+    w.context = renderer::createWindow(options);
     w.display = {w.context->drawableWidth(), w.context->drawableHeight()};
     const double refresh = study.refreshHz();
     w.measuredHz = w.context->refreshHz();
@@ -217,8 +217,8 @@ double countScaleFor(const LiveRun& run, const game::Study& study) {
 
 std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
-    Window opened = openWindow(run, *study, progress);
-    renderer::GlContext* const window = opened.context.get();
+    OpenedWindow opened = openWindow(run, *study, progress);
+    renderer::WindowContext* const window = opened.context.get();
     const game::DisplaySize display = opened.display;
     const int width = display.width, height = display.height;
     const double countScale = countScaleFor(run, *study);
@@ -364,8 +364,8 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
 
 void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
     const auto study = game::loadStudy(run.protocolPath);
-    Window opened = openWindow(run, *study, progress);
-    renderer::GlContext& window = *opened.context;
+    OpenedWindow opened = openWindow(run, *study, progress);
+    renderer::Window& window = *opened.context;
     const game::DisplaySize display = opened.display;
     const double countScale = countScaleFor(run, *study);
     const bool human = run.player == "human";

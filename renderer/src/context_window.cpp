@@ -2,15 +2,16 @@
 #include <SDL.h>
 
 #include "context_backends.h"
+#include "renderer/window.h"
 
 namespace warplab::renderer {
 namespace {
 
 void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
 
-class WindowContext final : public GlContext {
+class SdlWindow final : public WindowContext {
 public:
-    explicit WindowContext(const ContextOptions& options) {
+    explicit SdlWindow(const ContextOptions& options) {
         if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
             throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
         videoInitialised_ = true;
@@ -38,13 +39,12 @@ public:
         initialise(&loadProc, "window");
     }
 
-    ~WindowContext() override {
+    ~SdlWindow() override {
         if (context_ != nullptr) SDL_GL_DeleteContext(context_);
         if (window_ != nullptr) SDL_DestroyWindow(window_);
         if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
     }
 
-    bool hasWindow() const override { return true; }
     void swapBuffers() override { SDL_GL_SwapWindow(window_); }
     bool pumpEvents() override { return !pollInput().closed; }
     WindowInput pollInput() override {
@@ -135,8 +135,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createWindowContext(const ContextOptions& options) {
-    return std::make_unique<WindowContext>(options);
-}
+std::unique_ptr<WindowContext> createWindow(const ContextOptions& options) { return std::make_unique<SdlWindow>(options); }
 
 }  // namespace warplab::renderer
