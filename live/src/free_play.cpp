@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "free_play_keys.h"
+#include "game/modes.h"
 #include "live/live_session.h"
 #include "window_loop.h"
 
@@ -50,19 +52,16 @@ private:
 };
 
 void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) {
-    // The supervisor's keys: digits pick a mode, U and D the difficulty.
-    std::string nextMode = mode_;
-    int nextLevel = level_;
-    for (const char c : keys) {
-        if (c >= '1' && c <= '9' && static_cast<std::size_t>(c - '1') < modes_.size()) nextMode = modes_[c - '1'];
-        if (c == 'u') ++nextLevel;
-        if (c == 'd') nextLevel = std::max(0, nextLevel - 1);
-    }
-    if (nextMode != mode_ || nextLevel != level_) {
+    // The supervisor's keys: digits and [ ] pick a mode, U and D the difficulty.
+    const double refresh = refreshHz_;
+    const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [refresh](const std::string& mode) {
+        return game::checkMode(mode, refresh).empty();
+    });
+    if (next.mode != mode_ || next.level != level_) {
         try {
-            game_->switchTo(nextMode, nextLevel);
-            mode_ = nextMode;
-            level_ = nextLevel;
+            game_->switchTo(next.mode, next.level);
+            mode_ = next.mode;
+            level_ = next.level;
             progress_ << "free play: " << mode_ << ", level " << level_ << "\n";
         } catch (const std::invalid_argument& e) {
             said_ = e.what();
@@ -76,7 +75,7 @@ void FreePlayPolicy::decorate(const game::ShownFrame& shown, std::int64_t frame,
     std::vector<double> sorted = recentMs_;
     std::sort(sorted.begin(), sorted.end());
     char stats[160];
-    std::snprintf(stats, sizeof stats, " | %.1f ms median, %.1f max, %ld late | keys 1-9, U, D, Esc",
+    std::snprintf(stats, sizeof stats, " | %.1f ms median, %.1f max, %ld late | keys 1-9 [ ] U D Esc",
                   sorted.empty() ? 0.0 : sorted[sorted.size() / 2], sorted.empty() ? 0.0 : sorted.back(), late_);
     hud.status = (frame < saidUntil_ ? said_ : shown.phaseText) + stats;
 }

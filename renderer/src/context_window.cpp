@@ -68,6 +68,9 @@ public:
                     else if (k == SDLK_ESCAPE) in.keysPressed += static_cast<char>(27);
                     else if ((k >= SDLK_0 && k <= SDLK_9) || (k >= SDLK_a && k <= SDLK_z)) in.keysPressed += static_cast<char>(k);
                     else if (k >= SDLK_KP_1 && k <= SDLK_KP_9) in.keysPressed += static_cast<char>('1' + (k - SDLK_KP_1));
+                    // A presentation clicker's "next" and "previous" are PageDown and PageUp.
+                    else if (k == SDLK_RIGHTBRACKET || k == SDLK_PAGEDOWN) in.keysPressed += ']';
+                    else if (k == SDLK_LEFTBRACKET || k == SDLK_PAGEUP) in.keysPressed += '[';
                     break;
                 }
                 default: break;

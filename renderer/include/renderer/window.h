@@ -13,7 +13,8 @@
 namespace warplab::renderer {
 
 // What the participant did since the last poll of a window (keys as characters: '\r' Enter,
-// 27 Esc, '0'..'9', lower-case letters; others are dropped).
+// 27 Esc, '0'..'9', lower-case letters, '[' and ']' -- PageUp arrives as '[' and PageDown as
+// ']', as a presentation clicker sends them; others are dropped).
 struct WindowInput {
     bool closed = false;
     double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
