@@ -8,6 +8,7 @@
 #include "game/shooter_scene.h"
 #include "protocol/shooter_protocol.h"
 #include "renderer/upconvert.h"
+#include "renderer/window.h"
 #include "scene/limits.h"
 
 namespace warplab::app {
@@ -111,7 +112,11 @@ int runRender(const ParsedArgs& args) {
     options.width = width;
     options.height = height;
     options.title = "warplab render";
-    const auto context = renderer::createContext(options);
+    // --gl window shows the frame: a window with its context; otherwise a headless context.
+    const std::unique_ptr<renderer::WindowContext> window =
+        backend == renderer::GlBackend::Window ? renderer::createWindow(options) : nullptr;
+    const std::unique_ptr<renderer::GlContext> headless = window ? nullptr : renderer::createContext(options);
+    const renderer::GlContext& context = window ? static_cast<renderer::GlContext&>(*window) : *headless;
     renderer::ShadingOptions shading;
     shading.supersampling = supersampling;
     renderer::ConventionalRenderer conventional(paths, shading);
@@ -159,20 +164,20 @@ int runRender(const ParsedArgs& args) {
         onScreen = &shown->buffer();
     }
 
-    if (context->hasWindow()) {
+    if (window) {
         // The window shows the G-buffer's colour; what we save is the window's own pixels.
-        const int dw = context->drawableWidth(), dh = context->drawableHeight();
+        const int dw = window->drawableWidth(), dh = window->drawableHeight();
         renderer::blitToDefaultFramebuffer(*onScreen, dw, dh);
         image::writePng(out, renderer::readDefaultFramebuffer(dw, dh));
-        context->swapBuffers();
+        window->swapBuffers();
         const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(show);
-        while (std::chrono::steady_clock::now() < until && context->pumpEvents())
+        while (std::chrono::steady_clock::now() < until && window->pumpEvents())
             std::this_thread::sleep_for(std::chrono::milliseconds(10));
     } else {
         image::writePng(out, images.colour);
     }
     std::cout << "wrote " << out << " (" << width << "x" << height << ", t=" << time << " s, "
-              << context->info().renderer << ")\n";
+              << context.info().renderer << ")\n";
 
     const scene::CameraState& cam = frame.camera;
     if (!depthPath.empty()) {

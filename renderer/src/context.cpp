@@ -4,6 +4,7 @@
 
 #include "context_backends.h"
 #include "gl/api.h"
+#include "renderer/window.h"
 
 namespace warplab::renderer {
 
@@ -59,7 +60,7 @@ std::unique_ptr<GlContext> createContext(const ContextOptions& options) {
     switch (options.backend) {
         case GlBackend::OSMesa: return createOsmesaContext(options);
         case GlBackend::Egl: return createEglContext(options);
-        case GlBackend::Window: return createWindowContext(options);
+        case GlBackend::Window: return createWindow(options);
     }
     throw ContextError("unknown GL backend");
 }

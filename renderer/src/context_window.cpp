@@ -2,15 +2,16 @@
 #include <SDL.h>
 
 #include "context_backends.h"
+#include "renderer/window.h"
 
 namespace warplab::renderer {
 namespace {
 
 void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
 
-class WindowContext final : public GlContext {
+class SdlWindow final : public WindowContext {
 public:
-    explicit WindowContext(const ContextOptions& options) {
+    explicit SdlWindow(const ContextOptions& options) {
         if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
             throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
         videoInitialised_ = true;
@@ -38,13 +39,12 @@ public:
         initialise(&loadProc, "window");
     }
 
-    ~WindowContext() override {
+    ~SdlWindow() override {
         if (context_ != nullptr) SDL_GL_DeleteContext(context_);
         if (window_ != nullptr) SDL_DestroyWindow(window_);
         if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
     }
 
-    bool hasWindow() const override { return true; }
     void swapBuffers() override { SDL_GL_SwapWindow(window_); }
     bool pumpEvents() override { return !pollInput().closed; }
     WindowInput pollInput() override {
@@ -68,6 +68,9 @@ public:
                     else if (k == SDLK_ESCAPE) in.keysPressed += static_cast<char>(27);
                     else if ((k >= SDLK_0 && k <= SDLK_9) || (k >= SDLK_a && k <= SDLK_z)) in.keysPressed += static_cast<char>(k);
                     else if (k >= SDLK_KP_1 && k <= SDLK_KP_9) in.keysPressed += static_cast<char>('1' + (k - SDLK_KP_1));
+                    // A presentation clicker's "next" and "previous" are PageDown and PageUp.
+                    else if (k == SDLK_RIGHTBRACKET || k == SDLK_PAGEDOWN) in.keysPressed += ']';
+                    else if (k == SDLK_LEFTBRACKET || k == SDLK_PAGEUP) in.keysPressed += '[';
                     break;
                 }
                 default: break;
@@ -135,8 +138,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createWindowContext(const ContextOptions& options) {
-    return std::make_unique<WindowContext>(options);
-}
+std::unique_ptr<WindowContext> createWindow(const ContextOptions& options) { return std::make_unique<SdlWindow>(options); }
 
 }  // namespace warplab::renderer

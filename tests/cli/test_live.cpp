@@ -185,6 +185,29 @@ TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
     EXPECT_TRUE(sessionIn(dir).empty()) << "free play wrote a session";
 }
 
+// ] and [ (PageDown and PageUp) step through every mode, past the ninth that the digits end
+// at, around the list, and over the modes the display cannot run.
+TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
+    const std::string dir = scratch("free-play-steps");
+    std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
+                                          "80 key esc\n80 key q\n";
+    const auto r = inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                            "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " +
+                            dir + " --input-script " + dir + "/script.txt --screenshots " + dir +
+                            " --screenshot-frames 30");
+    ASSERT_EQ(r.status, 0) << r.output;
+    // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
+    // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
+    std::size_t at = 0;
+    for (const char* mode : {"bireproj15to60", "conv15", "bireproj15to60", "lag200", "bireproj15to60"}) {
+        const std::size_t found = r.output.find("free play: " + std::string(mode) + ", level 0", at);
+        ASSERT_NE(found, std::string::npos) << "no switch to " << mode << " after offset " << at << ":\n" << r.output;
+        at = found + 1;
+    }
+    EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
+    EXPECT_TRUE(fs::exists(dir + "/free_30.png"));
+}
+
 TEST(LiveSession, AHumanNeedsTheWindow) {
     const auto r = runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;

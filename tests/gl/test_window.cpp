@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "gl/gl_test_support.h"
+#include "renderer/window.h"
 
 namespace warplab {
 namespace {
@@ -22,12 +23,10 @@ TEST(Window, ScreenshotMatchesHeadlessRender) {
     }
 
     renderer::ContextOptions options;
-    options.backend = renderer::GlBackend::Window;
     options.width = kW;
     options.height = kH;
     options.title = "warplab window test";
-    auto window = renderer::createContext(options);
-    ASSERT_TRUE(window->hasWindow());
+    const auto window = renderer::createWindow(options);
     ASSERT_EQ(window->drawableWidth(), kW);
     ASSERT_EQ(window->drawableHeight(), kH);
     renderer::ConventionalRenderer conventional(testing::sourceDataPaths());

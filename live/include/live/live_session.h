@@ -34,8 +34,8 @@ struct LiveRun {
     bool allowRefreshMismatch = false;
     // Tests: a script of input the window receives as if from the participant, one action a
     // line: "WHEN ACTION", WHEN a session frame number, "start" (the start screen) or "end"
-    // (the end screen); ACTION "key enter|esc|q|0-9|a-z", "move DX DY" (mouse counts) or
-    // "click" (a left press). Lines starting with # are comments.
+    // (the end screen); ACTION "key enter|esc|pageup|pagedown|[|]|0-9|a-z", "move DX DY"
+    // (mouse counts) or "click" (a left press). Lines starting with # are comments.
     std::string inputScript;
     // Test and documentation aid: write the window's frame as PNG at these session frames.
     std::string screenshotDir;
@@ -52,8 +52,10 @@ struct LiveRun {
 std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
 // Free play for pilots and demonstrations: the protocol's game, endless and unrecorded; keys
-// 1-9 switch to the nine modes live, U and D change the difficulty, the status line shows the
-// mode and the frame times; Esc pauses, Q ends. Returns when it ends.
+// 1-9 switch live to the first nine modes of game::modeIds(), ] and [ (PageDown and PageUp)
+// step to the next and previous of all of them (around the list, over those the display
+// cannot run), U and D change the difficulty, the status line shows the mode and the frame
+// times; Esc pauses, Q ends. Returns when it ends.
 void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
 }  // namespace warplab::live

@@ -1,0 +1,94 @@
+// Free play: the window loop with nothing recorded, the supervisor's live switching of mode
+// and difficulty, and a status line of frame times.
+#include <algorithm>
+#include <cstdio>
+#include <stdexcept>
+#include <vector>
+
+#include "free_play_keys.h"
+#include "game/modes.h"
+#include "live/live_session.h"
+#include "window_loop.h"
+
+namespace warplab::live {
+namespace {
+
+class FreePlayPolicy final : public LoopPolicy {
+public:
+    FreePlayPolicy(const LiveRun& run, const game::Study& study, const game::DisplaySize& display,
+                   std::ostream& progress)
+        : mode_(run.freePlayMode.empty() ? study.modes().front() : run.freePlayMode),
+          level_(run.freePlayLevel),
+          game_(study.newFreePlay(run.seed, display, mode_, level_)),
+          refreshHz_(study.refreshHz()),
+          modes_(game::modeIds()),
+          progress_(progress) {}
+
+    game::Game& game() override { return *game_; }
+    std::string pauseText() const override { return "Free play. Enter resumes, Q ends."; }
+    void beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) override;
+    void stepped(const game::ShownFrame&, const game::FrameInput&) override { game_->takeEvents(); }
+    void decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) override;
+    void presented(const game::ShownFrame&, const FrameTiming& timing) override {
+        late_ += timing.missedVsyncs > 0;
+        recentMs_.push_back(timing.frameMs);
+        if (recentMs_.size() > static_cast<std::size_t>(refreshHz_)) recentMs_.erase(recentMs_.begin());
+    }
+    std::string screenshotName(std::int64_t frame) const override { return "free_" + std::to_string(frame); }
+
+    long lateFrames() const { return late_; }
+
+private:
+    std::string mode_;
+    int level_;
+    std::unique_ptr<game::FreePlayGame> game_;
+    double refreshHz_;
+    std::vector<std::string> modes_;
+    std::ostream& progress_;
+    std::vector<double> recentMs_;  // the last second's frame times, for the status line
+    long late_ = 0;
+    std::string said_;  // why the last key was refused, shown for a while
+    std::int64_t saidUntil_ = -1;
+};
+
+void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) {
+    // The supervisor's keys: digits and [ ] pick a mode, U and D the difficulty.
+    const double refresh = refreshHz_;
+    const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [refresh](const std::string& mode) {
+        return game::checkMode(mode, refresh).empty();
+    });
+    if (next.mode != mode_ || next.level != level_) {
+        try {
+            game_->switchTo(next.mode, next.level);
+            mode_ = next.mode;
+            level_ = next.level;
+            progress_ << "free play: " << mode_ << ", level " << level_ << "\n";
+        } catch (const std::invalid_argument& e) {
+            said_ = e.what();
+            saidUntil_ = frame + static_cast<std::int64_t>(2 * refreshHz_);
+        }
+    }
+    input.keys = 0;  // the keys were the supervisor's, not the game's
+}
+
+void FreePlayPolicy::decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) {
+    std::vector<double> sorted = recentMs_;
+    std::sort(sorted.begin(), sorted.end());
+    char stats[160];
+    std::snprintf(stats, sizeof stats, " | %.1f ms median, %.1f max, %ld late | keys 1-9 [ ] U D Esc",
+                  sorted.empty() ? 0.0 : sorted[sorted.size() / 2], sorted.empty() ? 0.0 : sorted.back(), late_);
+    hud.status = (frame < saidUntil_ ? said_ : shown.phaseText) + stats;
+}
+
+}  // namespace
+
+void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
+    WindowLoop loop(run, paths, progress);
+    FreePlayPolicy policy(run, loop.study(), loop.display(), progress);
+    loop.captureMouse(true);
+    loop.run(policy);
+    loop.captureMouse(false);
+    progress << "free play ended: " << policy.lateFrames() << " late frames\n";
+}
+
+}  // namespace warplab::live

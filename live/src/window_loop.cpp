@@ -1,0 +1,211 @@
+#include "window_loop.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+#include <utility>
+
+#include "game/registry.h"
+#include "image/image.h"
+#include "study/session_runner.h"
+
+namespace warplab::live {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// What the window's input means to the game (Enter, digits, the left button) and to the
+// supervisor (Esc, and every key for the pause screen and free play).
+struct Polled {
+    game::FrameInput input;
+    bool escape = false, closed = false;
+    std::string keys;
+};
+
+Polled poll(renderer::Window& window, double countScale, bool invertY) {
+    const renderer::WindowInput in = window.pollInput();
+    Polled p;
+    p.closed = in.closed;
+    p.keys = in.keysPressed;
+    p.input.mouseDx = in.mouseDx * countScale;
+    p.input.mouseDy = in.mouseDy * countScale * (invertY ? -1.0 : 1.0);
+    p.input.buttons = in.leftHeld ? game::kButtonLeft : 0u;
+    for (const char c : in.keysPressed) {
+        if (c == '\r') p.input.keys |= game::kKeyEnter;
+        if (c >= '1' && c <= '9') p.input.keys |= game::digitKey(c - '0');
+        if (c == 27) p.escape = true;
+    }
+    return p;
+}
+
+// A participant's sensitivity as the protocol's counts: cm per full turn at the mouse's DPI.
+double countScaleFor(const LiveRun& run, const game::Study& study) {
+    if (!(run.cmPer360 > 0.0) || !(study.mouseRadiansPerCount() > 0.0)) return 1.0;
+    const double countsPerTurn = run.cmPer360 / 2.54 * run.mouseDpi;
+    return (2.0 * kPi / countsPerTurn) / study.mouseRadiansPerCount();
+}
+
+}  // namespace
+
+DisplayClock::DisplayClock(renderer::Window& window, double refreshHz, bool byVsync)
+    : window_(window), period_(1.0 / refreshHz), byVsync_(byVsync), last_(Clock::now()), deadline_(last_) {}
+
+DisplayClock::Presented DisplayClock::present() {
+    if (!byVsync_) {
+        deadline_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
+        std::this_thread::sleep_until(deadline_);
+    }
+    window_.swapBuffers();
+    const auto now = Clock::now();
+    const double frameS = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    if (!byVsync_ && now > deadline_ + std::chrono::milliseconds(100)) deadline_ = now;  // fell far behind
+    const bool first = std::exchange(first_, false);
+    return {frameS, first ? 0 : std::max(0, static_cast<int>(std::lround(frameS / period_)) - 1)};
+}
+
+void DisplayClock::restart() {
+    deadline_ = last_ = Clock::now();
+    first_ = true;
+}
+
+WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study, std::ostream& progress) {
+    renderer::ContextOptions options;
+    options.width = run.width;
+    options.height = run.height;
+    options.fullscreen = run.fullscreen;
+    options.display = run.display;
+    options.title = "warplab: " + study.name();
+    Opened w;
+    w.window = renderer::createWindow(options);
+    w.display = {w.window->drawableWidth(), w.window->drawableHeight()};
+    const double refresh = study.refreshHz();
+    w.measuredHz = w.window->refreshHz();
+    w.byVsync = w.window->vsyncOn() && w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) < 0.5;
+    if (w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) >= 0.5) {
+        std::ostringstream why;
+        why << "the display runs at " << w.measuredHz << " Hz but protocol '" << run.protocolPath << "' needs "
+            << refresh << " Hz";
+        if (!run.allowRefreshMismatch && !study.warnsOnRefreshMismatch())
+            throw std::runtime_error(why.str() + "; set the display to " + std::to_string(std::lround(refresh)) +
+                                     " Hz (or pass --allow-refresh-mismatch for a pilot)");
+        progress << "warning: " << why.str() << "; frames are paced by a timer, not by vsync\n";
+    } else if (!w.byVsync) {
+        progress << "note: " << (w.measuredHz > 0.0 ? "vsync could not be set" : "the display reports no refresh rate")
+                 << "; frames are paced by a timer at " << refresh << " Hz\n";
+    }
+    return w;
+}
+
+WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress)
+    : run_(run),
+      study_(game::loadStudy(run.protocolPath)),
+      script_(run.inputScript.empty() ? InputScript() : InputScript(run.inputScript)),
+      opened_(open(run, *study_, progress)),
+      window_(*opened_.window),
+      display_(opened_.display),
+      countScale_(countScaleFor(run, *study_)),
+      player_(run.player == "human" ? nullptr : study::makePlayer(run.player, run.seed, *study_, display_)),
+      maker_(paths, display_.width, display_.height, study_->rendering()),
+      hud_(paths),
+      screen_(display_.width, display_.height),
+      clock_(window_, study_->refreshHz(), opened_.byVsync) {
+    if (!sounds_.available()) progress << "note: " << sounds_.why() << "; feedback sounds are off\n";
+}
+
+WindowLoop::~WindowLoop() = default;
+
+double WindowLoop::shownRefreshHz() const { return opened_.byVsync ? opened_.measuredHz : study_->refreshHz(); }
+
+void WindowLoop::captureMouse(bool on) { window_.setRelativeMouse(on && human()); }
+
+void WindowLoop::showScreen(const std::string& banner, const std::string& status) {
+    renderer::HudContent content;
+    content.backdrop = true;
+    content.reticle = false;
+    content.banner = banner;
+    content.bannerGood = true;
+    content.status = status;
+    hud_.draw(content, screen_.buffer());
+    renderer::blitToDefaultFramebuffer(screen_.buffer(), window_.drawableWidth(), window_.drawableHeight());
+    window_.swapBuffers();
+}
+
+char WindowLoop::waitFor(const std::string& banner, const std::string& status, const std::string& keys,
+                         const std::string& pending) {
+    for (const char c : pending)
+        if (keys.find(c) != std::string::npos) return c;
+    for (;;) {
+        showScreen(banner, status);
+        const renderer::WindowInput in = window_.pollInput();
+        if (in.closed) return 0;
+        for (const char c : in.keysPressed)
+            if (keys.find(c) != std::string::npos) return c;
+        if (!window_.vsyncOn()) std::this_thread::sleep_for(std::chrono::milliseconds(16));
+    }
+}
+
+void WindowLoop::screenshot(const std::string& name) {
+    image::writePng(run_.screenshotDir + "/" + name + ".png", renderer::readBack(screen_).colour);
+}
+
+void WindowLoop::inject(const std::string& when) { script_.inject(window_, when); }
+
+WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
+    game::Game& game = policy.game();
+    game::FrameInput input = player_ ? player_->first() : game::FrameInput{};
+    End end;
+    std::int64_t frame = 0, injectedFor = -1;  // frame: the display frame to show next
+    clock_.restart();
+    while (!game.finished() && (!player_ || player_->hasMore())) {
+        if (injectedFor != frame) inject(std::to_string(frame));  // once, also across a pause
+        injectedFor = frame;
+        const Polled polled = poll(window_, countScale_, run_.invertY);
+        if (human()) input = polled.input;
+        if (polled.closed || (polled.escape && !pause(polled.keys, policy.pauseText()))) {
+            end.aborted = true;
+            break;
+        }
+        if (polled.escape) continue;  // resumed: the frame is polled again
+
+        policy.beforeStep(polled.keys, frame, input);
+        const game::ShownFrame shown = game.step(input);
+        policy.stepped(shown, input);
+        policy.presented(shown, show(shown, frame, policy));
+        if (std::find(run_.screenshotFrames.begin(), run_.screenshotFrames.end(), frame) != run_.screenshotFrames.end())
+            screenshot(policy.screenshotName(frame));
+        end.lastFrame = shown.frame;
+        ++frame;
+        if (player_) input = player_->next(shown);
+    }
+    return end;
+}
+
+bool WindowLoop::pause(const std::string& pending, const std::string& text) {
+    // Nothing is recorded while paused, and ending needs a second key.
+    window_.setRelativeMouse(false);
+    if (waitFor("Paused", text, "\rq", pending.substr(pending.find('\x1b') + 1)) != '\r') return false;
+    captureMouse(true);
+    clock_.restart();
+    return true;
+}
+
+FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy) {
+    // Making the frame, timed to glFinish: what must fit in one refresh. (The glFinish only
+    // waits for what the swap would wait for anyway.)
+    timer_.begin();
+    maker_.keepSource(shown);
+    if (!shown.blank) maker_.make(shown, screen_);
+    renderer::HudContent content = present::hudFor(shown, 1.0, 1.0);
+    policy.decorate(shown, frame, content);
+    hud_.draw(content, screen_.buffer());
+    renderer::blitToDefaultFramebuffer(screen_.buffer(), display_.width, display_.height);
+    const double renderMs = timer_.end().wallMs;
+    const DisplayClock::Presented presented = clock_.present();
+    if (!shown.feedback.empty()) sounds_.play(shown.feedback);
+    return {presented.frameS * 1000.0, renderMs, presented.missedVsyncs};
+}
+
+}  // namespace warplab::live

@@ -1,0 +1,147 @@
+// The one window loop of live sessions and free play: the display clock (vsync, or a timer at
+// the protocol's rate), the participant's input (or a player's), making each frame as its mode
+// makes it with the HUD over it, presenting it, feedback sounds, screenshots, scripted input
+// and the supervisor's pause. What differs -- a session store and its commits, or free play's
+// live switching and status line -- is a LoopPolicy's.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <string>
+
+#include "game/game.h"
+#include "input_script.h"
+#include "live/live_session.h"
+#include "present/frame_maker.h"
+#include "renderer/hud.h"
+#include "renderer/timing.h"
+#include "renderer/window.h"
+#include "sound.h"
+
+namespace warplab::live {
+
+// One present per vsync, or per timer tick where vsync cannot keep the protocol's rate. A
+// timer that falls far behind starts over from now rather than racing to catch up.
+class DisplayClock {
+public:
+    DisplayClock(renderer::Window& window, double refreshHz, bool byVsync);
+
+    struct Presented {
+        double frameS;     // since the previous present
+        int missedVsyncs;  // a frame that took n periods to reach the screen missed n - 1
+    };
+    Presented present();
+    // Before the first frame and after a pause: the next frame is not late.
+    void restart();
+
+private:
+    using Clock = std::chrono::steady_clock;
+    renderer::Window& window_;
+    double period_;
+    bool byVsync_;
+    Clock::time_point last_, deadline_;
+    bool first_ = true;
+};
+
+// How one displayed frame reached the screen.
+struct FrameTiming {
+    double frameMs = 0.0;   // present to present
+    double renderMs = 0.0;  // making it (render, warp or blend, HUD) to glFinish
+    int missedVsyncs = 0;
+};
+
+// What makes the loop a recorded session or free play.
+class LoopPolicy {
+public:
+    virtual ~LoopPolicy() = default;
+    virtual game::Game& game() = 0;
+    // The pause screen's line: what Enter and Q do.
+    virtual std::string pauseText() const = 0;
+    // The keys polled for display frame `frame`, before the game steps with `input`; a policy
+    // may act on them and change what the game is given.
+    virtual void beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) = 0;
+    // The game stepped with `input` and shows `shown`.
+    virtual void stepped(const game::ShownFrame& shown, const game::FrameInput& input) = 0;
+    // The HUD over display frame `frame`: `hud` holds the game's; the policy may change its status line.
+    virtual void decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) = 0;
+    // The frame is on screen.
+    virtual void presented(const game::ShownFrame& shown, const FrameTiming& timing) = 0;
+    // The PNG's name (without .png) of a screenshot of display frame `frame`.
+    virtual std::string screenshotName(std::int64_t frame) const = 0;
+};
+
+class WindowLoop {
+public:
+    // Loads the protocol, reads the input script, opens the window and decides its display
+    // clock: vsync at the protocol's refresh, else a timer at it; a known refresh that
+    // differs refuses (throws) unless the run or the protocol allows it.
+    WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
+    ~WindowLoop();
+    WindowLoop(const WindowLoop&) = delete;
+    WindowLoop& operator=(const WindowLoop&) = delete;
+
+    const game::Study& study() const { return *study_; }
+    const game::DisplaySize& display() const { return display_; }
+    const renderer::GlInfo& glInfo() const { return window_.info(); }
+    // The refresh the frames are shown at: the display's under vsync, else the timer's.
+    double shownRefreshHz() const;
+    // Whether the participant plays (not a bot or a recorded session).
+    bool human() const { return player_ == nullptr; }
+
+    // Relative mouse mode while the participant plays; off on screens, at the end, for bots.
+    void captureMouse(bool on);
+    // A screen of the supervisor's flow (not part of the session): a dark backdrop and text.
+    void showScreen(const std::string& banner, const std::string& status);
+    // Shows a screen until one of `keys` is pressed; 0 when the window closed. `pending`:
+    // keys already read with the one that opened the screen (a fast typist, a script).
+    char waitFor(const std::string& banner, const std::string& status, const std::string& keys,
+                 const std::string& pending = "");
+    // The window's last frame as PNG in the run's screenshot folder.
+    void screenshot(const std::string& name);
+    // Reads and drops what the window received: keeps it responsive while nothing is shown.
+    void drainInput() { window_.pollInput(); }
+    // Queues the input script's actions for `when` ("start", "end" or a frame number).
+    void inject(const std::string& when);
+
+    struct End {
+        bool aborted = false;       // the window closed or the supervisor ended it
+        std::int64_t lastFrame = -1;  // the game's last shown frame
+    };
+    // Shows frames of the policy's game, one per display frame, until it finishes, a
+    // recorded player runs out, or the supervisor ends it.
+    End run(LoopPolicy& policy);
+
+private:
+    // The supervisor's pause (Esc): the display clock stops; true when Enter resumes.
+    bool pause(const std::string& pending, const std::string& text);
+    FrameTiming show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy);
+
+    // The window with what the display clock is decided from.
+    struct Opened {
+        std::unique_ptr<renderer::WindowContext> window;
+        game::DisplaySize display;
+        bool byVsync = false;
+        double measuredHz = 0.0;
+    };
+    static Opened open(const LiveRun& run, const game::Study& study, std::ostream& progress);
+
+    // In construction order: what draws needs the window's context, made current by open().
+    const LiveRun& run_;
+    std::unique_ptr<game::Study> study_;
+    InputScript script_;
+    Opened opened_;
+    renderer::WindowContext& window_;
+    const game::DisplaySize display_;
+    const double countScale_;  // the participant's mouse counts as the protocol's
+    std::unique_ptr<game::Player> player_;
+    present::FrameMaker maker_;
+    renderer::HudRenderer hud_;
+    renderer::DisplayFrame screen_;
+    FeedbackSounds sounds_;
+    DisplayClock clock_;
+    renderer::PassTimer timer_;
+};
+
+}  // namespace warplab::live
