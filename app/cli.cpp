@@ -153,4 +153,12 @@ std::string helpText(const CommandSpec& spec) {
     return out.str();
 }
 
+std::string range(double low, double high) { return shown(low) + ".." + shown(high); }
+
+std::string listed(const std::vector<int>& values) {
+    std::string text;
+    for (const int v : values) text += (text.empty() ? "" : ",") + std::to_string(v);
+    return text;
+}
+
 }  // namespace warplab::app

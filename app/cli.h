@@ -5,6 +5,7 @@
 
 #include <map>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -64,5 +65,16 @@ std::string helpText(const CommandSpec& spec);
 // `text` as one POSIX shell word, single-quoted, for the commands warplab hands to the shell
 // (the bench's plot, the demo's analysis).
 std::string shellQuoted(const std::string& text);
+
+// Help texts: a number as --help shows it (the shortest form, 0.5 rather than 0.500000), a
+// range "low..high" of two such numbers, and a list "a,b,c".
+template <class T>
+std::string shown(T value) {
+    std::ostringstream text;
+    text << value;
+    return text.str();
+}
+std::string range(double low, double high);
+std::string listed(const std::vector<int>& values);
 
 }  // namespace warplab::app

@@ -10,6 +10,11 @@
 namespace warplab::app {
 namespace {
 
+template <class T>
+std::string withQuick(const T& normal, const T& quick) {
+    return shown(normal) + " (" + shown(quick) + " with --quick)";
+}
+
 std::vector<std::string> splitList(const std::string& text) {
     std::vector<std::string> items;
     std::stringstream ss(text);
@@ -63,6 +68,49 @@ int runBench(const ParsedArgs& args) {
     bench::runBench(options, paths, gl->info(), std::cout, std::cerr);
     std::cout << "\nwrote " << options.outDir << "/bench.csv, summary.md, speed_vs_error.png\n";
     return 0;
+}
+
+// The command's options, beside the code that reads them (defaults and limits as it uses
+// them, so that --help cannot tell another story).
+Command benchCommand() {
+    const bench::BenchOptions bench;
+    const bench::BenchOptions quick = bench::quickBenchOptions();
+    return {{"bench",
+      "Speed against error: make every frame of scripted sequences with every upconversion method,\n"
+      "time each pass and compare it with a conventional render at the same instant.",
+      "warplab bench [--quick] [--out DIR] [options]",
+      {
+          {"quick", "",
+           shown(quick.width) + "x" + shown(quick.height) + ", " + shown(quick.framesPerSequence) +
+               " frames per sequence, " + shown(quick.repeats) + " repeats: a few minutes at most",
+           ""},
+          {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
+          {"width", "PIXELS", "frame width, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+           withQuick(bench.width, quick.width)},
+          {"height", "PIXELS", "frame height, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+           withQuick(bench.height, quick.height)},
+          {"sequences", "A,B", "which sequences (pan, track, translate, spheres, thin)", "all"},
+          {"methods", "A,B", "which methods (see the summary for the list)", "all"},
+          {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all",
+           withQuick(bench.framesPerSequence, quick.framesPerSequence)},
+          {"duration-scale", "X", "scale the sequences' length", "1"},
+          {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported",
+           withQuick(bench.repeats, quick.repeats)},
+          {"shading-cost", "N", "extra per-fragment shading work in every conventional frame",
+           shown(bench.shadingCost)},
+          {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame",
+           withQuick(listed(bench.shadingSweep), listed(quick.shadingSweep))},
+          {"guard-band", "FRACTION",
+           "sources of the warps reach this much further each side, " + range(0, scene::kMaxGuardBand),
+           shown(bench.guardBand)},
+          {"ssaa", "N",
+           "supersample every conventional frame NxN, ground truth included, " + range(1, scene::kMaxSupersampling),
+           shown(bench.supersampling)},
+          {"seed", "N", "target spawn seed of the sequences", shown(bench.seed)},
+          glOption("osmesa"),
+          dataDirOption(),
+      }},
+     &runBench};
 }
 
 }  // namespace warplab::app

@@ -227,4 +227,27 @@ int runDemo(const ParsedArgs& args) {
     return 0;
 }
 
+// The command's options, beside the code that reads them.
+Command demoCommand() {
+    return {{"demo",
+      "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
+      "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
+      "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
+      "and the analysis writes a report with figures and the participants a real study would need.",
+      "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
+      {
+          {"out", "DIR", "results/, logs/, export/ and report/ go here (results/ must hold no sessions yet)",
+           "demo-out"},
+          {"participants", "N", "simulated participants, each plays every protocol, 2..100", "8"},
+          {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
+           "sim"},
+          {"protocols", "LIST", "protocols to play, by name (in protocol/) or file, separated by commas",
+           "shooter-demo,click-demo"},
+          {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
+          glOption("osmesa"),
+          dataDirOption(),
+      }},
+     &runDemo};
+}
+
 }  // namespace warplab::app

@@ -20,4 +20,22 @@ int runExport(const ParsedArgs& args) {
     return 0;
 }
 
+// The command's options, beside the code that reads them.
+Command exportCommand() {
+    return {{"export",
+      "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
+      "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches and\n"
+      "ratings (docs/export.md). Read-only; damaged files are reported and skipped.",
+      "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",
+      {
+          {"out", "DIR", "where the CSVs go (created when missing)", "export"},
+          {"all-phases", "", "also practice rounds, acclimation and training (hit rates stay scored-only)", ""},
+          {"include-incomplete", "", "also sessions that never finished (killed mid-way): their completed trials",
+           ""},
+          {"include-flagged", "", "also sessions flagged during their run (e.g. too many missed frames)", ""},
+      },
+      true},
+     &runExport};
+}
+
 }  // namespace warplab::app

@@ -22,4 +22,13 @@ int runInfo(const ParsedArgs& args) {
     return 0;
 }
 
+// The command's options, beside the code that reads them.
+Command infoCommand() {
+    return {{"info",
+      "Print the vendor, renderer and version of the OpenGL context a backend gives.",
+      "warplab info [--gl osmesa|egl|window]",
+      {glOption("osmesa")}},
+     &runInfo};
+}
+
 }  // namespace warplab::app

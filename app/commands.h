@@ -1,4 +1,4 @@
-// Private to app/: one function per subcommand, and what they share.
+// The commands: one cmd_*.cpp each, holding its options and its run function, and what they share.
 #pragma once
 
 #include <string>
@@ -15,15 +15,17 @@ struct Command {
     int (*run)(const ParsedArgs& args);
 };
 
+// Every command, in the order --help lists them (app.cpp).
 const std::vector<Command>& commands();
 
-int runInfo(const ParsedArgs& args);
-int runRender(const ParsedArgs& args);
-int runBench(const ParsedArgs& args);
-int runRun(const ParsedArgs& args);
-int runReplay(const ParsedArgs& args);
-int runExport(const ParsedArgs& args);
-int runDemo(const ParsedArgs& args);
+// Each command's options and its run function, defined in its cmd_*.cpp.
+Command infoCommand();
+Command renderCommand();
+Command benchCommand();
+Command runCommand();
+Command replayCommand();  // cmd_run.cpp: a replay runs the session again
+Command exportCommand();
+Command demoCommand();
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);
