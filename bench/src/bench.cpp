@@ -16,58 +16,16 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include "bench/ground_truth.h"
 #include "bench/sequences.h"
+#include "plot.h"
 #include "renderer/timing.h"
 #include "renderer/upconvert.h"
 #include "scene/limits.h"
+#include "stats.h"
 
 namespace warplab::bench {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double median(std::vector<double> values) {
-    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return std::isnan(v); }), values.end());
-    if (values.empty()) return kNaN;
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-// PSNR of the mean squared error over frames, each frame's MSE recovered from its PSNR (an
-// identical frame, PSNR = inf, has MSE 0): averaging dB would let exact frames dominate.
-double psnrOfMeanMse(const std::vector<double>& psnrs) {
-    double sum = 0.0;
-    int n = 0;
-    for (double p : psnrs) {
-        if (std::isnan(p)) continue;
-        sum += 255.0 * 255.0 / std::pow(10.0, p / 10.0);
-        ++n;
-    }
-    if (n == 0) return kNaN;
-    return sum == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / (sum / n));
-}
-
-double mean(const std::vector<double>& values) {
-    double sum = 0.0;
-    int n = 0;
-    for (double v : values)
-        if (!std::isnan(v)) sum += v, ++n;
-    return n ? sum / n : kNaN;
-}
-
-// Empty for "does not apply", "inf" for identical images' PSNR.
-std::string field(double v, int precision = 4) {
-    if (std::isnan(v)) return "";
-    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-    std::ostringstream s;
-    s << std::setprecision(precision) << std::fixed << v;
-    return s.str();
-}
 
 std::vector<glm::vec2> reportedCoordinates(const image::ImageF& correspondence, int channelOffset) {
     std::vector<glm::vec2> out(static_cast<std::size_t>(correspondence.width) * correspondence.height);
@@ -141,43 +99,6 @@ void writeRow(std::ostream& csv, const Row& r) {
         << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ',' << field(r.triangles, 0) << '\n';
 }
 
-// The plot is matplotlib's job; Debian's interpreter has it (python3 earlier on PATH may not).
-// Run without a shell, so no path needs quoting; its output (stdout and stderr) is the reason
-// when it fails.
-std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, const std::string& png,
-                      const std::string& title) {
-    const std::string script = paths.analysisDir + "/plot_bench.py";
-    const char* python = "/usr/bin/python3";
-    if (!std::filesystem::exists(script)) return "not written: " + script + " is missing";
-    if (!std::filesystem::exists(python)) return "not written: /usr/bin/python3 is missing (scripts/install-deps.sh)";
-    int out[2];
-    if (pipe(out) != 0) return "not written: cannot run " + std::string(python);
-    const pid_t pid = fork();
-    if (pid < 0) {
-        close(out[0]);
-        close(out[1]);
-        return "not written: cannot run " + std::string(python);
-    }
-    if (pid == 0) {
-        dup2(out[1], STDOUT_FILENO);
-        dup2(out[1], STDERR_FILENO);
-        close(out[0]);
-        close(out[1]);
-        const char* argv[] = {python, script.c_str(), csv.c_str(), png.c_str(), "--title", title.c_str(), nullptr};
-        execv(python, const_cast<char* const*>(argv));
-        _exit(127);
-    }
-    close(out[1]);
-    std::string output;
-    char buffer[512];
-    for (ssize_t n; (n = read(out[0], buffer, sizeof buffer)) > 0;) output.append(buffer, static_cast<std::size_t>(n));
-    close(out[0]);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-    while (!output.empty() && output.back() == '\n') output.pop_back();
-    return "not written: " + (output.empty() ? "cannot run " + std::string(python) : output);
-}
 
 }  // namespace
 
