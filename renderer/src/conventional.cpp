@@ -286,6 +286,23 @@ void ConventionalRenderer::render(const scene::FrameDescription& frame, GBuffer&
     impl_->render(frame, target, &flowTo);
 }
 
+namespace {
+
+// The G-buffer's fourth target, scene flow, made the first time a render asks for it; the
+// target's framebuffer must be bound.
+void attachFlowTarget(GBuffer::Impl& g) {
+    if (g.flow.id() != 0) return;
+    g.flow = gl::Texture::create();
+    glBindTexture(GL_TEXTURE_2D, g.flow.id());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, g.width, g.height, 0, GL_RGBA, GL_FLOAT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GBuffer::Impl::kFlowAttachment, GL_TEXTURE_2D, g.flow.id(), 0);
+}
+
+}  // namespace
+
 void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GBuffer& target,
                                         const scene::FrameDescription* flowTo) {
     auto& m = *this;
@@ -365,17 +382,9 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     };
 
     if (flowTo != nullptr) {
-        // The flow goes into a fourth target, made the first time it is asked for; the sky's
-        // flow first, under everything, as a far-plane triangle that leaves depth alone.
-        if (g.flow.id() == 0) {
-            g.flow = gl::Texture::create();
-            glBindTexture(GL_TEXTURE_2D, g.flow.id());
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, g.width, g.height, 0, GL_RGBA, GL_FLOAT, nullptr);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glBindTexture(GL_TEXTURE_2D, 0);
-            glFramebufferTexture2D(GL_FRAMEBUFFER, GBuffer::Impl::kFlowAttachment, GL_TEXTURE_2D, g.flow.id(), 0);
-        }
+        // The flow goes into a fourth target; the sky's flow first, under everything, as a
+        // far-plane triangle that leaves depth alone.
+        attachFlowTarget(g);
         const GLenum four[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                GBuffer::Impl::kVelocityAttachment, GBuffer::Impl::kFlowAttachment};
         glDrawBuffers(4, four);
