@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "export/csv.h"
+#include "game/modes.h"
 #include "game/registry.h"
 #include "session/session_store.h"
 
@@ -245,6 +246,29 @@ const std::vector<Column<MatchRow>>& matchColumns() {
     return columns;
 }
 
+// The conditions the sessions were run in, as the mode table holds them, so the analysis keeps
+// no list of its own. An unset rate or method (a mode without upconversion) is an empty cell.
+const std::vector<Column<game::ModeSpec>>& modeColumns() {
+    using F = CsvFile;
+    using R = game::ModeSpec;
+    using game::Upconversion;
+    static const std::vector<Column<R>> columns = {
+        {"mode", [](F& f, const R& m) { f.text(m.id); }},
+        {"description", [](F& f, const R& m) { f.text(m.description); }},
+        {"render_rate_hz", [](F& f, const R& m) { f.number(m.renderRateHz); }},
+        {"added_lag_ms", [](F& f, const R& m) { f.number(m.lagMs); }},
+        {"upconversion", [](F& f, const R& m) { f.text(game::upconversionName(m.upconversion)); }},
+        {"upconverted_rate_hz",
+         [](F& f, const R& m) {
+             if (m.upconversion == Upconversion::None) f.empty();
+             else f.number(m.upconvertedRateHz);
+         }},
+        {"method", [](F& f, const R& m) { f.text(m.method); }},
+        {"upconverts", [](F& f, const R& m) { f.boolean(m.upconversion != Upconversion::None); }},
+    };
+    return columns;
+}
+
 class Exporter {
 public:
     Exporter(const fs::path& outDir, const ExportOptions& options)
@@ -335,8 +359,14 @@ public:
             }
             matches.endRow();
         }
+        // Every mode of the table, whether or not a session used it: the conditions this build runs.
+        CsvFile modes(file(outDir, "modes.csv"), headerOf(modeColumns()));
+        for (const std::string& id : game::modeIds()) {
+            writeCells(modes, modeColumns(), game::modeSpec(id));
+            modes.endRow();
+        }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &modes}) {
             f->close();
             written.push_back(f->path());
         }
@@ -389,7 +419,8 @@ std::vector<CsvColumns> exportColumns() {
             {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""},
             {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""}};
+            {"ratings.csv", headerOf(ratingColumns()), ""},
+            {"modes.csv", headerOf(modeColumns()), ""}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
