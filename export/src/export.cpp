@@ -269,6 +269,24 @@ const std::vector<Column<game::ModeSpec>>& modeColumns() {
     return columns;
 }
 
+struct GameRow {
+    const std::string& game;
+    const game::HitMeasure& measure;
+};
+
+// What each game's hit rate counts, in its own words, so a report words a game's measure without
+// knowing the game.
+const std::vector<Column<GameRow>>& gameColumns() {
+    using F = CsvFile;
+    using R = GameRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"hits_are", [](F& f, const R& r) { f.text(r.measure.hitsAre); }},
+        {"shots_are", [](F& f, const R& r) { f.text(r.measure.shotsAre); }},
+    };
+    return columns;
+}
+
 class Exporter {
 public:
     Exporter(const fs::path& outDir, const ExportOptions& options)
@@ -328,6 +346,7 @@ public:
         }
 
         const game::SessionResults results = study->results(data.events);
+        measures_.emplace(study->game(), results.measure);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
         if (out.included) write(h.participant, name, study->game(), results);
@@ -365,8 +384,16 @@ public:
             writeCells(modes, modeColumns(), game::modeSpec(id));
             modes.endRow();
         }
+        // The games of the readable sessions, in the order the registry knows them.
+        CsvFile games(file(outDir, "games.csv"), headerOf(gameColumns()));
+        for (const std::string& name : game::gameNames()) {
+            const auto measure = measures_.find(name);
+            if (measure == measures_.end()) continue;
+            writeCells(games, gameColumns(), GameRow{name, measure->second});
+            games.endRow();
+        }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &modes}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &modes, &games}) {
             f->close();
             written.push_back(f->path());
         }
@@ -404,6 +431,7 @@ private:
     CsvFile sessions_, shots_, ratings_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
+    std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
     std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
     int ratingColumns_ = 0;
     using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
@@ -420,7 +448,8 @@ std::vector<CsvColumns> exportColumns() {
             {"hitrates.csv", headerOf(hitRateColumns()), ""},
             {"matches.csv", headerOf(matchColumns()), kRatingColumn},
             {"ratings.csv", headerOf(ratingColumns()), ""},
-            {"modes.csv", headerOf(modeColumns()), ""}};
+            {"modes.csv", headerOf(modeColumns()), ""},
+            {"games.csv", headerOf(gameColumns()), ""}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,

@@ -292,6 +292,9 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     }
     EXPECT_EQ(static_cast<int>(readCsv(out + "/ratings.csv").size()), ratingEvents);
 
+    // games.csv: each game once, in the registry's order, with the words for its hit rate.
+    EXPECT_EQ(slurp(out + "/games.csv"), "game,hits_are,shots_are\nshooter,hits,shots\nclick,green hits,clicks\n");
+
     // --all-phases adds acclimation, training and the practice round to shots.csv, not to hit rates.
     const std::string all = scratch("real/all");
     exporter::ExportOptions options;
@@ -327,13 +330,16 @@ TEST(Export, ModesCsvIsTheModeTable) {
     }
     // Spelled out once, independently of the table's own accessors.
     EXPECT_EQ(rows[0].at("mode"), "conv15");
-    const Row& warp = *std::find_if(rows.begin(), rows.end(), [](const Row& r) { return r.at("mode") == "warp15to120"; });
+    const auto row = [&](const std::string& id) {
+        return *std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.at("mode") == id; });
+    };
+    const Row warp = row("warp15to120");
     EXPECT_EQ(warp.at("render_rate_hz"), "15");
     EXPECT_EQ(warp.at("upconversion"), "warp");
     EXPECT_EQ(warp.at("upconverted_rate_hz"), "120");
     EXPECT_EQ(warp.at("method"), "warp-sparse8");
     EXPECT_EQ(warp.at("upconverts"), "true");
-    const Row& lag = *std::find_if(rows.begin(), rows.end(), [](const Row& r) { return r.at("mode") == "lag100"; });
+    const Row lag = row("lag100");
     EXPECT_EQ(lag.at("render_rate_hz"), "60");
     EXPECT_EQ(lag.at("added_lag_ms"), "100");
     EXPECT_EQ(lag.at("upconversion"), "none");
@@ -611,7 +617,7 @@ DocumentedColumns documentedColumns(const std::string& file) {
 // columns its table writes, in the same order.
 TEST(ExportColumns, MatchDocsExportMd) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 6u);
+    ASSERT_EQ(written.size(), 7u);
     for (const exporter::CsvColumns& csv : written) {
         SCOPED_TRACE("docs/export.md, " + csv.file);
         const DocumentedColumns documented = documentedColumns(csv.file);
