@@ -7,10 +7,11 @@ Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE]
 Hit rates (hitrates.csv, every game): exact paired sign tests between every two modes of a game,
 as Pulkkinen's thesis tests warp upconversion against 15 and 120 Hz rendering (seed 004 §7,
 Tables 1–3, Figures 32–34): per participant the difference of hit rates, ties dropped, binomial
-tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order below,
-so warp15to120 − conv15 is positive where warping helps.
+tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order, taken
+from modes.csv (stats.ModeTable): upconversion modes first, so warp15to120 − conv15 is positive
+where warping helps. What a game's hits and shots are (green hits out of clicks) is games.csv's.
 
-Click game (matches.csv, scored matches only): per participant and mode the average over their
+Matches (matches.csv, scored matches only; the click game's): per participant and mode the average over their
 matches of green hits, red hits, misses and each rating, then per mode mean and SD across
 participants, each mode against a reference mode (bireproj15to60 by default) by paired t-test
 (the "simple contrast" F(1, n−1) = t² Yang et al. report, seed 000 §8 Table 2), Wilcoxon
@@ -33,10 +34,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from warplab_analysis import inputs, report, stats  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
-from warplab_analysis.stats import UPCONVERSION_MODES, conventional_rate, order_modes  # noqa: E402
+from warplab_analysis.stats import ModeTable  # noqa: E402
 
 DEFAULT_REFERENCE = "bireproj15to60"
-GAME_ORDER = ["shooter", "click"]
 CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
 
 
@@ -46,8 +46,9 @@ def natural_key(participant):
     return parts, participant
 
 
-def order_games(games):
-    return [g for g in GAME_ORDER if g in games] + sorted(set(games) - set(GAME_ORDER))
+def order_games(games, described):
+    """games.csv's order (the order warplab knows its games in), then any others by name."""
+    return [g for g in described if g in games] + sorted(set(games) - set(described))
 
 
 def file_stem(name, taken):
@@ -59,23 +60,23 @@ def file_stem(name, taken):
     return candidate
 
 
-def analyse_game(game, participants):
+def analyse_game(game, participants, table, wording):
     """One game's hit rates: Table 1 data, every pair's sign test, Table 2 per upconversion mode."""
     order = sorted(participants, key=natural_key)
     participants = {p: participants[p] for p in order}
-    modes = order_modes({m for row in participants.values() for m in row})
+    modes = table.order({m for row in participants.values() for m in row})
     hit_rates = {p: {m: {"shots": row[m][1], "hits": row[m][0], "hit_rate": row[m][0] / row[m][1]}
                      for m in modes if m in row}
                  for p, row in participants.items()}
     tests = [stats.hit_rate_sign_test(game, a, b, participants)
              for i, a in enumerate(modes) for b in modes[i + 1:]]
     upconversion = []
-    for mode in [m for m in modes if m in UPCONVERSION_MODES]:
+    for mode in [m for m in modes if table.upconverts(m)]:
         others = [m for m in modes if m != mode]
         if not others:
             continue
-        conventional = [m for m in others if conventional_rate(m) is not None]
-        sort_by = min(conventional, key=conventional_rate) if conventional else others[0]
+        conventional = [m for m in others if table.conventional_rate(m) is not None]
+        sort_by = min(conventional, key=table.conventional_rate) if conventional else others[0]
         others = [sort_by] + [m for m in others if m != sort_by]  # the thesis's Table 2 leads with it
         rows = []
         for p, row in participants.items():
@@ -90,23 +91,26 @@ def analyse_game(game, participants):
     notes = []
     if len(modes) == 1:
         notes.append(f"Only one mode ({modes[0]}): no pairs to test.")
-    summary = {"participants": order, "modes": modes, "hit_rates": hit_rates, "upconversion_differences": upconversion,
+    summary = {"participants": order, "modes": modes, "hits_are": wording["hits_are"],
+               "shots_are": wording["shots_are"], "hit_rates": hit_rates, "upconversion_differences": upconversion,
                "figures": {}, "notes": notes}
     return summary, tests
 
 
-def analyse_click(loaded, statements, requested_reference):
-    matches, rating_columns, rows = loaded
+def analyse_click(loaded, statements, requested_reference, table, game):
+    """The matches' tables; `game` is the game whose sessions hold them (None when sessions.csv does
+    not say, or names several)."""
+    matches, rating_columns, rows, _ = loaded
     labels = statements[0] if statements else {}
     measures = CLICK_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
-    click = {"scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
+    click = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
              "reference_mode": None, "reference_requested": requested_reference, "anova_available": None,
              "measures": {}, "notes": list(statements[1]) if statements else [], "figure": None}
     if not matches:
         click["notes"].append("matches.csv has no scored matches: no click-game table.")
         return click
     participants = sorted({m["participant"] for m in matches}, key=natural_key)
-    modes = order_modes({m["mode"] for m in matches})
+    modes = table.order({m["mode"] for m in matches})
     reference = requested_reference if requested_reference in modes else modes[0]
     if reference != requested_reference:
         click["notes"].append(f"The reference mode {requested_reference} is not in the scored matches; the first "
@@ -159,27 +163,39 @@ def analyse(export_dir, reference_mode):
     matches = inputs.load_matches(export_dir)
     statements = inputs.load_statements(export_dir)
     sessions = inputs.load_sessions(export_dir)
+    mode_rows = inputs.load_modes(export_dir)
+    described = inputs.load_games(export_dir)
+    table = ModeTable(mode_rows)
     results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
-               "sessions": None, "mode_order": [], "games": {}, "sign_tests": [], "click": None, "figures": [],
-               "notes": []}
+               "sessions": None, "modes": mode_rows or [], "mode_order": [], "games": {}, "sign_tests": [],
+               "click": None, "figures": [], "notes": []}
     if isinstance(sessions, str):
         results["notes"].append(sessions)
     else:
         results["sessions"] = sessions
-    for game in order_games(games):
-        summary, tests = analyse_game(game, games[game])
+    if mode_rows is None:
+        results["notes"].append("No modes.csv (an export from before warplab wrote one): modes in the order of their "
+                                "ids, none known as an upconversion mode, so no Table 2 and no histograms.")
+    else:
+        results["inputs"][inputs.MODES] = {"modes": len(mode_rows)}
+    for game in order_games(games, described):
+        wording = described.get(game, {"hits_are": "hits", "shots_are": "shots"})
+        summary, tests = analyse_game(game, games[game], table, wording)
         results["games"][game] = summary
         results["sign_tests"] += tests
     if matches is not None:
         results["inputs"][inputs.MATCHES] = {"rows": matches[2], "scored_rows": len(matches[0])}
-        if matches[2]:  # header-only when no session was a click session: no click section then
-            results["click"] = analyse_click(matches, statements, reference_mode)
+        if matches[2]:  # header-only when no session played matches: no matches section then
+            of_session = inputs.session_games(export_dir)
+            match_games = {of_session[s] for s in matches[3] if s in of_session}
+            game = match_games.pop() if len(match_games) == 1 else None
+            results["click"] = analyse_click(matches, statements, reference_mode, table, game)
     if statements is not None:
         results["inputs"][inputs.RATINGS] = {"statements": len(statements[0])}
     all_modes = {m for g in results["games"].values() for m in g["modes"]}
     if results["click"]:
         all_modes |= set(results["click"]["modes"])
-    results["mode_order"] = order_modes(all_modes)
+    results["mode_order"] = table.order(all_modes)
     return results
 
 
@@ -187,6 +203,8 @@ def draw_figures(results, out_dir):
     """Draws every figure, records its file name in results, and returns the paths written."""
     from warplab_analysis import figures  # matplotlib only once the input has been accepted
     written, taken = [], set()
+    table = ModeTable(results["modes"])
+    palette = table.all_modes()
     tests_by_game = {}
     for test in results["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
@@ -194,28 +212,29 @@ def draw_figures(results, out_dir):
         stem = file_stem(game, taken)
         name = f"{stem}_hit_rates.png"
         figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
-                                 summary["hit_rates"])
+                                 summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette)
         summary["figures"]["hit_rates"] = name
         written.append(name)
         panels = []
         for test in tests_by_game.get(game, []):
             a, b = test["a"], test["b"]
-            if a in UPCONVERSION_MODES or b in UPCONVERSION_MODES:
-                flip = a not in UPCONVERSION_MODES  # draw upconversion − other
+            if table.upconverts(a) or table.upconverts(b):
+                flip = not table.upconverts(a)  # draw upconversion − other
                 values = [-d if flip else d for d in test["differences"].values()]
                 panels.append(((b, a) if flip else (a, b), values))
         if panels:
             name = f"{stem}_differences.png"
-            figures.differences_figure(os.path.join(out_dir, name), game, panels)
+            figures.differences_figure(os.path.join(out_dir, name), game, panels, palette)
             summary["figures"]["differences"] = name
             written.append(name)
         elif len(summary["modes"]) > 1:
-            summary["notes"].append("No upconversion mode (warp15to120, bireproj15to60): no histograms of "
-                                    "differences.")
+            upconverting = [m for m in palette if table.upconverts(m)]
+            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or 'modes.csv lists none'}): "
+                                    "no histograms of differences.")
     click = results["click"]
     if click and click["modes"]:
         name = file_stem("click_measures", taken) + ".png"
-        figures.click_figure(os.path.join(out_dir, name), click)
+        figures.click_figure(os.path.join(out_dir, name), click, palette)
         click["figure"] = name
         written.append(name)
     results["figures"] = written

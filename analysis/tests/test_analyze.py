@@ -44,6 +44,14 @@ def write(path, lines):
     return path
 
 
+def with_modes(export, extra=()):
+    """modes.csv as warplab exports it (the nine published presets; test_round_trip checks the copy
+    against a real export), plus `extra` rows: what the analysis knows of the modes."""
+    lines = (DATA / "modes.csv").read_text(encoding="utf-8").splitlines() + list(extra)
+    write(export / "modes.csv", lines)
+    return export
+
+
 def hitrate_lines(rows, game="shooter"):
     """rows: (participant, mode, hits, shots)."""
     return [HITRATES_HEADER] + [f"{p},{game},{m},{s},{h},0,{h / s:.6f}" for p, m, h, s in rows]
@@ -64,6 +72,7 @@ def sign_test(report, a, b, game="shooter"):
 def thesis(tmp_path_factory):
     export = tmp_path_factory.mktemp("thesis_export")
     shutil.copy(DATA / "thesis_table1_hitrates.csv", export / "hitrates.csv")
+    with_modes(export)
     out = tmp_path_factory.mktemp("thesis_report")
     code, report = run_in_process(export, out)
     assert code == 0
@@ -138,7 +147,7 @@ def test_ties_are_decided_on_integers_and_dropped(tmp_path):
         # 1/3 against 0.33333333333333333: one double, but a is higher; integers see it.
         ("g", "warp15to120", 1, 3), ("g", "conv15", 33333333333333333, 10 ** 17),
     ]
-    write(tmp_path / "hitrates.csv", hitrate_lines(rows))
+    write(with_modes(tmp_path) / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
     test = sign_test(report, "warp15to120", "conv15")
@@ -155,7 +164,7 @@ def test_ties_are_decided_on_integers_and_dropped(tmp_path):
 
 def test_all_participants_equal_gives_n_zero(tmp_path):
     rows = [(p, m, 9, 20) for p in ("p1", "p2", "p3") for m in ("warp15to120", "conv120")]
-    write(tmp_path / "hitrates.csv", hitrate_lines(rows))
+    write(with_modes(tmp_path) / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
     test = sign_test(report, "warp15to120", "conv120")
@@ -178,7 +187,7 @@ def test_one_mode_games_and_missing_modes(tmp_path):
     rows = [("NA", "warp15to120", 5, 10), ("NA", "conv15", 3, 10), ("'=1+1", "warp15to120", 4, 10),
             ("'=1+1", "conv15", 5, 10), ("x", "warp15to120", 6, 10)]  # x lacks conv15: left out of the pair
     lines = hitrate_lines(rows) + hitrate_lines([("p1", "conv60", 1, 5), ("p2", "conv60", 2, 5)], "other")[1:]
-    write(tmp_path / "hitrates.csv", lines)
+    write(with_modes(tmp_path) / "hitrates.csv", lines)
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
     test = sign_test(report, "warp15to120", "conv15")
@@ -219,7 +228,12 @@ def fmt_cell(v):
     return "" if v is None else str(v)
 
 
-def write_click_export(export):
+GAMES_HEADER = "game,hits_are,shots_are"
+
+
+def write_click_export(export, game="click"):
+    with_modes(export)
+    write(export / "games.csv", [GAMES_HEADER, f"{game},green hits,clicks"])
     matches = [MATCH_HEADER]
     ratings = ["participant,session,round,scored_phase,match,mode,statement_index,statement,value,answered_with"]
     hitrates = {}
@@ -240,12 +254,12 @@ def write_click_export(export):
             k += 1
     write(export / "matches.csv", matches)
     write(export / "ratings.csv", ratings)
-    write(export / "hitrates.csv", hitrate_lines([(p, m, h, s) for (p, m), (h, s) in hitrates.items()], "click"))
+    write(export / "hitrates.csv", hitrate_lines([(p, m, h, s) for (p, m), (h, s) in hitrates.items()], game))
     write(export / "sessions.csv", ["file,participant,game,protocol,seed,started_at,player,completed,flags,status,"
                                     "included,trials,matches,note"]
-          + [f"{p}_s.db,{p},click,click-yang,1,2024-01-01T00:00:00Z,human,true,,ok,true,0,21,"
+          + [f"{p}_s.db,{p},{game},click-yang,1,2024-01-01T00:00:00Z,human,true,,ok,true,0,21,"
              for p in ("P1", "P2", "P3", "P4", "P5")]
-          + ["P6_s.db,P6,click,click-yang,1,2024-01-01T00:00:00Z,human,false,,cut,false,0,3,cut short"])
+          + [f"P6_s.db,P6,{game},click-yang,1,2024-01-01T00:00:00Z,human,false,,cut,false,0,3,cut short"])
 
 
 def participant_means(index):
@@ -346,6 +360,61 @@ def test_click_report_and_figures(click):
     assert (out / "click_measures.png").stat().st_size > 10_000
     assert "Pulkkinen" not in md  # no shooter data, no shooter section
     assert [t["game"] for t in report["sign_tests"]] == ["click"] * 3
+    # games.csv's words for what the click game's hit rate counts.
+    assert "rate = green hits out of clicks" in md and "### Hit rates: green hits / clicks" in md
+    assert report["click"]["game"] == "click"
+    assert report["games"]["click"]["hits_are"] == "green hits"
+
+
+def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
+    # The click game's data under another name: the matches' sections go with the game whose
+    # sessions (sessions.csv) played them, and the wording is games.csv's.
+    write_click_export(tmp_path, game="spheres")
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "## Spheres game (Yang et al. 2011, seed 000 §8)" in md and "Click game" not in md
+    assert "F(1, n − 1) = t²" in md and "Pulkkinen" not in md
+    assert "rate = green hits out of clicks" in md and "### Hit rates: green hits / clicks" in md
+    assert report["click"]["game"] == "spheres" and report["click"]["modes"] == MODES
+    # Without sessions.csv nothing says whose matches they are: a section of their own.
+    (tmp_path / "sessions.csv").unlink()
+    code, report = run_in_process(tmp_path, tmp_path / "out2")
+    assert code == 0
+    md = (tmp_path / "out2" / "report.md").read_text()
+    assert report["click"]["game"] is None
+    assert "## Matches (Yang et al. 2011, seed 000 §8)" in md and "## Spheres: hit rates" in md
+    assert md.index("## Spheres: hit rates") < md.index("## Matches")
+
+
+def test_modes_follow_modes_csv(tmp_path):
+    # A mode the analysis has never heard of, described by modes.csv alone: a 20 Hz conventional
+    # mode and a made-up upconversion mode. Order, Table 2 and descriptions all follow the file.
+    with_modes(tmp_path, ['conv20,"conventional rendering at 20 Hz, held",20,0,none,,,false',
+                          'blend20to60,"blended from 20 Hz, to 60 Hz",20,0,bidirectional,60,blend,true'])
+    rows = [(p, m, h, 20) for p, base in (("a", 5), ("b", 7), ("c", 9))
+            for m, h in (("conv15", base), ("conv20", base + 1), ("blend20to60", base + 3), ("lag50", base - 2))]
+    write(tmp_path / "hitrates.csv", hitrate_lines(rows))
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    assert report["games"]["shooter"]["modes"] == ["blend20to60", "conv20", "conv15", "lag50"]
+    (table2,) = report["games"]["shooter"]["upconversion_differences"]
+    assert table2["mode"] == "blend20to60" and table2["sorted_by"] == "conv15"
+    assert sign_test(report, "blend20to60", "conv15")["positive"] == 3
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "blend20to60 (blended from 20 Hz, to 60 Hz); conv20 (conventional rendering at 20 Hz, held)" in md
+    assert (tmp_path / "out" / "shooter_differences.png").is_file()
+
+
+def test_without_modes_csv_modes_are_in_id_order_with_a_note(tmp_path):
+    rows = [(p, m, h, 20) for p, h in (("a", 5), ("b", 7)) for m in ("warp15to120", "conv15")]
+    write(tmp_path / "hitrates.csv", hitrate_lines(rows))
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    assert report["games"]["shooter"]["modes"] == ["conv15", "warp15to120"]
+    assert report["games"]["shooter"]["upconversion_differences"] == []
+    md = (tmp_path / "out" / "report.md").read_text()
+    assert "No modes.csv" in md and "Modes: conv15; warp15to120." in md
 
 
 def test_click_reference_fallback_and_no_statsmodels(tmp_path, monkeypatch):
@@ -433,6 +502,7 @@ def test_entry_point_writes_the_report(tmp_path):
     shooter = (DATA / "thesis_table1_hitrates.csv").read_text().splitlines()[1:]
     with open(tmp_path / "hitrates.csv", "a") as f:
         f.write("\n".join(shooter) + "\n")
+    write(tmp_path / "games.csv", [GAMES_HEADER, "shooter,hits,shots", "click,green hits,clicks"])
     out = tmp_path / "report"
     result = run_entry_point(tmp_path, "--out", out)
     assert result.returncode == 0, result.stderr

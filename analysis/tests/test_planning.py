@@ -9,6 +9,7 @@ code under test uses.
 import functools
 import json
 import math
+import shutil
 import sys
 from pathlib import Path
 
@@ -157,6 +158,7 @@ def test_report_has_the_planning_table(tmp_path):
     for k in range(21):
         rows += [(f"p{k}", "conv60", 10), (f"p{k}", "conv15", 10), (f"p{k}", "conv30", 9 if k < 11 else 11)]
     (tmp_path / "hitrates.csv").write_text(hitrate_csv(rows))
+    shutil.copy(DATA / "modes.csv", tmp_path / "modes.csv")  # the mode order: conv60 before conv30
     assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 0
     report = json.loads((tmp_path / "out" / "report.json").read_text())
     plans = {(t["a"], t["b"]): t["planning"] for t in report["sign_tests"]}
@@ -171,6 +173,7 @@ def test_report_has_the_planning_table(tmp_path):
 
 def test_thesis_report_planning(tmp_path):
     (tmp_path / "hitrates.csv").write_text((DATA / "thesis_table1_hitrates.csv").read_text())
+    shutil.copy(DATA / "modes.csv", tmp_path / "modes.csv")
     assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 0
     report = json.loads((tmp_path / "out" / "report.json").read_text())
     plans = {(t["a"], t["b"]): t["planning"] for t in report["sign_tests"]}

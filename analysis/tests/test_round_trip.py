@@ -110,3 +110,21 @@ def test_report_has_both_games_tables_and_figures(study):
     for figure in data["figures"]:
         assert (report / figure).stat().st_size > 1000
     assert "shooter_hit_rates.png" in data["figures"] and "click_measures.png" in data["figures"]
+
+
+def test_modes_and_games_come_from_the_export(study):
+    _, export, report = study
+    # The analysis tests' modes.csv is what export writes for the published presets: its rows
+    # are rows of the real file (which may list more modes after them).
+    exported = (export / "modes.csv").read_text(encoding="utf-8").splitlines()
+    fixture = (ROOT / "analysis" / "tests" / "data" / "modes.csv").read_text(encoding="utf-8").splitlines()
+    assert exported[:len(fixture)] == fixture
+    with open(export / "games.csv", newline="", encoding="utf-8") as f:
+        games = {r["game"]: (r["hits_are"], r["shots_are"]) for r in csv.DictReader(f)}
+    assert games == {"shooter": ("hits", "shots"), "click": ("green hits", "clicks")}
+    data = json.loads((report / "report.json").read_text())
+    assert [m["mode"] for m in data["modes"]] == [line.split(",")[0] for line in exported[1:]]
+    assert data["click"]["game"] == "click"
+    text = (report / "report.md").read_text()
+    assert "rate = green hits out of clicks" in text and "rate = hits out of shots" in text
+    assert "warp15to120 (rendered at 15 Hz, the frames between warped" in text

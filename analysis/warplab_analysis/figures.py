@@ -5,7 +5,8 @@
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
   of seed 000 Table 2).
-Each mode keeps one colour in every figure.
+Each mode keeps one colour in every figure: its place in `palette`, every mode modes.csv lists in
+the report's mode order (stats.ModeTable.all_modes).
 """
 import math
 
@@ -15,21 +16,20 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .stats import MODE_ORDER  # noqa: E402
-
 BIN_WIDTH = 0.05
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
 
 
-def colour(mode):
-    """One colour per mode: the known modes by their place in the mode order, others by name."""
+def colour(mode, palette):
+    """One colour per mode: the modes of modes.csv by their place in the mode order, others by name."""
     cmap = plt.get_cmap("tab10")
-    if mode in MODE_ORDER:
-        return cmap(MODE_ORDER.index(mode) % 10)
+    if mode in palette:
+        return cmap(palette.index(mode) % 10)
     return plt.get_cmap("Dark2")(sum(map(ord, mode)) % 8)
 
 
-def hit_rates_figure(path, game, participants, modes, hit_rates):
+def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette):
+    """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv)."""
     fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
     x = np.arange(len(participants))
     # Modes side by side within a participant's column: equal hit rates (common with few shots)
@@ -38,13 +38,13 @@ def hit_rates_figure(path, game, participants, modes, hit_rates):
     for k, mode in enumerate(modes):
         y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
         ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="-", linewidth=0.8, markersize=5,
-                color=colour(mode), label=mode)
+                color=colour(mode, palette), label=mode)
     ax.set_xticks(x)
     ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
     ax.set_xlim(-0.5, len(participants) - 0.5)
     ax.set_ylim(0, 1.02)
     ax.set_xlabel("participant")
-    ax.set_ylabel("hit rate (hits / shots)" if game != "click" else "hit rate (green hits / clicks)")
+    ax.set_ylabel(f"hit rate ({measure})")
     ax.set_title(f"{game}: hit rate per participant and mode")
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="best", framealpha=0.9)
@@ -61,14 +61,14 @@ def bins(values):
     return np.linspace(low, high, int(round((high - low) / BIN_WIDTH)) + 1)
 
 
-def differences_figure(path, game, panels):
+def differences_figure(path, game, panels, palette):
     """panels: [((upconversion mode, other mode), [differences])]."""
     columns = min(3, len(panels))
     rows = math.ceil(len(panels) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), dpi=110, squeeze=False)
     for ax, ((mode, other), values) in zip(axes.flat, panels):
         if values:
-            ax.hist(values, bins=bins(values), color=colour(mode), edgecolor="black", linewidth=0.6)
+            ax.hist(values, bins=bins(values), color=colour(mode, palette), edgecolor="black", linewidth=0.6)
             ax.axvline(0.0, color="0.3", linestyle="--", linewidth=0.9)
         else:
             ax.text(0.5, 0.5, "no participant has both modes", ha="center", va="center", transform=ax.transAxes,
@@ -86,7 +86,7 @@ def differences_figure(path, game, panels):
     plt.close(fig)
 
 
-def click_figure(path, click):
+def click_figure(path, click, palette):
     measures = list(click["measures"].values())
     modes = click["modes"]
     columns = min(4, len(measures))
@@ -98,7 +98,7 @@ def click_figure(path, click):
         sds = [measure["modes"][m]["sd"] for m in modes]
         means = [math.nan if v is None else v for v in means]
         sds = [0.0 if v is None else v for v in sds]
-        bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(m) for m in modes], edgecolor="black",
+        bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(m, palette) for m in modes], edgecolor="black",
                       linewidth=0.5, error_kw={"linewidth": 0.8})
         if click["reference_mode"] in modes:
             bars[modes.index(click["reference_mode"])].set_linewidth(2.0)
@@ -111,7 +111,8 @@ def click_figure(path, click):
         ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     for ax in list(axes.flat)[len(measures):]:
         ax.set_visible(False)
-    fig.suptitle(f"click game: mean ± SD across participants (reference {click['reference_mode']}, bold outline)",
+    whose = f"{click['game']} game" if click["game"] else "matches"
+    fig.suptitle(f"{whose}: mean ± SD across participants (reference {click['reference_mode']}, bold outline)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)

@@ -17,10 +17,14 @@ HITRATES = "hitrates.csv"
 MATCHES = "matches.csv"
 RATINGS = "ratings.csv"
 SESSIONS = "sessions.csv"
+MODES = "modes.csv"
+GAMES = "games.csv"
 
 HITRATES_REQUIRED = ["participant", "game", "mode", "shots", "hits"]
 MATCHES_REQUIRED = ["participant", "scored_phase", "mode", "green_hits", "red_hits", "misses"]
 RATINGS_REQUIRED = ["statement_index", "statement"]
+MODES_REQUIRED = ["mode", "description", "render_rate_hz", "added_lag_ms", "upconverts"]
+GAMES_REQUIRED = ["game", "hits_are", "shots_are"]
 RATING_COLUMN = re.compile(r"rating_(\d+)$")
 
 
@@ -156,7 +160,8 @@ def load_hitrates(export_dir):
 
 
 def load_matches(export_dir):
-    """None without matches.csv; else (scored match records, rating columns, rows in the file).
+    """None without matches.csv; else (scored match records, rating columns, rows in the file, the
+    `session` of every row).
 
     A scored record: participant, mode, green_hits, red_hits, misses and `ratings`, a list with one
     value or None per rating column, in column order rating_1, rating_2, ...
@@ -169,6 +174,7 @@ def load_matches(export_dir):
     rating_columns = [name for _, name in numbered]
     optional_numeric = [c for c in ("clicks", "duration_s") if c in table.header]
     scored = []
+    sessions = {record.get("session", "") for record in table.records}
     for record in table.records:
         if not boolean(table, record, "scored_phase"):
             continue
@@ -183,7 +189,7 @@ def load_matches(export_dir):
         for column in optional_numeric:
             number(table, record, column, optional=True)
         scored.append(match)
-    return scored, rating_columns, len(table.records)
+    return scored, rating_columns, len(table.records), sessions
 
 
 def load_statements(export_dir):
@@ -229,3 +235,50 @@ def load_sessions(export_dir):
         return summary
     except BadInput as e:
         return f"sessions.csv was not used: {e}"
+
+
+def session_games(export_dir):
+    """{session file: its game} from sessions.csv; empty without a usable one (load_sessions says why)."""
+    path = os.path.join(export_dir, SESSIONS)
+    if not os.path.exists(path):
+        return {}
+    try:
+        table = read_table(path, ["file", "game"])
+    except BadInput:
+        return {}
+    return {record["file"]: record["game"] for record in table.records if record["game"]}
+
+
+def load_modes(export_dir):
+    """None without modes.csv; else its records in file order: mode, description, render_rate_hz,
+    added_lag_ms, upconverts (the export's copy of warplab's mode table)."""
+    path = os.path.join(export_dir, MODES)
+    if not os.path.exists(path):
+        return None
+    table = read_table(path, MODES_REQUIRED)
+    rows, first_seen = [], {}
+    for record in table.records:
+        mode = text(table, record, "mode")
+        if mode in first_seen:
+            raise BadInput(f"{table.path}: line {record['_line']}, column 'mode': {mode!r} has a second row (the first "
+                           f"is on line {first_seen[mode]}).")
+        first_seen[mode] = record["_line"]
+        rows.append({"mode": mode, "description": record["description"],
+                     "render_rate_hz": number(table, record, "render_rate_hz"),
+                     "added_lag_ms": number(table, record, "added_lag_ms"),
+                     "upconverts": boolean(table, record, "upconverts")})
+    return rows
+
+
+def load_games(export_dir):
+    """{} without games.csv; else {game: {"hits_are", "shots_are"}} in file order: what each game's
+    hits and shots in hitrates.csv count, in words."""
+    path = os.path.join(export_dir, GAMES)
+    if not os.path.exists(path):
+        return {}
+    table = read_table(path, GAMES_REQUIRED)
+    games = {}
+    for record in table.records:
+        games[text(table, record, "game")] = {"hits_are": text(table, record, "hits_are"),
+                                              "shots_are": text(table, record, "shots_are")}
+    return games

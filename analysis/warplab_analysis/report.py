@@ -3,25 +3,16 @@
 Shooter (and any other game): the thesis's layout (seed 004 §6–§7): Table 1 hits and rates per
 participant, the hit-rate figure, sign tests for every pair of modes, Table 2 differences of
 each upconversion mode, Table 3 quartiles, histograms, then a planning table (participants a
-study would need, this data as pilot). Click game: the layout of Yang et al.'s
-Table 2 (seed 000 §8) first, then the same hit-rate sections on green hits / clicks.
+study would need, this data as pilot). A game whose sessions played matches (matches.csv; the
+click game): the layout of Yang et al.'s Table 2 (seed 000 §8) first, then the same hit-rate
+sections on what its hits and shots count (games.csv: green hits / clicks). Modes are described
+as modes.csv describes them.
 Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
 """
 import math
 
 from . import planning
 
-MODE_DESCRIPTIONS = {
-    "warp15to120": "rendered at 15 Hz, warped to 120 Hz",
-    "bireproj15to60": "rendered at 15 Hz, bidirectionally reprojected to 60 Hz",
-    "conv120": "conventional 120 Hz",
-    "conv60": "conventional 60 Hz",
-    "conv30": "conventional 30 Hz",
-    "conv15": "conventional 15 Hz",
-    "lag50": "60 Hz with 50 ms added lag",
-    "lag100": "60 Hz with 100 ms added lag",
-    "lag200": "60 Hz with 200 ms added lag",
-}
 NOTHING = "–"
 
 
@@ -65,7 +56,7 @@ def hit_rate_sections(out, game, summary, tests, level):
             row += [str(rates[p][m]["shots"]) if m in rates[p] else NOTHING for m in modes]
         row += [fmt(rates[p][m]["hit_rate"], ".3f") if m in rates[p] else NOTHING for m in modes]
         rows.append(row)
-    what = "green hits out of clicks" if game == "click" else "hits out of shots"
+    what = f"{summary['hits_are']} out of {summary['shots_are']}"
     out.append(f"{len(participants)} participants, {len(modes)} modes; rate = {what}"
                + (f", {shots.pop()} per participant and mode" if uniform else "") + "."
                + (" A dash: the participant has no data in that mode." if any(
@@ -178,7 +169,8 @@ def click_sections(out, click, level):
         rows.append(row)
     out.append(table(header, rows))
     if click["figure"]:
-        out.append(f"![click game: mean ± SD per mode]({click['figure']})\n")
+        whose = f"{click['game']} game" if click["game"] else "matches"
+        out.append(f"![{cell(whose)}: mean ± SD per mode]({click['figure']})\n")
     if others:
         out.append(f"{h} Paired tests against {ref}\n")
         out.append(f"Difference = mode − {ref} per participant. t: paired t-test (df = n − 1; "
@@ -223,27 +215,29 @@ def render(results):
         detail = "; ".join(f"{g or '(no game)'}: {c['included']} of {c['listed']}" for g, c in by_game.items())
         out.append(f"Sessions (sessions.csv): {sessions['included']} of {sessions['listed']} included"
                    + (f" ({detail})" if detail else "") + ".\n")
-    modes = results["mode_order"]
-    out.append("Modes: " + "; ".join(f"{m} ({MODE_DESCRIPTIONS[m]})" if m in MODE_DESCRIPTIONS else m
-                                     for m in modes) + ".\n")
+    descriptions = {row["mode"]: row["description"] for row in results["modes"]}
+    out.append("Modes: " + "; ".join(f"{m} ({cell(descriptions[m])})" if descriptions.get(m) else m
+                                     for m in results["mode_order"]) + ".\n")
     for note in results["notes"]:
         out.append(f"{note}\n")
     tests_by_game = {}
     for test in results["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
+    # The matches' sections go with the game whose sessions played them; when sessions.csv does not
+    # say which game that is, they stand on their own after the games.
+    click = results["click"]
+    match_game = click["game"] if click is not None else None
     games = list(results["games"])
-    if results["click"] is not None and "click" not in games:
-        games.append("click")
+    if click is not None and match_game not in games:
+        games.append(match_game)
     for game in games:
         summary = results["games"].get(game)
-        if game == "click":
-            out.append("## Click game (Yang et al. 2011, seed 000 §8)\n")
-            if results["click"] is not None:
-                click_sections(out, results["click"], 3)
-            else:
-                out.append("No matches.csv: only the hit rates below (green hits / clicks).\n")
+        if click is not None and game == match_game:
+            heading = f"{title(game)} game" if game else "Matches"
+            out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
+            click_sections(out, click, 3)
             if summary:
-                out.append("### Hit rates: green hits / clicks\n")
+                out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
                 hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
         else:
             out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")

@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "export/csv.h"
+#include "game/modes.h"
 #include "game/registry.h"
 #include "session/session_store.h"
 
@@ -245,6 +246,47 @@ const std::vector<Column<MatchRow>>& matchColumns() {
     return columns;
 }
 
+// The conditions the sessions were run in, as the mode table holds them, so the analysis keeps
+// no list of its own. An unset rate or method (a mode without upconversion) is an empty cell.
+const std::vector<Column<game::ModeSpec>>& modeColumns() {
+    using F = CsvFile;
+    using R = game::ModeSpec;
+    using game::Upconversion;
+    static const std::vector<Column<R>> columns = {
+        {"mode", [](F& f, const R& m) { f.text(m.id); }},
+        {"description", [](F& f, const R& m) { f.text(m.description); }},
+        {"render_rate_hz", [](F& f, const R& m) { f.number(m.renderRateHz); }},
+        {"added_lag_ms", [](F& f, const R& m) { f.number(m.lagMs); }},
+        {"upconversion", [](F& f, const R& m) { f.text(game::upconversionName(m.upconversion)); }},
+        {"upconverted_rate_hz",
+         [](F& f, const R& m) {
+             if (m.upconversion == Upconversion::None) f.empty();
+             else f.number(m.upconvertedRateHz);
+         }},
+        {"method", [](F& f, const R& m) { f.text(m.method); }},
+        {"upconverts", [](F& f, const R& m) { f.boolean(m.upconversion != Upconversion::None); }},
+    };
+    return columns;
+}
+
+struct GameRow {
+    const std::string& game;
+    const game::HitMeasure& measure;
+};
+
+// What each game's hit rate counts, in its own words, so a report words a game's measure without
+// knowing the game.
+const std::vector<Column<GameRow>>& gameColumns() {
+    using F = CsvFile;
+    using R = GameRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"hits_are", [](F& f, const R& r) { f.text(r.measure.hitsAre); }},
+        {"shots_are", [](F& f, const R& r) { f.text(r.measure.shotsAre); }},
+    };
+    return columns;
+}
+
 class Exporter {
 public:
     Exporter(const fs::path& outDir, const ExportOptions& options)
@@ -304,6 +346,7 @@ public:
         }
 
         const game::SessionResults results = study->results(data.events);
+        measures_.emplace(study->game(), results.measure);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
         if (out.included) write(h.participant, name, study->game(), results);
@@ -335,8 +378,22 @@ public:
             }
             matches.endRow();
         }
+        // Every mode of the table, whether or not a session used it: the conditions this build runs.
+        CsvFile modes(file(outDir, "modes.csv"), headerOf(modeColumns()));
+        for (const std::string& id : game::modeIds()) {
+            writeCells(modes, modeColumns(), game::modeSpec(id));
+            modes.endRow();
+        }
+        // The games of the readable sessions, in the order the registry knows them.
+        CsvFile games(file(outDir, "games.csv"), headerOf(gameColumns()));
+        for (const std::string& name : game::gameNames()) {
+            const auto measure = measures_.find(name);
+            if (measure == measures_.end()) continue;
+            writeCells(games, gameColumns(), GameRow{name, measure->second});
+            games.endRow();
+        }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &modes, &games}) {
             f->close();
             written.push_back(f->path());
         }
@@ -374,6 +431,7 @@ private:
     CsvFile sessions_, shots_, ratings_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
+    std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
     std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
     int ratingColumns_ = 0;
     using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
@@ -389,7 +447,9 @@ std::vector<CsvColumns> exportColumns() {
             {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""},
             {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""}};
+            {"ratings.csv", headerOf(ratingColumns()), ""},
+            {"modes.csv", headerOf(modeColumns()), ""},
+            {"games.csv", headerOf(gameColumns()), ""}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,

@@ -47,6 +47,7 @@ public:
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
+        out.measure = {"green hits", "clicks"};
         // Ratings follow their match's "match" event; match indices are unique in a session.
         std::map<int, std::size_t> matchAt;
         for (const auto& e : events) {

@@ -47,6 +47,7 @@ public:
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         out.canTimeOut = true;
+        out.measure = {"hits", "shots"};  // a timeout is a shot that missed
         for (const auto& e : events) {
             if (e.type != "shot" && e.type != "timeout") continue;
             const EventDetail d(e.detailJson);

@@ -7,6 +7,10 @@
 namespace warplab::game {
 namespace {
 
+// The one table of modes. A new preset is one entry here: protocols, export's
+// modes.csv and the analysis take it from this table, and tests/game/test_modes.cpp asks the
+// README's latency table and docs/protocol.md to describe it. The nine published presets come
+// first, in this order (the test pins it); new ones go after them.
 std::vector<ModeSpec> makeModes() {
     std::vector<ModeSpec> modes;
     for (int rate : {15, 30, 60, 120}) {
@@ -80,6 +84,15 @@ const char* frameKindName(FrameKind kind) {
         case FrameKind::Held: return "held";
         case FrameKind::Warped: return "warped";
         case FrameKind::Interpolated: return "interpolated";
+    }
+    return "?";
+}
+
+const char* upconversionName(Upconversion upconversion) {
+    switch (upconversion) {
+        case Upconversion::None: return "none";
+        case Upconversion::Warp: return "warp";
+        case Upconversion::Bidirectional: return "bidirectional";
     }
     return "?";
 }

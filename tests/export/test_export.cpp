@@ -7,6 +7,7 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -24,6 +25,7 @@
 
 #include "export/csv.h"
 #include "export/export.h"
+#include "game/modes.h"
 #include "study/session_runner.h"
 #include "session/session_store.h"
 
@@ -290,6 +292,9 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     }
     EXPECT_EQ(static_cast<int>(readCsv(out + "/ratings.csv").size()), ratingEvents);
 
+    // games.csv: each game once, in the registry's order, with the words for its hit rate.
+    EXPECT_EQ(slurp(out + "/games.csv"), "game,hits_are,shots_are\nshooter,hits,shots\nclick,green hits,clicks\n");
+
     // --all-phases adds acclimation, training and the practice round to shots.csv, not to hit rates.
     const std::string all = scratch("real/all");
     exporter::ExportOptions options;
@@ -298,6 +303,47 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     EXPECT_GT(readCsv(all + "/shots.csv").size(), shots.size());
     EXPECT_GT(readCsv(all + "/matches.csv").size(), matches.size());
     EXPECT_EQ(slurp(all + "/hitrates.csv"), slurp(out + "/hitrates.csv"));
+}
+
+// modes.csv is the mode table itself: every mode in its order, each cell what the table says,
+// so an analysis reading it needs no list of modes of its own.
+TEST(Export, ModesCsvIsTheModeTable) {
+    const std::string results = scratch("modes/results"), out = scratch("modes/out");
+    headless("shooter-quick.json", "P01", results, 1);
+    exportQuietly(results, out);
+    const auto rows = readCsv(out + "/modes.csv");
+    const std::vector<std::string> ids = game::modeIds();
+    ASSERT_EQ(rows.size(), ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+        const game::ModeSpec& m = game::modeSpec(ids[i]);
+        const Row& row = rows[i];
+        SCOPED_TRACE(m.id);
+        EXPECT_EQ(row.at("mode"), m.id);
+        EXPECT_EQ(row.at("description"), m.description);
+        EXPECT_EQ(std::stod(row.at("render_rate_hz")), m.renderRateHz);
+        EXPECT_EQ(std::stod(row.at("added_lag_ms")), m.lagMs);
+        EXPECT_EQ(row.at("upconversion"), game::upconversionName(m.upconversion));
+        EXPECT_EQ(row.at("method"), m.method);
+        EXPECT_EQ(row.at("upconverts"), m.upconversion == game::Upconversion::None ? "false" : "true");
+        if (m.upconversion == game::Upconversion::None) EXPECT_EQ(row.at("upconverted_rate_hz"), "");
+        else EXPECT_EQ(std::stod(row.at("upconverted_rate_hz")), m.upconvertedRateHz);
+    }
+    // Spelled out once, independently of the table's own accessors.
+    EXPECT_EQ(rows[0].at("mode"), "conv15");
+    const auto row = [&](const std::string& id) {
+        return *std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.at("mode") == id; });
+    };
+    const Row warp = row("warp15to120");
+    EXPECT_EQ(warp.at("render_rate_hz"), "15");
+    EXPECT_EQ(warp.at("upconversion"), "warp");
+    EXPECT_EQ(warp.at("upconverted_rate_hz"), "120");
+    EXPECT_EQ(warp.at("method"), "warp-sparse8");
+    EXPECT_EQ(warp.at("upconverts"), "true");
+    const Row lag = row("lag100");
+    EXPECT_EQ(lag.at("render_rate_hz"), "60");
+    EXPECT_EQ(lag.at("added_lag_ms"), "100");
+    EXPECT_EQ(lag.at("upconversion"), "none");
+    EXPECT_EQ(lag.at("upconverts"), "false");
 }
 
 // A session's results with a new participant id (and start time), as if run again.
@@ -571,7 +617,7 @@ DocumentedColumns documentedColumns(const std::string& file) {
 // columns its table writes, in the same order.
 TEST(ExportColumns, MatchDocsExportMd) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 5u);
+    ASSERT_EQ(written.size(), 7u);
     for (const exporter::CsvColumns& csv : written) {
         SCOPED_TRACE("docs/export.md, " + csv.file);
         const DocumentedColumns documented = documentedColumns(csv.file);

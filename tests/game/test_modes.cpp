@@ -2,6 +2,8 @@
 // follow -- the table in the README is these numbers.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -15,15 +17,69 @@ constexpr double kFrame = 1.0 / kRefresh;
 
 ModeSchedule schedule(const std::string& id) { return ModeSchedule(modeSpec(id), kRefresh); }
 
+// The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
+// name them; a mode added to the table comes after them and needs no edit here.
 TEST(Modes, KnownIdsAndUnknownOnesNamed) {
-    EXPECT_EQ(modeIds(), (std::vector<std::string>{"conv15", "conv30", "conv60", "conv120", "lag50", "lag100",
-                                                    "lag200", "warp15to120", "bireproj15to60"}));
+    const std::vector<std::string> published{"conv15", "conv30", "conv60", "conv120", "lag50", "lag100",
+                                             "lag200", "warp15to120", "bireproj15to60"};
+    const std::vector<std::string> ids = modeIds();
+    ASSERT_GE(ids.size(), published.size());
+    EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(published.size())),
+              published);
+    EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size()) << "an id used twice";
     try {
         modeSpec("conv16");
         FAIL();
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("conv16"), std::string::npos);
         EXPECT_NE(std::string(e.what()).find("warp15to120"), std::string::npos);
+    }
+}
+
+// The mode ids a Markdown page's mode table names: the backticked words in the first cell of
+// each row of the first table under the heading that starts with `heading`.
+std::vector<std::string> documentedModeIds(const std::string& page, const std::string& heading) {
+    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/" + page);
+    EXPECT_TRUE(doc.good()) << page;
+    std::vector<std::string> ids;
+    bool inSection = false, inTable = false;
+    for (std::string line; std::getline(doc, line);) {
+        if (line.rfind("#", 0) == 0) {
+            if (inSection) break;
+            inSection = line.rfind(heading, 0) == 0;
+            continue;
+        }
+        if (!inSection) continue;
+        if (line.rfind("|", 0) != 0) {
+            if (inTable) break;  // the table ended
+            continue;
+        }
+        inTable = true;
+        const std::string cell = line.substr(1, line.find('|', 1) - 1);
+        for (std::size_t open = cell.find('`'); open != std::string::npos;) {
+            const std::size_t close = cell.find('`', open + 1);
+            if (close == std::string::npos) break;
+            ids.push_back(cell.substr(open + 1, close - open - 1));
+            open = cell.find('`', close + 1);
+        }
+    }
+    EXPECT_FALSE(ids.empty()) << page << " has no mode table under \"" << heading << "\"";
+    return ids;
+}
+
+// The pages people read describe exactly the modes the table holds: a mode added to the table
+// fails here until the README's latency table and docs/protocol.md's refresh table have its row,
+// and a row for a mode that is gone fails too.
+TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
+    const std::vector<std::string> ids = modeIds();
+    const std::set<std::string> known(ids.begin(), ids.end());
+    for (const auto& [page, heading] : std::vector<std::pair<std::string, std::string>>{
+             {"README.md", "## Modes and their latency"}, {"docs/protocol.md", "## Modes and the refresh rate"}}) {
+        SCOPED_TRACE(page + ", " + heading);
+        const std::vector<std::string> documented = documentedModeIds(page, heading);
+        const std::set<std::string> named(documented.begin(), documented.end());
+        for (const auto& id : ids) EXPECT_EQ(named.count(id), 1u) << "mode " << id << " has no row";
+        for (const auto& id : documented) EXPECT_EQ(known.count(id), 1u) << "a row names " << id << ", no mode";
     }
 }
 

@@ -62,6 +62,9 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     EXPECT_NE(shots.find(mode), std::string::npos) << shots;
     const std::string rates = readAll(dir / "csv" / "hitrates.csv");
     EXPECT_NE(rates.find("toy-bot,toy," + mode + ","), std::string::npos) << rates;
+    // What its hit rate counts, in its own words, for the report.
+    const std::string games = readAll(dir / "csv" / "games.csv");
+    EXPECT_EQ(games, "game,hits_are,shots_are\ntoy,toy hits,clicks\n");
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.

@@ -188,6 +188,7 @@ public:
     protocol::RenderSettings rendering() const override { return {}; }
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
+        out.measure = {"toy hits", "clicks"};
         for (const auto& e : events) {
             if (e.type != "click") continue;
             ShotResult r;

@@ -37,7 +37,7 @@ struct CsvColumns {
 std::vector<CsvColumns> exportColumns();
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
-// sessions.csv, shots.csv, hitrates.csv, matches.csv and ratings.csv into outDir (created
+// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, modes.csv and games.csv into outDir (created
 // when missing). Progress and one line per excluded or damaged session go to `log`.
 // Throws std::runtime_error naming the folder when resultsDir is not a readable folder or
 // holds no session file; a damaged session file is reported and skipped, not fatal.

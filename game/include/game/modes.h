@@ -15,6 +15,8 @@ enum class FrameKind : std::uint8_t { Rendered, Held, Warped, Interpolated };
 const char* frameKindName(FrameKind kind);
 
 enum class Upconversion : std::uint8_t { None, Warp, Bidirectional };
+// "none", "warp", "bidirectional": as modes.csv writes it (docs/export.md).
+const char* upconversionName(Upconversion upconversion);
 
 struct ModeSpec {
     std::string id;                 // as used in protocols, logs and CSVs
@@ -26,7 +28,8 @@ struct ModeSpec {
     std::string method;             // renderer method that makes the in-between frames
 };
 
-// conv15, conv30, conv60, conv120, lag50, lag100, lag200, warp15to120, bireproj15to60.
+// Every mode's id, in the order of the one mode table (game/src/modes.cpp): the nine published
+// presets first. Docs, tests, export's modes.csv and the analysis all follow that table.
 std::vector<std::string> modeIds();
 // Throws std::invalid_argument naming the unknown id and listing the known ones.
 const ModeSpec& modeSpec(const std::string& id);

@@ -52,8 +52,16 @@ struct MatchResult {
     std::vector<RatingResult> ratings;   // as answered; a session cut short may lack some
 };
 
+// What a game's hit rate counts, in words a report uses ("hits out of shots", "green hits out of
+// clicks"): hitrates.csv's `hits` and `shots` for this game, written to games.csv.
+struct HitMeasure {
+    std::string hitsAre = "hits";    // plural noun: "hits", "green hits"
+    std::string shotsAre = "shots";  // plural noun: "shots", "clicks"
+};
+
 struct SessionResults {
     bool canTimeOut = false;             // the game's trials can time out (hitrates.csv counts them)
+    HitMeasure measure;                  // the same for every session of a game
     std::vector<ShotResult> shots;
     std::vector<MatchResult> matches;    // empty for games without matches
 };
