@@ -44,7 +44,8 @@ OptionSpec glOption(const std::string& defaultBackend) {
 }
 
 OptionSpec dataDirOption() {
-    return {"data-dir", "DIR", "folder holding shaders/, assets/ and analysis/", "$WARPLAB_DATA_DIR or the source tree"};
+    return {"data-dir", "DIR", "folder holding shaders/, assets/ and analysis/",
+            "$WARPLAB_DATA_DIR or the source tree"};
 }
 
 renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback) {

@@ -38,16 +38,16 @@ double ParsedArgs::number(const std::string& name, double fallback) const {
     errno = 0;
     const double value = std::strtod(text, &end);
     if (startsBlank(it->second) || end == text || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a number, got '" +
-                         it->second + "'");
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a number, got '" + it->second +
+                         "'");
     return value;
 }
 
 double ParsedArgs::number(const std::string& name, double fallback, double min, double max) const {
     const double value = number(name, fallback);
     if (!(value >= min && value <= max))
-        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' must be between " +
-                         limitText(min) + " and " + limitText(max) + ", got " + string(name));
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' must be between " + limitText(min) +
+                         " and " + limitText(max) + ", got " + string(name));
     return value;
 }
 
@@ -55,8 +55,8 @@ std::string ParsedArgs::path(const std::string& name, const std::string& fallbac
     const auto it = values_.find(name);
     if (it == values_.end()) return fallback;
     if (it->second.find_first_not_of(" \t\n\r\v\f") == std::string::npos)
-        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a path, got '" +
-                         it->second + "'");
+        throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs a path, got '" + it->second +
+                         "'");
     return it->second;
 }
 
@@ -143,8 +143,10 @@ std::string helpText(const CommandSpec& spec) {
     if (!spec.options.empty()) out << "\noptions:\n";
     for (const auto& o : spec.options) {
         std::string left = "  --" + o.name + (o.valueName.empty() ? "" : " " + o.valueName);
-        if (left.size() < 26) left.resize(26, ' ');
-        else left += "\n" + std::string(26, ' ');
+        if (left.size() < 26)
+            left.resize(26, ' ');
+        else
+            left += "\n" + std::string(26, ' ');
         out << left << o.help;
         if (!o.defaultValue.empty()) out << " (default " << o.defaultValue << ")";
         out << "\n";

@@ -15,7 +15,7 @@
 namespace warplab::app {
 
 struct OptionSpec {
-    std::string name;       // without the leading "--"
+    std::string name;  // without the leading "--"
     std::string valueName;  // empty for a flag
     std::string help;
     std::string defaultValue;  // shown in --help; empty = none

@@ -27,7 +27,8 @@ std::vector<std::string> splitList(const std::string& text) {
 
 int runBench(const ParsedArgs& args) {
     bench::BenchOptions options = args.flag("quick") ? bench::quickBenchOptions() : bench::BenchOptions{};
-    options.width = static_cast<int>(args.integer("width", options.width, scene::kMinDisplaySize, scene::kMaxImageSize));
+    options.width =
+        static_cast<int>(args.integer("width", options.width, scene::kMinDisplaySize, scene::kMaxImageSize));
     options.height =
         static_cast<int>(args.integer("height", options.height, scene::kMinDisplaySize, scene::kMaxImageSize));
     options.framesPerSequence = static_cast<int>(args.integer("frames", options.framesPerSequence, 0, 1000000));
@@ -75,42 +76,43 @@ int runBench(const ParsedArgs& args) {
 Command benchCommand() {
     const bench::BenchOptions bench;
     const bench::BenchOptions quick = bench::quickBenchOptions();
-    return {{"bench",
-      "Speed against error: make every frame of scripted sequences with every upconversion method,\n"
-      "time each pass and compare it with a conventional render at the same instant.",
-      "warplab bench [--quick] [--out DIR] [options]",
-      {
-          {"quick", "",
-           shown(quick.width) + "x" + shown(quick.height) + ", " + shown(quick.framesPerSequence) +
-               " frames per sequence, " + shown(quick.repeats) + " repeats: a few minutes at most",
-           ""},
-          {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
-          {"width", "PIXELS", "frame width, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
-           withQuick(bench.width, quick.width)},
-          {"height", "PIXELS", "frame height, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
-           withQuick(bench.height, quick.height)},
-          {"sequences", "A,B", "which sequences (pan, track, translate, spheres, thin)", "all"},
-          {"methods", "A,B", "which methods (see the summary for the list)", "all"},
-          {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all",
-           withQuick(bench.framesPerSequence, quick.framesPerSequence)},
-          {"duration-scale", "X", "scale the sequences' length", "1"},
-          {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported",
-           withQuick(bench.repeats, quick.repeats)},
-          {"shading-cost", "N", "extra per-fragment shading work in every conventional frame",
-           shown(bench.shadingCost)},
-          {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame",
-           withQuick(listed(bench.shadingSweep), listed(quick.shadingSweep))},
-          {"guard-band", "FRACTION",
-           "sources of the warps reach this much further each side, " + range(0, scene::kMaxGuardBand),
-           shown(bench.guardBand)},
-          {"ssaa", "N",
-           "supersample every conventional frame NxN, ground truth included, " + range(1, scene::kMaxSupersampling),
-           shown(bench.supersampling)},
-          {"seed", "N", "target spawn seed of the sequences", shown(bench.seed)},
-          glOption("osmesa"),
-          dataDirOption(),
-      }},
-     &runBench};
+    return {
+        {"bench",
+         "Speed against error: make every frame of scripted sequences with every upconversion method,\n"
+         "time each pass and compare it with a conventional render at the same instant.",
+         "warplab bench [--quick] [--out DIR] [options]",
+         {
+             {"quick", "",
+              shown(quick.width) + "x" + shown(quick.height) + ", " + shown(quick.framesPerSequence) +
+                  " frames per sequence, " + shown(quick.repeats) + " repeats: a few minutes at most",
+              ""},
+             {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
+             {"width", "PIXELS", "frame width, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+              withQuick(bench.width, quick.width)},
+             {"height", "PIXELS", "frame height, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+              withQuick(bench.height, quick.height)},
+             {"sequences", "A,B", "which sequences (pan, track, translate, spheres, thin)", "all"},
+             {"methods", "A,B", "which methods (see the summary for the list)", "all"},
+             {"frames", "N", "sampled display frames per sequence, every 15 Hz phase covered; 0 = all",
+              withQuick(bench.framesPerSequence, quick.framesPerSequence)},
+             {"duration-scale", "X", "scale the sequences' length", "1"},
+             {"repeats", "N", "timed runs of each pass, after an untimed one; medians are reported",
+              withQuick(bench.repeats, quick.repeats)},
+             {"shading-cost", "N", "extra per-fragment shading work in every conventional frame",
+              shown(bench.shadingCost)},
+             {"shading-sweep", "A,B", "shading costs at which the summary times a conventional frame",
+              withQuick(listed(bench.shadingSweep), listed(quick.shadingSweep))},
+             {"guard-band", "FRACTION",
+              "sources of the warps reach this much further each side, " + range(0, scene::kMaxGuardBand),
+              shown(bench.guardBand)},
+             {"ssaa", "N",
+              "supersample every conventional frame NxN, ground truth included, " + range(1, scene::kMaxSupersampling),
+              shown(bench.supersampling)},
+             {"seed", "N", "target spawn seed of the sequences", shown(bench.seed)},
+             glOption("osmesa"),
+             dataDirOption(),
+         }},
+        &runBench};
 }
 
 }  // namespace warplab::app

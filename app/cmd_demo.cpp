@@ -124,8 +124,7 @@ int runDemo(const ParsedArgs& args) {
     const int jobs = static_cast<int>(args.integer("jobs", std::min(cores, 64), 1, 64));
     const renderer::DataPaths paths = dataPathsFrom(args);
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
-    if (backend == renderer::GlBackend::Window)
-        throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
+    if (backend == renderer::GlBackend::Window) throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
     const fs::path root = fs::path(paths.shaderDir).parent_path();
     const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
     const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";
@@ -138,8 +137,8 @@ int runDemo(const ParsedArgs& args) {
     std::deque<Job> waiting;
     for (int i = 1; i <= participants; ++i)
         for (const auto& protocol : protocols)
-            waiting.push_back({i, protocol,
-                               logs / (player + "-" + std::to_string(i) + "-" + protocol.stem().string() + ".log"), {}});
+            waiting.push_back(
+                {i, protocol, logs / (player + "-" + std::to_string(i) + "-" + protocol.stem().string() + ".log"), {}});
     const std::size_t total = waiting.size();
     const auto started = std::chrono::steady_clock::now();
     std::cerr << "demo: " << participants << " simulated participants (" << player << ") x " << protocols.size()
@@ -183,9 +182,9 @@ int runDemo(const ParsedArgs& args) {
             std::cerr << log;
             if (failure.empty())
                 failure = "the session of " + name + " failed (" +
-                          (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                               : "exit status " + std::to_string(WEXITSTATUS(status))) +
-                          "); its log is " + job.log.string();
+                    (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                         : "exit status " + std::to_string(WEXITSTATUS(status))) +
+                    "); its log is " + job.log.string();
             continue;
         }
         // Every outcome must replay from the log alone, as a reviewer would check it.
@@ -211,8 +210,8 @@ int runDemo(const ParsedArgs& args) {
     exporter::ExportOptions options;
     exporter::exportResults(results.string(), exportDir, options, std::cerr);
     const std::string reportDir = (fs::path(out) / "report").string();
-    const std::string command = shellQuoted(paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) +
-                                " --out " + shellQuoted(reportDir) + " 1>&2";
+    const std::string command = shellQuoted(paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) + " --out " +
+        shellQuoted(reportDir) + " 1>&2";
     std::cerr << "demo: analysing " << exportDir << "\n";
     const int status = std::system(command.c_str());
     if (status != 0) {
@@ -230,24 +229,24 @@ int runDemo(const ParsedArgs& args) {
 // The command's options, beside the code that reads them.
 Command demoCommand() {
     return {{"demo",
-      "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
-      "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
-      "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
-      "and the analysis writes a report with figures and the participants a real study would need.",
-      "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
-      {
-          {"out", "DIR", "results/, logs/, export/ and report/ go here (results/ must hold no sessions yet)",
-           "demo-out"},
-          {"participants", "N", "simulated participants, each plays every protocol, 2..100", "8"},
-          {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
-           "sim"},
-          {"protocols", "LIST", "protocols to play, by name (in protocol/) or file, separated by commas",
-           "shooter-demo,click-demo"},
-          {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
-          glOption("osmesa"),
-          dataDirOption(),
-      }},
-     &runDemo};
+             "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
+             "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
+             "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
+             "and the analysis writes a report with figures and the participants a real study would need.",
+             "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
+             {
+                 {"out", "DIR", "results/, logs/, export/ and report/ go here (results/ must hold no sessions yet)",
+                  "demo-out"},
+                 {"participants", "N", "simulated participants, each plays every protocol, 2..100", "8"},
+                 {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
+                  "sim"},
+                 {"protocols", "LIST", "protocols to play, by name (in protocol/) or file, separated by commas",
+                  "shooter-demo,click-demo"},
+                 {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
+                 glOption("osmesa"),
+                 dataDirOption(),
+             }},
+            &runDemo};
 }
 
 }  // namespace warplab::app

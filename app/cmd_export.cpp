@@ -10,12 +10,13 @@ int runExport(const ParsedArgs& args) {
     if (args.positional().size() != 1)
         throw UsageError(args.positional().empty() ? "name the results folder to export"
                                                    : "export takes one results folder, got " +
-                                                         std::to_string(args.positional().size()) + " arguments");
+                                 std::to_string(args.positional().size()) + " arguments");
     exporter::ExportOptions options;
     options.allPhases = args.flag("all-phases");
     options.includeIncomplete = args.flag("include-incomplete");
     options.includeFlagged = args.flag("include-flagged");
-    const exporter::ExportSummary summary = exporter::exportResults(args.positional()[0], args.string("out", "export"), options, std::cerr);
+    const exporter::ExportSummary summary =
+        exporter::exportResults(args.positional()[0], args.string("out", "export"), options, std::cerr);
     for (const auto& path : summary.written) std::cout << path << "\n";
     return 0;
 }
@@ -23,19 +24,19 @@ int runExport(const ParsedArgs& args) {
 // The command's options, beside the code that reads them.
 Command exportCommand() {
     return {{"export",
-      "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
-      "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches and\n"
-      "ratings (docs/export.md). Read-only; damaged files are reported and skipped.",
-      "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",
-      {
-          {"out", "DIR", "where the CSVs go (created when missing)", "export"},
-          {"all-phases", "", "also practice rounds, acclimation and training (hit rates stay scored-only)", ""},
-          {"include-incomplete", "", "also sessions that never finished (killed mid-way): their completed trials",
-           ""},
-          {"include-flagged", "", "also sessions flagged during their run (e.g. too many missed frames)", ""},
-      },
-      true},
-     &runExport};
+             "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
+             "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches and\n"
+             "ratings (docs/export.md). Read-only; damaged files are reported and skipped.",
+             "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",
+             {
+                 {"out", "DIR", "where the CSVs go (created when missing)", "export"},
+                 {"all-phases", "", "also practice rounds, acclimation and training (hit rates stay scored-only)", ""},
+                 {"include-incomplete", "",
+                  "also sessions that never finished (killed mid-way): their completed trials", ""},
+                 {"include-flagged", "", "also sessions flagged during their run (e.g. too many missed frames)", ""},
+             },
+             true},
+            &runExport};
 }
 
 }  // namespace warplab::app

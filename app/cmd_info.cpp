@@ -17,18 +17,18 @@ int runInfo(const ParsedArgs& args) {
               << "renderer: " << info.renderer << "\n"
               << "version:  " << info.version << "\n"
               << "glsl:     " << info.glslVersion << "\n"
-              << "profile:  " << (info.coreProfile ? "core" : "compatibility") << " " << info.major << "."
-              << info.minor << "\n";
+              << "profile:  " << (info.coreProfile ? "core" : "compatibility") << " " << info.major << "." << info.minor
+              << "\n";
     return 0;
 }
 
 // The command's options, beside the code that reads them.
 Command infoCommand() {
     return {{"info",
-      "Print the vendor, renderer and version of the OpenGL context a backend gives.",
-      "warplab info [--gl osmesa|egl|window]",
-      {glOption("osmesa")}},
-     &runInfo};
+             "Print the vendor, renderer and version of the OpenGL context a backend gives.",
+             "warplab info [--gl osmesa|egl|window]",
+             {glOption("osmesa")}},
+            &runInfo};
 }
 
 }  // namespace warplab::app

@@ -94,9 +94,9 @@ RenderRequest readRequest(const ParsedArgs& args) {
     r.methodName = args.string("method", "");
     if (args.has("method") && r.methodName.find_first_not_of(" \t") == std::string::npos)
         throw UsageError("option --method of 'warplab render' needs a method name, got '" + r.methodName + "'");
-    if (r.methodName.empty() && (args.has("source-time") || args.has("truth") || args.has("source-yaw") ||
-                                 args.has("source-pitch") || args.has("next-time") || args.has("error") ||
-                                 args.has("guard-band")))
+    if (r.methodName.empty() &&
+        (args.has("source-time") || args.has("truth") || args.has("source-yaw") || args.has("source-pitch") ||
+         args.has("next-time") || args.has("error") || args.has("guard-band")))
         throw UsageError(
             "options --source-time, --next-time, --source-yaw, --source-pitch, --truth, --error and --guard-band need "
             "--method");
@@ -116,9 +116,8 @@ MethodFrame makeWithMethod(const RenderRequest& r, const renderer::DataPaths& pa
                            const image::ImageRGBA8& truth,
                            const std::function<scene::FrameDescription(double, double, double)>& frameAt) {
     auto method = renderer::makeMethod(r.methodName, paths);
-    const renderer::GuardBand band = method->info().takesGuardBand
-                                         ? renderer::guardBandFor(r.width, r.height, r.guardBand)
-                                         : renderer::GuardBand{};
+    const renderer::GuardBand band =
+        method->info().takesGuardBand ? renderer::guardBandFor(r.width, r.height, r.guardBand) : renderer::GuardBand{};
     renderer::SourceFrame previous(r.width, r.height, band), next(r.width, r.height, band);
     renderer::renderSource(conventional, frameAt(r.sourceTime, r.sourceYaw, r.sourcePitch), previous);
     renderer::UpconversionInput input;
@@ -128,8 +127,8 @@ MethodFrame makeWithMethod(const RenderRequest& r, const renderer::DataPaths& pa
     input.previous = &previous;
     if (method->info().needsNext) {
         renderer::renderSource(
-            conventional, frameAt(r.nextTime ? *r.nextTime : r.sourceTime + 1.0 / method->info().sourceRateHz, r.yaw, r.pitch),
-            next);
+            conventional,
+            frameAt(r.nextTime ? *r.nextTime : r.sourceTime + 1.0 / method->info().sourceRateHz, r.yaw, r.pitch), next);
         input.next = &next;
     }
     auto shown = std::make_unique<renderer::DisplayFrame>(r.width, r.height);
@@ -249,49 +248,49 @@ int runRender(const ParsedArgs& args) {
 // them, so that --help cannot tell another story).
 Command renderCommand() {
     const protocol::RenderSettings study;
-    return {{"render",
-      "Render one frame of the shooter scene headlessly and write it as PNG; optionally the\n"
-      "depth, object-id and velocity buffers as false-colour PNGs and as raw PFM images.",
-      "warplab render [--time T] [--out frame.png] [options]",
-      {
-          {"time", "SECONDS", "scene time of the frame, 0..1e6", "0"},
-          {"yaw", "DEGREES", "camera yaw, positive turns right, -36000..36000", "0"},
-          {"pitch", "DEGREES",
-           "camera pitch, positive looks up, " + range(-protocol::kMaxCameraPitchDeg, protocol::kMaxCameraPitchDeg),
-           "0"},
-          {"aim-at-target", "", "turn the camera to the target's centre (overrides --yaw/--pitch)", ""},
-          {"fov", "DEGREES",
-           "vertical field of view, " + range(protocol::kMinVerticalFovDeg, protocol::kMaxVerticalFovDeg) +
-               " (as in protocols)",
-           "60"},
-          {"width", "PIXELS", "image width, " + range(1, scene::kMaxImageSize), "640"},
-          {"height", "PIXELS", "image height, " + range(1, scene::kMaxImageSize), "360"},
-          {"seed", "N", "target spawn seed", "1"},
-          {"speed", "M/S", "target speed, " + range(0, protocol::kMaxBaseSpeedMPerS), "2"},
-          {"out", "PATH", "colour image (PNG)", "frame.png"},
-          {"depth", "PATH", "false-colour depth image (PNG)", ""},
-          {"ids", "PATH", "false-colour object-id image (PNG)", ""},
-          {"velocity", "PATH", "false-colour velocity image (PNG)", ""},
-          {"raw", "PREFIX", "also write PREFIX-depth.pfm (window depth), PREFIX-ids.pfm, PREFIX-velocity.pfm",
-           ""},
-          {"show", "SECONDS", "with --gl window: keep the window open this long, 0..3600", "0"},
-          {"method", "NAME", "make the frame with an upconversion method (e.g. warp-sparse8) instead", ""},
-          {"source-time", "SECONDS", "with --method: when the source frame was rendered, 0..1e6", "--time"},
-          {"source-yaw", "DEGREES", "with --method: the source frame's camera yaw", "--yaw"},
-          {"source-pitch", "DEGREES", "with --method: the source frame's camera pitch", "--pitch"},
-          {"next-time", "SECONDS", "with --method blend: the next source frame's time, 0..1e6", "source + 1/15 s"},
-          {"truth", "PATH", "with --method: also write the ground truth (conventional at --time)", ""},
-          {"error", "PATH", "with --method: also write |method - ground truth| x4 as a grey image", ""},
-          {"guard-band", "FRACTION",
-           "with --method: a warp's sources reach this much further each side, " + range(0, scene::kMaxGuardBand),
-           shown(study.guardBand)},
-          {"ssaa", "N",
-           "supersample every conventional frame NxN (antialiasing), " + range(1, scene::kMaxSupersampling),
-           shown(study.supersampling)},
-          glOption("osmesa"),
-          dataDirOption(),
-      }},
-     &runRender};
+    return {
+        {"render",
+         "Render one frame of the shooter scene headlessly and write it as PNG; optionally the\n"
+         "depth, object-id and velocity buffers as false-colour PNGs and as raw PFM images.",
+         "warplab render [--time T] [--out frame.png] [options]",
+         {
+             {"time", "SECONDS", "scene time of the frame, 0..1e6", "0"},
+             {"yaw", "DEGREES", "camera yaw, positive turns right, -36000..36000", "0"},
+             {"pitch", "DEGREES",
+              "camera pitch, positive looks up, " + range(-protocol::kMaxCameraPitchDeg, protocol::kMaxCameraPitchDeg),
+              "0"},
+             {"aim-at-target", "", "turn the camera to the target's centre (overrides --yaw/--pitch)", ""},
+             {"fov", "DEGREES",
+              "vertical field of view, " + range(protocol::kMinVerticalFovDeg, protocol::kMaxVerticalFovDeg) +
+                  " (as in protocols)",
+              "60"},
+             {"width", "PIXELS", "image width, " + range(1, scene::kMaxImageSize), "640"},
+             {"height", "PIXELS", "image height, " + range(1, scene::kMaxImageSize), "360"},
+             {"seed", "N", "target spawn seed", "1"},
+             {"speed", "M/S", "target speed, " + range(0, protocol::kMaxBaseSpeedMPerS), "2"},
+             {"out", "PATH", "colour image (PNG)", "frame.png"},
+             {"depth", "PATH", "false-colour depth image (PNG)", ""},
+             {"ids", "PATH", "false-colour object-id image (PNG)", ""},
+             {"velocity", "PATH", "false-colour velocity image (PNG)", ""},
+             {"raw", "PREFIX", "also write PREFIX-depth.pfm (window depth), PREFIX-ids.pfm, PREFIX-velocity.pfm", ""},
+             {"show", "SECONDS", "with --gl window: keep the window open this long, 0..3600", "0"},
+             {"method", "NAME", "make the frame with an upconversion method (e.g. warp-sparse8) instead", ""},
+             {"source-time", "SECONDS", "with --method: when the source frame was rendered, 0..1e6", "--time"},
+             {"source-yaw", "DEGREES", "with --method: the source frame's camera yaw", "--yaw"},
+             {"source-pitch", "DEGREES", "with --method: the source frame's camera pitch", "--pitch"},
+             {"next-time", "SECONDS", "with --method blend: the next source frame's time, 0..1e6", "source + 1/15 s"},
+             {"truth", "PATH", "with --method: also write the ground truth (conventional at --time)", ""},
+             {"error", "PATH", "with --method: also write |method - ground truth| x4 as a grey image", ""},
+             {"guard-band", "FRACTION",
+              "with --method: a warp's sources reach this much further each side, " + range(0, scene::kMaxGuardBand),
+              shown(study.guardBand)},
+             {"ssaa", "N",
+              "supersample every conventional frame NxN (antialiasing), " + range(1, scene::kMaxSupersampling),
+              shown(study.supersampling)},
+             glOption("osmesa"),
+             dataDirOption(),
+         }},
+        &runRender};
 }
 
 }  // namespace warplab::app

@@ -22,7 +22,8 @@ void checkParticipant(const std::string& id) {
     if (id.size() > 128) throw UsageError(what + "must be at most 128 bytes, got " + std::to_string(id.size()));
     if (!exporter::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text");
     for (const char c : id)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) throw UsageError(what + "must not hold control characters");
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+            throw UsageError(what + "must not hold control characters");
 }
 
 template <typename Run>
@@ -126,8 +127,8 @@ int runReplay(const ParsedArgs& args) {
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
         request.width = static_cast<int>(args.integer("width", 0, 0, scene::kMaxImageSize));
         request.height = static_cast<int>(args.integer("height", 0, 0, scene::kMaxImageSize));
-        const present::ReplayRenderResult rendered =
-            present::renderReplay(request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+        const present::ReplayRenderResult rendered = present::renderReplay(
+            request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
@@ -149,8 +150,7 @@ int runReplay(const ParsedArgs& args) {
     }
     std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, "
               << static_cast<long long>(r.displaySeconds) << " s of display time replayed in " << r.seconds
-              << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0)
-              << "x real time)\n";
+              << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0) << "x real time)\n";
     return study::replayExitCode(r);
 }
 
@@ -159,69 +159,71 @@ int runReplay(const ParsedArgs& args) {
 Command runCommand() {
     const study::HeadlessRun headless;
     const live::LiveRun live;
-    return {{"run",
-      "Run a study session: in a window with the participant's mouse (the default), or\n"
-      "headlessly with a simulated or recorded player. Writes the session store into the\n"
-      "results folder (one file per session) as it runs, then prints its path. In the window:\n"
-      "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
-      "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]",
-      {
-          {"protocol", "FILE", "study protocol (JSON), e.g. protocol/shooter-quick.json", ""},
-          {"participant", "ID", "participant id: stored as data, never used as a path", ""},
-          {"out", "DIR", "results folder (must exist and be writable)", "results"},
-          {"headless", "", "no window: the player is simulated or replayed", ""},
-          {"player", "human|bot[:SEED]|sim[:SEED]|replay:SESSION",
-           "who plays: the participant (window only), the scripted bot (reads the game's state), the "
-           "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
-           "SEED: its motor noise, default the session seed), or a recorded session's input",
-           "human in a window, bot headless"},
-          {"seed", "N", "session seed: trial order and target spawns", shown(headless.seed)},
-          {"width", "PIXELS",
-           "headless: display width the session stands for; window: its width, " +
-               range(scene::kMinDisplaySize, scene::kMaxImageSize),
-           shown(headless.displayWidth) + " / " + shown(live.width)},
-          {"height", "PIXELS", "display height", shown(headless.displayHeight) + " / " + shown(live.height)},
-          {"fullscreen", "", "window: fill the display (borderless, at its own mode)", ""},
-          {"display", "N", "window: which display to open on", "0"},
-          {"cm-per-360", "CM", "window, shooter: mouse travel for a full turn (the participant's sensitivity)",
-           "the protocol's"},
-          {"mouse-dpi", "DPI", "with --cm-per-360: the mouse's counts per inch", "800"},
-          {"invert-y", "", "window: moving the mouse forward looks down", ""},
-          {"allow-refresh-mismatch", "", "window: run although the display's refresh differs from the protocol's",
-           ""},
-          {"screenshots", "DIR", "window: also write the start and end screens and the --screenshot-frames as PNG",
-           ""},
-          {"screenshot-frames", "A,B,...", "with --screenshots: which session frames", ""},
-          {"free-play", "", "window: free play for pilots and demos, nothing recorded (keys 1-9 mode, U/D level)",
-           ""},
-          {"mode", "ID", "with --free-play: the mode to start in", "the protocol's first"},
-          {"level", "N", "with --free-play: the difficulty (shooter: staircase level) to start at", "0"},
-          {"input-script", "FILE", "window, tests: input given as if by the participant (see docs/live-sessions.md)",
-           ""},
-          {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
-           "osmesa"},
-          dataDirOption(),
-      }},
-     &runRun};
+    return {
+        {"run",
+         "Run a study session: in a window with the participant's mouse (the default), or\n"
+         "headlessly with a simulated or recorded player. Writes the session store into the\n"
+         "results folder (one file per session) as it runs, then prints its path. In the window:\n"
+         "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
+         "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]",
+         {
+             {"protocol", "FILE", "study protocol (JSON), e.g. protocol/shooter-quick.json", ""},
+             {"participant", "ID", "participant id: stored as data, never used as a path", ""},
+             {"out", "DIR", "results folder (must exist and be writable)", "results"},
+             {"headless", "", "no window: the player is simulated or replayed", ""},
+             {"player", "human|bot[:SEED]|sim[:SEED]|replay:SESSION",
+              "who plays: the participant (window only), the scripted bot (reads the game's state), the "
+              "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
+              "SEED: its motor noise, default the session seed), or a recorded session's input",
+              "human in a window, bot headless"},
+             {"seed", "N", "session seed: trial order and target spawns", shown(headless.seed)},
+             {"width", "PIXELS",
+              "headless: display width the session stands for; window: its width, " +
+                  range(scene::kMinDisplaySize, scene::kMaxImageSize),
+              shown(headless.displayWidth) + " / " + shown(live.width)},
+             {"height", "PIXELS", "display height", shown(headless.displayHeight) + " / " + shown(live.height)},
+             {"fullscreen", "", "window: fill the display (borderless, at its own mode)", ""},
+             {"display", "N", "window: which display to open on", "0"},
+             {"cm-per-360", "CM", "window, shooter: mouse travel for a full turn (the participant's sensitivity)",
+              "the protocol's"},
+             {"mouse-dpi", "DPI", "with --cm-per-360: the mouse's counts per inch", "800"},
+             {"invert-y", "", "window: moving the mouse forward looks down", ""},
+             {"allow-refresh-mismatch", "", "window: run although the display's refresh differs from the protocol's",
+              ""},
+             {"screenshots", "DIR", "window: also write the start and end screens and the --screenshot-frames as PNG",
+              ""},
+             {"screenshot-frames", "A,B,...", "with --screenshots: which session frames", ""},
+             {"free-play", "", "window: free play for pilots and demos, nothing recorded (keys 1-9 mode, U/D level)",
+              ""},
+             {"mode", "ID", "with --free-play: the mode to start in", "the protocol's first"},
+             {"level", "N", "with --free-play: the difficulty (shooter: staircase level) to start at", "0"},
+             {"input-script", "FILE", "window, tests: input given as if by the participant (see docs/live-sessions.md)",
+              ""},
+             {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
+              "osmesa"},
+             dataDirOption(),
+         }},
+        &runRun};
 }
 
 // The command's options, beside the code that reads them.
 Command replayCommand() {
-    return {{"replay",
-      "Re-run a session from its store without a window or rendering, check every logged\n"
-      "outcome and print how many were reproduced, or the first difference (exit " +
-          std::to_string(study::kReplayDiffers) + ").",
-      "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
-      {
-          {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},
-          {"frames", "FIRST:LAST", "with --render: which display frames", "0:599"},
-          {"width", "PIXELS", "with --render: image width", "the session's display"},
-          {"height", "PIXELS", "with --render: image height", "the session's display"},
-          glOption("osmesa"),
-          dataDirOption(),
-      },
-      true},
-     &runReplay};
+    return {
+        {"replay",
+         "Re-run a session from its store without a window or rendering, check every logged\n"
+         "outcome and print how many were reproduced, or the first difference (exit " +
+             std::to_string(study::kReplayDiffers) + ").",
+         "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
+         {
+             {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},
+             {"frames", "FIRST:LAST", "with --render: which display frames", "0:599"},
+             {"width", "PIXELS", "with --render: image width", "the session's display"},
+             {"height", "PIXELS", "with --render: image height", "the session's display"},
+             glOption("osmesa"),
+             dataDirOption(),
+         },
+         true},
+        &runReplay};
 }
 
 }  // namespace warplab::app

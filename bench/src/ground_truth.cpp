@@ -20,17 +20,18 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string sizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-void checkFrameImages(const char* function, const char* which, const image::ImageF& depth,
-                      const image::ImageU32& ids) {
+void checkFrameImages(const char* function, const char* which, const image::ImageF& depth, const image::ImageU32& ids) {
     const std::size_t n = std::size_t(std::max(depth.width, 0)) * std::size_t(std::max(depth.height, 0));
     if (depth.width < 1 || depth.height < 1 || depth.channels != 1 || depth.data.size() != n)
-        throw std::invalid_argument(std::string(function) + ": the " + which + " depth image must be 1-channel and at least 1x1 with width*height values, got " +
+        throw std::invalid_argument(std::string(function) + ": the " + which +
+                                    " depth image must be 1-channel and at least 1x1 with width*height values, got " +
                                     sizeText(depth.width, depth.height) + " with " + std::to_string(depth.channels) +
                                     " channels and " + std::to_string(depth.data.size()) + " values.");
     if (ids.width != depth.width || ids.height != depth.height || ids.data.size() != n)
-        throw std::invalid_argument(std::string(function) + ": the " + which + " id image (" + sizeText(ids.width, ids.height) + ", " +
-                                    std::to_string(ids.data.size()) + " values) does not match its depth image (" +
-                                    sizeText(depth.width, depth.height) + ").");
+        throw std::invalid_argument(std::string(function) + ": the " + which + " id image (" +
+                                    sizeText(ids.width, ids.height) + ", " + std::to_string(ids.data.size()) +
+                                    " values) does not match its depth image (" + sizeText(depth.width, depth.height) +
+                                    ").");
 }
 
 // The camera matrices exactly as the renderer builds them (float, aspect = w / h as float),
@@ -73,7 +74,7 @@ struct CameraMaths {
 glm::dmat4 modelMatrix(const scene::ObjectState& o) {
     const glm::dvec3 scale = o.shape == scene::Shape::Sphere ? glm::dvec3(o.halfExtents.x) : glm::dvec3(o.halfExtents);
     return glm::translate(glm::dmat4(1.0), glm::dvec3(o.position)) * glm::mat4_cast(glm::dquat(o.orientation)) *
-           glm::scale(glm::dmat4(1.0), scale);
+        glm::scale(glm::dmat4(1.0), scale);
 }
 
 std::map<std::uint32_t, glm::dmat4> modelMatrices(const scene::SceneSnapshot& snapshot, const char* which) {
@@ -140,8 +141,8 @@ Correspondence trueCorrespondence(const scene::FrameDescription& display, const 
             } else {
                 const auto it = motion.find(id);
                 if (it == motion.end())
-                    throw std::invalid_argument("trueCorrespondence: display pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                                                ") shows object id " + std::to_string(id) +
+                    throw std::invalid_argument("trueCorrespondence: display pixel (" + std::to_string(x) + ", " +
+                                                std::to_string(y) + ") shows object id " + std::to_string(id) +
                                                 ", which the display snapshot does not list.");
                 const glm::dvec3 p = from.unproject(ndc, displayDepth.at(x, y)[0]);
                 clip = to.viewProjection * (it->second * glm::dvec4(p, 1.0));
@@ -190,15 +191,16 @@ void checkSources(const std::vector<const Correspondence*>& perSource, const cha
         throw std::invalid_argument(std::string(caller) + ": needs at least one source's correspondence, got none.");
     for (std::size_t s = 0; s < perSource.size(); ++s) {
         const Correspondence* c = perSource[s];
-        if (c == nullptr) throw std::invalid_argument(std::string(caller) + ": source " + std::to_string(s) + " is null.");
+        if (c == nullptr)
+            throw std::invalid_argument(std::string(caller) + ": source " + std::to_string(s) + " is null.");
         const std::size_t n = std::size_t(std::max(c->width, 0)) * std::size_t(std::max(c->height, 0));
         if (c->width != perSource[0]->width || c->height != perSource[0]->height || c->visible.size() != n ||
             c->coords.size() != n)
             throw std::invalid_argument(std::string(caller) + ": source " + std::to_string(s) + " is " +
                                         sizeText(c->width, c->height) + " with " + std::to_string(c->visible.size()) +
                                         " visibility entries and " + std::to_string(c->coords.size()) +
-                                        " coordinates; source 0 is " + sizeText(perSource[0]->width, perSource[0]->height) +
-                                        ".");
+                                        " coordinates; source 0 is " +
+                                        sizeText(perSource[0]->width, perSource[0]->height) + ".");
     }
 }
 
@@ -224,7 +226,8 @@ UnseenMasks unseenMasks(const std::vector<const Correspondence*>& perSource) {
         bool inside = false;
         for (const Correspondence* c : perSource) {
             const glm::vec2 p = c->coords[i];  // NaN compares false: no position is outside
-            inside = inside || (p.x >= 0.0f && p.y >= 0.0f && p.x <= float(c->sourceWidth) && p.y <= float(c->sourceHeight));
+            inside =
+                inside || (p.x >= 0.0f && p.y >= 0.0f && p.x <= float(c->sourceWidth) && p.y <= float(c->sourceHeight));
         }
         (inside ? out.occluded : out.border)[i] = 1;
     }
@@ -236,7 +239,8 @@ double maskedMeanAbsoluteError(const image::ImageRGBA8& method, const image::Ima
     const std::size_t n = std::size_t(std::max(truth.width, 0)) * std::size_t(std::max(truth.height, 0));
     if (method.width != truth.width || method.height != truth.height || method.pixels.size() != 4 * n ||
         truth.pixels.size() != 4 * n || mask.size() != n)
-        throw std::invalid_argument("maskedMeanAbsoluteError: the method image (" + sizeText(method.width, method.height) + ", " +
+        throw std::invalid_argument("maskedMeanAbsoluteError: the method image (" +
+                                    sizeText(method.width, method.height) + ", " +
                                     std::to_string(method.pixels.size()) + " bytes), the truth (" +
                                     sizeText(truth.width, truth.height) + ", " + std::to_string(truth.pixels.size()) +
                                     " bytes) and the mask (" + std::to_string(mask.size()) + " entries) must agree.");
@@ -245,7 +249,8 @@ double maskedMeanAbsoluteError(const image::ImageRGBA8& method, const image::Ima
     for (std::size_t i = 0; i < n; ++i) {
         if (!mask[i]) continue;
         ++pixels;
-        for (int c = 0; c < 3; ++c) sum += std::uint64_t(std::abs(int(method.pixels[4 * i + c]) - int(truth.pixels[4 * i + c])));
+        for (int c = 0; c < 3; ++c)
+            sum += std::uint64_t(std::abs(int(method.pixels[4 * i + c]) - int(truth.pixels[4 * i + c])));
     }
     return pixels == 0 ? kNaN : double(sum) / (3.0 * double(pixels));
 }
@@ -254,8 +259,8 @@ void CorrespondenceAccumulator::add(const std::vector<glm::vec2>& reported, cons
     const std::size_t n = std::size_t(std::max(truth.width, 0)) * std::size_t(std::max(truth.height, 0));
     if (truth.coords.size() != n || truth.visible.size() != n || reported.size() != n)
         throw std::invalid_argument("CorrespondenceAccumulator::add: " + std::to_string(reported.size()) +
-                                    " reported coordinates, the truth is " + sizeText(truth.width, truth.height) + " with " +
-                                    std::to_string(truth.coords.size()) + " coordinates and " +
+                                    " reported coordinates, the truth is " + sizeText(truth.width, truth.height) +
+                                    " with " + std::to_string(truth.coords.size()) + " coordinates and " +
                                     std::to_string(truth.visible.size()) + " visibility entries.");
     constexpr double kThresholds[3] = {0.1, 0.5, 1.0};
     for (std::size_t i = 0; i < n; ++i) {
@@ -280,7 +285,9 @@ CorrespondenceStats CorrespondenceAccumulator::stats() const {
     CorrespondenceStats s;
     s.samples = samples_;
     s.hitSamples = hitSamples_;
-    const auto share = [](std::size_t count, std::size_t total) { return total == 0 ? kNaN : double(count) / double(total); };
+    const auto share = [](std::size_t count, std::size_t total) {
+        return total == 0 ? kNaN : double(count) / double(total);
+    };
     s.allLt0p1 = share(all_[0], samples_);
     s.allLt0p5 = share(all_[1], samples_);
     s.allLt1 = share(all_[2], samples_);

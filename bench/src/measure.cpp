@@ -36,7 +36,7 @@ struct Truth {
     scene::FrameDescription desc;
     renderer::GBufferImages images;
     double conventionalMs = kNaN;  // median over the repeats
-    double bandedMs = kNaN;        // the same instant rendered as a banded source; NaN without a band
+    double bandedMs = kNaN;  // the same instant rendered as a banded source; NaN without a band
 };
 
 Truth renderTruth(Rig& rig, const BenchOptions& options, const scene::FrameDescription& desc,
@@ -81,8 +81,8 @@ public:
         for (int j = 0; j < samples; ++j) {
             const double at = (first + (last - first) * (j + 0.5) / samples) / options_.refreshHz;
             const scene::FrameDescription d = sequence_.at(at);
-            b.ms += median(
-                timeRepeats(rig_.timer, options_.repeats, [&] { rig_.conventional.render(d, rig_.truthFrame.gbuffer); }));
+            b.ms += median(timeRepeats(rig_.timer, options_.repeats,
+                                       [&] { rig_.conventional.render(d, rig_.truthFrame.gbuffer); }));
             const image::ImageRGBA8 colour = renderer::readBack(rig_.truthFrame.gbuffer).colour;
             if (sum.empty()) {
                 sum.assign(colour.pixels.size(), 0.0);

@@ -17,8 +17,7 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
     if (options.repeats < 1) throw std::invalid_argument("bench repeats must be at least 1");
     const std::vector<std::string> sequenceNames =
         options.sequences.empty() ? game::sequenceNames() : options.sequences;
-    const std::vector<std::string> methodNames =
-        options.methods.empty() ? renderer::methodNames() : options.methods;
+    const std::vector<std::string> methodNames = options.methods.empty() ? renderer::methodNames() : options.methods;
 
     BenchPlan plan;
     game::SequenceConfig sequenceConfig;
@@ -35,8 +34,7 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
 
     plan.band = renderer::guardBandFor(options.width, options.height, options.guardBand);
     plan.anyBanded = !(plan.band == renderer::GuardBand{}) &&
-                     std::any_of(plan.methods.begin(), plan.methods.end(),
-                                 [](const auto& m) { return m->info().takesGuardBand; });
+        std::any_of(plan.methods.begin(), plan.methods.end(), [](const auto& m) { return m->info().takesGuardBand; });
     for (const auto& m : plan.methods)
         if (m->info().usesSourceFlow) plan.flowPeriod = sourcePeriod(options, m->info());
     // Every method of a frame is judged on the same pixels, what the latest lowest-rate source

@@ -17,7 +17,7 @@ struct BenchPlan {
     std::vector<std::unique_ptr<game::BenchSequence>> sequences;
     std::vector<std::unique_ptr<renderer::UpconversionMethod>> methods;
     std::vector<std::vector<int>> samplesPerSequence;  // display-frame indices, one list per sequence
-    std::size_t totalFrames = 0;                       // over all sequences
+    std::size_t totalFrames = 0;  // over all sequences
 
     // Two kinds of source: plain, and with this band for the methods that take one; anyBanded
     // when some method does and the band is not empty.

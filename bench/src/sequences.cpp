@@ -171,10 +171,10 @@ constexpr double kFirstLaneX = -6.4;  // eight lanes: x in [-6.4, 6.4], all in v
 
 struct FallingSphere {
     float radius;
-    double dropHeight;     // apex of the centre above its floor contact, metres
-    double phase;          // fraction of a bounce period at t = 0 (0 = leaving the floor)
-    glm::dvec2 driftStart; // (x, z) at t = 0
-    glm::dvec2 drift;      // (x, z) velocity, m/s; at least 0.08 per axis, never zero
+    double dropHeight;  // apex of the centre above its floor contact, metres
+    double phase;  // fraction of a bounce period at t = 0 (0 = leaving the floor)
+    glm::dvec2 driftStart;  // (x, z) at t = 0
+    glm::dvec2 drift;  // (x, z) velocity, m/s; at least 0.08 per axis, never zero
 };
 
 const std::array<FallingSphere, 8> kSpheres{{
@@ -192,7 +192,7 @@ const glm::vec3 kRed{0.85f, 0.15f, 0.12f};
 const glm::vec3 kGreen{0.15f, 0.75f, 0.2f};
 
 struct Bounce {
-    double height;    // of the centre above its floor contact
+    double height;  // of the centre above its floor contact
     double velocity;  // vertical
 };
 
@@ -295,8 +295,8 @@ public:
         bar.shape = scene::Shape::Box;
         bar.position = {static_cast<float>(kSlide.value(t)), Layout::kEyeY, -5.0f};
         bar.velocity = {static_cast<float>(kSlide.rate(t)), 0.0f, 0.0f};
-        bar.orientation = glm::quat(static_cast<float>(std::cos(halfAngle)), 0.0f, 0.0f,
-                                    static_cast<float>(std::sin(halfAngle)));
+        bar.orientation =
+            glm::quat(static_cast<float>(std::cos(halfAngle)), 0.0f, 0.0f, static_cast<float>(std::sin(halfAngle)));
         bar.angularVelocity = {0.0f, 0.0f, static_cast<float>(2.0 * kPi * kTurnsPerSecond)};
         bar.halfExtents = {1.6f, 0.04f, 0.04f};
         bar.colour = {0.95f, 0.8f, 0.2f};
@@ -306,8 +306,8 @@ public:
 
 private:
     static constexpr double kTurnsPerSecond = 1.5;  // tips at ~15 m/s
-    static constexpr double kStartAngle = 0.3;      // radians; not axis-aligned at t = 0
-    static constexpr Sinusoid kSlide{0.6, 4.0};     // slow sideways drift of the hub
+    static constexpr double kStartAngle = 0.3;  // radians; not axis-aligned at t = 0
+    static constexpr Sinusoid kSlide{0.6, 4.0};  // slow sideways drift of the hub
     ShooterScene target_;
 };
 
@@ -319,14 +319,10 @@ void require(bool ok, const char* field, const char* what) {
 
 }  // namespace
 
-std::vector<std::string> sequenceNames() {
-    return {"pan", "track", "translate", "spheres", "thin"};
-}
+std::vector<std::string> sequenceNames() { return {"pan", "track", "translate", "spheres", "thin"}; }
 
-std::unique_ptr<BenchSequence> makeSequence(const std::string& name,
-                                            const SequenceConfig& config) {
-    require(std::isfinite(config.aspect) && config.aspect > 0.0, "aspect",
-            "must be positive and finite");
+std::unique_ptr<BenchSequence> makeSequence(const std::string& name, const SequenceConfig& config) {
+    require(std::isfinite(config.aspect) && config.aspect > 0.0, "aspect", "must be positive and finite");
     require(config.verticalFovDeg > 0.0f && config.verticalFovDeg < 180.0f, "verticalFovDeg",
             "must lie in (0, 180) degrees");
     require(std::isfinite(config.durationScale) && config.durationScale > 0.0, "durationScale",

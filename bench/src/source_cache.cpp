@@ -29,8 +29,9 @@ const Correspondence& SourceCache::correspondenceTo(int index, bool banded) {
     if (it != correspondences_.end()) return it->second;
     const RenderedSource& s = source(index, banded);
     return correspondences_
-        .emplace(Key{index, banded}, trueCorrespondence(display_, displayImages_.depth, displayImages_.ids,
-                                                        s.frame->depicts, s.images.depth, s.images.ids))
+        .emplace(Key{index, banded},
+                 trueCorrespondence(display_, displayImages_.depth, displayImages_.ids, s.frame->depicts,
+                                    s.images.depth, s.images.ids))
         .first->second;
 }
 

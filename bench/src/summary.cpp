@@ -26,9 +26,10 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
        << "- size: " << options.width << "x" << options.height << ", display " << options.refreshHz << " Hz, "
        << "shading cost " << options.shadingCost << ", " << options.repeats
        << " timed repeats per pass after an untimed one (medians)\n"
-       << "- antialiasing: " << (options.supersampling > 1 ? std::to_string(options.supersampling) + "x" +
-                                                                    std::to_string(options.supersampling) + " supersampling"
-                                                              : std::string("none"))
+       << "- antialiasing: "
+       << (options.supersampling > 1
+               ? std::to_string(options.supersampling) + "x" + std::to_string(options.supersampling) + " supersampling"
+               : std::string("none"))
        << " for every conventional frame, ground truth included\n"
        << "- frames: " << totalFrames << " sampled display frames over " << sequences.size() << " sequences\n"
        << "- masks: border MAE over pixels off-screen in the frame's latest " << maskRateHz
@@ -48,7 +49,7 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
     if (anyBanded) {
         const double plain = median(conventionalFrames), banded = median(bandedFrames);
         const double pixels = static_cast<double>(options.width + 2 * band.x) * (options.height + 2 * band.y) /
-                              (static_cast<double>(options.width) * options.height);
+            (static_cast<double>(options.width) * options.height);
         md << "- guard band: " << options.guardBand * 100 << " % per side (" << band.x << " and " << band.y
            << " px) for the sources of the methods that take one, " << field(pixels, 2)
            << "x the pixels; such a source costs " << field(banded, 3) << " ms against " << field(plain, 3)
@@ -57,7 +58,8 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
     md << "- conventional frames: repeats of one frame median slowest/fastest " << field(spread, 3)
        << "; over the run 90th/10th percentile " << field(runSpread, 3) << "\n";
     if (spread > 1.3 || runSpread > 3.0)
-        md << "\n**Warning:** the conventional frame's time varied " << (spread > 1.3 ? "between repeats" : "over the run")
+        md << "\n**Warning:** the conventional frame's time varied "
+           << (spread > 1.3 ? "between repeats" : "over the run")
            << " more than content explains: something else is loading this machine, so the times are noisy.\n";
 }
 
@@ -67,8 +69,7 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
 std::string sourcesText(const renderer::MethodInfo& info, double maskRateHz) {
     std::string text = field(info.sourceRateHz, 0) + " Hz";
     if (info.needsNext) text += " + next";
-    if (info.sourceRateHz > maskRateHz)
-        text += " (" + field(info.sourceRateHz / maskRateHz, 0) + "x the renders)";
+    if (info.sourceRateHz > maskRateHz) text += " (" + field(info.sourceRateHz / maskRateHz, 0) + "x the renders)";
     return text;
 }
 
@@ -95,18 +96,18 @@ void summarise(std::ostream& md, const std::string& seq, const renderer::MethodI
     const std::string psnrText = std::isinf(combined) ? "inf (exact)" : field(combined, 2);
     auto pct = [](double v) { return std::isnan(v) ? std::string("") : field(100.0 * v, 1) + "%"; };
     md << "| " << (seq.empty() ? "**all**" : seq) << " | " << method << " | " << sourcesText(info, maskRateHz) << " | "
-       << field(p, 3) << " | "
-       << field(p / c, 3) << " | " << psnrText << " | " << field(mean(ssim), 4) << " | "
+       << field(p, 3) << " | " << field(p / c, 3) << " | " << psnrText << " | " << field(mean(ssim), 4) << " | "
        << field(borderPx > 0 ? borderSum / borderPx : kNaN, 2) << " | "
-       << field(disoccPx > 0 ? disoccSum / disoccPx : kNaN, 2)
-       << " | " << pct(mean(all05)) << " | " << pct(mean(hit05)) << " | " << field(median(triangles), 0) << " |\n";
+       << field(disoccPx > 0 ? disoccSum / disoccPx : kNaN, 2) << " | " << pct(mean(all05)) << " | " << pct(mean(hit05))
+       << " | " << field(median(triangles), 0) << " |\n";
 }
 
 // Per method x sequence, then per method over all sequences.
 void writeTable(std::ostream& md, const BenchPlan& plan, const std::vector<Row>& rows) {
     const auto& sequences = plan.sequences;
     const auto& methods = plan.methods;
-    md << "\n| sequence | method | sources | median pass ms | ratio to conventional | PSNR dB | mean SSIM | border MAE | "
+    md << "\n| sequence | method | sources | median pass ms | ratio to conventional | PSNR dB | mean SSIM | border MAE "
+          "| "
           "disocc MAE | corr all <0.5 px | corr hit <0.5 px | triangles |\n"
           "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const auto& s : sequences)
@@ -115,7 +116,8 @@ void writeTable(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
     std::vector<const renderer::MethodInfo*> byRate;
     for (const auto& m : methods) byRate.push_back(&m->info());
     std::stable_sort(byRate.begin(), byRate.end(), [](const auto* a, const auto* b) {
-        return a->sourceRateHz < b->sourceRateHz || (a->sourceRateHz == b->sourceRateHz && !a->needsNext && b->needsNext);
+        return a->sourceRateHz < b->sourceRateHz ||
+            (a->sourceRateHz == b->sourceRateHz && !a->needsNext && b->needsNext);
     });
     for (const auto* info : byRate) summarise(md, "", *info, rows, plan.maskRateHz);
 }
@@ -127,8 +129,8 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
     const auto& methods = plan.methods;
     md << "\nA 15->120 Hz method renders one conventional frame and makes seven, so per displayed frame it costs "
           "(C + 7M)/8 against C for rendering every frame: it pays whenever its pass M is cheaper than a "
-          "conventional frame C.\n\n| shading cost | conventional frame ms (" << sequences.front()->name()
-       << ", t = 0) | methods cheaper than it |\n|---:|---:|---|\n";
+          "conventional frame C.\n\n| shading cost | conventional frame ms ("
+       << sequences.front()->name() << ", t = 0) | methods cheaper than it |\n|---:|---:|---|\n";
     for (const auto& [cost, ms] : sweep) {
         std::string cheaper;
         for (const auto& m : methods) {
@@ -144,7 +146,8 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
 }  // namespace
 
 const char* const kCsvHeader =
-    "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_0p5,corr_all_lt_1,"
+    "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_"
+    "0p5,corr_all_lt_1,"
     "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles";
 
 std::ofstream openCsv(const std::string& path) {
@@ -158,10 +161,10 @@ void writeRow(std::ostream& csv, const Row& r) {
     auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
     csv << r.sequence << ',' << r.method << ',' << r.frame << ',' << field(r.time, 6) << ',' << field(r.psnr, 3) << ','
         << field(r.ssim, 5) << ',' << field(r.borderMae, 3) << ',' << r.borderPx << ',' << field(r.disoccMae, 3) << ','
-        << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5)
-        << ',' << c(r.corr.allLt1) << ',' << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ','
-        << c(r.corr.hitLt1) << ',' << field(r.passMs, 3) << ',' << field(r.gpuMs, 3) << ','
-        << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ',' << field(r.triangles, 0) << '\n';
+        << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5) << ',' << c(r.corr.allLt1) << ','
+        << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ',' << c(r.corr.hitLt1) << ',' << field(r.passMs, 3)
+        << ',' << field(r.gpuMs, 3) << ',' << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ','
+        << field(r.triangles, 0) << '\n';
 }
 
 ShadingSweep timeShadingSweep(Rig& rig, const BenchOptions& options, const BenchPlan& plan) {
@@ -173,8 +176,9 @@ ShadingSweep timeShadingSweep(Rig& rig, const BenchOptions& options, const Bench
         renderer::ShadingOptions s;
         s.shadingCost = cost;
         conventional.setShading(s);
-        sweep.emplace_back(cost, median(timeRepeats(rig.timer, options.repeats,
-                                                    [&] { conventional.render(frame, rig.truthFrame.gbuffer); })));
+        sweep.emplace_back(cost, median(timeRepeats(rig.timer, options.repeats, [&] {
+                               conventional.render(frame, rig.truthFrame.gbuffer);
+                           })));
     }
     conventional.setShading(rig.shading);
     return sweep;

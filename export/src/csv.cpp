@@ -17,10 +17,14 @@ std::size_t utf8Length(const std::string& s, std::size_t i) {
     std::size_t n;
     unsigned min;
     unsigned cp;
-    if ((c & 0xE0) == 0xC0) n = 2, min = 0x80, cp = c & 0x1F;
-    else if ((c & 0xF0) == 0xE0) n = 3, min = 0x800, cp = c & 0x0F;
-    else if ((c & 0xF8) == 0xF0) n = 4, min = 0x10000, cp = c & 0x07;
-    else return 0;
+    if ((c & 0xE0) == 0xC0)
+        n = 2, min = 0x80, cp = c & 0x1F;
+    else if ((c & 0xF0) == 0xE0)
+        n = 3, min = 0x800, cp = c & 0x0F;
+    else if ((c & 0xF8) == 0xF0)
+        n = 4, min = 0x10000, cp = c & 0x07;
+    else
+        return 0;
     if (i + n > s.size()) return 0;
     for (std::size_t k = 1; k < n; ++k) {
         if ((byte(i + k) & 0xC0) != 0x80) return 0;
@@ -75,7 +79,9 @@ std::string csvNumber(double value) {
 }
 
 CsvFile::CsvFile(std::string path, const std::vector<std::string>& header)
-    : path_(std::move(path)), partial_(path_ + ".partial"), out_(partial_, std::ios::binary | std::ios::trunc),
+    : path_(std::move(path)),
+      partial_(path_ + ".partial"),
+      out_(partial_, std::ios::binary | std::ios::trunc),
       columns_(header.size()) {
     if (!out_) throw std::runtime_error("cannot write '" + partial_ + "'");
     for (const auto& name : header) text(name);

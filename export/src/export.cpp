@@ -41,8 +41,10 @@ std::vector<fs::path> sessionFiles(const fs::path& dir, std::ostream& log) {
         if (name.size() <= suffix.size() || name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
             continue;
         // Regular files only: a named pipe or device under that name would block the reader.
-        if (it->is_regular_file(ec)) files.push_back(p);
-        else log << "export: '" << p.string() << "' is not a regular file, skipped\n";
+        if (it->is_regular_file(ec))
+            files.push_back(p);
+        else
+            log << "export: '" << p.string() << "' is not a regular file, skipped\n";
     }
     // Unreadable folders are skipped (skip_permission_denied); any other listing error ends
     // the iteration early and would silently drop sessions, so it ends the export instead.
@@ -97,8 +99,10 @@ struct SessionRow {
 template <class F>
 std::function<void(CsvFile&, const SessionRow&)> whenRead(F cell) {
     return [cell](CsvFile& f, const SessionRow& r) {
-        if (r.data == nullptr) f.empty();
-        else cell(f, r);
+        if (r.data == nullptr)
+            f.empty();
+        else
+            cell(f, r);
     };
 }
 
@@ -207,8 +211,10 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
         // The click game has no timeouts: an empty cell, not a zero that claims it measured some.
         {"timeouts",
          [](F& f, const R& r) {
-             if (r.canTimeOut) f.integer(r.tally.timeouts);
-             else f.empty();
+             if (r.canTimeOut)
+                 f.integer(r.tally.timeouts);
+             else
+                 f.empty();
          }},
         {"hit_rate",
          [](F& f, const R& r) { f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots)); }},
@@ -260,8 +266,10 @@ const std::vector<Column<game::ModeSpec>>& modeColumns() {
         {"upconversion", [](F& f, const R& m) { f.text(game::upconversionName(m.upconversion)); }},
         {"upconverted_rate_hz",
          [](F& f, const R& m) {
-             if (m.upconversion == Upconversion::None) f.empty();
-             else f.number(m.upconvertedRateHz);
+             if (m.upconversion == Upconversion::None)
+                 f.empty();
+             else
+                 f.number(m.upconvertedRateHz);
          }},
         {"method", [](F& f, const R& m) { f.text(m.method); }},
         {"upconverts", [](F& f, const R& m) { f.boolean(m.upconversion != Upconversion::None); }},
@@ -373,8 +381,10 @@ public:
             for (int k = 0; k < ratingColumns_; ++k) {
                 const auto r = std::find_if(m.ratings.begin(), m.ratings.end(),
                                             [&](const game::RatingResult& x) { return x.statementIndex == k; });
-                if (r == m.ratings.end()) matches.empty();
-                else matches.integer(r->value);
+                if (r == m.ratings.end())
+                    matches.empty();
+                else
+                    matches.integer(r->value);
             }
             matches.endRow();
         }
@@ -435,7 +445,7 @@ private:
     std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
     int ratingColumns_ = 0;
     using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
-    std::map<SessionKey, std::string> firstWith_;    // intact sessions, by what identifies them
+    std::map<SessionKey, std::string> firstWith_;  // intact sessions, by what identifies them
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
     std::vector<std::string> warnings_;
 };
@@ -443,12 +453,9 @@ private:
 }  // namespace
 
 std::vector<CsvColumns> exportColumns() {
-    return {{"sessions.csv", headerOf(sessionColumns()), ""},
-            {"shots.csv", headerOf(shotColumns()), ""},
-            {"hitrates.csv", headerOf(hitRateColumns()), ""},
-            {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""},
-            {"modes.csv", headerOf(modeColumns()), ""},
+    return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
+            {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
+            {"ratings.csv", headerOf(ratingColumns()), ""},   {"modes.csv", headerOf(modeColumns()), ""},
             {"games.csv", headerOf(gameColumns()), ""}};
 }
 

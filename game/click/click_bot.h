@@ -17,13 +17,13 @@
 namespace warplab::game {
 
 struct ClickBotSettings {
-    double reactionS = 0.2;     // what it acts on was on screen this long ago
-    double gainPerS = 8.0;      // share of the cursor's error corrected per second
-    double noisePx = 1.5;       // per-frame hand tremor, standard deviation, display pixels
-    double clickWithin = 0.6;   // clicks when the predicted error is below this share of the sphere's radius on screen
-    double minAimS = 0.25;      // follows a sphere at least this long before clicking it
+    double reactionS = 0.2;  // what it acts on was on screen this long ago
+    double gainPerS = 8.0;  // share of the cursor's error corrected per second
+    double noisePx = 1.5;  // per-frame hand tremor, standard deviation, display pixels
+    double clickWithin = 0.6;  // clicks when the predicted error is below this share of the sphere's radius on screen
+    double minAimS = 0.25;  // follows a sphere at least this long before clicking it
     double answerAfterS = 0.6;  // a rating is answered this long after its statement appears
-    double enterAfterS = 0.5;   // the supervisor presses Enter this long after the prompt
+    double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
 };
 
 // The bot's rating of a mode, by the rule in docs/click-study.md; statement 0 enjoyed,
@@ -49,7 +49,7 @@ private:
     protocol::ClickProtocol protocol_;
     DisplaySize display_;
     ClickBotSettings settings_;
-    glm::dvec2 cursor_;               // where it knows its hand has put the cursor
+    glm::dvec2 cursor_;  // where it knows its hand has put the cursor
     std::deque<Seen> seen_;
     std::uint32_t targetId_ = 0;
     bool hasTarget_ = false;

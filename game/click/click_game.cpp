@@ -155,11 +155,12 @@ void ClickGame::beginMatch() {
 }
 
 void ClickGame::endMatch() {
-    emit(matchEvent("match", {{"green_hits", greenHits_},
-                              {"red_hits", redHits_},
-                              {"misses", misses_},
-                              {"clicks", greenHits_ + redHits_ + misses_},
-                              {"duration_s", protocol_.matchS}}));
+    emit(matchEvent("match",
+                    {{"green_hits", greenHits_},
+                     {"red_hits", redHits_},
+                     {"misses", misses_},
+                     {"clicks", greenHits_ + redHits_ + misses_},
+                     {"duration_s", protocol_.matchS}}));
     commitPoint_ = true;
     world_.reset();
     schedule_.reset();
@@ -192,10 +193,11 @@ RatingPrompt ClickGame::ratingPrompt() const {
 }
 
 void ClickGame::answerRating(int value, const char* how) {
-    emit(matchEvent("rating", {{"statement_index", statement_},
-                               {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
-                               {"value", value},
-                               {"answered_with", how}}));
+    emit(matchEvent("rating",
+                    {{"statement_index", statement_},
+                     {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
+                     {"value", value},
+                     {"answered_with", how}}));
     commitPoint_ = true;
     if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
     if (++matchIndex_ < matches_.size()) return beginMatch();
@@ -257,7 +259,7 @@ ShownFrame ClickGame::screenFrame() {
             const Match& m = matches_[matchIndex_];
             shown.rating = ratingPrompt();
             shown.phaseText = "Match " + std::to_string(m.index + 1) + " of " + std::to_string(matches_.size()) +
-                              ": rate the match you just played";
+                ": rate the match you just played";
             break;
         }
         case Phase::Match:
@@ -292,7 +294,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
     }
     const auto& round = protocol_.rounds[static_cast<std::size_t>(match.round)];
     shown.phaseText = "Match " + std::to_string(match.index + 1) + " of " + std::to_string(matches_.size()) +
-                      (round.scored ? "" : " (practice)");
+        (round.scored ? "" : " (practice)");
 
     click = clickGate_.pass(click, f);
     if (click) {
@@ -318,21 +320,24 @@ ShownFrame ClickGame::matchFrame(bool click) {
         redHits_ += scored == "red";
         misses_ += scored == "miss";
         auto idOf = [](const ClickHit& h) { return h.sphere ? static_cast<std::int64_t>(h.sphere->id) : -1; };
-        session::EventRecord e = matchEvent("click", {{"scored", scored},
-                                                       {"match_time", static_cast<double>(k) / refresh},
-                                                       {"cursor_x", cursor_.x},
-                                                       {"cursor_y", cursor_.y},
-                                                       {"shown_cursor_x", shown.cursor.x},
-                                                       {"shown_cursor_y", shown.cursor.y},
-                                                       {"world_sphere", idOf(world)},
-                                                       {"displayed_sphere", idOf(displayed)},
-                                                       {"nearest_green_px", nearestGreenPx}});
+        session::EventRecord e = matchEvent("click",
+                                            {{"scored", scored},
+                                             {"match_time", static_cast<double>(k) / refresh},
+                                             {"cursor_x", cursor_.x},
+                                             {"cursor_y", cursor_.y},
+                                             {"shown_cursor_x", shown.cursor.x},
+                                             {"shown_cursor_y", shown.cursor.y},
+                                             {"world_sphere", idOf(world)},
+                                             {"displayed_sphere", idOf(displayed)},
+                                             {"nearest_green_px", nearestGreenPx}});
         e.worldOutcome = world.outcome();
         e.displayedOutcome = displayed.outcome();
         emit(e);
     }
-    if (freePlay_) shown.phaseText = "Free play: " + match.mode;
-    else if (k + 1 >= std::llround(protocol_.matchS * refresh)) endMatch();
+    if (freePlay_)
+        shown.phaseText = "Free play: " + match.mode;
+    else if (k + 1 >= std::llround(protocol_.matchS * refresh))
+        endMatch();
     return shown;
 }
 
@@ -366,7 +371,8 @@ ShownFrame ClickGame::step(const FrameInput& input) {
             int keyed = 0;
             for (int v = std::max(1, protocol_.ratingMin); v <= std::min(9, protocol_.ratingMax); ++v)
                 if (pressed & digitKey(v)) keyed = v;
-            if (keyed != 0) answerRating(keyed, "key");
+            if (keyed != 0)
+                answerRating(keyed, "key");
             else if (click && shown.rating->highlighted >= 0)
                 answerRating(protocol_.ratingMin + shown.rating->highlighted, "mouse");
             return shown;

@@ -49,8 +49,8 @@ public:
     void switchTo(const std::string& mode, int difficulty) override;
 
     struct Match {
-        int index = 0;        // over the whole session
-        int round = 0;        // index into protocol.rounds
+        int index = 0;  // over the whole session
+        int round = 0;  // index into protocol.rounds
         std::string mode;
     };
     const std::vector<Match>& matches() const { return matches_; }

@@ -34,7 +34,9 @@ public:
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
-    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn; }
+    bool warnsOnRefreshMismatch() const override {
+        return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;
+    }
     Instructions instructions() const override {
         Instructions i;
         i.pointer = PointerKind::Cursor;
@@ -60,7 +62,8 @@ public:
                 r.mode = e.mode;
                 r.worldOutcome = e.worldOutcome;
                 r.displayedOutcome = e.displayedOutcome;
-                r.outcome = d.text("scored", protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
+                r.outcome = d.text("scored",
+                                   protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
                 r.hit = r.outcome == "green";
                 r.time = e.eventTime;
                 r.errorPx = d.number("nearest_green_px");

@@ -15,12 +15,12 @@
 namespace warplab::game {
 
 struct ShooterBotSettings {
-    double reactionS = 0.18;        // what it acts on was on screen this long ago
-    double gainPerS = 9.0;          // share of the aiming error corrected per second
-    double noiseDeg = 0.05;         // per-frame hand tremor, standard deviation
-    double clickWithin = 0.7;       // clicks when the predicted error is below this share of the target's angular radius
-    double minAimS = 0.3;           // never clicks sooner than this after the target appears
-    double enterAfterS = 0.5;       // the supervisor presses Enter this long after the prompt
+    double reactionS = 0.18;  // what it acts on was on screen this long ago
+    double gainPerS = 9.0;  // share of the aiming error corrected per second
+    double noiseDeg = 0.05;  // per-frame hand tremor, standard deviation
+    double clickWithin = 0.7;  // clicks when the predicted error is below this share of the target's angular radius
+    double minAimS = 0.3;  // never clicks sooner than this after the target appears
+    double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
 };
 
 class ShooterBot final : public Player {

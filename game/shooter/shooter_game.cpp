@@ -63,7 +63,8 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
 }
 
 void ShooterGame::switchTo(const std::string& mode, int difficulty) {
-    ModeSchedule(modeSpec(mode), protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
+    ModeSchedule(modeSpec(mode),
+                 protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
     freePlay_ = true;
     freeMode_ = mode;
     freeLevel_ = std::max(0, difficulty);
@@ -184,11 +185,13 @@ void ShooterGame::beginPhase(Phase phase) {
             testQueue_.clear();
             for (int i = 0; i < protocol_.targetsPerCondition; ++i)
                 for (const auto& c : protocol_.conditions) testQueue_.push_back(c);
-            if (protocol_.interleaveConditions) shuffle(testQueue_, trialSeed(7, 0));
-            else std::stable_sort(testQueue_.begin(), testQueue_.end(), [&](const std::string& a, const std::string& b) {
-                return std::find(protocol_.conditions.begin(), protocol_.conditions.end(), a) <
-                       std::find(protocol_.conditions.begin(), protocol_.conditions.end(), b);
-            });
+            if (protocol_.interleaveConditions)
+                shuffle(testQueue_, trialSeed(7, 0));
+            else
+                std::stable_sort(testQueue_.begin(), testQueue_.end(), [&](const std::string& a, const std::string& b) {
+                    return std::find(protocol_.conditions.begin(), protocol_.conditions.end(), a) <
+                        std::find(protocol_.conditions.begin(), protocol_.conditions.end(), b);
+                });
             testNext_ = 0;
             return scheduleNextTrial();
         }
@@ -299,17 +302,18 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
     event.eventTime = shotTime;
     event.worldOutcome = outcomeName(world);
     event.displayedOutcome = outcomeName(displayed);
-    event.detailJson = detailText({{"difficulty", t.level},
-                                   {"target_speed", t.speed},
-                                   {"spawn_time", spawn},
-                                   {"aim_time", shotTime - spawn},
-                                   {"angular_error_deg", angularErrorDeg},
-                                   {"scored", protocol_.scoring == protocol::Scoring::World ? outcomeName(world) : outcomeName(displayed)},
-                                   {"start_x", t.motion.start.x},
-                                   {"start_y", t.motion.start.y},
-                                   {"velocity_x", t.motion.velocity.x},
-                                   {"velocity_y", t.motion.velocity.y},
-                                   {"plane_z", plane_.z}});
+    event.detailJson = detailText(
+        {{"difficulty", t.level},
+         {"target_speed", t.speed},
+         {"spawn_time", spawn},
+         {"aim_time", shotTime - spawn},
+         {"angular_error_deg", angularErrorDeg},
+         {"scored", protocol_.scoring == protocol::Scoring::World ? outcomeName(world) : outcomeName(displayed)},
+         {"start_x", t.motion.start.x},
+         {"start_y", t.motion.start.y},
+         {"velocity_x", t.motion.velocity.x},
+         {"velocity_y", t.motion.velocity.y},
+         {"plane_z", plane_.z}});
     emit(event);
 
     const Outcome scored = protocol_.scoring == protocol::Scoring::World ? world : displayed;
@@ -365,8 +369,8 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     if (const auto p = displayedTarget(f)) {
         // Position as the frame depicts it; velocity the world's at that instant.
         const double spawn = static_cast<double>(trial_->spawnFrame) / refresh;
-        scene::ObjectState target = physics::targetObject(plane_, trial_->motion,
-                                                          std::max(0.0, shown.scene.time - spawn), protocol_.targetRadius);
+        scene::ObjectState target = physics::targetObject(
+            plane_, trial_->motion, std::max(0.0, shown.scene.time - spawn), protocol_.targetRadius);
         target.position = glm::vec3(*p);
         shown.scene.objects.push_back(target);
     }
@@ -414,20 +418,18 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             const bool worldHit = world && physics::raySphereHit(eye, aim, *world, protocol_.targetRadius).has_value();
             const glm::dvec3 shownAim(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch));
             const bool shownHit = !shown.scene.objects.empty() &&
-                                  physics::raySphereHit(glm::dvec3(shown.camera.eye), shownAim,
-                                                        glm::dvec3(shown.scene.objects.front().position),
-                                                        protocol_.targetRadius)
-                                      .has_value();
+                physics::raySphereHit(glm::dvec3(shown.camera.eye), shownAim,
+                                      glm::dvec3(shown.scene.objects.front().position), protocol_.targetRadius)
+                    .has_value();
             const double error = world ? glm::degrees(physics::angleBetweenRayAndPoint(eye, aim, *world)) : 180.0;
             frozenFrame_ = shown;
             finishTrial(worldHit ? Outcome::Hit : Outcome::Miss, shownHit ? Outcome::Hit : Outcome::Miss, now(), error);
         } else if (timedOut(*trial_)) {
             const auto world = targetAt(now());
-            const double error =
-                world ? glm::degrees(physics::angleBetweenRayAndPoint(
-                            glm::dvec3(camera_.eye), glm::dvec3(scene::forwardDirection(camera_.yaw, camera_.pitch)),
-                            *world))
-                      : 180.0;
+            const double error = world
+                ? glm::degrees(physics::angleBetweenRayAndPoint(
+                      glm::dvec3(camera_.eye), glm::dvec3(scene::forwardDirection(camera_.yaw, camera_.pitch)), *world))
+                : 180.0;
             frozenFrame_ = shown;
             finishTrial(Outcome::Timeout, Outcome::Timeout, now(), error);
         }

@@ -62,7 +62,7 @@ public:
 
 private:
     struct Trial {
-        int index = 0;              // within its phase
+        int index = 0;  // within its phase
         std::string mode;
         int level = 0;
         double speed = 0.0;
@@ -88,8 +88,8 @@ private:
     physics::TargetPlane plane_;
     scene::CameraState restingCamera_;
 
-    std::int64_t frame_ = -1;               // the frame being stepped
-    scene::CameraState camera_;             // where the mouse points now
+    std::int64_t frame_ = -1;  // the frame being stepped
+    scene::CameraState camera_;  // where the mouse points now
     FrameHistory<scene::CameraState> cameraHistory_;  // the true camera at recent frames
     std::uint32_t previousButtons_ = 0, previousKeys_ = 0;
     ClickGate clickGate_;
@@ -102,14 +102,14 @@ private:
 
     std::optional<Trial> trial_;
     int trialsInPhase_ = 0;
-    std::int64_t pauseUntil_ = -1;          // frames before this are the post-shot pause
+    std::int64_t pauseUntil_ = -1;  // frames before this are the post-shot pause
     std::optional<ShownFrame> frozenFrame_;
     std::string banner_;
 
     // Training staircase.
     int level_ = 0;
     int shotsPerMode_ = 0;
-    std::vector<std::string> levelQueue_;   // modes of the remaining trials of this level
+    std::vector<std::string> levelQueue_;  // modes of the remaining trials of this level
     int levelHits_[2] = {0, 0}, levelShots_[2] = {0, 0};
     bool missedYet_ = false;
     int testLevel_ = 0;

@@ -27,7 +27,9 @@ public:
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
         return std::make_unique<ShooterBot>(seed, protocol_);
     }
-    bool warnsOnRefreshMismatch() const override { return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn; }
+    bool warnsOnRefreshMismatch() const override {
+        return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;
+    }
     protocol::RenderSettings rendering() const override { return protocol_.rendering; }
     double mouseRadiansPerCount() const override { return protocol_.mouseRadiansPerCount; }
     Instructions instructions() const override {
@@ -40,7 +42,8 @@ public:
         return i;
     }
     std::vector<std::string> modes() const override {
-        std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode, protocol_.training.highMode};
+        std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode,
+                                     protocol_.training.highMode};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
@@ -58,7 +61,8 @@ public:
             r.mode = e.mode;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
-            r.outcome = d.text("scored", protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
+            r.outcome =
+                d.text("scored", protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
             r.hit = r.outcome == "hit";
             r.timeout = r.outcome == "timeout";
             r.time = e.eventTime;

@@ -65,8 +65,7 @@ std::int64_t framesPer(double refreshHz, double rateHz, const std::string& mode)
     const auto whole = static_cast<std::int64_t>(std::llround(ratio));
     if (whole < 1 || std::abs(ratio - static_cast<double>(whole)) > 1e-9)
         throw std::invalid_argument("mode " + mode + " needs a display refresh that is a whole multiple of " +
-                                    std::to_string(static_cast<int>(rateHz)) + " Hz, not " +
-                                    number(refreshHz) + " Hz");
+                                    std::to_string(static_cast<int>(rateHz)) + " Hz, not " + number(refreshHz) + " Hz");
     return whole;
 }
 
@@ -129,9 +128,8 @@ ModeSchedule::ModeSchedule(const ModeSpec& mode, double refreshHz) : mode_(mode)
     if (std::abs(lagFrames - static_cast<double>(lagFrames_)) > 1e-9)
         throw std::invalid_argument("mode " + mode.id + ": a lag of " + number(mode.lagMs) +
                                     " ms is not a whole number of frames at " + number(refreshHz) + " Hz");
-    bPeriod_ = mode.upconversion == Upconversion::Bidirectional
-                   ? framesPer(refreshHz, mode.upconvertedRateHz, mode.id)
-                   : 1;
+    bPeriod_ =
+        mode.upconversion == Upconversion::Bidirectional ? framesPer(refreshHz, mode.upconvertedRateHz, mode.id) : 1;
     if (mode.upconversion == Upconversion::Warp) framesPer(refreshHz, mode.upconvertedRateHz, mode.id);
 }
 

@@ -62,8 +62,8 @@ std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string
         if (game == g.name) return g.parse(jsonText, sourceName);
     std::string known;
     for (const auto& g : games) known += std::string(known.empty() ? "" : ", ") + "\"" + g.name + "\"";
-    throw protocol::ProtocolError("protocol '" + sourceName + "': game \"" + game + "\" is not a known game (known: " +
-                                  known + ")");
+    throw protocol::ProtocolError("protocol '" + sourceName + "': game \"" + game +
+                                  "\" is not a known game (known: " + known + ")");
 }
 
 std::unique_ptr<Study> loadStudy(const std::string& path) { return parseStudy(protocol::readProtocolFile(path), path); }

@@ -35,8 +35,8 @@ std::size_t pixelCount(int w, int h, const char* what) {
 
 void checkImage(const ImageRGBA8& im, const char* what) {
     if (im.pixels.size() != 4 * pixelCount(im.width, im.height, what))
-        throw std::invalid_argument(std::string(what) + ": RGBA8 image " + sizeText(im.width, im.height) +
-                                    " has " + std::to_string(im.pixels.size()) + " bytes, expected " +
+        throw std::invalid_argument(std::string(what) + ": RGBA8 image " + sizeText(im.width, im.height) + " has " +
+                                    std::to_string(im.pixels.size()) + " bytes, expected " +
                                     std::to_string(4 * pixelCount(im.width, im.height, what)) + ".");
 }
 
@@ -58,8 +58,7 @@ void checkImage(const ImageU32& im, const char* what) {
                                     std::to_string(pixelCount(im.width, im.height, what)) + ".");
 }
 
-[[noreturn]] void fileError(const char* verb, const char* format, const std::string& path,
-                            const std::string& reason) {
+[[noreturn]] void fileError(const char* verb, const char* format, const std::string& path, const std::string& reason) {
     throw std::runtime_error(std::string("cannot ") + verb + " " + format + " '" + path + "': " + reason + ".");
 }
 
@@ -105,9 +104,7 @@ float byteSwapped(float v) {
     return v;
 }
 
-std::uint8_t toByte(double unit) {
-    return std::uint8_t(std::lround(std::clamp(unit, 0.0, 1.0) * 255.0));
-}
+std::uint8_t toByte(double unit) { return std::uint8_t(std::lround(std::clamp(unit, 0.0, 1.0) * 255.0)); }
 
 void setPixel(std::uint8_t* p, const std::uint8_t c[4]) { std::memcpy(p, c, 4); }
 
@@ -166,8 +163,7 @@ void writePng(const std::string& path, const ImageRGBA8& image) {
         auto* bytes = static_cast<unsigned char*>(data);
         out->insert(out->end(), bytes, bytes + size);
     };
-    if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 4, image.pixels.data(),
-                                4 * image.width))
+    if (!stbi_write_png_to_func(append, &encoded, image.width, image.height, 4, image.pixels.data(), 4 * image.width))
         fileError("write", "PNG", path, "the PNG encoder failed");
     writeWholeFile(path, "PNG", encoded.data(), encoded.size());
 }
@@ -197,8 +193,8 @@ ImageRGBA8 readPng(const std::string& path) {
 void writePfm(const std::string& path, const ImageF& image) {
     checkImage(image, "writePfm");
     const int outChannels = image.channels == 1 ? 1 : 3;
-    const std::string header = std::string(outChannels == 1 ? "Pf" : "PF") + "\n" + std::to_string(image.width) +
-                               " " + std::to_string(image.height) + "\n-1.0\n";  // negative = little-endian
+    const std::string header = std::string(outChannels == 1 ? "Pf" : "PF") + "\n" + std::to_string(image.width) + " " +
+        std::to_string(image.height) + "\n-1.0\n";  // negative = little-endian
     std::vector<unsigned char> bytes(header.begin(), header.end());
     const std::size_t headerSize = bytes.size();
     bytes.resize(headerSize + sizeof(float) * outChannels * pixelCount(image.width, image.height, "writePfm"));
@@ -235,8 +231,7 @@ ImageF readPfm(const std::string& path) {
     if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != 'F' && bytes[1] != 'f'))
         fail("file is not a PFM (it does not start with 'PF' or 'Pf')");
     pos = 2;
-    if (pos >= bytes.size() || !isSpace(bytes[pos]))
-        fail("file is not a PFM (it does not start with 'PF' or 'Pf')");
+    if (pos >= bytes.size() || !isSpace(bytes[pos])) fail("file is not a PFM (it does not start with 'PF' or 'Pf')");
     const int channels = bytes[1] == 'F' ? 3 : 1;
 
     auto parseDimension = [&](const char* what) {
@@ -264,8 +259,8 @@ ImageF readPfm(const std::string& path) {
     const std::size_t floatsPerRow = std::size_t(width) * channels;
     // Compare in rows rather than multiplying width * height first: the header is untrusted.
     const std::size_t rowBytes = floatsPerRow * sizeof(float);
-    const std::string expected = sizeText(width, height) + " with " + std::to_string(channels) +
-                                 (channels == 1 ? " channel" : " channels");
+    const std::string expected =
+        sizeText(width, height) + " with " + std::to_string(channels) + (channels == 1 ? " channel" : " channels");
     if (remaining / rowBytes < std::size_t(height))
         fail("file is truncated: the header says " + expected + " but only " + std::to_string(remaining) +
              " bytes of pixel data follow");
@@ -323,11 +318,31 @@ void hsvToRgb(double h, double s, double v, std::uint8_t* out) {
     const double p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
     double r = v, g = t, b = p;
     switch (sector) {
-        case 1: r = q; g = v; b = p; break;
-        case 2: r = p; g = v; b = t; break;
-        case 3: r = p; g = q; b = v; break;
-        case 4: r = t; g = p; b = v; break;
-        case 5: r = v; g = p; b = q; break;
+        case 1:
+            r = q;
+            g = v;
+            b = p;
+            break;
+        case 2:
+            r = p;
+            g = v;
+            b = t;
+            break;
+        case 3:
+            r = p;
+            g = q;
+            b = v;
+            break;
+        case 4:
+            r = t;
+            g = p;
+            b = v;
+            break;
+        case 5:
+            r = v;
+            g = p;
+            b = q;
+            break;
         default: break;
     }
     out[0] = toByte(r);
@@ -386,8 +401,8 @@ ImageRGBA8 idFalseColour(const ImageU32& ids) {
 ImageRGBA8 velocityFalseColour(const ImageF& velocity, float maxSpeed) {
     checkImage(velocity, "velocityFalseColour");
     if (velocity.channels < 2)
-        throw std::invalid_argument("velocityFalseColour: velocity image has " +
-                                    std::to_string(velocity.channels) + " channel, expected 2 to 4.");
+        throw std::invalid_argument("velocityFalseColour: velocity image has " + std::to_string(velocity.channels) +
+                                    " channel, expected 2 to 4.");
     if (!std::isfinite(maxSpeed) || !(maxSpeed > 0))
         throw std::invalid_argument("velocityFalseColour: maxSpeed must be finite and positive, got " +
                                     std::to_string(maxSpeed) + ".");

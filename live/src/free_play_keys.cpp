@@ -26,7 +26,8 @@ FreePlayChoice applyFreePlayKeys(FreePlayChoice choice, const std::string& keys,
                                  const std::function<bool(const std::string&)>& runs) {
     for (const char c : keys) {
         if (c >= '1' && c <= '9' && static_cast<std::size_t>(c - '1') < modes.size()) choice.mode = modes[c - '1'];
-        if ((c == ']' || c == '[') && !modes.empty()) choice.mode = stepMode(choice.mode, c == ']' ? 1 : -1, modes, runs);
+        if ((c == ']' || c == '[') && !modes.empty())
+            choice.mode = stepMode(choice.mode, c == ']' ? 1 : -1, modes, runs);
         if (c == 'u') ++choice.level;
         if (c == 'd') choice.level = std::max(0, choice.level - 1);
     }

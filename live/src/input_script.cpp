@@ -29,13 +29,18 @@ InputScript::InputScript(const std::string& path) {
         } else if (action == "key") {
             std::string key;
             words >> key;
-            if (key == "enter") in.keysPressed += '\r';
-            else if (key == "esc") in.keysPressed += '\x1b';
-            else if (key == "pageup" || key == "[") in.keysPressed += '[';
-            else if (key == "pagedown" || key == "]") in.keysPressed += ']';
+            if (key == "enter")
+                in.keysPressed += '\r';
+            else if (key == "esc")
+                in.keysPressed += '\x1b';
+            else if (key == "pageup" || key == "[")
+                in.keysPressed += '[';
+            else if (key == "pagedown" || key == "]")
+                in.keysPressed += ']';
             else if (key.size() == 1 && std::isalnum(static_cast<unsigned char>(key[0])))
                 in.keysPressed += static_cast<char>(std::tolower(static_cast<unsigned char>(key[0])));
-            else throw bad("unknown key '" + key + "' (enter, esc, pageup, pagedown, [, ], a letter or a digit)");
+            else
+                throw bad("unknown key '" + key + "' (enter, esc, pageup, pagedown, [, ], a letter or a digit)");
         } else {
             throw bad("unknown action '" + action + "' (key, move or click)");
         }

@@ -29,7 +29,7 @@ public:
     DisplayClock(renderer::Window& window, double refreshHz, bool byVsync);
 
     struct Presented {
-        double frameS;     // since the previous present
+        double frameS;  // since the previous present
         int missedVsyncs;  // a frame that took n periods to reach the screen missed n - 1
     };
     Presented present();
@@ -47,7 +47,7 @@ private:
 
 // How one displayed frame reached the screen.
 struct FrameTiming {
-    double frameMs = 0.0;   // present to present
+    double frameMs = 0.0;  // present to present
     double renderMs = 0.0;  // making it (render, warp or blend, HUD) to glFinish
     int missedVsyncs = 0;
 };
@@ -106,7 +106,7 @@ public:
     void inject(const std::string& when);
 
     struct End {
-        bool aborted = false;       // the window closed or the supervisor ended it
+        bool aborted = false;  // the window closed or the supervisor ended it
         std::int64_t lastFrame = -1;  // the game's last shown frame
     };
     // Shows frames of the policy's game, one per display frame, until it finishes, a

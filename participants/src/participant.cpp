@@ -149,7 +149,7 @@ void SimulatedParticipant::move(game::FrameInput& input, glm::dvec2 velocity, do
 }
 
 void SimulatedParticipant::remember(const Percept& percept) {
-    Sighting s{percept.time, percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {}, percept.pointer,
+    Sighting s{percept.time,     percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {}, percept.pointer,
                percept.pointerAt};
     const bool reticle = percept.pointer == game::PointerKind::Reticle;
     if (reticle) {
@@ -164,7 +164,9 @@ void SimulatedParticipant::remember(const Percept& percept) {
         // Against a key frame rather than frame by frame, so that small errors do not add up;
         // a new key frame once the view has turned a tenth of the picture away from it.
         const double f = focalPixels(knowledge_);
-        const auto toTurn = [&](glm::dvec2 shift) { return glm::dvec2(std::atan(-shift.x / f), std::atan(shift.y / f)); };
+        const auto toTurn = [&](glm::dvec2 shift) {
+            return glm::dvec2(std::atan(-shift.x / f), std::atan(shift.y / f));
+        };
         std::optional<glm::dvec2> moved;
         // Searched around where the hand's turn since the last frame would put it.
         const glm::dvec2 turn = hand_ - previousHand_;
@@ -191,7 +193,8 @@ void SimulatedParticipant::remember(const Percept& percept) {
         // direction as seen plus the turn that would bring it under the reticle. A fixed view
         // with a cursor: where it is on the screen, which does not move.
         const glm::dvec2 where = reticle ? view_ + offset : o.centre;
-        s.things.push_back({o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
+        s.things.push_back(
+            {o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
     }
     sightings_.push_back(std::move(s));
     const double keepFrom = percept.time - params_.reactionS - params_.motionWindowS - 0.05;
@@ -212,7 +215,7 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     bool changed = percept.objects.size() != previousObjects_.size();
     for (std::size_t i = 0; !changed && i < percept.objects.size(); ++i)
         changed = percept.objects[i].id != previousObjects_[i].id ||
-                  glm::length(percept.objects[i].centre - previousObjects_[i].centre) > 1e-3;
+            glm::length(percept.objects[i].centre - previousObjects_[i].centre) > 1e-3;
     previousObjects_ = percept.objects;
     if (percept.pointer == game::PointerKind::Cursor) match_.push_back({percept.pointerAt, hand_, changed});
     // Where the cursor is, it knows from its hand and corrects by what it sees: the cursor in the
@@ -231,8 +234,8 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     // Where it points now: with a reticle, the view the frame it acts on showed, turned on by
     // what the hand has done since (efference copy); with a cursor, its hand, corrected by what
     // it has seen of the cursor.
-    const glm::dvec2 pointer = view->pointer == game::PointerKind::Reticle ? view->view + (hand_ - view->hand)
-                                                                            : hand_ + calibration_;
+    const glm::dvec2 pointer =
+        view->pointer == game::PointerKind::Reticle ? view->view + (hand_ - view->hand) : hand_ + calibration_;
     aim_ = pointer;
     const glm::dvec2 handBefore = hand_;
     const auto sees = [&](const Sighting& s, std::uint32_t id) -> const Thing* {
@@ -275,8 +278,8 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
         // view misjudged (the hall repeats itself) -- and the motion is judged afresh from it.
         const Thing* t = sees(s, *target_);
         if (!t || (!samples.empty() && samples.back().position == t->where)) continue;
-        if (!samples.empty() && glm::length(t->where - samples.back().position) >
-                                    maxSeenSpeed * (s.time - samples.back().time))
+        if (!samples.empty() &&
+            glm::length(t->where - samples.back().position) > maxSeenSpeed * (s.time - samples.back().time))
             samples.clear();
         samples.push_back({s.time, t->where});
     }
@@ -319,7 +322,7 @@ glm::dvec2 SimulatedParticipant::homeward(const Sighting& view, glm::dvec2 aim, 
             homeSeen_.reset();
             const glm::dvec2 back = homeHand_ - hand_;
             return glm::length(back) <= glm::radians(params_.homeWithinDeg) ? glm::dvec2(0.0)
-                                                                           : params_.correctionPerS * back;
+                                                                            : params_.correctionPerS * back;
         }
         homeSeen_ = view.view + offsetFromPointer(knowledge_, view.pointer, view.pointerAt, view.pointerAt + *shift);
     }
@@ -368,10 +371,14 @@ int SimulatedParticipant::ratingFor(const std::string& statement, int min, int m
     for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     const double enjoyed = (smoothness_ + responsiveness_) / 2.0;
     double value = 4.0;  // on 1..7; neither agree nor disagree with what it has no feeling about
-    if (text.find("enjoy") != std::string::npos) value = enjoyed;
-    else if (text.find("difficult") != std::string::npos) value = 8.0 - enjoyed;
-    else if (text.find("responsive") != std::string::npos) value = responsiveness_;
-    else if (text.find("smooth") != std::string::npos) value = smoothness_;
+    if (text.find("enjoy") != std::string::npos)
+        value = enjoyed;
+    else if (text.find("difficult") != std::string::npos)
+        value = 8.0 - enjoyed;
+    else if (text.find("responsive") != std::string::npos)
+        value = responsiveness_;
+    else if (text.find("smooth") != std::string::npos)
+        value = smoothness_;
     return std::clamp(static_cast<int>(std::lround(min + (value - 1.0) / 6.0 * (max - min))), min, max);
 }
 
@@ -400,7 +407,8 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
 }
 
 game::FrameInput SimulatedParticipant::act(const Percept& percept) {
-    const double dt = lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
+    const double dt =
+        lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
     lastTime_ = percept.time;
     game::FrameInput input;
     if (percept.rating) {

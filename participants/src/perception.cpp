@@ -11,8 +11,7 @@ namespace warplab::participants {
 // ---------------------------------------------------------------------------------------------
 // Perception
 
-std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::ImageRGBA8& colour,
-                                    glm::dvec2 toDisplay) {
+std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::ImageRGBA8& colour, glm::dvec2 toDisplay) {
     struct Sum {
         double x = 0.0, y = 0.0;
         glm::dvec3 colour{0.0};
@@ -43,8 +42,7 @@ std::vector<SeenObject> findObjects(const image::ImageU32& ids, const image::Ima
     return objects;
 }
 
-Thumbnail thumbnailOf(const image::ImageRGBA8& colour, const image::ImageU32& ids, int block,
-                      glm::dvec2 toDisplay) {
+Thumbnail thumbnailOf(const image::ImageRGBA8& colour, const image::ImageU32& ids, int block, glm::dvec2 toDisplay) {
     Thumbnail t;
     t.width = colour.width / block;
     t.height = colour.height / block;
@@ -116,8 +114,8 @@ std::optional<glm::dvec2> howFarViewMoved(const Percept& before, const Percept& 
     // cell of that over the sharp ones.
     const glm::ivec2 around(static_cast<int>(std::lround(guessPx.x / now.picture.cellPx.x)),
                             static_cast<int>(std::lround(guessPx.y / now.picture.cellPx.y)));
-    const auto coarse = bestShift(before.picture, now.picture, around,
-                                  {now.picture.width / 6, now.picture.height / 6}, 0.6, 0.5);
+    const auto coarse =
+        bestShift(before.picture, now.picture, around, {now.picture.width / 6, now.picture.height / 6}, 0.6, 0.5);
     if (!coarse) return std::nullopt;
     const glm::dvec2 ratio = now.picture.cellPx / now.detail.cellPx;
     const glm::ivec2 guess(static_cast<int>(std::lround(coarse->x * ratio.x)),

@@ -65,8 +65,7 @@ void requireValidPlane(const TargetPlane& plane) {
     require(std::isfinite(plane.z) && std::isfinite(plane.minX) && std::isfinite(plane.maxX) &&
                 std::isfinite(plane.minY) && std::isfinite(plane.maxY),
             "plane", "must be finite");
-    require(plane.minX <= plane.maxX && plane.minY <= plane.maxY, "plane",
-            "min must not exceed max");
+    require(plane.minX <= plane.maxX && plane.minY <= plane.maxY, "plane", "min must not exceed max");
 }
 
 // Draws from the one splitmix64 (physics/splitmix.h).
@@ -85,16 +84,13 @@ TargetPlane fitTargetPlane(const scene::CameraState& camera, double aspect, doub
     using Layout = scene::HangarLayout;
     const double fovDeg = camera.verticalFovDeg;
     require(std::isfinite(aspect) && aspect > 0.0, "aspect", "must be positive and finite");
-    require(fovDeg > 0.0 && fovDeg < 180.0, "camera.verticalFovDeg",
-            "must lie in (0, 180) degrees");
+    require(fovDeg > 0.0 && fovDeg < 180.0, "camera.verticalFovDeg", "must lie in (0, 180) degrees");
     const double minX = Layout::kClearMinX, maxX = Layout::kClearMaxX;
     const double minY = Layout::kClearMinY, maxY = Layout::kClearMaxY;
-    require(std::isfinite(radius) && radius > 0.0 && 2.0 * radius < maxX - minX &&
-                2.0 * radius < maxY - minY,
-            "radius", "must be positive and smaller than half the clear cross-section");
+    require(std::isfinite(radius) && radius > 0.0 && 2.0 * radius < maxX - minX && 2.0 * radius < maxY - minY, "radius",
+            "must be positive and smaller than half the clear cross-section");
     const glm::dvec3 eye(camera.eye);
-    require(std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z), "camera.eye",
-            "must be finite");
+    require(std::isfinite(eye.x) && std::isfinite(eye.y) && std::isfinite(eye.z), "camera.eye", "must be finite");
 
     // The farther wall from the eye on each axis must fit in the half angle on that axis;
     // the tighter axis sets the distance, the other then shows a little beyond its walls.
@@ -160,8 +156,7 @@ TargetMotion spawnTarget(const TargetPlane& plane, double speed, std::uint64_t s
     return motion;
 }
 
-scene::ObjectState targetObject(const TargetPlane& plane, const TargetMotion& motion, double t,
-                                double radius) {
+scene::ObjectState targetObject(const TargetPlane& plane, const TargetMotion& motion, double t, double radius) {
     require(std::isfinite(radius) && radius > 0.0, "radius", "must be positive and finite");
     const glm::dvec2 position = positionAt(plane, motion, t);
     const glm::dvec2 velocity = velocityAt(plane, motion, t);

@@ -69,17 +69,15 @@ StartLattice startLattice(const FallingSphereSettings& s) {
 
 void validate(const FallingSphereSettings& s) {
     const SphereBox& box = s.box;
-    requireSetting(finite(box.min) && finite(box.max) && box.min.x < box.max.x &&
-                       box.min.y < box.max.y && box.min.z < box.max.z,
-                   "box", "must be finite with min < max on every axis");
-    requireSetting(std::isfinite(s.gravity) && s.gravity >= 0.0, "gravity",
-                   "must be finite and >= 0 (it points down)");
+    requireSetting(
+        finite(box.min) && finite(box.max) && box.min.x < box.max.x && box.min.y < box.max.y && box.min.z < box.max.z,
+        "box", "must be finite with min < max on every axis");
+    requireSetting(std::isfinite(s.gravity) && s.gravity >= 0.0, "gravity", "must be finite and >= 0 (it points down)");
     const glm::dvec3 size = box.max - box.min;
-    requireSetting(std::isfinite(s.radius) && s.radius > 0.0 && 2.0 * s.radius < size.x &&
-                       2.0 * s.radius < size.y && 2.0 * s.radius < size.z,
+    requireSetting(std::isfinite(s.radius) && s.radius > 0.0 && 2.0 * s.radius < size.x && 2.0 * s.radius < size.y &&
+                       2.0 * s.radius < size.z,
                    "radius", "must be > 0 with a diameter smaller than the box on every axis");
-    requireSetting(s.restitution >= 0.0 && s.restitution <= 1.0, "restitution",
-                   "must be in [0, 1]");
+    requireSetting(s.restitution >= 0.0 && s.restitution <= 1.0, "restitution", "must be in [0, 1]");
     requireSetting(s.stepRateHz > 0, "stepRateHz", "must be > 0");
     requireSetting(s.sphereCount >= 0, "sphereCount", "must be >= 0");
     const long long capacity = startLattice(s).capacity();
@@ -88,21 +86,18 @@ void validate(const FallingSphereSettings& s) {
                        " for this box and radius (the field starts without overlap in the "
                        "upper half of the box)");
     requireSetting(s.greenShare >= 0.0 && s.greenShare <= 1.0, "greenShare", "must be in [0, 1]");
-    requireSetting(
-        std::isfinite(s.spawnDelayS) && s.spawnDelayS >= 0.0 && s.spawnDelayS * s.stepRateHz < 4e18,
-        "spawnDelayS", "must be finite and >= 0");
-    requireSetting(std::isfinite(s.spawnSpeed) && s.spawnSpeed >= 0.0, "spawnSpeed",
-                   "must be finite and >= 0");
-    requireSetting(std::isfinite(s.restingSpeed) && s.restingSpeed >= 0.0, "restingSpeed",
-                   "must be finite and >= 0");
+    requireSetting(std::isfinite(s.spawnDelayS) && s.spawnDelayS >= 0.0 && s.spawnDelayS * s.stepRateHz < 4e18,
+                   "spawnDelayS", "must be finite and >= 0");
+    requireSetting(std::isfinite(s.spawnSpeed) && s.spawnSpeed >= 0.0, "spawnSpeed", "must be finite and >= 0");
+    requireSetting(std::isfinite(s.restingSpeed) && s.restingSpeed >= 0.0, "restingSpeed", "must be finite and >= 0");
     requireSetting(s.velocityIterations >= 1, "velocityIterations", "must be >= 1");
     requireSetting(s.positionIterations >= 1, "positionIterations", "must be >= 1");
 }
 
 bool insideBox(const FallingSphereSettings& s, glm::dvec3 p) {
     const double r = s.radius;
-    return p.x >= s.box.min.x + r && p.x <= s.box.max.x - r && p.y >= s.box.min.y + r &&
-           p.y <= s.box.max.y - r && p.z >= s.box.min.z + r && p.z <= s.box.max.z - r;
+    return p.x >= s.box.min.x + r && p.x <= s.box.max.x - r && p.y >= s.box.min.y + r && p.y <= s.box.max.y - r &&
+        p.z >= s.box.min.z + r && p.z <= s.box.max.z - r;
 }
 
 }  // namespace
@@ -119,8 +114,7 @@ FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::uint6
     std::set<long long> taken;
     std::vector<long long> cells;
     for (long long j = cellCount - settings_.sphereCount; j < cellCount; ++j) {
-        const long long t =
-            static_cast<long long>(nextRandom(rngState_) % static_cast<std::uint64_t>(j + 1));
+        const long long t = static_cast<long long>(nextRandom(rngState_) % static_cast<std::uint64_t>(j + 1));
         const long long cell = taken.count(t) ? j : t;
         taken.insert(cell);
         cells.push_back(cell);
@@ -136,8 +130,7 @@ FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::uint6
         const auto coordinate = [&](int axis, int index) {
             const double cellSize = lattice.cell[axis];
             const double slack = std::max(0.0, cellSize - 2.0 * r);
-            const double c =
-                lattice.origin[axis] + index * cellSize + r + uniform01(rngState_) * slack;
+            const double c = lattice.origin[axis] + index * cellSize + r + uniform01(rngState_) * slack;
             return std::min(c, settings_.box.max[axis] - r);
         };
         Sphere sphere;
@@ -151,8 +144,8 @@ FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::uint6
     }
 }
 
-FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::vector<Sphere> initial,
-                               bool spawn, std::uint64_t seed)
+FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::vector<Sphere> initial, bool spawn,
+                               std::uint64_t seed)
     : settings_(settings), spheres_(std::move(initial)), rngState_(seed), spawn_(spawn) {
     validate(settings_);
     for (std::size_t i = 0; i < spheres_.size(); ++i) {
@@ -165,8 +158,7 @@ FallingSpheres::FallingSpheres(const FallingSphereSettings& settings, std::vecto
             throw std::invalid_argument(name + " must have a finite position and velocity");
         }
         if (!insideBox(settings_, sphere.position)) {
-            throw std::invalid_argument(name +
-                                        ".position must keep the whole sphere inside the box");
+            throw std::invalid_argument(name + ".position must keep the whole sphere inside the box");
         }
     }
     if (!spheres_.empty()) {
@@ -258,10 +250,8 @@ void FallingSpheres::findContacts() {
                 // Time back to touching: the positive root of |d - relative t| = 2r, in the
                 // form that does not cancel (the other root is negative).
                 const double speedSquared = glm::dot(relative, relative);
-                const double discriminant =
-                    approach * approach - speedSquared * (distanceSquared - 4.0 * r * r);
-                const double back =
-                    (distanceSquared - 4.0 * r * r) / (approach - std::sqrt(discriminant));
+                const double discriminant = approach * approach - speedSquared * (distanceSquared - 4.0 * r * r);
+                const double back = (distanceSquared - 4.0 * r * r) / (approach - std::sqrt(discriminant));
                 const glm::dvec3 touching = d - relative * back;
                 const double touchingLength = glm::length(touching);
                 // Only an overlap made within this step is traced back; older ones (a spawn in
@@ -333,8 +323,7 @@ void FallingSpheres::resolveVelocities() {
             // Unit masses: a wall contact moves one sphere (effective mass 1), a pair two
             // (effective mass 1/2), so each takes half the change of relative velocity.
             const double effectiveMass = c.a == c.b ? 1.0 : 0.5;
-            const double total =
-                std::max(0.0, c.impulse + effectiveMass * (c.target - separating(c)));
+            const double total = std::max(0.0, c.impulse + effectiveMass * (c.target - separating(c)));
             const double change = total - c.impulse;
             if (change == 0.0) continue;
             changed = true;
@@ -394,15 +383,13 @@ void FallingSpheres::resolveOverlaps() {
 }
 
 bool FallingSpheres::remove(std::uint32_t id) {
-    const auto it = std::lower_bound(
-        spheres_.begin(), spheres_.end(), id,
-        [](const Sphere& sphere, std::uint32_t wanted) { return sphere.id < wanted; });
+    const auto it = std::lower_bound(spheres_.begin(), spheres_.end(), id,
+                                     [](const Sphere& sphere, std::uint32_t wanted) { return sphere.id < wanted; });
     if (it == spheres_.end() || it->id != id) return false;
     spheres_.erase(it);
     const std::size_t present = spheres_.size() + pendingSpawnSteps_.size();
     if (spawn_ && present < static_cast<std::size_t>(settings_.sphereCount)) {
-        const auto delaySteps =
-            static_cast<std::int64_t>(std::llround(settings_.spawnDelayS * settings_.stepRateHz));
+        const auto delaySteps = static_cast<std::int64_t>(std::llround(settings_.spawnDelayS * settings_.stepRateHz));
         pendingSpawnSteps_.push_back(stepCount_ + delaySteps);
     }
     return true;
@@ -412,8 +399,7 @@ void FallingSpheres::spawnDue() {
     // Due spawns enter in the order they were scheduled; one that finds no room keeps its
     // place (and the ones behind it wait) until the next step.
     std::size_t entered = 0;
-    while (entered < pendingSpawnSteps_.size() && pendingSpawnSteps_[entered] <= stepCount_ &&
-           trySpawn()) {
+    while (entered < pendingSpawnSteps_.size() && pendingSpawnSteps_[entered] <= stepCount_ && trySpawn()) {
         ++entered;
     }
     pendingSpawnSteps_.erase(pendingSpawnSteps_.begin(),

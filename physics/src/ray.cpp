@@ -17,8 +17,7 @@ glm::dvec3 requireDirection(glm::dvec3 dir) {
 
 }  // namespace
 
-std::optional<double> raySphereHit(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 centre,
-                                   double radius) {
+std::optional<double> raySphereHit(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 centre, double radius) {
     const glm::dvec3 unitDir = requireDirection(dir);
     if (!(radius >= 0.0)) {
         throw std::invalid_argument("radius: must be non-negative");

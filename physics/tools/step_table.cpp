@@ -34,23 +34,22 @@ double fastestEntrySpeed(const FallingSphereSettings& s) {
 
 double sphereEnergy(const FallingSphereSettings& s, const Sphere& sphere) {
     return 0.5 * glm::dot(sphere.velocity, sphere.velocity) +
-           s.gravity * (sphere.position.y - (s.box.min.y + s.radius));
+        s.gravity * (sphere.position.y - (s.box.min.y + s.radius));
 }
 
 // The game's default scenario: 10 spheres for 60 s, with a scripted player clicking away the
 // oldest green sphere every 1.5 s so that replacements keep entering at the top.
 struct GameRun {
     double deepestContact = 0.0;  // m, within a step, before it is resolved
-    double overlapLeft = 0.0;     // m, after a step
-    double energyDrift = 0.0;     // relative, at the end (restitution 1 only)
-    double energyRise = 0.0;      // relative, the most it was ever above the books
+    double overlapLeft = 0.0;  // m, after a step
+    double energyDrift = 0.0;  // relative, at the end (restitution 1 only)
+    double energyRise = 0.0;  // relative, the most it was ever above the books
 };
 
 GameRun runGame(const FallingSphereSettings& settings, bool trackEnergy) {
     FallingSpheres world(settings, kSeed);
     const auto steps = static_cast<std::int64_t>(std::llround(kGameSeconds * settings.stepRateHz));
-    const auto clickEvery =
-        static_cast<std::int64_t>(std::llround(kClickEveryS * settings.stepRateHz));
+    const auto clickEvery = static_cast<std::int64_t>(std::llround(kClickEveryS * settings.stepRateHz));
     GameRun run;
     // Energy books: what the field starts with, minus what clicks take away, plus what new
     // spheres bring. With restitution 1 the exact model keeps the total equal to this.
@@ -168,8 +167,7 @@ HitError glancingHitError(FallingSphereSettings settings) {
 
             const double along = std::sqrt(4.0 * r * r - offset * offset);
             const double contactTime = (startGap - along) / speed;
-            const glm::dvec3 normal =
-                glm::dvec3(-along, offset, 0.0) / (2.0 * r);  // still -> moving
+            const glm::dvec3 normal = glm::dvec3(-along, offset, 0.0) / (2.0 * r);  // still -> moving
             const double closing = speed * along / (2.0 * r);
             const double exchange = 0.5 * (1.0 + e) * closing;
             const glm::dvec3 stillAfter = -exchange * normal;
@@ -177,18 +175,15 @@ HitError glancingHitError(FallingSphereSettings settings) {
             const glm::dvec3 stillAtContact = centre;
             const glm::dvec3 movingAtContact = centre + 2.0 * r * normal;
 
-            const auto steps =
-                static_cast<std::int64_t>(std::ceil((contactTime + 0.1) * settings.stepRateHz));
+            const auto steps = static_cast<std::int64_t>(std::ceil((contactTime + 0.1) * settings.stepRateHz));
             world.advance(steps);
             const double after = world.time() - contactTime;
             const Sphere& a = world.spheres()[0];
             const Sphere& b = world.spheres()[1];
-            worst.position = std::max(
-                {worst.position, glm::length(a.position - (stillAtContact + stillAfter * after)),
-                 glm::length(b.position - (movingAtContact + movingAfter * after))});
-            worst.velocity =
-                std::max({worst.velocity, glm::length(a.velocity - stillAfter) / closing,
-                          glm::length(b.velocity - movingAfter) / closing});
+            worst.position = std::max({worst.position, glm::length(a.position - (stillAtContact + stillAfter * after)),
+                                       glm::length(b.position - (movingAtContact + movingAfter * after))});
+            worst.velocity = std::max({worst.velocity, glm::length(a.velocity - stillAfter) / closing,
+                                       glm::length(b.velocity - movingAfter) / closing});
         }
     }
     return worst;
@@ -215,8 +210,7 @@ double fastImpactDepth(const FallingSphereSettings& settings) {
         const double shift = phase * speed * dt / 8.0;
         const std::vector<std::vector<Sphere>> cases = {
             {make(0, {0.0, floorY + 2.0 + shift, z}, {0.0, -speed, 0.0})},
-            {make(0, {0.0, floorY, z}, {}),
-             make(1, {0.0, floorY + 2.0 * r + 2.0 + shift, z}, {0.0, -speed, 0.0})},
+            {make(0, {0.0, floorY, z}, {}), make(1, {0.0, floorY + 2.0 * r + 2.0 + shift, z}, {0.0, -speed, 0.0})},
             {make(0, {-2.0 - 2.0 * shift, 4.0, z}, {speed, 0.0, 0.0}),  // closing at 2 speed
              make(1, {2.0, 4.0, z}, {-speed, 0.0, 0.0})},
         };
@@ -256,10 +250,10 @@ int main() {
         const HitError hit = glancingHitError(settings);
         const double deepest = std::max(game.deepestContact, fastImpactDepth(settings));
         const double cost = costPerSimulatedSecond(settings);
-        std::printf("| %d | %.3f | %.2f | %.2f | %.1e | %+.3f | %.1e | %.1f | %.1e | %.0f |\n",
-                    rate, 1e3 / rate, 1e3 * bounce, 1e3 * hit.position, 100.0 * hit.velocity,
-                    100.0 * energy.energyDrift, 100.0 * energy.energyRise, 1e3 * deepest,
-                    1e3 * std::max(game.overlapLeft, energy.overlapLeft), cost);
+        std::printf("| %d | %.3f | %.2f | %.2f | %.1e | %+.3f | %.1e | %.1f | %.1e | %.0f |\n", rate, 1e3 / rate,
+                    1e3 * bounce, 1e3 * hit.position, 100.0 * hit.velocity, 100.0 * energy.energyDrift,
+                    100.0 * energy.energyRise, 1e3 * deepest, 1e3 * std::max(game.overlapLeft, energy.overlapLeft),
+                    cost);
         std::fflush(stdout);
     }
     return 0;

@@ -9,7 +9,8 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     content.backdrop = shown.blank;
     content.reticle = shown.pointer == game::PointerKind::Reticle;
     if (shown.pointer == game::PointerKind::Cursor)
-        content.cursor = glm::vec2(static_cast<float>(shown.cursor.x * toFrameX), static_cast<float>(shown.cursor.y * toFrameY));
+        content.cursor =
+            glm::vec2(static_cast<float>(shown.cursor.x * toFrameX), static_cast<float>(shown.cursor.y * toFrameY));
     content.banner = shown.banner;
     content.bannerGood = shown.bannerGood;
     content.status = shown.phaseText;
@@ -30,11 +31,12 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
                        const protocol::RenderSettings& rendering)
     : paths_(paths),
-      conventional_(paths, [&] {
-          renderer::ShadingOptions shading;
-          shading.supersampling = rendering.supersampling;
-          return shading;
-      }()),
+      conventional_(paths,
+                    [&] {
+                        renderer::ShadingOptions shading;
+                        shading.supersampling = rendering.supersampling;
+                        return shading;
+                    }()),
       width_(width),
       height_(height),
       warpBand_(renderer::guardBandFor(width, height, rendering.guardBand)) {}

@@ -39,7 +39,8 @@ public:
     // `ids`: the displayed frame's id attachment (the HUD leaves it untouched).
     void check(const game::ShownFrame& shown, const image::ImageU32& ids, ReplayRenderResult& result) {
         const auto kind = shown.schedule.kind;
-        if (shown.blank || shown.frozen || !(kind == game::FrameKind::Rendered || kind == game::FrameKind::Held)) return;
+        if (shown.blank || shown.frozen || !(kind == game::FrameKind::Rendered || kind == game::FrameKind::Held))
+            return;
         const int width = ids.width, height = ids.height;
         const bool cursor = shown.pointer == game::PointerKind::Cursor;
         const int ix = std::clamp(static_cast<int>(cursor ? shown.cursor.x * toFrameX_ : width * 0.5), 0, width - 1);
@@ -52,9 +53,10 @@ public:
             return;
         }
         ++result.checked;
-        const std::string where = "frame " + std::to_string(shown.frame) + ": id " + std::to_string(seen) +
-                                  " under the pointer, ";
-        if (seen != probe.objectId) disagree(result, where + "the analytic model says " + std::to_string(probe.objectId));
+        const std::string where =
+            "frame " + std::to_string(shown.frame) + ": id " + std::to_string(seen) + " under the pointer, ";
+        if (seen != probe.objectId)
+            disagree(result, where + "the analytic model says " + std::to_string(probe.objectId));
         const auto logged = loggedObject_.find(shown.frame);
         if (logged == loggedObject_.end()) return;
         ++result.eventsChecked;

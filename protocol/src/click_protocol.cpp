@@ -14,14 +14,14 @@ using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
 // Bounds that no study needs to exceed (json_fields.h says why they exist).
-constexpr double kGravityLimit = 100;       // about 10 g
-constexpr double kRadiusLimit = 2;          // m; the box is a few metres across
-constexpr int kStepRateLimit = 100000;      // Hz
+constexpr double kGravityLimit = 100;  // about 10 g
+constexpr double kRadiusLimit = 2;  // m; the box is a few metres across
+constexpr int kStepRateLimit = 100000;  // Hz
 constexpr int kSphereLimit = 40;
-constexpr double kSpeedLimit = 100;         // m/s
+constexpr double kSpeedLimit = 100;  // m/s
 constexpr double kCursorPerCountLimit = 100;
 constexpr int kMatchesPerModeLimit = 100;
-constexpr int kRatingLimit = 100;           // either end of the scale, in magnitude
+constexpr int kRatingLimit = 100;  // either end of the scale, in magnitude
 // Positive is not enough where a tiny value breaks later maths. 1 cm, a 45th of the default
 // radius, is still drawn; a subnormal radius became a float 0, spheres no click could hit.
 constexpr double kRadiusMin = 0.01;
@@ -31,7 +31,7 @@ constexpr double kCursorPerCountMin = 0.001;
 // Durations (docs/protocol.md, "Limits that keep a session's data safe"). A match is committed
 // when it starts and when it ends, so one match is the longest stretch of frames held.
 constexpr double kMatchLimitS = kCommitStretchLimitS;  // 5 minutes, 6.7 times the paper's 45 s
-constexpr double kSpawnDelayLimitS = 60;               // 120 times the default 0.5 s
+constexpr double kSpawnDelayLimitS = 60;  // 120 times the default 0.5 s
 
 using P = ClickProtocol;
 using K = detail::Keys<P>;
@@ -69,8 +69,7 @@ void readRounds(const detail::Reader& r, const Json* matches, const std::string&
         names.push_back(round.name);
         read.push_back(round);
     }
-    r.requireDistinct(names,
-                      [](std::size_t i) { return elementPath("matches.rounds", i) + ".name"; });
+    r.requireDistinct(names, [](std::size_t i) { return elementPath("matches.rounds", i) + ".name"; });
     p.rounds = std::move(read);
 }
 
@@ -122,8 +121,8 @@ const std::vector<detail::Section<P>>& sections() {
                         {kCursorPerCountMin, false, kCursorPerCountLimit, false}),
               K::choice("click_timing", at(&P::clickTiming))}},
             {"matches",
-             {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}),
-              K::modeList("modes", at(&P::modes)), K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
+             {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}), K::modeList("modes", at(&P::modes)),
+              K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
               K::choice("scoring", at(&P::scoring))}},
             {"ratings",
              {K::boolean("enabled", at(&P::ratingsEnabled)),
@@ -149,8 +148,7 @@ std::vector<std::string> clickProtocolKeys() {
     return paths;
 }
 
-ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
-                                 const ModeCheck& modes) {
+ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName, const ModeCheck& modes) {
     const detail::Reader r(sourceName, modes);
     const Json document = r.parseObject(jsonText);
     ClickProtocol p;
@@ -162,20 +160,21 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 
     // Relations between fields, checked once every field holds its final value.
     if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))
-        r.fail("physics.step_rate_hz", "must be a whole multiple of display.refresh_hz (" +
-                                           formatNumber(p.refreshHz) + "), got " +
-                                           std::to_string(p.stepRateHz));
+        r.fail("physics.step_rate_hz",
+               "must be a whole multiple of display.refresh_hz (" + formatNumber(p.refreshHz) + "), got " +
+                   std::to_string(p.stepRateHz));
     bool anyScored = false;
     for (const ClickRound& round : p.rounds) anyScored = anyScored || round.scored;
     if (!anyScored)
-        r.fail("matches.rounds", "must have at least one round with \"scored\": true, or the "
-                                 "session measures nothing");
+        r.fail("matches.rounds",
+               "must have at least one round with \"scored\": true, or the "
+               "session measures nothing");
     if (p.ratingsEnabled && p.ratingStatements.empty())
-        r.fail("ratings.statements",
-               "must list at least one statement while ratings.enabled is true");
+        r.fail("ratings.statements", "must list at least one statement while ratings.enabled is true");
     if (p.ratingMin >= p.ratingMax)
-        r.fail("ratings.min", "must be less than ratings.max (" + std::to_string(p.ratingMax) +
-                                  "), got " + std::to_string(p.ratingMin));
+        r.fail(
+            "ratings.min",
+            "must be less than ratings.max (" + std::to_string(p.ratingMax) + "), got " + std::to_string(p.ratingMin));
     r.requireModes("matches.modes", p.modes, p.refreshHz);
     return p;
 }

@@ -19,13 +19,9 @@ public:
         using Event = Json::parse_event_t;
         switch (event) {
             case Event::object_start:
-            case Event::array_start:
-                frames_.push_back({childPath(), event == Event::array_start, 0, {}, {}});
-                break;
+            case Event::array_start: frames_.push_back({childPath(), event == Event::array_start, 0, {}, {}}); break;
             case Event::object_end:
-            case Event::array_end:
-                frames_.pop_back();
-                break;
+            case Event::array_end: frames_.pop_back(); break;
             case Event::key: {
                 Frame& frame = frames_.back();
                 frame.lastKey = parsed.get<std::string>();
@@ -65,8 +61,7 @@ private:
 // "[json.exception.name.id] message" -> "message": the id means nothing to a researcher.
 std::string withoutLibraryPrefix(const std::string& what) {
     const auto end = what.find("] ");
-    return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2)
-                                                                               : what;
+    return what.rfind("[json.exception.", 0) == 0 && end != std::string::npos ? what.substr(end + 2) : what;
 }
 
 const Json* find(const Json* parent, const char* key) {
@@ -106,9 +101,7 @@ std::string joinPath(const std::string& parent, const std::string& key) {
     return parent.empty() ? key : parent + "." + key;
 }
 
-std::string elementPath(const std::string& path, std::size_t index) {
-    return path + "[" + std::to_string(index) + "]";
-}
+std::string elementPath(const std::string& path, std::size_t index) { return path + "[" + std::to_string(index) + "]"; }
 
 std::string describe(const Json& value) {
     std::string text = value.dump(-1, ' ', true);
@@ -123,8 +116,7 @@ bool wholeMultiple(double value, double unit) {
     return whole >= 1 && std::abs(ratio - whole) <= 1e-9;
 }
 
-Json headerJson(int formatVersion, const std::string& name, const std::string& description,
-                const std::string& game) {
+Json headerJson(int formatVersion, const std::string& name, const std::string& description, const std::string& game) {
     Json header;
     header[kHeaderKeys[0]] = formatVersion;
     header[kHeaderKeys[1]] = name;
@@ -144,17 +136,13 @@ bool NumberRange::contains(double v) const {
 std::string NumberRange::text() const {
     const std::string lo = formatNumber(low), hi = formatNumber(high);
     if (!lowOpen && !highOpen) return "between " + lo + " and " + hi;
-    return (lowOpen ? "greater than " : "at least ") + lo +
-           (highOpen ? " and less than " : " and at most ") + hi;
+    return (lowOpen ? "greater than " : "at least ") + lo + (highOpen ? " and less than " : " and at most ") + hi;
 }
 
 Reader::Reader(std::string source) : source_(std::move(source)) {}
 
-Reader::Reader(std::string source, ModeCheck modes)
-    : source_(std::move(source)), modes_(std::move(modes)) {
-    if (!modes_)
-        throw std::invalid_argument(
-            "protocol parser: the ModeCheck is empty; pass game::checkMode");
+Reader::Reader(std::string source, ModeCheck modes) : source_(std::move(source)), modes_(std::move(modes)) {
+    if (!modes_) throw std::invalid_argument("protocol parser: the ModeCheck is empty; pass game::checkMode");
 }
 
 void Reader::fail(const std::string& path, const std::string& reason) const {
@@ -174,9 +162,12 @@ Json Reader::parseObject(const std::string& text) const {
     for (const char c : text) {
         if (c == '\n') ++line;
         if (inString) {
-            if (escaped) escaped = false;
-            else if (c == '\\') escaped = true;
-            else if (c == '"') inString = false;
+            if (escaped)
+                escaped = false;
+            else if (c == '\\')
+                escaped = true;
+            else if (c == '"')
+                inString = false;
         } else if (c == '"') {
             inString = true;
         } else if (c == '{' || c == '[') {
@@ -203,26 +194,21 @@ Json Reader::parseObject(const std::string& text) const {
         // Valid JSON the library cannot hold, such as 1e400 (out_of_range.406).
         throw ProtocolError(prefix + "unreadable JSON, " + withoutLibraryPrefix(e.what()));
     }
-    if (!finder.firstDuplicate().empty())
-        fail(finder.firstDuplicate(), "appears more than once");
+    if (!finder.firstDuplicate().empty()) fail(finder.firstDuplicate(), "appears more than once");
     if (!document.is_object())
-        throw ProtocolError(prefix + "the top level must be a JSON object, got " +
-                            describe(document));
+        throw ProtocolError(prefix + "the top level must be a JSON object, got " + describe(document));
     return document;
 }
 
 int Reader::formatVersion(const Json& document, int newest) const {
     const auto version = document.find("format_version");
     if (version == document.end()) fail("format_version", "is required but missing");
-    if (!version->is_number_integer())
-        fail("format_version", "must be an integer, got " + describe(*version));
-    if (version->is_number_unsigned()
-            ? version->get<std::uint64_t>() > static_cast<std::uint64_t>(newest)
-            : version->get<std::int64_t>() > newest)
+    if (!version->is_number_integer()) fail("format_version", "must be an integer, got " + describe(*version));
+    if (version->is_number_unsigned() ? version->get<std::uint64_t>() > static_cast<std::uint64_t>(newest)
+                                      : version->get<std::int64_t>() > newest)
         fail("format_version " + version->dump(),
              "is newer than this warplab supports (" + std::to_string(newest) + ")");
-    if (version->get<std::int64_t>() < 1)
-        fail("format_version", "must be at least 1, got " + version->dump());
+    if (version->get<std::int64_t>() < 1) fail("format_version", "must be at least 1, got " + version->dump());
     return version->get<int>();
 }
 
@@ -235,12 +221,11 @@ std::string Reader::game(const Json& document) const {
 
 void Reader::requireGame(const Json& document, const std::string& expected) const {
     if (game(document) != expected)
-        fail("game", "must be \"" + expected + "\" for a " + expected + " protocol, got " +
-                         describe(document.at("game")));
+        fail("game",
+             "must be \"" + expected + "\" for a " + expected + " protocol, got " + describe(document.at("game")));
 }
 
-void Reader::nameAndDescription(const Json& document, std::string& name,
-                                std::string& description) const {
+void Reader::nameAndDescription(const Json& document, std::string& name, std::string& description) const {
     if (!document.contains("name")) fail("name", "is required but missing");
     name = line(document.at("name"), "name");
     string(&document, "", "description", description);
@@ -255,8 +240,8 @@ void Reader::requireKnownKeys(const Json& object, const std::string& path,
         std::string list;
         for (const char* key : known) list += std::string(list.empty() ? "" : ", ") + key;
         fail(joinPath(path, it.key()),
-             "is not a known field (" + (path.empty() ? std::string("the top level") : path) +
-                 " may have " + list + ")");
+             "is not a known field (" + (path.empty() ? std::string("the top level") : path) + " may have " + list +
+                 ")");
     }
 }
 
@@ -267,55 +252,48 @@ const Json* Reader::object(const Json& parent, const std::string& path, const ch
     return &*it;
 }
 
-const Json* Reader::array(const Json* parent, const std::string& path, const char* key,
-                          const char* of, bool allowEmpty) const {
+const Json* Reader::array(const Json* parent, const std::string& path, const char* key, const char* of,
+                          bool allowEmpty) const {
     const Json* value = find(parent, key);
     if (!value) return nullptr;
     if (!value->is_array() || (value->empty() && !allowEmpty))
-        fail(joinPath(path, key), std::string(allowEmpty ? "must be an array of " :
-                                                           "must be a non-empty array of ") +
-                                      of + ", got " + describe(*value));
+        fail(joinPath(path, key),
+             std::string(allowEmpty ? "must be an array of " : "must be a non-empty array of ") + of + ", got " +
+                 describe(*value));
     return value;
 }
 
-void Reader::number(const Json* parent, const std::string& path, const char* key,
-                    NumberRange range, double& out) const {
+void Reader::number(const Json* parent, const std::string& path, const char* key, NumberRange range,
+                    double& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
-    if (!value->is_number() || !std::isfinite(value->get<double>()) ||
-        !range.contains(value->get<double>()))
-        fail(joinPath(path, key),
-             "must be a number " + range.text() + ", got " + describe(*value));
+    if (!value->is_number() || !std::isfinite(value->get<double>()) || !range.contains(value->get<double>()))
+        fail(joinPath(path, key), "must be a number " + range.text() + ", got " + describe(*value));
     out = value->get<double>();
 }
 
-void Reader::integer(const Json* parent, const std::string& path, const char* key, int low,
-                     int high, int& out) const {
+void Reader::integer(const Json* parent, const std::string& path, const char* key, int low, int high, int& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
-    const bool inRange =
-        value->is_number_unsigned()
-            ? value->get<std::uint64_t>() <= static_cast<std::uint64_t>(high) &&
-                  static_cast<std::int64_t>(value->get<std::uint64_t>()) >= low
-            : value->is_number_integer() && value->get<std::int64_t>() >= low &&
-                  value->get<std::int64_t>() <= high;
+    const bool inRange = value->is_number_unsigned()
+        ? value->get<std::uint64_t>() <= static_cast<std::uint64_t>(high) &&
+            static_cast<std::int64_t>(value->get<std::uint64_t>()) >= low
+        : value->is_number_integer() && value->get<std::int64_t>() >= low && value->get<std::int64_t>() <= high;
     if (!inRange)
-        fail(joinPath(path, key), "must be an integer between " + std::to_string(low) + " and " +
-                                      std::to_string(high) + ", got " + describe(*value));
+        fail(joinPath(path, key),
+             "must be an integer between " + std::to_string(low) + " and " + std::to_string(high) + ", got " +
+                 describe(*value));
     out = static_cast<int>(value->get<std::int64_t>());
 }
 
-void Reader::boolean(const Json* parent, const std::string& path, const char* key,
-                     bool& out) const {
+void Reader::boolean(const Json* parent, const std::string& path, const char* key, bool& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
-    if (!value->is_boolean())
-        fail(joinPath(path, key), "must be true or false, got " + describe(*value));
+    if (!value->is_boolean()) fail(joinPath(path, key), "must be true or false, got " + describe(*value));
     out = value->get<bool>();
 }
 
-void Reader::string(const Json* parent, const std::string& path, const char* key,
-                    std::string& out) const {
+void Reader::string(const Json* parent, const std::string& path, const char* key, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
     if (!value->is_string()) fail(joinPath(path, key), "must be a string, got " + describe(*value));
@@ -343,17 +321,16 @@ std::string Reader::line(const Json& value, const std::string& where) const {
         ok = ok && !text.empty() && text.size() <= kLineLimit;
     }
     if (!ok)
-        fail(where, "must be a non-empty single line of at most " + std::to_string(kLineLimit) +
-                        " bytes, got " + describe(value));
+        fail(where,
+             "must be a non-empty single line of at most " + std::to_string(kLineLimit) + " bytes, got " +
+                 describe(value));
     return value.get<std::string>();
 }
 
-void Reader::modeId(const Json* parent, const std::string& path, const char* key,
-                    std::string& out) const {
+void Reader::modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
-    if (!value->is_string())
-        fail(joinPath(path, key), "must be a mode id (a string), got " + describe(*value));
+    if (!value->is_string()) fail(joinPath(path, key), "must be a mode id (a string), got " + describe(*value));
     out = value->get<std::string>();
 }
 
@@ -365,8 +342,7 @@ void Reader::modeList(const Json* parent, const std::string& path, const char* k
     std::vector<std::string> ids;
     for (std::size_t i = 0; i < list->size(); ++i) {
         const Json& id = (*list)[i];
-        if (!id.is_string())
-            fail(elementPath(where, i), "must be a mode id (a string), got " + describe(id));
+        if (!id.is_string()) fail(elementPath(where, i), "must be a mode id (a string), got " + describe(id));
         ids.push_back(id.get<std::string>());
     }
     requireDistinct(ids, [&where](std::size_t i) { return elementPath(where, i); });
@@ -378,18 +354,15 @@ void Reader::requireMode(const std::string& where, const std::string& id, double
     if (!reason.empty()) fail(where, "is \"" + id + "\": " + reason);
 }
 
-void Reader::requireModes(const std::string& path, const std::vector<std::string>& ids,
-                          double refreshHz) const {
-    for (std::size_t i = 0; i < ids.size(); ++i)
-        requireMode(elementPath(path, i), ids[i], refreshHz);
+void Reader::requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const {
+    for (std::size_t i = 0; i < ids.size(); ++i) requireMode(elementPath(path, i), ids[i], refreshHz);
 }
 
 void Reader::requireDistinct(const std::vector<std::string>& values,
                              const std::function<std::string(std::size_t)>& where) const {
     for (std::size_t i = 0; i < values.size(); ++i)
         for (std::size_t j = 0; j < i; ++j)
-            if (values[i] == values[j])
-                fail(where(i), "repeats \"" + values[i] + "\", already " + where(j));
+            if (values[i] == values[j]) fail(where(i), "repeats \"" + values[i] + "\", already " + where(j));
 }
 
 }  // namespace warplab::protocol::detail

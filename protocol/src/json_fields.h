@@ -47,8 +47,7 @@ std::string describe(const Json& value);
 // value / unit is a whole number >= 1, with the tolerance game::ModeSchedule uses.
 bool wholeMultiple(double value, double unit);
 // The top level every protocol starts with, in the documented order; the game's sections follow.
-Json headerJson(int formatVersion, const std::string& name, const std::string& description,
-                const std::string& game);
+Json headerJson(int formatVersion, const std::string& name, const std::string& description, const std::string& game);
 // The canonical file text: two-space indent, trailing newline. Bytes that are not UTF-8 become
 // replacement characters rather than throwing, so storing a session's copy never fails.
 std::string canonicalText(const Json& document);
@@ -86,28 +85,23 @@ public:
     // fields this build does not know, and "too new" is the useful thing to say about it.
     int formatVersion(const Json& document, int newest) const;
     // "name", a required line, and "description", optional free text.
-    void nameAndDescription(const Json& document, std::string& name,
-                            std::string& description) const;
+    void nameAndDescription(const Json& document, std::string& name, std::string& description) const;
 
     // Unknown keys are errors: a misspelt field would otherwise silently take its default.
-    void requireKnownKeys(const Json& object, const std::string& path,
-                          const std::vector<const char*>& known) const;
+    void requireKnownKeys(const Json& object, const std::string& path, const std::vector<const char*>& known) const;
     // A nested object; absent means every field in it takes its default.
     const Json* object(const Json& parent, const std::string& path, const char* key) const;
     // An array, non-empty unless allowEmpty; `of` names its elements in the message.
-    const Json* array(const Json* parent, const std::string& path, const char* key,
-                      const char* of, bool allowEmpty = false) const;
+    const Json* array(const Json* parent, const std::string& path, const char* key, const char* of,
+                      bool allowEmpty = false) const;
 
-    void number(const Json* parent, const std::string& path, const char* key, NumberRange range,
-                double& out) const;
-    void integer(const Json* parent, const std::string& path, const char* key, int low, int high,
-                 int& out) const;
+    void number(const Json* parent, const std::string& path, const char* key, NumberRange range, double& out) const;
+    void integer(const Json* parent, const std::string& path, const char* key, int low, int high, int& out) const;
     void boolean(const Json* parent, const std::string& path, const char* key, bool& out) const;
-    void string(const Json* parent, const std::string& path, const char* key,
-                std::string& out) const;
+    void string(const Json* parent, const std::string& path, const char* key, std::string& out) const;
     // One of `allowed`, spelt exactly.
-    void choice(const Json* parent, const std::string& path, const char* key,
-                const std::vector<const char*>& allowed, std::string& out) const;
+    void choice(const Json* parent, const std::string& path, const char* key, const std::vector<const char*>& allowed,
+                std::string& out) const;
     // One of EnumNames<E>, spelt exactly; a message lists them with `out`'s value (the field's
     // default, since nothing has set it yet) first.
     template <class E>
@@ -125,15 +119,12 @@ public:
 
     // Mode ids are only read as strings here; whether they exist and fit the refresh is asked
     // of the ModeCheck once the refresh is final (requireMode), so defaults are checked too.
-    void modeId(const Json* parent, const std::string& path, const char* key,
-                std::string& out) const;
+    void modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const;
     // A non-empty array of distinct mode ids.
-    void modeList(const Json* parent, const std::string& path, const char* key,
-                  std::vector<std::string>& out) const;
+    void modeList(const Json* parent, const std::string& path, const char* key, std::vector<std::string>& out) const;
     void requireMode(const std::string& where, const std::string& id, double refreshHz) const;
     // Each of a list, named path[i].
-    void requireModes(const std::string& path, const std::vector<std::string>& ids,
-                      double refreshHz) const;
+    void requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const;
 
     // The first value equal to an earlier one is an error naming both places.
     void requireDistinct(const std::vector<std::string>& values,
@@ -184,7 +175,7 @@ auto at(T P::*m) {
 }
 template <class P, class S, class T>
 auto at(S P::*s, T S::*m) {
-    return [s, m](auto& p) -> auto& { return (p.*s).*m; };
+    return [ s, m ](auto& p) -> auto& { return (p.*s).*m; };
 }
 
 // The keys of the usual kinds, each read with the Reader function of the same name.
@@ -201,8 +192,7 @@ struct Keys {
     }
     // A key read and written its own way (an array of objects, of checked lines); there since
     // version 1, so it needs no default to compare with.
-    static Key<P> custom(const char* name,
-                         std::function<void(const Reader&, const Json*, const std::string&, P&)> read,
+    static Key<P> custom(const char* name, std::function<void(const Reader&, const Json*, const std::string&, P&)> read,
                          std::function<void(Json&, const P&)> write) {
         return {name, std::move(read), std::move(write), {}};
     }
@@ -274,8 +264,9 @@ void readKeys(const Reader& r, const Json& object, const std::string& path, cons
     r.requireKnownKeys(object, path, keyNames(keys));
     for (const Key<P>& k : keys)
         if (k.refusedBefore && formatVersion < k.newIn && object.contains(k.name))
-            r.fail(joinPath(path, k.name), "is new in format_version " + std::to_string(k.newIn) +
-                                               ", but this file is format_version " + std::to_string(formatVersion));
+            r.fail(joinPath(path, k.name),
+                   "is new in format_version " + std::to_string(k.newIn) + ", but this file is format_version " +
+                       std::to_string(formatVersion));
     for (const Key<P>& k : keys) k.read(r, &object, path, out);
 }
 
@@ -290,7 +281,8 @@ template <class P>
 void readSections(const Reader& r, const Json& document, const std::vector<Section<P>>& sections, int formatVersion,
                   P& out) {
     for (const Section<P>& s : sections)
-        if (const Json* object = r.object(document, "", s.name)) readKeys(r, *object, s.name, s.keys, formatVersion, out);
+        if (const Json* object = r.object(document, "", s.name))
+            readKeys(r, *object, s.name, s.keys, formatVersion, out);
 }
 
 template <class P>
@@ -312,12 +304,11 @@ std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections) {
 template <class P>
 std::vector<Key<P>> renderKeys() {
     using K = Keys<P>;
-    return {K::number("guard_band", at(&P::rendering, &RenderSettings::guardBand),
-                      {0, false, scene::kMaxGuardBand, false})
-                .since(2),
-            K::integer("supersampling", at(&P::rendering, &RenderSettings::supersampling), 1,
-                       scene::kMaxSupersampling)
-                .since(2)};
+    return {
+        K::number("guard_band", at(&P::rendering, &RenderSettings::guardBand), {0, false, scene::kMaxGuardBand, false})
+            .since(2),
+        K::integer("supersampling", at(&P::rendering, &RenderSettings::supersampling), 1, scene::kMaxSupersampling)
+            .since(2)};
 }
 
 // path[i], the JSON path of an array element.

@@ -11,11 +11,11 @@ using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
 // Bounds that no study needs to exceed (json_fields.h says why they exist).
-constexpr int kLevelLimit = 120;           // v0 * 2^20: far beyond any hittable speed
+constexpr int kLevelLimit = 120;  // v0 * 2^20: far beyond any hittable speed
 constexpr int kTargetsLimit = 100000;
 constexpr int kShotsLimit = 10000;
 constexpr double kMousePerCountLimit = 0.1;
-constexpr double kRadiusLimit = 3;         // well under half the 8 m high clear cross-section
+constexpr double kRadiusLimit = 3;  // well under half the 8 m high clear cross-section
 // Positive is not enough where a tiny value breaks later maths. 1e-6 rad a count is 6.3
 // million counts a turn, 160 cm of hand travel even at 100000 CPI (the thesis: 800 CPI at
 // 0.0022); below it the bot's and the live gain's division by it overflow, and 1e-310 ended
@@ -28,12 +28,12 @@ constexpr double kRadiusMin = 0.01;
 // Durations (docs/protocol.md, "Limits that keep a session's data safe"). A trial is committed
 // when it ends, so the frames held between two commit points are at most a feedback pause
 // and the next trial up to its timeout, in every phase.
-constexpr double kTimeoutLimitS = 120;        // 40 times the thesis' 3 s
-constexpr double kPauseLimitS = 60;           // 60 times the thesis' 1 s
+constexpr double kTimeoutLimitS = 120;  // 40 times the thesis' 3 s
+constexpr double kPauseLimitS = 60;  // 60 times the thesis' 1 s
 static_assert(kTimeoutLimitS + kPauseLimitS <= kCommitStretchLimitS);
 // Whole phases, committed trial by trial: bounds on how long a session can be, not on memory.
-constexpr double kAcclimationLimitS = 1800;   // 6 times the thesis' 5 minutes
-constexpr double kTrainingLimitS = 3600;      // 5 times the thesis' 12 minutes
+constexpr double kAcclimationLimitS = 1800;  // 6 times the thesis' 5 minutes
+constexpr double kTrainingLimitS = 3600;  // 5 times the thesis' 12 minutes
 
 using P = ShooterProtocol;
 using K = detail::Keys<P>;
@@ -75,8 +75,7 @@ const std::vector<detail::Section<P>>& sections() {
               K::boolean("interleave", at(&P::interleaveConditions)),
               K::number("timeout_s", at(&P::timeoutS), {0, true, kTimeoutLimitS, false}),
               K::number("pause_s", at(&P::pauseS), {0, true, kPauseLimitS, false}),
-              K::choice("scoring", at(&P::scoring)),
-              K::boolean("supervisor_starts", at(&P::supervisorStartsTest)),
+              K::choice("scoring", at(&P::scoring)), K::boolean("supervisor_starts", at(&P::supervisorStartsTest)),
               // Version 1 has no click_timing and means "display". A struct that says otherwise
               // is written anyway, so that parsing the copy refuses it instead of quietly
               // replaying it differently.
@@ -106,21 +105,19 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
 
     // Relations between fields, checked once every field holds its final value.
     if (s.startLevel > s.maxLevel)
-        r.fail("training.start_level", "must be at most training.max_level (" +
-                                           std::to_string(s.maxLevel) + "), got " +
-                                           std::to_string(s.startLevel));
+        r.fail("training.start_level",
+               "must be at most training.max_level (" + std::to_string(s.maxLevel) + "), got " +
+                   std::to_string(s.startLevel));
     if (p.acclimationLevel > s.maxLevel)
-        r.fail("acclimation.level", "must be at most training.max_level (" +
-                                        std::to_string(s.maxLevel) + "), got " +
-                                        std::to_string(p.acclimationLevel));
+        r.fail("acclimation.level",
+               "must be at most training.max_level (" + std::to_string(s.maxLevel) + "), got " +
+                   std::to_string(p.acclimationLevel));
     if (s.shotsPerLevelHard < s.shotsPerLevelEasy)
         r.fail("training.shots_per_level_hard",
-               "must be at least training.shots_per_level_easy (" +
-                   std::to_string(s.shotsPerLevelEasy) + "), got " +
+               "must be at least training.shots_per_level_easy (" + std::to_string(s.shotsPerLevelEasy) + "), got " +
                    std::to_string(s.shotsPerLevelHard));
     if (s.highMode == s.lowMode)
-        r.fail("training.low_mode", "must differ from training.high_mode, both are \"" +
-                                        s.lowMode + "\"");
+        r.fail("training.low_mode", "must differ from training.high_mode, both are \"" + s.lowMode + "\"");
     // Defaults included: a file that only changes the refresh must still fit every mode.
     r.requireMode("acclimation.mode", p.acclimationMode, p.refreshHz);
     r.requireMode("training.high_mode", s.highMode, p.refreshHz);

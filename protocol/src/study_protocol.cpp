@@ -14,8 +14,7 @@ std::string readProtocolFile(const std::string& path) {
     std::error_code error;
     const auto status = std::filesystem::status(path, error);
     if (!std::filesystem::exists(status)) throw ProtocolError(prefix + "no such file");
-    if (std::filesystem::is_directory(status))
-        throw ProtocolError(prefix + "is a directory, not a file");
+    if (std::filesystem::is_directory(status)) throw ProtocolError(prefix + "is a directory, not a file");
     // A pipe or a device would block or never end.
     if (!std::filesystem::is_regular_file(status)) throw ProtocolError(prefix + "is not a regular file");
     const auto size = std::filesystem::file_size(path, error);

@@ -43,11 +43,10 @@ void GlContext::initialise(void* (*loader)(const char*), const char* backend) {
     GLint mask = 0;
     glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &mask);
     info_.coreProfile = (mask & GL_CONTEXT_CORE_PROFILE_BIT) != 0;
-    while (glGetError() != GL_NO_ERROR) {
-    }
+    while (glGetError() != GL_NO_ERROR) {}
     if (info_.major < 4 || (info_.major == 4 && info_.minor < 1) || !info_.coreProfile) {
-        throw ContextError("OpenGL 4.1 core profile is required but the " + std::string(backend) +
-                           " context is " + info_.version + " (" + info_.renderer + ")" +
+        throw ContextError("OpenGL 4.1 core profile is required but the " + std::string(backend) + " context is " +
+                           info_.version + " (" + info_.renderer + ")" +
                            (info_.coreProfile ? "" : ", not a core profile"));
     }
     if (!missing.empty()) {

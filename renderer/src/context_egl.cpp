@@ -43,8 +43,8 @@ public:
         if (!want.empty() && want != "device" && want != "surfaceless" && want != "default")
             throw ContextError("WARPLAB_EGL_PLATFORM='" + want + "' is not one of device, surfaceless, default");
         const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-        auto getPlatformDisplay = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-            eglGetProcAddress("eglGetPlatformDisplayEXT"));
+        auto getPlatformDisplay =
+            reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
 
         std::string tried;
         auto attempt = [&](EGLDisplay display, const char* label) {
@@ -64,8 +64,8 @@ public:
         }
         if (!ok && (want.empty() || want == "surfaceless") && getPlatformDisplay &&
             hasExtension(clientExt, "EGL_MESA_platform_surfaceless")) {
-            ok = attempt(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr),
-                         "surfaceless");
+            ok =
+                attempt(getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr), "surfaceless");
         }
         if (!ok && (want.empty() || want == "default")) ok = attempt(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default");
         if (!ok)
@@ -93,8 +93,8 @@ private:
     template <typename Attempt>
     bool tryDevices(PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay, Attempt& attempt) {
         auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
-        auto queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(
-            eglGetProcAddress("eglQueryDeviceStringEXT"));
+        auto queryDeviceString =
+            reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
         if (!queryDevices) return false;
         EGLint count = 0;
         if (!queryDevices(0, nullptr, &count) || count <= 0) return false;
@@ -117,24 +117,24 @@ private:
             return false;
         }
         const char* ext = eglQueryString(display, EGL_EXTENSIONS);
-        const EGLint contextAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 1,
-                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+        const EGLint contextAttribs[] = {
+            EGL_CONTEXT_MAJOR_VERSION,           4,       EGL_CONTEXT_MINOR_VERSION, 1, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+            EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
         EGLConfig config = nullptr;
-        const bool configless = hasExtension(ext, "EGL_KHR_no_config_context") ||
-                                hasExtension(ext, "EGL_MESA_configless_context");
+        const bool configless =
+            hasExtension(ext, "EGL_KHR_no_config_context") || hasExtension(ext, "EGL_MESA_configless_context");
         const bool surfaceless = hasExtension(ext, "EGL_KHR_surfaceless_context");
         if (!configless || !surfaceless) {
-            const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE,
-                                            EGL_OPENGL_BIT, EGL_NONE};
+            const EGLint configAttribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                            EGL_NONE};
             EGLint n = 0;
             if (!eglChooseConfig(display, configAttribs, &config, 1, &n) || n < 1) {
                 eglTerminate(display);
                 return false;
             }
         }
-        EGLContext context = eglCreateContext(display, configless ? EGL_NO_CONFIG_KHR : config,
-                                              EGL_NO_CONTEXT, contextAttribs);
+        EGLContext context =
+            eglCreateContext(display, configless ? EGL_NO_CONFIG_KHR : config, EGL_NO_CONTEXT, contextAttribs);
         if (context == EGL_NO_CONTEXT) {
             eglTerminate(display);
             return false;
@@ -164,8 +164,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createEglContext(const ContextOptions&) {
-    return std::make_unique<EglContext>();
-}
+std::unique_ptr<GlContext> createEglContext(const ContextOptions&) { return std::make_unique<EglContext>(); }
 
 }  // namespace warplab::renderer

@@ -28,23 +28,29 @@ public:
             if (library_ != nullptr) break;
         }
         if (library_ == nullptr)
-            throw ContextError("OSMesa is not installed (libOSMesa.so.8 not found); install libosmesa6 or use --gl egl");
+            throw ContextError(
+                "OSMesa is not installed (libOSMesa.so.8 not found); install libosmesa6 or use --gl egl");
         auto create = reinterpret_cast<CreateAttribsFn>(dlsym(library_, "OSMesaCreateContextAttribs"));
         makeCurrent_ = reinterpret_cast<MakeCurrentFn>(dlsym(library_, "OSMesaMakeCurrent"));
         destroy_ = reinterpret_cast<DestroyFn>(dlsym(library_, "OSMesaDestroyContext"));
         g_getProc = reinterpret_cast<GetProcFn>(dlsym(library_, "OSMesaGetProcAddress"));
         if (!create || !makeCurrent_ || !destroy_ || !g_getProc)
-            throw ContextError("the OSMesa library is too old to create core-profile contexts (no OSMesaCreateContextAttribs)");
+            throw ContextError(
+                "the OSMesa library is too old to create core-profile contexts (no OSMesaCreateContextAttribs)");
 
-        const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                               OSMESA_DEPTH_BITS, 0,  // we render into our own framebuffers
-                               OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                               OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                               OSMESA_CONTEXT_MINOR_VERSION, 1,
+        const int attribs[] = {OSMESA_FORMAT,
+                               OSMESA_RGBA,
+                               OSMESA_DEPTH_BITS,
+                               0,  // we render into our own framebuffers
+                               OSMESA_PROFILE,
+                               OSMESA_CORE_PROFILE,
+                               OSMESA_CONTEXT_MAJOR_VERSION,
+                               4,
+                               OSMESA_CONTEXT_MINOR_VERSION,
+                               1,
                                0};
         context_ = create(attribs, nullptr);
-        if (context_ == nullptr)
-            throw ContextError("OSMesa could not create an OpenGL 4.1 core context");
+        if (context_ == nullptr) throw ContextError("OSMesa could not create an OpenGL 4.1 core context");
         // OSMesa insists on a default colour buffer (bottom-up rows); nothing is drawn into
         // it, so a tiny one will do.
         buffer_.assign(4 * kBufferSize * kBufferSize, 0);
@@ -69,8 +75,6 @@ private:
 
 }  // namespace
 
-std::unique_ptr<GlContext> createOsmesaContext(const ContextOptions&) {
-    return std::make_unique<OsmesaContext>();
-}
+std::unique_ptr<GlContext> createOsmesaContext(const ContextOptions&) { return std::make_unique<OsmesaContext>(); }
 
 }  // namespace warplab::renderer

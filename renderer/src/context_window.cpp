@@ -26,9 +26,9 @@ public:
         if (options.display < 0 || options.display >= SDL_GetNumVideoDisplays())
             throw ContextError("there is no display " + std::to_string(options.display) + " (this machine has " +
                                std::to_string(SDL_GetNumVideoDisplays()) + ")");
-        window_ = SDL_CreateWindow(options.title.c_str(), SDL_WINDOWPOS_CENTERED_DISPLAY(options.display),
-                                   SDL_WINDOWPOS_CENTERED_DISPLAY(options.display), options.width, options.height,
-                                   flags);
+        window_ =
+            SDL_CreateWindow(options.title.c_str(), SDL_WINDOWPOS_CENTERED_DISPLAY(options.display),
+                             SDL_WINDOWPOS_CENTERED_DISPLAY(options.display), options.width, options.height, flags);
         if (window_ == nullptr) throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
         context_ = SDL_GL_CreateContext(window_);
         if (context_ == nullptr)
@@ -64,13 +64,19 @@ public:
                 case SDL_KEYDOWN: {
                     if (event.key.repeat) break;
                     const SDL_Keycode k = event.key.keysym.sym;
-                    if (k == SDLK_RETURN || k == SDLK_KP_ENTER) in.keysPressed += '\r';
-                    else if (k == SDLK_ESCAPE) in.keysPressed += static_cast<char>(27);
-                    else if ((k >= SDLK_0 && k <= SDLK_9) || (k >= SDLK_a && k <= SDLK_z)) in.keysPressed += static_cast<char>(k);
-                    else if (k >= SDLK_KP_1 && k <= SDLK_KP_9) in.keysPressed += static_cast<char>('1' + (k - SDLK_KP_1));
+                    if (k == SDLK_RETURN || k == SDLK_KP_ENTER)
+                        in.keysPressed += '\r';
+                    else if (k == SDLK_ESCAPE)
+                        in.keysPressed += static_cast<char>(27);
+                    else if ((k >= SDLK_0 && k <= SDLK_9) || (k >= SDLK_a && k <= SDLK_z))
+                        in.keysPressed += static_cast<char>(k);
+                    else if (k >= SDLK_KP_1 && k <= SDLK_KP_9)
+                        in.keysPressed += static_cast<char>('1' + (k - SDLK_KP_1));
                     // A presentation clicker's "next" and "previous" are PageDown and PageUp.
-                    else if (k == SDLK_RIGHTBRACKET || k == SDLK_PAGEDOWN) in.keysPressed += ']';
-                    else if (k == SDLK_LEFTBRACKET || k == SDLK_PAGEUP) in.keysPressed += '[';
+                    else if (k == SDLK_RIGHTBRACKET || k == SDLK_PAGEDOWN)
+                        in.keysPressed += ']';
+                    else if (k == SDLK_LEFTBRACKET || k == SDLK_PAGEUP)
+                        in.keysPressed += '[';
                     break;
                 }
                 default: break;
@@ -138,6 +144,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<WindowContext> createWindow(const ContextOptions& options) { return std::make_unique<SdlWindow>(options); }
+std::unique_ptr<WindowContext> createWindow(const ContextOptions& options) {
+    return std::make_unique<SdlWindow>(options);
+}
 
 }  // namespace warplab::renderer

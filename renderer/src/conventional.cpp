@@ -107,8 +107,8 @@ image::ImageU32 readIdAttachment(const GBuffer::Impl& g) {
 
 image::ImageF readVectorAttachment(const GBuffer::Impl& g, int channels) {
     image::ImageF image = image::ImageF::make(g.width, g.height, channels);
-    readAttachment(g, GBuffer::Impl::kVelocityAttachment, channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT,
-                   image.data.data(), "reading back a vector attachment");
+    readAttachment(g, GBuffer::Impl::kVelocityAttachment, channels == 4 ? GL_RGBA : GL_RGB, GL_FLOAT, image.data.data(),
+                   "reading back a vector attachment");
     image::flipVertically(image);
     return image;
 }
@@ -224,8 +224,10 @@ SampleBuffer makeSampleBuffer(int width, int height, int factor) {
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("creating the supersampling buffer");
     if (status != GL_FRAMEBUFFER_COMPLETE)
-        throw gl::GlError("ConventionalRenderer: the driver rejects the supersampling colour/depth framebuffer "
-                          "(status 0x" + std::to_string(status) + ")");
+        throw gl::GlError(
+            "ConventionalRenderer: the driver rejects the supersampling colour/depth framebuffer "
+            "(status 0x" +
+            std::to_string(status) + ")");
     return b;
 }
 
@@ -257,13 +259,16 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
     m.program = gl::buildProgram(
         {paths.shaderDir,
          {{GL_VERTEX_SHADER, "conventional.vert"}, {GL_FRAGMENT_SHADER, "conventional.frag", {"flow_common.glsl"}}},
-         {"MAX_LAMPS " + std::to_string(kMaxLamps), "SKY_COLOUR vec3(" + std::to_string(kSky[0]) + ", " +
-                                                        std::to_string(kSky[1]) + ", " + std::to_string(kSky[2]) + ")"}});
+         {"MAX_LAMPS " + std::to_string(kMaxLamps),
+          "SKY_COLOUR vec3(" + std::to_string(kSky[0]) + ", " + std::to_string(kSky[1]) + ", " +
+              std::to_string(kSky[2]) + ")"}});
     const auto& p = m.program;
-    m.u = {gl::uniform(p, "uModel"),          gl::uniform(p, "uNormalMatrix"),   gl::uniform(p, "uViewProjection"),
-           gl::uniform(p, "uObjectId"),       gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
-           gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),            gl::uniform(p, "uTint"),
-           gl::uniform(p, "uPanelPattern"),   gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
+    m.u = {gl::uniform(p, "uModel"),          gl::uniform(p, "uNormalMatrix"),
+           gl::uniform(p, "uViewProjection"), gl::uniform(p, "uObjectId"),
+           gl::uniform(p, "uLinearVelocity"), gl::uniform(p, "uAngularVelocity"),
+           gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),
+           gl::uniform(p, "uTint"),           gl::uniform(p, "uPanelPattern"),
+           gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
            gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost")};
     m.lamps = hangarLamps();
     m.resolve = gl::buildProgram(
@@ -365,8 +370,8 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         m.geometry.draw(frame.scene, frame.camera, passHeight, [&](const SceneGeometry::Item& item) {
             const scene::ObjectState* o = item.object;
             const glm::mat4 there = o == nullptr || flowTo == nullptr
-                                        ? item.model
-                                        : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
+                ? item.model
+                : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
             glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
             const glm::vec3 zero(0.0f);
             const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));

@@ -11,9 +11,9 @@ namespace warplab::renderer {
 struct GBuffer::Impl {
     int width = 0;
     int height = 0;
-    gl::Texture colour;    // GL_RGBA8
-    gl::Texture depth;     // GL_DEPTH_COMPONENT32F
-    gl::Texture ids;       // GL_R32UI
+    gl::Texture colour;  // GL_RGBA8
+    gl::Texture depth;  // GL_DEPTH_COMPONENT32F
+    gl::Texture ids;  // GL_R32UI
     gl::Texture velocity;  // GL_RGBA32F
     gl::Framebuffer framebuffer;
     // Bidirectional reprojection's backward flow (flow_common.glsl), GL_RGBA32F, attached as a

@@ -68,10 +68,11 @@ struct HudRenderer::Impl {
 };
 
 HudRenderer::HudRenderer(const DataPaths& paths, const std::string& fontPath) : impl_(std::make_unique<Impl>()) {
-    if (!std::ifstream(fontPath)) throw AssetError("cannot read HUD font '" + fontPath + "' (install fonts-dejavu-core)");
+    if (!std::ifstream(fontPath))
+        throw AssetError("cannot read HUD font '" + fontPath + "' (install fonts-dejavu-core)");
     if (TTF_Init() != 0) throw AssetError(std::string("cannot start SDL2_ttf: ") + TTF_GetError());
-    impl_->program = gl::buildProgram(
-        {paths.shaderDir, {{GL_VERTEX_SHADER, "hud.vert"}, {GL_FRAGMENT_SHADER, "hud.frag"}}, {}});
+    impl_->program =
+        gl::buildProgram({paths.shaderDir, {{GL_VERTEX_SHADER, "hud.vert"}, {GL_FRAGMENT_SHADER, "hud.frag"}}, {}});
     fontPath_ = fontPath;  // opened on first draw, at a size that follows the frame height
 }
 
@@ -141,8 +142,10 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
         }
         if (!r.boxes.empty()) {
             const glm::vec4 first = r.boxes.front(), last = r.boxes.back();
-            if (!r.minLabel.empty()) drawText(r.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
-            if (!r.maxLabel.empty()) drawText(r.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
+            if (!r.minLabel.empty())
+                drawText(r.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
+            if (!r.maxLabel.empty())
+                drawText(r.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
         }
     }
     if (content.cursor) {

@@ -127,7 +127,7 @@ MeshData makeUnitSphere(int slices, int stacks) {
     MeshData mesh;
     const float pi = 3.14159265358979f;
     auto point = [&](int i, int j) {
-        const float theta = pi * static_cast<float>(j) / static_cast<float>(stacks);       // from +y down
+        const float theta = pi * static_cast<float>(j) / static_cast<float>(stacks);  // from +y down
         const float phi = 2.0f * pi * static_cast<float>(i) / static_cast<float>(slices);  // around y
         return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
     };
@@ -138,8 +138,16 @@ MeshData makeUnitSphere(int slices, int stacks) {
         for (int i = 0; i < slices; ++i) {
             const glm::vec3 a = point(i, j), b = point(i, j + 1), c = point(i + 1, j + 1), d = point(i + 1, j);
             // Counter-clockwise seen from outside; the pole rows have one degenerate triangle each.
-            if (j != 0) { emit(a); emit(b); emit(d); }
-            if (j != stacks - 1) { emit(d); emit(b); emit(c); }
+            if (j != 0) {
+                emit(a);
+                emit(b);
+                emit(d);
+            }
+            if (j != stacks - 1) {
+                emit(d);
+                emit(b);
+                emit(c);
+            }
         }
     }
     computeBounds(mesh);

@@ -19,8 +19,7 @@ glm::mat4 viewMatrix(const CameraState& camera) {
 }
 
 glm::mat4 projectionMatrix(const CameraState& camera, float aspect) {
-    return glm::perspective(glm::radians(camera.verticalFovDeg), aspect, camera.nearPlane,
-                            camera.farPlane);
+    return glm::perspective(glm::radians(camera.verticalFovDeg), aspect, camera.nearPlane, camera.farPlane);
 }
 
 CameraState widenedByRows(const CameraState& camera, int height, int marginY) {

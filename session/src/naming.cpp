@@ -10,8 +10,8 @@ namespace fs = std::filesystem;
 std::string safeName(const std::string& raw, std::size_t maxBytes) {
     std::string out;
     for (const char c : raw) {
-        const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
-                        (c >= '0' && c <= '9') || c == '_' || c == '-';
+        const bool ok =
+            (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
         if (ok)
             out += c;
         else if (out.empty() || out.back() != '_')
@@ -25,8 +25,7 @@ std::string safeName(const std::string& raw, std::size_t maxBytes) {
 std::string timeForName(const std::string& iso) {
     std::string out;
     for (const char c : iso)
-        if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9'))
-            out += c;
+        if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) out += c;
     return out.substr(0, 32);
 }
 

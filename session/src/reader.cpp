@@ -49,10 +49,10 @@ using detail::rowValid;
 using detail::Stmt;
 using detail::Table;
 using detail::toRecord;
-using detail::V1EventRow;
-using detail::V1FrameRow;
 using detail::v1EventFields;
+using detail::V1EventRow;
 using detail::v1FrameFields;
+using detail::V1FrameRow;
 using detail::v1InputFields;
 using detail::WalLoss;
 
@@ -70,13 +70,12 @@ public:
         data.flags = flags_;
         version_ = data.header.formatVersion;
         if (version_ == 1)
-            readTables(data, Layout<InputRecord, V1FrameRow, V1EventRow>{
-                                 {"input", false, v1InputFields()},
-                                 {"frames", false, v1FrameFields()},
-                                 {"events", true, v1EventFields()}});
+            readTables(data,
+                       Layout<InputRecord, V1FrameRow, V1EventRow>{{"input", false, v1InputFields()},
+                                                                   {"frames", false, v1FrameFields()},
+                                                                   {"events", true, v1EventFields()}});
         else
-            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{
-                                 inputTable(), frameTable(), eventTable()});
+            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{inputTable(), frameTable(), eventTable()});
         // Ending a read transaction writes nothing; after damage SQLite may report the damage
         // again here, which readTables has already accounted for.
         sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
@@ -139,7 +138,8 @@ private:
         const bool whole = !fs::exists(path_ + "-wal", ec);
         if (!whole) walLoss_ = lostInWal(path_ + "-wal");
         const std::string name = whole ? immutableUri(path_) : path_;
-        const int rc = sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
+        const int rc =
+            sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
         db_.reset(raw);
         if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
         sqlite3_busy_timeout(db_.get(), 5000);
@@ -153,8 +153,7 @@ private:
         Stmt s = prepareOrNull("PRAGMA application_id");
         const int step = s ? sqlite3_step(s.get()) : sqlite3_errcode(db_.get());
         if (step != SQLITE_ROW) {
-            if ((sqlite3_errcode(db_.get()) & 0xff) == SQLITE_NOTADB)
-                fail("is not a SQLite database.");
+            if ((sqlite3_errcode(db_.get()) & 0xff) == SQLITE_NOTADB) fail("is not a SQLite database.");
             fail("has an unreadable header: " + errmsg() + ".");
         }
         if (sqlite3_column_int(s.get(), 0) != kApplicationId)
@@ -175,11 +174,8 @@ private:
     // A table whose SELECT does not compile is missing or lacks a column: a schema mismatch,
     // or damage to the schema page itself.
     Stmt prepareTable(const char* table, const char* columns, const char* key) {
-        Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table +
-                               " ORDER BY " + key);
-        if (!s)
-            fail("does not match the session format " + std::to_string(version_) +
-                 " schema: " + errmsg() + ".");
+        Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table + " ORDER BY " + key);
+        if (!s) fail("does not match the session format " + std::to_string(version_) + " schema: " + errmsg() + ".");
         return s;
     }
 
@@ -189,8 +185,7 @@ private:
         std::map<std::string, std::string> meta;
         int rc;
         while ((rc = sqlite3_step(s.get())) == SQLITE_ROW) {
-            if (sqlite3_column_type(s.get(), 0) != SQLITE_TEXT ||
-                sqlite3_column_type(s.get(), 1) != SQLITE_TEXT)
+            if (sqlite3_column_type(s.get(), 0) != SQLITE_TEXT || sqlite3_column_type(s.get(), 1) != SQLITE_TEXT)
                 fail("has an unreadable header: a meta entry is not text.");
             meta[columnText(s.get(), 0)] = columnText(s.get(), 1);
         }
@@ -198,16 +193,14 @@ private:
 
         const auto get = [&](const char* key) -> const std::string& {
             const auto it = meta.find(key);
-            if (it == meta.end())
-                fail(std::string("has an unreadable header: no '") + key + "' entry in meta.");
+            if (it == meta.end()) fail(std::string("has an unreadable header: no '") + key + "' entry in meta.");
             return it->second;
         };
         SessionHeader h;
         // The version first: a newer format may have moved everything else.
         if (!parseNumber(get("format_version"), h.formatVersion))
             fail("has an unreadable header: format_version is '" + get("format_version") + "'.");
-        if (h.formatVersion < kOldestSessionFormatVersion ||
-            h.formatVersion > kSessionFormatVersion) {
+        if (h.formatVersion < kOldestSessionFormatVersion || h.formatVersion > kSessionFormatVersion) {
             std::string versions = std::to_string(kOldestSessionFormatVersion);
             for (int v = kOldestSessionFormatVersion + 1; v <= kSessionFormatVersion; ++v)
                 versions += (v == kSessionFormatVersion ? " and " : ", ") + std::to_string(v);
@@ -223,8 +216,7 @@ private:
         if (!parseNumber(get("header_checksum"), stored) || stored != checksum.value())
             fail("has a damaged header: its checksum does not match its contents.");
         h.protocolJson = get("protocol_json");
-        if (!parseNumber(get("seed"), h.seed))
-            fail("has an unreadable header: seed is '" + get("seed") + "'.");
+        if (!parseNumber(get("seed"), h.seed)) fail("has an unreadable header: seed is '" + get("seed") + "'.");
         h.participant = get("participant");
         h.appVersion = get("app_version");
         h.glRenderer = get("gl_renderer");
@@ -247,10 +239,10 @@ private:
     // own page checks cannot see.
     static bool real(sqlite3_stmt* s, int i, double& out) {
         switch (sqlite3_column_type(s, i)) {
-        case SQLITE_FLOAT: out = sqlite3_column_double(s, i); return true;
-        case SQLITE_NULL: out = std::numeric_limits<double>::quiet_NaN(); return true;
-        case SQLITE_INTEGER: out = static_cast<double>(sqlite3_column_int64(s, i)); return true;
-        default: return false;
+            case SQLITE_FLOAT: out = sqlite3_column_double(s, i); return true;
+            case SQLITE_NULL: out = std::numeric_limits<double>::quiet_NaN(); return true;
+            case SQLITE_INTEGER: out = static_cast<double>(sqlite3_column_int64(s, i)); return true;
+            default: return false;
         }
     }
     template <typename T>
@@ -311,16 +303,13 @@ private:
     std::vector<Row> readRows(const Table<Row>& table) {
         std::int64_t rowsRead = 0;
         return readPrefix<Row>(
-            table.name, prepareTable(table.name, table.columns().c_str(), table.key()),
-            [&](sqlite3_stmt* s, Row& r) {
+            table.name, prepareTable(table.name, table.columns().c_str(), table.key()), [&](sqlite3_stmt* s, Row& r) {
                 int i = 0;
                 std::int64_t id = 0;
                 // Ids are 1, 2, 3 ...: a gap means rows were lost.
                 if (table.numbered && (!integer(s, i++, id) || id != ++rowsRead)) return false;
                 for (const Field<Row>& field : table.fields)
-                    if (!std::visit([&](auto member) { return column(s, i++, r.*member); },
-                                    field.member))
-                        return false;
+                    if (!std::visit([&](auto member) { return column(s, i++, r.*member); }, field.member)) return false;
                 return rowValid(r);
             });
     }
@@ -338,11 +327,9 @@ private:
     template <typename InputRow, typename FrameRow, typename EventRow>
     void readTables(SessionData& data, const Layout<InputRow, FrameRow, EventRow>& layout) {
         auto commits = readPrefix<Commit>(
-            "commits", prepareTable("commits", kCommitColumns, "id"),
-            [](sqlite3_stmt* s, Commit& c) {
-                return integer(s, 0, c.id) && integer(s, 1, c.inputRows) &&
-                       integer(s, 2, c.frameRows) && integer(s, 3, c.eventRows) &&
-                       optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
+            "commits", prepareTable("commits", kCommitColumns, "id"), [](sqlite3_stmt* s, Commit& c) {
+                return integer(s, 0, c.id) && integer(s, 1, c.inputRows) && integer(s, 2, c.frameRows) &&
+                    integer(s, 3, c.eventRows) && optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
             });
         auto inputs = readRows(layout.input);
         auto frames = readRows(layout.frames);
@@ -355,18 +342,16 @@ private:
         std::size_t keptIndex = 0;
         for (std::size_t i = 0; i < commits.size(); ++i) {
             const Commit& c = commits[i];
-            const bool ordered = !kept || (c.inputRows >= kept->inputRows &&
-                                           c.frameRows >= kept->frameRows &&
-                                           c.eventRows >= kept->eventRows);
+            const bool ordered = !kept ||
+                (c.inputRows >= kept->inputRows && c.frameRows >= kept->frameRows && c.eventRows >= kept->eventRows);
             if (!ordered) {
                 stop("commits", "commit " + std::to_string(c.id) + " counts fewer rows than the one before");
                 break;
             }
-            if (c.inputRows > rowCount(inputs) || c.frameRows > rowCount(frames) ||
-                c.eventRows > rowCount(events)) {
-                stop(c.inputRows > rowCount(inputs)   ? "input"
-                     : c.frameRows > rowCount(frames) ? "frames"
-                                                      : "events",
+            if (c.inputRows > rowCount(inputs) || c.frameRows > rowCount(frames) || c.eventRows > rowCount(events)) {
+                stop(c.inputRows > rowCount(inputs)       ? "input"
+                         : c.frameRows > rowCount(frames) ? "frames"
+                                                          : "events",
                      "rows of commit " + std::to_string(c.id) + " are missing");
                 break;
             }
@@ -379,16 +364,14 @@ private:
             for (auto r = before.eventRows; r < c.eventRows; ++r)
                 hashRow(sum.events, layout.events, events[static_cast<std::size_t>(r)]);
             if (sum.value() != c.checksum) {
-                stop("commits", "the rows of commit " + std::to_string(c.id) +
-                                    " do not match its checksum");
+                stop("commits", "the rows of commit " + std::to_string(c.id) + " do not match its checksum");
                 break;
             }
             kept = c;
             keptIndex = i + 1;
         }
         const Commit last = kept.value_or(Commit{});
-        if (rowCount(inputs) > last.inputRows || rowCount(frames) > last.frameRows ||
-            rowCount(events) > last.eventRows)
+        if (rowCount(inputs) > last.inputRows || rowCount(frames) > last.frameRows || rowCount(events) > last.eventRows)
             stop("commits", "rows after the last readable commit");
         inputs.resize(static_cast<std::size_t>(last.inputRows));
         frames.resize(static_cast<std::size_t>(last.frameRows));
@@ -397,26 +380,24 @@ private:
         data.frames = toRecords(std::move(frames));
         data.events = toRecords(std::move(events));
 
-        const std::string lastFrame =
-            last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
+        const std::string lastFrame = last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
         if (walLoss_ && !firstStop_)
-            firstStop_ = Stop{"write-ahead log", walLoss_->commits == 0
-                                                     ? "its header fails its checksum"
-                                                     : "the frame at byte " + std::to_string(walLoss_->byte) +
-                                                           " fails its checksum"};
+            firstStop_ = Stop{"write-ahead log",
+                              walLoss_->commits == 0
+                                  ? "its header fails its checksum"
+                                  : "the frame at byte " + std::to_string(walLoss_->byte) + " fails its checksum"};
         if (firstStop_) {
             data.completed = false;
             data.damaged = true;
             data.note = "damaged (" + firstStop_->where + ": " + firstStop_->why + "): " +
-                        (keptIndex == 0 ? std::string("no complete commit survives")
-                                        : "kept the first " + std::to_string(keptIndex) +
-                                              " commits, ending after frame " + lastFrame) +
-                        lostText(commits, keptIndex);
+                (keptIndex == 0
+                     ? std::string("no complete commit survives")
+                     : "kept the first " + std::to_string(keptIndex) + " commits, ending after frame " + lastFrame) +
+                lostText(commits, keptIndex);
         } else if (!data.completed) {
             data.note = keptIndex == 0 ? std::string("incomplete: no trial was committed")
-                                       : "incomplete: ends after frame " + lastFrame +
-                                             " (last commit, " + std::to_string(keptIndex) +
-                                             " in all)";
+                                       : "incomplete: ends after frame " + lastFrame + " (last commit, " +
+                    std::to_string(keptIndex) + " in all)";
         }
     }
 
@@ -426,19 +407,16 @@ private:
         std::vector<std::string> parts;
         if (commits.size() > kept) {
             const std::int64_t keptEvents = kept == 0 ? 0 : commits[kept - 1].eventRows;
-            parts.push_back(
-                (commits.size() == kept + 1 ? "commit " + std::to_string(kept + 1)
-                                            : "commits " + std::to_string(kept + 1) + " to " +
-                                                  std::to_string(commits.size())) +
-                " (" + std::to_string(std::max<std::int64_t>(0, commits.back().eventRows - keptEvents)) +
-                " events)");
+            parts.push_back((commits.size() == kept + 1
+                                 ? "commit " + std::to_string(kept + 1)
+                                 : "commits " + std::to_string(kept + 1) + " to " + std::to_string(commits.size())) +
+                            " (" + std::to_string(std::max<std::int64_t>(0, commits.back().eventRows - keptEvents)) +
+                            " events)");
         }
         if (walLoss_)
-            parts.push_back(walLoss_->commits == 0
-                                ? std::string("everything in the write-ahead log")
-                                : std::to_string(walLoss_->commits) +
-                                      (walLoss_->commits == 1 ? " commit" : " commits") +
-                                      " in the write-ahead log");
+            parts.push_back(walLoss_->commits == 0 ? std::string("everything in the write-ahead log")
+                                                   : std::to_string(walLoss_->commits) +
+                                    (walLoss_->commits == 1 ? " commit" : " commits") + " in the write-ahead log");
         if (parts.empty()) return "";
         return "; lost " + parts[0] + (parts.size() > 1 ? " and " + parts[1] : "");
     }

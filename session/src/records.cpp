@@ -16,12 +16,8 @@ template <>
 const std::vector<Field<InputRecord>>& fieldsOf<InputRecord>() {
     using R = InputRecord;
     static const std::vector<Field<R>> fields = {
-        {"frame", &R::frame},
-        {"display_time", &R::displayTime},
-        {"mouse_dx", &R::mouseDx},
-        {"mouse_dy", &R::mouseDy},
-        {"buttons", &R::buttons},
-        {"keys", &R::keys},
+        {"frame", &R::frame},      {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
+        {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
     };
     return fields;
 }
@@ -79,8 +75,7 @@ std::optional<Json> parseObject(const std::string& text) {
 // else structurally with the same rule inside.
 bool sameJson(const Json& a, const Json& b) {
     if (a.is_number() && b.is_number()) {
-        if (a.is_number_float() || b.is_number_float())
-            return sameBits(a.get<double>(), b.get<double>());
+        if (a.is_number_float() || b.is_number_float()) return sameBits(a.get<double>(), b.get<double>());
         return a == b;
     }
     if (a.type() != b.type()) return false;
@@ -134,8 +129,7 @@ public:
             const std::string name = "detail." + key;
             if (!takeB) return say(name.c_str(), i.value().dump(), std::string("(absent)"));
             if (!takeA) return say(name.c_str(), std::string("(absent)"), j.value().dump());
-            if (!sameJson(i.value(), j.value()))
-                return say(name.c_str(), i.value().dump(), j.value().dump());
+            if (!sameJson(i.value(), j.value())) return say(name.c_str(), i.value().dump(), j.value().dump());
             ++i;
             ++j;
         }

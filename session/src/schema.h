@@ -27,7 +27,7 @@ inline constexpr std::int32_t kApplicationId = 0x57504C53;
 template <typename Row>
 struct Table {
     const char* name;
-    bool numbered;                          // an `id INTEGER PRIMARY KEY` comes first
+    bool numbered;  // an `id INTEGER PRIMARY KEY` comes first
     const std::vector<Field<Row>>& fields;  // records.h, or v1_format.h's version-1 ones
 
     const char* key() const { return numbered ? "id" : fields.front().column; }
@@ -51,10 +51,10 @@ struct Table {
                 continue;
             }
             switch (fields[i].storage) {
-            case Storage::Integer: sql += c + " INTEGER NOT NULL"; break;
-            case Storage::Real: sql += c + " CHECK (typeof(" + c + ") IN ('real', 'null'))"; break;
-            case Storage::Text:
-            case Storage::JsonObject: sql += c + " TEXT NOT NULL"; break;
+                case Storage::Integer: sql += c + " INTEGER NOT NULL"; break;
+                case Storage::Real: sql += c + " CHECK (typeof(" + c + ") IN ('real', 'null'))"; break;
+                case Storage::Text:
+                case Storage::JsonObject: sql += c + " TEXT NOT NULL"; break;
             }
         }
         return sql + ")";
@@ -91,8 +91,7 @@ inline constexpr const char* kSchema[] = {
     "  committed_at  TEXT NOT NULL)",
 };
 
-inline constexpr const char* kCommitColumns =
-    "id, input_rows, frame_rows, event_rows, last_frame, checksum";
+inline constexpr const char* kCommitColumns = "id, input_rows, frame_rows, event_rows, last_frame, checksum";
 
 template <typename InputRow, typename FrameRow, typename EventRow>
 struct Layout {
@@ -105,8 +104,7 @@ template <typename Row>
 std::string insertSql(const Table<Row>& table) {
     std::string values = "?";
     for (int i = 1; i < table.columnCount(); ++i) values += ", ?";
-    return std::string("INSERT INTO ") + table.name + " (" + table.columns() + ") VALUES (" +
-           values + ")";
+    return std::string("INSERT INTO ") + table.name + " (" + table.columns() + ") VALUES (" + values + ")";
 }
 
 // Meta values are TEXT; numbers go through to_chars/from_chars, which are exact (shortest

@@ -43,8 +43,7 @@ inline void bindOptional(sqlite3_stmt* s, int i, const std::optional<std::int64_
 
 inline std::string columnText(sqlite3_stmt* s, int i) {
     const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(s, i));
-    return text ? std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i)))
-                : std::string();
+    return text ? std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i))) : std::string();
 }
 
 }  // namespace warplab::session::detail

@@ -30,7 +30,7 @@ struct V1EventRow : EventRecord {
 inline const std::vector<Field<InputRecord>>& v1InputFields() {
     using R = InputRecord;
     static const std::vector<Field<R>> fields = {
-        {"frame", &R::frame},       {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
+        {"frame", &R::frame},      {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
         {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
     };
     return fields;
@@ -90,18 +90,14 @@ Record toRecord(Record r) {
 inline FrameRecord toRecord(V1FrameRow&& r) {
     FrameRecord out = std::move(static_cast<FrameRecord&>(r));
     out.detailJson = r.targetVisible
-                         ? nlohmann::json{{"target", nlohmann::json::array({r.targetX, r.targetY,
-                                                                            r.targetZ})}}
-                               .dump()
-                         : std::string();
+        ? nlohmann::json{{"target", nlohmann::json::array({r.targetX, r.targetY, r.targetZ})}}.dump()
+        : std::string();
     return out;
 }
 inline EventRecord toRecord(V1EventRow&& r) {
-    nlohmann::json detail = r.detailJson.empty() ? nlohmann::json::object()
-                                                 : nlohmann::json::parse(r.detailJson);
+    nlohmann::json detail = r.detailJson.empty() ? nlohmann::json::object() : nlohmann::json::parse(r.detailJson);
     detail["difficulty"] = r.difficulty;
-    if (r.type == "shot" || r.type == "timeout" || r.type == "level")
-        detail["target_speed"] = r.targetSpeed;
+    if (r.type == "shot" || r.type == "timeout" || r.type == "level") detail["target_speed"] = r.targetSpeed;
     if (r.type == "shot" || r.type == "timeout") {
         detail["spawn_time"] = r.spawnTime;
         detail["aim_time"] = r.aimTime;

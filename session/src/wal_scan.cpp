@@ -39,9 +39,9 @@ std::optional<WalLoss> scanWal(const std::string& walPath) {
     if (pageSize == 1) pageSize = 65536;
     std::uint32_t sum[2] = {0, 0};
     walChecksum(magic & 1, log.data(), 24, sum);
-    const bool headerOk = (magic == 0x377f0682 || magic == 0x377f0683) && pageSize >= 512 &&
-                          pageSize <= 65536 && (pageSize & (pageSize - 1)) == 0 &&
-                          sum[0] == bigEndian32(log.data() + 24) && sum[1] == bigEndian32(log.data() + 28);
+    const bool headerOk = (magic == 0x377f0682 || magic == 0x377f0683) && pageSize >= 512 && pageSize <= 65536 &&
+        (pageSize & (pageSize - 1)) == 0 && sum[0] == bigEndian32(log.data() + 24) &&
+        sum[1] == bigEndian32(log.data() + 28);
     if (!headerOk)  // a header is only ever written whole, before any frame
         return log.size() > kHeader + kFrameHeader ? std::optional<WalLoss>(WalLoss{0, 0}) : std::nullopt;
 

@@ -14,7 +14,7 @@ namespace warplab::session::detail {
 // data lost to damage. The format is SQLite's (https://sqlite.org/fileformat2.html#walformat).
 struct WalLoss {
     std::int64_t byte = 0;  // where the header or frame that fails starts
-    int commits = 0;        // commit frames of this log after it (0: the header itself failed)
+    int commits = 0;  // commit frames of this log after it (0: the header itself failed)
 };
 
 // A running writer may be half-way through a frame when we look; damage stays put. So a loss

@@ -64,17 +64,14 @@ std::string utcNow() {
     using namespace std::chrono;
     const auto now = system_clock::now();
     const std::time_t seconds = system_clock::to_time_t(now);
-    const auto millis =
-        duration_cast<milliseconds>(now.time_since_epoch()).count() % 1000;
+    const auto millis = duration_cast<milliseconds>(now.time_since_epoch()).count() % 1000;
     std::tm tm{};
     gmtime_r(&seconds, &tm);
     char text[96];  // room for any int the format could meet, so no truncation warning
-    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900,
-                  tm.tm_mon + 1, tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec,
-                  static_cast<int>(millis));
+    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1,
+                  tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(millis));
     return text;
 }
-
 
 // Thrown inside a write while another connection holds the file's write lock: the write is
 // rolled back and everything it would have written stays held for the next try.
@@ -97,7 +94,7 @@ struct SessionWriter::Impl {
     std::string path;
     Db db;
     Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
-    bool writing = false;   // inside writeHeld(): a busy lock is LockBusy, not a failure
+    bool writing = false;  // inside writeHeld(): a busy lock is LockBusy, not a failure
     bool finished = false;
 
     // Rows are kept in memory until they are written, so another program's write lock can
@@ -138,15 +135,12 @@ struct SessionWriter::Impl {
         if (!db || (held.empty() && heldFlags.empty() && !completing)) return;
         try {
             const auto deadline = Clock::now() + std::chrono::seconds(2);
-            while (!writeHeld() && Clock::now() < deadline)
-                std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        } catch (...) {
-        }
+            while (!writeHeld() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        } catch (...) {}
     }
 
     [[noreturn]] void fail(const std::string& what) const {
-        throw SessionError("Cannot write session file " + path + " (" + what +
-                           "): " + sqlite3_errmsg(db.get()) + ".");
+        throw SessionError("Cannot write session file " + path + " (" + what + "): " + sqlite3_errmsg(db.get()) + ".");
     }
     void check(int rc, const char* what) const {
         if (writing && isBusy(rc)) throw LockBusy{};
@@ -158,8 +152,7 @@ struct SessionWriter::Impl {
     }
     Stmt prepare(const std::string& sql) {
         sqlite3_stmt* raw = nullptr;
-        if (sqlite3_prepare_v3(db.get(), sql.c_str(), -1, SQLITE_PREPARE_PERSISTENT, &raw,
-                               nullptr) != SQLITE_OK)
+        if (sqlite3_prepare_v3(db.get(), sql.c_str(), -1, SQLITE_PREPARE_PERSISTENT, &raw, nullptr) != SQLITE_OK)
             fail("preparing a statement");
         return Stmt(raw);
     }
@@ -238,8 +231,7 @@ struct SessionWriter::Impl {
     // Binds one record's fields in table order (after its id, for numbered tables) and
     // inserts it.
     template <typename R>
-    void insert(const Table<R>& table, sqlite3_stmt* s, const R& r, std::int64_t id,
-                const char* what) {
+    void insert(const Table<R>& table, sqlite3_stmt* s, const R& r, std::int64_t id, const char* what) {
         int i = 1;
         if (table.numbered) bindArg(s, i++, id);
         for (const Field<R>& field : table.fields)
@@ -277,8 +269,7 @@ struct SessionWriter::Impl {
                 bindArg(s, 2, h.frameRows);
                 bindArg(s, 3, h.eventRows);
                 bindOptional(s, 4, h.lastFrame);
-                bindOptional(s, 5, h.eventRows > 0 ? std::optional<std::int64_t>(h.eventRows)
-                                                   : std::nullopt);
+                bindOptional(s, 5, h.eventRows > 0 ? std::optional<std::int64_t>(h.eventRows) : std::nullopt);
                 bindArg(s, 6, h.checksum);
                 bindArg(s, 7, h.committedAt);
                 run(s, "recording the commit");
@@ -290,8 +281,7 @@ struct SessionWriter::Impl {
             writing = false;
             // A failed COMMIT may or may not have rolled back by itself; make sure it did,
             // so the file holds exactly what it held before.
-            if (!sqlite3_get_autocommit(db.get()))
-                sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+            if (!sqlite3_get_autocommit(db.get())) sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
             try {
                 throw;
             } catch (const LockBusy&) {
@@ -332,7 +322,7 @@ struct SessionWriter::Impl {
             // new file's.
             for (int n = 1; anyExists(savedTo); ++n)
                 savedTo = path.substr(0, path.size() - std::strlen(kExtension)) + "-rescued" +
-                          (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
+                    (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
             Stmt copy = prepare("VACUUM INTO ?");
             bindArg(copy.get(), 1, savedTo);
             if (sqlite3_step(copy.get()) != SQLITE_DONE) fail("saving a copy to " + savedTo);
@@ -343,9 +333,8 @@ struct SessionWriter::Impl {
             sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
             if (copied < logFrames) return;
         }
-        const std::string what =
-            fileMoved ? "the session file " + path + " was deleted or replaced by another program"
-                      : "the log " + path + "-wal was deleted or replaced by another program";
+        const std::string what = fileMoved ? "the session file " + path + " was deleted or replaced by another program"
+                                           : "the log " + path + "-wal was deleted or replaced by another program";
         close();
         path = savedTo;
         openForWriting();
@@ -355,12 +344,10 @@ struct SessionWriter::Impl {
         writeHeld();  // the flag; if the lock is taken now, it goes with the next commit
     }
 
-    static void checkFollows(const std::optional<std::int64_t>& last, std::int64_t frame,
-                             const char* caller) {
+    static void checkFollows(const std::optional<std::int64_t>& last, std::int64_t frame, const char* caller) {
         if (last && frame <= *last)
-            throw std::invalid_argument(std::string("SessionWriter::") + caller + ": frame " +
-                                        std::to_string(frame) + " does not follow frame " +
-                                        std::to_string(*last) + ".");
+            throw std::invalid_argument(std::string("SessionWriter::") + caller + ": frame " + std::to_string(frame) +
+                                        " does not follow frame " + std::to_string(*last) + ".");
     }
 
     template <typename R>
@@ -369,17 +356,14 @@ struct SessionWriter::Impl {
             if (field.storage != Storage::JsonObject) continue;
             const std::string& text = r.*std::get<std::string R::*>(field.member);
             if (!isJsonObjectOrEmpty(text))
-                throw std::invalid_argument(std::string("SessionWriter::") + caller + ": " +
-                                            field.column +
-                                            " must be a JSON object or empty, not '" +
-                                            text.substr(0, 80) + "'.");
+                throw std::invalid_argument(std::string("SessionWriter::") + caller + ": " + field.column +
+                                            " must be a JSON object or empty, not '" + text.substr(0, 80) + "'.");
         }
     }
 
     void checkOpen(const char* caller) const {
         if (finished)
-            throw std::logic_error(std::string("SessionWriter::") + caller +
-                                   ": the session is already finished.");
+            throw std::logic_error(std::string("SessionWriter::") + caller + ": the session is already finished.");
     }
 
     // Retries writeHeld() until it gets the lock, telling `waiting` about once a second.
@@ -403,9 +387,7 @@ SessionWriter& SessionWriter::operator=(SessionWriter&&) noexcept = default;
 SessionWriter::~SessionWriter() = default;
 
 SessionWriter::Impl& SessionWriter::impl(const char* caller) const {
-    if (!impl_)
-        throw std::logic_error(std::string("SessionWriter::") + caller +
-                               ": this writer was moved from.");
+    if (!impl_) throw std::logic_error(std::string("SessionWriter::") + caller + ": this writer was moved from.");
     return *impl_;
 }
 
@@ -414,8 +396,7 @@ const std::string& SessionWriter::path() const { return impl("path").path; }
 SessionWriter SessionWriter::create(const std::string& resultsDir, const SessionHeader& header) {
     if (header.formatVersion != kSessionFormatVersion)
         throw std::invalid_argument("SessionWriter::create: header.formatVersion is " +
-                                    std::to_string(header.formatVersion) +
-                                    " but this warplab writes format version " +
+                                    std::to_string(header.formatVersion) + " but this warplab writes format version " +
                                     std::to_string(kSessionFormatVersion) + ".");
 
     // Everything that can be checked is checked before the first file exists, so a bad
@@ -424,11 +405,9 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     const auto status = fs::status(resultsDir, ec);
     if (resultsDir.empty() || !fs::exists(status))
         throw SessionError("Results folder '" + resultsDir + "' does not exist.");
-    if (!fs::is_directory(status))
-        throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
+    if (!fs::is_directory(status)) throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
     if (::access(resultsDir.c_str(), W_OK | X_OK) != 0)
-        throw SessionError("Results folder '" + resultsDir + "' is not writable (" +
-                           std::strerror(errno) + ").");
+        throw SessionError("Results folder '" + resultsDir + "' is not writable (" + std::strerror(errno) + ").");
 
     SessionHeader h = header;
     if (h.startedAt.empty()) h.startedAt = utcNow();
@@ -454,8 +433,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             if (rc != SQLITE_OK) impl->fail("creating");
             impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
             impl->exec("BEGIN IMMEDIATE", "writing the header");
-            impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(),
-                       "writing the header");
+            impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(), "writing the header");
             for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
             impl->exec(inputTable().createSql().c_str(), "creating the tables");
             impl->exec(frameTable().createSql().c_str(), "creating the tables");
@@ -536,15 +514,12 @@ std::size_t SessionWriter::heldCommits() const { return impl("heldCommits").held
 
 double SessionWriter::heldForSeconds() const {
     const Impl& w = impl("heldForSeconds");
-    return w.heldSince ? std::chrono::duration<double>(Impl::Clock::now() - *w.heldSince).count()
-                       : 0.0;
+    return w.heldSince ? std::chrono::duration<double>(Impl::Clock::now() - *w.heldSince).count() : 0.0;
 }
 
 void SessionWriter::flush(const WaitCallback& waiting) { impl("flush").waitForWrite(waiting); }
 
-std::vector<std::string> SessionWriter::takeNotices() {
-    return std::exchange(impl("takeNotices").notices, {});
-}
+std::vector<std::string> SessionWriter::takeNotices() { return std::exchange(impl("takeNotices").notices, {}); }
 
 void SessionWriter::flag(const std::string& name, const std::string& text) {
     Impl& w = impl("flag");

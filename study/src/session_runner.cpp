@@ -53,30 +53,33 @@ std::string unknownPlayer(const std::string& player) {
 bool isSimulatedParticipant(const std::string& player) { return player == "sim" || player.rfind("sim:", 0) == 0; }
 
 void checkPlayer(const std::string& player) {
-    if (isBot(player) || isSimulatedParticipant(player)) playerSeed(player, 4, 0);
-    else if (player != "human" && !isReplay(player)) throw std::invalid_argument(unknownPlayer(player));
+    if (isBot(player) || isSimulatedParticipant(player))
+        playerSeed(player, 4, 0);
+    else if (player != "human" && !isReplay(player))
+        throw std::invalid_argument(unknownPlayer(player));
 }
 
-std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
-                                         const game::Study& study, const game::DisplaySize& display,
-                                         const game::SeeingPlayerMaker& seeing) {
+std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed, const game::Study& study,
+                                         const game::DisplaySize& display, const game::SeeingPlayerMaker& seeing) {
     if (isBot(player)) return study.newBot(playerSeed(player, 4, sessionSeed), display);
     if (isSimulatedParticipant(player)) {
         const std::uint64_t seed = playerSeed(player, 4, sessionSeed);
         if (!seeing)
-            throw std::invalid_argument("--player " + player + " (the simulated participant) runs headless only: add --headless");
+            throw std::invalid_argument("--player " + player +
+                                        " (the simulated participant) runs headless only: add --headless");
         return seeing(seed, study, display);
     }
     if (isReplay(player)) {
         auto source = session::readSession(player.substr(7));
-        if (source.inputs.empty()) throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
+        if (source.inputs.empty())
+            throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
         return std::make_unique<game::RecordedPlayer>(std::move(source.inputs));
     }
     throw std::invalid_argument(unknownPlayer(player));
 }
 
 session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
-                                      const std::string& player, const game::DisplaySize& display) {
+                                     const std::string& player, const game::DisplaySize& display) {
     session::SessionHeader header;
     header.protocolJson = study.protocolJson();
     header.seed = seed;
@@ -98,7 +101,7 @@ SessionCommits::SessionCommits(session::SessionWriter& writer, double refreshHz,
 
 void SessionCommits::afterFrame(std::int64_t frame, bool commitPoint) {
     const bool due = commitPoint || frame - lastCommit_ >= maxFrames_ ||
-                     (writer_.heldCommits() > 0 && frame - lastTry_ >= retryFrames_);
+        (writer_.heldCommits() > 0 && frame - lastTry_ >= retryFrames_);
     if (!due) return;
     if (commitPoint || frame - lastCommit_ >= maxFrames_) lastCommit_ = frame;
     lastTry_ = frame;
@@ -128,9 +131,9 @@ void SessionCommits::tell() {
 
 void SessionCommits::end(bool completed, const std::function<void(const std::string&)>& show) {
     const auto waiting = [&](double seconds) {
-        const std::string line = "Saving the session: another program has held the write lock on " +
-                                 writer_.path() + " for " + std::to_string(static_cast<long>(seconds)) +
-                                 " s. Close it (a DB browser, or sqlite3 without -readonly).";
+        const std::string line = "Saving the session: another program has held the write lock on " + writer_.path() +
+            " for " + std::to_string(static_cast<long>(seconds)) +
+            " s. Close it (a DB browser, or sqlite3 without -readonly).";
         if (show) show(line);
         if (static_cast<long>(seconds) % 5 == 1) progress_ << "waiting: " << line << "\n";
     };
@@ -222,7 +225,7 @@ ReplayResult replaySession(const std::string& sessionPath) {
             const auto& logged = data.events[eventIndex];
             if (!diff.empty() && result.difference.empty()) {
                 result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +
-                                    std::to_string(logged.frame) + "): " + diff;
+                    std::to_string(logged.frame) + "): " + diff;
             }
             if (diff.empty() && game->isOutcome(logged)) ++result.reproduced;
             ++result.events;
@@ -233,8 +236,8 @@ ReplayResult replaySession(const std::string& sessionPath) {
     }
     if (result.difference.empty() && eventIndex < data.events.size())
         result.difference = "record " + std::to_string(eventIndex + 1) + " (" + data.events[eventIndex].type +
-                            " at frame " + std::to_string(data.events[eventIndex].frame) +
-                            ") was logged but the replay never produced it";
+            " at frame " + std::to_string(data.events[eventIndex].frame) +
+            ") was logged but the replay never produced it";
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }

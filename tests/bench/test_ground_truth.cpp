@@ -204,7 +204,9 @@ TEST(GroundTruth, CameraYawMovesStaticSurfacesToTheirProjection) {
             // Static scene, same eye: everything seen now was seen before unless it was
             // outside the source image. The edge-on floor far away must pass too.
             const bool inside = expected.x >= 0 && expected.x < kW && expected.y >= 0 && expected.y < kH;
-            if (!inside) { EXPECT_EQ(c.visible[i], 0) << x << "," << y; }
+            if (!inside) {
+                EXPECT_EQ(c.visible[i], 0) << x << "," << y;
+            }
             if (surroundedBy(s.ids, expected, scene::kIdHangar)) {
                 EXPECT_EQ(c.visible[i], 1) << x << "," << y;
                 ++visibleChecked;
@@ -233,8 +235,12 @@ TEST(GroundTruth, SkyFollowsTheCameraRotationOnly) {
             const std::size_t i = index(x, y);
             EXPECT_NEAR(c.coords[i].x, expected.x, 1e-3) << x << "," << y;
             EXPECT_NEAR(c.coords[i].y, expected.y, 1e-3) << x << "," << y;
-            if (surroundedBy(s.ids, expected, scene::kIdNone)) { EXPECT_EQ(c.visible[i], 1) << x << "," << y; }
-            if (surroundedBy(s.ids, expected, scene::kIdHangar)) { EXPECT_EQ(c.visible[i], 0) << x << "," << y; }
+            if (surroundedBy(s.ids, expected, scene::kIdNone)) {
+                EXPECT_EQ(c.visible[i], 1) << x << "," << y;
+            }
+            if (surroundedBy(s.ids, expected, scene::kIdHangar)) {
+                EXPECT_EQ(c.visible[i], 0) << x << "," << y;
+            }
             ++sky;
         }
     }
@@ -251,7 +257,8 @@ TEST(GroundTruth, MovingObjectsPixelsShiftByTheirProjectedMotion) {
     for (const bool turning : {false, true}) {
         SCOPED_TRACE(turning ? "translated and turned" : "translated");
         // Turned 0.4 rad about an oblique axis: a point keeps its place on the body.
-        const glm::dquat turn = turning ? glm::angleAxis(0.4, glm::normalize(glm::dvec3(0.3, 1.0, 0.2))) : glm::dquat(1, 0, 0, 0);
+        const glm::dquat turn =
+            turning ? glm::angleAxis(0.4, glm::normalize(glm::dvec3(0.3, 1.0, 0.2))) : glm::dquat(1, 0, 0, 0);
         movedFrom.orientation = glm::quat(1, 0, 0, 0);
         movedTo.orientation = glm::quat(turn);
         const auto source = frameAt(0.0, {movedFrom});
@@ -282,9 +289,12 @@ TEST(GroundTruth, MovingObjectsPixelsShiftByTheirProjectedMotion) {
         }
         EXPECT_GT(target, 150);  // ~7.8 px radius: ~190 pixels
         // Without the turn, the point at the target's centre pixel faces the camera in both frames.
-        const int cx = int(std::floor(projectPoint(b, glm::dvec3(at)).x)), cy = int(std::floor(projectPoint(b, glm::dvec3(at)).y));
+        const int cx = int(std::floor(projectPoint(b, glm::dvec3(at)).x)),
+                  cy = int(std::floor(projectPoint(b, glm::dvec3(at)).y));
         ASSERT_EQ(d.ids.at(cx, cy), scene::kIdTarget);
-        if (!turning) { EXPECT_EQ(c.visible[index(cx, cy)], 1); }
+        if (!turning) {
+            EXPECT_EQ(c.visible[index(cx, cy)], 1);
+        }
     }
 }
 
@@ -432,8 +442,8 @@ TEST(Disocclusion, MaskedMeanAbsoluteErrorOverRgbOfMaskedPixels) {
     const std::uint8_t pb[12] = {13, 14, 39, 0, 70, 100, 100, 9, 200, 200, 200, 0};  // alpha ignored
     std::copy(pa, pa + 12, a.pixels.begin());
     std::copy(pb, pb + 12, b.pixels.begin());
-    EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {1, 0, 0}), 6.0);   // (3 + 6 + 9) / 3
-    EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {1, 1, 0}), 8.0);   // (18 + 30) / 6
+    EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {1, 0, 0}), 6.0);  // (3 + 6 + 9) / 3
+    EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {1, 1, 0}), 8.0);  // (18 + 30) / 6
     EXPECT_DOUBLE_EQ(maskedMeanAbsoluteError(a, b, {0, 0, 1}), 200.0);
     EXPECT_TRUE(std::isnan(maskedMeanAbsoluteError(a, b, {0, 0, 0})));
     EXPECT_THROW(maskedMeanAbsoluteError(a, b, {1, 1}), std::invalid_argument);
@@ -445,7 +455,8 @@ TEST(Disocclusion, MaskedMeanAbsoluteErrorOverRgbOfMaskedPixels) {
 TEST(CorrespondenceStats, SharesOverAllAndVisiblePixelsPoolBothSources) {
     const float f = float(kNaN);
     // Source 1: errors 0.05, 0.3, 0.75 (hidden), none claimed, 1.0 exactly.
-    const auto truth1 = handMade(5, 1, {{0.5f, 0.5f}, {1.5f, 0.5f}, {2.5f, 0.5f}, {3.5f, 0.5f}, {4.5f, 0.5f}}, {1, 1, 0, 1, 1});
+    const auto truth1 =
+        handMade(5, 1, {{0.5f, 0.5f}, {1.5f, 0.5f}, {2.5f, 0.5f}, {3.5f, 0.5f}, {4.5f, 0.5f}}, {1, 1, 0, 1, 1});
     const std::vector<glm::vec2> reported1 = {{0.55f, 0.5f}, {1.5f, 0.8f}, {2.5f, 1.25f}, {f, 0.5f}, {5.5f, 0.5f}};
     CorrespondenceAccumulator acc;
     acc.add(reported1, truth1);
@@ -461,7 +472,8 @@ TEST(CorrespondenceStats, SharesOverAllAndVisiblePixelsPoolBothSources) {
 
     // Source 2: errors 0 (hidden), 0 but the truth has no position (error +inf), 0.6, 0.09
     // diagonally (0.06, 0.0675), 2 (hidden).
-    const auto truth2 = handMade(5, 1, {{0.5f, 0.5f}, {f, f}, {2.5f, 0.5f}, {3.5f, 0.5f}, {4.5f, 0.5f}}, {0, 1, 1, 1, 0});
+    const auto truth2 =
+        handMade(5, 1, {{0.5f, 0.5f}, {f, f}, {2.5f, 0.5f}, {3.5f, 0.5f}, {4.5f, 0.5f}}, {0, 1, 1, 1, 0});
     const std::vector<glm::vec2> reported2 = {{0.5f, 0.5f}, {1.5f, 0.5f}, {2.5f, 1.1f}, {3.56f, 0.5675f}, {6.5f, 0.5f}};
     acc.add(reported2, truth2);
     s = acc.stats();
@@ -469,10 +481,10 @@ TEST(CorrespondenceStats, SharesOverAllAndVisiblePixelsPoolBothSources) {
     EXPECT_EQ(s.hitSamples, 7u);
     EXPECT_DOUBLE_EQ(s.allLt0p1, 3.0 / 10);  // 0.05; 0, 0.09
     EXPECT_DOUBLE_EQ(s.allLt0p5, 4.0 / 10);  // + 0.3
-    EXPECT_DOUBLE_EQ(s.allLt1, 6.0 / 10);    // + 0.75, 0.6
-    EXPECT_DOUBLE_EQ(s.hitLt0p1, 2.0 / 7);   // 0.05, 0.09
-    EXPECT_DOUBLE_EQ(s.hitLt0p5, 3.0 / 7);   // + 0.3
-    EXPECT_DOUBLE_EQ(s.hitLt1, 4.0 / 7);     // + 0.6
+    EXPECT_DOUBLE_EQ(s.allLt1, 6.0 / 10);  // + 0.75, 0.6
+    EXPECT_DOUBLE_EQ(s.hitLt0p1, 2.0 / 7);  // 0.05, 0.09
+    EXPECT_DOUBLE_EQ(s.hitLt0p5, 3.0 / 7);  // + 0.3
+    EXPECT_DOUBLE_EQ(s.hitLt1, 4.0 / 7);  // + 0.6
 
     EXPECT_THROW(acc.add(std::vector<glm::vec2>(4), truth1), std::invalid_argument);
 }

@@ -27,9 +27,7 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kGravity = 9.81;  // what the brief asks for, independent of the source
 constexpr double kFloorY = Layout::kClearMinY;
 
-std::unique_ptr<BenchSequence> make(const std::string& name) {
-    return makeSequence(name, SequenceConfig{});
-}
+std::unique_ptr<BenchSequence> make(const std::string& name) { return makeSequence(name, SequenceConfig{}); }
 
 // Sample times over [0, duration], both ends included.
 std::vector<double> samples(const BenchSequence& sequence, double step) {
@@ -61,13 +59,11 @@ void expectInvalidArgumentNaming(F&& call, const std::vector<std::string>& needl
 // Registry
 
 TEST(SequenceRegistry, NamesInBenchOrder) {
-    EXPECT_EQ(sequenceNames(),
-              (std::vector<std::string>{"pan", "track", "translate", "spheres", "thin"}));
+    EXPECT_EQ(sequenceNames(), (std::vector<std::string>{"pan", "track", "translate", "spheres", "thin"}));
 }
 
 TEST(SequenceRegistry, UnknownNameIsNamedWithTheValidOnes) {
-    expectInvalidArgumentNaming([] { make("orbit"); },
-                                {"'orbit'", "pan", "track", "translate", "spheres", "thin"});
+    expectInvalidArgumentNaming([] { make("orbit"); }, {"'orbit'", "pan", "track", "translate", "spheres", "thin"});
     expectInvalidArgumentNaming([] { make(""); }, {"''", "pan"});
     expectInvalidArgumentNaming([] { make("Pan"); }, {"'Pan'"});  // names are exact
 }
@@ -179,12 +175,10 @@ TEST_P(SequenceProperties, FiniteOverTheRun) {
     for (double t : samples(*sequence, 0.001)) {
         const scene::FrameDescription frame = sequence->at(t);
         ASSERT_TRUE(finite(frame.camera.eye)) << "t = " << t;
-        ASSERT_TRUE(std::isfinite(frame.camera.yaw) && std::isfinite(frame.camera.pitch))
-            << "t = " << t;
+        ASSERT_TRUE(std::isfinite(frame.camera.yaw) && std::isfinite(frame.camera.pitch)) << "t = " << t;
         ASSERT_FALSE(frame.scene.objects.empty());
         for (const scene::ObjectState& o : frame.scene.objects) {
-            ASSERT_TRUE(finite(o.position) && finite(o.velocity) && finite(o.angularVelocity) &&
-                        finite(o.halfExtents))
+            ASSERT_TRUE(finite(o.position) && finite(o.velocity) && finite(o.angularVelocity) && finite(o.halfExtents))
                 << "object " << o.id << ", t = " << t;
             ASSERT_TRUE(std::isfinite(o.orientation.w) && std::isfinite(o.orientation.x) &&
                         std::isfinite(o.orientation.y) && std::isfinite(o.orientation.z));
@@ -214,8 +208,7 @@ TEST_P(SequenceProperties, VelocitiesAreTheTimeDerivatives) {
             const scene::ObjectState& a = after.scene.objects[k];
             ASSERT_EQ(b.id, n.id);
             ASSERT_EQ(a.id, n.id);
-            if (glm::length(glm::dvec3(a.velocity) - glm::dvec3(b.velocity)) >
-                kMaxSmoothAcceleration * 2.0 * h) {
+            if (glm::length(glm::dvec3(a.velocity) - glm::dvec3(b.velocity)) > kMaxSmoothAcceleration * 2.0 * h) {
                 ++skipped;
                 continue;
             }
@@ -234,8 +227,7 @@ TEST_P(SequenceProperties, VelocitiesAreTheTimeDerivatives) {
             const glm::dquat rate = (qa - qb) / (2 * h);
             const glm::dquat omega = 2.0 * rate * glm::conjugate(glm::dquat(n.orientation));
             const glm::dvec3 angular(omega.x, omega.y, omega.z);
-            const double angularTolerance =
-                3e-3 + 1e-3 * glm::length(glm::dvec3(n.angularVelocity));
+            const double angularTolerance = 3e-3 + 1e-3 * glm::length(glm::dvec3(n.angularVelocity));
             for (int axis = 0; axis < 3; ++axis) {
                 EXPECT_NEAR(n.angularVelocity[axis], angular[axis], angularTolerance)
                     << "object " << n.id << " axis " << axis << ", t = " << t;
@@ -252,15 +244,13 @@ TEST_P(SequenceProperties, EverythingStaysInsideTheHangarsClearBox) {
     for (double t : samples(*sequence, 0.002)) {
         const scene::FrameDescription frame = sequence->at(t);
         const glm::vec3 eye = frame.camera.eye;
-        EXPECT_TRUE(eye.x > Layout::kClearMinX && eye.x < Layout::kClearMaxX &&
-                    eye.y > Layout::kClearMinY && eye.y < Layout::kClearMaxY &&
-                    eye.z > Layout::kFarZ && eye.z < Layout::kBackZ)
+        EXPECT_TRUE(eye.x > Layout::kClearMinX && eye.x < Layout::kClearMaxX && eye.y > Layout::kClearMinY &&
+                    eye.y < Layout::kClearMaxY && eye.z > Layout::kFarZ && eye.z < Layout::kBackZ)
             << "eye, t = " << t;
         for (const scene::ObjectState& o : frame.scene.objects) {
             // A box's farthest point from its centre bounds it whatever its orientation.
-            const double reach = o.shape == scene::Shape::Sphere
-                                     ? double(o.halfExtents.x)
-                                     : glm::length(glm::dvec3(o.halfExtents));
+            const double reach =
+                o.shape == scene::Shape::Sphere ? double(o.halfExtents.x) : glm::length(glm::dvec3(o.halfExtents));
             const glm::dvec3 p(o.position);
             EXPECT_GE(p.x - reach, Layout::kClearMinX - 1e-6) << "object " << o.id << " t " << t;
             EXPECT_LE(p.x + reach, Layout::kClearMaxX + 1e-6) << "object " << o.id << " t " << t;
@@ -274,11 +264,8 @@ TEST_P(SequenceProperties, EverythingStaysInsideTheHangarsClearBox) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(SequenceEach, SequenceProperties,
-                         ::testing::ValuesIn(sequenceNames()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             return info.param;
-                         });
+INSTANTIATE_TEST_SUITE_P(SequenceEach, SequenceProperties, ::testing::ValuesIn(sequenceNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 // ---------------------------------------------------------------------------------------
 // pan
@@ -294,8 +281,8 @@ TEST(SequencePan, TurnsFastEnoughThatHoldingA15HzFrameIsVisiblyWrong) {
         // Where the reticle of 1/15 s later lands in this frame, in 1080p pixels.
         const scene::CameraState next = pan->at(t + 1.0 / 15.0).camera;
         const glm::vec3 ahead = now.camera.eye + scene::forwardDirection(next.yaw, next.pitch);
-        const glm::vec4 clip = scene::projectionMatrix(now.camera, 16.0f / 9.0f) *
-                               scene::viewMatrix(now.camera) * glm::vec4(ahead, 1.0f);
+        const glm::vec4 clip =
+            scene::projectionMatrix(now.camera, 16.0f / 9.0f) * scene::viewMatrix(now.camera) * glm::vec4(ahead, 1.0f);
         const glm::vec2 ndc = glm::vec2(clip) / clip.w;
         peakShiftPx = std::max(peakShiftPx, double(glm::length(ndc * glm::vec2(960.0f, 540.0f))));
     }
@@ -322,9 +309,7 @@ TEST(SequencePan, PitchSweepsTooButLess) {
 // ---------------------------------------------------------------------------------------
 // track
 
-double angleBetween(glm::dvec3 a, glm::dvec3 b) {
-    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
+double angleBetween(glm::dvec3 a, glm::dvec3 b) { return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)); }
 
 scene::ObjectState targetOf(const scene::FrameDescription& frame) {
     for (const scene::ObjectState& o : frame.scene.objects) {
@@ -406,8 +391,8 @@ TEST(SequenceSpheres, CentresStayOnScreenAt16By9) {
     const auto spheres = make("spheres");
     for (double t : samples(*spheres, 0.01)) {
         const scene::FrameDescription frame = spheres->at(t);
-        const glm::mat4 viewProjection = scene::projectionMatrix(frame.camera, 16.0f / 9.0f) *
-                                         scene::viewMatrix(frame.camera);
+        const glm::mat4 viewProjection =
+            scene::projectionMatrix(frame.camera, 16.0f / 9.0f) * scene::viewMatrix(frame.camera);
         for (const scene::ObjectState& o : frame.scene.objects) {
             const glm::vec4 clip = viewProjection * glm::vec4(o.position, 1.0f);
             ASSERT_GT(clip.w, 0.0f);
@@ -457,8 +442,7 @@ TEST(SequenceSpheres, HitTheFloorAtFreeFallSpeedFromTheirApex) {
             const scene::ObjectState& o = frames[f].scene.objects[i];
             const double height = o.position.y - contact;
             const double energy = double(o.velocity.y) * o.velocity.y + 2.0 * kGravity * height;
-            ASSERT_NEAR(energy, 2.0 * kGravity * apex, 1e-3 * 2.0 * kGravity * apex)
-                << "t = " << frames[f].scene.time;
+            ASSERT_NEAR(energy, 2.0 * kGravity * apex, 1e-3 * 2.0 * kGravity * apex) << "t = " << frames[f].scene.time;
             if (f == 0) continue;
             const scene::ObjectState& previous = frames[f - 1].scene.objects[i];
             if (previous.velocity.y < 0.0f && o.velocity.y > 0.0f) {
@@ -495,8 +479,7 @@ TEST(SequenceSpheres, NeverOverlapEachOther) {
         const auto objects = spheres->at(t).scene.objects;
         for (std::size_t i = 0; i < objects.size(); ++i) {
             for (std::size_t j = i + 1; j < objects.size(); ++j) {
-                const double gap =
-                    glm::length(glm::dvec3(objects[i].position) - glm::dvec3(objects[j].position)) -
+                const double gap = glm::length(glm::dvec3(objects[i].position) - glm::dvec3(objects[j].position)) -
                     objects[i].halfExtents.x - objects[j].halfExtents.x;
                 EXPECT_GT(gap, 0.0) << "spheres " << i << " and " << j << ", t = " << t;
             }
@@ -554,9 +537,7 @@ TEST(SequenceThin, AThinBoxSpinningAt1Point5TurnsPerSecondAboutTheViewAxis) {
     EXPECT_GT(glm::length(bar.velocity), 0.0f) << "the hub translates too";
 }
 
-glm::dmat3 rotationOf(const scene::ObjectState& o) {
-    return glm::mat3_cast(glm::dquat(o.orientation));
-}
+glm::dmat3 rotationOf(const scene::ObjectState& o) { return glm::mat3_cast(glm::dquat(o.orientation)); }
 
 TEST(SequenceThin, OrientationRepeatsEveryTurnAndIsAQuarterRoundAfterAQuarterTurn) {
     const auto thin = make("thin");

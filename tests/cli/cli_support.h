@@ -12,7 +12,7 @@
 namespace warplab::testing {
 
 struct Result {
-    int status = -1;     // exit status, or 128 + signal
+    int status = -1;  // exit status, or 128 + signal
     std::string output;  // stdout and stderr together
     int lines() const {
         int n = 0;
@@ -32,7 +32,9 @@ inline Result runCommand(const std::string& command) {
     return result;
 }
 
-inline Result warplab(const std::string& arguments) { return runCommand(std::string(WARPLAB_BINARY) + " " + arguments); }
+inline Result warplab(const std::string& arguments) {
+    return runCommand(std::string(WARPLAB_BINARY) + " " + arguments);
+}
 
 // An empty folder build/test-output/<group>/<name>.
 inline std::string scratch(const std::string& group, const std::string& name) {

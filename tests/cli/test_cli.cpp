@@ -37,7 +37,6 @@ std::string copyOfData(const std::string& name) {
     return dir;
 }
 
-
 TEST(Cli, UnknownCommand) {
     const auto r = warplab("frobnicate");
     EXPECT_EQ(r.status, 2);
@@ -94,9 +93,9 @@ TEST(Cli, InfoReportsACoreContextOfAtLeast41) {
 
 TEST(Cli, RenderWritesTheFrameAndBuffers) {
     const std::string dir = scratch("render");
-    const auto r = warplab("render --time 1.0 --width 64 --height 36 --out " + dir + "/frame.png --depth " + dir +
-                           "/depth.png --ids " + dir + "/ids.png --velocity " + dir + "/velocity.png --raw " + dir +
-                           "/raw");
+    const auto r =
+        warplab("render --time 1.0 --width 64 --height 36 --out " + dir + "/frame.png --depth " + dir +
+                "/depth.png --ids " + dir + "/ids.png --velocity " + dir + "/velocity.png --raw " + dir + "/raw");
     ASSERT_EQ(r.status, 0) << r.output;
     for (const std::string f : {"frame.png", "depth.png", "ids.png", "velocity.png"}) {
         const auto image = warplab::image::readPng(dir + "/" + f);
@@ -150,7 +149,7 @@ TEST(Cli, MissingOrMalformedModelIsNamed) {
     EXPECT_EQ(r.lines(), 1) << r.output;
 
     for (const std::string& bad : {std::string("v 0 0 0\nv 1 0 0\nf 1 2 7\n"),  // face refers past the vertices
-                                   std::string("this is not an obj file\n"),       // no triangles at all
+                                   std::string("this is not an obj file\n"),  // no triangles at all
                                    std::string("v 0 0 0\nv nan 1 0\nv 0 1 1\nf 1 2 3\n")}) {
         std::ofstream(obj) << bad;
         r = warplab("render --width 16 --height 16 --out /dev/null --data-dir " + data);
@@ -167,13 +166,17 @@ namespace {
 // The warps' sources get the guard band, and its cost is reported; --guard-band 0 turns it off.
 TEST(CliBench, TheWarpsGuardBandIsRenderedAndItsCostReported) {
     const std::string dir = scratch("bench-band");
-    const auto r = warplab("bench --quick --frames 4 --repeats 1 --sequences pan --methods hold15,warp-full --out " + dir);
+    const auto r =
+        warplab("bench --quick --frames 4 --repeats 1 --sequences pan --methods hold15,warp-full --out " + dir);
     ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_TRUE(contains(r.output, "- guard band: 10 % per side (32 and 18 px) for the sources of the methods that take "
-                                   "one, 1.44x the pixels; such a source costs "))
+    EXPECT_TRUE(contains(r.output,
+                         "- guard band: 10 % per side (32 and 18 px) for the sources of the methods that take "
+                         "one, 1.44x the pixels; such a source costs "))
         << r.output;
-    const auto off = warplab("bench --quick --frames 4 --repeats 1 --sequences pan --methods warp-full --guard-band 0 "
-                             "--out " + dir + "-off");
+    const auto off = warplab(
+        "bench --quick --frames 4 --repeats 1 --sequences pan --methods warp-full --guard-band 0 "
+        "--out " +
+        dir + "-off");
     ASSERT_EQ(off.status, 0) << off.output;
     EXPECT_FALSE(contains(off.output, "- guard band:")) << off.output;
     // A pan turns content into view: the band shows it, so the border error drops.
@@ -192,7 +195,8 @@ TEST(CliBench, TheWarpsGuardBandIsRenderedAndItsCostReported) {
 
 TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     const std::string dir = scratch("bench");
-    const auto r = warplab("bench --quick --frames 2 --repeats 1 --sequences pan,thin --methods hold15,hold120,blend --out " + dir);
+    const auto r = warplab(
+        "bench --quick --frames 2 --repeats 1 --sequences pan,thin --methods hold15,hold120,blend --out " + dir);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "| pan | hold15 |")) << r.output;
     EXPECT_TRUE(contains(r.output, "| **all** | blend |")) << r.output;
@@ -271,9 +275,9 @@ int reproducedIn(const std::string& output) {
 
 TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
     const std::string dir = scratch("session-bot");
-    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                             "/protocol/shooter-quick.json --participant P01 --out " + dir +
-                             " --headless --player bot:3 --seed 5");
+    const auto run =
+        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                "/protocol/shooter-quick.json --participant P01 --out " + dir + " --headless --player bot:3 --seed 5");
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty());
@@ -293,9 +297,10 @@ TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
 TEST(CliSession, ARunDrivenByARecordedSessionsInputGivesTheSameOutcomes) {
     const std::string dir = scratch("session-source"), again = scratch("session-again");
     const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
-    ASSERT_EQ(warplab("run --protocol " + protocol + " --participant A --out " + dir + " --headless --player bot:8 --seed 2")
-                  .status,
-              0);
+    ASSERT_EQ(
+        warplab("run --protocol " + protocol + " --participant A --out " + dir + " --headless --player bot:8 --seed 2")
+            .status,
+        0);
     const std::string source = sessionIn(dir);
     const auto rerun = warplab("run --protocol " + protocol + " --participant A --out " + again +
                                " --headless --player replay:" + source + " --seed 2");
@@ -312,8 +317,8 @@ TEST(CliSession, KilledRunsKeepEveryCompletedTrialAndReplay) {
     for (const char* delay : {"0.05", "0.12", "0.25", "0.4", "0.6"}) {
         const std::string dir = scratch(std::string("session-kill-") + delay);
         const std::string command = "timeout -s KILL " + std::string(delay) + " " + WARPLAB_BINARY +
-                                    " run --protocol " + protocol + " --participant K --out " + dir +
-                                    " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
+            " run --protocol " + protocol + " --participant K --out " + dir +
+            " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
         const int raw = std::system(command.c_str());
         (void)raw;
         const std::string session = sessionIn(dir);
@@ -398,7 +403,8 @@ TEST(CliSession, UnknownPlayerIsABadCommandLine) {
         EXPECT_EQ(r.status, 2) << player << ": " << r.output;
         EXPECT_EQ(r.lines(), 1) << r.output;
     }
-    const auto r = warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless --player wizard");
+    const auto r =
+        warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless --player wizard");
     EXPECT_TRUE(contains(r.output, "unknown player 'wizard' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)"))
         << r.output;
     EXPECT_TRUE(sessionIn(dir).empty());
@@ -419,7 +425,8 @@ TEST(CliSession, BadResultsFolderOrParticipantNeverEscapes) {
 
 TEST(CliSession, BadProtocolIsNamed) {
     const std::string dir = scratch("session-bad-protocol");
-    std::ofstream(dir + "/p.json") << "{\"format_version\":1,\"name\":\"x\",\"game\":\"shooter\",\"test\":{\"targets\":3}}";
+    std::ofstream(dir + "/p.json")
+        << "{\"format_version\":1,\"name\":\"x\",\"game\":\"shooter\",\"test\":{\"targets\":3}}";
     const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.output, "test.targets")) << r.output;
@@ -439,7 +446,8 @@ TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
               0);
     const std::string frames = dir + "/frames";
     // The first target's 0.3 s or so up to the shot, the shot, and the frozen frames after it.
-    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 0:59 --width 320 --height 180");
+    const auto r =
+        warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 0:59 --width 320 --height 180");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "wrote 60 frames")) << r.output;
     const CrossCheck check = crossCheckIn(r.output);
@@ -461,9 +469,9 @@ namespace {
 // The study as published, start to end: acclimation, training, 675 test targets.
 TEST(CliSession, FullThesisSessionRunsToTheEndAndReplaysExactly) {
     const std::string dir = scratch("session-thesis");
-    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                             "/protocol/shooter-thesis.json --participant T01 --out " + dir +
-                             " --headless --player bot:4 --seed 8");
+    const auto run =
+        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                "/protocol/shooter-thesis.json --participant T01 --out " + dir + " --headless --player bot:4 --seed 8");
     ASSERT_EQ(run.status, 0) << run.output;
     const auto replay = warplab("replay " + sessionIn(dir));
     ASSERT_EQ(replay.status, 0) << replay.output;
@@ -481,9 +489,9 @@ namespace {
 // The click game (seed 000 section 8) through the same runner, replay and renderer.
 TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
     const std::string dir = scratch("click-yang");
-    const auto run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                             "/protocol/click-yang.json --participant C01 --out " + dir +
-                             " --headless --player bot:4 --seed 8");
+    const auto run =
+        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                "/protocol/click-yang.json --participant C01 --out " + dir + " --headless --player bot:4 --seed 8");
     ASSERT_EQ(run.status, 0) << run.output;
     EXPECT_FALSE(contains(run.output, "stand")) << "every mode has its own renderer now: " << run.output;
     const auto data = warplab::session::readSession(sessionIn(dir));
@@ -505,12 +513,14 @@ TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
 TEST(CliClick, ReplayRenderDrawsTheCursorAndAssertsWhatIsUnderIt) {
     const std::string dir = scratch("click-render");
     ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                      "/protocol/click-quick.json --participant R --out " + dir + " --headless --player bot:2 --width 640 --height 360")
+                      "/protocol/click-quick.json --participant R --out " + dir +
+                      " --headless --player bot:2 --width 640 --height 360")
                   .status,
               0);
     const std::string frames = dir + "/frames";
     // From the ready screen well into the first match, clicks included.
-    const auto r = warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 20:219 --width 320 --height 180");
+    const auto r =
+        warplab("replay " + sessionIn(dir) + " --render " + frames + " --frames 20:219 --width 320 --height 180");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "wrote 200 frames")) << r.output;
     const CrossCheck check = crossCheckIn(r.output);
@@ -552,8 +562,8 @@ TEST(CliClick, KilledRunsKeepEveryCompletedMatch) {
     for (const char* delay : {"0.15", "0.3", "0.6"}) {
         const std::string dir = scratch(std::string("click-kill-") + delay);
         const std::string command = "timeout -s KILL " + std::string(delay) + " " + WARPLAB_BINARY +
-                                    " run --protocol " + protocol + " --participant K --out " + dir +
-                                    " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
+            " run --protocol " + protocol + " --participant K --out " + dir +
+            " --headless --player bot:1 --seed 9 > /dev/null 2>&1";
         (void)std::system(command.c_str());
         const std::string session = sessionIn(dir);
         if (session.empty()) continue;
@@ -573,11 +583,11 @@ TEST(CliClick, KilledRunsKeepEveryCompletedMatch) {
 
 // Sessions recorded in format 1 (before the games plugged in) still read and replay.
 TEST(CliSession, AVersion1SessionStillReplaysExactly) {
-    const auto replay = warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session");
+    const auto replay =
+        warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session");
     ASSERT_EQ(replay.status, 0) << replay.output;
     EXPECT_GT(reproducedIn(replay.output), 12) << replay.output;
 }
-
 
 TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const std::string results = scratch("export-results"), out = scratch("export-out");
@@ -587,8 +597,8 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
               0);
     const auto ok = warplab("export " + results + " --out " + out);
     EXPECT_EQ(ok.status, 0) << ok.output;
-    for (const char* name : {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "modes.csv",
-                             "games.csv"}) {
+    for (const char* name :
+         {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "modes.csv", "games.csv"}) {
         EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
         EXPECT_TRUE(contains(ok.output, out + "/" + name)) << ok.output;
     }
@@ -610,8 +620,8 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
 TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     const std::string dir = scratch("closed-pipe");
     const std::string command = "bash -c '" + std::string(WARPLAB_BINARY) + " run --protocol " +
-                                std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json --participant P --out " +
-                                dir + " --headless --player bot:2 2>&1 | head -1; exit ${PIPESTATUS[0]}'";
+        std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json --participant P --out " + dir +
+        " --headless --player bot:2 2>&1 | head -1; exit ${PIPESTATUS[0]}'";
     const auto r = warplab::testing::runCommand(command);
     EXPECT_EQ(r.status, 0) << r.output;
     EXPECT_EQ(r.lines(), 1) << r.output;  // the pipe really closed after one line
@@ -640,7 +650,8 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
     while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     sqlite3* db = nullptr;
-    bool locked = !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK;
+    bool locked =
+        !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK;
     if (locked) {
         sqlite3_busy_timeout(db, 2000);
         locked = sqlite3_exec(db, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr) == SQLITE_OK;
@@ -677,8 +688,8 @@ TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
         {pipe, "is not a regular file"},
     };
     for (const auto& [file, why] : cases) {
-        const auto r = warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --protocol " + file +
-                                                    " --participant P --out " + dir + " --headless");
+        const auto r = warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --protocol " +
+                                                    file + " --participant P --out " + dir + " --headless");
         EXPECT_EQ(r.status, 1) << r.output;
         EXPECT_TRUE(contains(r.output, file) && contains(r.output, why)) << r.output;
         EXPECT_EQ(r.lines(), 1) << r.output;
@@ -706,15 +717,18 @@ TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
         {"bench --shading-sweep 12abc --out " + dir + "/b", "--shading-sweep"},
         {"run --protocol " + protocol + " --participant A --participant B --out " + dir + " --headless",
          "--participant of 'warplab run' is given more than once"},
-        {"run --protocol " + protocol + " --participant '' --out " + dir + " --headless", "--participant must not be empty"},
-        {"run --protocol " + protocol + " --participant '  ' --out " + dir + " --headless", "--participant must not be empty"},
+        {"run --protocol " + protocol + " --participant '' --out " + dir + " --headless",
+         "--participant must not be empty"},
+        {"run --protocol " + protocol + " --participant '  ' --out " + dir + " --headless",
+         "--participant must not be empty"},
         {"run --protocol " + protocol + " --participant $'bad\\xffid' --out " + dir + " --headless",
          "--participant must be UTF-8"},
         {"run --protocol " + protocol + " --participant " + std::string(200, 'p') + " --out " + dir + " --headless",
          "at most 128 bytes"},
     };
     for (const auto& [arguments, named] : cases) {
-        const auto r = warplab::testing::runCommand("bash -c \"" + std::string(WARPLAB_BINARY) + " " + arguments + "\"");
+        const auto r =
+            warplab::testing::runCommand("bash -c \"" + std::string(WARPLAB_BINARY) + " " + arguments + "\"");
         EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
         EXPECT_TRUE(contains(r.output, named)) << arguments << "\n" << r.output;
         EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
@@ -787,7 +801,8 @@ TEST(Cli, RenderRefusesEmptyOrBlankPaths) {
             const auto r = renderIn(dir, arguments);
             EXPECT_EQ(r.status, 2) << arguments << "\n" << r.output;
             EXPECT_TRUE(contains(r.output, "option --" + flag + " of 'warplab render' needs a path, got " + value))
-                << arguments << "\n" << r.output;
+                << arguments << "\n"
+                << r.output;
             EXPECT_EQ(r.lines(), 1) << arguments << "\n" << r.output;
         }
     }
@@ -811,7 +826,8 @@ TEST(Cli, RenderAndProtocolsShareTheFieldOfViewRange) {
 
     const std::string protocol = dir + "/wide.json";
     std::ofstream(protocol) << R"({"format_version": 2, "name": "wide", "game": "shooter",
-                                   "display": {"vertical_fov_deg": )" << wide << "}}";
+                                   "display": {"vertical_fov_deg": )"
+                            << wide << "}}";
     const auto run = warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_TRUE(contains(run.output, "display.vertical_fov_deg must be a number between 1 and 179, got " + wide))

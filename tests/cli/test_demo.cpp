@@ -84,7 +84,8 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     EXPECT_EQ(planned, 3);
     const auto figures = report.at("figures");
     EXPECT_GE(figures.size(), 4u);
-    for (const auto& figure : figures) EXPECT_TRUE(isPng(fs::path(out) / "report" / figure.get<std::string>())) << figure;
+    for (const auto& figure : figures)
+        EXPECT_TRUE(isPng(fs::path(out) / "report" / figure.get<std::string>())) << figure;
     std::ifstream md(fs::path(out) / "report" / "report.md");
     const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
     EXPECT_TRUE(contains(text, "Planning (shooter)")) << text.substr(0, 2000);
@@ -123,7 +124,8 @@ TEST(CliDemo, BadInputIsRefusedWithASentenceAndAFailedSessionNamesItsLog) {
                 data.string());
     EXPECT_EQ(failed.status, 1) << failed.output;
     const std::string log = out + "/broken/logs/sim-1-shooter-quick.log";
-    EXPECT_TRUE(contains(failed.output, "the session of sim-1, shooter-quick failed (exit status 1); its log is " + log))
+    EXPECT_TRUE(
+        contains(failed.output, "the session of sim-1, shooter-quick failed (exit status 1); its log is " + log))
         << failed.output;
     EXPECT_TRUE(contains(failed.output, "stopped after 1 of 2 sessions")) << failed.output;
     std::ifstream logFile(log);

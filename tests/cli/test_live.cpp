@@ -131,8 +131,9 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
                                      " --width 160 --height 90 --player bot:3 --seed 4 --screenshots " + dir +
                                      " --screenshot-frames 40,100");
         ASSERT_EQ(window.status, 0) << window.output;
-        const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
-                               headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
+        const auto plain =
+            runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " + headless +
+                       " --headless --width 160 --height 90 --player bot:3 --seed 4");
         ASSERT_EQ(plain.status, 0) << plain.output;
         const auto a = warplab::session::readSession(sessionIn(dir));
         const auto b = warplab::session::readSession(sessionIn(headless));
@@ -191,10 +192,10 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
     const std::string dir = scratch("free-play-steps");
     std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
                                           "80 key esc\n80 key q\n";
-    const auto r = inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                            "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " +
-                            dir + " --input-script " + dir + "/script.txt --screenshots " + dir +
-                            " --screenshot-frames 30");
+    const auto r =
+        inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                 "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " + dir +
+                 " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
     ASSERT_EQ(r.status, 0) << r.output;
     // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
     // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
@@ -209,7 +210,8 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {
-    const auto r = runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
+    const auto r =
+        runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_TRUE(contains(r.output, "needs the window")) << r.output;
 }

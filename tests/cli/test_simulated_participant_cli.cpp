@@ -15,7 +15,9 @@ using warplab::testing::warplab;
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("cli-sim", name); }
 
-std::string protocol(const std::string& name) { return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name + ".json"; }
+std::string protocol(const std::string& name) {
+    return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name + ".json";
+}
 
 TEST(CliSimulatedParticipant, PlaysShooterQuickToTheEndAndTheSessionReplays) {
     const std::string dir = scratch("shooter");
@@ -73,8 +75,8 @@ TEST(CliSimulatedParticipant, WrongUsesAreRefusedWithASentence) {
                             " --headless --player bot --gl egl");
     EXPECT_NE(gl.status, 0);
     EXPECT_TRUE(contains(gl.output, "--gl only applies with --headless --player sim")) << gl.output;
-    const auto window = warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
-                                " --player sim");
+    const auto window =
+        warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir + " --player sim");
     EXPECT_EQ(window.status, 2);
     EXPECT_TRUE(contains(window.output, "runs headless only")) << window.output;
     EXPECT_TRUE(sessionIn(dir).empty());

@@ -59,9 +59,12 @@ std::vector<Row> readCsv(const std::string& path) {
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (quoted) {
-            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') cell += '"', ++i;
-            else if (c == '"') quoted = false;
-            else cell += c;
+            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
+                cell += '"', ++i;
+            else if (c == '"')
+                quoted = false;
+            else
+                cell += c;
         } else if (c == '"') {
             quoted = true;
         } else if (c == ',') {
@@ -112,8 +115,8 @@ std::string headless(const std::string& protocol, const std::string& participant
     return study::runHeadless(run, quiet);
 }
 
-exporter::ExportSummary exportQuietly(const std::string& results, const std::string& out, const exporter::ExportOptions& options = {},
-                            std::string* log = nullptr) {
+exporter::ExportSummary exportQuietly(const std::string& results, const std::string& out,
+                                      const exporter::ExportOptions& options = {}, std::string* log = nullptr) {
     std::ostringstream lines;
     exporter::ExportSummary summary = exporter::exportResults(results, out, options, lines);
     if (log != nullptr) *log = lines.str();
@@ -172,10 +175,10 @@ TEST(ExportCsv, TextIsQuotedOnlyWhereRfc4180NeedsIt) {
 
 TEST(ExportCsv, InvalidUtf8BecomesTheReplacementCharacterAndValidUtf8Stays) {
     EXPECT_EQ(exporter::csvText("caf\xC3\xA9"), "caf\xC3\xA9");
-    EXPECT_EQ(exporter::csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");                  // U+1F600
-    EXPECT_EQ(exporter::csvText("a\xFFz"), "a\xEF\xBF\xBDz");                              // stray byte
-    EXPECT_EQ(exporter::csvText("\xC3"), "\xEF\xBF\xBD");                                  // cut sequence
-    EXPECT_EQ(exporter::csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");                  // overlong '/'
+    EXPECT_EQ(exporter::csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");  // U+1F600
+    EXPECT_EQ(exporter::csvText("a\xFFz"), "a\xEF\xBF\xBDz");  // stray byte
+    EXPECT_EQ(exporter::csvText("\xC3"), "\xEF\xBF\xBD");  // cut sequence
+    EXPECT_EQ(exporter::csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");  // overlong '/'
     EXPECT_EQ(exporter::csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
 }
 
@@ -325,8 +328,10 @@ TEST(Export, ModesCsvIsTheModeTable) {
         EXPECT_EQ(row.at("upconversion"), game::upconversionName(m.upconversion));
         EXPECT_EQ(row.at("method"), m.method);
         EXPECT_EQ(row.at("upconverts"), m.upconversion == game::Upconversion::None ? "false" : "true");
-        if (m.upconversion == game::Upconversion::None) EXPECT_EQ(row.at("upconverted_rate_hz"), "");
-        else EXPECT_EQ(std::stod(row.at("upconverted_rate_hz")), m.upconvertedRateHz);
+        if (m.upconversion == game::Upconversion::None)
+            EXPECT_EQ(row.at("upconverted_rate_hz"), "");
+        else
+            EXPECT_EQ(std::stod(row.at("upconverted_rate_hz")), m.upconvertedRateHz);
     }
     // Spelled out once, independently of the table's own accessors.
     EXPECT_EQ(rows[0].at("mode"), "conv15");
@@ -355,8 +360,10 @@ std::string rewrite(const session::SessionData& data, const std::string& dir, co
     session::SessionWriter w = session::SessionWriter::create(dir, header);
     for (std::size_t i = 0; i < events && i < data.events.size(); ++i) w.addEvent(data.events[i]);
     if (!flag.empty()) w.flag(flag, "12.5 % of frames missed their vsync");
-    if (finish) w.finish();
-    else w.commit();
+    if (finish)
+        w.finish();
+    else
+        w.commit();
     return w.path();
 }
 
@@ -481,8 +488,8 @@ TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
     exportQuietly(results, out);
     std::set<std::string> ids;
     for (const auto& row : readCsv(out + "/hitrates.csv")) ids.insert(row.at("participant"));
-    EXPECT_EQ(ids, (std::set<std::string>{"'=1+2", "'-5", "'@cmd", "'+A1", "a,b \"c\"", "caf\xC3\xA9",
-                                          "bad\xEF\xBF\xBDid"}));
+    EXPECT_EQ(
+        ids, (std::set<std::string>{"'=1+2", "'-5", "'@cmd", "'+A1", "a,b \"c\"", "caf\xC3\xA9", "bad\xEF\xBF\xBDid"}));
 }
 
 TEST(Export, AVersion1SessionExportsItsScoredTrials) {

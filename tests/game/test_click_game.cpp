@@ -64,9 +64,9 @@ TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
         if (e.type == "match") {
             ++matches;
             modesPerRound[detail(e)["round"] == "practice" ? 0 : 1].insert(e.mode);
-            EXPECT_EQ(detail(e)["clicks"].get<int>(), detail(e)["green_hits"].get<int>() +
-                                                           detail(e)["red_hits"].get<int>() +
-                                                           detail(e)["misses"].get<int>());
+            EXPECT_EQ(
+                detail(e)["clicks"].get<int>(),
+                detail(e)["green_hits"].get<int>() + detail(e)["red_hits"].get<int>() + detail(e)["misses"].get<int>());
         }
         if (e.type == "rating") {
             ++ratings;
@@ -147,7 +147,8 @@ TEST(ClickGame, EveryMatchOpensWithARender) {
             ++openings;
             EXPECT_EQ(shown.schedule.index, 0) << shown.mode;
             EXPECT_TRUE(shown.rendersNow) << shown.mode;
-            EXPECT_EQ(shown.sourceFrame, shown.frame - (shown.schedule.index - shown.schedule.sourceIndex)) << shown.mode;
+            EXPECT_EQ(shown.sourceFrame, shown.frame - (shown.schedule.index - shown.schedule.sourceIndex))
+                << shown.mode;
         }
         previousBlank = shown.blank;
         input = bot.next(shown);
@@ -204,7 +205,8 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
                     const auto pa = std::find_if(a.begin(), a.end(), [&](auto& s) { return s.id == id; });
                     const auto pb = std::find_if(b.begin(), b.end(), [&](auto& s) { return s.id == id; });
                     if (pa == a.end() || pb == b.end()) continue;
-                    const double w = double(depicted - shown.sourceFrame) / double(shown.nextSourceFrame - shown.sourceFrame);
+                    const double w =
+                        double(depicted - shown.sourceFrame) / double(shown.nextSourceFrame - shown.sourceFrame);
                     const glm::dvec3 expected = pa->position + (pb->position - pa->position) * w;
                     EXPECT_LT(glm::length(glm::dvec3(o.position) - expected), 1e-5) << mode;
                     ++compared;
@@ -262,7 +264,8 @@ ClickTally aimAtTheWorld(const std::string& mode, protocol::Scoring scoring) {
             ++tally.scored[scored];
             if (scored == "green") {
                 ++tally.greens;
-                const std::int64_t id = detail(e)[scoring == protocol::Scoring::World ? "world_sphere" : "displayed_sphere"];
+                const std::int64_t id =
+                    detail(e)[scoring == protocol::Scoring::World ? "world_sphere" : "displayed_sphere"];
                 const auto& now = game.world()->spheres();
                 tally.removedAfterGreen += std::none_of(now.begin(), now.end(), [&](auto& s) { return s.id == id; });
             }
@@ -336,12 +339,12 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
     ShownFrame shown = startFirstMatch(game);
     while (!shown.rating) shown = game.step({});
     EXPECT_EQ(shown.rating->boxes.size(), 7u);
-    game.step({0, 0, 0, digitKey(9)});       // out of range: ignored
-    game.step({-5000, -5000, 0, 0});         // the top left corner, far from the boxes
-    game.step({0, 0, kButtonLeft, 0});       // not on a box: ignored
+    game.step({0, 0, 0, digitKey(9)});  // out of range: ignored
+    game.step({-5000, -5000, 0, 0});  // the top left corner, far from the boxes
+    game.step({0, 0, kButtonLeft, 0});  // not on a box: ignored
     game.step({});
     shown = game.step({0, 0, 0, digitKey(3)});
-    EXPECT_EQ(shown.rating->index, 0);       // this frame still shows the first statement
+    EXPECT_EQ(shown.rating->index, 0);  // this frame still shows the first statement
     shown = game.step({});
     EXPECT_EQ(shown.rating->index, 1);
     // Click box 6 (value 6).

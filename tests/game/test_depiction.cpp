@@ -144,7 +144,7 @@ double oldClick(const ModeSchedule& schedule, const ScheduledFrame& f) {
             if (f.nextSourceIndex < 0) return at(frameOf(f.sceneTime)).x;
             const Point before = at(f.sourceIndex), after = at(f.nextSourceIndex);
             const double a = static_cast<double>(std::llround(f.sceneTime * refresh) - f.sourceIndex) /
-                             static_cast<double>(f.nextSourceIndex - f.sourceIndex);
+                static_cast<double>(f.nextSourceIndex - f.sourceIndex);
             return before.x + (after.x - before.x) * a;
         }
     }

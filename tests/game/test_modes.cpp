@@ -20,8 +20,8 @@ ModeSchedule schedule(const std::string& id) { return ModeSchedule(modeSpec(id),
 // The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
 // name them; a mode added to the table comes after them and needs no edit here.
 TEST(Modes, KnownIdsAndUnknownOnesNamed) {
-    const std::vector<std::string> published{"conv15", "conv30", "conv60", "conv120", "lag50", "lag100",
-                                             "lag200", "warp15to120", "bireproj15to60"};
+    const std::vector<std::string> published{"conv15", "conv30", "conv60",      "conv120",       "lag50",
+                                             "lag100", "lag200", "warp15to120", "bireproj15to60"};
     const std::vector<std::string> ids = modeIds();
     ASSERT_GE(ids.size(), published.size());
     EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(published.size())),
@@ -121,7 +121,8 @@ TEST(Modes, Conventional120RendersEveryFrame) {
 }
 
 TEST(Modes, LagShowsSixtyHertzFramesLate) {
-    for (const auto& [id, frames] : std::vector<std::pair<std::string, int>>{{"lag50", 6}, {"lag100", 12}, {"lag200", 24}}) {
+    for (const auto& [id, frames] :
+         std::vector<std::pair<std::string, int>>{{"lag50", 6}, {"lag100", 12}, {"lag200", 24}}) {
         const auto s = schedule(id);
         for (std::int64_t k = 0; k < 60; ++k) {
             const auto f = s.frame(k);
@@ -156,8 +157,10 @@ TEST(Modes, BidirectionalRunsOneSourcePeriodBehindAtSixtyHertz) {
         const std::int64_t depicted = k / 2 * 2 - 8;
         EXPECT_DOUBLE_EQ(f.cameraTime, depicted * kFrame) << k;
         const bool iFrame = depicted % 8 == 0;
-        if (k % 2 == 1) EXPECT_EQ(f.kind, FrameKind::Held);
-        else EXPECT_EQ(f.kind, iFrame ? FrameKind::Rendered : FrameKind::Interpolated) << k;
+        if (k % 2 == 1)
+            EXPECT_EQ(f.kind, FrameKind::Held);
+        else
+            EXPECT_EQ(f.kind, iFrame ? FrameKind::Rendered : FrameKind::Interpolated) << k;
         EXPECT_EQ(f.sourceIndex, depicted / 8 * 8);
         EXPECT_EQ(f.nextSourceIndex, iFrame ? -1 : depicted / 8 * 8 + 8);
     }

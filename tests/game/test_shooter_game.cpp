@@ -179,8 +179,8 @@ TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
             const glm::dvec2 p0 = physics::positionAt(plane, trial->motion, rel);
             const glm::dvec2 v0 = physics::velocityAt(plane, trial->motion, rel);
             auto until = [](double x, double v, double lo, double hi) { return v > 0 ? (hi - x) / v : (x - lo) / -v; };
-            const double bounce = now + std::min(until(p0.x, v0.x, plane.minX, plane.maxX),
-                                                 until(p0.y, v0.y, plane.minY, plane.maxY));
+            const double bounce =
+                now + std::min(until(p0.x, v0.x, plane.minX, plane.maxX), until(p0.y, v0.y, plane.minY, plane.maxY));
             const std::int64_t scheduleStart = rig.last.frame - rig.last.schedule.index;
             const double localBounce = bounce - static_cast<double>(scheduleStart) / rig.p.refreshHz;
             if (bounce + schedule.sceneLatency(localBounce) > trial->spawnTime + rig.p.timeoutS - 0.05) {
@@ -222,8 +222,7 @@ std::map<std::int64_t, int> timeoutLengths(bool legacy) {
     for (int i = 0; i < 2000000 && !game.finished(); ++i) {
         game.step({});
         for (const auto& e : game.takeEvents())
-            if (e.type == "timeout")
-                ++lengths[e.frame - std::llround(detailNumber(e, "spawn_time") * p.refreshHz)];
+            if (e.type == "timeout") ++lengths[e.frame - std::llround(detailNumber(e, "spawn_time") * p.refreshHz)];
     }
     return lengths;
 }
@@ -233,7 +232,8 @@ TEST(ShooterGame, TimeoutLastsExactlyTheRoundedNumberOfFrames) {
     ASSERT_EQ(lengths.size(), 1u) << "timeouts of several lengths";
     EXPECT_EQ(lengths.begin()->first, 360);
     EXPECT_GE(lengths.begin()->second, 300);
-    EXPECT_GT(timeoutLengths(true).count(361), 0u) << "format 1's rounding no longer shows: is the test still able to fail?";
+    EXPECT_GT(timeoutLengths(true).count(361), 0u)
+        << "format 1's rounding no longer shows: is the test still able to fail?";
 }
 
 // Aims exactly at the world's target and clicks on the frame after it appears: every shot
@@ -319,7 +319,8 @@ TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
                 if (e.type == "shot") counted = e.frame;
             if (counted < 0) game.step({});
         }
-        EXPECT_EQ(counted - pressed, timing == protocol::ClickTiming::Display ? 0 : 5) << protocol::nameOf(timing);  // pressed at index 3, read at 8
+        EXPECT_EQ(counted - pressed, timing == protocol::ClickTiming::Display ? 0 : 5)
+            << protocol::nameOf(timing);  // pressed at index 3, read at 8
     }
 }
 

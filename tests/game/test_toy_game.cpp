@@ -77,11 +77,10 @@ TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
     EXPECT_EQ(names[0], "shooter");
     EXPECT_EQ(names[1], "click");
     EXPECT_NE(std::find(names.begin(), names.end(), "toy"), names.end());
-    EXPECT_THROW(game::registerGame("click",
-                                    [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> {
-                                        return nullptr;
-                                    }),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        game::registerGame(
+            "click", [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> { return nullptr; }),
+        std::invalid_argument);
     EXPECT_EQ(game::parseStudy(game::toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
 }
 

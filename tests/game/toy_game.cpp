@@ -15,7 +15,7 @@
 namespace warplab::game::toy {
 namespace {
 
-constexpr double kRadius = 0.3;     // metres; the sphere is 5 m straight ahead
+constexpr double kRadius = 0.3;  // metres; the sphere is 5 m straight ahead
 constexpr double kDistance = 5.0;
 
 struct ToyProtocol {
@@ -35,8 +35,7 @@ bool underReticle(double x) { return std::abs(x) <= kRadius; }
 
 class ToyGame final : public FreePlayGame {
 public:
-    explicit ToyGame(const ToyProtocol& p)
-        : protocol_(p), schedule_(modeSpec(p.mode), p.refreshHz), clickGate_(true) {}
+    explicit ToyGame(const ToyProtocol& p) : protocol_(p), schedule_(modeSpec(p.mode), p.refreshHz), clickGate_(true) {}
 
     ShownFrame step(const FrameInput& input) override {
         ++frame_;
@@ -54,8 +53,12 @@ public:
         const WorldDepiction d = depictWorld(schedule_.mode(), f, placement, WorldClock::Schedule);
         const Dot seen = *depictedState<Dot>(
             d, [&](std::int64_t frame) -> std::optional<Dot> { return history_.at(frame); },
-            [](Dot dot, double dt) { return Dot{dot.x + dot.v * dt, dot.v}; },
-            [](const Dot& a, const Dot& b, double w, double) { return Dot{a.x + (b.x - a.x) * w, a.v}; });
+            [](Dot dot, double dt) {
+                return Dot{dot.x + dot.v * dt, dot.v};
+            },
+            [](const Dot& a, const Dot& b, double w, double) {
+                return Dot{a.x + (b.x - a.x) * w, a.v};
+            });
         shown.camera = camera_;
         scene::ObjectState o;
         o.position = camera_.eye + glm::vec3(static_cast<float>(seen.x), 0.0f, static_cast<float>(-kDistance));
@@ -212,7 +215,9 @@ private:
 
 std::unique_ptr<Study> parseToyStudy(const std::string& jsonText, const std::string& sourceName) {
     const auto j = nlohmann::json::parse(jsonText, nullptr, false);
-    auto fail = [&](const std::string& what) { return protocol::ProtocolError("protocol '" + sourceName + "': " + what); };
+    auto fail = [&](const std::string& what) {
+        return protocol::ProtocolError("protocol '" + sourceName + "': " + what);
+    };
     if (!j.is_object()) throw fail("not a JSON object");
     ToyProtocol p;
     p.name = j.value("name", std::string("toy"));
@@ -233,11 +238,8 @@ void registerToyGame() {
 
 std::string toyProtocol(const std::string& mode, double durationS) {
     // 120 Hz: every mode runs on it, warp15to120 included.
-    return nlohmann::json{{"game", kGameName},
-                          {"name", "toy-" + mode},
-                          {"refresh_hz", 120},
-                          {"mode", mode},
-                          {"duration_s", durationS}}
+    return nlohmann::json{
+        {"game", kGameName}, {"name", "toy-" + mode}, {"refresh_hz", 120}, {"mode", mode}, {"duration_s", durationS}}
         .dump();
 }
 

@@ -100,9 +100,9 @@ std::string testOutputDir() {
 ::testing::AssertionResult imagesMatch(const image::ImageRGBA8& expected, const image::ImageRGBA8& actual,
                                        const std::string& label, const ImageThresholds& t) {
     if (expected.width != actual.width || expected.height != actual.height)
-        return ::testing::AssertionFailure() << label << ": size " << actual.width << "x" << actual.height
-                                             << " differs from the expected " << expected.width << "x"
-                                             << expected.height;
+        return ::testing::AssertionFailure()
+            << label << ": size " << actual.width << "x" << actual.height << " differs from the expected "
+            << expected.width << "x" << expected.height;
     const auto diff = image::compareImages(expected, actual, t.pixelThreshold);
     const double share = static_cast<double>(diff.pixelsOverThreshold) / (double(actual.width) * actual.height);
     if (diff.meanChannelDiff <= t.mean && share <= t.maxShareOver) return ::testing::AssertionSuccess();
@@ -110,11 +110,11 @@ std::string testOutputDir() {
     image::writePng(base + ".actual.png", actual);
     image::writePng(base + ".expected.png", expected);
     image::writePng(base + ".diff.png", diff.diffImage);
-    return ::testing::AssertionFailure()
-           << label << ": mean channel difference " << diff.meanChannelDiff << " (limit " << t.mean << "), "
-           << diff.pixelsOverThreshold << " pixels over " << t.pixelThreshold << " = " << share * 100.0
-           << "% (limit " << t.maxShareOver * 100.0 << "%), max " << diff.maxChannelDiff << "; wrote " << base
-           << ".{actual,expected,diff}.png";
+    return ::testing::AssertionFailure() << label << ": mean channel difference " << diff.meanChannelDiff << " (limit "
+                                         << t.mean << "), " << diff.pixelsOverThreshold << " pixels over "
+                                         << t.pixelThreshold << " = " << share * 100.0 << "% (limit "
+                                         << t.maxShareOver * 100.0 << "%), max " << diff.maxChannelDiff << "; wrote "
+                                         << base << ".{actual,expected,diff}.png";
 }
 
 ::testing::AssertionResult matchesReference(const std::string& name, const image::ImageRGBA8& actual,
@@ -127,9 +127,9 @@ std::string testOutputDir() {
     }
     if (!std::filesystem::exists(path)) {
         image::writePng(testOutputDir() + "/" + name + ".actual.png", actual);
-        return ::testing::AssertionFailure() << "no reference image " << path
-                                             << " (run scripts/approve-references.sh after checking "
-                                             << testOutputDir() << "/" << name << ".actual.png)";
+        return ::testing::AssertionFailure()
+            << "no reference image " << path << " (run scripts/approve-references.sh after checking " << testOutputDir()
+            << "/" << name << ".actual.png)";
     }
     return imagesMatch(image::readPng(path), actual, name, thresholds);
 }

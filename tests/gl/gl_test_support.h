@@ -33,8 +33,8 @@ RenderedSource renderSource(const scene::FrameDescription& frame, int width, int
                             const scene::FrameDescription* flowTo = nullptr, renderer::GuardBand band = {});
 
 // Makes the displayed frame with a registered method (methods are built once per name).
-renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input,
-                                     int width, int height);
+renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input, int width,
+                                     int height);
 
 // The shooter scene sized for a width x height image, target spawned from `seed`.
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);

@@ -28,7 +28,7 @@ namespace {
 constexpr int kW = 192;
 constexpr int kH = 108;
 constexpr double kPeriod = 1.0 / 15.0;  // between I-frames
-constexpr int kPerSource = 8;           // 120 Hz display frames per I-frame, as the bench runs
+constexpr int kPerSource = 8;  // 120 Hz display frames per I-frame, as the bench runs
 
 using Rendered = testing::RenderedSource;
 
@@ -89,9 +89,9 @@ int differingPixels(const renderer::DisplayImages& a, const renderer::DisplayIma
 // Bit for bit, NaNs included.
 bool identical(const renderer::DisplayImages& a, const renderer::DisplayImages& b) {
     return a.colour.pixels == b.colour.pixels && a.ids.data == b.ids.data &&
-           a.correspondence.data.size() == b.correspondence.data.size() &&
-           std::memcmp(a.correspondence.data.data(), b.correspondence.data.data(),
-                       a.correspondence.data.size() * sizeof(float)) == 0;
+        a.correspondence.data.size() == b.correspondence.data.size() &&
+        std::memcmp(a.correspondence.data.data(), b.correspondence.data.data(),
+                    a.correspondence.data.size() * sizeof(float)) == 0;
 }
 
 glm::dvec2 centroid(const image::ImageU32& ids, std::uint32_t id, int& count) {
@@ -128,7 +128,7 @@ TEST(Bireproj, StaticSceneBFramesEqualTheIFrame) {
                 const float* q = shown.correspondence.at(x, y);
                 const glm::vec2 centre(x + 0.5f, y + 0.5f);
                 misplaced += !(glm::length(glm::vec2(q[0], q[1]) - centre) < 0.01f) ||
-                             !(glm::length(glm::vec2(q[2], q[3]) - centre) < 0.01f);
+                    !(glm::length(glm::vec2(q[2], q[3]) - centre) < 0.01f);
             }
         EXPECT_LE(worst, 1) << "alpha " << quarter << "/4: largest channel difference from the I-frame";
         EXPECT_EQ(misplaced, 0) << "alpha " << quarter << "/4: pixels not claiming their own centre";
@@ -196,11 +196,11 @@ TEST(Bireproj, TranslatingSphereSitsAtTheInterpolatedPosition) {
         int missedVisibleInBoth = 0;
         for (std::size_t i = 0; i < t.ids.data.size(); ++i)
             missedVisibleInBoth += t.ids.data[i] == scene::kIdTarget && shown.ids.data[i] != scene::kIdTarget &&
-                                   into0.visible[i] && into1.visible[i];
+                into0.visible[i] && into1.visible[i];
         std::ostringstream line;
         line << std::fixed << std::setprecision(3) << "centroid (" << got.x << ", " << got.y << ") expected ("
-             << expected.x << ", " << expected.y << ") render (" << truth.x << ", " << truth.y << "); pixels "
-             << count << " vs I-frames " << n0 << "/" << n1 << ", render " << truthCount << "; render's sphere pixels "
+             << expected.x << ", " << expected.y << ") render (" << truth.x << ", " << truth.y << "); pixels " << count
+             << " vs I-frames " << n0 << "/" << n1 << ", render " << truthCount << "; render's sphere pixels "
              << "visible in both I-frames but not shown: " << missedVisibleInBoth;
         RecordProperty("alpha_" + std::to_string(quarter) + "_4", line.str());
         std::cout << "[sphere alpha " << alpha << "] " << line.str() << "\n";
@@ -289,8 +289,8 @@ std::map<std::string, Score> scoreSequence(const std::string& sequenceName, cons
         out[name].hitLt0p5 = stats.hitLt0p5;
         out[name].allLt0p5 = stats.allLt0p5;
         out[name].focusHitLt0p5 = out[name].focusHitSamples == 0
-                                      ? std::numeric_limits<double>::quiet_NaN()
-                                      : double(out[name].focusRight) / double(out[name].focusHitSamples);
+            ? std::numeric_limits<double>::quiet_NaN()
+            : double(out[name].focusRight) / double(out[name].focusHitSamples);
         const double mse = squaredErrors[name].first / squaredErrors[name].second;
         out[name].psnr = mse == 0.0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
     }
@@ -301,10 +301,10 @@ std::string figures(const std::map<std::string, Score>& scores) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(2);
     for (const auto& [name, score] : scores)
-        s << name << ": hit<0.5px " << 100.0 * score.hitLt0p5 << "%, all<0.5px " << 100.0 * score.allLt0p5
-          << "%, PSNR " << score.psnr << " dB"
+        s << name << ": hit<0.5px " << 100.0 * score.hitLt0p5 << "%, all<0.5px " << 100.0 * score.allLt0p5 << "%, PSNR "
+          << score.psnr << " dB"
           << (score.focusHitSamples ? ", on the focus object hit<0.5px " + std::to_string(100.0 * score.focusHitLt0p5) +
-                                          "% of " + std::to_string(score.focusHitSamples)
+                      "% of " + std::to_string(score.focusHitSamples)
                                     : std::string())
           << "; ";
     return s.str();
@@ -417,10 +417,12 @@ TEST(BireprojHardCases, MostlySky) {
             mid.camera.pitch = glm::radians(3.0f) * quarter / 4.0f;
             const Rendered truth = render(mid);
             const auto shown = produce(*method, i0, i1, mid.scene.time, mid.camera);
-            acc.add(reported(shown, 0), bench::trueCorrespondence(mid, truth.images.depth, truth.images.ids, a,
-                                                                  i0.images.depth, i0.images.ids));
-            acc.add(reported(shown, 2), bench::trueCorrespondence(mid, truth.images.depth, truth.images.ids, b,
-                                                                  i1.images.depth, i1.images.ids));
+            acc.add(reported(shown, 0),
+                    bench::trueCorrespondence(mid, truth.images.depth, truth.images.ids, a, i0.images.depth,
+                                              i0.images.ids));
+            acc.add(reported(shown, 2),
+                    bench::trueCorrespondence(mid, truth.images.depth, truth.images.ids, b, i1.images.depth,
+                                              i1.images.ids));
         }
         return acc.stats();
     }();
@@ -442,10 +444,9 @@ TEST(BireprojHardCases, MotionTooFastForTheSearch) {
     scene::FrameDescription b = a;
     b.scene.time = kPeriod;
     b.scene.objects.front().position += target.velocity * static_cast<float>(kPeriod);
-    b.scene.objects.front().orientation =
-        glm::normalize(glm::angleAxis(glm::length(target.angularVelocity) * float(kPeriod),
-                                      glm::normalize(target.angularVelocity)) *
-                       target.orientation);
+    b.scene.objects.front().orientation = glm::normalize(
+        glm::angleAxis(glm::length(target.angularVelocity) * float(kPeriod), glm::normalize(target.angularVelocity)) *
+        target.orientation);
     expectSane("too fast", a, b);
 }
 
@@ -542,7 +543,8 @@ TEST(BireprojFlow, TheIFramesOwnFlowGivesTheSameBFrames) {
         const auto before = sequence->at(4 * kPeriod), after = sequence->at(5 * kPeriod);
         const Rendered a = render(before), plain = render(after);
         const Rendered withFlow = testing::renderSource(after, kW, kH, &before);
-        EXPECT_EQ(withFlow.images.colour.pixels, plain.images.colour.pixels) << name << ": the flow target changes nothing else";
+        EXPECT_EQ(withFlow.images.colour.pixels, plain.images.colour.pixels)
+            << name << ": the flow target changes nothing else";
         auto drawsItsOwn = fresh("bireproj"), takesTheSources = fresh("bireproj");
         for (int eighth = 1; eighth < 8; ++eighth) {
             const auto d = sequence->at((4 + eighth / 8.0) * kPeriod);
@@ -604,7 +606,8 @@ TEST(BireprojBlur, MatchesBruteForceOverTheInterval) {
         for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += r.images.colour.pixels[i];
     }
     image::ImageRGBA8 brute = a.images.colour;
-    for (std::size_t i = 0; i < sum.size(); ++i) brute.pixels[i] = static_cast<std::uint8_t>(std::lround(sum[i] / 10.0));
+    for (std::size_t i = 0; i < sum.size(); ++i)
+        brute.pixels[i] = static_cast<std::uint8_t>(std::lround(sum[i] / 10.0));
     const double blurPsnr = image::psnr(blurred(a, b).colour, brute);
     const double holdPsnr = image::psnr(a.images.colour, brute);  // no blur at all
     std::cout << "[blur spheres] PSNR against brute force " << blurPsnr << " dB, the I-frame alone " << holdPsnr

@@ -68,8 +68,8 @@ TEST(ConventionalRenderer, VelocityIsTheTargetsOnItsPixelsAndZeroElsewhere) {
 
 // Window coordinates + stored depth -> world, with the inverse matrices (seed 004 eq. 5-7).
 glm::dvec3 unproject(const scene::CameraState& camera, int x, int y, float depth, int w, int h) {
-    const glm::dmat4 viewProjection = glm::dmat4(scene::projectionMatrix(camera, float(w) / float(h))) *
-                                      glm::dmat4(scene::viewMatrix(camera));
+    const glm::dmat4 viewProjection =
+        glm::dmat4(scene::projectionMatrix(camera, float(w) / float(h))) * glm::dmat4(scene::viewMatrix(camera));
     const glm::dmat4 inverse = glm::inverse(viewProjection);
     // Images are top-down; GL window y is bottom-up. Pixel centres are at +0.5.
     const glm::dvec4 ndc(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h, 2.0 * depth - 1.0, 1.0);
@@ -152,9 +152,10 @@ TEST(ConventionalRenderer, DepthUnprojectsOntoTheSurfaceItCameFrom) {
                     ASSERT_EQ(id, scene::kIdHangar);
                     double best = 1e30;
                     for (std::size_t i = 0; i + 2 < hangar.vertices.size(); i += 3)
-                        best = std::min(best, pointTriangleDistance(p, hangar.vertices[i].position,
-                                                                    hangar.vertices[i + 1].position,
-                                                                    hangar.vertices[i + 2].position));
+                        best = std::min(
+                            best,
+                            pointTriangleDistance(p, hangar.vertices[i].position, hangar.vertices[i + 1].position,
+                                                  hangar.vertices[i + 2].position));
                     EXPECT_LE(best, tolerance) << "hangar pixel " << x << "," << y << " at " << d << " m";
                 }
                 ++checked;

@@ -52,8 +52,8 @@ TEST(GuardBand, TheWidenedCameraKeepsThePixelPitchAndCentre) {
     const glm::mat4 display = scene::projectionMatrix(camera, float(w) / float(h)) * scene::viewMatrix(camera);
     const glm::mat4 banded = scene::projectionMatrix(wide, float(bw) / float(bh)) * scene::viewMatrix(wide);
     double worst = 0.0;
-    for (const glm::vec3 p : {glm::vec3(3.0f, 5.0f, -9.0f), glm::vec3(-6.0f, 2.0f, -7.0f), glm::vec3(0.5f, 4.4f, -30.0f),
-                              glm::vec3(-20.0f, 9.0f, -25.0f)}) {
+    for (const glm::vec3 p : {glm::vec3(3.0f, 5.0f, -9.0f), glm::vec3(-6.0f, 2.0f, -7.0f),
+                              glm::vec3(0.5f, 4.4f, -30.0f), glm::vec3(-20.0f, 9.0f, -25.0f)}) {
         const glm::vec4 a = display * glm::vec4(p, 1.0f), b = banded * glm::vec4(p, 1.0f);
         const glm::vec2 pa = (glm::vec2(a) / a.w * 0.5f + 0.5f) * glm::vec2(w, h);
         const glm::vec2 pb = (glm::vec2(b) / b.w * 0.5f + 0.5f) * glm::vec2(bw, bh);
@@ -170,7 +170,8 @@ TEST(GuardBand, BeyondTheBandTheEdgeIsClampedNeverBlack) {
         input.previous = banded.frame.get();
         const auto shown = testing::produceFrame(method, input, w, h);
         int meshCovered = 0;
-        for (std::size_t i = 0; i < shown.ids.data.size(); ++i) meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
+        for (std::size_t i = 0; i < shown.ids.data.size(); ++i)
+            meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
         EXPECT_LT(meshCovered, w * h * 95 / 100) << method << ": a 25 degree turn should pass the band";
         EXPECT_EQ(testing::blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;
     }

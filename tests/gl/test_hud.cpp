@@ -66,7 +66,8 @@ TEST(Hud, CursorIsDrawnWhereItIs) {
     EXPECT_GT(at[2], 200);
     // Nothing at the centre (no reticle) or at the mirrored row (y is not flipped).
     EXPECT_EQ(std::vector<std::uint8_t>(after.colour.at(kW / 2, kH / 2), after.colour.at(kW / 2, kH / 2) + 4),
-              std::vector<std::uint8_t>(source.images.colour.at(kW / 2, kH / 2), source.images.colour.at(kW / 2, kH / 2) + 4));
+              std::vector<std::uint8_t>(source.images.colour.at(kW / 2, kH / 2),
+                                        source.images.colour.at(kW / 2, kH / 2) + 4));
     const std::uint8_t* mirrored = after.colour.at(60, kH - 1 - 40);
     const std::uint8_t* before = source.images.colour.at(60, kH - 1 - 40);
     EXPECT_TRUE(mirrored[0] == before[0] && mirrored[1] == before[1] && mirrored[2] == before[2]);

@@ -95,8 +95,9 @@ TEST(Methods, HoldOfATurningCameraHasCorrespondenceErrorOfTheTurn) {
     for (std::size_t i = 0; i < shown.ids.data.size(); ++i)
         reported.emplace_back(shown.correspondence.data[4 * i], shown.correspondence.data[4 * i + 1]);
     bench::CorrespondenceAccumulator accumulator;
-    accumulator.add(reported, bench::trueCorrespondence(turned, truth.images.depth, truth.images.ids, still,
-                                                        source.images.depth, source.images.ids));
+    accumulator.add(reported,
+                    bench::trueCorrespondence(turned, truth.images.depth, truth.images.ids, still, source.images.depth,
+                                              source.images.ids));
     EXPECT_EQ(accumulator.stats().allLt1, 0.0);
 }
 

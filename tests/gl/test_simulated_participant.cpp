@@ -43,7 +43,8 @@ std::unique_ptr<game::Study> shooterAt60() {
                             "sim-test");
 }
 
-participants::PerceptualPlayer playerFor(const game::Study& study, std::uint64_t seed, const participants::ParticipantParams& params = {}) {
+participants::PerceptualPlayer playerFor(const game::Study& study, std::uint64_t seed,
+                                         const participants::ParticipantParams& params = {}) {
     testing::glContext();  // the player draws in the context current on this thread
     return participants::PerceptualPlayer(nullptr, study, kDisplay, testing::sourceDataPaths(), seed, params);
 }
@@ -209,8 +210,8 @@ TEST(SimulatedParticipant, PictureRegistrationFindsHowFarTheViewTurned) {
 // convert to one. Only the Eye reads ShownFrames.
 static_assert(std::is_invocable_r_v<game::FrameInput, decltype(&participants::SimulatedParticipant::act),
                                     participants::SimulatedParticipant&, const participants::Percept&>);
-static_assert(!std::is_invocable_v<decltype(&participants::SimulatedParticipant::act), participants::SimulatedParticipant&,
-                                   const game::ShownFrame&>);
+static_assert(!std::is_invocable_v<decltype(&participants::SimulatedParticipant::act),
+                                   participants::SimulatedParticipant&, const game::ShownFrame&>);
 static_assert(!std::is_convertible_v<game::ShownFrame, participants::Percept>);
 
 TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {

@@ -92,8 +92,8 @@ TEST(Warp, CameraRotationOfAStaticSceneMatchesGroundTruthAlmostEverywhere) {
         EXPECT_LE(off, covered / 20) << method << ": pixels whose source is 0.1 px or more from the exact one";
         // A turn opens no sheet, so no silhouette may be recoloured: 99.5 % within
         // half a pixel (the old source-only sheet rule left warp-full at 97.8 % on `pan`).
-        EXPECT_LE(offHalf * 1000, covered * 5) << method << ": " << offHalf << " of " << covered
-                                               << " pixels 0.5 px or more from their exact source";
+        EXPECT_LE(offHalf * 1000, covered * 5)
+            << method << ": " << offHalf << " of " << covered << " pixels 0.5 px or more from their exact source";
         EXPECT_LE(sum / covered, 12.0) << method;
         RecordProperty(method + "_rotation_off", off);
     }
@@ -297,8 +297,8 @@ void expectBounded(const std::string& label, const scene::FrameDescription& from
             const glm::vec2 e = exact.coords[i];
             wrong += !(glm::length(coords[i] - e) < 2.0f);
         }
-        EXPECT_LE(wrong, maxWrongShare * std::max(covered, 1)) << label << " " << method << ": " << wrong << " of "
-                                                                << covered << " covered pixels off by 2+ px";
+        EXPECT_LE(wrong, maxWrongShare * std::max(covered, 1))
+            << label << " " << method << ": " << wrong << " of " << covered << " covered pixels off by 2+ px";
         // A warp that draws nothing is finite and never wrong: it must also cover what the
         // source saw. Pixels whose surface is visible inside the source (exact correspondence) are
         // the ones the mesh can reach; at least 97% of them must be covered -- the rest are
@@ -316,7 +316,8 @@ void expectBounded(const std::string& label, const scene::FrameDescription& from
         // ...and nothing is left black, including what turned into view: the clear
         // colour is black, the scene has hardly any black, so count black where the truth is not dark.
         const int black = testing::blackWhereTruthIsNot(shown.colour, truth.images.colour);
-        EXPECT_LE(black, kBlackShare * double(coords.size())) << label << " " << method << ": " << black << " black pixels";
+        EXPECT_LE(black, kBlackShare * double(coords.size()))
+            << label << " " << method << ": " << black << " black pixels";
     }
 }
 
@@ -457,7 +458,8 @@ TEST(Warp, CameraTurnLeavesNoPixelBlack) {
         input.previous = source.frame.get();
         const auto shown = testing::produceFrame(method, input, w, h);
         int meshCovered = 0;
-        for (std::size_t i = 0; i < shown.ids.data.size(); ++i) meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
+        for (std::size_t i = 0; i < shown.ids.data.size(); ++i)
+            meshCovered += std::isfinite(shown.correspondence.data[4 * i]);
         // The strip that turned into view (about 3/60 of the width) is the fill's, not the mesh's.
         EXPECT_LT(meshCovered, w * h * 97 / 100) << method << ": the turn should bring uncovered pixels into view";
         EXPECT_EQ(testing::blackWhereTruthIsNot(shown.colour, truth.images.colour), 0) << method;

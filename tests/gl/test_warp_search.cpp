@@ -166,15 +166,16 @@ void expectSane(const std::string& label, const scene::FrameDescription& from, c
         const float z = shown.correspondence.data[4 * i + 2], w = shown.correspondence.data[4 * i + 3];
         badCoords += !(std::isnan(z) && std::isnan(w));  // never a claim into a next frame
         if (std::isnan(c.x) && std::isnan(c.y)) continue;
-        badCoords += !(std::isfinite(c.x) && std::isfinite(c.y) && c.x >= 0.0f && c.x <= kW && c.y >= 0.0f &&
-                       c.y <= kH);
+        badCoords +=
+            !(std::isfinite(c.x) && std::isfinite(c.y) && c.x >= 0.0f && c.x <= kW && c.y >= 0.0f && c.y <= kH);
         ++covered;
         wrong += !(glm::length(c - exact.coords[i]) < 2.0f);
     }
     EXPECT_EQ(badIds, 0) << label;
     EXPECT_EQ(badCoords, 0) << label;
     std::string key = label + "_claimed_off_by_2px";
-    std::replace_if(key.begin(), key.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
+    std::replace_if(
+        key.begin(), key.end(), [](char c) { return !std::isalnum(static_cast<unsigned char>(c)); }, '_');
     ::testing::Test::RecordProperty(key, std::to_string(covered) + " " + std::to_string(wrong));
     EXPECT_LE(wrong, maxWrongShare * std::max(covered, 1)) << label << ": " << wrong << " of " << covered;
 }

@@ -31,7 +31,7 @@ namespace {
 fs::path tempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     fs::path dir = fs::path(::testing::TempDir()) / "warplab_image_tests" /
-                   (std::string(info->test_suite_name()) + "." + info->name());
+        (std::string(info->test_suite_name()) + "." + info->name());
     fs::create_directories(dir);
     return dir;
 }
@@ -109,8 +109,8 @@ std::string errorOf(F&& f) {
     for (int c = 0; c < 4; ++c)
         if (p[c] != want[std::size_t(c)])
             return ::testing::AssertionFailure()
-                   << "pixel (" << x << "," << y << ") is " << int(p[0]) << "," << int(p[1]) << "," << int(p[2])
-                   << "," << int(p[3]) << "; want " << want[0] << "," << want[1] << "," << want[2] << "," << want[3];
+                << "pixel (" << x << "," << y << ") is " << int(p[0]) << "," << int(p[1]) << "," << int(p[2]) << ","
+                << int(p[3]) << "; want " << want[0] << "," << want[1] << "," << want[2] << "," << want[3];
     return ::testing::AssertionSuccess();
 }
 
@@ -274,7 +274,7 @@ TEST(Pfm, ReadsHandWrittenLittleAndBigEndianFiles) {
     for (const char* name : {"le.pfm", "be.pfm"}) {
         const ImageF im = readPfm((dir / name).string());
         ASSERT_EQ(im.channels, 3) << name;
-        EXPECT_EQ(im.at(0, 1)[0], 1.0f) << name;   // bottom-left
+        EXPECT_EQ(im.at(0, 1)[0], 1.0f) << name;  // bottom-left
         EXPECT_EQ(im.at(1, 0)[2], 12.0f) << name;  // top-right
     }
 }
@@ -331,11 +331,11 @@ TEST(FalseColour, DepthMarksNanAndFarAndRampsInBetween) {
     ImageF depth = ImageF::make(6, 1, 1);
     depth.data = {std::nanf(""), 100.0f, std::numeric_limits<float>::infinity(), 0.5f, 50.0f, 99.0f};
     const ImageRGBA8 c = depthFalseColour(depth, 0.5f, 100.0f);
-    EXPECT_TRUE(pixelIs(c, 0, 0, {255, 0, 255, 255}));      // NaN = magenta
-    EXPECT_TRUE(pixelIs(c, 1, 0, {0, 0, 0, 255}));          // far plane = black
-    EXPECT_TRUE(pixelIs(c, 2, 0, {0, 0, 0, 255}));          // infinity = black
+    EXPECT_TRUE(pixelIs(c, 0, 0, {255, 0, 255, 255}));  // NaN = magenta
+    EXPECT_TRUE(pixelIs(c, 1, 0, {0, 0, 0, 255}));  // far plane = black
+    EXPECT_TRUE(pixelIs(c, 2, 0, {0, 0, 0, 255}));  // infinity = black
     EXPECT_TRUE(pixelIs(c, 3, 0, {0xFD, 0xE7, 0x25, 255}));  // near = viridis yellow
-    for (int x : {4, 5}) {                                   // finite depths are neither mark
+    for (int x : {4, 5}) {  // finite depths are neither mark
         EXPECT_FALSE(pixelIs(c, x, 0, {0, 0, 0, 255}));
         EXPECT_FALSE(pixelIs(c, x, 0, {255, 0, 255, 255}));
     }
@@ -376,7 +376,7 @@ TEST(FalseColour, VelocityStaticIsBlackAndComponentsMapToChannels) {
     const ImageRGBA8 c = velocityFalseColour(v, 2.0f);
     EXPECT_TRUE(pixelIs(c, 0, 0, {0, 0, 0, 255}));
     EXPECT_TRUE(pixelIs(c, 1, 0, {255, 128, 0, 255}));  // |-1|/2 * 255 = 127.5 -> 128
-    EXPECT_TRUE(pixelIs(c, 2, 0, {255, 0, 64, 255}));   // clamped; 0.25 * 255 = 63.75 -> 64
+    EXPECT_TRUE(pixelIs(c, 2, 0, {255, 0, 64, 255}));  // clamped; 0.25 * 255 = 63.75 -> 64
     EXPECT_TRUE(pixelIs(c, 3, 0, {255, 0, 255, 255}));
     EXPECT_THROW(velocityFalseColour(v, 0.0f), std::invalid_argument);
 }
@@ -411,8 +411,7 @@ TEST(Compare, KnownChangeGivesExactNumbersAndMarksThePixels) {
 }
 
 TEST(Compare, MismatchedSizesNameBothSizes) {
-    const std::string msg =
-        errorOf<std::invalid_argument>([&] { compareImages(pattern(3, 5), pattern(4, 5), 0); });
+    const std::string msg = errorOf<std::invalid_argument>([&] { compareImages(pattern(3, 5), pattern(4, 5), 0); });
     EXPECT_NE(msg.find("3x5"), std::string::npos) << msg;
     EXPECT_NE(msg.find("4x5"), std::string::npos) << msg;
     EXPECT_THROW(psnr(pattern(3, 5), pattern(4, 5)), std::invalid_argument);

@@ -150,7 +150,8 @@ TEST(SimulatedParticipant, LostItTurnsBackByItsHandsOwnTurn) {
         world.act(participant, world.see(frame / 60.0, 0.7));
     ASSERT_GE(world.yaw, 0.6);
     const int gone = frame;
-    for (; frame < gone + 120; ++frame) world.act(participant, world.see(frame / 60.0, std::nullopt));  // ... and is gone
+    for (; frame < gone + 120; ++frame)
+        world.act(participant, world.see(frame / 60.0, std::nullopt));  // ... and is gone
     EXPECT_LE(std::abs(world.yaw), glm::radians(ideal().homeWithinDeg) + 0.01);
 }
 

@@ -35,8 +35,13 @@ constexpr double kPi = 3.14159265358979323846;
 class ReferenceTarget {
 public:
     ReferenceTarget(const TargetPlane& plane, const TargetMotion& motion)
-        : minX_(plane.minX), maxX_(plane.maxX), minY_(plane.minY), maxY_(plane.maxY),
-          x_(motion.start.x), y_(motion.start.y), vx_(motion.velocity.x),
+        : minX_(plane.minX),
+          maxX_(plane.maxX),
+          minY_(plane.minY),
+          maxY_(plane.maxY),
+          x_(motion.start.x),
+          y_(motion.start.y),
+          vx_(motion.velocity.x),
           vy_(motion.velocity.y) {}
 
     void advanceTo(long double target) {
@@ -76,8 +81,7 @@ public:
     int bouncesY() const { return bouncesY_; }
 
 private:
-    static long double timeToWall(long double p, long double v, long double min,
-                                  long double max) {
+    static long double timeToWall(long double p, long double v, long double min, long double max) {
         if (v > 0) return (max - p) / v;
         if (v < 0) return (min - p) / v;
         return std::numeric_limits<long double>::infinity();
@@ -90,8 +94,7 @@ private:
 };
 
 // Where long double is just double the reference accumulates one rounding per bounce.
-const double kReferenceTolerance =
-    std::numeric_limits<long double>::digits > 53 ? 1e-8 : 1e-6;
+const double kReferenceTolerance = std::numeric_limits<long double>::digits > 53 ? 1e-8 : 1e-6;
 
 TargetPlane defaultPlane() { return fitTargetPlane(scene::CameraState{}, 16.0 / 9.0, kRadius); }
 
@@ -135,8 +138,8 @@ void expectInvalidArgumentNaming(F&& call, const std::string& parameter) {
 
 // Projects world points with the renderer's own matrices (float, GL clip convention).
 glm::vec3 toNdc(const scene::CameraState& camera, double aspect, glm::dvec3 world) {
-    const glm::mat4 viewProjection = scene::projectionMatrix(camera, static_cast<float>(aspect)) *
-                                     scene::viewMatrix(camera);
+    const glm::mat4 viewProjection =
+        scene::projectionMatrix(camera, static_cast<float>(aspect)) * scene::viewMatrix(camera);
     const glm::vec4 clip = viewProjection * glm::vec4(glm::vec3(world), 1.0f);
     EXPECT_GT(clip.w, 0.0f) << "point behind the camera";
     return glm::vec3(clip) / clip.w;
@@ -157,8 +160,7 @@ TEST(FitTargetPlane, WholeCrossSectionVisibleAtInitialGazeAndFitTightly) {
     cases.push_back({offCentre, 16.0 / 9.0});
 
     for (const Case& c : cases) {
-        SCOPED_TRACE("aspect " + std::to_string(c.aspect) + ", fov " +
-                     std::to_string(c.camera.verticalFovDeg));
+        SCOPED_TRACE("aspect " + std::to_string(c.aspect) + ", fov " + std::to_string(c.camera.verticalFovDeg));
         const TargetPlane plane = fitTargetPlane(c.camera, c.aspect, kRadius);
         EXPECT_LT(plane.z, c.camera.eye.z);
         float largestNdc = 0.0f;
@@ -209,13 +211,11 @@ TEST(FitTargetPlane, RejectsBadArgumentsNamingTheParameter) {
     for (float fov : {0.0f, -10.0f, 180.0f, 200.0f, std::numeric_limits<float>::quiet_NaN()}) {
         scene::CameraState bad;
         bad.verticalFovDeg = fov;
-        expectInvalidArgumentNaming([&] { fitTargetPlane(bad, 16.0 / 9.0, kRadius); },
-                                    "verticalFovDeg");
+        expectInvalidArgumentNaming([&] { fitTargetPlane(bad, 16.0 / 9.0, kRadius); }, "verticalFovDeg");
     }
     // Half the clear height is 4 m: a 4 m radius leaves no room to move.
     for (double radius : {0.0, -0.1, 4.0, 10.0, nan}) {
-        expectInvalidArgumentNaming([&] { fitTargetPlane(camera, 16.0 / 9.0, radius); },
-                                    "radius");
+        expectInvalidArgumentNaming([&] { fitTargetPlane(camera, 16.0 / 9.0, radius); }, "radius");
     }
     EXPECT_NO_THROW(fitTargetPlane(camera, 16.0 / 9.0, 3.99));
 }
@@ -265,10 +265,10 @@ TEST(BouncingTarget, HoursLaterStillInsideAndMatchesEventSimulation) {
         ASSERT_NEAR(p.x, static_cast<double>(reference.x()), kReferenceTolerance) << "t = " << t;
         ASSERT_NEAR(p.y, static_cast<double>(reference.y()), kReferenceTolerance) << "t = " << t;
         const glm::dvec2 v = velocityAt(plane, motion, t);
-        const bool nearWallX = std::fabs(p.x - plane.minX) < kReferenceTolerance ||
-                               std::fabs(p.x - plane.maxX) < kReferenceTolerance;
-        const bool nearWallY = std::fabs(p.y - plane.minY) < kReferenceTolerance ||
-                               std::fabs(p.y - plane.maxY) < kReferenceTolerance;
+        const bool nearWallX =
+            std::fabs(p.x - plane.minX) < kReferenceTolerance || std::fabs(p.x - plane.maxX) < kReferenceTolerance;
+        const bool nearWallY =
+            std::fabs(p.y - plane.minY) < kReferenceTolerance || std::fabs(p.y - plane.maxY) < kReferenceTolerance;
         if (!nearWallX) {
             ASSERT_EQ(v.x, static_cast<double>(reference.vx())) << "t = " << t;
         }
@@ -363,8 +363,7 @@ TEST(BouncingTarget, AimedExactlyIntoACornerComesBackAlongTheSameLine) {
     EXPECT_EQ(velocityAt(plane, motion, std::nextafter(1.0, 0.0)), glm::dvec2(3.0, 1.5));
     EXPECT_EQ(velocityAt(plane, motion, 1.0), glm::dvec2(-3.0, -1.5));
     for (double d : {0.0078125, 0.25, 0.5, 0.75, 1.0}) {
-        EXPECT_EQ(positionAt(plane, motion, 1.0 + d), positionAt(plane, motion, 1.0 - d))
-            << "d = " << d;
+        EXPECT_EQ(positionAt(plane, motion, 1.0 + d), positionAt(plane, motion, 1.0 - d)) << "d = " << d;
         EXPECT_EQ(velocityAt(plane, motion, 1.0 + d), glm::dvec2(-3.0, -1.5)) << "d = " << d;
     }
     // Back at the start at t = 2, then on to the opposite corner (0, 0) at t = 1 + 4/3.
@@ -413,8 +412,7 @@ TEST(BouncingTarget, NeverLeavesTheBoxForExtremeTimesAndSpeeds) {
     for (std::uint64_t seed = 0; seed < 50; ++seed) {
         for (double speed : {0.001, 3.0, 1e4}) {
             const TargetMotion motion = spawnTarget(plane, speed, seed);
-            for (double t : {-1e9, -36000.0, -1e-12, 0.0, 1e-300, 36000.0, 36000.0 + 1.0 / 120.0,
-                             1e6, 1e9}) {
+            for (double t : {-1e9, -36000.0, -1e-12, 0.0, 1e-300, 36000.0, 36000.0 + 1.0 / 120.0, 1e6, 1e9}) {
                 expectInside(plane, positionAt(plane, motion, t), t);
             }
         }
@@ -449,8 +447,7 @@ TEST(BouncingTarget, RejectsNonFiniteTime) {
     const TargetPlane plane = defaultPlane();
     // 1e308 s is finite, but at 1e10 m/s the unfolded line overflows.
     const TargetMotion motion = makeMotion({0.0, 4.0}, {1e10, 1.0});
-    for (double t : {std::numeric_limits<double>::quiet_NaN(),
-                     std::numeric_limits<double>::infinity(), 1e308}) {
+    for (double t : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e308}) {
         expectInvalidArgumentNaming([&] { positionAt(plane, motion, t); }, "t");
         expectInvalidArgumentNaming([&] { velocityAt(plane, motion, t); }, "t");
     }
@@ -514,10 +511,8 @@ TEST(SpawnTarget, StartsAwayFromWallsAndMovesDiagonallyEnough) {
 TEST(SpawnTarget, RejectsBadArguments) {
     const TargetPlane plane = defaultPlane();
     expectInvalidArgumentNaming([&] { spawnTarget(plane, -1.0, 0); }, "speed");
-    expectInvalidArgumentNaming(
-        [&] { spawnTarget(plane, std::numeric_limits<double>::quiet_NaN(), 0); }, "speed");
-    expectInvalidArgumentNaming([&] { spawnTarget(makePlane(1.0, 0.0, 0.0, 1.0), 1.0, 0); },
-                                "plane");
+    expectInvalidArgumentNaming([&] { spawnTarget(plane, std::numeric_limits<double>::quiet_NaN(), 0); }, "speed");
+    expectInvalidArgumentNaming([&] { spawnTarget(makePlane(1.0, 0.0, 0.0, 1.0), 1.0, 0); }, "plane");
     EXPECT_NO_THROW(spawnTarget(makePlane(1.0, 1.0, 0.0, 1.0), 0.0, 0));
 }
 
@@ -578,10 +573,8 @@ TEST(RaySphereHit, FromInsideReturnsTheExitAndFromTheSurfaceZero) {
 }
 
 TEST(RaySphereHit, RejectsBadArguments) {
-    expectInvalidArgumentNaming([] { raySphereHit({}, {0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 1.0); },
-                                "dir");
-    expectInvalidArgumentNaming(
-        [] { raySphereHit({}, {0.0, 0.0, -1.0}, {0.0, 0.0, -5.0}, -1.0); }, "radius");
+    expectInvalidArgumentNaming([] { raySphereHit({}, {0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 1.0); }, "dir");
+    expectInvalidArgumentNaming([] { raySphereHit({}, {0.0, 0.0, -1.0}, {0.0, 0.0, -5.0}, -1.0); }, "radius");
 }
 
 TEST(AngleBetweenRayAndPoint, RightAnglesAndTinyNearMisses) {

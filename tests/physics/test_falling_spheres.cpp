@@ -36,9 +36,7 @@ Sphere makeSphere(std::uint32_t id, glm::dvec3 position, glm::dvec3 velocity = g
     return sphere;
 }
 
-double totalEnergy(const FallingSpheres& world) {
-    return world.kineticEnergy() + world.potentialEnergy();
-}
+double totalEnergy(const FallingSpheres& world) { return world.kineticEnergy() + world.potentialEnergy(); }
 
 std::int64_t stepsFor(const FallingSphereSettings& settings, double seconds) {
     return static_cast<std::int64_t>(std::llround(seconds * settings.stepRateHz));
@@ -80,10 +78,10 @@ void expectInvalidArgumentNaming(F&& call, const std::string& name) {
 // Hard case 1: stacks at rest stay at rest
 
 struct RestReport {
-    double moved = 0.0;        // furthest any sphere got from where it started, m
+    double moved = 0.0;  // furthest any sphere got from where it started, m
     double overlapLeft = 0.0;  // deepest overlap after a step, m
-    double sagInStep = 0.0;    // deepest contact within a step, before it is resolved, m
-    double speed = 0.0;        // fastest any sphere moved, m/s
+    double sagInStep = 0.0;  // deepest contact within a step, before it is resolved, m
+    double speed = 0.0;  // fastest any sphere moved, m/s
 };
 
 RestReport holdForAMinute(const FallingSphereSettings& settings, const std::vector<Sphere>& stack) {
@@ -135,10 +133,9 @@ TEST(FallingSpheresRest, PyramidBetweenTwoWallsStaysPutForAMinute) {
     settings.box.min.x = -3.0 * r;
     settings.box.max.x = 3.0 * r;
     const double grooveY = kFloorY + 2.0 * r * std::sqrt(3.0) / 2.0;
-    const std::vector<Sphere> pyramid = {
-        makeSphere(0, {-2.0 * r, kFloorY, kMidZ}), makeSphere(1, {0.0, kFloorY, kMidZ}),
-        makeSphere(2, {2.0 * r, kFloorY, kMidZ}), makeSphere(3, {-r, grooveY, kMidZ}),
-        makeSphere(4, {r, grooveY, kMidZ})};
+    const std::vector<Sphere> pyramid = {makeSphere(0, {-2.0 * r, kFloorY, kMidZ}),
+                                         makeSphere(1, {0.0, kFloorY, kMidZ}), makeSphere(2, {2.0 * r, kFloorY, kMidZ}),
+                                         makeSphere(3, {-r, grooveY, kMidZ}), makeSphere(4, {r, grooveY, kMidZ})};
     expectAtRest(holdForAMinute(settings, pyramid));
 }
 
@@ -170,9 +167,8 @@ TEST(FallingSpheresContacts, StrikerIntoATouchingRowConservesMomentumAndTheSimul
         const double r = settings.radius, v = 3.0;
         FallingSpheres world(
             settings,
-            {makeSphere(0, {-2.0, kFloorY, kMidZ}, {v, 0.0, 0.0}),
-             makeSphere(1, {0.0, kFloorY, kMidZ}), makeSphere(2, {2.0 * r, kFloorY, kMidZ}),
-             makeSphere(3, {4.0 * r, kFloorY, kMidZ})},
+            {makeSphere(0, {-2.0, kFloorY, kMidZ}, {v, 0.0, 0.0}), makeSphere(1, {0.0, kFloorY, kMidZ}),
+             makeSphere(2, {2.0 * r, kFloorY, kMidZ}), makeSphere(3, {4.0 * r, kFloorY, kMidZ})},
             false);
         const double energyBefore = totalEnergy(world);
         for (int k = 0; k < 480; ++k) {  // 0.5 s: the hit is at 0.37 s, no side wall is reached
@@ -207,11 +203,10 @@ TEST(FallingSpheresContacts, NewtonsCradleWithGapsPassesTheMomentumToTheLastSphe
     FallingSphereSettings settings = kDefaults;
     settings.restitution = 1.0;
     const double spacing = 2.0 * settings.radius + 0.01, v = 3.0;
-    FallingSpheres world(
-        settings,
-        {makeSphere(0, {-2.0, kFloorY, kMidZ}, {v, 0.0, 0.0}), makeSphere(1, {0.0, kFloorY, kMidZ}),
-         makeSphere(2, {spacing, kFloorY, kMidZ}), makeSphere(3, {2.0 * spacing, kFloorY, kMidZ})},
-        false);
+    FallingSpheres world(settings,
+                         {makeSphere(0, {-2.0, kFloorY, kMidZ}, {v, 0.0, 0.0}), makeSphere(1, {0.0, kFloorY, kMidZ}),
+                          makeSphere(2, {spacing, kFloorY, kMidZ}), makeSphere(3, {2.0 * spacing, kFloorY, kMidZ})},
+                         false);
     world.advance(480);
     // Each binary collision along an exact axis is exact bar rounding.
     for (int i = 0; i < 3; ++i) EXPECT_NEAR(world.spheres()[i].velocity.x, 0.0, 1e-12) << i;
@@ -229,11 +224,10 @@ TEST(FallingSpheresContacts, SphereDroppedIntoTheGrooveOfTwoHitsBothAlike) {
         FallingSphereSettings settings = kDefaults;
         settings.restitution = e;
         const double r = settings.radius, drop = 1.0;
-        FallingSpheres world(
-            settings,
-            {makeSphere(0, {-r, kFloorY, kMidZ}), makeSphere(1, {r, kFloorY, kMidZ}),
-             makeSphere(2, {0.0, kFloorY + std::sqrt(3.0) * r + drop, kMidZ})},
-            false);
+        FallingSpheres world(settings,
+                             {makeSphere(0, {-r, kFloorY, kMidZ}), makeSphere(1, {r, kFloorY, kMidZ}),
+                              makeSphere(2, {0.0, kFloorY + std::sqrt(3.0) * r + drop, kMidZ})},
+                             false);
         const double w = std::sqrt(2.0 * settings.gravity * drop);
         const double sideways = std::sqrt(3.0) * (1.0 + e) * w / 7.0;
         bool hit = false;
@@ -280,8 +274,7 @@ TEST(FallingSpheresEnergy, NeverRisesAndAtRestitutionOneBarelyFalls) {
             // rounding at 1e-16 of the total stay far below 1e-12 of it.
             ASSERT_LE(totalEnergy(world), start + 1e-12 * start) << "step " << k;
         }
-        RecordProperty("highest_rise_" + std::to_string(static_cast<int>(e * 10)),
-                       std::to_string(highest - start));
+        RecordProperty("highest_rise_" + std::to_string(static_cast<int>(e * 10)), std::to_string(highest - start));
         if (e == 1.0) {
             // Where nothing should be lost, the model loses only what its resting threshold
             // and the unconverged rest of simultaneous contacts take: measured 0.04% over
@@ -303,8 +296,7 @@ TEST(FallingSpheresEnergy, HitIntoANeighbourAlreadyMovingAwayGivesNoEnergy) {
     const glm::dvec3 centre(0.0, 4.75, kMidZ);
     FallingSpheres world(
         settings,
-        {makeSphere(0, centre, {-drift, 0.0, 0.0}),
-         makeSphere(1, centre + glm::dvec3(2.0 * r, 0.0, 0.0)),
+        {makeSphere(0, centre, {-drift, 0.0, 0.0}), makeSphere(1, centre + glm::dvec3(2.0 * r, 0.0, 0.0)),
          makeSphere(2, centre + glm::dvec3(4.0 * r + 0.5 * v * kStep, 0.0, 0.0), {-v, 0.0, 0.0})},
         false);
     const double before = world.kineticEnergy();
@@ -331,7 +323,7 @@ TEST(FallingSpheresFast, FastestSpeedIsWorkedOutFromTheSettings) {
 struct FastCase {
     std::string name;
     double closingFactor;  // closing speed in units of the firing speed
-    double drop;           // how far gravity pulls it towards the hit first, m
+    double drop;  // how far gravity pulls it towards the hit first, m
     std::vector<Sphere> spheres;
     // Not negative while nothing has passed through: the relative position along the
     // approach axis (for the floor, the height of the centre above the floor contact, which
@@ -349,45 +341,39 @@ TEST(FallingSpheresFast, FastestSpheresNeverLeaveTheBoxNorPassThrough) {
             const double dt = 1.0 / rate;
             const glm::dvec3 corner = glm::normalize(glm::dvec3(-1.0, -1.0, -1.0));
             std::vector<FastCase> cases;
-            cases.push_back(
-                {"straight down at the floor",
-                 1.0,
-                 2.0,
-                 {makeSphere(0, {0.0, kFloorY + 2.0, kMidZ}, {0.0, -v, 0.0})},
-                 [](const FallingSpheres& w) { return w.spheres()[0].position.y - kFloorY; }});
-            cases.push_back(
-                {"into the floor corner",
-                 1.0,
-                 1.2,
-                 {makeSphere(0, {0.0, kFloorY + 1.2, kMidZ}, v * corner)},
-                 [](const FallingSpheres& w) { return w.spheres()[0].position.y - kFloorY; }});
-            cases.push_back({"head-on at each other",
-                             2.0,
-                             0.0,
-                             {makeSphere(0, {-2.0, 4.0, kMidZ}, {v, 0.0, 0.0}),
-                              makeSphere(1, {2.0, 4.0, kMidZ}, {-v, 0.0, 0.0})},
-                             [](const FallingSpheres& w) {
-                                 return w.spheres()[1].position.x - w.spheres()[0].position.x;
-                             }});
-            cases.push_back({"down onto a sphere resting on the floor",
+            cases.push_back({"straight down at the floor",
                              1.0,
                              2.0,
-                             {makeSphere(0, {0.0, kFloorY, kMidZ}),
-                              makeSphere(1, {0.0, kFloorY + 2.0 * r + 2.0, kMidZ}, {0.0, -v, 0.0})},
-                             [](const FallingSpheres& w) {
-                                 return w.spheres()[1].position.y - w.spheres()[0].position.y;
-                             }});
+                             {makeSphere(0, {0.0, kFloorY + 2.0, kMidZ}, {0.0, -v, 0.0})},
+                             [](const FallingSpheres& w) { return w.spheres()[0].position.y - kFloorY; }});
+            cases.push_back({"into the floor corner",
+                             1.0,
+                             1.2,
+                             {makeSphere(0, {0.0, kFloorY + 1.2, kMidZ}, v * corner)},
+                             [](const FallingSpheres& w) { return w.spheres()[0].position.y - kFloorY; }});
+            cases.push_back(
+                {"head-on at each other",
+                 2.0,
+                 0.0,
+                 {makeSphere(0, {-2.0, 4.0, kMidZ}, {v, 0.0, 0.0}), makeSphere(1, {2.0, 4.0, kMidZ}, {-v, 0.0, 0.0})},
+                 [](const FallingSpheres& w) { return w.spheres()[1].position.x - w.spheres()[0].position.x; }});
+            cases.push_back(
+                {"down onto a sphere resting on the floor",
+                 1.0,
+                 2.0,
+                 {makeSphere(0, {0.0, kFloorY, kMidZ}),
+                  makeSphere(1, {0.0, kFloorY + 2.0 * r + 2.0, kMidZ}, {0.0, -v, 0.0})},
+                 [](const FallingSpheres& w) { return w.spheres()[1].position.y - w.spheres()[0].position.y; }});
             for (const FastCase& c : cases) {
-                SCOPED_TRACE(c.name + " at " + std::to_string(factor) + "x the fastest speed, " +
-                             std::to_string(rate) + " Hz");
+                SCOPED_TRACE(c.name + " at " + std::to_string(factor) + "x the fastest speed, " + std::to_string(rate) +
+                             " Hz");
                 FallingSpheres world(settings, c.spheres, false);
                 // Contacts are found after the step that makes them, so none is deeper than
                 // one step's closing travel at the speed of the hit (the firing speed plus
                 // what gravity added on the way; both spheres moving: twice), plus gravity's
                 // part within the step.
                 const double hitSpeed = std::sqrt(v * v + 2.0 * settings.gravity * c.drop);
-                const double deepestAllowed =
-                    c.closingFactor * hitSpeed * dt + settings.gravity * dt * dt;
+                const double deepestAllowed = c.closingFactor * hitSpeed * dt + settings.gravity * dt * dt;
                 for (int k = 0; k < rate / 2; ++k) {  // 0.5 s: every hit is within 0.2 s
                     world.step();
                     expectAllInsideBox(world, "step " + std::to_string(k));
@@ -399,8 +385,7 @@ TEST(FallingSpheresFast, FastestSpheresNeverLeaveTheBoxNorPassThrough) {
                     // one gives way by half, the floor pushes it back), so 2^-sweeps of the
                     // deepest contact. The spheres are separating by then: the next step
                     // finishes it.
-                    ASSERT_LE(world.maxPenetration(),
-                              std::ldexp(deepestAllowed, -settings.positionIterations))
+                    ASSERT_LE(world.maxPenetration(), std::ldexp(deepestAllowed, -settings.positionIterations))
                         << "step " << k;
                 }
             }
@@ -414,10 +399,10 @@ TEST(FallingSpheresFast, HeadOnHitExchangesExactlyAtAnyRate) {
         FallingSphereSettings settings = kDefaults;
         settings.stepRateHz = rate;
         const double v = 2.0 * fastestSpeed(settings), e = settings.restitution;
-        FallingSpheres world(settings,
-                             {makeSphere(0, {-2.0, 4.0, kMidZ}, {v, 0.0, 0.0}),
-                              makeSphere(1, {2.0, 4.0, kMidZ}, {-v, 0.0, 0.0})},
-                             false);
+        FallingSpheres world(
+            settings,
+            {makeSphere(0, {-2.0, 4.0, kMidZ}, {v, 0.0, 0.0}), makeSphere(1, {2.0, 4.0, kMidZ}, {-v, 0.0, 0.0})},
+            false);
         world.advance(rate / 5);  // they meet after 0.06 s
         EXPECT_NEAR(world.spheres()[0].velocity.x, -e * v, 1e-12) << rate << " Hz";
         EXPECT_NEAR(world.spheres()[1].velocity.x, e * v, 1e-12) << rate << " Hz";
@@ -449,10 +434,8 @@ TEST(FallingSpheresExact, FloorBounceRisesExactlyAsHighAndLagsAtMostOneStep) {
     const double v0 = -kDefaults.spawnSpeed;
     for (int phase = 0; phase < 16; ++phase) {
         SCOPED_TRACE("phase " + std::to_string(phase));
-        const double height =
-            (kDefaults.box.max.y - kDefaults.radius - kFloorY) - 0.75 * kStep * phase;
-        FallingSpheres world(
-            kDefaults, {makeSphere(0, {0.0, kFloorY + height, kMidZ}, {0.0, v0, 0.0})}, false);
+        const double height = (kDefaults.box.max.y - kDefaults.radius - kFloorY) - 0.75 * kStep * phase;
+        FallingSpheres world(kDefaults, {makeSphere(0, {0.0, kFloorY + height, kMidZ}, {0.0, v0, 0.0})}, false);
         const double impactSpeed = std::sqrt(v0 * v0 + 2.0 * g * height);
         const double impactTime = (v0 + impactSpeed) / g;
         const double landingTime = impactTime + 2.0 * e * impactSpeed / g;
@@ -461,9 +444,8 @@ TEST(FallingSpheresExact, FloorBounceRisesExactlyAsHighAndLagsAtMostOneStep) {
             world.step();
             const double t = world.time();
             const double after = t - impactTime;
-            const double exactY = t < impactTime
-                                      ? kFloorY + height + v0 * t - 0.5 * g * t * t
-                                      : kFloorY + e * impactSpeed * after - 0.5 * g * after * after;
+            const double exactY = t < impactTime ? kFloorY + height + v0 * t - 0.5 * g * t * t
+                                                 : kFloorY + e * impactSpeed * after - 0.5 * g * after * after;
             const double y = world.spheres()[0].position.y;
             worst = std::max(worst, std::fabs(y - exactY));
             if (t > impactTime) apex = std::max(apex, y - kFloorY);
@@ -492,9 +474,7 @@ TEST(FallingSpheresExact, GlancingHitsLeaveAlongTheExactDirections) {
         const double offset = (k + 0.5) / 8.0 * 2.0 * r;
         SCOPED_TRACE("impact parameter " + std::to_string(offset));
         FallingSpheres world(
-            settings,
-            {makeSphere(0, centre),
-             makeSphere(1, centre + glm::dvec3(-1.5, offset, 0.0), {speed, 0.0, 0.0})},
+            settings, {makeSphere(0, centre), makeSphere(1, centre + glm::dvec3(-1.5, offset, 0.0), {speed, 0.0, 0.0})},
             false);
         world.advance(stepsFor(settings, 0.15));
         const double along = std::sqrt(4.0 * r * r - offset * offset);
@@ -544,12 +524,10 @@ TEST(FallingSpheresDeterminism, SameSeedSameBitsDifferentSeedDifferent) {
     const Trajectory a = runWithClicks(12345), b = runWithClicks(12345), c = runWithClicks(12346);
     ASSERT_EQ(a.ids, b.ids);
     ASSERT_EQ(a.numbers.size(), b.numbers.size());
-    EXPECT_EQ(std::memcmp(a.numbers.data(), b.numbers.data(), a.numbers.size() * sizeof(double)),
-              0);
+    EXPECT_EQ(std::memcmp(a.numbers.data(), b.numbers.data(), a.numbers.size() * sizeof(double)), 0);
     EXPECT_GT(a.ids.back(), 9u) << "the clicks should have brought new spheres in";
     ASSERT_EQ(a.numbers.size(), c.numbers.size());
-    EXPECT_NE(std::memcmp(a.numbers.data(), c.numbers.data(), a.numbers.size() * sizeof(double)),
-              0);
+    EXPECT_NE(std::memcmp(a.numbers.data(), c.numbers.data(), a.numbers.size() * sizeof(double)), 0);
 }
 
 TEST(FallingSpheresDeterminism, GoldenInitialFieldPinsTheGenerator) {
@@ -632,8 +610,7 @@ TEST(FallingSpheresSpawning, BlockedEntryWaitsForRoom) {
     settings.spawnDelayS = 0.0;
     settings.spawnSpeed = 0.0;
     const double topY = settings.box.max.y - settings.radius;
-    FallingSpheres world(settings,
-                         {makeSphere(0, {0.0, topY, 0.0}), makeSphere(1, {0.0, 5.0, 0.0})}, true);
+    FallingSpheres world(settings, {makeSphere(0, {0.0, topY, 0.0}), makeSphere(1, {0.0, 5.0, 0.0})}, true);
     ASSERT_TRUE(world.remove(1));
     world.advance(100);
     EXPECT_EQ(world.spheres().size(), 1u);
@@ -685,8 +662,7 @@ TEST(FallingSpheresSettings, OutOfRangeFieldsThrowNamingTheField) {
     };
     const Bad bad[] = {
         {"gravity", [](FallingSphereSettings& s) { s.gravity = -9.81; }},
-        {"gravity",
-         [](FallingSphereSettings& s) { s.gravity = std::numeric_limits<double>::infinity(); }},
+        {"gravity", [](FallingSphereSettings& s) { s.gravity = std::numeric_limits<double>::infinity(); }},
         {"restitution", [](FallingSphereSettings& s) { s.restitution = 1.01; }},
         {"restitution", [](FallingSphereSettings& s) { s.restitution = -0.1; }},
         {"stepRateHz", [](FallingSphereSettings& s) { s.stepRateHz = 0; }},
@@ -713,8 +689,7 @@ TEST(FallingSpheresSettings, OutOfRangeFieldsThrowNamingTheField) {
     }
     FallingSphereSettings settings;
     settings.restitution = nan;
-    expectInvalidArgumentNaming([&] { FallingSpheres(settings, 1); },
-                                "restitution must be in [0, 1]");
+    expectInvalidArgumentNaming([&] { FallingSpheres(settings, 1); }, "restitution must be in [0, 1]");
     // The edges of the ranges are allowed.
     settings = FallingSphereSettings{};
     settings.gravity = 0.0;
@@ -732,8 +707,7 @@ TEST(FallingSpheresSettings, TooManySpheresToStartWithoutOverlapThrows) {
     const FallingSpheres full(settings, 3);
     EXPECT_EQ(full.maxPenetration(), 0.0);
     settings.sphereCount = 225;
-    expectInvalidArgumentNaming([&] { FallingSpheres(settings, 3); },
-                                "FallingSphereSettings.sphereCount");
+    expectInvalidArgumentNaming([&] { FallingSpheres(settings, 3); }, "FallingSphereSettings.sphereCount");
 }
 
 TEST(FallingSpheresSettings, ExplicitStatesAreChecked) {
@@ -745,24 +719,20 @@ TEST(FallingSpheresSettings, ExplicitStatesAreChecked) {
         "initial[0].position");
     expectInvalidArgumentNaming(
         [&] {
-            FallingSpheres(kDefaults,
-                           {makeSphere(4, {0.0, 3.0, kMidZ}), makeSphere(4, {2.0, 3.0, kMidZ})},
-                           false);
+            FallingSpheres(kDefaults, {makeSphere(4, {0.0, 3.0, kMidZ}), makeSphere(4, {2.0, 3.0, kMidZ})}, false);
         },
         "initial[1].id");
     expectInvalidArgumentNaming(
         [&] {
             FallingSpheres(kDefaults,
-                           {makeSphere(0, {0.0, 3.0, kMidZ},
-                                       {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0})},
+                           {makeSphere(0, {0.0, 3.0, kMidZ}, {std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0})},
                            false);
         },
         "initial[0]");
     // Touching the walls is inside.
-    EXPECT_NO_THROW(FallingSpheres(kDefaults,
-                                   {makeSphere(0, kDefaults.box.min + glm::dvec3(r)),
-                                    makeSphere(1, kDefaults.box.max - glm::dvec3(r))},
-                                   false));
+    EXPECT_NO_THROW(FallingSpheres(
+        kDefaults, {makeSphere(0, kDefaults.box.min + glm::dvec3(r)), makeSphere(1, kDefaults.box.max - glm::dvec3(r))},
+        false));
     FallingSpheres world(kDefaults, 1);
     EXPECT_THROW(world.advance(-1), std::invalid_argument);
 }
@@ -771,8 +741,7 @@ TEST(FallingSpheresSettings, ExplicitStateWithSpawningContinuesTheIds) {
     FallingSphereSettings settings = kDefaults;
     settings.sphereCount = 2;
     settings.spawnDelayS = 0.0;
-    FallingSpheres world(
-        settings, {makeSphere(5, {0.0, 3.0, kMidZ}), makeSphere(9, {2.0, 3.0, kMidZ})}, true, 4);
+    FallingSpheres world(settings, {makeSphere(5, {0.0, 3.0, kMidZ}), makeSphere(9, {2.0, 3.0, kMidZ})}, true, 4);
     ASSERT_TRUE(world.remove(5));
     world.step();
     ASSERT_EQ(world.spheres().size(), 2u);

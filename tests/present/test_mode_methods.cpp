@@ -16,7 +16,9 @@ namespace renderer = warplab::renderer;
 // live sessions, replay --render and the simulated participant's eye all draw with).
 TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
     const auto methods = renderer::methodNames();
-    auto has = [&](const std::string& name) { return std::find(methods.begin(), methods.end(), name) != methods.end(); };
+    auto has = [&](const std::string& name) {
+        return std::find(methods.begin(), methods.end(), name) != methods.end();
+    };
     EXPECT_TRUE(has("hold120"));
     for (const auto& id : modeIds()) {
         const ModeSpec& mode = modeSpec(id);
@@ -28,4 +30,3 @@ TEST(Modes, EveryModeNamesAMethodTheRendererHas) {
     }
     EXPECT_EQ(modeSpec("bireproj15to60").method, "bireproj");
 }
-

@@ -131,10 +131,10 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
     EXPECT_EQ(p.name, "click-yang");
     EXPECT_EQ(p.game, "click");
     EXPECT_EQ(p.refreshHz, 60.0);  // the fastest mode is 60 fps
-    EXPECT_EQ(p.matchS, 45.0);     // "Each game match lasts for 45 seconds"
+    EXPECT_EQ(p.matchS, 45.0);  // "Each game match lasts for 45 seconds"
     // "60, 30, and 15fps", "60fps ... 50ms, 100ms, and 200ms" of lag, bireproj "15 to 60fps".
-    EXPECT_EQ(p.modes, (std::vector<std::string>{"conv60", "conv30", "conv15", "lag50", "lag100",
-                                                 "lag200", "bireproj15to60"}));
+    EXPECT_EQ(p.modes,
+              (std::vector<std::string>{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"}));
     // "21 matches, divided into two rounds": 7 unscored (one per mode), 14 scored (two per mode).
     ASSERT_EQ(p.rounds.size(), 2u);
     EXPECT_FALSE(p.rounds[0].scored);
@@ -146,8 +146,7 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
     EXPECT_TRUE(p.ratingsEnabled);
     EXPECT_EQ(p.ratingStatements,
               (std::vector<std::string>{"I enjoyed playing this game", "This game was difficult to play",
-                                        "This game was responsive to my input",
-                                        "The animation was smooth"}));
+                                        "This game was responsive to my input", "The animation was smooth"}));
     EXPECT_EQ(p.ratingMin, 1);  // "from 1 (strongly disagree) to 7 (strongly agree)"
     EXPECT_EQ(p.ratingMax, 7);
 }
@@ -239,9 +238,9 @@ TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
     const Json document = Json::parse(toJson(everyFieldChanged()));
     std::vector<std::string> keys;
     for (auto it = document.begin(); it != document.end(); ++it) keys.push_back(it.key());
-    EXPECT_EQ(keys, (std::vector<std::string>{"format_version", "name", "description", "game",
-                                              "display", "physics", "input", "matches",
-                                              "ratings"}));
+    EXPECT_EQ(keys,
+              (std::vector<std::string>{"format_version", "name", "description", "game", "display", "physics", "input",
+                                        "matches", "ratings"}));
     EXPECT_EQ(document.at("matches").at("rounds").at(0),
               (Json{{"name", "warm-up"}, {"scored", false}, {"matches_per_mode", 3}}));
     EXPECT_EQ(document.at("matches").at("scoring"), "displayed");
@@ -259,14 +258,16 @@ TEST(ClickErrors, NegativeGravity) {
 
 TEST(ClickErrors, ZeroMatches) {
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/matches_per_mode", 0)),
-              kPrefix + "matches.rounds[1].matches_per_mode must be an integer between 1 and 100, "
-                        "got 0");
+              kPrefix +
+                  "matches.rounds[1].matches_per_mode must be an integer between 1 and 100, "
+                  "got 0");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds", Json::array())),
               kPrefix + "matches.rounds must be a non-empty array of rounds, got array []");
     // Rounds that are all practice record nothing to analyse.
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", false)),
-              kPrefix + "matches.rounds must have at least one round with \"scored\": true, or "
-                        "the session measures nothing");
+              kPrefix +
+                  "matches.rounds must have at least one round with \"scored\": true, or "
+                  "the session measures nothing");
     EXPECT_EQ(messageFor(yangWith("/matches/match_s", 0)),
               kPrefix + "matches.match_s must be a number greater than 0 and at most 300, got 0");
 }
@@ -315,14 +316,17 @@ TEST(ClickErrors, MissingOrEmptyRatingText) {
     EXPECT_EQ(messageFor(yangWith("/ratings/statements/2", "two\nlines")),
               kPrefix + "ratings.statements[2]" + rule + "string \"two\\nlines\"");
     EXPECT_EQ(messageFor(yangWith("/ratings/statements", Json::array())),
-              kPrefix + "ratings.statements must list at least one statement while "
-                        "ratings.enabled is true");
+              kPrefix +
+                  "ratings.statements must list at least one statement while "
+                  "ratings.enabled is true");
     EXPECT_EQ(messageFor(yangWith("/ratings/statements", "I enjoyed playing this game")),
-              kPrefix + "ratings.statements must be an array of statements, got string \"I "
-                        "enjoyed playing this game\"");
+              kPrefix +
+                  "ratings.statements must be an array of statements, got string \"I "
+                  "enjoyed playing this game\"");
     EXPECT_EQ(messageFor(yangWith("/ratings/statements/3", "This game was difficult to play")),
-              kPrefix + "ratings.statements[3] repeats \"This game was difficult to play\", "
-                        "already ratings.statements[1]");
+              kPrefix +
+                  "ratings.statements[3] repeats \"This game was difficult to play\", "
+                  "already ratings.statements[1]");
     // No statements is fine when nothing is asked.
     Json document = yangWith("/ratings/statements", Json::array());
     document["ratings"]["enabled"] = false;
@@ -343,17 +347,20 @@ TEST(ClickErrors, RatingMinMustBeBelowMax) {
 
 TEST(ClickErrors, StepRateTheRefreshDoesNotDivide) {
     EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 1000)),
-              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
-                        "got 1000");
+              kPrefix +
+                  "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
+                  "got 1000");
     EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 30)),
-              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
-                        "got 30");
+              kPrefix +
+                  "physics.step_rate_hz must be a whole multiple of display.refresh_hz (60), "
+                  "got 30");
     // 960 Hz divides into 60 and 120 Hz frames alike; 144 Hz needs its own step rate.
     EXPECT_NO_THROW(parse(yangWith("/display/refresh_hz", 120).dump()));
     Json document = yangWith("/display/refresh_hz", 144);
     EXPECT_EQ(messageFor(document),
-              kPrefix + "physics.step_rate_hz must be a whole multiple of display.refresh_hz "
-                        "(144), got 960");
+              kPrefix +
+                  "physics.step_rate_hz must be a whole multiple of display.refresh_hz "
+                  "(144), got 960");
     EXPECT_EQ(messageFor(yangWith("/physics/step_rate_hz", 960.0)),
               kPrefix + "physics.step_rate_hz must be an integer between 1 and 100000, got 960.0");
 }
@@ -377,8 +384,9 @@ TEST(ClickErrors, RoundsAreChecked) {
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/0", Json{{"scored", false}})),
               kPrefix + "matches.rounds[0].name is required but missing");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/0/matches", 1)),
-              kPrefix + "matches.rounds[0].matches is not a known field (matches.rounds[0] may "
-                        "have name, scored, matches_per_mode)");
+              kPrefix +
+                  "matches.rounds[0].matches is not a known field (matches.rounds[0] may "
+                  "have name, scored, matches_per_mode)");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/name", "practice")),
               kPrefix + "matches.rounds[1].name repeats \"practice\", already matches.rounds[0].name");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", "yes")),
@@ -393,20 +401,15 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
     };
     const std::vector<Case> cases{
         {"/display/refresh_hz", 0, "display.refresh_hz must be a number between 1 and 1000, got 0"},
-        {"/display/vertical_fov_deg", 180,
-         "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
-        {"/display/camera_pitch_deg", -90,
-         "display.camera_pitch_deg must be a number between -89 and 89, got -90"},
-        {"/physics/sphere_radius_m", 0,
-         "physics.sphere_radius_m must be a number between 0.01 and 2, got 0"},
-        {"/physics/sphere_radius_m", 2.5,
-         "physics.sphere_radius_m must be a number between 0.01 and 2, got 2.5"},
+        {"/display/vertical_fov_deg", 180, "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
+        {"/display/camera_pitch_deg", -90, "display.camera_pitch_deg must be a number between -89 and 89, got -90"},
+        {"/physics/sphere_radius_m", 0, "physics.sphere_radius_m must be a number between 0.01 and 2, got 0"},
+        {"/physics/sphere_radius_m", 2.5, "physics.sphere_radius_m must be a number between 0.01 and 2, got 2.5"},
         {"/physics/restitution", 1.1, "physics.restitution must be a number between 0 and 1, got 1.1"},
         {"/physics/sphere_count", 0, "physics.sphere_count must be an integer between 1 and 40, got 0"},
         {"/physics/sphere_count", 41, "physics.sphere_count must be an integer between 1 and 40, got 41"},
         {"/physics/green_share", -0.1, "physics.green_share must be a number between 0 and 1, got -0.1"},
-        {"/physics/spawn_delay_s", -1,
-         "physics.spawn_delay_s must be a number between 0 and 60, got -1"},
+        {"/physics/spawn_delay_s", -1, "physics.spawn_delay_s must be a number between 0 and 60, got -1"},
         {"/physics/spawn_speed_m_per_s", -2.0,
          "physics.spawn_speed_m_per_s must be a number between 0 and 100, got -2.0"},
         {"/physics/step_rate_hz", 0, "physics.step_rate_hz must be an integer between 1 and 100000, got 0"},
@@ -434,8 +437,8 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
 
 struct Bound {
     const char* pointer;
-    double bound;          // allowed
-    double past;           // the next double beyond it: refused
+    double bound;  // allowed
+    double past;  // the next double beyond it: refused
     const char* expected;  // after the prefix
 };
 
@@ -461,16 +464,14 @@ TEST(ClickLimits, NoMatchRunsPastItsBound) {
     });
     // A day-long match, which the old limit allowed: 5.2 million frames uncommitted at 60 Hz.
     EXPECT_EQ(messageFor(yangWith("/matches/match_s", 86400)),
-              kPrefix +
-                  "matches.match_s must be a number greater than 0 and at most 300, got 86400");
+              kPrefix + "matches.match_s must be a number greater than 0 and at most 300, got 86400");
 }
 
 TEST(ClickLimits, TinyPositiveValuesThatBreakLaterMathsAreRefused) {
     // At 1e-310 pixels a count the cursor could not move and the bot never finished a session;
     // a subnormal radius was a float 0 on screen, spheres no click could hit.
     EXPECT_EQ(messageFor(yangWith("/input/cursor_pixels_per_count", 1e-310)),
-              kPrefix +
-                  "input.cursor_pixels_per_count must be a number between 0.001 and 100, got 1e-310");
+              kPrefix + "input.cursor_pixels_per_count must be a number between 0.001 and 100, got 1e-310");
     EXPECT_EQ(messageFor(yangWith("/physics/sphere_radius_m", 1e-310)),
               kPrefix + "physics.sphere_radius_m must be a number between 0.01 and 2, got 1e-310");
     expectBounds({
@@ -512,8 +513,7 @@ std::string gameError(const std::string& text) {
 
 TEST(SharedLoader, GamePicksTheParser) {
     EXPECT_EQ(protocolGame(readProtocolFile(protocolDir() + "/click-yang.json"), kSource), "click");
-    EXPECT_EQ(protocolGame(readProtocolFile(protocolDir() + "/shooter-thesis.json"), kSource),
-              "shooter");
+    EXPECT_EQ(protocolGame(readProtocolFile(protocolDir() + "/shooter-thesis.json"), kSource), "shooter");
     // The loader only reads the field; which games exist is the caller's business.
     EXPECT_EQ(protocolGame(R"({"game": "pong", "anything": [1, 2]})", kSource), "pong");
 }
@@ -522,12 +522,10 @@ TEST(SharedLoader, GameErrorsNameTheFile) {
     const std::string malformed = gameError("{\n  \"game\": \"click\",\n}\n");
     EXPECT_EQ(malformed.rfind(kPrefix + "malformed JSON at line 3, column 1", 0), 0u) << malformed;
     EXPECT_EQ(malformed.find('\n'), std::string::npos) << malformed;
-    EXPECT_EQ(gameError("[\"click\"]"),
-              kPrefix + "the top level must be a JSON object, got array [\"click\"]");
+    EXPECT_EQ(gameError("[\"click\"]"), kPrefix + "the top level must be a JSON object, got array [\"click\"]");
     EXPECT_EQ(gameError(R"({"format_version": 1})"), kPrefix + "game is required but missing");
     EXPECT_EQ(gameError(R"({"game": 2})"), kPrefix + "game must be a string, got 2");
-    EXPECT_EQ(gameError(R"({"game": "click", "game": "shooter"})"),
-              kPrefix + "game appears more than once");
+    EXPECT_EQ(gameError(R"({"game": "click", "game": "shooter"})"), kPrefix + "game appears more than once");
 }
 
 TEST(SharedLoader, ReadingAFileNamesThePath) {
@@ -572,8 +570,10 @@ std::vector<std::string> documentedKeys(const std::string& part) {
         } else if (line.rfind("Each element of `", 0) == 0) {
             prefix = section + "." + line.substr(17, line.find('`', 17) - 17) + "[].";
         }
-        if (line.rfind("| key |", 0) == 0) inTable = prefix != "-";
-        else if (line.rfind("|", 0) != 0) inTable = false;
+        if (line.rfind("| key |", 0) == 0)
+            inTable = prefix != "-";
+        else if (line.rfind("|", 0) != 0)
+            inTable = false;
         if (inTable && line.rfind("| `", 0) == 0) keys.push_back(prefix + line.substr(3, line.find('`', 3) - 3));
     }
     return keys;

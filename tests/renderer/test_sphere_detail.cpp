@@ -33,9 +33,9 @@ double sampledRadiusPixels(const scene::CameraState& camera, glm::vec3 centre, f
     for (int i = 0; i <= n; ++i)
         for (int j = 0; j < 2 * n; ++j) {
             const double theta = M_PI * i / n, phi = M_PI * j / n;
-            const glm::dvec3 p = glm::dvec3(centre) + double(radius) * glm::dvec3(std::sin(theta) * std::cos(phi),
-                                                                                   std::cos(theta),
-                                                                                   std::sin(theta) * std::sin(phi));
+            const glm::dvec3 p = glm::dvec3(centre) +
+                double(radius) *
+                    glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
             const double along = glm::dot(pixel(p), axis);
             lo = std::min(lo, along);
             hi = std::max(hi, along);
@@ -49,7 +49,8 @@ TEST(SphereDetail, ProjectedRadiusIsTheEllipsesLongSemiAxisOnAndOffTheViewAxis) 
     camera.yaw = 0.3f;
     camera.pitch = -0.1f;
     int offAxisLarger = 0;
-    for (const glm::vec2 ndc : {glm::vec2(0.0f), glm::vec2(0.5f, 0.2f), glm::vec2(-0.9f, 0.8f), glm::vec2(0.95f, -0.9f)}) {
+    for (const glm::vec2 ndc :
+         {glm::vec2(0.0f), glm::vec2(0.5f, 0.2f), glm::vec2(-0.9f, 0.8f), glm::vec2(0.95f, -0.9f)}) {
         for (const float distance : {2.0f, 6.0f, 25.0f}) {
             const glm::vec3 centre = camera.eye + distance * scene::rayDirection(camera, kAspect, ndc);
             const float got = scene::projectedSphereRadiusPixels(camera, kHeight, centre, 0.45f);

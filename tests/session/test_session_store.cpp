@@ -91,14 +91,19 @@ SessionHeader sampleHeader(const std::string& participant = "P07") {
 // Awkward values each field cycles through. Doubles: -0.0 (which a REAL column would turn
 // into the integer 0), a subnormal, the extremes, infinities; NaN has its own test, as it
 // does not come back bit for bit.
-const std::vector<double> kDoubles = {
-    -0.0, 1.0 / 3.0, std::numeric_limits<double>::denorm_min(), -std::numeric_limits<double>::max(),
-    std::nextafter(1.0, 2.0), std::numeric_limits<double>::infinity(),
-    -std::numeric_limits<double>::infinity(), -7.3125e-300, 0.1 + 0.2};
+const std::vector<double> kDoubles = {-0.0,
+                                      1.0 / 3.0,
+                                      std::numeric_limits<double>::denorm_min(),
+                                      -std::numeric_limits<double>::max(),
+                                      std::nextafter(1.0, 2.0),
+                                      std::numeric_limits<double>::infinity(),
+                                      -std::numeric_limits<double>::infinity(),
+                                      -7.3125e-300,
+                                      0.1 + 0.2};
 const std::vector<std::string> kTexts = {"warp15to120", "Zoë «P7»", std::string("nul\0inside", 10),
                                          "'; DROP TABLE frames; --", ""};
-const std::vector<std::string> kJsonObjects = {
-    "", R"({"ids": [2, 16], "note": "ünï", "x": -0.0})", R"({"nested":{"a":[1,2.5,"\u0000"]}})"};
+const std::vector<std::string> kJsonObjects = {"", R"({"ids": [2, 16], "note": "ünï", "x": -0.0})",
+                                               R"({"nested":{"a":[1,2.5,"\u0000"]}})"};
 
 // Every field of a record as a pure function of n (and of the field's place in its table, so
 // that neighbouring fields differ). The frame is n.
@@ -114,8 +119,7 @@ R sampleRecord(std::int64_t n) {
                             : kDoubles[i % 10 % kDoubles.size()];
         } else if constexpr (std::is_same_v<T, std::string>) {
             if (field.storage == Storage::JsonObject)
-                v = i % 4 == 3 ? R"({"n": )" + std::to_string(n) + "}"
-                               : kJsonObjects[i % 4 % kJsonObjects.size()];
+                v = i % 4 == 3 ? R"({"n": )" + std::to_string(n) + "}" : kJsonObjects[i % 4 % kJsonObjects.size()];
             else
                 v = i % 6 == 5 ? std::string() : kTexts[i % 6 % kTexts.size()] + std::to_string(n);
         } else if constexpr (std::is_same_v<T, std::uint32_t>) {
@@ -134,8 +138,7 @@ R extremeRecord(bool max) {
     R r = sampleRecord<R>(0);
     forEachField(r, [&](const Field<R>&, auto& v) {
         using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_integral_v<T>)
-            v = max ? std::numeric_limits<T>::max() : std::numeric_limits<T>::min();
+        if constexpr (std::is_integral_v<T>) v = max ? std::numeric_limits<T>::max() : std::numeric_limits<T>::min();
     });
     return r;
 }
@@ -150,8 +153,8 @@ void expectSame(const R& actual, const R& expected) {
                 const auto& a = actual.*member;
                 const auto& b = expected.*member;
                 if constexpr (std::is_same_v<std::decay_t<decltype(a)>, double>)
-                    EXPECT_TRUE(sameBits(a, b)) << field.column << " of frame " << expected.frame
-                                                << ": " << a << " != " << b;
+                    EXPECT_TRUE(sameBits(a, b))
+                        << field.column << " of frame " << expected.frame << ": " << a << " != " << b;
                 else
                     EXPECT_EQ(a, b) << field.column << " of frame " << expected.frame;
             },
@@ -201,22 +204,19 @@ void expectSame(const SessionHeader& a, const SessionHeader& b) {
 // Anything else -- a partial trial, a changed value -- fails the calling test.
 int expectWholeTrials(const SessionData& data) {
     const int trials = static_cast<int>(data.events.size()) / kEventsPerTrial;
-    const auto whole = [&](std::size_t perTrial) {
-        return static_cast<std::size_t>(trials) * perTrial;
-    };
-    const bool sized = data.events.size() == whole(kEventsPerTrial) &&
-                       data.inputs.size() == whole(kFramesPerTrial) &&
-                       data.frames.size() == whole(kFramesPerTrial);
-    EXPECT_TRUE(sized) << "not whole trials: " << data.inputs.size() << " inputs, "
-                       << data.frames.size() << " frames, " << data.events.size() << " events";
+    const auto whole = [&](std::size_t perTrial) { return static_cast<std::size_t>(trials) * perTrial; };
+    const bool sized = data.events.size() == whole(kEventsPerTrial) && data.inputs.size() == whole(kFramesPerTrial) &&
+        data.frames.size() == whole(kFramesPerTrial);
+    EXPECT_TRUE(sized) << "not whole trials: " << data.inputs.size() << " inputs, " << data.frames.size() << " frames, "
+                       << data.events.size() << " events";
     if (!sized) return -1;
     for (std::size_t i = 0; i < data.inputs.size(); ++i) {
         expectSame(data.inputs[i], trialInput(static_cast<std::int64_t>(i)));
         expectSame(data.frames[i], trialFrame(static_cast<std::int64_t>(i)));
     }
     for (std::size_t i = 0; i < data.events.size(); ++i)
-        expectSame(data.events[i], trialEvent(static_cast<int>(i) / kEventsPerTrial,
-                                              static_cast<int>(i) % kEventsPerTrial));
+        expectSame(data.events[i],
+                   trialEvent(static_cast<int>(i) / kEventsPerTrial, static_cast<int>(i) % kEventsPerTrial));
     return trials;
 }
 
@@ -238,8 +238,7 @@ void execSql(const std::string& path, const std::string& sql) {
 // if deleted). Stale -shm files of earlier copies are removed first.
 constexpr std::intmax_t kWhole = -1;
 constexpr std::intmax_t kNoWal = -2;
-void copySession(const std::string& src, const std::string& dst, std::intmax_t mainBytes,
-                 std::intmax_t walBytes) {
+void copySession(const std::string& src, const std::string& dst, std::intmax_t mainBytes, std::intmax_t walBytes) {
     for (const char* suffix : {"", "-wal", "-shm"}) fs::remove(dst + suffix);
     fs::copy_file(src, dst);
     if (mainBytes != kWhole) fs::resize_file(dst, static_cast<std::uintmax_t>(mainBytes));
@@ -282,13 +281,13 @@ std::vector<nlohmann::json> sqlRows(const std::string& path, const std::string& 
         for (int i = 0; i < sqlite3_column_count(s); ++i) {
             auto& v = row[sqlite3_column_name(s, i)];
             switch (sqlite3_column_type(s, i)) {
-            case SQLITE_INTEGER: v = sqlite3_column_int64(s, i); break;
-            case SQLITE_FLOAT: v = sqlite3_column_double(s, i); break;
-            case SQLITE_TEXT:
-                v = std::string(reinterpret_cast<const char*>(sqlite3_column_text(s, i)),
-                                static_cast<std::size_t>(sqlite3_column_bytes(s, i)));
-                break;
-            default: break;
+                case SQLITE_INTEGER: v = sqlite3_column_int64(s, i); break;
+                case SQLITE_FLOAT: v = sqlite3_column_double(s, i); break;
+                case SQLITE_TEXT:
+                    v = std::string(reinterpret_cast<const char*>(sqlite3_column_text(s, i)),
+                                    static_cast<std::size_t>(sqlite3_column_bytes(s, i)));
+                    break;
+                default: break;
             }
         }
         rows.push_back(std::move(row));
@@ -330,19 +329,16 @@ struct Fnv {
 // Changes a file's format_version and recomputes its header checksum, so that the reader gets
 // past the header and checks the tables against that version's schema.
 void relabel(const std::string& path, int version) {
-    execSql(path, "UPDATE meta SET value = '" + std::to_string(version) +
-                      "' WHERE key = 'format_version'");
+    execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
     Fnv h;
-    for (const char* key : {"format_version", "protocol_json", "seed", "participant",
-                            "app_version", "gl_renderer", "gl_version", "refresh_hz",
-                            "display_width", "display_height", "started_at", "player"}) {
+    for (const char* key : {"format_version", "protocol_json", "seed", "participant", "app_version", "gl_renderer",
+                            "gl_version", "refresh_hz", "display_width", "display_height", "started_at", "player"}) {
         const auto rows = sqlRows(path, std::string("SELECT value FROM meta WHERE key = '") + key + "'");
         ASSERT_EQ(rows.size(), 1u) << key;
         h.value(std::string(key));
         h.value(rows[0]["value"].get<std::string>());
     }
-    execSql(path, "UPDATE meta SET value = '" + std::to_string(h.hash) +
-                      "' WHERE key = 'header_checksum'");
+    execSql(path, "UPDATE meta SET value = '" + std::to_string(h.hash) + "' WHERE key = 'header_checksum'");
 }
 
 // ============================ round trip ============================
@@ -357,8 +353,7 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     constexpr int kRows = 60;  // a multiple of every cycle length above, and then some
     std::vector<InputRecord> inputs = {extremeRecord<InputRecord>(false)};
     std::vector<FrameRecord> frames = {extremeRecord<FrameRecord>(false)};
-    std::vector<EventRecord> events = {extremeRecord<EventRecord>(false),
-                                       extremeRecord<EventRecord>(true)};
+    std::vector<EventRecord> events = {extremeRecord<EventRecord>(false), extremeRecord<EventRecord>(true)};
     for (int n = 0; n < kRows; ++n) {
         inputs.push_back(sampleRecord<InputRecord>(n));
         frames.push_back(sampleRecord<FrameRecord>(n));
@@ -446,8 +441,8 @@ void expectSqlReals(sqlite3* db, const char* table, const std::vector<R>& writte
     for (const Field<R>& field : fieldsOf<R>()) {
         if (field.storage != Storage::Real) continue;
         SCOPED_TRACE(std::string(table) + "." + field.column);
-        const std::string sql = std::string("SELECT typeof(") + field.column + "), " +
-                                field.column + " FROM " + table + " ORDER BY rowid";
+        const std::string sql =
+            std::string("SELECT typeof(") + field.column + "), " + field.column + " FROM " + table + " ORDER BY rowid";
         sqlite3_stmt* s = nullptr;
         ASSERT_EQ(sqlite3_prepare_v2(db, sql.c_str(), -1, &s, nullptr), SQLITE_OK) << sql;
         std::size_t row = 0;
@@ -630,8 +625,7 @@ TEST(SessionStoreKill, KeepsEveryCommittedTrialAndNothingPartial) {
         int status = 0;
         ASSERT_EQ(::waitpid(pid, &status, 0), pid);
         guard.pid = -1;
-        ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL)
-            << "child ended otherwise, status " << status;
+        ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << "child ended otherwise, status " << status;
         int reported = 0;
         char buf[4096];
         for (ssize_t n; (n = ::read(pipeFds[0], buf, sizeof buf)) > 0;) reported += static_cast<int>(n);
@@ -860,7 +854,7 @@ class SnapshotReader {
 public:
     explicit SnapshotReader(const std::string& path) {
         ok_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
-              sqlite3_exec(db_, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+            sqlite3_exec(db_, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
     }
     ~SnapshotReader() {
         sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
@@ -1029,8 +1023,7 @@ TEST(SessionStoreDamage, GarbagePagesNeverCrashTheReader) {
         {
             std::fstream f(copy, std::ios::in | std::ios::out | std::ios::binary);
             f.seekp(static_cast<std::streamoff>(page * 4096 + (page == 0 ? 100 : 0)));
-            for (int i = 0; i < 4096 - (page == 0 ? 100 : 0); ++i)
-                f.put(static_cast<char>(rng() & 0xff));
+            for (int i = 0; i < 4096 - (page == 0 ? 100 : 0); ++i) f.put(static_cast<char>(rng() & 0xff));
         }
         try {
             const SessionData data = readSession(copy);
@@ -1103,29 +1096,24 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
         w.finish();
     }
     for (const int version : {3, 0, -1}) {
-        execSql(path, "UPDATE meta SET value = '" + std::to_string(version) +
-                          "' WHERE key = 'format_version'");
+        execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
         const std::string error = errorOf(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
-        EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"),
-                  std::string::npos)
-            << error;
+        EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"), std::string::npos) << error;
         EXPECT_NE(error.find("reads session format versions 1 and 2."), std::string::npos) << error;
     }
     // The schema is checked against the file's own version: a version-2 file that says 1 lacks
     // version 1's columns.
     relabel(path, 1);
     const std::string v1Error = errorOf(path);
-    EXPECT_NE(v1Error.find("does not match the session format 1 schema"), std::string::npos)
-        << v1Error;
+    EXPECT_NE(v1Error.find("does not match the session format 1 schema"), std::string::npos) << v1Error;
     EXPECT_NE(v1Error.find("target_"), std::string::npos) << v1Error;
 
     relabel(path, 2);
     EXPECT_EQ(errorOf(path), "");
     execSql(path, "ALTER TABLE frames DROP COLUMN kind");
     const std::string schemaError = errorOf(path);
-    EXPECT_NE(schemaError.find("does not match the session format 2 schema"), std::string::npos)
-        << schemaError;
+    EXPECT_NE(schemaError.find("does not match the session format 2 schema"), std::string::npos) << schemaError;
     EXPECT_NE(schemaError.find("kind"), std::string::npos) << schemaError;
 }
 
@@ -1142,8 +1130,7 @@ TEST(SessionStoreChecksum, FollowsTheDocumentedSerialisation) {
 
     const auto rowsHash = [](const auto& rows, std::size_t from, std::size_t to) {
         Fnv h;
-        for (std::size_t i = from; i < to; ++i)
-            forEachField(rows[i], [&h](const auto&, const auto& v) { h.value(v); });
+        for (std::size_t i = from; i < to; ++i) forEachField(rows[i], [&h](const auto&, const auto& v) { h.value(v); });
         return h.hash;
     };
     sqlite3* db = nullptr;
@@ -1164,8 +1151,7 @@ TEST(SessionStoreChecksum, FollowsTheDocumentedSerialisation) {
         commit.integer(static_cast<std::int64_t>(rowsHash(data.inputs, inputs, in)));
         commit.integer(static_cast<std::int64_t>(rowsHash(data.frames, frames, fr)));
         commit.integer(static_cast<std::int64_t>(rowsHash(data.events, events, ev)));
-        EXPECT_EQ(static_cast<std::int64_t>(commit.hash), sqlite3_column_int64(s, 3))
-            << "commit " << commits + 1;
+        EXPECT_EQ(static_cast<std::int64_t>(commit.hash), sqlite3_column_int64(s, 3)) << "commit " << commits + 1;
         inputs = in;
         frames = fr;
         events = ev;
@@ -1181,9 +1167,7 @@ TEST(SessionStoreChecksum, FollowsTheDocumentedSerialisation) {
 // tests/data/README.md). Its rows are checked against the file's own columns, read here with
 // plain SQL.
 
-std::string v1Fixture() {
-    return std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session";
-}
+std::string v1Fixture() { return std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v1-shooter-quick.warplab-session"; }
 
 // The columns version 1 shares with today's records read back unchanged.
 template <class R>
@@ -1228,8 +1212,7 @@ TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {
     const SessionData data = readSession(v1Fixture());
     const auto raw = sqlRows(v1Fixture(), "SELECT * FROM events ORDER BY id");
     ASSERT_EQ(raw.size(), data.events.size());
-    const std::vector<std::string> timing = {"target_speed", "spawn_time", "aim_time",
-                                             "angular_error_deg"};
+    const std::vector<std::string> timing = {"target_speed", "spawn_time", "aim_time", "angular_error_deg"};
     std::map<std::string, int> types;
     for (std::size_t i = 0; i < raw.size(); ++i) {
         const EventRecord& e = data.events[i];
@@ -1241,8 +1224,8 @@ TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {
 
         // What version 1 had in detail_json is kept as it was, and the folded keys come in.
         nlohmann::json expected = raw[i]["detail_json"].get<std::string>().empty()
-                                      ? nlohmann::json::object()
-                                      : nlohmann::json::parse(raw[i]["detail_json"].get<std::string>());
+            ? nlohmann::json::object()
+            : nlohmann::json::parse(raw[i]["detail_json"].get<std::string>());
         expected["difficulty"] = raw[i]["difficulty"];
         std::vector<std::string> folded;
         if (e.type == "shot" || e.type == "timeout")
@@ -1270,19 +1253,18 @@ TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {
 
     // A spot check with the shooter's meaning, not the fold's code: a shot's five keys hold
     // plausible values.
-    const auto shot = std::find_if(data.events.begin(), data.events.end(),
-                                   [](const EventRecord& e) { return e.type == "shot"; });
+    const auto shot =
+        std::find_if(data.events.begin(), data.events.end(), [](const EventRecord& e) { return e.type == "shot"; });
     ASSERT_NE(shot, data.events.end());
     const auto detail = nlohmann::json::parse(shot->detailJson);
-    for (const char* key : {"difficulty", "target_speed", "spawn_time", "aim_time",
-                            "angular_error_deg", "scored", "start_x", "plane_z"})
+    for (const char* key :
+         {"difficulty", "target_speed", "spawn_time", "aim_time", "angular_error_deg", "scored", "start_x", "plane_z"})
         EXPECT_TRUE(detail.contains(key)) << key << " missing from " << shot->detailJson;
     EXPECT_GE(detail["difficulty"].get<int>(), 0);
     EXPECT_GT(detail["target_speed"].get<double>(), 0.0);
     EXPECT_GT(detail["aim_time"].get<double>(), 0.0);
     EXPECT_LT(detail["aim_time"].get<double>(), 10.0);
-    EXPECT_NEAR(detail["aim_time"].get<double>(),
-                shot->eventTime - detail["spawn_time"].get<double>(), 1e-9);
+    EXPECT_NEAR(detail["aim_time"].get<double>(), shot->eventTime - detail["spawn_time"].get<double>(), 1e-9);
     EXPECT_GE(detail["angular_error_deg"].get<double>(), 0.0);
     EXPECT_LT(detail["angular_error_deg"].get<double>(), 180.0);
 }
@@ -1322,11 +1304,10 @@ TEST(SessionStoreV1, ChangedVersion1ColumnsFailTheirCommit) {
     TempDir dir;
     const std::string copy = (dir.path() / "v1.warplab-session").string();
     const SessionData whole = readSession(v1Fixture());
-    for (const std::string change :
-         {"UPDATE frames SET target_x = target_x + 1e-9 WHERE frame = 3000",
-          "UPDATE frames SET target_visible = 1 - target_visible WHERE frame = 3000",
-          "UPDATE events SET aim_time = aim_time * 2 WHERE id = 40",
-          "UPDATE events SET difficulty = difficulty + 1 WHERE id = 40"}) {
+    for (const std::string change : {"UPDATE frames SET target_x = target_x + 1e-9 WHERE frame = 3000",
+                                     "UPDATE frames SET target_visible = 1 - target_visible WHERE frame = 3000",
+                                     "UPDATE events SET aim_time = aim_time * 2 WHERE id = 40",
+                                     "UPDATE events SET difficulty = difficulty + 1 WHERE id = 40"}) {
         SCOPED_TRACE(change);
         copySession(v1Fixture(), copy, kWhole, kNoWal);
         execSql(copy, change);
@@ -1339,11 +1320,11 @@ TEST(SessionStoreV1, ChangedVersion1ColumnsFailTheirCommit) {
     }
     // target_visible is 0 or 1, whatever a changed file holds (its CHECK switched off here).
     copySession(v1Fixture(), copy, kWhole, kNoWal);
-    execSql(copy, "PRAGMA ignore_check_constraints = ON; "
-                  "UPDATE frames SET target_visible = 2 WHERE frame = 3000");
+    execSql(copy,
+            "PRAGMA ignore_check_constraints = ON; "
+            "UPDATE frames SET target_visible = 2 WHERE frame = 3000");
     const SessionData data = readSession(copy);
-    EXPECT_EQ(data.note.rfind("damaged (frames table: row 3001 has a value of the wrong type)", 0), 0u)
-        << data.note;
+    EXPECT_EQ(data.note.rfind("damaged (frames table: row 3001 has a value of the wrong type)", 0), 0u) << data.note;
     EXPECT_LT(data.frames.size(), 3001u);
 }
 
@@ -1411,13 +1392,11 @@ TEST(Records, FirstDifferenceNamesTheChangedColumn) {
 TEST(Records, FirstDifferenceComparesDetailKeyByKey) {
     EventRecord logged;
     logged.type = "shot";
-    logged.detailJson =
-        R"({"aim_time":0.5,"angular_error_deg":1.25,"difficulty":3,"scored":"hit","target":[1.0,2.0]})";
+    logged.detailJson = R"({"aim_time":0.5,"angular_error_deg":1.25,"difficulty":3,"scored":"hit","target":[1.0,2.0]})";
     EventRecord replayed = logged;
     replayed.detailJson =
         R"({"aim_time":0.75,"angular_error_deg":1.25,"difficulty":3,"scored":"hit","target":[1.0,2.0]})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.aim_time' logged 0.5, replayed 0.75");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.aim_time' logged 0.5, replayed 0.75");
 
     // The same object written otherwise (key order, spacing, 3 as 3.0) is the same detail.
     replayed.detailJson =
@@ -1427,31 +1406,25 @@ TEST(Records, FirstDifferenceComparesDetailKeyByKey) {
     // A key on one side only, either side; the first in sorted key order is named.
     replayed.detailJson =
         R"({"aim_time":0.5,"angular_error_deg":1.25,"difficulty":3,"plane_z":-7.5,"scored":"hit","target":[1.0,2.0]})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.plane_z' logged (absent), replayed -7.5");
-    EXPECT_EQ(firstDifference(replayed, logged),
-              "field 'detail.plane_z' logged -7.5, replayed (absent)");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.plane_z' logged (absent), replayed -7.5");
+    EXPECT_EQ(firstDifference(replayed, logged), "field 'detail.plane_z' logged -7.5, replayed (absent)");
     replayed.detailJson = R"({"aim_time":0.5,"difficulty":3})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.angular_error_deg' logged 1.25, replayed (absent)");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.angular_error_deg' logged 1.25, replayed (absent)");
 
     // Nested values compare inside; the top-level key is named.
     replayed.detailJson =
         R"({"aim_time":0.5,"angular_error_deg":1.25,"difficulty":3,"scored":"hit","target":[1.0,2.5]})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.target' logged [1.0,2.0], replayed [1.0,2.5]");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.target' logged [1.0,2.0], replayed [1.0,2.5]");
     replayed.detailJson =
         R"({"aim_time":0.5,"angular_error_deg":1.25,"difficulty":3,"scored":"miss","target":[1.0,2.0]})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.scored' logged \"hit\", replayed \"miss\"");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.scored' logged \"hit\", replayed \"miss\"");
 
     // "" is no detail, the same as {}; not JSON at all compares as text.
     logged.detailJson = "";
     replayed.detailJson = "{}";
     EXPECT_EQ(firstDifference(logged, replayed), "");
     replayed.detailJson = R"({"difficulty":0})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.difficulty' logged (absent), replayed 0");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.difficulty' logged (absent), replayed 0");
     logged.detailJson = "{broken";
     EXPECT_EQ(firstDifference(logged, replayed),
               R"(field 'detail_json' logged '{broken', replayed '{"difficulty":0}')");
@@ -1461,8 +1434,7 @@ TEST(Records, FirstDifferenceComparesDetailKeyByKey) {
     frame.detailJson = R"({"target":[1.0,2.0,-7.5]})";
     FrameRecord other = frame;
     other.detailJson = R"({"target":[1.0,2.0,-7.25]})";
-    EXPECT_EQ(firstDifference(frame, other),
-              "field 'detail.target' logged [1.0,2.0,-7.5], replayed [1.0,2.0,-7.25]");
+    EXPECT_EQ(firstDifference(frame, other), "field 'detail.target' logged [1.0,2.0,-7.5], replayed [1.0,2.0,-7.25]");
 }
 
 TEST(Records, FirstDifferenceTellsNegativeZeroFromZero) {
@@ -1474,8 +1446,7 @@ TEST(Records, FirstDifferenceTellsNegativeZeroFromZero) {
     replayed = logged;
     logged.detailJson = R"({"aim_time":0.0})";
     replayed.detailJson = R"({"aim_time":-0.0})";
-    EXPECT_EQ(firstDifference(logged, replayed),
-              "field 'detail.aim_time' logged 0.0, replayed -0.0");
+    EXPECT_EQ(firstDifference(logged, replayed), "field 'detail.aim_time' logged 0.0, replayed -0.0");
 
     InputRecord input;
     InputRecord negative = input;
@@ -1524,11 +1495,11 @@ void expectDocumented(const std::string& table, bool numbered) {
     for (const auto& [name, type] : documented) names.push_back(name);
     EXPECT_EQ(names, expected);
     for (const Field<R>& field : fieldsOf<R>()) {
-        const auto it = std::find_if(documented.begin(), documented.end(),
-                                     [&](const auto& d) { return d.first == field.column; });
+        const auto it =
+            std::find_if(documented.begin(), documented.end(), [&](const auto& d) { return d.first == field.column; });
         if (it == documented.end()) continue;
         const char* type = field.storage == Storage::Integer ? "INTEGER"
-                           : field.storage == Storage::Real  ? "REAL"
+            : field.storage == Storage::Real                 ? "REAL"
                                                              : "TEXT";
         EXPECT_NE(it->second.find(type), std::string::npos) << field.column << ":" << it->second;
         if (field.storage == Storage::JsonObject) {
@@ -1553,15 +1524,14 @@ void expectFileColumns(sqlite3* db, const std::string& table, bool numbered) {
     if (numbered) expected.push_back("id INTEGER");
     for (const Field<R>& field : fieldsOf<R>())
         expected.push_back(std::string(field.column) +
-                           (field.storage == Storage::Integer ? " INTEGER"
-                            : field.storage == Storage::Real  ? " "
-                                                              : " TEXT"));
+                           (field.storage == Storage::Integer    ? " INTEGER"
+                                : field.storage == Storage::Real ? " "
+                                                                 : " TEXT"));
     sqlite3_stmt* s = nullptr;
-    ASSERT_EQ(sqlite3_prepare_v2(db, ("PRAGMA table_info(" + table + ")").c_str(), -1, &s, nullptr),
-              SQLITE_OK);
+    ASSERT_EQ(sqlite3_prepare_v2(db, ("PRAGMA table_info(" + table + ")").c_str(), -1, &s, nullptr), SQLITE_OK);
     while (sqlite3_step(s) == SQLITE_ROW)
-        actual.push_back(std::string(reinterpret_cast<const char*>(sqlite3_column_text(s, 1))) +
-                         " " + reinterpret_cast<const char*>(sqlite3_column_text(s, 2)));
+        actual.push_back(std::string(reinterpret_cast<const char*>(sqlite3_column_text(s, 1))) + " " +
+                         reinterpret_cast<const char*>(sqlite3_column_text(s, 2)));
     sqlite3_finalize(s);
     EXPECT_EQ(actual, expected);
 }
@@ -1583,9 +1553,18 @@ TEST(SessionNames, ParticipantIdNeverEscapesTheResultsFolder) {
     TempDir root;
     const fs::path results = root.path() / "results";
     fs::create_directories(results / "a");  // so "a/b" would have somewhere to go
-    const std::vector<std::string> ids = {
-        "../../etc/passwd", "a/b", "..", ".", "", std::string("\x01\n", 2),
-        std::string(500, 'q'), "Zoë 김 🎯", "-rf", std::string("nul\0byte", 8), "P07", "P07"};
+    const std::vector<std::string> ids = {"../../etc/passwd",
+                                          "a/b",
+                                          "..",
+                                          ".",
+                                          "",
+                                          std::string("\x01\n", 2),
+                                          std::string(500, 'q'),
+                                          "Zoë 김 🎯",
+                                          "-rf",
+                                          std::string("nul\0byte", 8),
+                                          "P07",
+                                          "P07"};
     std::vector<std::string> paths;
     for (const std::string& id : ids) {
         SCOPED_TRACE("participant id of " + std::to_string(id.size()) + " bytes");
@@ -1597,9 +1576,7 @@ TEST(SessionNames, ParticipantIdNeverEscapesTheResultsFolder) {
         EXPECT_LE(name.size(), 120u) << name;
         EXPECT_NE(name.front(), '-') << name;
         for (const char c : name)
-            EXPECT_TRUE(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ||
-                        c == '.')
-                << name;
+            EXPECT_TRUE(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.') << name;
         EXPECT_EQ(readSession(w.path()).header.participant, id);
         paths.push_back(file.string());
     }

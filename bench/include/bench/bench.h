@@ -14,13 +14,13 @@ namespace warplab::bench {
 struct BenchOptions {
     int width = 1920;
     int height = 1080;
-    double refreshHz = 120.0;               // display rate the methods upconvert to
-    std::vector<std::string> sequences;     // empty = all
-    std::vector<std::string> methods;       // empty = all
-    int framesPerSequence = 16;             // sampled display frames; 0 = every frame
-    double durationScale = 1.0;             // shortens (< 1) or lengthens the sequences
-    int repeats = 5;                        // timed runs of each pass (after an untimed one); the median is reported
-    int shadingCost = 0;                    // ShadingOptions::shadingCost for every conventional frame
+    double refreshHz = 120.0;  // display rate the methods upconvert to
+    std::vector<std::string> sequences;  // empty = all
+    std::vector<std::string> methods;  // empty = all
+    int framesPerSequence = 16;  // sampled display frames; 0 = every frame
+    double durationScale = 1.0;  // shortens (< 1) or lengthens the sequences
+    int repeats = 5;  // timed runs of each pass (after an untimed one); the median is reported
+    int shadingCost = 0;  // ShadingOptions::shadingCost for every conventional frame
     // Sources of the methods that take one (the warps) are rendered this fraction of the size
     // beyond each side, as a study's warp mode renders them (protocol display.guard_band).
     double guardBand = 0.1;

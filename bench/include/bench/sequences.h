@@ -17,10 +17,10 @@
 namespace warplab::game {
 
 struct SequenceConfig {
-    double aspect = 16.0 / 9.0;    // width / height; fits the target's plane to the view
+    double aspect = 16.0 / 9.0;  // width / height; fits the target's plane to the view
     float verticalFovDeg = 60.0f;
-    double durationScale = 1.0;    // stretches the run, never the motion (speeds stay put)
-    std::uint64_t seed = 1;        // the target's spawn; the rest is scripted
+    double durationScale = 1.0;  // stretches the run, never the motion (speeds stay put)
+    std::uint64_t seed = 1;  // the target's spawn; the rest is scripted
 };
 
 class BenchSequence {
@@ -28,7 +28,7 @@ public:
     virtual ~BenchSequence() = default;
     virtual std::string name() const = 0;
     virtual std::string description() const = 0;  // one line for the bench summary
-    virtual double duration() const = 0;           // seconds of display time
+    virtual double duration() const = 0;  // seconds of display time
     // Exact for any t (also outside [0, duration]); snapshot.time = t.
     virtual scene::FrameDescription at(double t) const = 0;
 };
@@ -38,7 +38,6 @@ std::vector<std::string> sequenceNames();
 
 // Throws std::invalid_argument naming an unknown name (and listing the valid ones), or the
 // config field that is out of range (aspect, verticalFovDeg, durationScale).
-std::unique_ptr<BenchSequence> makeSequence(const std::string& name,
-                                            const SequenceConfig& config);
+std::unique_ptr<BenchSequence> makeSequence(const std::string& name, const SequenceConfig& config);
 
 }  // namespace warplab::game

@@ -9,27 +9,27 @@
 namespace warplab::exporter {
 
 struct ExportOptions {
-    bool allPhases = false;          // also practice rounds, acclimation and training
+    bool allPhases = false;  // also practice rounds, acclimation and training
     bool includeIncomplete = false;  // sessions that never finished (killed, or cut by damage)
-    bool includeFlagged = false;     // sessions their run flagged (e.g. missed_frames)
+    bool includeFlagged = false;  // sessions their run flagged (e.g. missed_frames)
 };
 
 // What happened to one session file.
 struct ExportedSession {
-    std::string file;       // relative to the results folder
-    std::string status;     // "ok", "incomplete", "flagged", "duplicate" or "damaged"
+    std::string file;  // relative to the results folder
+    std::string status;  // "ok", "incomplete", "flagged", "duplicate" or "damaged"
     bool included = false;
-    std::string why;        // for the others: the reason, one sentence
+    std::string why;  // for the others: the reason, one sentence
 };
 
 struct ExportSummary {
-    std::vector<ExportedSession> sessions;   // in file order
-    std::vector<std::string> written;        // the CSV paths
+    std::vector<ExportedSession> sessions;  // in file order
+    std::vector<std::string> written;  // the CSV paths
 };
 
 // The columns of each CSV exportResults writes, in order, as docs/export.md lists them.
 struct CsvColumns {
-    std::string file;                  // "shots.csv"
+    std::string file;  // "shots.csv"
     std::vector<std::string> columns;  // the fixed ones
     // Non-empty: then one column per item, named this plus 1, 2, ... (matches.csv's rating_k).
     std::string numbered;

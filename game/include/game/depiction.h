@@ -59,11 +59,11 @@ struct WorldDepiction {
     // AsSampled: the session frame whose world is shown. Extrapolated: the source frame.
     // Interpolated: the I-frame before.
     std::int64_t frame = 0;
-    std::int64_t nextFrame = -1;     // Interpolated: the I-frame after
+    std::int64_t nextFrame = -1;  // Interpolated: the I-frame after
     std::int64_t depictedFrame = 0;  // the session frame whose instant is depicted
-    double dt = 0.0;                 // Extrapolated: seconds the source's world moves on
-    double weight = 0.0;             // Interpolated: the share of the I-frame after
-    double spanS = 0.0;              // Interpolated: seconds from one I-frame to the other
+    double dt = 0.0;  // Extrapolated: seconds the source's world moves on
+    double weight = 0.0;  // Interpolated: the share of the I-frame after
+    double spanS = 0.0;  // Interpolated: seconds from one I-frame to the other
 };
 
 WorldDepiction depictWorld(const ModeSpec& mode, const ScheduledFrame& f, const SchedulePlacement& placement,

@@ -17,7 +17,8 @@ public:
     explicit FrameHistory(std::size_t capacity = 512) : capacity_(capacity) {}
 
     void record(std::int64_t frame, const T& value) {
-        if (values_.empty()) first_ = frame;
+        if (values_.empty())
+            first_ = frame;
         else if (frame != first_ + static_cast<std::int64_t>(values_.size()))
             throw std::logic_error("FrameHistory::record: frames must be recorded one after another");
         values_.push_back(value);

@@ -50,28 +50,28 @@ enum class PointerKind : std::uint8_t { None, Reticle, Cursor };
 // A rating screen (click game, after each match): one statement answered on a scale.
 struct RatingPrompt {
     std::string statement;
-    int index = 0, count = 0;   // statement `index` of `count`
+    int index = 0, count = 0;  // statement `index` of `count`
     int min = 1, max = 7;
     std::string minLabel = "strongly disagree", maxLabel = "strongly agree";
     // One box per value from min to max, to click on: x, y, width, height in display pixels.
     std::vector<glm::dvec4> boxes;
-    int highlighted = -1;       // the box under the cursor, -1 for none
+    int highlighted = -1;  // the box under the cursor, -1 for none
 };
 
 // What one displayed frame shows, for the renderer, the HUD and a player looking at it.
 struct ShownFrame {
-    std::int64_t frame = 0;             // display frame since the session started
-    double time = 0.0;                  // its display time, seconds
+    std::int64_t frame = 0;  // display frame since the session started
+    double time = 0.0;  // its display time, seconds
     std::string mode;
-    ScheduledFrame schedule;            // the mode's account of this frame (schedule-local)
-    scene::CameraState camera;          // the camera the frame depicts
-    scene::SceneSnapshot scene;         // the world as the frame depicts it
-    bool rendersNow = false;            // render `render` conventionally at this frame
-    scene::FrameDescription render;     // ... the source of this and the following frames
-    std::int64_t sourceFrame = 0;       // session frame whose render this frame is made from
+    ScheduledFrame schedule;  // the mode's account of this frame (schedule-local)
+    scene::CameraState camera;  // the camera the frame depicts
+    scene::SceneSnapshot scene;  // the world as the frame depicts it
+    bool rendersNow = false;  // render `render` conventionally at this frame
+    scene::FrameDescription render;  // ... the source of this and the following frames
+    std::int64_t sourceFrame = 0;  // session frame whose render this frame is made from
     std::int64_t nextSourceFrame = -1;  // bidirectional: the later source
-    bool frozen = false;                // a pause: the last frame stays on screen
-    bool blank = false;                 // nothing of the scene is shown (e.g. a rating screen)
+    bool frozen = false;  // a pause: the last frame stays on screen
+    bool blank = false;  // nothing of the scene is shown (e.g. a rating screen)
 
     // The pointer as this frame depicts it: the reticle at the centre, or the cursor drawn
     // into the frame, so it shares the mode's frame rate and lag. Display pixels, x right,
@@ -79,11 +79,11 @@ struct ShownFrame {
     PointerKind pointer = PointerKind::Reticle;
     glm::dvec2 cursor{0.0};
 
-    std::string banner;                 // "HIT", "MISS", "TIMEOUT" ... ; "" = none
-    bool bannerGood = false;            // green when true, red when false
-    std::string phaseText;              // for the participant and supervisor
-    std::string feedback;               // "hit", "miss" or "timeout" on the frame a shot or click is judged: a sound
-    bool promptsEnter = false;          // waiting for the supervisor's Enter
+    std::string banner;  // "HIT", "MISS", "TIMEOUT" ... ; "" = none
+    bool bannerGood = false;  // green when true, red when false
+    std::string phaseText;  // for the participant and supervisor
+    std::string feedback;  // "hit", "miss" or "timeout" on the frame a shot or click is judged: a sound
+    bool promptsEnter = false;  // waiting for the supervisor's Enter
     std::optional<RatingPrompt> rating;
 };
 
@@ -173,23 +173,23 @@ private:
 // A simulated participant plays from this alone, never from the game's name or its protocol.
 struct Instructions {
     enum class Targets : std::uint8_t {
-        All,        // shoot the target
+        All,  // shoot the target
         GreenOnly,  // click the green spheres, never the red
     };
     PointerKind pointer = PointerKind::Reticle;
     double verticalFovDeg = 60.0;  // the view's geometry: turns a pixel offset into a turn
     double radiansPerCount = 0.0;  // reticle: how far one mouse count turns the view
-    double pixelsPerCount = 1.0;   // cursor: how far one mouse count moves the cursor
+    double pixelsPerCount = 1.0;  // cursor: how far one mouse count moves the cursor
     Targets targets = Targets::All;
-    std::string task;              // the rule in words, as the participant hears it
+    std::string task;  // the rule in words, as the participant hears it
 };
 
 // A protocol file parsed and bound to its game.
 class Study {
 public:
     virtual ~Study() = default;
-    virtual std::string game() const = 0;          // the protocol's "game"
-    virtual std::string name() const = 0;          // the protocol's "name"
+    virtual std::string game() const = 0;  // the protocol's "game"
+    virtual std::string name() const = 0;  // the protocol's "name"
     virtual std::string protocolJson() const = 0;  // canonical copy, stored in the session
     virtual double refreshHz() const = 0;
     virtual std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const = 0;

@@ -19,13 +19,13 @@ enum class Upconversion : std::uint8_t { None, Warp, Bidirectional };
 const char* upconversionName(Upconversion upconversion);
 
 struct ModeSpec {
-    std::string id;                 // as used in protocols, logs and CSVs
+    std::string id;  // as used in protocols, logs and CSVs
     std::string description;
-    double renderRateHz = 60.0;     // conventional renders per second (I-frames for bireproj)
-    double lagMs = 0.0;             // rendered frames wait this long in a queue before shown
+    double renderRateHz = 60.0;  // conventional renders per second (I-frames for bireproj)
+    double lagMs = 0.0;  // rendered frames wait this long in a queue before shown
     Upconversion upconversion = Upconversion::None;
-    double upconvertedRateHz = 0.0; // frames made per second by warp (every display frame) or bireproj
-    std::string method;             // renderer method that makes the in-between frames
+    double upconvertedRateHz = 0.0;  // frames made per second by warp (every display frame) or bireproj
+    std::string method;  // renderer method that makes the in-between frames
 };
 
 // Every mode's id, in the order of the one mode table (game/src/modes.cpp): the nine published
@@ -42,18 +42,18 @@ std::string checkMode(const std::string& id, double refreshHz);
 // switch starts a new schedule); they may be negative for lag and bidirectional modes, whose
 // first frames show what the queue held before the switch.
 struct ScheduledFrame {
-    std::int64_t index = 0;          // display frame since the schedule started
-    double displayTime = 0.0;        // when it is shown
+    std::int64_t index = 0;  // display frame since the schedule started
+    double displayTime = 0.0;  // when it is shown
     FrameKind kind = FrameKind::Rendered;
-    double cameraTime = 0.0;         // the instant whose camera (mouse) it shows
-    double sceneTime = 0.0;          // the instant whose world it shows (warp: by extrapolation)
+    double cameraTime = 0.0;  // the instant whose camera (mouse) it shows
+    double sceneTime = 0.0;  // the instant whose world it shows (warp: by extrapolation)
     // The latest instant at which the world was sampled for it: a change in the world's motion
     // (not just its continuation) shows from here on. Warp extrapolates the source's motion,
     // so a target that changes course shows only in the next source frame.
     double worldSampleTime = 0.0;
-    bool rendersNow = false;         // a conventional frame is rendered at this display frame
-    bool samplesInput = false;       // the mouse is read for this frame
-    std::int64_t sourceIndex = 0;    // display frame whose conventional render it is made from
+    bool rendersNow = false;  // a conventional frame is rendered at this display frame
+    bool samplesInput = false;  // the mouse is read for this frame
+    std::int64_t sourceIndex = 0;  // display frame whose conventional render it is made from
     std::int64_t nextSourceIndex = -1;  // bidirectional: the later source frame
 };
 
@@ -78,9 +78,9 @@ private:
     double firstShowing(double tau, Depicted depicted) const;
     ModeSpec mode_;
     double refreshHz_;
-    std::int64_t renderPeriod_;   // display frames between conventional renders
-    std::int64_t lagFrames_;      // display frames a rendered frame waits (lag modes)
-    std::int64_t bPeriod_;        // display frames per bidirectional B-frame
+    std::int64_t renderPeriod_;  // display frames between conventional renders
+    std::int64_t lagFrames_;  // display frames a rendered frame waits (lag modes)
+    std::int64_t bPeriod_;  // display frames per bidirectional B-frame
 };
 
 }  // namespace warplab::game

@@ -14,30 +14,30 @@ inline constexpr double kNotApplicable = std::numeric_limits<double>::quiet_NaN(
 
 // One shot (shooter) or click (click game): a row of shots.csv.
 struct ShotResult {
-    std::string phase;              // shooter: acclimation/training/test; click: the round's name
-    bool scoredPhase = false;       // the phase the study analyses (shooter "test", a scored round)
-    int trial = -1;                 // shooter: trial index; click: match index
+    std::string phase;  // shooter: acclimation/training/test; click: the round's name
+    bool scoredPhase = false;  // the phase the study analyses (shooter "test", a scored round)
+    int trial = -1;  // shooter: trial index; click: match index
     std::string mode;
-    std::string outcome;            // the one the protocol scores: hit/miss/timeout, green/red/miss
+    std::string outcome;  // the one the protocol scores: hit/miss/timeout, green/red/miss
     std::string worldOutcome, displayedOutcome;
-    bool hit = false;               // outcome counts as a hit (shooter "hit", click "green")
+    bool hit = false;  // outcome counts as a hit (shooter "hit", click "green")
     bool timeout = false;
-    double time = 0.0;              // display time of the shot, click or timeout, s
+    double time = 0.0;  // display time of the shot, click or timeout, s
     // Game-specific; kNotApplicable where the game has no such quantity.
-    double spawnTime = kNotApplicable;        // s, display clock
-    double aimTime = kNotApplicable;          // shot time - spawn time, s
+    double spawnTime = kNotApplicable;  // s, display clock
+    double aimTime = kNotApplicable;  // shot time - spawn time, s
     double angularErrorDeg = kNotApplicable;  // aim ray to target centre
-    double errorPx = kNotApplicable;          // click: cursor to the nearest green sphere's centre on screen
-    double difficulty = kNotApplicable;       // staircase level
-    double targetSpeed = kNotApplicable;      // m/s
+    double errorPx = kNotApplicable;  // click: cursor to the nearest green sphere's centre on screen
+    double difficulty = kNotApplicable;  // staircase level
+    double targetSpeed = kNotApplicable;  // m/s
 };
 
 // One answer on a rating screen after a match.
 struct RatingResult {
-    int statementIndex = 0;         // 0-based, in the protocol's order
+    int statementIndex = 0;  // 0-based, in the protocol's order
     std::string statement;
     int value = 0;
-    std::string answeredWith;       // "key" or "mouse"
+    std::string answeredWith;  // "key" or "mouse"
 };
 
 // One click-game match: a row of matches.csv (its ratings also go to ratings.csv).
@@ -46,24 +46,24 @@ struct MatchResult {
     bool scoredPhase = false;
     int match = -1;
     std::string mode;
-    std::string standIn;            // method drawn in the mode's place ("" = the mode's own)
+    std::string standIn;  // method drawn in the mode's place ("" = the mode's own)
     int greenHits = 0, redHits = 0, misses = 0, clicks = 0;
     double durationS = 0.0;
-    std::vector<RatingResult> ratings;   // as answered; a session cut short may lack some
+    std::vector<RatingResult> ratings;  // as answered; a session cut short may lack some
 };
 
 // What a game's hit rate counts, in words a report uses ("hits out of shots", "green hits out of
 // clicks"): hitrates.csv's `hits` and `shots` for this game, written to games.csv.
 struct HitMeasure {
-    std::string hitsAre = "hits";    // plural noun: "hits", "green hits"
+    std::string hitsAre = "hits";  // plural noun: "hits", "green hits"
     std::string shotsAre = "shots";  // plural noun: "shots", "clicks"
 };
 
 struct SessionResults {
-    bool canTimeOut = false;             // the game's trials can time out (hitrates.csv counts them)
-    HitMeasure measure;                  // the same for every session of a game
+    bool canTimeOut = false;  // the game's trials can time out (hitrates.csv counts them)
+    HitMeasure measure;  // the same for every session of a game
     std::vector<ShotResult> shots;
-    std::vector<MatchResult> matches;    // empty for games without matches
+    std::vector<MatchResult> matches;  // empty for games without matches
 };
 
 }  // namespace warplab::game

@@ -13,9 +13,9 @@ namespace warplab::game {
 struct ShooterSceneConfig {
     float verticalFovDeg = 60.0f;
     double aspect = 16.0 / 9.0;
-    double targetRadius = 0.35;   // metres
-    double targetSpeed = 2.0;     // metres per second
-    std::uint64_t seed = 1;       // spawn point and direction
+    double targetRadius = 0.35;  // metres
+    double targetSpeed = 2.0;  // metres per second
+    std::uint64_t seed = 1;  // spawn point and direction
 };
 
 class ShooterScene {

@@ -79,9 +79,9 @@ inline constexpr std::uint8_t kFarColour[4] = {0, 0, 0, 255};
 
 // Reference-image comparison over all four channels (alpha included).
 struct ImageDiff {
-    int maxChannelDiff = 0;        // largest |a - b| over all channels of all pixels
+    int maxChannelDiff = 0;  // largest |a - b| over all channels of all pixels
     double meanChannelDiff = 0.0;  // mean |a - b| over all channels of all pixels
-    int pixelsOverThreshold = 0;   // pixels whose largest channel difference > threshold
+    int pixelsOverThreshold = 0;  // pixels whose largest channel difference > threshold
     // A dimmed grey copy of `a`; pixels over the threshold red, smaller differences yellow.
     ImageRGBA8 diffImage;
 };

@@ -45,7 +45,8 @@ Percept Eye::see(const game::ShownFrame& shown) {
     // already on screen pixel for pixel (a hold copies its source): the same percept, without
     // drawing it again.
     const auto kind = shown.schedule.kind;
-    const bool same = haveImage_ && (shown.frozen || (kind == game::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
+    const bool same =
+        haveImage_ && (shown.frozen || (kind == game::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
     if (!same) {
         maker_.make(shown, frame_);
         const renderer::DisplayImages images = renderer::readBack(frame_, false);
@@ -86,9 +87,10 @@ game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, 
 }
 
 std::string PerceptualPlayer::perceivedWith() const {
-    std::string text = context_ ? context_->info().renderer + ", OpenGL " + context_->info().version : "current context";
+    std::string text =
+        context_ ? context_->info().renderer + ", OpenGL " + context_->info().version : "current context";
     return text + " (the simulated participant's percepts, " + std::to_string(eye_->width()) + "x" +
-           std::to_string(eye_->height()) + ")";
+        std::to_string(eye_->height()) + ")";
 }
 
 }  // namespace warplab::participants

@@ -40,11 +40,11 @@ namespace warplab::participants {
 // (how far the mouse moves the view or the cursor, the view's geometry). Never the world.
 struct TaskKnowledge {
     game::DisplaySize display;
-    double refreshHz = 60.0;          // only for the length of the very first frame
-    double verticalFovDeg = 60.0;     // the view's geometry: turns a pixel offset into a turn
-    double radiansPerCount = 0.0;     // reticle: how far one mouse count turns the view
-    double pixelsPerCount = 1.0;      // cursor: how far one mouse count moves the cursor
-    bool greenOnly = false;           // the click game's instruction: click green, never red
+    double refreshHz = 60.0;  // only for the length of the very first frame
+    double verticalFovDeg = 60.0;  // the view's geometry: turns a pixel offset into a turn
+    double radiansPerCount = 0.0;  // reticle: how far one mouse count turns the view
+    double pixelsPerCount = 1.0;  // cursor: how far one mouse count moves the cursor
+    bool greenOnly = false;  // the click game's instruction: click green, never red
 };
 
 // What the study tells its participants (Study::instructions), as the participant uses it.
@@ -115,8 +115,8 @@ struct ParticipantParams {
     // choice: slower than the loop's delay (reaction time plus a 200 ms lag), so that a lagging
     // cursor misleads it without making it oscillate without end.
     double recalibrationS = 0.3;
-    double enterAfterS = 0.5;         // the supervisor presses Enter this long after the prompt
-    double answerAfterS = 1.0;        // reading a rating statement before answering it
+    double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
+    double answerAfterS = 1.0;  // reading a rating statement before answering it
     // Percept resolution: width in pixels (height keeps the display's aspect). 160 x 90 puts
     // ~0.67 degrees in a pixel at 60 degrees of view; centroids of a target a few pixels wide
     // are still sub-pixel. A speed trade-off (llvmpipe draws such frames in milliseconds), not
@@ -139,10 +139,10 @@ struct Sample {
     glm::dvec2 position{0.0};
 };
 struct MotionEstimate {
-    double time = 0.0;               // the last sample's
-    glm::dvec2 position{0.0};        // on the fitted curve at `time`
-    glm::dvec2 velocity{0.0};        // 0 from a single sample
-    glm::dvec2 acceleration{0.0};    // 0 from a line
+    double time = 0.0;  // the last sample's
+    glm::dvec2 position{0.0};  // on the fitted curve at `time`
+    glm::dvec2 velocity{0.0};  // 0 from a single sample
+    glm::dvec2 acceleration{0.0};  // 0 from a line
     glm::dvec2 positionAt(double t) const {
         const double d = t - time;
         return position + velocity * d + 0.5 * acceleration * d * d;
@@ -180,24 +180,24 @@ public:
 private:
     struct Thing {
         std::uint32_t id;
-        glm::dvec2 where;   // in the world as it knows it: see remember()
+        glm::dvec2 where;  // in the world as it knows it: see remember()
         glm::dvec2 offset;  // from the pointer, as the frame shows it
-        double radius;      // hand units
+        double radius;  // hand units
         bool green;
     };
     struct Sighting {
         double time;
-        bool valid;        // shows a scene in play (no banner, not a screen)
+        bool valid;  // shows a scene in play (no banner, not a screen)
         std::vector<Thing> things;
         Thumbnail picture;
-        glm::dvec2 hand;   // where the hand was as it was shown
-        glm::dvec2 view;   // reticle: the view's direction the frame shows, as seen (see remember())
+        glm::dvec2 hand;  // where the hand was as it was shown
+        glm::dvec2 view;  // reticle: the view's direction the frame shows, as seen (see remember())
         game::PointerKind pointer;
         glm::dvec2 pointerAt;
     };
-    struct Moment {        // one frame of a match, for rating it afterwards
+    struct Moment {  // one frame of a match, for rating it afterwards
         glm::dvec2 pointerAt, hand;
-        bool changed;      // the image differed from the frame before
+        bool changed;  // the image differed from the frame before
     };
     game::FrameInput play(const Percept& percept, double dt);
     game::FrameInput rate(const Percept& percept);
@@ -211,24 +211,24 @@ private:
     TaskKnowledge knowledge_;
     ParticipantParams params_;
     game::Random random_;
-    glm::dvec2 unitsPerCount_;   // hand units per count in x and y, signed as the game reads them
-    glm::dvec2 hand_{0.0};       // where it has commanded its hand to be (efference copy)
+    glm::dvec2 unitsPerCount_;  // hand units per count in x and y, signed as the game reads them
+    glm::dvec2 hand_{0.0};  // where it has commanded its hand to be (efference copy)
     glm::dvec2 calibration_{0.0};  // cursor: where it sees the cursor, less where its hand says
-    glm::dvec2 carry_{0.0};      // counts commanded but not yet sent (mice send whole counts)
-    glm::dvec2 noise_{0.0};      // the motor noise's current velocity, hand units per second
+    glm::dvec2 carry_{0.0};  // counts commanded but not yet sent (mice send whole counts)
+    glm::dvec2 noise_{0.0};  // the motor noise's current velocity, hand units per second
     double lastTime_ = -1.0;
     std::deque<Sighting> sightings_;
     std::optional<std::uint32_t> target_;
     double aimingSince_ = 0.0;
     std::map<std::uint32_t, double> clicked_;
     std::optional<Thumbnail> home_;  // the view it started with ...
-    glm::dvec2 homeHand_{0.0};       // ... and where its hand was then
+    glm::dvec2 homeHand_{0.0};  // ... and where its hand was then
     // Reticle: the direction of the view as the frames show it, followed by how far the scene
     // has moved in the picture since a key frame.
     glm::dvec2 view_{0.0};
-    std::optional<Percept> key_;   // the frame the view is measured against ...
-    glm::dvec2 keyView_{0.0};      // ... the view it showed ...
-    glm::dvec2 keyShift_{0.0};     // ... and how far the scene has moved since, display pixels
+    std::optional<Percept> key_;  // the frame the view is measured against ...
+    glm::dvec2 keyView_{0.0};  // ... the view it showed ...
+    glm::dvec2 keyShift_{0.0};  // ... and how far the scene has moved since, display pixels
     glm::dvec2 previousHand_{0.0};
     glm::dvec2 aim_{0.0};  // where it believes it points now, in the units of Thing::where
     double lastHomeLook_ = -1.0;

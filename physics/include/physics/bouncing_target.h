@@ -55,7 +55,6 @@ glm::dvec2 velocityAt(const TargetPlane& plane, const TargetMotion& motion, doub
 TargetMotion spawnTarget(const TargetPlane& plane, double speed, std::uint64_t seed);
 
 // The target as the renderer and the id buffer see it at time t.
-scene::ObjectState targetObject(const TargetPlane& plane, const TargetMotion& motion, double t,
-                                double radius);
+scene::ObjectState targetObject(const TargetPlane& plane, const TargetMotion& motion, double t, double radius);
 
 }  // namespace warplab::physics

@@ -25,17 +25,17 @@ struct SphereBox {  // the walls; the floor is min.y. Metres, y up.
 // Validated by the FallingSpheres constructors; every field out of range throws
 // std::invalid_argument naming it ("FallingSphereSettings.restitution must be in [0, 1]").
 struct FallingSphereSettings {
-    SphereBox box;             // min < max on every axis
-    double gravity = 9.81;     // m/s^2 downwards; >= 0
-    double radius = 0.45;      // every sphere, metres; a diameter must fit every axis
+    SphereBox box;  // min < max on every axis
+    double gravity = 9.81;  // m/s^2 downwards; >= 0
+    double radius = 0.45;  // every sphere, metres; a diameter must fit every axis
     double restitution = 0.9;  // [0, 1], all contacts (the click protocol's default)
-    int stepRateHz = 960;      // internal steps per second (fixed); the game requires its
-                               // display refresh to divide it
-    int sphereCount = 10;      // the field is kept at this many
-    double greenShare = 0.5;   // probability a new sphere is green
+    int stepRateHz = 960;  // internal steps per second (fixed); the game requires its
+        // display refresh to divide it
+    int sphereCount = 10;  // the field is kept at this many
+    double greenShare = 0.5;  // probability a new sphere is green
     double spawnDelayS = 0.5;  // a replacement enters this long after a sphere is removed
-    double spawnSpeed = 2.0;   // max |horizontal velocity| (m/s) of a new sphere; it enters
-                               // moving down at up to this too
+    double spawnSpeed = 2.0;  // max |horizontal velocity| (m/s) of a new sphere; it enters
+        // moving down at up to this too
 
     // Added beyond the game's interface; the defaults are what docs/click-physics.md measured.
     // A contact closing slower than resting = max(restingSpeed, 2 * gravity / stepRateHz) m/s
@@ -67,7 +67,7 @@ public:
     FallingSpheres(const FallingSphereSettings& settings, std::vector<Sphere> initial, bool spawn,
                    std::uint64_t seed = 0);
 
-    void step();                       // one internal step of 1/stepRateHz s
+    void step();  // one internal step of 1/stepRateHz s
     void advance(std::int64_t steps);  // `steps` (>= 0) internal steps
     std::int64_t stepCount() const { return stepCount_; }
     double time() const;  // stepCount / stepRateHz, computed as a division (no accumulated sum)
@@ -82,7 +82,7 @@ public:
     bool remove(std::uint32_t id);
     std::size_t pendingSpawns() const { return pendingSpawnSteps_.size(); }
 
-    double kineticEnergy() const;    // sum 0.5 v^2 per unit mass (all masses equal)
+    double kineticEnergy() const;  // sum 0.5 v^2 per unit mass (all masses equal)
     double potentialEnergy() const;  // sum g * (y - floorContactY), floorContactY = min.y + r
     // Deepest overlap now: sphere-sphere (2r - distance) or sphere-wall, metres, >= 0. What a
     // step leaves behind; the wall part is always 0 (walls are the last constraint resolved).
@@ -94,12 +94,12 @@ public:
 private:
     struct Contact {
         std::size_t a = 0;
-        std::size_t b = 0;       // == a for a wall
+        std::size_t b = 0;  // == a for a wall
         glm::dvec3 normal{0.0};  // into the box for a wall; from a towards b for a pair
-        double depth = 0.0;      // overlap after integration, metres (may be a hair < 0)
-        bool active = false;     // takes part in this step's impulses
-        double target = 0.0;     // separating speed it must reach, m/s
-        double impulse = 0.0;    // accumulated this step, >= 0
+        double depth = 0.0;  // overlap after integration, metres (may be a hair < 0)
+        bool active = false;  // takes part in this step's impulses
+        double target = 0.0;  // separating speed it must reach, m/s
+        double impulse = 0.0;  // accumulated this step, >= 0
     };
 
     void integrate();
@@ -113,7 +113,7 @@ private:
     FallingSphereSettings settings_;
     std::vector<Sphere> spheres_;
     std::vector<std::int64_t> pendingSpawnSteps_;  // non-decreasing
-    std::vector<Contact> contacts_;                // reused every step
+    std::vector<Contact> contacts_;  // reused every step
     std::uint64_t rngState_ = 0;
     std::uint32_t nextId_ = 0;
     std::int64_t stepCount_ = 0;

@@ -13,8 +13,7 @@ namespace warplab::physics {
 // point, from its surface 0; a tangent ray hits. std::nullopt if the ray misses or the
 // sphere is behind. dir need not be unit length. Throws std::invalid_argument for a zero or
 // non-finite dir or a negative radius.
-std::optional<double> raySphereHit(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 centre,
-                                   double radius);
+std::optional<double> raySphereHit(glm::dvec3 origin, glm::dvec3 dir, glm::dvec3 centre, double radius);
 
 // Angle in radians, [0, pi], between the ray's direction and the direction from origin to
 // point. Accurate for tiny angles (near misses). Throws std::invalid_argument for a zero dir

@@ -15,16 +15,16 @@ struct ReplayRender {
     std::string sessionPath;
     std::string outDir;
     std::int64_t firstFrame = 0;
-    std::int64_t lastFrame = 599;   // inclusive
-    int width = 0, height = 0;      // 0: the session's display size
+    std::int64_t lastFrame = 599;  // inclusive
+    int width = 0, height = 0;  // 0: the session's display size
 };
 
 struct ReplayRenderResult {
-    int written = 0;               // frames written
-    int checked = 0;               // frames whose id under the pointer was compared with the analytic model
-    int eventsChecked = 0;         // ... of which a logged shot or click, also compared with its displayed outcome
-    int nearSilhouette = 0;        // frames not counted: the pointer within a pixel or two of an outline
-    int disagreed = 0;             // comparisons that disagreed
+    int written = 0;  // frames written
+    int checked = 0;  // frames whose id under the pointer was compared with the analytic model
+    int eventsChecked = 0;  // ... of which a logged shot or click, also compared with its displayed outcome
+    int nearSilhouette = 0;  // frames not counted: the pointer within a pixel or two of an outline
+    int disagreed = 0;  // comparisons that disagreed
     std::vector<std::string> disagreements;  // the first few, one line each
 };
 

@@ -18,8 +18,8 @@ inline constexpr int kClickFormatVersion = 1;
 // One round: every mode of the study played matchesPerMode times. Yang et al. played an
 // unscored round of one match per mode, then a scored round of two per mode.
 struct ClickRound {
-    std::string name;          // written into every match event of the round
-    bool scored = true;        // false: played for practice, outcomes logged but not analysed
+    std::string name;  // written into every match event of the round
+    bool scored = true;  // false: played for practice, outcomes logged but not analysed
     int matchesPerMode = 1;
 };
 
@@ -28,40 +28,39 @@ struct ClickProtocol {
     std::string description;
     int formatVersion = kClickFormatVersion;
     std::string game = "click";
-    double refreshHz = 60;             // display.refresh_hz
-    double verticalFovDeg = 60;        // display.vertical_fov_deg
-    double cameraPitchDeg = -10;       // display.camera_pitch_deg, looks down at the box floor
+    double refreshHz = 60;  // display.refresh_hz
+    double verticalFovDeg = 60;  // display.vertical_fov_deg
+    double cameraPitchDeg = -10;  // display.camera_pitch_deg, looks down at the box floor
     RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;  // display.refresh_mismatch, as the shooter's
-    RenderSettings rendering;          // display.guard_band, display.supersampling
+    RenderSettings rendering;  // display.guard_band, display.supersampling
     // physics.* (the game maps these onto physics::FallingSphereSettings; keep the same defaults)
-    double gravity = 9.81;             // m/s^2, >= 0
-    double sphereRadius = 0.45;        // m, (0, 2]
-    double restitution = 0.9;          // [0, 1]; bouncy enough that spheres keep moving through a 45 s match
-    int stepRateHz = 960;              // internal physics steps per second; refresh must divide it
-    int sphereCount = 10;              // [1, 40]
-    double greenShare = 0.5;           // [0, 1]
-    double spawnDelayS = 0.5;          // >= 0
-    double spawnSpeedMPerS = 2.0;      // >= 0
+    double gravity = 9.81;  // m/s^2, >= 0
+    double sphereRadius = 0.45;  // m, (0, 2]
+    double restitution = 0.9;  // [0, 1]; bouncy enough that spheres keep moving through a 45 s match
+    int stepRateHz = 960;  // internal physics steps per second; refresh must divide it
+    int sphereCount = 10;  // [1, 40]
+    double greenShare = 0.5;  // [0, 1]
+    double spawnDelayS = 0.5;  // >= 0
+    double spawnSpeedMPerS = 2.0;  // >= 0
     // input.*
-    double cursorPixelsPerCount = 1.0; // cursor movement per mouse count on the session's display, (0, 100]
+    double cursorPixelsPerCount = 1.0;  // cursor movement per mouse count on the session's display, (0, 100]
     ClickTiming clickTiming = ClickTiming::Display;  // or InputReads, as for the shooter
     // matches.*
-    double matchS = 45;                // > 0
+    double matchS = 45;  // > 0
     std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
     std::vector<ClickRound> rounds{{"practice", false, 1}, {"scored", true, 2}};
-    bool shuffle = true;               // random mode order per round, from the session seed
+    bool shuffle = true;  // random mode order per round, from the session seed
     // ratings.*
     bool ratingsEnabled = true;
     std::vector<std::string> ratingStatements{"I enjoyed playing this game", "This game was difficult to play",
-        "This game was responsive to my input", "The animation was smooth"};
+                                              "This game was responsive to my input", "The animation was smooth"};
     int ratingMin = 1, ratingMax = 7;  // 1 = strongly disagree, 7 = strongly agree
     Scoring scoring = Scoring::World;  // matches.scoring: or Displayed (DESIGN.md "Scoring")
 };
 
 // sourceName is what messages call the file (its path); `modes` judges every mode id against
 // the refresh (pass game::checkMode). Throws ProtocolError.
-ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName,
-                                 const ModeCheck& modes);
+ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName, const ModeCheck& modes);
 // Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
 // "matches.rounds[].name" for a round's), in file order: the parser's table, which
 // docs/protocol.md must document.

@@ -21,14 +21,14 @@ inline constexpr double kMaxBaseSpeedMPerS = 100;
 
 // The training staircase (seed 004 section 5.3.3, figure 31).
 struct StaircaseSettings {
-    double baseSpeed = 1.0;          // v0 in m/s, speed at difficulty 0 (v_d = v0 * 2^(d/6), eq. 12)
+    double baseSpeed = 1.0;  // v0 in m/s, speed at difficulty 0 (v_d = v0 * 2^(d/6), eq. 12)
     int startLevel = 0;
     int maxLevel = 60;
-    int shotsPerLevelEasy = 4;       // shots evaluated per level while everything is hit
-    int shotsPerLevelHard = 16;      // ... once hit rates drop ("progressively more shots")
+    int shotsPerLevelEasy = 4;  // shots evaluated per level while everything is hit
+    int shotsPerLevelHard = 16;  // ... once hit rates drop ("progressively more shots")
     std::string highMode = "conv120";  // stop when highMode's miss rate > lowMode's hit rate
     std::string lowMode = "conv15";
-    double timeLimitS = 720;         // then the test starts at the level reached
+    double timeLimitS = 720;  // then the test starts at the level reached
 };
 
 struct ShooterProtocol {
@@ -41,8 +41,8 @@ struct ShooterProtocol {
     // A live session on a display whose refresh is known to differ: refuse to start, or warn
     // and pace frames by timer (quick protocols, so they run anywhere).
     RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;
-    RenderSettings rendering;             // display.guard_band, display.supersampling
-    double targetRadius = 0.35;            // metres
+    RenderSettings rendering;  // display.guard_band, display.supersampling
+    double targetRadius = 0.35;  // metres
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
     double acclimationS = 300;
     int acclimationLevel = 0;
@@ -50,11 +50,11 @@ struct ShooterProtocol {
     StaircaseSettings training;
     std::vector<std::string> conditions{"conv15", "conv120", "warp15to120"};
     int targetsPerCondition = 225;
-    bool interleaveConditions = true;      // random order drawn from the session seed
+    bool interleaveConditions = true;  // random order drawn from the session seed
     double timeoutS = 3;
     double pauseS = 1;
     Scoring scoring = Scoring::Displayed;  // or World (DESIGN.md "Scoring")
-    bool supervisorStartsTest = true;      // the supervisor's Enter starts the recorded part
+    bool supervisorStartsTest = true;  // the supervisor's Enter starts the recorded part
     // Display: a click counts at the display frame where the button goes down; InputReads:
     // only at frames where the mode reads input (conv15/30/60 read it only at their renders),
     // so a press counts at the next such frame. Format 2 and later.

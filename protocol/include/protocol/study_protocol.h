@@ -12,7 +12,7 @@ namespace warplab::protocol {
 
 // Camera limits that every protocol's display section and `warplab render` share, so that a
 // view the one accepts is never refused by the other (degrees, both ends allowed).
-inline constexpr double kMinVerticalFovDeg = 1;    // narrower is a telescope, not a study
+inline constexpr double kMinVerticalFovDeg = 1;  // narrower is a telescope, not a study
 inline constexpr double kMaxVerticalFovDeg = 179;  // the projection degenerates at 180
 // Straight up or down (90) turns the world-up view basis over; the game itself clamps to ~86.
 inline constexpr double kMaxCameraPitchDeg = 89;

@@ -27,7 +27,7 @@ struct ContextOptions {
     bool vsync = true;
     bool visible = true;
     bool fullscreen = false;  // borderless at the display's own mode (no mode switch)
-    int display = 0;          // which display the window opens on (SDL's index)
+    int display = 0;  // which display the window opens on (SDL's index)
 };
 
 struct GlInfo {

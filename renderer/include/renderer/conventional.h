@@ -42,8 +42,8 @@ private:
 // The G-buffer read back into plain images, rows top-down.
 struct GBufferImages {
     image::ImageRGBA8 colour;
-    image::ImageF depth;     // window-space depth in [0, 1] as stored; 1 = far plane / sky
-    image::ImageU32 ids;     // scene::ObjectId per pixel, 0 where nothing was drawn
+    image::ImageF depth;  // window-space depth in [0, 1] as stored; 1 = far plane / sky
+    image::ImageU32 ids;  // scene::ObjectId per pixel, 0 where nothing was drawn
     image::ImageF velocity;  // 3 channels, world-space m/s
 };
 

@@ -21,19 +21,19 @@ namespace warplab::renderer {
 struct HudRating {
     std::string statement;
     std::vector<glm::vec4> boxes;
-    int highlighted = -1;      // the box under the cursor
+    int highlighted = -1;  // the box under the cursor
     int firstValue = 1;
     std::string minLabel, maxLabel;  // under the first and the last box
 };
 
 struct HudContent {
-    bool backdrop = false;     // a plain dark screen under everything else (no scene shown)
+    bool backdrop = false;  // a plain dark screen under everything else (no scene shown)
     bool reticle = true;
     std::optional<glm::vec2> cursor;  // the click game's cursor, frame pixels, x right, y down
     std::optional<HudRating> rating;
-    std::string banner;        // e.g. "HIT"; empty = none
-    bool bannerGood = false;   // green when true, red when false
-    std::string status;        // small text at the top, e.g. "Training: level 4"; empty = none
+    std::string banner;  // e.g. "HIT"; empty = none
+    bool bannerGood = false;  // green when true, red when false
+    std::string status;  // small text at the top, e.g. "Training: level 4"; empty = none
 };
 
 class HudRenderer {

@@ -13,7 +13,7 @@ namespace warplab::renderer {
 struct MeshVertex {
     glm::vec3 position;
     glm::vec3 normal;
-    glm::vec3 diffuse;   // Phong kd
+    glm::vec3 diffuse;  // Phong kd
     glm::vec4 specular;  // Phong ks in rgb, shininess in w
 };
 
@@ -35,7 +35,7 @@ public:
 MeshData loadObj(const std::string& path);
 
 MeshData makeUnitSphere(int slices, int stacks);  // radius 1, centred at the origin
-MeshData makeUnitBox();                           // half extents 1, centred at the origin
+MeshData makeUnitBox();  // half extents 1, centred at the origin
 
 // The sphere's tessellations, coarsest first: `slices` around, slices / 2 stacks.
 inline constexpr int kSphereSlices[] = {8, 16, 32, 64};

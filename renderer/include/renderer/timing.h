@@ -19,8 +19,8 @@ public:
     PassTimer(const PassTimer&) = delete;
     PassTimer& operator=(const PassTimer&) = delete;
 
-    void begin();       // glFinish, then start both clocks
-    PassTime end();     // glFinish, stop both clocks
+    void begin();  // glFinish, then start both clocks
+    PassTime end();  // glFinish, stop both clocks
 
 private:
     struct Impl;

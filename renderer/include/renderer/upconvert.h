@@ -66,17 +66,17 @@ private:
 
 struct DisplayImages {
     image::ImageRGBA8 colour;
-    image::ImageU32 ids;             // the object each displayed pixel shows (for scoring cross-checks)
-    image::ImageF correspondence;    // 4 channels, see DisplayFrame
+    image::ImageU32 ids;  // the object each displayed pixel shows (for scoring cross-checks)
+    image::ImageF correspondence;  // 4 channels, see DisplayFrame
 };
 // `correspondence` false leaves it empty: what a viewer sees is colour and objects only.
 DisplayImages readBack(const DisplayFrame& frame, bool correspondence = true);
 
 struct UpconversionInput {
     double displayTime = 0.0;
-    scene::CameraState camera;            // the view sampled at this display frame
+    scene::CameraState camera;  // the view sampled at this display frame
     const SourceFrame* previous = nullptr;  // latest source at or before displayTime
-    const SourceFrame* next = nullptr;      // the one after; only for methods with needsNext
+    const SourceFrame* next = nullptr;  // the one after; only for methods with needsNext
     // The scene at the displayed instant; only for methods with needsScene, which rasterise it
     // again (scene-assisted reprojection). Everything else works from the sources' images.
     const scene::SceneSnapshot* scene = nullptr;
@@ -85,8 +85,8 @@ struct UpconversionInput {
 struct MethodInfo {
     std::string name;
     std::string description;
-    double sourceRateHz = 15.0;   // how often sources are rendered conventionally
-    bool needsNext = false;       // uses the following source frame (so shows content later)
+    double sourceRateHz = 15.0;  // how often sources are rendered conventionally
+    bool needsNext = false;  // uses the following source frame (so shows content later)
     bool reportsCorrespondence = false;
     // Starts from what it computed for the previous displayed frame of the same source
     // interval (bidirectional reprojection's latest-frame initialisation): the bench makes

@@ -18,8 +18,8 @@ namespace warplab::renderer {
 struct WindowInput {
     bool closed = false;
     double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
-    bool leftHeld = false;                // the left button is down now
-    std::string keysPressed;              // in the order they were pressed
+    bool leftHeld = false;  // the left button is down now
+    std::string keysPressed;  // in the order they were pressed
 };
 
 class Window {

@@ -23,8 +23,7 @@ std::string readFile(const std::string& path) {
 std::string assemble(const std::string& source, const std::vector<std::string>& defines,
                      const std::vector<std::string>& includeSources, const std::string& path) {
     const auto versionPos = source.find("#version");
-    if (versionPos == std::string::npos)
-        throw GlError("shader file '" + path + "' has no #version line");
+    if (versionPos == std::string::npos) throw GlError("shader file '" + path + "' has no #version line");
     const auto lineEnd = source.find('\n', versionPos);
     if (lineEnd == std::string::npos) throw GlError("shader file '" + path + "' has no body");
     int versionLine = 1;
@@ -107,14 +106,12 @@ Program buildProgram(const ProgramDesc& desc) {
     GLint ok = GL_FALSE;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &ok);
     if (ok != GL_TRUE)
-        throw GlError("shader program " + names + " failed to link: " +
-                      infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog));
+        throw GlError("shader program " + names +
+                      " failed to link: " + infoLog(program.id(), glGetProgramiv, glGetProgramInfoLog));
     checkErrors(("building shader program " + names).c_str());
     return program;
 }
 
-GLint uniform(const Program& program, const char* name) {
-    return glGetUniformLocation(program.id(), name);
-}
+GLint uniform(const Program& program, const char* name) { return glGetUniformLocation(program.id(), name); }
 
 }  // namespace warplab::gl

@@ -10,16 +10,16 @@ namespace warplab::gl {
 
 struct ShaderStage {
     GLenum stage = GL_VERTEX_SHADER;  // GL_VERTEX_SHADER, GL_FRAGMENT_SHADER, ...
-    std::string file;                 // relative to the shader directory, e.g. "conventional.vert"
+    std::string file;  // relative to the shader directory, e.g. "conventional.vert"
     // Files of shared functions (no #version line) compiled in before `file`, in order; GLSL
     // has no #include. Errors in them are reported with their own name and line.
     std::vector<std::string> includes = {};
 };
 
 struct ProgramDesc {
-    std::string shaderDir;            // folder holding the .vert/.frag/... files
+    std::string shaderDir;  // folder holding the .vert/.frag/... files
     std::vector<ShaderStage> stages;
-    std::vector<std::string> defines; // "NAME VALUE" lines injected after #version
+    std::vector<std::string> defines;  // "NAME VALUE" lines injected after #version
 };
 
 // Compiles and links. Errors (missing file, compile or link failure) throw GlError with a

@@ -29,9 +29,9 @@ struct PairKey {
     float previousYaw = 0, previousPitch = 0, nextYaw = 0, nextPitch = 0;
     bool operator==(const PairKey& o) const {
         return previous == o.previous && next == o.next && previousSerial == o.previousSerial &&
-               nextSerial == o.nextSerial && previousTime == o.previousTime && nextTime == o.nextTime &&
-               previousYaw == o.previousYaw && previousPitch == o.previousPitch && nextYaw == o.nextYaw &&
-               nextPitch == o.nextPitch;
+            nextSerial == o.nextSerial && previousTime == o.previousTime && nextTime == o.nextTime &&
+            previousYaw == o.previousYaw && previousPitch == o.previousPitch && nextYaw == o.nextYaw &&
+            nextPitch == o.nextPitch;
     }
 };
 
@@ -73,11 +73,13 @@ public:
         info_.usesEarlierFrames = settings.latestInit;
         info_.usesSourceFlow = true;
         info_.description = "image-based bidirectional reprojection between 15 Hz I-frames, m = " +
-                            std::to_string(settings.iterations) + (settings.dualInit ? ", dual" : "") +
-                            (settings.latestInit ? ", latest-frame" : "") + " initialisation";
+            std::to_string(settings.iterations) + (settings.dualInit ? ", dual" : "") +
+            (settings.latestInit ? ", latest-frame" : "") + " initialisation";
         if (!settings.dualInit && !settings.latestInit) info_.description += " (default start only)";
         flowProgram_ = gl::buildProgram(
-            {paths.shaderDir, {{GL_VERTEX_SHADER, "flow.vert"}, {GL_FRAGMENT_SHADER, "flow.frag", {"flow_common.glsl"}}}, {}});
+            {paths.shaderDir,
+             {{GL_VERTEX_SHADER, "flow.vert"}, {GL_FRAGMENT_SHADER, "flow.frag", {"flow_common.glsl"}}},
+             {}});
         program_ = gl::buildProgram({paths.shaderDir,
                                      {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "bireproj.frag"}},
                                      {"ITERATIONS " + std::to_string(settings.iterations),
@@ -108,7 +110,7 @@ public:
         const auto& next = input.next->gbuffer.impl();
         const auto& before = input.previous->depicts;
         backwardFromSource_ = next.flowTo && next.flowTo->time == before.scene.time &&
-                              next.flowTo->yaw == before.camera.yaw && next.flowTo->pitch == before.camera.pitch;
+            next.flowTo->yaw == before.camera.yaw && next.flowTo->pitch == before.camera.pitch;
         if (!backwardFromSource_) drawFlow(input.next->depicts, input.previous->depicts, *backward_);
         flowsFor_ = key;
         latest_ = {};  // a new interval: no earlier B-frame in it
@@ -127,8 +129,10 @@ public:
         // Latest-frame initialisation reads the offsets of the latest earlier B-frame of this
         // interval. Repeating a frame (the bench's timed repeats) reads the same ones again,
         // so a repeat gives the same pixels.
-        if (latest_.alpha > 0.0f && latest_.alpha < alpha) initFrom_ = latest_;
-        else if (latest_.alpha != alpha) initFrom_ = {};
+        if (latest_.alpha > 0.0f && latest_.alpha < alpha)
+            initFrom_ = latest_;
+        else if (latest_.alpha != alpha)
+            initFrom_ = {};
         const int write = initFrom_.slot == 0 ? 1 : 0;
 
         auto& target = out.buffer().impl();
@@ -150,7 +154,8 @@ public:
         bindTexture(program_, "uFlowB", 5, backwardFromSource_ ? n.flow : backward_->impl().velocity);
         // Never the texture being written: with no earlier frame the shader ignores it anyway.
         bindTexture(program_, "uPreviousOffsets", 6, offsets_[1 - write]);
-        glUniform2f(gl::uniform(program_, "uSize"), static_cast<float>(target.width), static_cast<float>(target.height));
+        glUniform2f(gl::uniform(program_, "uSize"), static_cast<float>(target.width),
+                    static_cast<float>(target.height));
         glUniform1f(gl::uniform(program_, "uAlpha"), alpha);
         glUniform1f(gl::uniform(program_, "uPreviousAlpha"), initFrom_.slot < 0 ? 0.0f : initFrom_.alpha);
         glUniform1f(gl::uniform(program_, "uEps1"), settings_.errorThresholdPx);
@@ -173,7 +178,7 @@ public:
 
 private:
     struct Offsets {
-        int slot = -1;       // which of offsets_ holds them; -1 = none
+        int slot = -1;  // which of offsets_ holds them; -1 = none
         float alpha = 0.0f;  // the B-frame they were computed for
     };
 
@@ -218,9 +223,9 @@ private:
         geometry_.drawSky(flowProgram_);  // the sky first, everywhere; then the scene over it
         const GLint model = u("uModel"), otherModel = u("uOtherModel"), objectId = u("uObjectId");
         geometry_.draw(from.scene, from.camera, g.height, [&](const SceneGeometry::Item& item) {
-            const glm::mat4 there =
-                item.object == nullptr ? item.model
-                                       : scene::modelMatrix(scene::objectAt(*item.object, from.scene.time, to.scene));
+            const glm::mat4 there = item.object == nullptr
+                ? item.model
+                : scene::modelMatrix(scene::objectAt(*item.object, from.scene.time, to.scene));
             glUniformMatrix4fv(model, 1, GL_FALSE, glm::value_ptr(item.model));
             glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
             glUniform1ui(objectId, item.id);
@@ -252,16 +257,16 @@ public:
         info_ = bframes_.info();  // usesSourceFlow included: it hands the sources on
         info_.name = name;
         info_.description = "motion blur: the mean of " + std::to_string(samples) +
-                            " bidirectionally reprojected B-frames spread over the 15 Hz interval";
+            " bidirectionally reprojected B-frames spread over the 15 Hz interval";
         info_.reportsCorrespondence = false;
         info_.usesEarlierFrames = false;  // it makes the interval's frames itself, in order
         info_.exposureSamples = samples;
         accumulate_ = gl::buildProgram(
             {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "accumulate.frag"}}, {}});
-        resolve_ = gl::buildProgram({paths.shaderDir,
-                                     {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                      {GL_FRAGMENT_SHADER, "accumulate_resolve.frag"}},
-                                     {}});
+        resolve_ =
+            gl::buildProgram({paths.shaderDir,
+                              {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "accumulate_resolve.frag"}},
+                              {}});
     }
 
     const MethodInfo& info() const override { return info_; }

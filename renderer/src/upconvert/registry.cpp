@@ -119,10 +119,11 @@ void renderSource(ConventionalRenderer& renderer, const scene::FrameDescription&
     static std::uint64_t renders = 0;  // GL work is single-threaded: one context per process
     source.depicts = frame;
     const int displayedHeight = source.gbuffer.height() - 2 * source.band.y;
-    if (source.band.y > 0)
-        source.depicts.camera = scene::widenedByRows(frame.camera, displayedHeight, source.band.y);
-    if (flowTo != nullptr) renderer.render(source.depicts, source.gbuffer, *flowTo);
-    else renderer.render(source.depicts, source.gbuffer);
+    if (source.band.y > 0) source.depicts.camera = scene::widenedByRows(frame.camera, displayedHeight, source.band.y);
+    if (flowTo != nullptr)
+        renderer.render(source.depicts, source.gbuffer, *flowTo);
+    else
+        renderer.render(source.depicts, source.gbuffer);
     source.serial = ++renders;
 }
 
@@ -136,7 +137,8 @@ void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const M
 
 DisplayImages readBack(const DisplayFrame& frame, bool correspondence) {
     const auto& g = frame.buffer().impl();
-    return {readColourAttachment(g), readIdAttachment(g), correspondence ? readVectorAttachment(g, 4) : image::ImageF{}};
+    return {readColourAttachment(g), readIdAttachment(g),
+            correspondence ? readVectorAttachment(g, 4) : image::ImageF{}};
 }
 
 }  // namespace warplab::renderer

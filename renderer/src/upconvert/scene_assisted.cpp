@@ -36,10 +36,10 @@ public:
         info_.needsNext = true;
         info_.needsScene = true;
         info_.reportsCorrespondence = true;
-        program_ = gl::buildProgram({paths.shaderDir,
-                                     {{GL_VERTEX_SHADER, "scene_assisted.vert"},
-                                      {GL_FRAGMENT_SHADER, "scene_assisted.frag"}},
-                                     {}});
+        program_ =
+            gl::buildProgram({paths.shaderDir,
+                              {{GL_VERTEX_SHADER, "scene_assisted.vert"}, {GL_FRAGMENT_SHADER, "scene_assisted.frag"}},
+                              {}});
     }
 
     const MethodInfo& info() const override { return info_; }
@@ -55,7 +55,8 @@ public:
         checkSourceSize(a, out, info_);
         checkSourceSize(b, out, info_);
         const double t0 = a.depicts.scene.time, t1 = b.depicts.scene.time;
-        if (!(t1 > t0)) throw std::invalid_argument("scene-assisted: the next source frame is not later than the previous");
+        if (!(t1 > t0))
+            throw std::invalid_argument("scene-assisted: the next source frame is not later than the previous");
         const float alpha = static_cast<float>(std::clamp((input.displayTime - t0) / (t1 - t0), 0.0, 1.0));
 
         const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);

@@ -40,10 +40,10 @@ public:
     HoldMethod(const DataPaths& paths, double rateHz) {
         info_.name = "hold" + std::to_string(static_cast<int>(rateHz));
         info_.description = "conventional " + std::to_string(static_cast<int>(rateHz)) +
-                            " Hz, each frame held until the next (sample and hold)";
+            " Hz, each frame held until the next (sample and hold)";
         info_.sourceRateHz = rateHz;
         info_.reportsCorrespondence = true;  // pixel (x, y) shows source pixel (x, y) (past any band)
-        info_.acceptsGuardBand = true;       // shows the displayed part of a banded source
+        info_.acceptsGuardBand = true;  // shows the displayed part of a banded source
         program_ = gl::buildProgram(
             {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "hold.frag"}}, {}});
     }

@@ -26,12 +26,11 @@ public:
         info_.reportsCorrespondence = true;
         info_.takesGuardBand = true;
         info_.acceptsGuardBand = true;
-        info_.description =
-            settings.patchSize == 0
-                ? std::string("warp extrapolation from the latest 15 Hz frame, full-density mesh") +
-                      (settings.disocclusionFix ? " with the disocclusion fix" : " without the disocclusion fix")
-                : "warp extrapolation, " + std::to_string(settings.patchSize) + "x" +
-                      std::to_string(settings.patchSize) + " sparse mesh re-densified by tessellation";
+        info_.description = settings.patchSize == 0
+            ? std::string("warp extrapolation from the latest 15 Hz frame, full-density mesh") +
+                (settings.disocclusionFix ? " with the disocclusion fix" : " without the disocclusion fix")
+            : "warp extrapolation, " + std::to_string(settings.patchSize) + "x" + std::to_string(settings.patchSize) +
+                " sparse mesh re-densified by tessellation";
         const std::vector<std::string> common{"warp_common.glsl"};
         std::vector<gl::ShaderStage> stages;
         if (settings.patchSize == 0) {
@@ -40,10 +39,10 @@ public:
             stages.push_back({GL_VERTEX_SHADER, "warp_sparse.vert"});
             stages.push_back({GL_TESS_CONTROL_SHADER, "warp_sparse.tesc"});
             stages.push_back({GL_TESS_EVALUATION_SHADER, "warp_sparse.tese", common});
-            flagsProgram_ = gl::buildProgram({paths.shaderDir,
-                                              {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                               {GL_FRAGMENT_SHADER, "warp_patch_flags.frag", common}},
-                                              {}});
+            flagsProgram_ = gl::buildProgram(
+                {paths.shaderDir,
+                 {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "warp_patch_flags.frag", common}},
+                 {}});
         }
         std::vector<std::string> defines;
         if (settings.disocclusionFix || settings.patchSize != 0) {
@@ -53,10 +52,10 @@ public:
         }
         stages.push_back({GL_FRAGMENT_SHADER, "warp.frag"});
         program_ = gl::buildProgram({paths.shaderDir, stages, defines});
-        fillProgram_ = gl::buildProgram({paths.shaderDir,
-                                         {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                          {GL_FRAGMENT_SHADER, "warp_border_fill.frag"}},
-                                         {}});
+        fillProgram_ =
+            gl::buildProgram({paths.shaderDir,
+                              {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "warp_border_fill.frag"}},
+                              {}});
         primitives_ = gl::Query::create();
     }
 
@@ -215,8 +214,8 @@ private:
         fullMesh_.indices = gl::Buffer::create();
         glBindVertexArray(fullMesh_.vao.id());
         glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, fullMesh_.indices.id());
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)),
-                     indices.data(), GL_STATIC_DRAW);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(GLuint)), indices.data(),
+                     GL_STATIC_DRAW);
         glBindVertexArray(0);
         fullMesh_.width = w;
         fullMesh_.height = h;

@@ -29,16 +29,15 @@ public:
         info_.sourceRateHz = 15.0;
         info_.needsNext = false;
         info_.reportsCorrespondence = true;
-        info_.description = "extrapolation from the latest 15 Hz frame by iterative search along the warp's flow "
-                            "(one full-screen pass, no mesh), m = " +
-                            std::to_string(settings.iterations) +
-                            (settings.rings > 0 ? ", " + std::to_string(settings.rings) + " rings of neighbourhood starts"
-                                                : "");
-        program_ = gl::buildProgram({paths.shaderDir,
-                                     {{GL_VERTEX_SHADER, "fullscreen.vert"},
-                                      {GL_FRAGMENT_SHADER, "warp_search.frag", {"warp_common.glsl"}}},
-                                     {"ITERATIONS " + std::to_string(settings.iterations),
-                                      "RINGS " + std::to_string(settings.rings)}});
+        info_.description =
+            "extrapolation from the latest 15 Hz frame by iterative search along the warp's flow "
+            "(one full-screen pass, no mesh), m = " +
+            std::to_string(settings.iterations) +
+            (settings.rings > 0 ? ", " + std::to_string(settings.rings) + " rings of neighbourhood starts" : "");
+        program_ = gl::buildProgram(
+            {paths.shaderDir,
+             {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "warp_search.frag", {"warp_common.glsl"}}},
+             {"ITERATIONS " + std::to_string(settings.iterations), "RINGS " + std::to_string(settings.rings)}});
     }
 
     const MethodInfo& info() const override { return info_; }

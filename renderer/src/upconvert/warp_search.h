@@ -6,8 +6,8 @@
 namespace warplab::renderer {
 
 struct WarpSearchSettings {
-    int iterations = 3;              // m of seed 000 eq. 5 (1..8)
-    float errorThresholdPx = 0.5f;   // a search converged below this screen-space error
+    int iterations = 3;  // m of seed 000 eq. 5 (1..8)
+    float errorThresholdPx = 0.5f;  // a search converged below this screen-space error
     // Neighbourhood starts (see shaders/warp_search.frag): rings of 8 flow samples around each
     // pixel, the outermost at ringRadius times the image height, each inner one at half the
     // radius of the one outside it. 0 rings = only the starts p and p - F(p), which cannot find

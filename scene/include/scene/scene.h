@@ -17,7 +17,7 @@ enum ObjectId : std::uint32_t {
     kIdNone = 0,
     kIdHangar = 1,
     kIdTarget = 2,
-    kIdSpinningBar = 3,   // the bench's thin fast-rotating object (sequence "thin")
+    kIdSpinningBar = 3,  // the bench's thin fast-rotating object (sequence "thin")
     kIdFirstSphere = 16,  // falling spheres of the click game: kIdFirstSphere + index
 };
 

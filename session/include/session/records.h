@@ -30,8 +30,7 @@ enum class Storage { Integer, Real, Text, JsonObject };
 // so the two cannot disagree.
 template <class R>
 struct Field {
-    using Member = std::variant<std::int64_t R::*, int R::*, std::uint32_t R::*, double R::*,
-                                std::string R::*>;
+    using Member = std::variant<std::int64_t R::*, int R::*, std::uint32_t R::*, double R::*, std::string R::*>;
 
     // Not templates, so that a member of a base class of R converts (the store's version-1
     // rows extend today's records).
@@ -42,7 +41,7 @@ struct Field {
     Field(const char* name, std::string R::*m, bool jsonObject = false)
         : column(name), storage(jsonObject ? Storage::JsonObject : Storage::Text), member(m) {}
 
-    const char* column;   // SQL column name, also the name firstDifference reports
+    const char* column;  // SQL column name, also the name firstDifference reports
     Storage storage;
     Member member;
 };

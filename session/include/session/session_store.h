@@ -26,23 +26,23 @@ public:
 };
 
 struct SessionHeader {
-    std::string protocolJson;   // the protocol copied in full
+    std::string protocolJson;  // the protocol copied in full
     std::uint64_t seed = 0;
-    std::string participant;    // data, never a path
+    std::string participant;  // data, never a path
     std::string appVersion, glRenderer, glVersion;
     double refreshHz = 120;
     // The display the session ran on (or stands for): its aspect ratio shapes the view, so
     // replay needs it to reproduce what was under the reticle.
     int displayWidth = 1920, displayHeight = 1080;
-    std::string startedAt;      // ISO 8601 UTC; when empty, create() stores the current time
-    std::string player;         // "human", "bot:7", "replay:<path>"
-    int formatVersion = kSessionFormatVersion;   // as read; the writer writes only this one
+    std::string startedAt;  // ISO 8601 UTC; when empty, create() stores the current time
+    std::string player;  // "human", "bot:7", "replay:<path>"
+    int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 
 // One row per displayed frame: enough to replay the session exactly.
 struct InputRecord {
     std::int64_t frame = 0;
-    double displayTime = 0;     // seconds on the display clock
+    double displayTime = 0;  // seconds on the display clock
     double mouseDx = 0, mouseDy = 0;
     std::uint32_t buttons = 0;
     std::uint32_t keys = 0;
@@ -51,14 +51,14 @@ struct InputRecord {
 // Per displayed frame: what was shown and how it went.
 struct FrameRecord {
     std::int64_t frame = 0;
-    std::string mode;           // mode id, e.g. "warp15to120"
-    std::string kind;           // "rendered" | "held" | "warped" | "interpolated" | "frozen"
-    double frameMs = 0;         // measured present to present (live sessions); 0 headless
-    double renderMs = 0;        // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
+    std::string mode;  // mode id, e.g. "warp15to120"
+    std::string kind;  // "rendered" | "held" | "warped" | "interpolated" | "frozen"
+    double frameMs = 0;  // measured present to present (live sessions); 0 headless
+    double renderMs = 0;  // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
     int missedVsyncs = 0;
-    double cameraYaw = 0, cameraPitch = 0;          // radians, scene::CameraState convention
-    std::string detailJson;     // the game's own per-frame state, a JSON object ("" = none):
-                                // shooter {"target":[x,y,z]}, click {"cursor":[x,y],"spheres":[...]}
+    double cameraYaw = 0, cameraPitch = 0;  // radians, scene::CameraState convention
+    std::string detailJson;  // the game's own per-frame state, a JSON object ("" = none):
+        // shooter {"target":[x,y,z]}, click {"cursor":[x,y],"spheres":[...]}
 };
 
 // One row per trial/shot/click/match/rating/phase change. The columns every game shares are
@@ -66,13 +66,13 @@ struct FrameRecord {
 // is in detailJson, whose keys each game documents in docs/session-format.md.
 struct EventRecord {
     std::int64_t frame = 0;
-    std::string type;           // "shot", "timeout", "phase", "level", "click", "match", "rating" ...
+    std::string type;  // "shot", "timeout", "phase", "level", "click", "match", "rating" ...
     std::string phase;
-    int trial = -1;             // trial (shooter) or match (click) index; -1: not part of one
+    int trial = -1;  // trial (shooter) or match (click) index; -1: not part of one
     std::string mode;
-    double eventTime = 0;       // seconds on the display clock
-    std::string worldOutcome, displayedOutcome;     // "hit" | "miss" | "timeout" | "green" | "red" | ""
-    std::string detailJson;     // a JSON object text ("" = none), keys sorted (nlohmann dump)
+    double eventTime = 0;  // seconds on the display clock
+    std::string worldOutcome, displayedOutcome;  // "hit" | "miss" | "timeout" | "green" | "red" | ""
+    std::string detailJson;  // a JSON object text ("" = none), keys sorted (nlohmann dump)
 };
 
 // Doubles round-trip bit for bit (-0.0 and infinities included); NaN is stored as SQL NULL
@@ -142,14 +142,14 @@ struct SessionData {
     SessionHeader header;
     std::vector<InputRecord> inputs;
     std::vector<FrameRecord> frames;
-    std::vector<EventRecord> events;   // in the order they were added
-    bool completed = false;            // finish() was committed and nothing was lost to damage
+    std::vector<EventRecord> events;  // in the order they were added
+    bool completed = false;  // finish() was committed and nothing was lost to damage
     // Committed data was lost or altered (a row or commit failing its checksum, a cut-off
     // table): `note` says where reading stopped. An incomplete session that is not damaged
     // (killed, or still running) holds every trial it committed.
     bool damaged = false;
     std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
-    std::string note;                  // "" when complete; else why not and where it ends
+    std::string note;  // "" when complete; else why not and where it ends
 };
 
 // Opens read-only (a running session may be read too). Checks the format version and schema.

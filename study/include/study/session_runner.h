@@ -17,9 +17,9 @@ struct HeadlessRun {
     std::string protocolPath;
     std::string participant;
     std::string resultsDir;
-    std::string player;        // "bot", "bot:SEED", "sim", "sim:SEED" or "replay:SESSION"
-    std::uint64_t seed = 1;    // the session seed: trial order and target spawns
-    int displayWidth = 1920;   // the display the session stands for (fits the target plane)
+    std::string player;  // "bot", "bot:SEED", "sim", "sim:SEED" or "replay:SESSION"
+    std::uint64_t seed = 1;  // the session seed: trial order and target spawns
+    int displayWidth = 1920;  // the display the session stands for (fits the target plane)
     int displayHeight = 1080;
     // Makes the "sim" players, which draw what they see; unset: "sim" is refused.
     game::SeeingPlayerMaker seeingPlayer;
@@ -33,11 +33,10 @@ void checkPlayer(const std::string& player);
 
 // What headless and live runs share. `seeing` makes the "sim" players, which only run headless
 // (unset: "sim" is refused with a sentence saying so).
-std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed,
-                                         const game::Study& study, const game::DisplaySize& display,
-                                         const game::SeeingPlayerMaker& seeing = {});
+std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed, const game::Study& study,
+                                         const game::DisplaySize& display, const game::SeeingPlayerMaker& seeing = {});
 session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
-                                      const std::string& player, const game::DisplaySize& display);
+                                     const std::string& player, const game::DisplaySize& display);
 session::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);
 
 // When a running session commits, and what the supervisor hears about its file. Shared by
@@ -75,15 +74,15 @@ private:
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress);
 
 struct ReplayResult {
-    std::size_t outcomes = 0;      // scored outcomes logged (shots and timeouts, clicks)
-    std::size_t reproduced = 0;    // ... and replayed identically
-    std::size_t events = 0;        // all events compared
-    std::string difference;        // first difference, "" when none
-    std::string note;              // why the session ends early, "" when complete
-    bool completed = false;        // the session finished and nothing was lost
-    bool damaged = false;          // committed data was lost or altered (SessionData::damaged)
-    double seconds = 0.0;          // wall time of the replay itself
-    double displaySeconds = 0.0;   // display time the session covers
+    std::size_t outcomes = 0;  // scored outcomes logged (shots and timeouts, clicks)
+    std::size_t reproduced = 0;  // ... and replayed identically
+    std::size_t events = 0;  // all events compared
+    std::string difference;  // first difference, "" when none
+    std::string note;  // why the session ends early, "" when complete
+    bool completed = false;  // the session finished and nothing was lost
+    bool damaged = false;  // committed data was lost or altered (SessionData::damaged)
+    double seconds = 0.0;  // wall time of the replay itself
+    double displaySeconds = 0.0;  // display time the session covers
 };
 
 // What `warplab replay` exits with, so that a script can tell a session worth keeping from one
@@ -92,10 +91,10 @@ struct ReplayResult {
 // where any other error (exit 1) says nothing about the session.
 enum ReplayExit : int {
     kReplayReproduced = 0,
-    kReplayFailed = 1,      // an error that is not the session's: as for every command (2 is a bad command line)
+    kReplayFailed = 1,  // an error that is not the session's: as for every command (2 is a bad command line)
     kReplayIncomplete = 3,  // the session never finished (killed, ended early, still running); all it holds replays
-    kReplayDamaged = 4,     // committed data was lost or altered, or the file is unreadable
-    kReplayDiffers = 5,     // a logged record differs from the replayed one
+    kReplayDamaged = 4,  // committed data was lost or altered, or the file is unreadable
+    kReplayDiffers = 5,  // a logged record differs from the replayed one
 };
 int replayExitCode(const ReplayResult& result);
 

@@ -42,7 +42,7 @@ private:
     renderer::DisplayFrame frame_;
     std::vector<SeenObject> lastObjects_;
     Thumbnail lastPicture_, lastDetail_;
-    bool haveImage_ = false;            // an image of the scene is on screen (no screen since)
+    bool haveImage_ = false;  // an image of the scene is on screen (no screen since)
     std::int64_t lastMadeSource_ = -1;  // the source it copies (rendered or held), else -1
 };
 
