@@ -16,6 +16,8 @@ packages=(
   # fuzzing (scripts/fuzz.sh): clang; libclang-rt-14-dev holds libFuzzer and the sanitizer
   # runtimes (libclang_rt.fuzzer-x86_64.a ...); llvm-14 the symbolizer for readable reports
   clang libclang-rt-14-dev llvm-14
+  # the house style (.clang-format; scripts/format.sh, and a ctest that checks the tree)
+  clang-format
   # analysis scripts run with Debian's /usr/bin/python3 and these (statsmodels: the click
   # game's repeated-measures ANOVA)
   python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest python3-statsmodels
