@@ -31,30 +31,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using detail::Checksum;
-using detail::columnText;
-using detail::CommitChecksum;
-using detail::Db;
-using detail::eventTable;
-using detail::frameTable;
-using detail::hashRow;
-using detail::headerEntries;
-using detail::inputTable;
-using detail::kApplicationId;
-using detail::kCommitColumns;
-using detail::Layout;
-using detail::lostInWal;
-using detail::parseNumber;
-using detail::rowValid;
-using detail::Stmt;
-using detail::Table;
-using detail::toRecord;
-using detail::v1EventFields;
-using detail::V1EventRow;
-using detail::v1FrameFields;
-using detail::V1FrameRow;
-using detail::v1InputFields;
-using detail::WalLoss;
+// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, v1_format.h, wal_scan.h).
+using namespace detail;
 
 class Reader {
 public:

@@ -36,29 +36,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using detail::anyExists;
-using detail::bindArg;
-using detail::bindOptional;
-using detail::Checksum;
-using detail::columnText;
-using detail::CommitChecksum;
-using detail::Db;
-using detail::eventTable;
-using detail::frameTable;
-using detail::hashRow;
-using detail::headerEntries;
-using detail::inputTable;
-using detail::insertSql;
-using detail::kApplicationId;
-using detail::kExtension;
-using detail::kMaxNameBytes;
-using detail::kSchema;
-using detail::numberText;
-using detail::removeSessionFiles;
-using detail::safeName;
-using detail::Stmt;
-using detail::Table;
-using detail::timeForName;
+// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, v1_format.h, wal_scan.h).
+using namespace detail;
 
 std::string utcNow() {
     using namespace std::chrono;
