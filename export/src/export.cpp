@@ -11,7 +11,7 @@
 #include <tuple>
 
 #include "export/csv.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "game/registry.h"
 #include "session/session_store.h"
 
@@ -254,16 +254,16 @@ const std::vector<Column<MatchRow>>& matchColumns() {
 
 // The conditions the sessions were run in, as the mode table holds them, so the analysis keeps
 // no list of its own. An unset rate or method (a mode without upconversion) is an empty cell.
-const std::vector<Column<game::ModeSpec>>& modeColumns() {
+const std::vector<Column<condition::ModeSpec>>& modeColumns() {
     using F = CsvFile;
-    using R = game::ModeSpec;
-    using game::Upconversion;
+    using R = condition::ModeSpec;
+    using condition::Upconversion;
     static const std::vector<Column<R>> columns = {
         {"mode", [](F& f, const R& m) { f.text(m.id); }},
         {"description", [](F& f, const R& m) { f.text(m.description); }},
         {"render_rate_hz", [](F& f, const R& m) { f.number(m.renderRateHz); }},
         {"added_lag_ms", [](F& f, const R& m) { f.number(m.lagMs); }},
-        {"upconversion", [](F& f, const R& m) { f.text(game::upconversionName(m.upconversion)); }},
+        {"upconversion", [](F& f, const R& m) { f.text(condition::upconversionName(m.upconversion)); }},
         {"upconverted_rate_hz",
          [](F& f, const R& m) {
              if (m.upconversion == Upconversion::None)
@@ -390,8 +390,8 @@ public:
         }
         // Every mode of the table, whether or not a session used it: the conditions this build runs.
         CsvFile modes(file(outDir, "modes.csv"), headerOf(modeColumns()));
-        for (const std::string& id : game::modeIds()) {
-            writeCells(modes, modeColumns(), game::modeSpec(id));
+        for (const std::string& id : condition::modeIds()) {
+            writeCells(modes, modeColumns(), condition::modeSpec(id));
             modes.endRow();
         }
         // The games of the readable sessions, in the order the registry knows them.

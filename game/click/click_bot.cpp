@@ -3,19 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "game/screen.h"
 
 namespace warplab::game {
 
 int botRating(const std::string& mode, int statement, int min, int max) {
-    const ModeSpec& m = modeSpec(mode);
-    const double shownRate = m.upconversion == Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
+    const condition::ModeSpec& m = condition::modeSpec(mode);
+    const double shownRate = m.upconversion == condition::Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
     // Average time from an input to its frame: what the schedule shows a mouse step at a render
     // with (the queue; bidirectional reprojection's wait for the next I-frame), plus half a
     // render period of holding. The rating is the mode's, not the display's: the schedule runs
     // at the rate the mode shows frames, where every mode's lag is whole frames.
-    const ModeSchedule schedule(m, shownRate);
+    const condition::ModeSchedule schedule(m, shownRate);
     const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / m.renderRateHz;
     const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
     const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);

@@ -95,7 +95,8 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
 }
 
 void ClickGame::switchTo(const std::string& mode, int) {
-    ModeSchedule(modeSpec(mode), protocol_.refreshHz);  // throws for a mode this display cannot run
+    condition::ModeSchedule(condition::modeSpec(mode),
+                            protocol_.refreshHz);  // throws for a mode this display cannot run
     freePlay_ = true;
     matches_ = {{0, 0, mode}};
     matchIndex_ = 0;
@@ -143,7 +144,7 @@ void ClickGame::beginMatch() {
     // its schedule's renders, start with the next one.
     matchStart_ = frame_ + 1;
     world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
-    schedule_.emplace(modeSpec(m.mode), protocol_.refreshHz);
+    schedule_.emplace(condition::modeSpec(m.mode), protocol_.refreshHz);
     worldHistory_.clear();
     // The cursor stays where the hand left it; frames before the match shows its own
     // history (lag, bireproj) show it where the match found it.
@@ -208,7 +209,7 @@ void ClickGame::answerRating(int value, const char* how) {
     emit(done);
 }
 
-std::vector<physics::Sphere> ClickGame::depictedSpheres(const ScheduledFrame& f) const {
+std::vector<physics::Sphere> ClickGame::depictedSpheres(const condition::ScheduledFrame& f) const {
     using Spheres = std::vector<physics::Sphere>;
     auto at = [&](std::int64_t frame) -> std::optional<Spheres> { return worldHistory_.at(frame); };
     auto move = [](Spheres spheres, double dt) {
@@ -280,7 +281,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
     cursorHistory_.record(frame_, cursor_);
 
     const SchedulePlacement placement{matchStart_, refresh};
-    const ScheduledFrame f = schedule_->frame(k);
+    const condition::ScheduledFrame f = schedule_->frame(k);
     ShownFrame shown = scheduledShownFrame(frame_, match.mode, f, placement);
     shown.camera = camera_;
     shown.pointer = PointerKind::Cursor;
@@ -386,12 +387,12 @@ session::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
     session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
-    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : frameKindName(shown.schedule.kind));
+    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     nlohmann::json detail{{"cursor", {shown.cursor.x, shown.cursor.y}}};
     // Spheres where the frame shows something new; a held frame shows its source's.
-    if (!shown.blank && shown.schedule.kind != FrameKind::Held) {
+    if (!shown.blank && shown.schedule.kind != condition::FrameKind::Held) {
         nlohmann::json spheres = nlohmann::json::array();
         for (const auto& o : shown.scene.objects)
             spheres.push_back({o.id - scene::kIdFirstSphere, o.colour == kGreen ? 1 : 0, rounded(o.position.x),

@@ -68,7 +68,7 @@ private:
     void answerRating(int value, const char* how);
     ShownFrame matchFrame(bool click);
     ShownFrame screenFrame();  // ready, rating and done screens
-    std::vector<physics::Sphere> depictedSpheres(const ScheduledFrame& f) const;
+    std::vector<physics::Sphere> depictedSpheres(const condition::ScheduledFrame& f) const;
     void emit(session::EventRecord event);
     // An event of the match in progress: its round, index and mode, and the detail with the
     // round's name and whether it is scored (unless the detail says what "scored" means).
@@ -93,7 +93,7 @@ private:
     std::size_t matchIndex_ = 0;
     std::int64_t matchStart_ = 0;
     std::optional<physics::FallingSpheres> world_;
-    std::optional<ModeSchedule> schedule_;
+    std::optional<condition::ModeSchedule> schedule_;
     FrameHistory<std::vector<physics::Sphere>> worldHistory_;  // the world at each frame of the match
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;

@@ -106,7 +106,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Study> parseClickStudy(const std::string& jsonText, const std::string& sourceName) {
-    auto p = protocol::parseClickProtocol(jsonText, sourceName, checkMode);
+    auto p = protocol::parseClickProtocol(jsonText, sourceName, condition::checkMode);
     // What only the physics can judge (a radius too big for the box, more spheres than fit at
     // the start) is still the protocol's fault: say so before any session starts.
     try {

@@ -54,7 +54,7 @@ ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_
     plane_ = physics::fitTargetPlane(restingCamera_, aspect, protocol.targetRadius);
     camera_ = restingCamera_;
     mode_ = protocol.acclimationMode;
-    schedule_.emplace(modeSpec(mode_), protocol.refreshHz);
+    schedule_.emplace(condition::modeSpec(mode_), protocol.refreshHz);
 }
 
 std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
@@ -63,8 +63,8 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
 }
 
 void ShooterGame::switchTo(const std::string& mode, int difficulty) {
-    ModeSchedule(modeSpec(mode),
-                 protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
+    condition::ModeSchedule(condition::modeSpec(mode),
+                            protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
     freePlay_ = true;
     freeMode_ = mode;
     freeLevel_ = std::max(0, difficulty);
@@ -128,7 +128,7 @@ std::optional<glm::dvec3> ShooterGame::targetAt(double time) const {
     return glm::dvec3(p, plane_.z);
 }
 
-std::optional<glm::dvec3> ShooterGame::displayedTarget(const ScheduledFrame& f) const {
+std::optional<glm::dvec3> ShooterGame::displayedTarget(const condition::ScheduledFrame& f) const {
     const double refresh = protocol_.refreshHz;
     // The target at a session frame: where it is, and the velocity a warp moves it on by.
     struct Target {
@@ -210,7 +210,7 @@ void ShooterGame::startTrial(const std::string& mode, int level) {
     trial_ = t;
     // Every trial starts its mode's schedule afresh (DESIGN: switching modes starts clean).
     mode_ = mode;
-    schedule_.emplace(modeSpec(mode), protocol_.refreshHz);
+    schedule_.emplace(condition::modeSpec(mode), protocol_.refreshHz);
     scheduleStart_ = frame_;
 }
 
@@ -363,7 +363,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     }
 
     const SchedulePlacement placement{scheduleStart_, refresh};
-    const ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
+    const condition::ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
     ShownFrame shown = scheduledShownFrame(frame_, mode_, f, placement);
     shown.camera = cameraHistory_.at(cameraFrame(f, placement));
     if (const auto p = displayedTarget(f)) {
@@ -442,7 +442,7 @@ session::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
     session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
-    r.kind = shown.frozen ? "frozen" : frameKindName(shown.schedule.kind);
+    r.kind = shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind);
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     if (!shown.scene.objects.empty()) {

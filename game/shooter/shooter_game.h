@@ -15,7 +15,7 @@
 #include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "physics/bouncing_target.h"
 #include "session/session_store.h"
 #include "protocol/shooter_protocol.h"
@@ -77,7 +77,7 @@ private:
     void finishTrainingLevel();
     bool timedOut(const Trial& trial) const;
     std::optional<glm::dvec3> targetAt(double time) const;  // the world; nullopt when no target
-    std::optional<glm::dvec3> displayedTarget(const ScheduledFrame& f) const;  // as frame f depicts it
+    std::optional<glm::dvec3> displayedTarget(const condition::ScheduledFrame& f) const;  // as frame f depicts it
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     double speedFor(int level) const;
     std::uint64_t trialSeed(int phaseTag, int index) const;
@@ -97,7 +97,7 @@ private:
     Phase phase_ = Phase::Acclimation;
     std::int64_t phaseStartFrame_ = 0;
     std::string mode_;
-    std::optional<ModeSchedule> schedule_;
+    std::optional<condition::ModeSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;
 
     std::optional<Trial> trial_;

@@ -83,7 +83,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Study> parseShooterStudy(const std::string& jsonText, const std::string& sourceName) {
-    return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName, checkMode));
+    return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName, condition::checkMode));
 }
 
 }  // namespace warplab::game

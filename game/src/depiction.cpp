@@ -2,7 +2,7 @@
 
 namespace warplab::game {
 
-ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const ScheduledFrame& f,
+ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement) {
     ShownFrame shown;
     shown.frame = frame;
@@ -16,27 +16,27 @@ ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, cons
     return shown;
 }
 
-std::int64_t cameraFrame(const ScheduledFrame& f, const SchedulePlacement& placement) {
+std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlacement& placement) {
     return placement.frameAt(f.cameraTime);
 }
 
-WorldDepiction depictWorld(const ModeSpec& mode, const ScheduledFrame& f, const SchedulePlacement& placement,
-                           WorldClock clock) {
+WorldDepiction depictWorld(const condition::ModeSpec& mode, const condition::ScheduledFrame& f,
+                           const SchedulePlacement& placement, WorldClock clock) {
     const double refresh = placement.refreshHz;
     auto sessionTime = [&](std::int64_t frame) { return static_cast<double>(frame) / refresh; };
     WorldDepiction d;
     d.depictedFrame = placement.frameAt(f.sceneTime);
     d.frame = d.depictedFrame;
     switch (mode.upconversion) {
-        case Upconversion::None: break;
-        case Upconversion::Warp:
+        case condition::Upconversion::None: break;
+        case condition::Upconversion::Warp:
             // The source's world moved on by its velocities, as the warp moves its pixels.
             d.how = Depicted::Extrapolated;
             d.frame = placement.frameAt(f.worldSampleTime);
             d.dt = clock == WorldClock::Session ? sessionTime(d.depictedFrame) - sessionTime(d.frame)
                                                 : f.sceneTime - f.worldSampleTime;
             break;
-        case Upconversion::Bidirectional:
+        case condition::Upconversion::Bidirectional:
             // B-frames move what the I-frames before and after show linearly between them.
             if (f.nextSourceIndex < 0) break;
             d.how = Depicted::Interpolated;

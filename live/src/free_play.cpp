@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "free_play_keys.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "live/live_session.h"
 #include "window_loop.h"
 
@@ -21,7 +21,7 @@ public:
           level_(run.freePlayLevel),
           game_(study.newFreePlay(run.seed, display, mode_, level_)),
           refreshHz_(study.refreshHz()),
-          modes_(game::modeIds()),
+          modes_(condition::modeIds()),
           progress_(progress) {}
 
     game::Game& game() override { return *game_; }
@@ -55,7 +55,7 @@ void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, gam
     // The supervisor's keys: digits and [ ] pick a mode, U and D the difficulty.
     const double refresh = refreshHz_;
     const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [refresh](const std::string& mode) {
-        return game::checkMode(mode, refresh).empty();
+        return condition::checkMode(mode, refresh).empty();
     });
     if (next.mode != mode_ || next.level != level_) {
         try {

@@ -62,7 +62,7 @@ void FrameMaker::release(Kept& kept) {
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
         // The method that makes the mode's in-between frames says what its sources need.
-        const std::string name = shown.mode.empty() ? std::string() : game::modeSpec(shown.mode).method;
+        const std::string name = shown.mode.empty() ? std::string() : condition::modeSpec(shown.mode).method;
         const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
         // Warps render beyond the displayed field of view, so what a turn brings into view is
         // really there; the frames they show as rendered are the band's inside (hold).
@@ -86,8 +86,8 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
     std::string name = "hold120";
     const auto kind = shown.schedule.kind;
-    if (kind == game::FrameKind::Warped || kind == game::FrameKind::Interpolated) {
-        name = game::modeSpec(shown.mode).method;
+    if (kind == condition::FrameKind::Warped || kind == condition::FrameKind::Interpolated) {
+        name = condition::modeSpec(shown.mode).method;
     }
     renderer::UpconversionMethod& shows = method(name);
     auto it = sources_.find(shown.sourceFrame);
@@ -105,7 +105,7 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     input.camera = shown.camera;
     input.previous = it->second.frame.get();
     input.scene = &shown.scene;
-    if (kind == game::FrameKind::Interpolated) {
+    if (kind == condition::FrameKind::Interpolated) {
         const auto next = sources_.find(shown.nextSourceFrame);
         input.next = next == sources_.end() ? it->second.frame.get() : next->second.frame.get();
     }

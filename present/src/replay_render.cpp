@@ -39,7 +39,8 @@ public:
     // `ids`: the displayed frame's id attachment (the HUD leaves it untouched).
     void check(const game::ShownFrame& shown, const image::ImageU32& ids, ReplayRenderResult& result) {
         const auto kind = shown.schedule.kind;
-        if (shown.blank || shown.frozen || !(kind == game::FrameKind::Rendered || kind == game::FrameKind::Held))
+        if (shown.blank || shown.frozen ||
+            !(kind == condition::FrameKind::Rendered || kind == condition::FrameKind::Held))
             return;
         const int width = ids.width, height = ids.height;
         const bool cursor = shown.pointer == game::PointerKind::Cursor;

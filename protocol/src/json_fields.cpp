@@ -142,7 +142,7 @@ std::string NumberRange::text() const {
 Reader::Reader(std::string source) : source_(std::move(source)) {}
 
 Reader::Reader(std::string source, ModeCheck modes) : source_(std::move(source)), modes_(std::move(modes)) {
-    if (!modes_) throw std::invalid_argument("protocol parser: the ModeCheck is empty; pass game::checkMode");
+    if (!modes_) throw std::invalid_argument("protocol parser: the ModeCheck is empty; pass condition::checkMode");
 }
 
 void Reader::fail(const std::string& path, const std::string& reason) const {

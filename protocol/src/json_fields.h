@@ -44,7 +44,7 @@ std::string formatNumber(double value);
 std::string joinPath(const std::string& parent, const std::string& key);
 // The offending value as the user wrote it, short and ASCII so a message stays one line.
 std::string describe(const Json& value);
-// value / unit is a whole number >= 1, with the tolerance game::ModeSchedule uses.
+// value / unit is a whole number >= 1, with the tolerance condition::ModeSchedule uses.
 bool wholeMultiple(double value, double unit);
 // The top level every protocol starts with, in the documented order; the game's sections follow.
 Json headerJson(int formatVersion, const std::string& name, const std::string& description, const std::string& game);

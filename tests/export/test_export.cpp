@@ -25,7 +25,7 @@
 
 #include "export/csv.h"
 #include "export/export.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "study/session_runner.h"
 #include "session/session_store.h"
 
@@ -315,20 +315,20 @@ TEST(Export, ModesCsvIsTheModeTable) {
     headless("shooter-quick.json", "P01", results, 1);
     exportQuietly(results, out);
     const auto rows = readCsv(out + "/modes.csv");
-    const std::vector<std::string> ids = game::modeIds();
+    const std::vector<std::string> ids = condition::modeIds();
     ASSERT_EQ(rows.size(), ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) {
-        const game::ModeSpec& m = game::modeSpec(ids[i]);
+        const condition::ModeSpec& m = condition::modeSpec(ids[i]);
         const Row& row = rows[i];
         SCOPED_TRACE(m.id);
         EXPECT_EQ(row.at("mode"), m.id);
         EXPECT_EQ(row.at("description"), m.description);
         EXPECT_EQ(std::stod(row.at("render_rate_hz")), m.renderRateHz);
         EXPECT_EQ(std::stod(row.at("added_lag_ms")), m.lagMs);
-        EXPECT_EQ(row.at("upconversion"), game::upconversionName(m.upconversion));
+        EXPECT_EQ(row.at("upconversion"), condition::upconversionName(m.upconversion));
         EXPECT_EQ(row.at("method"), m.method);
-        EXPECT_EQ(row.at("upconverts"), m.upconversion == game::Upconversion::None ? "false" : "true");
-        if (m.upconversion == game::Upconversion::None)
+        EXPECT_EQ(row.at("upconverts"), m.upconversion == condition::Upconversion::None ? "false" : "true");
+        if (m.upconversion == condition::Upconversion::None)
             EXPECT_EQ(row.at("upconverted_rate_hz"), "");
         else
             EXPECT_EQ(std::stod(row.at("upconverted_rate_hz")), m.upconvertedRateHz);

@@ -24,7 +24,8 @@ namespace {
 const DisplaySize kDisplay{1280, 720};
 
 protocol::ClickProtocol quick() {
-    return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json", checkMode);
+    return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json",
+                                       condition::checkMode);
 }
 
 nlohmann::json detail(const session::EventRecord& e) { return nlohmann::json::parse(e.detailJson); }
@@ -169,7 +170,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
             const glm::dvec2 before = shown.cursor;
             const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
-            const ModeSchedule schedule(modeSpec(mode), p.refreshHz);
+            const condition::ModeSchedule schedule(condition::modeSpec(mode), p.refreshHz);
             ShownFrame f = stepFrame;
             while (f.cursor == before) f = game.step({});
             EXPECT_NEAR(f.time - stepFrame.time, schedule.viewLatency(stepFrame.schedule.displayTime), 1e-9)
@@ -194,8 +195,8 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
             const ShownFrame shown = game.step({});
             world[shown.frame] = game.world()->spheres();
             const std::int64_t depicted = std::llround(shown.scene.time * p.refreshHz);
-            if (!world.count(depicted) || shown.schedule.kind == FrameKind::Interpolated) {
-                if (shown.schedule.kind != FrameKind::Interpolated) continue;
+            if (!world.count(depicted) || shown.schedule.kind == condition::FrameKind::Interpolated) {
+                if (shown.schedule.kind != condition::FrameKind::Interpolated) continue;
                 // Interpolated: every shown sphere lies between its two I-frame positions.
                 if (!world.count(shown.sourceFrame) || !world.count(shown.nextSourceFrame)) continue;
                 const auto& a = world.at(shown.sourceFrame);
@@ -365,17 +366,17 @@ TEST(ClickBot, RatesEachModeByItsSchedulesLatencyAsTheFormerFormulaDid) {
     // The formula the bot used before it asked the schedule, the oracle: the ratings, whole
     // numbers, must not move for any mode, statement or scale.
     auto former = [](const std::string& mode, int statement, int min, int max) {
-        const ModeSpec& m = modeSpec(mode);
-        const double shownRate = m.upconversion == Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
+        const condition::ModeSpec& m = condition::modeSpec(mode);
+        const double shownRate = m.upconversion == condition::Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
         double latencyMs = 500.0 / m.renderRateHz + m.lagMs;
-        if (m.upconversion == Upconversion::Bidirectional) latencyMs += 1000.0 / m.renderRateHz;
+        if (m.upconversion == condition::Upconversion::Bidirectional) latencyMs += 1000.0 / m.renderRateHz;
         const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
         const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
         const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));
         const int values[4] = {enjoyed, 8 - enjoyed, responsive, smooth};
         return std::clamp(values[statement % 4], min, max);
     };
-    for (const std::string& mode : modeIds())
+    for (const std::string& mode : condition::modeIds())
         for (int statement = 0; statement < 8; ++statement)
             for (const auto& [min, max] : {std::pair{1, 7}, std::pair{1, 5}, std::pair{0, 10}, std::pair{3, 4}})
                 EXPECT_EQ(botRating(mode, statement, min, max), former(mode, statement, min, max))

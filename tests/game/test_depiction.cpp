@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "game/depiction.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 
 namespace warplab::game {
 namespace {
@@ -35,7 +35,7 @@ std::optional<Point> worldAt(std::int64_t frame, const SchedulePlacement& at, Wo
     return trueAt(static_cast<double>(since) / at.refreshHz);
 }
 
-std::optional<Point> shownAt(const ModeSchedule& schedule, std::int64_t k, const SchedulePlacement& at,
+std::optional<Point> shownAt(const condition::ModeSchedule& schedule, std::int64_t k, const SchedulePlacement& at,
                              WorldClock clock) {
     const WorldDepiction d = depictWorld(schedule.mode(), schedule.frame(k), at, clock);
     return depictedState<Point>(
@@ -43,11 +43,11 @@ std::optional<Point> shownAt(const ModeSchedule& schedule, std::int64_t k, const
 }
 
 TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
-    const ModeSchedule warp(modeSpec("warp15to120"), 120.0);
+    const condition::ModeSchedule warp(condition::modeSpec("warp15to120"), 120.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{1237, 120.0};
         for (std::int64_t k = 0; k < 64; ++k) {
-            const ScheduledFrame f = warp.frame(k);
+            const condition::ScheduledFrame f = warp.frame(k);
             const WorldDepiction d = depictWorld(warp.mode(), f, at, clock);
             ASSERT_EQ(d.how, Depicted::Extrapolated) << k;
             // The latest 15 Hz render (every 8th display frame) is the source, moved on to the
@@ -63,7 +63,7 @@ TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
 }
 
 TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
-    const ModeSchedule bireproj(modeSpec("bireproj15to60"), 60.0);
+    const condition::ModeSchedule bireproj(condition::modeSpec("bireproj15to60"), 60.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{905, 60.0};
         for (std::int64_t k = 4; k < 64; ++k) {
@@ -92,7 +92,8 @@ TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
 
 TEST(Depiction, HeldAndLaggedFramesShowTheStateAsSampled) {
     const SchedulePlacement at{40, 60.0};
-    const ModeSchedule conv15(modeSpec("conv15"), 60.0), lag50(modeSpec("lag50"), 60.0);
+    const condition::ModeSchedule conv15(condition::modeSpec("conv15"), 60.0),
+        lag50(condition::modeSpec("lag50"), 60.0);
     for (std::int64_t k = 0; k < 24; ++k) {
         const WorldDepiction held = depictWorld(conv15.mode(), conv15.frame(k), at, WorldClock::Session);
         EXPECT_EQ(held.how, Depicted::AsSampled);
@@ -105,19 +106,19 @@ TEST(Depiction, HeldAndLaggedFramesShowTheStateAsSampled) {
 
 // The arithmetic each game did itself before, verbatim but for names: the shooter's warp
 // and B-frames on the session clock, the click game's on the schedule's.
-double oldShooter(const ModeSchedule& schedule, const ScheduledFrame& f, std::int64_t start) {
+double oldShooter(const condition::ModeSchedule& schedule, const condition::ScheduledFrame& f, std::int64_t start) {
     const double refresh = schedule.refreshHz();
     auto global = [&](double localTime) {
         return static_cast<double>(start + std::llround(localTime * refresh)) / refresh;
     };
     auto targetAt = [&](double time) { return trueAt(time).x; };
     switch (schedule.mode().upconversion) {
-        case Upconversion::None: return targetAt(global(f.sceneTime));
-        case Upconversion::Warp: {
+        case condition::Upconversion::None: return targetAt(global(f.sceneTime));
+        case condition::Upconversion::Warp: {
             const double source = global(f.worldSampleTime);
             return targetAt(source) + trueAt(source).v * (global(f.sceneTime) - source);
         }
-        case Upconversion::Bidirectional: {
+        case condition::Upconversion::Bidirectional: {
             const double depicted = global(f.sceneTime);
             if (f.nextSourceIndex < 0) return targetAt(depicted);
             const double t0 = static_cast<double>(start + f.sourceIndex) / refresh;
@@ -129,18 +130,18 @@ double oldShooter(const ModeSchedule& schedule, const ScheduledFrame& f, std::in
     }
     return 0.0;
 }
-double oldClick(const ModeSchedule& schedule, const ScheduledFrame& f) {
+double oldClick(const condition::ModeSchedule& schedule, const condition::ScheduledFrame& f) {
     const double refresh = schedule.refreshHz();
     auto at = [&](std::int64_t localFrame) { return trueAt(static_cast<double>(localFrame) / refresh); };
     auto frameOf = [&](double localTime) { return std::llround(localTime * refresh); };
     switch (schedule.mode().upconversion) {
-        case Upconversion::None: return at(frameOf(f.sceneTime)).x;
-        case Upconversion::Warp: {
+        case condition::Upconversion::None: return at(frameOf(f.sceneTime)).x;
+        case condition::Upconversion::Warp: {
             const double dt = f.sceneTime - f.worldSampleTime;
             const Point p = at(frameOf(f.worldSampleTime));
             return p.x + p.v * dt;
         }
-        case Upconversion::Bidirectional: {
+        case condition::Upconversion::Bidirectional: {
             if (f.nextSourceIndex < 0) return at(frameOf(f.sceneTime)).x;
             const Point before = at(f.sourceIndex), after = at(f.nextSourceIndex);
             const double a = static_cast<double>(std::llround(f.sceneTime * refresh) - f.sourceIndex) /
@@ -153,13 +154,13 @@ double oldClick(const ModeSchedule& schedule, const ScheduledFrame& f) {
 
 TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
     for (const double refresh : {60.0, 120.0}) {
-        for (const std::string& id : modeIds()) {
-            if (!checkMode(id, refresh).empty()) continue;
-            const ModeSchedule schedule(modeSpec(id), refresh);
+        for (const std::string& id : condition::modeIds()) {
+            if (!condition::checkMode(id, refresh).empty()) continue;
+            const condition::ModeSchedule schedule(condition::modeSpec(id), refresh);
             for (const std::int64_t start : {0, 1, 37, 4321, 987654}) {
                 const SchedulePlacement at{start, refresh};
                 for (std::int64_t k = 0; k < 200; ++k) {
-                    const ScheduledFrame f = schedule.frame(k);
+                    const condition::ScheduledFrame f = schedule.frame(k);
                     EXPECT_EQ(shownAt(schedule, k, at, WorldClock::Session)->x, oldShooter(schedule, f, start))
                         << id << " at " << refresh << " Hz, start " << start << ", frame " << k;
                     EXPECT_EQ(shownAt(schedule, k, at, WorldClock::Schedule)->x, oldClick(schedule, f))
@@ -171,7 +172,7 @@ TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
 }
 
 TEST(Depiction, AnInputReadsClickWaitsForTheNextFrameThatReadsInput) {
-    const ModeSchedule conv15(modeSpec("conv15"), 60.0);
+    const condition::ModeSchedule conv15(condition::modeSpec("conv15"), 60.0);
     ClickGate waits(true), atOnce(false);
     // Pressed at frame 1; conv15 at 60 Hz reads its input at frames 0, 4, 8, ...
     for (std::int64_t k = 0; k < 8; ++k) {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 
 namespace warplab::game {
 namespace {
@@ -15,20 +15,22 @@ namespace {
 constexpr double kRefresh = 120.0;
 constexpr double kFrame = 1.0 / kRefresh;
 
-ModeSchedule schedule(const std::string& id) { return ModeSchedule(modeSpec(id), kRefresh); }
+condition::ModeSchedule schedule(const std::string& id) {
+    return condition::ModeSchedule(condition::modeSpec(id), kRefresh);
+}
 
 // The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
 // name them; a mode added to the table comes after them and needs no edit here.
 TEST(Modes, KnownIdsAndUnknownOnesNamed) {
     const std::vector<std::string> published{"conv15", "conv30", "conv60",      "conv120",       "lag50",
                                              "lag100", "lag200", "warp15to120", "bireproj15to60"};
-    const std::vector<std::string> ids = modeIds();
+    const std::vector<std::string> ids = condition::modeIds();
     ASSERT_GE(ids.size(), published.size());
     EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(published.size())),
               published);
     EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size()) << "an id used twice";
     try {
-        modeSpec("conv16");
+        condition::modeSpec("conv16");
         FAIL();
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("conv16"), std::string::npos);
@@ -71,7 +73,7 @@ std::vector<std::string> documentedModeIds(const std::string& page, const std::s
 // fails here until the README's latency table and docs/protocol.md's refresh table have its row,
 // and a row for a mode that is gone fails too.
 TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
-    const std::vector<std::string> ids = modeIds();
+    const std::vector<std::string> ids = condition::modeIds();
     const std::set<std::string> known(ids.begin(), ids.end());
     for (const auto& [page, heading] : std::vector<std::pair<std::string, std::string>>{
              {"README.md", "## Modes and their latency"}, {"docs/protocol.md", "## Modes and the refresh rate"}}) {
@@ -84,17 +86,18 @@ TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
 }
 
 TEST(Modes, CheckModeNamesTheProblem) {
-    EXPECT_EQ(checkMode("conv60", 60.0), "");
-    EXPECT_NE(checkMode("conv120", 60.0).find("120"), std::string::npos);
-    EXPECT_NE(checkMode("conv45", 60.0).find("unknown mode 'conv45'"), std::string::npos);
+    EXPECT_EQ(condition::checkMode("conv60", 60.0), "");
+    EXPECT_NE(condition::checkMode("conv120", 60.0).find("120"), std::string::npos);
+    EXPECT_NE(condition::checkMode("conv45", 60.0).find("unknown mode 'conv45'"), std::string::npos);
 }
 
 TEST(Modes, RefreshMustBeAWholeMultipleOfTheRates) {
-    EXPECT_THROW(ModeSchedule(modeSpec("conv15"), 100.0), std::invalid_argument);
-    EXPECT_THROW(ModeSchedule(modeSpec("warp15to120"), 60.0), std::invalid_argument);
-    EXPECT_THROW(ModeSchedule(modeSpec("lag50"), 90.0), std::invalid_argument);  // 4.5 frames of lag
-    EXPECT_NO_THROW(ModeSchedule(modeSpec("conv60"), 60.0));
-    EXPECT_NO_THROW(ModeSchedule(modeSpec("bireproj15to60"), 60.0));
+    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("conv15"), 100.0), std::invalid_argument);
+    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("warp15to120"), 60.0), std::invalid_argument);
+    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("lag50"), 90.0),
+                 std::invalid_argument);  // 4.5 frames of lag
+    EXPECT_NO_THROW(condition::ModeSchedule(condition::modeSpec("conv60"), 60.0));
+    EXPECT_NO_THROW(condition::ModeSchedule(condition::modeSpec("bireproj15to60"), 60.0));
 }
 
 TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
@@ -102,7 +105,7 @@ TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
     for (std::int64_t k = 0; k < 32; ++k) {
         const auto f = s.frame(k);
         const std::int64_t source = k / 8 * 8;
-        EXPECT_EQ(f.kind, k % 8 == 0 ? FrameKind::Rendered : FrameKind::Held) << k;
+        EXPECT_EQ(f.kind, k % 8 == 0 ? condition::FrameKind::Rendered : condition::FrameKind::Held) << k;
         EXPECT_EQ(f.rendersNow, k % 8 == 0);
         EXPECT_EQ(f.samplesInput, k % 8 == 0);
         EXPECT_EQ(f.sourceIndex, source);
@@ -115,7 +118,7 @@ TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
 TEST(Modes, Conventional120RendersEveryFrame) {
     const auto s = schedule("conv120");
     for (std::int64_t k = 0; k < 10; ++k) {
-        EXPECT_EQ(s.frame(k).kind, FrameKind::Rendered);
+        EXPECT_EQ(s.frame(k).kind, condition::FrameKind::Rendered);
         EXPECT_DOUBLE_EQ(s.frame(k).cameraTime, s.frame(k).displayTime);
     }
 }
@@ -141,7 +144,7 @@ TEST(Modes, WarpRendersEveryEighthAndWarpsToTheCurrentCameraInBetween) {
     const auto s = schedule("warp15to120");
     for (std::int64_t k = 0; k < 24; ++k) {
         const auto f = s.frame(k);
-        EXPECT_EQ(f.kind, k % 8 == 0 ? FrameKind::Rendered : FrameKind::Warped);
+        EXPECT_EQ(f.kind, k % 8 == 0 ? condition::FrameKind::Rendered : condition::FrameKind::Warped);
         EXPECT_TRUE(f.samplesInput);
         EXPECT_EQ(f.sourceIndex, k / 8 * 8);
         EXPECT_DOUBLE_EQ(f.cameraTime, f.displayTime);
@@ -158,9 +161,9 @@ TEST(Modes, BidirectionalRunsOneSourcePeriodBehindAtSixtyHertz) {
         EXPECT_DOUBLE_EQ(f.cameraTime, depicted * kFrame) << k;
         const bool iFrame = depicted % 8 == 0;
         if (k % 2 == 1)
-            EXPECT_EQ(f.kind, FrameKind::Held);
+            EXPECT_EQ(f.kind, condition::FrameKind::Held);
         else
-            EXPECT_EQ(f.kind, iFrame ? FrameKind::Rendered : FrameKind::Interpolated) << k;
+            EXPECT_EQ(f.kind, iFrame ? condition::FrameKind::Rendered : condition::FrameKind::Interpolated) << k;
         EXPECT_EQ(f.sourceIndex, depicted / 8 * 8);
         EXPECT_EQ(f.nextSourceIndex, iFrame ? -1 : depicted / 8 * 8 + 8);
     }
@@ -171,7 +174,7 @@ struct Range {
 };
 
 // Steps at 97 instants spread over two source cycles, off the frame grid.
-Range latencies(const ModeSchedule& s, bool view) {
+Range latencies(const condition::ModeSchedule& s, bool view) {
     Range r;
     for (int i = 0; i < 97; ++i) {
         const double tau = 1.0 + (i + 0.5) / 97.0 * (16.0 * kFrame);

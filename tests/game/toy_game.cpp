@@ -35,7 +35,8 @@ bool underReticle(double x) { return std::abs(x) <= kRadius; }
 
 class ToyGame final : public FreePlayGame {
 public:
-    explicit ToyGame(const ToyProtocol& p) : protocol_(p), schedule_(modeSpec(p.mode), p.refreshHz), clickGate_(true) {}
+    explicit ToyGame(const ToyProtocol& p)
+        : protocol_(p), schedule_(condition::modeSpec(p.mode), p.refreshHz), clickGate_(true) {}
 
     ShownFrame step(const FrameInput& input) override {
         ++frame_;
@@ -48,7 +49,7 @@ public:
 
         // What the mode shows of the dot, through the two hooks.
         const SchedulePlacement placement{scheduleStart_, protocol_.refreshHz};
-        const ScheduledFrame f = schedule_.frame(frame_ - scheduleStart_);
+        const condition::ScheduledFrame f = schedule_.frame(frame_ - scheduleStart_);
         ShownFrame shown = scheduledShownFrame(frame_, schedule_.mode().id, f, placement);
         const WorldDepiction d = depictWorld(schedule_.mode(), f, placement, WorldClock::Schedule);
         const Dot seen = *depictedState<Dot>(
@@ -91,7 +92,7 @@ public:
         session::FrameRecord r;
         r.frame = shown.frame;
         r.mode = shown.mode;
-        r.kind = frameKindName(shown.schedule.kind);
+        r.kind = condition::frameKindName(shown.schedule.kind);
         r.detailJson = nlohmann::json{{"x", shown.scene.objects.front().position.x}}.dump();
         return r;
     }
@@ -105,7 +106,7 @@ public:
         return e.displayedOutcome == "hit" ? scene::kIdTarget : scene::kIdNone;
     }
     void switchTo(const std::string& mode, int) override {
-        schedule_ = ModeSchedule(modeSpec(mode), protocol_.refreshHz);
+        schedule_ = condition::ModeSchedule(condition::modeSpec(mode), protocol_.refreshHz);
         scheduleStart_ = frame_ + 1;
         freePlay_ = true;
     }
@@ -123,7 +124,7 @@ private:
     }
 
     ToyProtocol protocol_;
-    ModeSchedule schedule_;
+    condition::ModeSchedule schedule_;
     std::int64_t scheduleStart_ = 0;
     ClickGate clickGate_;
     EventQueue events_;
@@ -224,7 +225,7 @@ std::unique_ptr<Study> parseToyStudy(const std::string& jsonText, const std::str
     p.refreshHz = j.value("refresh_hz", p.refreshHz);
     p.mode = j.value("mode", p.mode);
     p.durationS = j.value("duration_s", p.durationS);
-    if (const std::string why = checkMode(p.mode, p.refreshHz); !why.empty()) throw fail("mode: " + why);
+    if (const std::string why = condition::checkMode(p.mode, p.refreshHz); !why.empty()) throw fail("mode: " + why);
     if (!(p.durationS > 0.0)) throw fail("duration_s must be positive");
     return std::make_unique<ToyStudy>(std::move(p));
 }

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <string>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "renderer/upconvert.h"
 
-using namespace warplab::game;
+using namespace warplab::condition;
 namespace renderer = warplab::renderer;
 
 // Every mode must be drawable: the frames a mode makes between its renders use the method it

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "protocol/click_protocol.h"
 #include "protocol/shooter_protocol.h"
 
@@ -28,7 +28,7 @@ const std::string kPrefix = "protocol 'p.json': ";
 std::string protocolDir() { return std::string(WARPLAB_SOURCE_DIR) + "/protocol"; }
 
 ClickProtocol parse(const std::string& text, const std::string& source = kSource) {
-    return parseClickProtocol(text, source, game::checkMode);
+    return parseClickProtocol(text, source, condition::checkMode);
 }
 
 // The ProtocolError's message, or "" when the document parses.
@@ -127,7 +127,7 @@ ClickProtocol everyFieldChanged() {
 // The shipped files
 
 TEST(ClickFiles, YangIsTheStudyAsPublished) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", game::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", condition::checkMode);
     EXPECT_EQ(p.name, "click-yang");
     EXPECT_EQ(p.game, "click");
     EXPECT_EQ(p.refreshHz, 60.0);  // the fastest mode is 60 fps
@@ -152,7 +152,7 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
 }
 
 TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", game::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", condition::checkMode);
     ClickProtocol defaults;
     defaults.name = p.name;
     defaults.description = p.description;
@@ -160,7 +160,7 @@ TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
 }
 
 TEST(ClickFiles, QuickIsTheSameStudyInSeconds) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json", game::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json", condition::checkMode);
     EXPECT_EQ(p.name, "click-quick");
     EXPECT_EQ(p.refreshHz, 60.0);
     EXPECT_EQ(p.modes, ClickProtocol{}.modes);
@@ -194,9 +194,9 @@ TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
         const std::string text = readProtocolFile(path);
         const std::string game = protocolGame(text, path);
         if (game == "shooter")
-            EXPECT_NO_THROW(parseShooterProtocol(text, path, game::checkMode));
+            EXPECT_NO_THROW(parseShooterProtocol(text, path, condition::checkMode));
         else if (game == "click")
-            EXPECT_NO_THROW(parseClickProtocol(text, path, game::checkMode));
+            EXPECT_NO_THROW(parseClickProtocol(text, path, condition::checkMode));
         else
             ADD_FAILURE() << "no parser for game " << game;
         ++count;
@@ -272,9 +272,9 @@ TEST(ClickErrors, ZeroMatches) {
               kPrefix + "matches.match_s must be a number greater than 0 and at most 300, got 0");
 }
 
-// The reason after the path is game::checkMode's own: the mode table has one home.
+// The reason after the path is condition::checkMode's own: the mode table has one home.
 std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
-    return kPrefix + where + " is \"" + id + "\": " + game::checkMode(id, refreshHz);
+    return kPrefix + where + " is \"" + id + "\": " + condition::checkMode(id, refreshHz);
 }
 
 TEST(ClickErrors, UnknownMode) {
@@ -370,7 +370,7 @@ TEST(ClickErrors, WrongGame) {
               kPrefix + "game must be \"click\" for a click protocol, got string \"shooter\"");
     // And the other way round: a click file is refused by the shooter parser, not half-read.
     try {
-        parseShooterProtocol(yangWith("/name", "c").dump(), kSource, game::checkMode);
+        parseShooterProtocol(yangWith("/name", "c").dump(), kSource, condition::checkMode);
         ADD_FAILURE() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()),
@@ -537,7 +537,7 @@ TEST(SharedLoader, ReadingAFileNamesThePath) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + missing + "': no such file");
     }
     try {
-        loadClickProtocol(protocolDir(), game::checkMode);
+        loadClickProtocol(protocolDir(), condition::checkMode);
         ADD_FAILURE() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + protocolDir() + "': is a directory, not a file");

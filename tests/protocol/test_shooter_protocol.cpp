@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "protocol/shooter_protocol.h"
 
 namespace warplab::protocol {
@@ -27,9 +27,9 @@ std::string shippedPath(const std::string& name) { return std::string(WARPLAB_SO
 
 // Parsing against the one mode table, as the app does.
 ShooterProtocol parse(const std::string& text, const std::string& source = kSource) {
-    return parseShooterProtocol(text, source, game::checkMode);
+    return parseShooterProtocol(text, source, condition::checkMode);
 }
-ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path, game::checkMode); }
+ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path, condition::checkMode); }
 
 // The smallest valid file: only the required fields.
 Json minimal() { return Json{{"format_version", 2}, {"name", "t"}, {"game", "shooter"}}; }
@@ -489,16 +489,16 @@ TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
     EXPECT_NO_THROW(parse(document.dump()));
 }
 
-// The reason after the path is game::checkMode's own: the mode table has one home.
+// The reason after the path is condition::checkMode's own: the mode table has one home.
 std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
-    return "protocol 'p.json': " + where + " is \"" + id + "\": " + game::checkMode(id, refreshHz);
+    return "protocol 'p.json': " + where + " is \"" + id + "\": " + condition::checkMode(id, refreshHz);
 }
 
 TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
     const std::string message = errorOf(thesisWith("/test/conditions/1", "conv25"));
     EXPECT_EQ(message, modeError("test.conditions[1]", "conv25", 120));
     expectContains(message, {"test.conditions[1] is \"conv25\": unknown mode 'conv25'"});
-    for (const std::string& id : game::modeIds()) expectContains(message, {id});
+    for (const std::string& id : condition::modeIds()) expectContains(message, {id});
     EXPECT_EQ(errorOf(thesisWith("/acclimation/mode", "CONV120")), modeError("acclimation.mode", "CONV120", 120));
     EXPECT_EQ(errorOf(thesisWith("/training/high_mode", "warp")), modeError("training.high_mode", "warp", 120));
     // Not a string at all: a type error, before any mode is looked up.
@@ -593,8 +593,8 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
     // A non-integral refresh fits nothing, 240 Hz fits everything.
     expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"acclimation.mode is \"conv120\""});
     document = thesisWith("/display/refresh_hz", 240);
-    document["test"]["conditions"] = game::modeIds();
-    EXPECT_EQ(parse(document.dump()).conditions, game::modeIds());
+    document["test"]["conditions"] = condition::modeIds();
+    EXPECT_EQ(parse(document.dump()).conditions, condition::modeIds());
 }
 
 // ---------------------------------------------------------------------------------------

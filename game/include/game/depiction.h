@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "game/game.h"
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "session/session_store.h"
 
 namespace warplab::game {
@@ -33,10 +33,10 @@ struct SchedulePlacement {
 // The ShownFrame of session frame `frame` as far as the schedule says: its display time, mode,
 // schedule, sources, depicted scene time and whether it renders now. The game adds the camera
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
-ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const ScheduledFrame& f,
+ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement);
 // The session frame whose camera (mouse, cursor) frame `f` shows.
-std::int64_t cameraFrame(const ScheduledFrame& f, const SchedulePlacement& placement);
+std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlacement& placement);
 
 // The clock a game's world is timed on: what an extrapolation's dt and a blend's weight are
 // measured in. Each game's displayed positions were fixed with one of these roundings; the two
@@ -66,8 +66,8 @@ struct WorldDepiction {
     double spanS = 0.0;  // Interpolated: seconds from one I-frame to the other
 };
 
-WorldDepiction depictWorld(const ModeSpec& mode, const ScheduledFrame& f, const SchedulePlacement& placement,
-                           WorldClock clock);
+WorldDepiction depictWorld(const condition::ModeSpec& mode, const condition::ScheduledFrame& f,
+                           const SchedulePlacement& placement, WorldClock clock);
 
 // What `d` shows of a world, through the game's hooks:
 //   at(frame)                         -> std::optional<State>: the world at a session frame,
@@ -101,7 +101,7 @@ public:
     explicit ClickGate(bool waitsForInputReads) : waits_(waitsForInputReads) {}
     // Whether a click counts at frame `f`. `armed`: whether a press may wait (false drops it,
     // e.g. while there is nothing to shoot at).
-    bool pass(bool pressed, const ScheduledFrame& f, bool armed = true) {
+    bool pass(bool pressed, const condition::ScheduledFrame& f, bool armed = true) {
         if (!waits_) return pressed;
         pending_ = (pending_ || pressed) && armed;
         const bool click = pending_ && f.samplesInput;

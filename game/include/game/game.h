@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "game/modes.h"
+#include "condition/schedule.h"
 #include "game/results.h"
 #include "session/session_store.h"
 #include "protocol/study_protocol.h"
@@ -63,7 +63,7 @@ struct ShownFrame {
     std::int64_t frame = 0;  // display frame since the session started
     double time = 0.0;  // its display time, seconds
     std::string mode;
-    ScheduledFrame schedule;  // the mode's account of this frame (schedule-local)
+    condition::ScheduledFrame schedule;  // the mode's account of this frame (schedule-local)
     scene::CameraState camera;  // the camera the frame depicts
     scene::SceneSnapshot scene;  // the world as the frame depicts it
     bool rendersNow = false;  // render `render` conventionally at this frame

@@ -46,7 +46,7 @@ Percept Eye::see(const game::ShownFrame& shown) {
     // drawing it again.
     const auto kind = shown.schedule.kind;
     const bool same =
-        haveImage_ && (shown.frozen || (kind == game::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
+        haveImage_ && (shown.frozen || (kind == condition::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
     if (!same) {
         maker_.make(shown, frame_);
         const renderer::DisplayImages images = renderer::readBack(frame_, false);
@@ -56,7 +56,8 @@ Percept Eye::see(const game::ShownFrame& shown) {
         lastPicture_ = thumbnailOf(images.colour, images.ids, kPictureBlock, toDisplay);
         lastDetail_ = thumbnailOf(images.colour, images.ids, 1, toDisplay);
         haveImage_ = true;
-        const bool copy = !shown.frozen && (kind == game::FrameKind::Held || kind == game::FrameKind::Rendered);
+        const bool copy =
+            !shown.frozen && (kind == condition::FrameKind::Held || kind == condition::FrameKind::Rendered);
         lastMadeSource_ = copy ? shown.sourceFrame : -1;
     }
     p.objects = lastObjects_;

@@ -59,7 +59,7 @@ struct ClickProtocol {
 };
 
 // sourceName is what messages call the file (its path); `modes` judges every mode id against
-// the refresh (pass game::checkMode). Throws ProtocolError.
+// the refresh (pass condition::checkMode). Throws ProtocolError.
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName, const ModeCheck& modes);
 // Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
 // "matches.rounds[].name" for a round's), in file order: the parser's table, which

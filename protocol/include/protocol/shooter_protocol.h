@@ -66,7 +66,7 @@ struct ShooterProtocol {
 };
 
 // sourceName is what messages call the file (its path); `modes` judges every mode id against
-// the refresh (pass game::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
+// the refresh (pass condition::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
                                      const ModeCheck& modes);
 // Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:

@@ -78,7 +78,7 @@ public:
 };
 
 // "" when mode `id` can run on a display of refreshHz, else the reason in one sentence.
-// game::checkMode is the one to pass: the mode table lives in game/ alone, and protocol/ may not
+// condition::checkMode is the one to pass: the mode table lives in game/ alone, and protocol/ may not
 // include game/, so each parser is handed the check instead of keeping a copy of the list.
 using ModeCheck = std::function<std::string(const std::string& id, double refreshHz)>;
 

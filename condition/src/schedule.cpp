@@ -1,10 +1,10 @@
-#include "game/modes.h"
+#include "condition/schedule.h"
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
-namespace warplab::game {
+namespace warplab::condition {
 namespace {
 
 // The one table of modes. A new preset is one entry here: protocols, export's
@@ -196,4 +196,4 @@ double ModeSchedule::sceneLatency(double tau) const {
     return firstShowing(tau, [](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
-}  // namespace warplab::game
+}  // namespace warplab::condition

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::game {
+namespace warplab::condition {
 
 enum class FrameKind : std::uint8_t { Rendered, Held, Warped, Interpolated };
 const char* frameKindName(FrameKind kind);
@@ -83,4 +83,4 @@ private:
     std::int64_t bPeriod_;  // display frames per bidirectional B-frame
 };
 
-}  // namespace warplab::game
+}  // namespace warplab::condition
