@@ -8,6 +8,7 @@
 #include "gbuffer_gl.h"
 #include "renderer/upconvert.h"
 #include "upconvert/bireproj.h"
+#include "upconvert/rotation.h"
 #include "upconvert/scene_assisted.h"
 #include "upconvert/simple_methods.h"
 #include "upconvert/warp.h"
@@ -73,6 +74,7 @@ const std::vector<Entry>& registry() {
         {"scene-assisted", [](const DataPaths& p, Name) { return makeSceneAssisted(p); }},
         {"bireproj-blur",
          [](const DataPaths& p, Name name) { return makeBireprojBlur(p, name, {}, kBlurSamplesPerInterval); }},
+        {"rotation", [](const DataPaths& p, Name) { return makeRotation(p); }},
     };
     return entries;
 }
