@@ -151,9 +151,8 @@ PassTimes timePass(Rig& rig, const BenchOptions& options, renderer::Upconversion
 Row measureMethod(Rig& rig, const FrameContext& frame, renderer::UpconversionMethod& method) {
     const auto& info = method.info();
     const BenchOptions& options = frame.options;
-    const int perSource = sourcePeriod(options, info);
-    const int previous = frame.k - frame.k % perSource;
-    const int next = previous + perSource;
+    const int previous = previousSource(options, info, frame.k);
+    const int next = previous + sourcePeriod(options, info);
     const bool banded = frame.plan.anyBanded && info.takesGuardBand;
     renderer::UpconversionInput input;
     input.displayTime = frame.k / options.refreshHz;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -27,9 +28,19 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
     for (const auto& name : sequenceNames) plan.sequences.push_back(game::makeSequence(name, sequenceConfig));
     for (const auto& name : methodNames) {
         plan.methods.push_back(renderer::makeMethod(name, paths));
-        const double perSource = options.refreshHz / plan.methods.back()->info().sourceRateHz;
+        const renderer::MethodInfo& info = plan.methods.back()->info();
+        const double perSource = options.refreshHz / info.sourceRateHz;
         if (std::abs(perSource - std::round(perSource)) > 1e-9 || perSource < 1.0)
             throw std::invalid_argument("method " + name + " renders at a rate that does not divide the display's");
+        // A queue delays a frame by whole refreshes, and sources are rendered at display-frame
+        // instants: a lag between frames is a wrong setting, not one to round.
+        const double lagFrames = info.sourceLagS * options.refreshHz;
+        if (!(lagFrames >= 0.0) || std::abs(lagFrames - std::round(lagFrames)) > 1e-6) {
+            std::ostringstream message;
+            message << "method " << name << " shows its sources " << info.sourceLagS
+                    << " s late, which is not a whole number of display frames at " << options.refreshHz << " Hz";
+            throw std::invalid_argument(message.str());
+        }
     }
 
     plan.band = renderer::guardBandFor(options.width, options.height, options.guardBand);
@@ -54,6 +65,16 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
 
 int sourcePeriod(const BenchOptions& options, const renderer::MethodInfo& info) {
     return static_cast<int>(std::lround(options.refreshHz / info.sourceRateHz));
+}
+
+int sourceLagFrames(const BenchOptions& options, const renderer::MethodInfo& info) {
+    return static_cast<int>(std::lround(info.sourceLagS * options.refreshHz));
+}
+
+int previousSource(const BenchOptions& options, const renderer::MethodInfo& info, int k) {
+    const int period = sourcePeriod(options, info);
+    const int shown = k - sourceLagFrames(options, info);
+    return shown - ((shown % period) + period) % period;  // rounded down for negative frames too
 }
 
 std::vector<int> sampleFrames(int frameCount, int samples, int phases) {

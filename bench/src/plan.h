@@ -34,11 +34,18 @@ struct BenchPlan {
 };
 
 // Throws std::invalid_argument naming the option (size, repeats, an unknown sequence or method,
-// a method whose source rate does not divide the display's, the guard band).
+// a method whose source rate does not divide the display's or whose source lag is not a whole
+// number of display frames, the guard band).
 BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths);
 
-// Display frames between a method's sources: the latest source at or before display frame k is
-// k - k % period, the next one period later.
+// Display frames between a method's sources.
 int sourcePeriod(const BenchOptions& options, const renderer::MethodInfo& info);
+// Display frames a method's sources wait before they are shown (MethodInfo::sourceLagS).
+int sourceLagFrames(const BenchOptions& options, const renderer::MethodInfo& info);
+// The display frame of the source a method is handed at display frame k: the latest one at or
+// before k - lag (sources are rendered at multiples of the period), the next one a period
+// later. Negative before the lag has passed: the sequences are defined before t = 0 too, so a
+// late method's first frames show what was rendered before the run began, as a queue would.
+int previousSource(const BenchOptions& options, const renderer::MethodInfo& info, int k);
 
 }  // namespace warplab::bench

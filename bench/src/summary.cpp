@@ -64,10 +64,12 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
 }
 
 // What a method is given, so methods are compared at equal cost in renders: the rate of its
-// conventional sources, "+ next" when it also waits for the next one (a frame of latency),
-// and how many times the lowest rate's renders it needs.
+// conventional sources, how late it is shown them (a late warp's queue), "+ next" when it also
+// waits for the next one (a frame of latency), and how many times the lowest rate's renders it
+// needs.
 std::string sourcesText(const renderer::MethodInfo& info, double maskRateHz) {
     std::string text = field(info.sourceRateHz, 0) + " Hz";
+    if (info.sourceLagS > 0.0) text += ", " + field(1000.0 * info.sourceLagS, 1) + " ms late";
     if (info.needsNext) text += " + next";
     if (info.sourceRateHz > maskRateHz) text += " (" + field(info.sourceRateHz / maskRateHz, 0) + "x the renders)";
     return text;

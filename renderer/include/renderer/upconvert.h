@@ -75,7 +75,7 @@ DisplayImages readBack(const DisplayFrame& frame, bool correspondence = true);
 struct UpconversionInput {
     double displayTime = 0.0;
     scene::CameraState camera;  // the view sampled at this display frame
-    const SourceFrame* previous = nullptr;  // latest source at or before displayTime
+    const SourceFrame* previous = nullptr;  // latest source at or before displayTime (less sourceLagS)
     const SourceFrame* next = nullptr;  // the one after; only for methods with needsNext
     // The scene at the displayed instant; only for methods with needsScene, which rasterise it
     // again (scene-assisted reprojection). Everything else works from the sources' images.
@@ -86,6 +86,9 @@ struct MethodInfo {
     std::string name;
     std::string description;
     double sourceRateHz = 15.0;  // how often sources are rendered conventionally
+    // How long a source waits in the queue before it is shown (a late warp's lagged frame): the
+    // bench hands such a method the latest source at or before displayTime - sourceLagS.
+    double sourceLagS = 0.0;
     bool needsNext = false;  // uses the following source frame (so shows content later)
     bool reportsCorrespondence = false;
     // Starts from what it computed for the previous displayed frame of the same source

@@ -2,12 +2,15 @@
 // the bench (--methods) and, through its name, to the study modes.
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "gbuffer_gl.h"
 #include "renderer/upconvert.h"
 #include "upconvert/bireproj.h"
+#include "upconvert/rotation.h"
 #include "upconvert/scene_assisted.h"
 #include "upconvert/simple_methods.h"
 #include "upconvert/warp.h"
@@ -42,6 +45,44 @@ BireprojSettings bireproj(int iterations, bool dual, bool latest) {
     return s;
 }
 
+// The lagged frame late warp is meant to rescue (Kim et al., HPG 2020): rendered at 60 Hz and
+// shown five frames (83.3 ms) later, the delay of a deep render queue.
+constexpr double kLateRateHz = 60.0;
+constexpr double kLateLagS = 5.0 / kLateRateHz;
+
+// A method shown a queued, late source: `inner` makes the frame from whatever source it is
+// handed, and the lag only changes which one that is (the bench's choice, MethodInfo::sourceLagS),
+// so the late variants are the very passes of hold, rotation and warp, measured beside them.
+class LateSource final : public UpconversionMethod {
+public:
+    LateSource(std::unique_ptr<UpconversionMethod> inner, Name name, const std::string& description)
+        : inner_(std::move(inner)), info_(inner_->info()) {
+        info_.name = name;
+        info_.description = description;
+        info_.sourceRateHz = kLateRateHz;
+        info_.sourceLagS = kLateLagS;
+    }
+    const MethodInfo& info() const override { return info_; }
+    void produce(const UpconversionInput& input, DisplayFrame& out) override {
+        // Checked here too, so that a wrong source is reported under this method's name.
+        if (input.previous == nullptr) throw std::invalid_argument(info_.name + ": no source frame");
+        checkSourceSize(*input.previous, out, info_);
+        inner_->produce(input, out);
+    }
+    void prepare(const UpconversionInput& input) override { inner_->prepare(input); }
+    double lastTriangleCount() override { return inner_->lastTriangleCount(); }
+
+private:
+    std::unique_ptr<UpconversionMethod> inner_;
+    MethodInfo info_;
+};
+
+std::unique_ptr<UpconversionMethod> late(std::unique_ptr<UpconversionMethod> inner, Name name,
+                                         const std::string& what) {
+    return std::make_unique<LateSource>(std::move(inner), name,
+                                        what + ", from 60 Hz frames with 5 frames (83.3 ms) of queue delay");
+}
+
 const std::vector<Entry>& registry() {
     static const std::vector<Entry> entries = {
         {"hold15", [](const DataPaths& p, Name) { return makeHold(p, 15.0); }},
@@ -73,6 +114,20 @@ const std::vector<Entry>& registry() {
         {"scene-assisted", [](const DataPaths& p, Name) { return makeSceneAssisted(p); }},
         {"bireproj-blur",
          [](const DataPaths& p, Name name) { return makeBireprojBlur(p, name, {}, kBlurSamplesPerInterval); }},
+        {"rotation", [](const DataPaths& p, Name) { return makeRotation(p); }},
+        {"late-hold",
+         [](const DataPaths& p, Name name) {
+             return late(makeHold(p, kLateRateHz), name, "the lagged frame held, no late warp");
+         }},
+        {"late-rotation",
+         [](const DataPaths& p, Name name) {
+             return late(makeRotation(p), name, "late warp by camera rotation to the displayed camera, depth ignored");
+         }},
+        {"late-depth",
+         [](const DataPaths& p, Name name) {
+             return late(makeWarp(p, name, sparse(8)), name,
+                         "late warp with depth and velocities (warp-sparse8) to the displayed instant");
+         }},
     };
     return entries;
 }
