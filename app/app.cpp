@@ -71,7 +71,7 @@ renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
 const std::vector<Command>& commands() {
     // The order --help lists them in.
     static const std::vector<Command> list = {infoCommand(),   renderCommand(), benchCommand(), runCommand(),
-                                              replayCommand(), exportCommand(), demoCommand()};
+                                              replayCommand(), exportCommand(), demoCommand(),  conditionsCommand()};
     return list;
 }
 

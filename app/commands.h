@@ -26,6 +26,7 @@ Command runCommand();
 Command replayCommand();  // cmd_run.cpp: a replay runs the session again
 Command exportCommand();
 Command demoCommand();
+Command conditionsCommand();
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

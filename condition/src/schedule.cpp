@@ -1,73 +1,12 @@
 #include "condition/schedule.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace warplab::condition {
 namespace {
-
-// The one table of modes. A new preset is one entry here: protocols, export's
-// modes.csv and the analysis take it from this table, and tests/game/test_modes.cpp asks the
-// README's latency table and docs/protocol.md to describe it. The nine published presets come
-// first, in this order (the test pins it); new ones go after them.
-std::vector<ModeSpec> makeModes() {
-    std::vector<ModeSpec> modes;
-    for (int rate : {15, 30, 60, 120}) {
-        ModeSpec m;
-        m.id = "conv" + std::to_string(rate);
-        m.description = "conventional rendering at " + std::to_string(rate) + " Hz, each frame held until the next";
-        m.renderRateHz = rate;
-        modes.push_back(m);
-    }
-    for (int lag : {50, 100, 200}) {
-        ModeSpec m;
-        m.id = "lag" + std::to_string(lag);
-        m.description = "conventional 60 Hz, each frame shown " + std::to_string(lag) + " ms after it was rendered";
-        m.renderRateHz = 60;
-        m.lagMs = lag;
-        modes.push_back(m);
-    }
-    ModeSpec warp;
-    warp.id = "warp15to120";
-    warp.description = "rendered at 15 Hz, the frames between warped from the latest with the current camera";
-    warp.renderRateHz = 15;
-    warp.upconversion = Upconversion::Warp;
-    warp.upconvertedRateHz = 120;
-    warp.method = "warp-sparse8";
-    modes.push_back(warp);
-    ModeSpec bireproj;
-    bireproj.id = "bireproj15to60";
-    bireproj.description =
-        "I-frames rendered at 15 Hz, B-frames at 60 Hz interpolated between the I-frames before and after";
-    bireproj.renderRateHz = 15;
-    bireproj.upconversion = Upconversion::Bidirectional;
-    bireproj.upconvertedRateHz = 60;
-    bireproj.method = "bireproj";  // image-based, m = 3, dual and latest-frame initialisation
-    modes.push_back(bireproj);
-    return modes;
-}
-
-const std::vector<ModeSpec>& modes() {
-    static const std::vector<ModeSpec> list = makeModes();
-    return list;
-}
-
-// A rate or a duration for a message: "60", "59.94", not "60.000000".
-std::string number(double v) {
-    std::ostringstream out;
-    out << v;
-    return out.str();
-}
-
-std::int64_t framesPer(double refreshHz, double rateHz, const std::string& mode) {
-    const double ratio = refreshHz / rateHz;
-    const auto whole = static_cast<std::int64_t>(std::llround(ratio));
-    if (whole < 1 || std::abs(ratio - static_cast<double>(whole)) > 1e-9)
-        throw std::invalid_argument("mode " + mode + " needs a display refresh that is a whole multiple of " +
-                                    std::to_string(static_cast<int>(rateHz)) + " Hz, not " + number(refreshHz) + " Hz");
-    return whole;
-}
 
 // Floor division and modulo that stay right for negative frame indices.
 std::int64_t floorTo(std::int64_t k, std::int64_t period) {
@@ -87,93 +26,87 @@ const char* frameKindName(FrameKind kind) {
     return "?";
 }
 
-const char* upconversionName(Upconversion upconversion) {
-    switch (upconversion) {
-        case Upconversion::None: return "none";
-        case Upconversion::Warp: return "warp";
-        case Upconversion::Bidirectional: return "bidirectional";
-    }
-    return "?";
+ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz) : mode_(condition), refreshHz_(refreshHz) {
+    if (const auto p = problem(condition, refreshHz))
+        throw std::invalid_argument("condition " + condition.name + (p->part.empty() ? " " : ": " + p->part + " ") +
+                                    p->reason);
+    fill_ = condition.fillKind();
+    renderPeriod_ = std::llround(refreshHz / condition.renderHz);
+    lagFrames_ = lagFramesAt(condition, refreshHz);
+    fillPeriod_ =
+        fill_ == Fill::Hold ? renderPeriod_ : (condition.fillHz ? std::llround(refreshHz / *condition.fillHz) : 1);
 }
 
-std::vector<std::string> modeIds() {
-    std::vector<std::string> ids;
-    for (const auto& m : modes()) ids.push_back(m.id);
-    return ids;
-}
-
-const ModeSpec& modeSpec(const std::string& id) {
-    for (const auto& m : modes())
-        if (m.id == id) return m;
-    std::string known;
-    for (const auto& m : modes()) known += (known.empty() ? "" : ", ") + m.id;
-    throw std::invalid_argument("unknown mode '" + id + "' (known: " + known + ")");
-}
-
-std::string checkMode(const std::string& id, double refreshHz) {
-    try {
-        ModeSchedule(modeSpec(id), refreshHz);
-        return "";
-    } catch (const std::invalid_argument& e) {
-        return e.what();
-    }
-}
-
-ModeSchedule::ModeSchedule(const ModeSpec& mode, double refreshHz) : mode_(mode), refreshHz_(refreshHz) {
-    if (!(refreshHz > 0.0) || !std::isfinite(refreshHz))
-        throw std::invalid_argument("display refresh must be a positive number of Hz");
-    renderPeriod_ = framesPer(refreshHz, mode.renderRateHz, mode.id);
-    const double lagFrames = mode.lagMs * refreshHz / 1000.0;
-    lagFrames_ = std::llround(lagFrames);
-    if (std::abs(lagFrames - static_cast<double>(lagFrames_)) > 1e-9)
-        throw std::invalid_argument("mode " + mode.id + ": a lag of " + number(mode.lagMs) +
-                                    " ms is not a whole number of frames at " + number(refreshHz) + " Hz");
-    bPeriod_ =
-        mode.upconversion == Upconversion::Bidirectional ? framesPer(refreshHz, mode.upconvertedRateHz, mode.id) : 1;
-    if (mode.upconversion == Upconversion::Warp) framesPer(refreshHz, mode.upconvertedRateHz, mode.id);
-}
-
-ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
+ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
     ScheduledFrame f;
-    f.index = k;
-    f.displayTime = static_cast<double>(k) / refreshHz_;
-    f.rendersNow = floorTo(k, renderPeriod_) == k;
+    f.rendersNow = floorTo(j, renderPeriod_) == j;
     auto time = [&](std::int64_t frame) { return static_cast<double>(frame) / refreshHz_; };
-
-    switch (mode_.upconversion) {
-        case Upconversion::None: {
-            // The frame rendered lagFrames_ ago (rounded down to the render cadence) is on screen.
-            const std::int64_t shown = floorTo(k - lagFrames_, renderPeriod_);
-            f.sourceIndex = shown;
-            f.kind = shown == k - lagFrames_ ? FrameKind::Rendered : FrameKind::Held;
-            f.cameraTime = f.sceneTime = f.worldSampleTime = time(shown);
+    switch (fill_) {
+        case Fill::Hold: {
+            // The last render is on screen.
+            f.sourceIndex = floorTo(j, renderPeriod_);
+            f.kind = f.sourceIndex == j ? FrameKind::Rendered : FrameKind::Held;
+            f.cameraTime = f.sceneTime = f.worldSampleTime = time(f.sourceIndex);
             f.samplesInput = f.rendersNow;
             break;
         }
-        case Upconversion::Warp: {
-            // The latest source, warped to this very instant: the camera is read every frame
-            // (view latency) and pixels move by their velocity (scene latency).
-            f.sourceIndex = floorTo(k, renderPeriod_);
-            f.kind = f.rendersNow ? FrameKind::Rendered : FrameKind::Warped;
-            f.cameraTime = f.sceneTime = f.displayTime;
+        case Fill::Warp: {
+            // The latest render, warped to the instant of the latest fill frame: the camera is
+            // read at each (view latency) and pixels move by their velocity (scene latency).
+            const std::int64_t made = floorTo(j, fillPeriod_);
+            f.sourceIndex = floorTo(j, renderPeriod_);
+            f.kind = j == f.sourceIndex ? FrameKind::Rendered
+                                        : (made == f.sourceIndex ? FrameKind::Held : FrameKind::Warped);
+            f.cameraTime = f.sceneTime = time(made);
             f.worldSampleTime = time(f.sourceIndex);
-            f.samplesInput = true;
+            f.samplesInput = made == j;
             break;
         }
-        case Upconversion::Bidirectional: {
-            // A B-frame between two I-frames can only be made once the later one exists, so the
-            // display runs one I-frame period behind, at the B-frame cadence (seed 000 section 7).
-            const std::int64_t depicted = floorTo(k, bPeriod_) - renderPeriod_;
+        case Fill::Bireproj:
+        case Fill::Blend: {
+            // A frame between two renders can only be made once the later one exists, so the
+            // display runs one render period behind, at the fill's cadence (seed 000 section 7).
+            const std::int64_t depicted = floorTo(j, fillPeriod_) - renderPeriod_;
             f.sourceIndex = floorTo(depicted, renderPeriod_);
-            const bool onIFrame = f.sourceIndex == depicted;
-            f.nextSourceIndex = onIFrame ? -1 : f.sourceIndex + renderPeriod_;
-            const bool newFrame = floorTo(k, bPeriod_) == k;
-            f.kind = !newFrame ? FrameKind::Held : (onIFrame ? FrameKind::Rendered : FrameKind::Interpolated);
-            f.cameraTime = f.sceneTime = time(depicted);
-            f.worldSampleTime = time(onIFrame ? f.sourceIndex : f.nextSourceIndex);
+            const bool onRender = f.sourceIndex == depicted;
+            f.nextSourceIndex = onRender ? -1 : f.sourceIndex + renderPeriod_;
+            const bool newFrame = floorTo(j, fillPeriod_) == j;
+            // A frame the fill repeats is made again as it was (the same instant, the same sources).
+            f.kind = onRender ? (newFrame ? FrameKind::Rendered : FrameKind::Held) : FrameKind::Interpolated;
+            f.sceneTime = time(depicted);
+            if (fill_ == Fill::Bireproj) {
+                f.cameraTime = f.sceneTime;
+                f.worldSampleTime = time(onRender ? f.sourceIndex : f.nextSourceIndex);
+            } else {
+                // A cross-fade moves nothing: its camera and objects are those of the nearer
+                // render (the one its id buffer shows: blend.frag takes B from a weight of 1/2).
+                const bool later = !onRender && 2 * (depicted - f.sourceIndex) >= renderPeriod_;
+                f.cameraTime = f.worldSampleTime = time(later ? f.nextSourceIndex : f.sourceIndex);
+            }
             f.samplesInput = newFrame;
             break;
         }
+    }
+    return f;
+}
+
+ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
+    // What the fill made lagFrames_ ago comes out of the queue now; what is rendered and read
+    // now is the fill's work at this frame.
+    ScheduledFrame f = produced(k - lagFrames_);
+    const ScheduledFrame now = lagFrames_ == 0 ? f : produced(k);
+    f.index = k;
+    f.displayTime = static_cast<double>(k) / refreshHz_;
+    f.rendersNow = now.rendersNow;
+    f.samplesInput = now.samplesInput;
+    if (mode_.lateWarp != LateWarp::None) {
+        // Re-projected at the last moment to the camera read for this display frame (Kim et
+        // al. 2020); a depth late warp also moves the objects on to this instant.
+        f.samplesInput = true;
+        if (f.cameraTime != f.displayTime || (mode_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
+            f.kind = FrameKind::Warped;
+        f.cameraTime = f.displayTime;
+        if (mode_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
     }
     return f;
 }
@@ -194,6 +127,42 @@ double ModeSchedule::viewLatency(double tau) const {
 }
 double ModeSchedule::sceneLatency(double tau) const {
     return firstShowing(tau, [](const ScheduledFrame& f) { return f.worldSampleTime; });
+}
+
+template <typename Depicted>
+ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+    // The instants frames depict never decrease with the frame, so between two consecutive
+    // distinct instants a < b a step at b is shown by the first frame depicting b, and a step
+    // just after a by that same frame, b - a later: the latency's least and greatest values
+    // over a cycle. Two whole cycles after the lag has passed cover every case.
+    const std::int64_t cycle = renderPeriod_ * fillPeriod_;
+    const std::int64_t first = 4 * cycle + lagFrames_, last = first + 2 * cycle;
+    std::vector<double> instants;
+    for (std::int64_t k = first; k <= last; ++k) {
+        const double t = depicted(frame(k));
+        if (instants.empty() || t > instants.back() + 1e-12) instants.push_back(t);
+    }
+    Range r{1e300, -1e300};
+    for (std::size_t i = 1; i + 1 < instants.size(); ++i) {
+        const double shown = instants[i] + firstShowing(instants[i], depicted);
+        r.min = std::min(r.min, shown - instants[i]);
+        r.max = std::max(r.max, shown - instants[i - 1]);
+    }
+    // Steps and frames are both on the display's frame grid: the latencies are whole frames.
+    auto whole = [&](double s) { return static_cast<double>(std::llround(s * refreshHz_)) / refreshHz_; };
+    return {whole(r.min), whole(r.max)};
+}
+
+ModeSchedule::Range ModeSchedule::viewLatencyRange() const {
+    return latencyRange([](const ScheduledFrame& f) { return f.cameraTime; });
+}
+ModeSchedule::Range ModeSchedule::sceneLatencyRange() const {
+    return latencyRange([](const ScheduledFrame& f) { return f.worldSampleTime; });
+}
+
+ConditionSummary summarize(const Condition& condition, double refreshHz) {
+    const ModeSchedule schedule(condition, refreshHz);
+    return {condition, refreshHz, schedule.lagFrames(), schedule.viewLatencyRange(), schedule.sceneLatencyRange()};
 }
 
 }  // namespace warplab::condition

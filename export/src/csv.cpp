@@ -81,9 +81,19 @@ std::string csvNumber(double value) {
 CsvFile::CsvFile(std::string path, const std::vector<std::string>& header)
     : path_(std::move(path)),
       partial_(path_ + ".partial"),
-      out_(partial_, std::ios::binary | std::ios::trunc),
+      file_(partial_, std::ios::binary | std::ios::trunc),
+      out_(&file_),
       columns_(header.size()) {
-    if (!out_) throw std::runtime_error("cannot write '" + partial_ + "'");
+    if (!file_) throw std::runtime_error("cannot write '" + partial_ + "'");
+    writeHeader(header);
+}
+
+CsvFile::CsvFile(std::ostream& out, const std::vector<std::string>& header)
+    : path_("standard output"), out_(&out), columns_(header.size()), closed_(true) {
+    writeHeader(header);
+}
+
+void CsvFile::writeHeader(const std::vector<std::string>& header) {
     for (const auto& name : header) text(name);
     endRow();
     rows_ = 0;
@@ -91,14 +101,14 @@ CsvFile::CsvFile(std::string path, const std::vector<std::string>& header)
 
 CsvFile::~CsvFile() {
     if (!closed_) {
-        out_.close();
+        file_.close();
         std::remove(partial_.c_str());
     }
 }
 
 void CsvFile::cell(const std::string& written) {
-    if (cellsInRow_++ > 0) out_ << ',';
-    out_ << written;
+    if (cellsInRow_++ > 0) *out_ << ',';
+    *out_ << written;
 }
 
 CsvFile& CsvFile::text(const std::string& value) {
@@ -128,16 +138,20 @@ void CsvFile::endRow() {
                                std::to_string(columns_));
     // CRLF is RFC 4180's line end, but LF is what R, pandas and spreadsheets all accept and
     // what diff and grep expect.
-    out_ << '\n';
+    *out_ << '\n';
     cellsInRow_ = 0;
     ++rows_;
 }
 
 void CsvFile::close() {
-    out_.flush();
-    const bool ok = static_cast<bool>(out_);
-    out_.close();
-    if (!ok || out_.fail()) throw std::runtime_error("writing '" + partial_ + "' failed (disk full?)");
+    if (partial_.empty()) {
+        out_->flush();
+        return;
+    }
+    file_.flush();
+    const bool ok = static_cast<bool>(file_);
+    file_.close();
+    if (!ok || file_.fail()) throw std::runtime_error("writing '" + partial_ + "' failed (disk full?)");
     if (std::rename(partial_.c_str(), path_.c_str()) != 0)
         throw std::runtime_error("cannot rename '" + partial_ + "' to '" + path_ + "'");
     closed_ = true;

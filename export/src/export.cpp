@@ -252,27 +252,33 @@ const std::vector<Column<MatchRow>>& matchColumns() {
     return columns;
 }
 
-// The conditions the sessions were run in, as the mode table holds them, so the analysis keeps
-// no list of its own. An unset rate or method (a mode without upconversion) is an empty cell.
-const std::vector<Column<condition::ModeSpec>>& modeColumns() {
+// The conditions the sessions were run in, with their parts and latencies at the refresh they
+// ran at, so the analysis keeps no list of its own. An unset fill rate is an empty cell.
+const std::vector<Column<ConditionListing>>& conditionColumns() {
     using F = CsvFile;
-    using R = condition::ModeSpec;
-    using condition::Upconversion;
+    using R = ConditionListing;
+    auto ms = [](double seconds) { return seconds * 1000.0; };
     static const std::vector<Column<R>> columns = {
-        {"mode", [](F& f, const R& m) { f.text(m.id); }},
-        {"description", [](F& f, const R& m) { f.text(m.description); }},
-        {"render_rate_hz", [](F& f, const R& m) { f.number(m.renderRateHz); }},
-        {"added_lag_ms", [](F& f, const R& m) { f.number(m.lagMs); }},
-        {"upconversion", [](F& f, const R& m) { f.text(condition::upconversionName(m.upconversion)); }},
-        {"upconverted_rate_hz",
-         [](F& f, const R& m) {
-             if (m.upconversion == Upconversion::None)
+        {"condition", [](F& f, const R& r) { f.text(r.summary.condition.name); }},
+        {"render_hz", [](F& f, const R& r) { f.number(r.summary.condition.renderHz); }},
+        {"lag_frames", [](F& f, const R& r) { f.integer(r.summary.lagFrames); }},
+        {"fill", [](F& f, const R& r) { f.text(r.summary.condition.fill); }},
+        {"late_warp", [](F& f, const R& r) { f.text(condition::lateWarpName(r.summary.condition.lateWarp)); }},
+        {"view_latency_min_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.viewS.min)); }},
+        {"view_latency_max_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.viewS.max)); }},
+        {"scene_latency_min_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.sceneS.min)); }},
+        {"scene_latency_max_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.sceneS.max)); }},
+        {"fill_hz",
+         [](F& f, const R& r) {
+             const condition::Condition& c = r.summary.condition;
+             if (c.fillKind() == condition::Fill::Hold)
                  f.empty();
              else
-                 f.number(m.upconvertedRateHz);
+                 f.number(c.fillHz.value_or(r.summary.refreshHz));
          }},
-        {"method", [](F& f, const R& m) { f.text(m.method); }},
-        {"upconverts", [](F& f, const R& m) { f.boolean(m.upconversion != Upconversion::None); }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.summary.refreshHz); }},
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"description", [](F& f, const R& r) { f.text(r.summary.condition.description); }},
     };
     return columns;
 }
@@ -355,6 +361,7 @@ public:
 
         const game::SessionResults results = study->results(data.events);
         measures_.emplace(study->game(), results.measure);
+        addConditions(*study, name);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
         if (out.included) write(h.participant, name, study->game(), results);
@@ -363,6 +370,24 @@ public:
 
     // Said once every session has been read: copies of one session both included.
     const std::vector<std::string>& warnings() const { return warnings_; }
+
+    // The conditions `study` runs, new ones (by game, name and refresh) in order of first use.
+    // One name meaning two things in one export is said, since the analysis keys on names.
+    void addConditions(const game::Study& study, const std::string& session) {
+        for (const std::string& name : study.modes()) {
+            const condition::Condition& c = study.conditions().at(name);
+            const auto same = std::find_if(conditions_.begin(), conditions_.end(), [&](const ConditionListing& r) {
+                return r.game == study.game() && r.summary.condition.name == name &&
+                    r.summary.refreshHz == study.refreshHz();
+            });
+            if (same == conditions_.end()) {
+                conditions_.push_back({study.game(), condition::summarize(c, study.refreshHz())});
+            } else if (!same->summary.condition.sameParts(c)) {
+                warnings_.push_back(session + " defines condition " + name +
+                                    " with other parts than an earlier session: conditions.csv lists the first");
+            }
+        }
+    }
 
     std::vector<std::string> close(const fs::path& outDir) {
         CsvFile hitrates(file(outDir, "hitrates.csv"), headerOf(hitRateColumns()));
@@ -388,11 +413,11 @@ public:
             }
             matches.endRow();
         }
-        // Every mode of the table, whether or not a session used it: the conditions this build runs.
-        CsvFile modes(file(outDir, "modes.csv"), headerOf(modeColumns()));
-        for (const std::string& id : condition::modeIds()) {
-            writeCells(modes, modeColumns(), condition::modeSpec(id));
-            modes.endRow();
+        // Every condition a readable session's protocol runs, once per game and refresh.
+        CsvFile conditions(file(outDir, "conditions.csv"), headerOf(conditionColumns()));
+        for (const ConditionListing& row : conditions_) {
+            writeCells(conditions, conditionColumns(), row);
+            conditions.endRow();
         }
         // The games of the readable sessions, in the order the registry knows them.
         CsvFile games(file(outDir, "games.csv"), headerOf(gameColumns()));
@@ -403,7 +428,7 @@ public:
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &modes, &games}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &conditions, &games}) {
             f->close();
             written.push_back(f->path());
         }
@@ -448,6 +473,7 @@ private:
     std::map<SessionKey, std::string> firstWith_;  // intact sessions, by what identifies them
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
     std::vector<std::string> warnings_;
+    std::vector<ConditionListing> conditions_;
 };
 
 }  // namespace
@@ -455,7 +481,7 @@ private:
 std::vector<CsvColumns> exportColumns() {
     return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""},   {"modes.csv", headerOf(modeColumns()), ""},
+            {"ratings.csv", headerOf(ratingColumns()), ""},   {"conditions.csv", headerOf(conditionColumns()), ""},
             {"games.csv", headerOf(gameColumns()), ""}};
 }
 
@@ -501,6 +527,15 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     if (!options.includeFlagged && byStatus.count("flagged") != 0)
         log << "export: flagged sessions are left out; --include-flagged keeps them\n";
     return summary;
+}
+
+void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows) {
+    CsvFile table(out, headerOf(conditionColumns()));
+    for (const ConditionListing& row : rows) {
+        writeCells(table, conditionColumns(), row);
+        table.endRow();
+    }
+    table.close();
 }
 
 }  // namespace warplab::exporter

@@ -8,15 +8,17 @@
 
 namespace warplab::game {
 
-int botRating(const std::string& mode, int statement, int min, int max) {
-    const condition::ModeSpec& m = condition::modeSpec(mode);
-    const double shownRate = m.upconversion == condition::Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
+int botRating(const condition::Condition& mode, double refreshHz, int statement, int min, int max) {
+    // The rate new frames reach the screen: the renders when they are held, else the fill's (a
+    // late warp makes one every display frame).
+    const double shownRate = mode.lateWarp != condition::LateWarp::None ? refreshHz
+        : mode.fillKind() == condition::Fill::Hold                      ? mode.renderHz
+                                                                        : mode.fillHz.value_or(refreshHz);
     // Average time from an input to its frame: what the schedule shows a mouse step at a render
     // with (the queue; bidirectional reprojection's wait for the next I-frame), plus half a
-    // render period of holding. The rating is the mode's, not the display's: the schedule runs
-    // at the rate the mode shows frames, where every mode's lag is whole frames.
-    const condition::ModeSchedule schedule(m, shownRate);
-    const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / m.renderRateHz;
+    // render period of holding.
+    const condition::ModeSchedule schedule(mode, refreshHz);
+    const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / mode.renderHz;
     const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
     const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
     const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));
@@ -51,7 +53,7 @@ FrameInput ClickBot::rate(const ShownFrame& shown) {
         ratingStatement_ = r.index;
         ratingSince_ = shown.time;
     }
-    const int value = botRating(lastMode_, r.index, r.min, r.max);
+    const int value = botRating(protocol_.conditionTable.at(lastMode_), protocol_.refreshHz, r.index, r.min, r.max);
     const glm::dvec4 box = r.boxes[static_cast<std::size_t>(value - r.min)];
     const glm::dvec2 centre(box.x + box.z * 0.5, box.y + box.w * 0.5);
     const bool waited = shown.time - ratingSince_ >= settings_.answerAfterS;

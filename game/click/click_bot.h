@@ -10,6 +10,7 @@
 #include <deque>
 #include <map>
 
+#include "condition/condition.h"
 #include "game/game.h"
 #include "game/random.h"
 #include "protocol/click_protocol.h"
@@ -26,9 +27,10 @@ struct ClickBotSettings {
     double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
 };
 
-// The bot's rating of a mode, by the rule in docs/click-study.md; statement 0 enjoyed,
-// 1 difficult, 2 responsive, 3 smooth, clamped to [min, max].
-int botRating(const std::string& mode, int statement, int min, int max);
+// The bot's rating of a condition on a display of refreshHz, by the rule in
+// docs/click-study.md; statement 0 enjoyed, 1 difficult, 2 responsive, 3 smooth, clamped to
+// [min, max].
+int botRating(const condition::Condition& mode, double refreshHz, int statement, int min, int max);
 
 class ClickBot final : public Player {
 public:

@@ -95,7 +95,7 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
 }
 
 void ClickGame::switchTo(const std::string& mode, int) {
-    condition::ModeSchedule(condition::modeSpec(mode),
+    condition::ModeSchedule(protocol_.conditionTable.at(mode),
                             protocol_.refreshHz);  // throws for a mode this display cannot run
     freePlay_ = true;
     matches_ = {{0, 0, mode}};
@@ -144,7 +144,7 @@ void ClickGame::beginMatch() {
     // its schedule's renders, start with the next one.
     matchStart_ = frame_ + 1;
     world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
-    schedule_.emplace(condition::modeSpec(m.mode), protocol_.refreshHz);
+    schedule_.emplace(protocol_.conditionTable.at(m.mode), protocol_.refreshHz);
     worldHistory_.clear();
     // The cursor stays where the hand left it; frames before the match shows its own
     // history (lag, bireproj) show it where the match found it.
@@ -282,7 +282,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
 
     const SchedulePlacement placement{matchStart_, refresh};
     const condition::ScheduledFrame f = schedule_->frame(k);
-    ShownFrame shown = scheduledShownFrame(frame_, match.mode, f, placement);
+    ShownFrame shown = scheduledShownFrame(frame_, schedule_->mode(), f, placement);
     shown.camera = camera_;
     shown.pointer = PointerKind::Cursor;
     shown.cursor = cursorHistory_.at(cameraFrame(f, placement));

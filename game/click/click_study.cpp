@@ -34,6 +34,7 @@ public:
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
     std::vector<std::string> modes() const override { return protocol_.modes; }
+    const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     bool warnsOnRefreshMismatch() const override {
         return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;
     }
@@ -106,7 +107,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Study> parseClickStudy(const std::string& jsonText, const std::string& sourceName) {
-    auto p = protocol::parseClickProtocol(jsonText, sourceName, condition::checkMode);
+    auto p = protocol::parseClickProtocol(jsonText, sourceName);
     // What only the physics can judge (a radius too big for the box, more spheres than fit at
     // the start) is still the protocol's fault: say so before any session starts.
     try {

@@ -54,7 +54,7 @@ ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_
     plane_ = physics::fitTargetPlane(restingCamera_, aspect, protocol.targetRadius);
     camera_ = restingCamera_;
     mode_ = protocol.acclimationMode;
-    schedule_.emplace(condition::modeSpec(mode_), protocol.refreshHz);
+    schedule_.emplace(protocol.conditionTable.at(mode_), protocol.refreshHz);
 }
 
 std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
@@ -63,7 +63,7 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
 }
 
 void ShooterGame::switchTo(const std::string& mode, int difficulty) {
-    condition::ModeSchedule(condition::modeSpec(mode),
+    condition::ModeSchedule(protocol_.conditionTable.at(mode),
                             protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
     freePlay_ = true;
     freeMode_ = mode;
@@ -210,7 +210,7 @@ void ShooterGame::startTrial(const std::string& mode, int level) {
     trial_ = t;
     // Every trial starts its mode's schedule afresh (DESIGN: switching modes starts clean).
     mode_ = mode;
-    schedule_.emplace(condition::modeSpec(mode), protocol_.refreshHz);
+    schedule_.emplace(protocol_.conditionTable.at(mode), protocol_.refreshHz);
     scheduleStart_ = frame_;
 }
 
@@ -364,7 +364,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
 
     const SchedulePlacement placement{scheduleStart_, refresh};
     const condition::ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
-    ShownFrame shown = scheduledShownFrame(frame_, mode_, f, placement);
+    ShownFrame shown = scheduledShownFrame(frame_, schedule_->mode(), f, placement);
     shown.camera = cameraHistory_.at(cameraFrame(f, placement));
     if (const auto p = displayedTarget(f)) {
         // Position as the frame depicts it; velocity the world's at that instant.

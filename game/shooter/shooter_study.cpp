@@ -41,6 +41,7 @@ public:
         i.task = "shoot the target";
         return i;
     }
+    const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     std::vector<std::string> modes() const override {
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode,
                                      protocol_.training.highMode};
@@ -83,7 +84,7 @@ private:
 }  // namespace
 
 std::unique_ptr<Study> parseShooterStudy(const std::string& jsonText, const std::string& sourceName) {
-    return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName, condition::checkMode));
+    return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName));
 }
 
 }  // namespace warplab::game

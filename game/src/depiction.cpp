@@ -2,12 +2,13 @@
 
 namespace warplab::game {
 
-ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const condition::ScheduledFrame& f,
+ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement) {
     ShownFrame shown;
     shown.frame = frame;
     shown.time = static_cast<double>(frame) / placement.refreshHz;
-    shown.mode = mode;
+    shown.mode = mode.name;
+    shown.condition = mode;
     shown.schedule = f;
     shown.sourceFrame = placement.start + f.sourceIndex;
     shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : placement.start + f.nextSourceIndex;
@@ -20,23 +21,30 @@ std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlace
     return placement.frameAt(f.cameraTime);
 }
 
-WorldDepiction depictWorld(const condition::ModeSpec& mode, const condition::ScheduledFrame& f,
+WorldDepiction depictWorld(const condition::Condition& mode, const condition::ScheduledFrame& f,
                            const SchedulePlacement& placement, WorldClock clock) {
     const double refresh = placement.refreshHz;
     auto sessionTime = [&](std::int64_t frame) { return static_cast<double>(frame) / refresh; };
     WorldDepiction d;
     d.depictedFrame = placement.frameAt(f.sceneTime);
     d.frame = d.depictedFrame;
-    switch (mode.upconversion) {
-        case condition::Upconversion::None: break;
-        case condition::Upconversion::Warp:
-            // The source's world moved on by its velocities, as the warp moves its pixels.
-            d.how = Depicted::Extrapolated;
+    if (mode.movesWorld()) {
+        // The source's world moved on by its velocities, as the warp moves its pixels (a warp
+        // fill, or a depth late warp to the display instant).
+        d.how = Depicted::Extrapolated;
+        d.frame = placement.frameAt(f.worldSampleTime);
+        d.dt = clock == WorldClock::Session ? sessionTime(d.depictedFrame) - sessionTime(d.frame)
+                                            : f.sceneTime - f.worldSampleTime;
+        return d;
+    }
+    switch (mode.fillKind()) {
+        case condition::Fill::Hold:
+        case condition::Fill::Warp: break;
+        case condition::Fill::Blend:
+            // A cross-fade moves nothing: what it shows under a pixel is the nearer render's.
             d.frame = placement.frameAt(f.worldSampleTime);
-            d.dt = clock == WorldClock::Session ? sessionTime(d.depictedFrame) - sessionTime(d.frame)
-                                                : f.sceneTime - f.worldSampleTime;
             break;
-        case condition::Upconversion::Bidirectional:
+        case condition::Fill::Bireproj:
             // B-frames move what the I-frames before and after show linearly between them.
             if (f.nextSourceIndex < 0) break;
             d.how = Depicted::Interpolated;

@@ -21,7 +21,8 @@ public:
           level_(run.freePlayLevel),
           game_(study.newFreePlay(run.seed, display, mode_, level_)),
           refreshHz_(study.refreshHz()),
-          modes_(condition::modeIds()),
+          modes_(study.conditions().names()),
+          conditions_(study.conditions()),
           progress_(progress) {}
 
     game::Game& game() override { return *game_; }
@@ -43,7 +44,8 @@ private:
     int level_;
     std::unique_ptr<game::FreePlayGame> game_;
     double refreshHz_;
-    std::vector<std::string> modes_;
+    std::vector<std::string> modes_;  // the presets, then the protocol's own conditions
+    condition::ConditionTable conditions_;
     std::ostream& progress_;
     std::vector<double> recentMs_;  // the last second's frame times, for the status line
     long late_ = 0;
@@ -54,8 +56,8 @@ private:
 void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) {
     // The supervisor's keys: digits and [ ] pick a mode, U and D the difficulty.
     const double refresh = refreshHz_;
-    const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [refresh](const std::string& mode) {
-        return condition::checkMode(mode, refresh).empty();
+    const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [&](const std::string& mode) {
+        return conditions_.check(mode, refresh).empty();
     });
     if (next.mode != mode_ || next.level != level_) {
         try {

@@ -61,8 +61,9 @@ void FrameMaker::release(Kept& kept) {
 
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
-        // The method that makes the mode's in-between frames says what its sources need.
-        const std::string name = shown.mode.empty() ? std::string() : condition::modeSpec(shown.mode).method;
+        // The method that makes the condition's other frames from its sources (its fill, or
+        // its late warp) says what they need.
+        const std::string name = shown.mode.empty() ? std::string() : shown.condition.sourceMethod();
         const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
         // Warps render beyond the displayed field of view, so what a turn brings into view is
         // really there; the frames they show as rendered are the band's inside (hold).
@@ -86,9 +87,10 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
     std::string name = "hold120";
     const auto kind = shown.schedule.kind;
-    if (kind == condition::FrameKind::Warped || kind == condition::FrameKind::Interpolated) {
-        name = condition::modeSpec(shown.mode).method;
-    }
+    // Warped frames: the fill's warp, or the late warp of a held frame (to the display
+    // instant's camera: shown.camera; and, with depth, the objects moved on to shown.scene.time).
+    if (kind == condition::FrameKind::Warped) name = shown.condition.warpMethod();
+    if (kind == condition::FrameKind::Interpolated) name = shown.condition.interpolationMethod();
     renderer::UpconversionMethod& shows = method(name);
     auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end()) {

@@ -148,14 +148,15 @@ std::vector<std::string> clickProtocolKeys() {
     return paths;
 }
 
-ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName, const ModeCheck& modes) {
-    const detail::Reader r(sourceName, modes);
+ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName) {
+    detail::Reader r(sourceName);
     const Json document = r.parseObject(jsonText);
     ClickProtocol p;
     r.requireGame(document, "click");
     p.formatVersion = r.formatVersion(document, kClickFormatVersion);
     r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
+    p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kClickConditionsSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
 
     // Relations between fields, checked once every field holds its final value.
@@ -175,16 +176,17 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
         r.fail(
             "ratings.min",
             "must be less than ratings.max (" + std::to_string(p.ratingMax) + "), got " + std::to_string(p.ratingMin));
+    r.requireConditionsRun(p.refreshHz);
     r.requireModes("matches.modes", p.modes, p.refreshHz);
+    r.requireConditionsUsed();
     return p;
 }
 
-ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes) {
-    return parseClickProtocol(readProtocolFile(path), path, modes);
-}
+ClickProtocol loadClickProtocol(const std::string& path) { return parseClickProtocol(readProtocolFile(path), path); }
 
 std::string toJson(const ClickProtocol& p) {
     Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
+    detail::writeConditions(document, p.conditionTable.defined());
     detail::writeSections(document, sections(), p.formatVersion, p);
     return detail::canonicalText(document);
 }

@@ -1,5 +1,6 @@
 #include "json_fields.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -140,10 +141,6 @@ std::string NumberRange::text() const {
 }
 
 Reader::Reader(std::string source) : source_(std::move(source)) {}
-
-Reader::Reader(std::string source, ModeCheck modes) : source_(std::move(source)), modes_(std::move(modes)) {
-    if (!modes_) throw std::invalid_argument("protocol parser: the ModeCheck is empty; pass condition::checkMode");
-}
 
 void Reader::fail(const std::string& path, const std::string& reason) const {
     throw ProtocolError("protocol '" + source_ + "': " + path + " " + reason);
@@ -350,8 +347,127 @@ void Reader::modeList(const Json* parent, const std::string& path, const char* k
 }
 
 void Reader::requireMode(const std::string& where, const std::string& id, double refreshHz) const {
-    const std::string reason = modes_(id, refreshHz);
+    used_.insert(id);
+    const std::string reason = conditions_.check(id, refreshHz);
     if (!reason.empty()) fail(where, "is \"" + id + "\": " + reason);
+}
+
+namespace {
+
+// Condition names appear in CSV cells, file names and on a status line.
+constexpr std::size_t kConditionNameLimit = 40;
+bool conditionNameChar(char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' || c == '_' ||
+        c == '.' || c == '+';
+}
+constexpr int kMaxDefinedConditions = 64;
+const std::vector<const char*> kConditionKeys{"description", "render_hz", "lag_frames", "lag_ms",
+                                              "fill",        "fill_hz",   "late_warp"};
+
+// The parts in words, for a message about a preset.
+std::string partsText(const condition::Condition& c) {
+    std::string text = "render_hz " + condition::number(c.renderHz);
+    text += c.lagFrames ? ", lag_frames " + std::to_string(*c.lagFrames) : ", lag_ms " + condition::number(c.lagMs);
+    text += ", fill " + c.fill;
+    if (c.fillHz) text += ", fill_hz " + condition::number(*c.fillHz);
+    return text + ", late_warp " + condition::lateWarpName(c.lateWarp);
+}
+
+}  // namespace
+
+std::vector<condition::Condition> Reader::conditions(const Json& document, int formatVersion, int since) {
+    std::vector<condition::Condition> defined;
+    const auto it = document.find("conditions");
+    if (it == document.end()) return defined;
+    if (formatVersion < since)
+        fail("conditions",
+             "is new in format_version " + std::to_string(since) + ", but this file is format_version " +
+                 std::to_string(formatVersion));
+    const Json* object = this->object(document, "", "conditions");
+    if (object->size() > static_cast<std::size_t>(kMaxDefinedConditions))
+        fail("conditions",
+             "defines " + std::to_string(object->size()) + " conditions, more than a protocol may (" +
+                 std::to_string(kMaxDefinedConditions) + ")");
+    for (const auto& [name, value] : object->items()) {
+        const std::string path = joinPath("conditions", name);
+        if (name.empty() || name.size() > kConditionNameLimit ||
+            !std::all_of(name.begin(), name.end(), conditionNameChar))
+            fail(path,
+                 "is not a condition name: 1 to " + std::to_string(kConditionNameLimit) +
+                     " letters, digits and - _ . + (it appears in CSVs and file names)");
+        if (!value.is_object())
+            fail(path,
+                 "must be an object of the condition's parts (render_hz, lag_frames or lag_ms, fill, fill_hz, "
+                 "late_warp, description), got " +
+                     describe(value));
+        requireKnownKeys(value, path, kConditionKeys);
+        condition::Condition c;
+        c.name = name;
+        if (value.contains("description")) c.description = line(value["description"], joinPath(path, "description"));
+        if (!value.contains("render_hz"))
+            fail(joinPath(path, "render_hz"), "is required: conventional renders per second");
+        number(&value, path, "render_hz", {0, true, kRefreshLimitHz, false}, c.renderHz);
+        if (value.contains("lag_frames") && value.contains("lag_ms"))
+            fail(joinPath(path, "lag_ms"), "and lag_frames are two ways to give the added latency; give one");
+        if (value.contains("lag_frames")) {
+            int frames = 0;
+            integer(&value, path, "lag_frames", 0, static_cast<int>(condition::kMaxLookBackFrames), frames);
+            c.lagFrames = frames;
+        }
+        number(&value, path, "lag_ms", {0, false, 1000, false}, c.lagMs);
+        std::vector<const char*> fills;
+        for (const auto& f : condition::fillSpellings()) fills.push_back(f.name);
+        choice(&value, path, "fill", fills, c.fill);
+        if (value.contains("fill_hz")) {
+            double hz = 0;
+            number(&value, path, "fill_hz", {0, true, kRefreshLimitHz, false}, hz);
+            c.fillHz = hz;
+        }
+        std::vector<const char*> lateWarps;
+        for (const auto w : condition::lateWarps()) lateWarps.push_back(condition::lateWarpName(w));
+        std::string lateWarp = "none";
+        choice(&value, path, "late_warp", lateWarps, lateWarp);
+        c.lateWarp = *condition::lateWarpNamed(lateWarp);
+        if (const condition::Condition* preset = condition::findPreset(name); preset && !preset->sameParts(c))
+            fail(path,
+                 "shadows the preset " + name + " with other parts (the preset's: " + partsText(*preset) +
+                     "); give the condition another name");
+        defined.push_back(c);
+    }
+    conditions_ = condition::ConditionTable(defined);
+    return defined;
+}
+
+void Reader::requireConditionsRun(double refreshHz) const {
+    for (const auto& c : conditions_.defined())
+        if (const auto p = condition::problem(c, refreshHz)) {
+            const std::string path = joinPath("conditions", c.name);
+            fail(p->part.empty() ? path : joinPath(path, p->part), p->reason);
+        }
+}
+
+void Reader::requireConditionsUsed() const {
+    for (const auto& c : conditions_.defined())
+        if (!used_.count(c.name))
+            fail(joinPath("conditions", c.name),
+                 "is defined but no field names it (a condition list or mode field); remove it or use it");
+}
+
+void writeConditions(Json& document, const std::vector<condition::Condition>& defined) {
+    if (defined.empty()) return;
+    Json& all = document["conditions"];
+    for (const auto& c : defined) {
+        Json& o = all[c.name];
+        if (!c.description.empty()) o["description"] = c.description;
+        o["render_hz"] = c.renderHz;
+        if (c.lagFrames)
+            o["lag_frames"] = *c.lagFrames;
+        else
+            o["lag_ms"] = c.lagMs;
+        o["fill"] = c.fill;
+        if (c.fillHz) o["fill_hz"] = *c.fillHz;
+        o["late_warp"] = condition::lateWarpName(c.lateWarp);
+    }
 }
 
 void Reader::requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const {

@@ -7,10 +7,13 @@
 #include <cstddef>
 #include <functional>
 #include <initializer_list>
+#include <set>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+
+#include "condition/condition.h"
 
 #include "protocol/study_protocol.h"
 #include "scene/limits.h"
@@ -66,10 +69,7 @@ struct NumberRange {
 // readers leave `out` untouched when the key is absent: unset means default.
 class Reader {
 public:
-    // For reading the "game" field alone; mode checks need the other constructor.
     explicit Reader(std::string source);
-    // Throws std::invalid_argument when `modes` is empty: without it no mode can be judged.
-    Reader(std::string source, ModeCheck modes);
 
     [[noreturn]] void fail(const std::string& path, const std::string& reason) const;
 
@@ -117,8 +117,20 @@ public:
     // A non-empty single line of at most kLineLimit bytes (names, labels, statements).
     std::string line(const Json& value, const std::string& where) const;
 
+    // The top-level "conditions" object (new in format_version `since`): each condition's parts,
+    // checked on their own; whether each can run is asked once the refresh is final
+    // (requireConditions). A name that is a preset must repeat the preset's parts. Mode ids
+    // name conditions; they are checked against these and the presets from here on.
+    std::vector<condition::Condition> conditions(const Json& document, int formatVersion, int since);
+    // Every defined condition runs at refreshHz: checked before the fields that name them, so
+    // the error names the definition's part rather than a field that uses it.
+    void requireConditionsRun(double refreshHz) const;
+    // ... and is named by some field (requireMode), checked after them.
+    void requireConditionsUsed() const;
+    const condition::ConditionTable& conditionTable() const { return conditions_; }
+
     // Mode ids are only read as strings here; whether they exist and fit the refresh is asked
-    // of the ModeCheck once the refresh is final (requireMode), so defaults are checked too.
+    // of the condition table once the refresh is final (requireMode), so defaults are checked too.
     void modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const;
     // A non-empty array of distinct mode ids.
     void modeList(const Json* parent, const std::string& path, const char* key, std::vector<std::string>& out) const;
@@ -132,8 +144,12 @@ public:
 
 private:
     std::string source_;
-    ModeCheck modes_;
+    condition::ConditionTable conditions_;
+    mutable std::set<std::string> used_;  // the conditions requireMode was asked about
 };
+
+// The "conditions" object as a canonical protocol writes it; nothing when there are none.
+void writeConditions(Json& document, const std::vector<condition::Condition>& defined);
 
 // ---------------------------------------------------------------- field tables
 // Each protocol object's keys are one table (as records.h is for the session's columns): a
@@ -247,11 +263,14 @@ std::vector<const char*> keyNames(const std::vector<Key<P>>& keys) {
 // The keys every protocol's top level starts with, in the documented order; headerJson
 // writes them and the game's sections follow.
 inline const std::vector<const char*> kHeaderKeys{"format_version", "name", "description", "game"};
+// The protocol's own conditions follow the header (Reader::conditions).
+inline constexpr const char* kConditionsKey = "conditions";
 
 // The top level's known keys: the header's, then the sections'.
 template <class P>
 std::vector<const char*> topLevelKeys(const std::vector<Section<P>>& sections) {
     std::vector<const char*> names = kHeaderKeys;
+    names.push_back(kConditionsKey);
     for (const Section<P>& s : sections) names.push_back(s.name);
     return names;
 }
@@ -294,6 +313,7 @@ void writeSections(Json& document, const std::vector<Section<P>>& sections, int 
 template <class P>
 std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections) {
     std::vector<std::string> paths(kHeaderKeys.begin(), kHeaderKeys.end());
+    paths.emplace_back(kConditionsKey);
     for (const Section<P>& s : sections)
         for (const Key<P>& k : s.keys) paths.push_back(joinPath(s.name, k.name));
     return paths;

@@ -89,9 +89,8 @@ const std::vector<detail::Section<P>>& sections() {
 
 std::vector<std::string> shooterProtocolKeys() { return detail::keyPaths(sections()); }
 
-ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
-                                     const ModeCheck& modes) {
-    const detail::Reader r(sourceName, modes);
+ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName) {
+    detail::Reader r(sourceName);
     const Json document = r.parseObject(jsonText);
     ShooterProtocol p;
     r.requireGame(document, "shooter");
@@ -100,6 +99,7 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
 
     r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
+    p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kShooterConditionsSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
     const StaircaseSettings& s = p.training;
 
@@ -119,19 +119,22 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
     if (s.highMode == s.lowMode)
         r.fail("training.low_mode", "must differ from training.high_mode, both are \"" + s.lowMode + "\"");
     // Defaults included: a file that only changes the refresh must still fit every mode.
+    r.requireConditionsRun(p.refreshHz);
     r.requireMode("acclimation.mode", p.acclimationMode, p.refreshHz);
     r.requireMode("training.high_mode", s.highMode, p.refreshHz);
     r.requireMode("training.low_mode", s.lowMode, p.refreshHz);
     r.requireModes("test.conditions", p.conditions, p.refreshHz);
+    r.requireConditionsUsed();
     return p;
 }
 
-ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& modes) {
-    return parseShooterProtocol(readProtocolFile(path), path, modes);
+ShooterProtocol loadShooterProtocol(const std::string& path) {
+    return parseShooterProtocol(readProtocolFile(path), path);
 }
 
 std::string toJson(const ShooterProtocol& p) {
     Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
+    detail::writeConditions(document, p.conditionTable.defined());
     detail::writeSections(document, sections(), p.formatVersion, p);
     return detail::canonicalText(document);
 }

@@ -598,7 +598,7 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const auto ok = warplab("export " + results + " --out " + out);
     EXPECT_EQ(ok.status, 0) << ok.output;
     for (const char* name :
-         {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "modes.csv", "games.csv"}) {
+         {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "conditions.csv", "games.csv"}) {
         EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
         EXPECT_TRUE(contains(ok.output, out + "/" + name)) << ok.output;
     }

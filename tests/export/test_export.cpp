@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "export/csv.h"
+#include "game/registry.h"
 #include "export/export.h"
 #include "condition/schedule.h"
 #include "study/session_runner.h"
@@ -308,47 +309,54 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     EXPECT_EQ(slurp(all + "/hitrates.csv"), slurp(out + "/hitrates.csv"));
 }
 
-// modes.csv is the mode table itself: every mode in its order, each cell what the table says,
-// so an analysis reading it needs no list of modes of its own.
-TEST(Export, ModesCsvIsTheModeTable) {
-    const std::string results = scratch("modes/results"), out = scratch("modes/out");
+// conditions.csv lists every condition the sessions' protocols run, once per game and refresh,
+// each cell what the condition and its schedule say, so an analysis reading it needs no list of
+// conditions of its own.
+TEST(Export, ConditionsCsvListsWhatTheSessionsRan) {
+    const std::string results = scratch("conditions/results"), out = scratch("conditions/out");
     headless("shooter-quick.json", "P01", results, 1);
     exportQuietly(results, out);
-    const auto rows = readCsv(out + "/modes.csv");
-    const std::vector<std::string> ids = condition::modeIds();
-    ASSERT_EQ(rows.size(), ids.size());
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-        const condition::ModeSpec& m = condition::modeSpec(ids[i]);
+    const auto rows = readCsv(out + "/conditions.csv");
+    const auto study = game::loadStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+    std::vector<std::string> used;
+    for (const auto& m : study->modes())
+        if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
+    ASSERT_EQ(rows.size(), used.size());
+    for (std::size_t i = 0; i < used.size(); ++i) {
+        const condition::ConditionSummary c = condition::summarize(study->conditions().at(used[i]), study->refreshHz());
         const Row& row = rows[i];
-        SCOPED_TRACE(m.id);
-        EXPECT_EQ(row.at("mode"), m.id);
-        EXPECT_EQ(row.at("description"), m.description);
-        EXPECT_EQ(std::stod(row.at("render_rate_hz")), m.renderRateHz);
-        EXPECT_EQ(std::stod(row.at("added_lag_ms")), m.lagMs);
-        EXPECT_EQ(row.at("upconversion"), condition::upconversionName(m.upconversion));
-        EXPECT_EQ(row.at("method"), m.method);
-        EXPECT_EQ(row.at("upconverts"), m.upconversion == condition::Upconversion::None ? "false" : "true");
-        if (m.upconversion == condition::Upconversion::None)
-            EXPECT_EQ(row.at("upconverted_rate_hz"), "");
-        else
-            EXPECT_EQ(std::stod(row.at("upconverted_rate_hz")), m.upconvertedRateHz);
+        SCOPED_TRACE(used[i]);
+        EXPECT_EQ(row.at("condition"), used[i]);
+        EXPECT_EQ(row.at("description"), c.condition.description);
+        EXPECT_EQ(std::stod(row.at("render_hz")), c.condition.renderHz);
+        EXPECT_EQ(std::stoll(row.at("lag_frames")), c.lagFrames);
+        EXPECT_EQ(row.at("fill"), c.condition.fill);
+        EXPECT_EQ(row.at("late_warp"), condition::lateWarpName(c.condition.lateWarp));
+        EXPECT_EQ(std::stod(row.at("view_latency_min_ms")), c.viewS.min * 1000.0);
+        EXPECT_EQ(std::stod(row.at("view_latency_max_ms")), c.viewS.max * 1000.0);
+        EXPECT_EQ(std::stod(row.at("scene_latency_min_ms")), c.sceneS.min * 1000.0);
+        EXPECT_EQ(std::stod(row.at("scene_latency_max_ms")), c.sceneS.max * 1000.0);
+        EXPECT_EQ(std::stod(row.at("refresh_hz")), 120.0);
+        EXPECT_EQ(row.at("game"), "shooter");
     }
-    // Spelled out once, independently of the table's own accessors.
-    EXPECT_EQ(rows[0].at("mode"), "conv15");
+    // Spelled out once, independently of the condition's own accessors.
     const auto row = [&](const std::string& id) {
-        return *std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.at("mode") == id; });
+        const auto it = std::find_if(rows.begin(), rows.end(), [&](const Row& r) { return r.at("condition") == id; });
+        EXPECT_NE(it, rows.end()) << id;
+        return it == rows.end() ? Row{} : *it;
     };
     const Row warp = row("warp15to120");
-    EXPECT_EQ(warp.at("render_rate_hz"), "15");
-    EXPECT_EQ(warp.at("upconversion"), "warp");
-    EXPECT_EQ(warp.at("upconverted_rate_hz"), "120");
-    EXPECT_EQ(warp.at("method"), "warp-sparse8");
-    EXPECT_EQ(warp.at("upconverts"), "true");
-    const Row lag = row("lag100");
-    EXPECT_EQ(lag.at("render_rate_hz"), "60");
-    EXPECT_EQ(lag.at("added_lag_ms"), "100");
-    EXPECT_EQ(lag.at("upconversion"), "none");
-    EXPECT_EQ(lag.at("upconverts"), "false");
+    EXPECT_EQ(warp.at("render_hz"), "15");
+    EXPECT_EQ(warp.at("fill"), "warp-sparse8");
+    EXPECT_EQ(warp.at("fill_hz"), "120");
+    EXPECT_EQ(warp.at("late_warp"), "none");
+    EXPECT_EQ(warp.at("view_latency_min_ms"), "0");
+    EXPECT_NEAR(std::stod(warp.at("view_latency_max_ms")), 1000.0 / 120, 1e-9);
+    EXPECT_NEAR(std::stod(warp.at("scene_latency_max_ms")), 8000.0 / 120, 1e-9);
+    const Row conv15 = row("conv15");
+    EXPECT_EQ(conv15.at("fill"), "hold");
+    EXPECT_EQ(conv15.at("fill_hz"), "");
+    EXPECT_EQ(conv15.at("lag_frames"), "0");
 }
 
 // A session's results with a new participant id (and start time), as if run again.

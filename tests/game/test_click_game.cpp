@@ -24,8 +24,7 @@ namespace {
 const DisplaySize kDisplay{1280, 720};
 
 protocol::ClickProtocol quick() {
-    return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json",
-                                       condition::checkMode);
+    return protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json");
 }
 
 nlohmann::json detail(const session::EventRecord& e) { return nlohmann::json::parse(e.detailJson); }
@@ -74,7 +73,9 @@ TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
             const int v = detail(e)["value"];
             EXPECT_GE(v, p.ratingMin);
             EXPECT_LE(v, p.ratingMax);
-            EXPECT_EQ(v, botRating(e.mode, detail(e)["statement_index"], p.ratingMin, p.ratingMax));
+            EXPECT_EQ(v,
+                      botRating(condition::preset(e.mode), p.refreshHz, detail(e)["statement_index"], p.ratingMin,
+                                p.ratingMax));
             (detail(e)["answered_with"] == "key" ? byKey : byMouse) += 1;
         }
         if (e.type == "click") {
@@ -170,7 +171,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
             const glm::dvec2 before = shown.cursor;
             const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
-            const condition::ModeSchedule schedule(condition::modeSpec(mode), p.refreshHz);
+            const condition::ModeSchedule schedule(condition::preset(mode), p.refreshHz);
             ShownFrame f = stepFrame;
             while (f.cursor == before) f = game.step({});
             EXPECT_NEAR(f.time - stepFrame.time, schedule.viewLatency(stepFrame.schedule.displayTime), 1e-9)
@@ -364,22 +365,30 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
 
 TEST(ClickBot, RatesEachModeByItsSchedulesLatencyAsTheFormerFormulaDid) {
     // The formula the bot used before it asked the schedule, the oracle: the ratings, whole
-    // numbers, must not move for any mode, statement or scale.
-    auto former = [](const std::string& mode, int statement, int min, int max) {
-        const condition::ModeSpec& m = condition::modeSpec(mode);
-        const double shownRate = m.upconversion == condition::Upconversion::None ? m.renderRateHz : m.upconvertedRateHz;
+    // numbers, must not move for any preset, statement or scale on the click game's 60 Hz.
+    struct Former {
+        double renderRateHz, lagMs, shownRate;
+        bool bidirectional;
+    };
+    const std::map<std::string, Former> former = {
+        {"conv15", {15, 0, 15, false}},    {"conv30", {30, 0, 30, false}},       {"conv60", {60, 0, 60, false}},
+        {"conv120", {120, 0, 120, false}}, {"lag50", {60, 50, 60, false}},       {"lag100", {60, 100, 60, false}},
+        {"lag200", {60, 200, 60, false}},  {"warp15to120", {15, 0, 120, false}}, {"bireproj15to60", {15, 0, 60, true}},
+    };
+    auto rating = [](const Former& m, int statement, int min, int max) {
         double latencyMs = 500.0 / m.renderRateHz + m.lagMs;
-        if (m.upconversion == condition::Upconversion::Bidirectional) latencyMs += 1000.0 / m.renderRateHz;
-        const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
+        if (m.bidirectional) latencyMs += 1000.0 / m.renderRateHz;
+        const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, m.shownRate / 60.0)));
         const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
         const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));
         const int values[4] = {enjoyed, 8 - enjoyed, responsive, smooth};
         return std::clamp(values[statement % 4], min, max);
     };
-    for (const std::string& mode : condition::modeIds())
+    for (const char* mode : {"conv15", "conv30", "conv60", "lag50", "lag100", "lag200", "bireproj15to60"})
         for (int statement = 0; statement < 8; ++statement)
             for (const auto& [min, max] : {std::pair{1, 7}, std::pair{1, 5}, std::pair{0, 10}, std::pair{3, 4}})
-                EXPECT_EQ(botRating(mode, statement, min, max), former(mode, statement, min, max))
+                EXPECT_EQ(botRating(condition::preset(mode), 60.0, statement, min, max),
+                          rating(former.at(mode), statement, min, max))
                     << mode << " statement " << statement << " on " << min << ".." << max;
 }
 

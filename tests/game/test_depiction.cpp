@@ -43,7 +43,7 @@ std::optional<Point> shownAt(const condition::ModeSchedule& schedule, std::int64
 }
 
 TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
-    const condition::ModeSchedule warp(condition::modeSpec("warp15to120"), 120.0);
+    const condition::ModeSchedule warp(condition::preset("warp15to120"), 120.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{1237, 120.0};
         for (std::int64_t k = 0; k < 64; ++k) {
@@ -63,7 +63,7 @@ TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
 }
 
 TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
-    const condition::ModeSchedule bireproj(condition::modeSpec("bireproj15to60"), 60.0);
+    const condition::ModeSchedule bireproj(condition::preset("bireproj15to60"), 60.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{905, 60.0};
         for (std::int64_t k = 4; k < 64; ++k) {
@@ -92,8 +92,7 @@ TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
 
 TEST(Depiction, HeldAndLaggedFramesShowTheStateAsSampled) {
     const SchedulePlacement at{40, 60.0};
-    const condition::ModeSchedule conv15(condition::modeSpec("conv15"), 60.0),
-        lag50(condition::modeSpec("lag50"), 60.0);
+    const condition::ModeSchedule conv15(condition::preset("conv15"), 60.0), lag50(condition::preset("lag50"), 60.0);
     for (std::int64_t k = 0; k < 24; ++k) {
         const WorldDepiction held = depictWorld(conv15.mode(), conv15.frame(k), at, WorldClock::Session);
         EXPECT_EQ(held.how, Depicted::AsSampled);
@@ -112,13 +111,14 @@ double oldShooter(const condition::ModeSchedule& schedule, const condition::Sche
         return static_cast<double>(start + std::llround(localTime * refresh)) / refresh;
     };
     auto targetAt = [&](double time) { return trueAt(time).x; };
-    switch (schedule.mode().upconversion) {
-        case condition::Upconversion::None: return targetAt(global(f.sceneTime));
-        case condition::Upconversion::Warp: {
+    switch (schedule.mode().fillKind()) {
+        case condition::Fill::Blend: break;  // no preset blends
+        case condition::Fill::Hold: return targetAt(global(f.sceneTime));
+        case condition::Fill::Warp: {
             const double source = global(f.worldSampleTime);
             return targetAt(source) + trueAt(source).v * (global(f.sceneTime) - source);
         }
-        case condition::Upconversion::Bidirectional: {
+        case condition::Fill::Bireproj: {
             const double depicted = global(f.sceneTime);
             if (f.nextSourceIndex < 0) return targetAt(depicted);
             const double t0 = static_cast<double>(start + f.sourceIndex) / refresh;
@@ -134,14 +134,15 @@ double oldClick(const condition::ModeSchedule& schedule, const condition::Schedu
     const double refresh = schedule.refreshHz();
     auto at = [&](std::int64_t localFrame) { return trueAt(static_cast<double>(localFrame) / refresh); };
     auto frameOf = [&](double localTime) { return std::llround(localTime * refresh); };
-    switch (schedule.mode().upconversion) {
-        case condition::Upconversion::None: return at(frameOf(f.sceneTime)).x;
-        case condition::Upconversion::Warp: {
+    switch (schedule.mode().fillKind()) {
+        case condition::Fill::Blend: break;  // no preset blends
+        case condition::Fill::Hold: return at(frameOf(f.sceneTime)).x;
+        case condition::Fill::Warp: {
             const double dt = f.sceneTime - f.worldSampleTime;
             const Point p = at(frameOf(f.worldSampleTime));
             return p.x + p.v * dt;
         }
-        case condition::Upconversion::Bidirectional: {
+        case condition::Fill::Bireproj: {
             if (f.nextSourceIndex < 0) return at(frameOf(f.sceneTime)).x;
             const Point before = at(f.sourceIndex), after = at(f.nextSourceIndex);
             const double a = static_cast<double>(std::llround(f.sceneTime * refresh) - f.sourceIndex) /
@@ -154,9 +155,9 @@ double oldClick(const condition::ModeSchedule& schedule, const condition::Schedu
 
 TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
     for (const double refresh : {60.0, 120.0}) {
-        for (const std::string& id : condition::modeIds()) {
-            if (!condition::checkMode(id, refresh).empty()) continue;
-            const condition::ModeSchedule schedule(condition::modeSpec(id), refresh);
+        for (const std::string& id : condition::presetNames()) {
+            if (!condition::ConditionTable().check(id, refresh).empty()) continue;
+            const condition::ModeSchedule schedule(condition::preset(id), refresh);
             for (const std::int64_t start : {0, 1, 37, 4321, 987654}) {
                 const SchedulePlacement at{start, refresh};
                 for (std::int64_t k = 0; k < 200; ++k) {
@@ -172,7 +173,7 @@ TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
 }
 
 TEST(Depiction, AnInputReadsClickWaitsForTheNextFrameThatReadsInput) {
-    const condition::ModeSchedule conv15(condition::modeSpec("conv15"), 60.0);
+    const condition::ModeSchedule conv15(condition::preset("conv15"), 60.0);
     ClickGate waits(true), atOnce(false);
     // Pressed at frame 1; conv15 at 60 Hz reads its input at frames 0, 4, 8, ...
     for (std::int64_t k = 0; k < 8; ++k) {

@@ -17,8 +17,7 @@ namespace warplab::game {
 namespace {
 
 protocol::ShooterProtocol quick() {
-    return protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json",
-                                         condition::checkMode);
+    return protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
 }
 
 struct Played {
@@ -146,14 +145,14 @@ struct ModeRig {
 };
 
 TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
-    for (const auto& mode : condition::modeIds()) {
+    for (const auto& mode : condition::presetNames()) {
         for (int phase = 0; phase < 8; ++phase) {
             ModeRig rig(mode);
             for (int i = 0; i < 16 + phase; ++i) rig.last = rig.game->step({});
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});  // the step, read at this frame
             const double stepTime = stepFrame.time;
-            const condition::ModeSchedule schedule(condition::modeSpec(mode), rig.p.refreshHz);
+            const condition::ModeSchedule schedule(condition::preset(mode), rig.p.refreshHz);
             const double local = stepFrame.schedule.displayTime;
             ShownFrame f = stepFrame;
             while (f.camera.yaw == before) f = rig.game->step({});
@@ -167,9 +166,9 @@ TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
 // says (conventional: the next render; warp: the next source, since warped frames extrapolate
 // the old velocity; bidirectional: the first B-frame interpolating towards a later I-frame).
 TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
-    for (const auto& mode : condition::modeIds()) {
+    for (const auto& mode : condition::presetNames()) {
         ModeRig rig(mode);
-        const condition::ModeSchedule schedule(condition::modeSpec(mode), rig.p.refreshHz);
+        const condition::ModeSchedule schedule(condition::preset(mode), rig.p.refreshHz);
         bool measured = false;
         for (int attempt = 0; attempt < 8 && !measured; ++attempt) {
             while (rig.last.frozen || rig.last.scene.objects.empty()) rig.last = rig.game->step({});

@@ -36,7 +36,7 @@ bool underReticle(double x) { return std::abs(x) <= kRadius; }
 class ToyGame final : public FreePlayGame {
 public:
     explicit ToyGame(const ToyProtocol& p)
-        : protocol_(p), schedule_(condition::modeSpec(p.mode), p.refreshHz), clickGate_(true) {}
+        : protocol_(p), schedule_(condition::ConditionTable().at(p.mode), p.refreshHz), clickGate_(true) {}
 
     ShownFrame step(const FrameInput& input) override {
         ++frame_;
@@ -50,7 +50,7 @@ public:
         // What the mode shows of the dot, through the two hooks.
         const SchedulePlacement placement{scheduleStart_, protocol_.refreshHz};
         const condition::ScheduledFrame f = schedule_.frame(frame_ - scheduleStart_);
-        ShownFrame shown = scheduledShownFrame(frame_, schedule_.mode().id, f, placement);
+        ShownFrame shown = scheduledShownFrame(frame_, schedule_.mode(), f, placement);
         const WorldDepiction d = depictWorld(schedule_.mode(), f, placement, WorldClock::Schedule);
         const Dot seen = *depictedState<Dot>(
             d, [&](std::int64_t frame) -> std::optional<Dot> { return history_.at(frame); },
@@ -70,7 +70,7 @@ public:
             session::EventRecord e;
             e.type = "click";
             e.trial = clicks_++;
-            e.mode = schedule_.mode().id;
+            e.mode = schedule_.mode().name;
             e.worldOutcome = underReticle(dotAt(now).x) ? "hit" : "miss";
             e.displayedOutcome = underReticle(seen.x) ? "hit" : "miss";
             e.detailJson = nlohmann::json{{"shown_x", seen.x}, {"x", dotAt(now).x}}.dump();
@@ -106,7 +106,7 @@ public:
         return e.displayedOutcome == "hit" ? scene::kIdTarget : scene::kIdNone;
     }
     void switchTo(const std::string& mode, int) override {
-        schedule_ = condition::ModeSchedule(condition::modeSpec(mode), protocol_.refreshHz);
+        schedule_ = condition::ModeSchedule(condition::ConditionTable().at(mode), protocol_.refreshHz);
         scheduleStart_ = frame_ + 1;
         freePlay_ = true;
     }
@@ -183,6 +183,7 @@ public:
         return std::make_unique<ToyBot>();
     }
     std::vector<std::string> modes() const override { return {protocol_.mode}; }
+    const condition::ConditionTable& conditions() const override { return table_; }
     Instructions instructions() const override {
         Instructions i;
         i.task = "click while the sphere is under the reticle";
@@ -212,6 +213,7 @@ public:
 
 private:
     ToyProtocol protocol_;
+    condition::ConditionTable table_;  // the presets: a toy protocol defines none
 };
 
 std::unique_ptr<Study> parseToyStudy(const std::string& jsonText, const std::string& sourceName) {
@@ -225,7 +227,8 @@ std::unique_ptr<Study> parseToyStudy(const std::string& jsonText, const std::str
     p.refreshHz = j.value("refresh_hz", p.refreshHz);
     p.mode = j.value("mode", p.mode);
     p.durationS = j.value("duration_s", p.durationS);
-    if (const std::string why = condition::checkMode(p.mode, p.refreshHz); !why.empty()) throw fail("mode: " + why);
+    if (const std::string why = condition::ConditionTable().check(p.mode, p.refreshHz); !why.empty())
+        throw fail("mode: " + why);
     if (!(p.durationS > 0.0)) throw fail("duration_s must be positive");
     return std::make_unique<ToyStudy>(std::move(p));
 }

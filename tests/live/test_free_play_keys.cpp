@@ -63,8 +63,8 @@ TEST(FreePlayKeys, UAndDChangeTheLevelNotBelowZero) {
 
 // The published modes on the click game's 60 Hz display: conv120 and warp15to120 need 120 Hz.
 TEST(FreePlayKeys, TheModeTableAt60HzSkipsWhatNeeds120) {
-    const auto modes = condition::modeIds();
-    const auto at60 = [](const std::string& m) { return condition::checkMode(m, 60.0).empty(); };
+    const auto modes = condition::presetNames();
+    const auto at60 = [](const std::string& m) { return condition::ConditionTable().check(m, 60.0).empty(); };
     EXPECT_EQ(applyFreePlayKeys({"lag200", 0}, "]", modes, at60).mode, "bireproj15to60");
     EXPECT_EQ(applyFreePlayKeys({"bireproj15to60", 0}, "]", modes, at60).mode, "conv15");
     EXPECT_EQ(applyFreePlayKeys({"conv60", 0}, "]", modes, at60).mode, "lag50");

@@ -28,7 +28,7 @@ const std::string kPrefix = "protocol 'p.json': ";
 std::string protocolDir() { return std::string(WARPLAB_SOURCE_DIR) + "/protocol"; }
 
 ClickProtocol parse(const std::string& text, const std::string& source = kSource) {
-    return parseClickProtocol(text, source, condition::checkMode);
+    return parseClickProtocol(text, source);
 }
 
 // The ProtocolError's message, or "" when the document parses.
@@ -127,7 +127,7 @@ ClickProtocol everyFieldChanged() {
 // The shipped files
 
 TEST(ClickFiles, YangIsTheStudyAsPublished) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", condition::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json");
     EXPECT_EQ(p.name, "click-yang");
     EXPECT_EQ(p.game, "click");
     EXPECT_EQ(p.refreshHz, 60.0);  // the fastest mode is 60 fps
@@ -152,15 +152,18 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
 }
 
 TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json", condition::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json");
     ClickProtocol defaults;
     defaults.name = p.name;
     defaults.description = p.description;
+    // The shipped file is format 1: it defines no conditions of its own, so it reads as before.
+    EXPECT_EQ(p.formatVersion, 1);
+    defaults.formatVersion = p.formatVersion;
     expectSame(p, defaults);
 }
 
 TEST(ClickFiles, QuickIsTheSameStudyInSeconds) {
-    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json", condition::checkMode);
+    const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json");
     EXPECT_EQ(p.name, "click-quick");
     EXPECT_EQ(p.refreshHz, 60.0);
     EXPECT_EQ(p.modes, ClickProtocol{}.modes);
@@ -194,9 +197,9 @@ TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
         const std::string text = readProtocolFile(path);
         const std::string game = protocolGame(text, path);
         if (game == "shooter")
-            EXPECT_NO_THROW(parseShooterProtocol(text, path, condition::checkMode));
+            EXPECT_NO_THROW(parseShooterProtocol(text, path));
         else if (game == "click")
-            EXPECT_NO_THROW(parseClickProtocol(text, path, condition::checkMode));
+            EXPECT_NO_THROW(parseClickProtocol(text, path));
         else
             ADD_FAILURE() << "no parser for game " << game;
         ++count;
@@ -210,6 +213,7 @@ TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
 TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
     ClickProtocol expected;
     expected.name = "t";
+    expected.formatVersion = minimal()["format_version"];
     expectSame(parse(minimal().dump()), expected);
     Json document = minimal();
     for (const char* section : {"display", "physics", "input", "matches", "ratings"})
@@ -272,15 +276,15 @@ TEST(ClickErrors, ZeroMatches) {
               kPrefix + "matches.match_s must be a number greater than 0 and at most 300, got 0");
 }
 
-// The reason after the path is condition::checkMode's own: the mode table has one home.
+// The reason after the path is the condition table's own: the presets have one home.
 std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
-    return kPrefix + where + " is \"" + id + "\": " + condition::checkMode(id, refreshHz);
+    return kPrefix + where + " is \"" + id + "\": " + condition::ConditionTable().check(id, refreshHz);
 }
 
 TEST(ClickErrors, UnknownMode) {
     const std::string message = messageFor(yangWith("/matches/modes/2", "conv25"));
     EXPECT_EQ(message, modeError("matches.modes[2]", "conv25", 60));
-    EXPECT_NE(message.find("unknown mode 'conv25'"), std::string::npos) << message;
+    EXPECT_NE(message.find("unknown condition 'conv25'"), std::string::npos) << message;
     EXPECT_EQ(messageFor(yangWith("/matches/modes/0", 60)),
               kPrefix + "matches.modes[0] must be a mode id (a string), got 60");
     EXPECT_EQ(messageFor(yangWith("/matches/modes", Json::array())),
@@ -370,7 +374,7 @@ TEST(ClickErrors, WrongGame) {
               kPrefix + "game must be \"click\" for a click protocol, got string \"shooter\"");
     // And the other way round: a click file is refused by the shooter parser, not half-read.
     try {
-        parseShooterProtocol(yangWith("/name", "c").dump(), kSource, condition::checkMode);
+        parseShooterProtocol(yangWith("/name", "c").dump(), kSource);
         ADD_FAILURE() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()),
@@ -423,7 +427,7 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 2, "format_version 2 is newer than this warplab supports (1)"},
+        {"/format_version", 3, "format_version 3 is newer than this warplab supports (2)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);
@@ -495,10 +499,6 @@ TEST(ClickLimits, CameraLimitsAreTheSharedOnes) {
     });
 }
 
-TEST(ClickErrors, AnEmptyModeCheckIsAProgrammingError) {
-    EXPECT_THROW(parseClickProtocol(minimal().dump(), kSource, ModeCheck{}), std::invalid_argument);
-}
-
 // ---------------------------------------------------------------------------------------
 // The shared loader
 
@@ -537,7 +537,7 @@ TEST(SharedLoader, ReadingAFileNamesThePath) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + missing + "': no such file");
     }
     try {
-        loadClickProtocol(protocolDir(), condition::checkMode);
+        loadClickProtocol(protocolDir());
         ADD_FAILURE() << "expected a ProtocolError";
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()), "protocol '" + protocolDir() + "': is a directory, not a file");

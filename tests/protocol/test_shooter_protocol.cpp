@@ -27,9 +27,9 @@ std::string shippedPath(const std::string& name) { return std::string(WARPLAB_SO
 
 // Parsing against the one mode table, as the app does.
 ShooterProtocol parse(const std::string& text, const std::string& source = kSource) {
-    return parseShooterProtocol(text, source, condition::checkMode);
+    return parseShooterProtocol(text, source);
 }
-ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path, condition::checkMode); }
+ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path); }
 
 // The smallest valid file: only the required fields.
 Json minimal() { return Json{{"format_version", 2}, {"name", "t"}, {"game", "shooter"}}; }
@@ -164,6 +164,9 @@ TEST(ProtocolFiles, ThesisIsWhatTheStructDefaultsSay) {
     const ShooterProtocol p = load(shippedPath("shooter-thesis.json"));
     defaults.name = p.name;
     defaults.description = p.description;
+    // The shipped file is format 2: it defines no conditions of its own, so it reads as before.
+    EXPECT_EQ(p.formatVersion, 2);
+    defaults.formatVersion = p.formatVersion;
     expectSame(p, defaults);
 }
 
@@ -193,6 +196,7 @@ TEST(ProtocolFiles, ShippedFilesAreInCanonicalForm) {
 TEST(ProtocolDefaults, UnsetFieldsTakeTheThesisValues) {
     ShooterProtocol expected;
     expected.name = "t";
+    expected.formatVersion = minimal()["format_version"];
     expectSame(parse(minimal().dump()), expected);
     // An empty nested object is the same as an absent one.
     Json document = minimal();
@@ -264,12 +268,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 3;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 3 is newer than this warplab supports (2)");
+    document["format_version"] = 4;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 4 is newer than this warplab supports (3)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 3 is newer than this warplab supports (2)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 4 is newer than this warplab supports (3)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -489,16 +493,16 @@ TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
     EXPECT_NO_THROW(parse(document.dump()));
 }
 
-// The reason after the path is condition::checkMode's own: the mode table has one home.
+// The reason after the path is the condition table's own: the presets have one home.
 std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
-    return "protocol 'p.json': " + where + " is \"" + id + "\": " + condition::checkMode(id, refreshHz);
+    return "protocol 'p.json': " + where + " is \"" + id + "\": " + condition::ConditionTable().check(id, refreshHz);
 }
 
 TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
     const std::string message = errorOf(thesisWith("/test/conditions/1", "conv25"));
     EXPECT_EQ(message, modeError("test.conditions[1]", "conv25", 120));
-    expectContains(message, {"test.conditions[1] is \"conv25\": unknown mode 'conv25'"});
-    for (const std::string& id : condition::modeIds()) expectContains(message, {id});
+    expectContains(message, {"test.conditions[1] is \"conv25\": unknown condition 'conv25'"});
+    for (const std::string& id : condition::presetNames()) expectContains(message, {id});
     EXPECT_EQ(errorOf(thesisWith("/acclimation/mode", "CONV120")), modeError("acclimation.mode", "CONV120", 120));
     EXPECT_EQ(errorOf(thesisWith("/training/high_mode", "warp")), modeError("training.high_mode", "warp", 120));
     // Not a string at all: a type error, before any mode is looked up.
@@ -507,31 +511,6 @@ TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
     EXPECT_EQ(errorOf(thesisWith("/test/conditions/0", Json::array({"conv15"}))),
               "protocol 'p.json': test.conditions[0] must be a mode id (a string), got array "
               "[\"conv15\"]");
-}
-
-TEST(ProtocolErrors, ModesAreJudgedByTheInjectedCheck) {
-    // A parser with its own list would accept conv15 and refuse "mine" whatever it is handed.
-    std::vector<std::pair<std::string, double>> asked;
-    const ModeCheck onlyMine = [&asked](const std::string& id, double refreshHz) {
-        asked.emplace_back(id, refreshHz);
-        return id == "mine" || id == "other" ? "" : "only mine here";
-    };
-    Json document = thesisWith("/test/conditions", {"mine"});
-    document["acclimation"]["mode"] = "mine";
-    document["training"]["high_mode"] = "mine";
-    document["training"]["low_mode"] = "other";
-    document["display"]["refresh_hz"] = 50;
-    EXPECT_EQ(parseShooterProtocol(document.dump(), kSource, onlyMine).conditions, std::vector<std::string>{"mine"});
-    EXPECT_EQ(asked,
-              (std::vector<std::pair<std::string, double>>{{"mine", 50}, {"mine", 50}, {"other", 50}, {"mine", 50}}));
-    document["test"]["conditions"] = {"mine", "conv15"};
-    try {
-        parseShooterProtocol(document.dump(), kSource, onlyMine);
-        ADD_FAILURE() << "expected a ProtocolError";
-    } catch (const ProtocolError& e) {
-        EXPECT_EQ(std::string(e.what()), "protocol 'p.json': test.conditions[1] is \"conv15\": only mine here");
-    }
-    EXPECT_THROW(parseShooterProtocol(document.dump(), kSource, ModeCheck{}), std::invalid_argument);
 }
 
 TEST(ProtocolErrors, DuplicateConditionsAreNamed) {
@@ -593,8 +572,8 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
     // A non-integral refresh fits nothing, 240 Hz fits everything.
     expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"acclimation.mode is \"conv120\""});
     document = thesisWith("/display/refresh_hz", 240);
-    document["test"]["conditions"] = condition::modeIds();
-    EXPECT_EQ(parse(document.dump()).conditions, condition::modeIds());
+    document["test"]["conditions"] = condition::presetNames();
+    EXPECT_EQ(parse(document.dump()).conditions, condition::presetNames());
 }
 
 // ---------------------------------------------------------------------------------------
@@ -610,10 +589,10 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion2WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion3WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 2);
+    EXPECT_EQ(kShooterFormatVersion, 3);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);

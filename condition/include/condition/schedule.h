@@ -1,42 +1,21 @@
-// Study modes as frame schedules on the display clock (DESIGN.md "Time, modes and
-// determinism"). A mode says, for every displayed frame: is it rendered, held, warped or
+// A condition as a frame schedule on the display clock (DESIGN.md "Time, modes and
+// determinism"). It says, for every displayed frame: is it rendered, held, warped or
 // interpolated; is the mouse read for it; which instant's camera and which instant's world it
-// depicts. Everything else -- the game loop, scoring, replay, the latency table in the
-// README -- reads these schedules, so a mode's timing is written down once.
+// depicts. Everything else -- the game loop, scoring, the frame maker, replay, the latency
+// tables of the README and `warplab conditions` -- reads these schedules, so a condition's
+// timing is written down once, whatever its parts.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
+#include "condition/condition.h"
+
 namespace warplab::condition {
 
 enum class FrameKind : std::uint8_t { Rendered, Held, Warped, Interpolated };
 const char* frameKindName(FrameKind kind);
-
-enum class Upconversion : std::uint8_t { None, Warp, Bidirectional };
-// "none", "warp", "bidirectional": as modes.csv writes it (docs/export.md).
-const char* upconversionName(Upconversion upconversion);
-
-struct ModeSpec {
-    std::string id;  // as used in protocols, logs and CSVs
-    std::string description;
-    double renderRateHz = 60.0;  // conventional renders per second (I-frames for bireproj)
-    double lagMs = 0.0;  // rendered frames wait this long in a queue before shown
-    Upconversion upconversion = Upconversion::None;
-    double upconvertedRateHz = 0.0;  // frames made per second by warp (every display frame) or bireproj
-    std::string method;  // renderer method that makes the in-between frames
-};
-
-// Every mode's id, in the order of the one mode table (game/src/modes.cpp): the nine published
-// presets first. Docs, tests, export's modes.csv and the analysis all follow that table.
-std::vector<std::string> modeIds();
-// Throws std::invalid_argument naming the unknown id and listing the known ones.
-const ModeSpec& modeSpec(const std::string& id);
-// For protocol validation (protocol/ cannot include game/, so the loader is handed this):
-// "" when `id` names a mode that can run on a display of refreshHz, else the reason, e.g.
-// "unknown mode 'conv45' (known: ...)" or "mode conv15 needs a display refresh that is ...".
-std::string checkMode(const std::string& id, double refreshHz);
 
 // What one displayed frame depicts. Times are seconds since the schedule started (a mode
 // switch starts a new schedule); they may be negative for lag and bidirectional modes, whose
@@ -59,11 +38,11 @@ struct ScheduledFrame {
 
 class ModeSchedule {
 public:
-    // Throws std::invalid_argument when the display refresh is not a whole multiple of the
-    // mode's rates (a 15 Hz mode on a 100 Hz display would judder unevenly).
-    ModeSchedule(const ModeSpec& mode, double refreshHz);
+    // Throws std::invalid_argument with condition::problem's reason when the condition cannot
+    // run at this refresh (a 15 Hz render on a 100 Hz display would judder unevenly).
+    ModeSchedule(const Condition& condition, double refreshHz);
 
-    const ModeSpec& mode() const { return mode_; }
+    const Condition& mode() const { return mode_; }
     double refreshHz() const { return refreshHz_; }
     ScheduledFrame frame(std::int64_t index) const;
 
@@ -73,14 +52,39 @@ public:
     double viewLatency(double tau) const;
     double sceneLatency(double tau) const;
 
+    // The shortest and longest of those over where a step falls in the cycle (seconds). The
+    // longest is a supremum: a step just after an instant that was read waits for the next.
+    struct Range {
+        double min = 0.0, max = 0.0;
+    };
+    Range viewLatencyRange() const;
+    Range sceneLatencyRange() const;
+    std::int64_t lagFrames() const { return lagFrames_; }
+    std::int64_t renderPeriod() const { return renderPeriod_; }
+
 private:
     template <typename Depicted>
     double firstShowing(double tau, Depicted depicted) const;
-    ModeSpec mode_;
+    template <typename Depicted>
+    Range latencyRange(Depicted depicted) const;
+    // The frame the fill makes at production frame j, before the queue and any late warp.
+    ScheduledFrame produced(std::int64_t j) const;
+    Condition mode_;
     double refreshHz_;
+    Fill fill_;
     std::int64_t renderPeriod_;  // display frames between conventional renders
-    std::int64_t lagFrames_;  // display frames a rendered frame waits (lag modes)
-    std::int64_t bPeriod_;  // display frames per bidirectional B-frame
+    std::int64_t lagFrames_;  // display frames a rendered frame waits in the queue
+    std::int64_t fillPeriod_;  // display frames between the frames the fill makes
 };
+
+// A condition at one refresh, as `warplab conditions` and export's conditions.csv list it.
+struct ConditionSummary {
+    Condition condition;
+    double refreshHz = 0.0;
+    std::int64_t lagFrames = 0;
+    ModeSchedule::Range viewS, sceneS;  // latencies, seconds
+};
+// Throws std::invalid_argument as ModeSchedule does.
+ConditionSummary summarize(const Condition& condition, double refreshHz);
 
 }  // namespace warplab::condition

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,8 @@ std::string csvNumber(double value);
 class CsvFile {
 public:
     CsvFile(std::string path, const std::vector<std::string>& header);
+    // Rows straight to `out` (a command's standard output): nothing to rename.
+    CsvFile(std::ostream& out, const std::vector<std::string>& header);
     ~CsvFile();  // without close(): removes the partial file
     CsvFile(const CsvFile&) = delete;
     CsvFile& operator=(const CsvFile&) = delete;
@@ -45,8 +48,10 @@ public:
 
 private:
     void cell(const std::string& written);
+    void writeHeader(const std::vector<std::string>& header);
     std::string path_, partial_;
-    std::ofstream out_;
+    std::ofstream file_;
+    std::ostream* out_;
     std::size_t columns_ = 0, cellsInRow_ = 0;
     std::int64_t rows_ = 0;
     bool closed_ = false;

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "condition/schedule.h"
+
 namespace warplab::exporter {
 
 struct ExportOptions {
@@ -36,8 +38,17 @@ struct CsvColumns {
 };
 std::vector<CsvColumns> exportColumns();
 
+// One condition as conditions.csv and `warplab conditions --csv` list it: its parts and
+// latencies at the refresh of the protocol that runs it.
+struct ConditionListing {
+    std::string game;
+    condition::ConditionSummary summary;
+};
+// The rows as CSV, with conditions.csv's header, to `out`.
+void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows);
+
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
-// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, modes.csv and games.csv into outDir (created
+// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, conditions.csv and games.csv into outDir (created
 // when missing). Progress and one line per excluded or damaged session go to `log`.
 // Throws std::runtime_error naming the folder when resultsDir is not a readable folder or
 // holds no session file; a damaged session file is reported and skipped, not fatal.

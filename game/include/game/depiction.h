@@ -33,7 +33,7 @@ struct SchedulePlacement {
 // The ShownFrame of session frame `frame` as far as the schedule says: its display time, mode,
 // schedule, sources, depicted scene time and whether it renders now. The game adds the camera
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
-ShownFrame scheduledShownFrame(std::int64_t frame, const std::string& mode, const condition::ScheduledFrame& f,
+ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement);
 // The session frame whose camera (mouse, cursor) frame `f` shows.
 std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlacement& placement);
@@ -66,7 +66,7 @@ struct WorldDepiction {
     double spanS = 0.0;  // Interpolated: seconds from one I-frame to the other
 };
 
-WorldDepiction depictWorld(const condition::ModeSpec& mode, const condition::ScheduledFrame& f,
+WorldDepiction depictWorld(const condition::Condition& mode, const condition::ScheduledFrame& f,
                            const SchedulePlacement& placement, WorldClock clock);
 
 // What `d` shows of a world, through the game's hooks:

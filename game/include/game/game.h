@@ -62,8 +62,9 @@ struct RatingPrompt {
 struct ShownFrame {
     std::int64_t frame = 0;  // display frame since the session started
     double time = 0.0;  // its display time, seconds
-    std::string mode;
-    condition::ScheduledFrame schedule;  // the mode's account of this frame (schedule-local)
+    std::string mode;  // the condition's name
+    condition::Condition condition;  // its parts: what the frame maker draws it with
+    condition::ScheduledFrame schedule;  // the condition's account of this frame (schedule-local)
     scene::CameraState camera;  // the camera the frame depicts
     scene::SceneSnapshot scene;  // the world as the frame depicts it
     bool rendersNow = false;  // render `render` conventionally at this frame
@@ -199,6 +200,8 @@ public:
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
     // Modes this protocol uses.
     virtual std::vector<std::string> modes() const = 0;
+    // The conditions it can name: the presets and those the protocol defines.
+    virtual const condition::ConditionTable& conditions() const = 0;
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
     // (the click game's cursor). Live sessions scale a participant's counts to it.
     virtual double mouseRadiansPerCount() const { return 0.0; }

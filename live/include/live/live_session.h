@@ -52,8 +52,8 @@ struct LiveRun {
 std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
 // Free play for pilots and demonstrations: the protocol's game, endless and unrecorded; keys
-// 1-9 switch live to the first nine modes of condition::modeIds(), ] and [ (PageDown and PageUp)
-// step to the next and previous of all of them (around the list, over those the display
+// 1-9 switch live to the nine presets (condition::presets()), ] and [ (PageDown and PageUp)
+// step to the next and previous of all of them and of the protocol's own conditions (around the list, over those the display
 // cannot run), U and D change the difficulty, the status line shows the mode and the frame
 // times; Esc pauses, Q ends. Returns when it ends.
 void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);

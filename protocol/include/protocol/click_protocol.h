@@ -8,12 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "condition/condition.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::protocol {
 
 // The newest click protocol format this build reads and the one toJson writes.
-inline constexpr int kClickFormatVersion = 1;
+// 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions").
+inline constexpr int kClickFormatVersion = 2;
+inline constexpr int kClickConditionsSince = 2;
 
 // One round: every mode of the study played matchesPerMode times. Yang et al. played an
 // unscored round of one match per mode, then a scored round of two per mode.
@@ -47,6 +50,9 @@ struct ClickProtocol {
     ClickTiming clickTiming = ClickTiming::Display;  // or InputReads, as for the shooter
     // matches.*
     double matchS = 45;  // > 0
+    // The conditions the file defines beside the presets ("conditions"); matches.modes names
+    // presets or these.
+    condition::ConditionTable conditionTable;
     std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
     std::vector<ClickRound> rounds{{"practice", false, 1}, {"scored", true, 2}};
     bool shuffle = true;  // random mode order per round, from the session seed
@@ -58,15 +64,15 @@ struct ClickProtocol {
     Scoring scoring = Scoring::World;  // matches.scoring: or Displayed (DESIGN.md "Scoring")
 };
 
-// sourceName is what messages call the file (its path); `modes` judges every mode id against
-// the refresh (pass condition::checkMode). Throws ProtocolError.
-ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName, const ModeCheck& modes);
+// sourceName is what messages call the file (its path). Every mode id must name a preset or a
+// condition the file defines, runnable at its refresh. Throws ProtocolError.
+ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
 // "matches.rounds[].name" for a round's), in file order: the parser's table, which
 // docs/protocol.md must document.
 std::vector<std::string> clickProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
-ClickProtocol loadClickProtocol(const std::string& path, const ModeCheck& modes);
+ClickProtocol loadClickProtocol(const std::string& path);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
 // gives back the same struct bit for bit, so the session stores this copy as the protocol it
 // ran. Does not validate; parse what it writes to check a hand-built struct.

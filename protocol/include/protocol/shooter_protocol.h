@@ -7,14 +7,16 @@
 #include <string>
 #include <vector>
 
+#include "condition/condition.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::protocol {
 
 // The newest protocol format this build reads. 2 added test.click_timing and fixed the timeout
 // and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
-// replay under the rules they were recorded with.
-inline constexpr int kShooterFormatVersion = 2;
+// replay under the rules they were recorded with. 3 added the protocol's own "conditions".
+inline constexpr int kShooterFormatVersion = 3;
+inline constexpr int kShooterConditionsSince = 3;
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;
@@ -48,6 +50,9 @@ struct ShooterProtocol {
     int acclimationLevel = 0;
     std::string acclimationMode = "conv120";
     StaircaseSettings training;
+    // The conditions the file defines beside the presets ("conditions"); the mode fields and
+    // test.conditions name presets or these.
+    condition::ConditionTable conditionTable;
     std::vector<std::string> conditions{"conv15", "conv120", "warp15to120"};
     int targetsPerCondition = 225;
     bool interleaveConditions = true;  // random order drawn from the session seed
@@ -65,15 +70,15 @@ struct ShooterProtocol {
     bool legacyRules = false;
 };
 
-// sourceName is what messages call the file (its path); `modes` judges every mode id against
-// the refresh (pass condition::checkMode). Reads format_version 1 and 2. Throws ProtocolError.
-ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName,
-                                     const ModeCheck& modes);
+// sourceName is what messages call the file (its path). Every mode id must name a preset or a
+// condition the file defines, runnable at its refresh. Reads format_version 1 to 3. Throws
+// ProtocolError.
+ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:
 // the parser's table, which docs/protocol.md must document.
 std::vector<std::string> shooterProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
-ShooterProtocol loadShooterProtocol(const std::string& path, const ModeCheck& modes);
+ShooterProtocol loadShooterProtocol(const std::string& path);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
 // gives back the same struct bit for bit, so the session stores this copy as the protocol it
 // ran. Writes the form of protocol.formatVersion: a version 1 struct (a stored v1 session)

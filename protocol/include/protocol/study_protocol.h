@@ -1,6 +1,6 @@
 // What every study protocol file shares, whichever game it is for: the error type, reading the
-// file, the top-level "game" field that picks the game's own parser (shooter_protocol.h,
-// click_protocol.h), and the mode check each parser is handed. docs/protocol.md describes the
+// file, and the top-level "game" field that picks the game's own parser (shooter_protocol.h,
+// click_protocol.h). docs/protocol.md describes the
 // files.
 #pragma once
 
@@ -76,11 +76,6 @@ class ProtocolError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
-
-// "" when mode `id` can run on a display of refreshHz, else the reason in one sentence.
-// condition::checkMode is the one to pass: the mode table lives in game/ alone, and protocol/ may not
-// include game/, so each parser is handed the check instead of keeping a copy of the list.
-using ModeCheck = std::function<std::string(const std::string& id, double refreshHz)>;
 
 // The whole file as text. A missing file, a folder or an unreadable file is a ProtocolError
 // naming the path.

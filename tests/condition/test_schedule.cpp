@@ -1,4 +1,4 @@
-// The modes' frame schedules: what every displayed frame depicts, and the latencies that
+// The conditions' frame schedules: what every displayed frame depicts, and the latencies that
 // follow -- the table in the README is these numbers.
 #include <algorithm>
 #include <cmath>
@@ -9,28 +9,26 @@
 
 #include "condition/schedule.h"
 
-namespace warplab::game {
+namespace warplab::condition {
 namespace {
 
 constexpr double kRefresh = 120.0;
 constexpr double kFrame = 1.0 / kRefresh;
 
-condition::ModeSchedule schedule(const std::string& id) {
-    return condition::ModeSchedule(condition::modeSpec(id), kRefresh);
-}
+ModeSchedule schedule(const std::string& id) { return ModeSchedule(preset(id), kRefresh); }
 
 // The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
 // name them; a mode added to the table comes after them and needs no edit here.
 TEST(Modes, KnownIdsAndUnknownOnesNamed) {
     const std::vector<std::string> published{"conv15", "conv30", "conv60",      "conv120",       "lag50",
                                              "lag100", "lag200", "warp15to120", "bireproj15to60"};
-    const std::vector<std::string> ids = condition::modeIds();
+    const std::vector<std::string> ids = presetNames();
     ASSERT_GE(ids.size(), published.size());
     EXPECT_EQ(std::vector<std::string>(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(published.size())),
               published);
     EXPECT_EQ(std::set<std::string>(ids.begin(), ids.end()).size(), ids.size()) << "an id used twice";
     try {
-        condition::modeSpec("conv16");
+        preset("conv16");
         FAIL();
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("conv16"), std::string::npos);
@@ -73,10 +71,11 @@ std::vector<std::string> documentedModeIds(const std::string& page, const std::s
 // fails here until the README's latency table and docs/protocol.md's refresh table have its row,
 // and a row for a mode that is gone fails too.
 TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
-    const std::vector<std::string> ids = condition::modeIds();
+    const std::vector<std::string> ids = presetNames();
     const std::set<std::string> known(ids.begin(), ids.end());
     for (const auto& [page, heading] : std::vector<std::pair<std::string, std::string>>{
-             {"README.md", "## Modes and their latency"}, {"docs/protocol.md", "## Modes and the refresh rate"}}) {
+             {"README.md", "## Modes and their latency"},
+             {"docs/protocol.md", "## Conditions: presets and a protocol's own"}}) {
         SCOPED_TRACE(page + ", " + heading);
         const std::vector<std::string> documented = documentedModeIds(page, heading);
         const std::set<std::string> named(documented.begin(), documented.end());
@@ -86,18 +85,18 @@ TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
 }
 
 TEST(Modes, CheckModeNamesTheProblem) {
-    EXPECT_EQ(condition::checkMode("conv60", 60.0), "");
-    EXPECT_NE(condition::checkMode("conv120", 60.0).find("120"), std::string::npos);
-    EXPECT_NE(condition::checkMode("conv45", 60.0).find("unknown mode 'conv45'"), std::string::npos);
+    EXPECT_EQ(ConditionTable().check("conv60", 60.0), "");
+    EXPECT_NE(ConditionTable().check("conv120", 60.0).find("120"), std::string::npos);
+    EXPECT_NE(ConditionTable().check("conv45", 60.0).find("unknown condition 'conv45'"), std::string::npos);
 }
 
 TEST(Modes, RefreshMustBeAWholeMultipleOfTheRates) {
-    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("conv15"), 100.0), std::invalid_argument);
-    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("warp15to120"), 60.0), std::invalid_argument);
-    EXPECT_THROW(condition::ModeSchedule(condition::modeSpec("lag50"), 90.0),
+    EXPECT_THROW(ModeSchedule(preset("conv15"), 100.0), std::invalid_argument);
+    EXPECT_THROW(ModeSchedule(preset("warp15to120"), 60.0), std::invalid_argument);
+    EXPECT_THROW(ModeSchedule(preset("lag50"), 90.0),
                  std::invalid_argument);  // 4.5 frames of lag
-    EXPECT_NO_THROW(condition::ModeSchedule(condition::modeSpec("conv60"), 60.0));
-    EXPECT_NO_THROW(condition::ModeSchedule(condition::modeSpec("bireproj15to60"), 60.0));
+    EXPECT_NO_THROW(ModeSchedule(preset("conv60"), 60.0));
+    EXPECT_NO_THROW(ModeSchedule(preset("bireproj15to60"), 60.0));
 }
 
 TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
@@ -105,7 +104,7 @@ TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
     for (std::int64_t k = 0; k < 32; ++k) {
         const auto f = s.frame(k);
         const std::int64_t source = k / 8 * 8;
-        EXPECT_EQ(f.kind, k % 8 == 0 ? condition::FrameKind::Rendered : condition::FrameKind::Held) << k;
+        EXPECT_EQ(f.kind, k % 8 == 0 ? FrameKind::Rendered : FrameKind::Held) << k;
         EXPECT_EQ(f.rendersNow, k % 8 == 0);
         EXPECT_EQ(f.samplesInput, k % 8 == 0);
         EXPECT_EQ(f.sourceIndex, source);
@@ -118,7 +117,7 @@ TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
 TEST(Modes, Conventional120RendersEveryFrame) {
     const auto s = schedule("conv120");
     for (std::int64_t k = 0; k < 10; ++k) {
-        EXPECT_EQ(s.frame(k).kind, condition::FrameKind::Rendered);
+        EXPECT_EQ(s.frame(k).kind, FrameKind::Rendered);
         EXPECT_DOUBLE_EQ(s.frame(k).cameraTime, s.frame(k).displayTime);
     }
 }
@@ -144,7 +143,7 @@ TEST(Modes, WarpRendersEveryEighthAndWarpsToTheCurrentCameraInBetween) {
     const auto s = schedule("warp15to120");
     for (std::int64_t k = 0; k < 24; ++k) {
         const auto f = s.frame(k);
-        EXPECT_EQ(f.kind, k % 8 == 0 ? condition::FrameKind::Rendered : condition::FrameKind::Warped);
+        EXPECT_EQ(f.kind, k % 8 == 0 ? FrameKind::Rendered : FrameKind::Warped);
         EXPECT_TRUE(f.samplesInput);
         EXPECT_EQ(f.sourceIndex, k / 8 * 8);
         EXPECT_DOUBLE_EQ(f.cameraTime, f.displayTime);
@@ -160,10 +159,11 @@ TEST(Modes, BidirectionalRunsOneSourcePeriodBehindAtSixtyHertz) {
         const std::int64_t depicted = k / 2 * 2 - 8;
         EXPECT_DOUBLE_EQ(f.cameraTime, depicted * kFrame) << k;
         const bool iFrame = depicted % 8 == 0;
+        // A repeated frame is made again as it was: the I-frame held, or the same B-frame.
         if (k % 2 == 1)
-            EXPECT_EQ(f.kind, condition::FrameKind::Held);
+            EXPECT_EQ(f.kind, iFrame ? FrameKind::Held : FrameKind::Interpolated) << k;
         else
-            EXPECT_EQ(f.kind, iFrame ? condition::FrameKind::Rendered : condition::FrameKind::Interpolated) << k;
+            EXPECT_EQ(f.kind, iFrame ? FrameKind::Rendered : FrameKind::Interpolated) << k;
         EXPECT_EQ(f.sourceIndex, depicted / 8 * 8);
         EXPECT_EQ(f.nextSourceIndex, iFrame ? -1 : depicted / 8 * 8 + 8);
     }
@@ -174,7 +174,7 @@ struct Range {
 };
 
 // Steps at 97 instants spread over two source cycles, off the frame grid.
-Range latencies(const condition::ModeSchedule& s, bool view) {
+Range latencies(const ModeSchedule& s, bool view) {
     Range r;
     for (int i = 0; i < 97; ++i) {
         const double tau = 1.0 + (i + 0.5) / 97.0 * (16.0 * kFrame);
@@ -207,6 +207,11 @@ TEST(Modes, LatencyTable) {
     for (const auto& row : rows) {
         const auto s = schedule(row.id);
         const Range view = latencies(s, true), scene = latencies(s, false);
+        // The exact ranges `warplab conditions` prints are the table's, to the last bit or so.
+        EXPECT_NEAR(s.viewLatencyRange().min * 1000.0, row.viewMinMs, 1e-9) << row.id;
+        EXPECT_NEAR(s.viewLatencyRange().max * 1000.0, row.viewMaxMs, 1e-9) << row.id;
+        EXPECT_NEAR(s.sceneLatencyRange().min * 1000.0, row.sceneMinMs, 1e-9) << row.id;
+        EXPECT_NEAR(s.sceneLatencyRange().max * 1000.0, row.sceneMaxMs, 1e-9) << row.id;
         // Steps fall strictly between frames, so the extremes are approached, not reached:
         // within one sample spacing (16 frames / 97) of the bounds.
         const double slack = 16.0 * f / 97.0 + 1e-6;
@@ -220,4 +225,4 @@ TEST(Modes, LatencyTable) {
 }
 
 }  // namespace
-}  // namespace warplab::game
+}  // namespace warplab::condition

@@ -1,0 +1,71 @@
+// `warplab conditions PROTOCOL [--csv]`: the conditions a protocol runs, each with its parts and
+// the view and scene latency its schedule gives at the protocol's refresh -- the numbers of the
+// README's latency table, for any condition a lab writes.
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+
+#include "commands.h"
+#include "condition/schedule.h"
+#include "export/export.h"
+#include "game/registry.h"
+
+namespace warplab::app {
+namespace {
+
+// The conditions `study` names, each once, in the order its fields first name them.
+std::vector<exporter::ConditionListing> listingsOf(const game::Study& study) {
+    std::vector<exporter::ConditionListing> rows;
+    for (const std::string& name : study.modes()) {
+        const bool seen = std::any_of(rows.begin(), rows.end(), [&](const exporter::ConditionListing& r) {
+            return r.summary.condition.name == name;
+        });
+        if (!seen) rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz())});
+    }
+    return rows;
+}
+
+// "0 – 66.7 ms (0 – 8 frames)"
+std::string range(const condition::ModeSchedule::Range& r, double refreshHz) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.1f - %.1f ms (%.3g - %.3g frames)", r.min * 1000.0, r.max * 1000.0,
+                  r.min * refreshHz, r.max * refreshHz);
+    return text;
+}
+
+int runConditions(const ParsedArgs& args) {
+    if (args.positional().size() != 1) throw UsageError("conditions needs one PROTOCOL file");
+    const auto study = game::loadStudy(args.positional().front());
+    const auto rows = listingsOf(*study);
+    if (args.flag("csv")) {
+        exporter::writeConditionTable(std::cout, rows);
+        return 0;
+    }
+    std::printf("%s: the %s game on a %g Hz display (one refresh = %.2f ms)\n\n", study->name().c_str(),
+                study->game().c_str(), study->refreshHz(), 1000.0 / study->refreshHz());
+    std::printf("%-20s %8s %9s %-14s %-9s %-34s %s\n", "condition", "renders", "lag", "fill", "late warp",
+                "view latency (mouse step)", "scene latency (change of motion)");
+    for (const auto& r : rows) {
+        const condition::Condition& c = r.summary.condition;
+        std::string fill = c.fill;
+        if (c.fillKind() != condition::Fill::Hold) fill += " " + condition::number(c.fillHz.value_or(study->refreshHz()));
+        std::printf("%-20s %5s Hz %2lld frames %-14s %-9s %-34s %s\n", c.name.c_str(), condition::number(c.renderHz).c_str(),
+                    static_cast<long long>(r.summary.lagFrames), fill.c_str(), condition::lateWarpName(c.lateWarp),
+                    range(r.summary.viewS, r.summary.refreshHz).c_str(), range(r.summary.sceneS, r.summary.refreshHz).c_str());
+        if (!c.description.empty()) std::printf("    %s\n", c.description.c_str());
+    }
+    return 0;
+}
+
+}  // namespace
+
+Command conditionsCommand() {
+    CommandSpec spec{"conditions",
+                     "Print the conditions a protocol runs: their parts and their view and scene latency.",
+                     "warplab conditions PROTOCOL [--csv]",
+                     {{"csv", "", "print CSV with conditions.csv's columns instead of a table", ""}},
+                     true};
+    return {spec, &runConditions};
+}
+
+}  // namespace warplab::app

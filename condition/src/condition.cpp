@@ -1,0 +1,294 @@
+#include "condition/condition.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace warplab::condition {
+namespace {
+
+Condition conventional(int rate) {
+    Condition c;
+    c.name = "conv" + std::to_string(rate);
+    c.description = "conventional rendering at " + std::to_string(rate) + " Hz, each frame held until the next";
+    c.renderHz = rate;
+    return c;
+}
+
+// The one table of presets: the nine conditions of the two papers, as parts. Protocols, the
+// README's latency table and docs/protocol.md follow it (tests/condition/ checks both).
+std::vector<Condition> makePresets() {
+    std::vector<Condition> list;
+    for (int rate : {15, 30, 60, 120}) list.push_back(conventional(rate));
+    for (int lag : {50, 100, 200}) {
+        Condition c;
+        c.name = "lag" + std::to_string(lag);
+        c.description = "conventional 60 Hz, each frame shown " + std::to_string(lag) + " ms after it was rendered";
+        c.renderHz = 60;
+        c.lagMs = lag;
+        list.push_back(c);
+    }
+    Condition warp;
+    warp.name = "warp15to120";
+    warp.description = "rendered at 15 Hz, the frames between warped from the latest with the current camera";
+    warp.renderHz = 15;
+    warp.fill = "warp-sparse8";
+    warp.fillHz = 120;
+    list.push_back(warp);
+    Condition bireproj;
+    bireproj.name = "bireproj15to60";
+    bireproj.description =
+        "I-frames rendered at 15 Hz, B-frames at 60 Hz interpolated between the I-frames before and after";
+    bireproj.renderHz = 15;
+    bireproj.fill = "bireproj";  // image-based, m = 3, dual and latest-frame initialisation
+    bireproj.fillHz = 60;
+    list.push_back(bireproj);
+    return list;
+}
+
+// Whole display frames per period of rateHz, or nullopt.
+std::optional<std::int64_t> framesPer(double refreshHz, double rateHz) {
+    if (!(rateHz > 0.0) || !std::isfinite(rateHz)) return std::nullopt;
+    const double ratio = refreshHz / rateHz;
+    const auto whole = static_cast<std::int64_t>(std::llround(ratio));
+    if (whole < 1 || std::abs(ratio - static_cast<double>(whole)) > 1e-9) return std::nullopt;
+    return whole;
+}
+
+// The rates that divide the refresh, for a message: "120, 60, 40, 30, 24, 20, 15 ..." (the
+// first few, from the refresh down).
+std::string dividingRates(double refreshHz) {
+    std::string text;
+    int shown = 0;
+    for (int n = 1; n <= 1000 && shown < 8; ++n) {
+        const double rate = refreshHz / n;
+        if (std::abs(rate - std::round(rate)) > 1e-9) continue;
+        text += (text.empty() ? "" : ", ") + number(rate);
+        ++shown;
+    }
+    return text.empty() ? number(refreshHz) : text + " ...";
+}
+
+}  // namespace
+
+std::string number(double value) {
+    std::ostringstream out;
+    out.precision(6);
+    out << value;
+    return out.str();
+}
+
+const std::vector<FillSpelling>& fillSpellings() {
+    // The warps are the renderer's mesh warps (tests/present/ checks each is a method that takes
+    // a guard band, as a warp's sources need).
+    static const std::vector<FillSpelling> list = {
+        {"hold", Fill::Hold},
+        {"warp-full", Fill::Warp},
+        {"warp-nofix", Fill::Warp},
+        {"warp-sparse4", Fill::Warp},
+        {"warp-sparse8", Fill::Warp},
+        {"warp-sparse16", Fill::Warp},
+        {"bireproj", Fill::Bireproj},
+        {"blend", Fill::Blend},
+    };
+    return list;
+}
+
+std::optional<Fill> fillNamed(const std::string& name) {
+    for (const auto& s : fillSpellings())
+        if (name == s.name) return s.fill;
+    return std::nullopt;
+}
+
+const std::vector<LateWarp>& lateWarps() {
+    static const std::vector<LateWarp> list = {LateWarp::None, LateWarp::Rotation, LateWarp::Depth};
+    return list;
+}
+
+const char* lateWarpName(LateWarp lateWarp) {
+    switch (lateWarp) {
+        case LateWarp::None: return "none";
+        case LateWarp::Rotation: return "rotation";
+        case LateWarp::Depth: return "depth";
+    }
+    return "?";
+}
+
+std::optional<LateWarp> lateWarpNamed(const std::string& name) {
+    for (const LateWarp w : lateWarps())
+        if (name == lateWarpName(w)) return w;
+    return std::nullopt;
+}
+
+Fill Condition::fillKind() const {
+    const std::optional<Fill> f = fillNamed(fill);
+    if (!f) throw std::invalid_argument("condition " + name + ": unknown fill '" + fill + "'");
+    return *f;
+}
+
+std::string Condition::warpMethod() const {
+    if (fillKind() == Fill::Warp) return fill;  // one warp pass, to the late camera where there is one
+    switch (lateWarp) {
+        case LateWarp::None: return "";
+        case LateWarp::Rotation: return kRotationLateWarpMethod;
+        case LateWarp::Depth: return kDepthLateWarpMethod;
+    }
+    return "";
+}
+
+std::string Condition::interpolationMethod() const {
+    const Fill f = fillKind();
+    return f == Fill::Bireproj || f == Fill::Blend ? fill : "";
+}
+
+std::string Condition::sourceMethod() const {
+    const std::string interpolation = interpolationMethod();
+    return interpolation.empty() ? warpMethod() : interpolation;
+}
+
+bool Condition::sameParts(const Condition& o) const {
+    return renderHz == o.renderHz && lagFrames == o.lagFrames && lagMs == o.lagMs && fill == o.fill &&
+        fillHz == o.fillHz && lateWarp == o.lateWarp;
+}
+
+const std::vector<Condition>& presets() {
+    static const std::vector<Condition> list = makePresets();
+    return list;
+}
+
+const Condition* findPreset(const std::string& name) {
+    for (const auto& c : presets())
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
+const Condition& preset(const std::string& name) {
+    if (const Condition* c = findPreset(name)) return *c;
+    return ConditionTable().at(name);  // throws, listing the presets
+}
+
+std::vector<std::string> presetNames() { return ConditionTable().names(); }
+
+std::int64_t lagFramesAt(const Condition& c, double refreshHz) {
+    if (c.lagFrames) {
+        if (*c.lagFrames < 0)
+            throw std::invalid_argument("condition " + c.name + ": lag_frames must be at least 0, got " +
+                                        std::to_string(*c.lagFrames));
+        return *c.lagFrames;
+    }
+    if (!(c.lagMs >= 0.0) || !std::isfinite(c.lagMs))
+        throw std::invalid_argument("condition " + c.name + ": lag_ms must be at least 0, got " + number(c.lagMs));
+    const double frames = c.lagMs * refreshHz / 1000.0;
+    const auto whole = std::llround(frames);
+    if (std::abs(frames - static_cast<double>(whole)) > 1e-9) {
+        const auto below = static_cast<std::int64_t>(std::floor(frames));
+        auto ms = [&](std::int64_t n) { return number(static_cast<double>(n) * 1000.0 / refreshHz); };
+        throw std::invalid_argument("condition " + c.name + ": a lag of " + number(c.lagMs) + " ms is " +
+                                    number(frames) + " frames at " + number(refreshHz) +
+                                    " Hz, not a whole number; the nearest that are: " + ms(below) + " ms (" +
+                                    std::to_string(below) + " frames) and " + ms(below + 1) + " ms (" +
+                                    std::to_string(below + 1) + " frames), or give lag_frames");
+    }
+    return whole;
+}
+
+std::optional<Problem> problem(const Condition& c, double refreshHz) {
+    const std::string refresh = number(refreshHz) + " Hz";
+    if (!(refreshHz > 0.0) || !std::isfinite(refreshHz))
+        return Problem{"", "needs a display refresh that is a positive number of Hz"};
+    if (!(c.renderHz > 0.0) || !std::isfinite(c.renderHz))
+        return Problem{"render_hz", "must be a positive number of Hz, got " + number(c.renderHz)};
+    // Rates the display cannot run evenly: the refresh must be a whole multiple of each.
+    auto uneven = [&](const char* part, double rateHz) {
+        const std::string above = rateHz > refreshHz + 1e-9 ? " (it is above the refresh)" : "";
+        return Problem{part, "is " + number(rateHz) + " Hz: the display refresh must be a whole multiple of " +
+                                 number(rateHz) + " Hz, not " + refresh + above + "; rates that fit " + refresh + ": " +
+                                 dividingRates(refreshHz)};
+    };
+    const std::optional<std::int64_t> renderPeriod = framesPer(refreshHz, c.renderHz);
+    if (!renderPeriod) return uneven("render_hz", c.renderHz);
+    std::int64_t lag = 0;
+    try {
+        lag = lagFramesAt(c, refreshHz);
+    } catch (const std::invalid_argument& e) {
+        std::string reason = e.what();
+        const std::string prefix = "condition " + c.name + ": ";
+        if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
+        return Problem{c.lagFrames ? "lag_frames" : "lag_ms", reason};
+    }
+    const std::optional<Fill> fill = fillNamed(c.fill);
+    if (!fill) {
+        std::string known;
+        for (const auto& s : fillSpellings()) known += std::string(known.empty() ? "" : ", ") + s.name;
+        return Problem{"fill", "must be one of " + known + ", not \"" + c.fill + "\""};
+    }
+    std::int64_t fillPeriod = 1;
+    if (c.fillHz) {
+        if (*fill == Fill::Hold)
+            return Problem{"fill_hz", "is for a fill that makes frames; \"hold\" makes none (leave fill_hz out)"};
+        const std::optional<std::int64_t> p = framesPer(refreshHz, *c.fillHz);
+        if (!p) return uneven("fill_hz", *c.fillHz);
+        fillPeriod = *p;
+    }
+    if (*fill != Fill::Hold && *renderPeriod % fillPeriod != 0)
+        return Problem{c.fillHz ? "fill_hz" : "render_hz",
+                       "the fill's rate (" + number(refreshHz / static_cast<double>(fillPeriod)) +
+                           " Hz) must be a whole multiple of render_hz (" + number(c.renderHz) + " Hz)"};
+    if (c.lateWarp != LateWarp::None && (*fill == Fill::Bireproj || *fill == Fill::Blend))
+        return Problem{"late_warp", std::string("must be \"none\" with fill \"") + c.fill +
+                                        "\": a late warp re-projects one frame, and " + c.fill +
+                                        " shows two (allowed with it: none)"};
+    const std::int64_t lookBack = lag + 2 * *renderPeriod;
+    if (lookBack > kMaxLookBackFrames)
+        return Problem{c.lagFrames ? "lag_frames" : "lag_ms",
+                       "looks back " + std::to_string(lookBack) + " display frames (the lag plus two render periods), " +
+                           "more than the " + std::to_string(kMaxLookBackFrames) + " a game keeps"};
+    return std::nullopt;
+}
+
+const Condition* ConditionTable::find(const std::string& name) const {
+    // A definition that repeats a preset's parts under its name may stand for it; it is the
+    // same condition, so the preset answers.
+    if (const Condition* preset = findPreset(name)) return preset;
+    for (const auto& c : defined_)
+        if (c.name == name) return &c;
+    return nullptr;
+}
+
+std::vector<std::string> ConditionTable::names() const {
+    std::vector<std::string> list;
+    for (const auto& c : presets()) list.push_back(c.name);
+    for (const auto& c : defined_)
+        if (!findPreset(c.name)) list.push_back(c.name);
+    return list;
+}
+
+const Condition& ConditionTable::at(const std::string& name) const {
+    if (const Condition* c = find(name)) return *c;
+    std::string known;
+    for (const auto& n : names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("unknown condition '" + name + "' (known: " + known + ")");
+}
+
+std::string ConditionTable::check(const std::string& name, double refreshHz) const {
+    try {
+        const Condition& c = at(name);
+        if (const auto p = problem(c, refreshHz))
+            return "condition " + name + (p->part.empty() ? " " : ": " + p->part + " ") + p->reason;
+        return "";
+    } catch (const std::invalid_argument& e) {
+        return e.what();
+    }
+}
+
+bool ConditionTable::operator==(const ConditionTable& o) const {
+    if (defined_.size() != o.defined_.size()) return false;
+    for (std::size_t i = 0; i < defined_.size(); ++i)
+        if (defined_[i].name != o.defined_[i].name || defined_[i].description != o.defined_[i].description ||
+            !defined_[i].sameParts(o.defined_[i]))
+            return false;
+    return true;
+}
+
+}  // namespace warplab::condition
