@@ -4,11 +4,14 @@ and PNG figures.
 
 Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE]
 
+A mode (the `mode` column of the other files) names a condition of the export's condition
+table: conditions.csv, or modes.csv in an export from before it (conditions.ConditionTable).
+
 Hit rates (hitrates.csv, every game): exact paired sign tests between every two modes of a game,
 as Pulkkinen's thesis tests warp upconversion against 15 and 120 Hz rendering (seed 004 §7,
 Tables 1–3, Figures 32–34): per participant the difference of hit rates, ties dropped, binomial
 tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order, taken
-from modes.csv (stats.ModeTable): upconversion modes first, so warp15to120 − conv15 is positive
+from the condition table: conditions that upconvert first, so warp15to120 − conv15 is positive
 where warping helps. What a game's hits and shots are (green hits out of clicks) is games.csv's.
 
 Matches (matches.csv, scored matches only; the click game's): per participant and mode the average over their
@@ -19,8 +22,8 @@ signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodel
 left out with a note if statsmodels is missing).
 
 Bad input (a missing folder or file, an empty file, a missing column, a cell that is not a
-count, hits above shots, a game with one participant) ends in one sentence on stderr naming the
-file and column, and exit status 1.
+count, hits above shots, a game with one participant, a condition the table gives no valid
+parts) ends in one sentence on stderr naming the file, column and line, and exit status 1.
 """
 import argparse
 import importlib
@@ -33,8 +36,8 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from warplab_analysis import inputs, report, stats  # noqa: E402
+from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
-from warplab_analysis.stats import ModeTable  # noqa: E402
 
 DEFAULT_REFERENCE = "bireproj15to60"
 CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
@@ -163,21 +166,24 @@ def analyse(export_dir, reference_mode):
     matches = inputs.load_matches(export_dir)
     statements = inputs.load_statements(export_dir)
     sessions = inputs.load_sessions(export_dir)
-    mode_rows = inputs.load_modes(export_dir)
+    records, source, table_notes = inputs.load_conditions(export_dir)
     described = inputs.load_games(export_dir)
-    table = ModeTable(mode_rows)
+    table = ConditionTable(records)
     results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
-               "sessions": None, "modes": mode_rows or [], "mode_order": [], "games": {}, "sign_tests": [],
-               "click": None, "figures": [], "notes": []}
+               "sessions": None, "modes": table.summary(), "mode_order": [], "games": {}, "sign_tests": [],
+               "click": None, "figures": [], "notes": [], "conditions": table.records, "conditions_file": source}
     if isinstance(sessions, str):
         results["notes"].append(sessions)
     else:
         results["sessions"] = sessions
-    if mode_rows is None:
+    if source is None:
         results["notes"].append("No modes.csv (an export from before warplab wrote one): modes in the order of their "
                                 "ids, none known as an upconversion mode, so no Table 2 and no histograms.")
+    elif source == inputs.MODES:
+        results["inputs"][inputs.MODES] = {"modes": len(records)}
     else:
-        results["inputs"][inputs.MODES] = {"modes": len(mode_rows)}
+        results["inputs"][inputs.CONDITIONS] = {"rows": len(records), "conditions": len(table.rows)}
+    results["notes"] += table_notes
     for game in order_games(games, described):
         wording = described.get(game, {"hits_are": "hits", "shots_are": "shots"})
         summary, tests = analyse_game(game, games[game], table, wording)
@@ -196,6 +202,10 @@ def analyse(export_dir, reference_mode):
     if results["click"]:
         all_modes |= set(results["click"]["modes"])
     results["mode_order"] = table.order(all_modes)
+    unlisted = [m for m in results["mode_order"] if not table.known(m)]
+    if source is not None and unlisted:
+        results["notes"].append(f"{source} does not list {', '.join(unlisted)}: they follow the others by name, and "
+                                "none counts as an upconversion mode.")
     return results
 
 
@@ -203,8 +213,8 @@ def draw_figures(results, out_dir):
     """Draws every figure, records its file name in results, and returns the paths written."""
     from warplab_analysis import figures  # matplotlib only once the input has been accepted
     written, taken = [], set()
-    table = ModeTable(results["modes"])
-    palette = table.all_modes()
+    table = ConditionTable(results["conditions"])
+    palette = table.all_conditions()
     tests_by_game = {}
     for test in results["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
@@ -229,7 +239,8 @@ def draw_figures(results, out_dir):
             written.append(name)
         elif len(summary["modes"]) > 1:
             upconverting = [m for m in palette if table.upconverts(m)]
-            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or 'modes.csv lists none'}): "
+            lists_none = f"{results['conditions_file'] or inputs.MODES} lists none"
+            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or lists_none}): "
                                     "no histograms of differences.")
     click = results["click"]
     if click and click["modes"]:

@@ -232,14 +232,18 @@ def fmt_cell(v):
 GAMES_HEADER = "game,hits_are,shots_are"
 
 
-def write_click_export(export, game="click"):
-    with_modes(export)
+def write_click_export(export, game="click", rename=None, table=None):
+    """rename: {mode of CLICK: the name the export gives it}; table: writes the condition table
+    (default: with_modes)."""
+    rename = rename or {}
+    (table or with_modes)(export)
     write(export / "games.csv", [GAMES_HEADER, f"{game},green hits,clicks"])
     matches = [MATCH_HEADER]
     ratings = ["participant,session,round,scored_phase,match,mode,statement_index,statement,value,answered_with"]
     hitrates = {}
     k = 0
-    for (p, mode), games in CLICK.items():
+    for (p, preset), games in CLICK.items():
+        mode = rename.get(preset, preset)
         practice = [(99, 0, 0, 1, 1)]  # wild values: must be ignored
         for scored, (g, r, m, *rs) in [(False, x) for x in practice] + [(True, x) for x in games]:
             phase, flag = ("scored", "true") if scored else ("practice", "false")
@@ -422,8 +426,9 @@ def test_without_modes_csv_modes_are_in_id_order_with_a_note(tmp_path):
 # as analysis/analyze wrote it from these exports before it read conditions.csv. Such an export
 # must keep giving the same numbers, orders and notes.
 BEFORE = DATA / "modes_csv_reports"
-# report.json's keys that the analysis has added since the pinned reports were written.
-ADDED_KEYS = set()
+# report.json's keys that the analysis has added since the pinned reports were written: the
+# condition table's rows (here modes.csv's, mapped) and which file they come from.
+ADDED_KEYS = {"conditions", "conditions_file"}
 
 
 def modes_csv_exports(base):
@@ -471,6 +476,8 @@ def test_modes_csv_export_reports_as_before(tmp_path, name):
     expected = json.loads((BEFORE / f"{name}.json").read_text(encoding="utf-8"))
     assert report.pop("export_dir") == str(export)
     assert set(report) - set(expected) == ADDED_KEYS and set(expected) <= set(report)
+    assert report["conditions_file"] == ("modes.csv" if name == "both" else None)
+    assert [r["condition"] for r in report["conditions"]] == [m["mode"] for m in expected["modes"]]
     assert_same({k: report[k] for k in expected}, expected, "report")
     md = (tmp_path / "out" / "report.md").read_text(encoding="utf-8").replace(str(export), "EXPORT")
     assert without_conditions_section(md) == (BEFORE / f"{name}.md").read_text(encoding="utf-8")

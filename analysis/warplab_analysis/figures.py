@@ -5,8 +5,8 @@
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
   of seed 000 Table 2).
-Each mode keeps one colour in every figure: its place in `palette`, every mode modes.csv lists in
-the report's mode order (stats.ModeTable.all_modes).
+Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
+table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
 import math
 
@@ -21,7 +21,7 @@ MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
 
 
 def colour(mode, palette):
-    """One colour per mode: the modes of modes.csv by their place in the mode order, others by name."""
+    """One colour per mode: those the condition table lists by their place in the mode order, others by name."""
     cmap = plt.get_cmap("tab10")
     if mode in palette:
         return cmap(palette.index(mode) % 10)
