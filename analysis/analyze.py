@@ -221,8 +221,10 @@ def draw_figures(results, out_dir):
     for game, summary in results["games"].items():
         stem = file_stem(game, taken)
         name = f"{stem}_hit_rates.png"
+        labels = {m: legend_label(m, table.latency(m, game)) for m in summary["modes"]}
         figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
-                                 summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette)
+                                 summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette,
+                                 labels)
         summary["figures"]["hit_rates"] = name
         written.append(name)
         panels = []
@@ -250,6 +252,13 @@ def draw_figures(results, out_dir):
         written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
+
+
+def legend_label(mode, latency):
+    """The mode, and how long a mouse step takes to reach the screen in it where the table says."""
+    if latency is None:
+        return mode
+    return f"{mode} (view {latency[0]:.1f}–{latency[1]:.1f} ms)"
 
 
 def finite_or_none(value):

@@ -80,6 +80,9 @@ def test_presets_in_conditions_csv_give_modes_csv_results(tmp_path):
     # conv60 ran in both games, at two refreshes: two rows, the lag in frames per refresh.
     lag50 = [(r["game"], r["refresh_hz"], r["lag_frames"]) for r in new["conditions"] if r["condition"] == "lag50"]
     assert lag50 == [("shooter", 120, 6), ("click", 60, 3)]
+    md = (tmp_path / "out_conditions" / "report.md").read_text()
+    assert "| conv60 | 120 | shooter | 60 | 0.00 | 0 | hold | none | no | 8.33–25.00 | 8.33–25.00 |" in md
+    assert "| conv60 | 60 | click | 60 | 0.00 | 0 | hold | none | no | 16.67–33.33 | 16.67–33.33 |" in md
 
 
 # --- a lab's own conditions ----------------------------------------------------------------------
@@ -116,7 +119,16 @@ def lab_export(export, rename=LAB_CLICK):
     return export
 
 
-def test_a_labs_conditions(tmp_path):
+def test_a_labs_conditions(tmp_path, monkeypatch):
+    from warplab_analysis import figures
+    legends = {}
+    drawn = figures.hit_rates_figure
+
+    def recording(path, game, *args):
+        legends[game] = args[-1]
+        return drawn(path, game, *args)
+
+    monkeypatch.setattr(figures, "hit_rates_figure", recording)
     lab_export(tmp_path)
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
@@ -147,8 +159,16 @@ def test_a_labs_conditions(tmp_path):
     assert "a-unlisted; b-unlisted." in md
     assert ("conditions.csv does not list a-unlisted, b-unlisted: they follow the others by name, and none counts as "
             "an upconversion mode.") in report["notes"]
+    assert ("| lag60x5-rotation | 60 | shooter | 60 | 83.33 | 5 | hold | rotation | yes | 16.67–33.33 "
+            "| 100.00–116.67 |") in md
+    assert "| my-144hz-warp | 144 | shooter | 36 | 0.00 | 0 | warp-full, 144 Hz | none | yes | 6.94–13.89 |" in md
+    assert "| plain60-lag2 | 120 | click | 60 | 33.33 | 4 | hold |" in md
     assert "Table 2a (shooter): lag60x5-rotation hit rate minus" in md
     assert not any(p in md for p in PRESET_ORDER if p != "bireproj15to60")
+    # The legend says how long a mouse step takes to reach the screen, for the game's own rows.
+    assert legends["shooter"]["lag60x5-rotation"] == "lag60x5-rotation (view 16.7–33.3 ms)"
+    assert legends["click"]["plain60"] == "plain60 (view 8.3–25.0 ms)"
+    assert legends["shooter"]["a-unlisted"] == "a-unlisted"
 
 
 # --- conditions.csv over modes.csv -----------------------------------------------------------------

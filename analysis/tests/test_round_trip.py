@@ -166,4 +166,4 @@ def check_conditions_csv(export, report, data):
         assert abs(lag_ms - int(preset["lag_frames"]) * 1000 / float(preset["refresh_hz"])) <= 500 / refresh + 1e-9, \
             r["condition"]
     text = (report / "report.md").read_text()
-    assert all(f"{name} (" in text for name in data["mode_order"] if name in names)
+    assert "## Conditions" in text and all(f"| {name} |" in text for name in data["mode_order"] if name in names)

@@ -28,8 +28,10 @@ def colour(mode, palette):
     return plt.get_cmap("Dark2")(sum(map(ord, mode)) % 8)
 
 
-def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette):
-    """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv)."""
+def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette, labels=None):
+    """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv);
+    labels: each mode's legend entry (the mode's name where absent)."""
+    labels = labels or {}
     fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
     x = np.arange(len(participants))
     # Modes side by side within a participant's column: equal hit rates (common with few shots)
@@ -38,7 +40,7 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     for k, mode in enumerate(modes):
         y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
         ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="-", linewidth=0.8, markersize=5,
-                color=colour(mode, palette), label=mode)
+                color=colour(mode, palette), label=labels.get(mode, mode))
     ax.set_xticks(x)
     ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
     ax.set_xlim(-0.5, len(participants) - 0.5)
