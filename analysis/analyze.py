@@ -16,7 +16,8 @@ where warping helps. What a game's hits and shots are (green hits out of clicks)
 
 Matches (matches.csv, scored matches only; the click game's): per participant and mode the average over their
 matches of green hits, red hits, misses and each rating, then per mode mean and SD across
-participants, each mode against a reference mode (bireproj15to60 by default) by paired t-test
+participants, each mode against a reference mode (bireproj15to60 by default; choose_reference
+says which when the matches lack it) by paired t-test
 (the "simple contrast" F(1, n−1) = t² Yang et al. report, seed 000 §8 Table 2), Wilcoxon
 signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodels' AnovaRM,
 left out with a note if statsmodels is missing).
@@ -39,6 +40,8 @@ from warplab_analysis import inputs, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
+# Yang et al.'s reference (seed 000 §8): bidirectional reprojection, the method their study tests.
+# An export without it falls back by choose_reference's rule.
 DEFAULT_REFERENCE = "bireproj15to60"
 CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
 
@@ -100,6 +103,26 @@ def analyse_game(game, participants, table, wording):
     return summary, tests
 
 
+def choose_reference(requested, modes, table):
+    """(reference, note or None): `requested` when the scored matches have it; else as if none had
+    been asked for: bireproj15to60 when there, else the first mode in the mode order that
+    upconverts (the method under test, the part bireproj15to60 plays in Yang et al.'s table), else
+    the first in the order. A note says which rule chose it whenever it is not the one asked for."""
+    if requested in modes:
+        return requested, None
+    asked = (f"The default reference mode {requested}" if requested == DEFAULT_REFERENCE
+             else f"The reference mode {requested}")
+    if DEFAULT_REFERENCE in modes:
+        return DEFAULT_REFERENCE, (f"{asked} is not in the scored matches; {DEFAULT_REFERENCE}, the default, is the "
+                                   "reference instead.")
+    upconverting = [m for m in modes if table.upconverts(m)]
+    if upconverting:
+        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first mode in the mode "
+                                 "order that upconverts, is the reference instead.")
+    return modes[0], (f"{asked} is not in the scored matches and no mode there upconverts; {modes[0]}, the first in "
+                      "the mode order, is the reference instead.")
+
+
 def analyse_click(loaded, statements, requested_reference, table, game):
     """The matches' tables; `game` is the game whose sessions hold them (None when sessions.csv does
     not say, or names several)."""
@@ -114,10 +137,9 @@ def analyse_click(loaded, statements, requested_reference, table, game):
         return click
     participants = sorted({m["participant"] for m in matches}, key=natural_key)
     modes = table.order({m["mode"] for m in matches})
-    reference = requested_reference if requested_reference in modes else modes[0]
-    if reference != requested_reference:
-        click["notes"].append(f"The reference mode {requested_reference} is not in the scored matches; the first "
-                              f"mode present in the mode order, {reference}, is the reference instead.")
+    reference, note = choose_reference(requested_reference, modes, table)
+    if note:
+        click["notes"].append(note)
     others = [m for m in modes if m != reference]
     click.update(participants=participants, modes=modes, reference_mode=reference)
     try:
@@ -279,7 +301,9 @@ def main(argv=None):
     parser.add_argument("--out", required=True, metavar="REPORT_DIR",
                         help="where to write report.md, report.json and the figures (created if missing)")
     parser.add_argument("--reference-mode", default=DEFAULT_REFERENCE, metavar="MODE",
-                        help=f"the click game's mode every other mode is compared with (default {DEFAULT_REFERENCE})")
+                        help=f"the condition (a mode of the matches) every other one is compared with (default "
+                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
+                             "upconverts, else the first)")
     args = parser.parse_args(argv)
     try:
         results = analyse(args.export_dir, args.reference_mode)

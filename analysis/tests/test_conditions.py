@@ -1,7 +1,7 @@
 """analysis/analyze on exports whose conditions come from conditions.csv: the nine presets in the
 documented order and with modes.csv's results, conditions a lab composed that the analysis has
-never seen, conditions.csv over a modes.csv beside it, and one-sentence refusals of a malformed
-conditions.csv.
+never seen, conditions.csv over a modes.csv beside it, the reference rule without the presets,
+and one-sentence refusals of a malformed conditions.csv.
 """
 import csv
 import io
@@ -146,8 +146,12 @@ def test_a_labs_conditions(tmp_path, monkeypatch):
     modes = {m["mode"]: m for m in report["modes"]}
     assert modes["plain60-lag2"]["added_lag_ms"] == pytest.approx(100 / 3)
     assert modes["lag60x5-rotation"]["upconverts"] and not modes["plain60-lag2"]["upconverts"]
+    # The click game: no bireproj15to60, so the first upconverting condition is the reference.
     click = report["click"]
     assert click["modes"] == ["blend-30to120", "plain60", "plain60-lag2"]
+    assert click["reference_mode"] == "blend-30to120" and click["reference_requested"] == "bireproj15to60"
+    assert ("The default reference mode bireproj15to60 is not in the scored matches; blend-30to120, the first mode "
+            "in the mode order that upconverts, is the reference instead.") in click["notes"]
     out = tmp_path / "out"
     for name in ("shooter_hit_rates.png", "shooter_differences.png", "click_hit_rates.png", "click_differences.png",
                  "click_measures.png"):
@@ -163,12 +167,41 @@ def test_a_labs_conditions(tmp_path, monkeypatch):
             "| 100.00–116.67 |") in md
     assert "| my-144hz-warp | 144 | shooter | 36 | 0.00 | 0 | warp-full, 144 Hz | none | yes | 6.94–13.89 |" in md
     assert "| plain60-lag2 | 120 | click | 60 | 33.33 | 4 | hold |" in md
-    assert "Table 2a (shooter): lag60x5-rotation hit rate minus" in md
+    assert "Reference mode: blend-30to120." in md and "Table 2a (shooter): lag60x5-rotation hit rate minus" in md
     assert not any(p in md for p in PRESET_ORDER if p != "bireproj15to60")
     # The legend says how long a mouse step takes to reach the screen, for the game's own rows.
     assert legends["shooter"]["lag60x5-rotation"] == "lag60x5-rotation (view 16.7–33.3 ms)"
     assert legends["click"]["plain60"] == "plain60 (view 8.3–25.0 ms)"
     assert legends["shooter"]["a-unlisted"] == "a-unlisted"
+
+
+def test_reference_without_any_upconverting_condition(tmp_path):
+    lab_export(tmp_path, rename={"bireproj15to60": "base30", "conv60": "plain60", "conv15": "plain60-lag2"})
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    click = report["click"]
+    assert click["modes"] == ["plain60", "base30", "plain60-lag2"] and click["reference_mode"] == "plain60"
+    assert ("The default reference mode bireproj15to60 is not in the scored matches and no mode there upconverts; "
+            "plain60, the first in the mode order, is the reference instead.") in click["notes"]
+    # Asked for one it lacks: the same rule.
+    code, report = run_in_process(tmp_path, tmp_path / "out2", "--reference-mode", "conv60")
+    assert code == 0 and report["click"]["reference_mode"] == "plain60"
+    assert report["click"]["notes"][-1].startswith("The reference mode conv60 is not in the scored matches and")
+    # Asked for one it has.
+    code, report = run_in_process(tmp_path, tmp_path / "out3", "--reference-mode", "plain60-lag2")
+    assert code == 0 and report["click"]["reference_mode"] == "plain60-lag2"
+    assert not any("reference" in n for n in report["click"]["notes"])
+
+
+def test_reference_defaults_to_bireproj_even_when_not_first(tmp_path):
+    # warp15to120 comes first in the order, yet an absent request falls back to bireproj15to60.
+    write_click_export(tmp_path, rename={"conv15": "warp15to120"})
+    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-mode", "conv120")
+    assert code == 0
+    assert report["click"]["modes"][:2] == ["warp15to120", "bireproj15to60"]
+    assert report["click"]["reference_mode"] == "bireproj15to60"
+    assert ("The reference mode conv120 is not in the scored matches; bireproj15to60, the default, is the reference "
+            "instead.") in report["click"]["notes"]
 
 
 # --- conditions.csv over modes.csv -----------------------------------------------------------------
