@@ -4,23 +4,27 @@ and PNG figures.
 
 Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE]
 
+A mode (the `mode` column of the other files) names a condition of the export's condition
+table: conditions.csv, or modes.csv in an export from before it (conditions.ConditionTable).
+
 Hit rates (hitrates.csv, every game): exact paired sign tests between every two modes of a game,
 as Pulkkinen's thesis tests warp upconversion against 15 and 120 Hz rendering (seed 004 §7,
 Tables 1–3, Figures 32–34): per participant the difference of hit rates, ties dropped, binomial
 tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order, taken
-from modes.csv (stats.ModeTable): upconversion modes first, so warp15to120 − conv15 is positive
+from the condition table: conditions that upconvert first, so warp15to120 − conv15 is positive
 where warping helps. What a game's hits and shots are (green hits out of clicks) is games.csv's.
 
 Matches (matches.csv, scored matches only; the click game's): per participant and mode the average over their
 matches of green hits, red hits, misses and each rating, then per mode mean and SD across
-participants, each mode against a reference mode (bireproj15to60 by default) by paired t-test
+participants, each mode against a reference mode (bireproj15to60 by default; choose_reference
+says which when the matches lack it) by paired t-test
 (the "simple contrast" F(1, n−1) = t² Yang et al. report, seed 000 §8 Table 2), Wilcoxon
 signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodels' AnovaRM,
 left out with a note if statsmodels is missing).
 
 Bad input (a missing folder or file, an empty file, a missing column, a cell that is not a
-count, hits above shots, a game with one participant) ends in one sentence on stderr naming the
-file and column, and exit status 1.
+count, hits above shots, a game with one participant, a condition the table gives no valid
+parts) ends in one sentence on stderr naming the file, column and line, and exit status 1.
 """
 import argparse
 import importlib
@@ -33,9 +37,11 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from warplab_analysis import inputs, report, stats  # noqa: E402
+from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
-from warplab_analysis.stats import ModeTable  # noqa: E402
 
+# Yang et al.'s reference (seed 000 §8): bidirectional reprojection, the method their study tests.
+# An export without it falls back by choose_reference's rule.
 DEFAULT_REFERENCE = "bireproj15to60"
 CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
 
@@ -97,6 +103,26 @@ def analyse_game(game, participants, table, wording):
     return summary, tests
 
 
+def choose_reference(requested, modes, table):
+    """(reference, note or None): `requested` when the scored matches have it; else as if none had
+    been asked for: bireproj15to60 when there, else the first mode in the mode order that
+    upconverts (the method under test, the part bireproj15to60 plays in Yang et al.'s table), else
+    the first in the order. A note says which rule chose it whenever it is not the one asked for."""
+    if requested in modes:
+        return requested, None
+    asked = (f"The default reference mode {requested}" if requested == DEFAULT_REFERENCE
+             else f"The reference mode {requested}")
+    if DEFAULT_REFERENCE in modes:
+        return DEFAULT_REFERENCE, (f"{asked} is not in the scored matches; {DEFAULT_REFERENCE}, the default, is the "
+                                   "reference instead.")
+    upconverting = [m for m in modes if table.upconverts(m)]
+    if upconverting:
+        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first mode in the mode "
+                                 "order that upconverts, is the reference instead.")
+    return modes[0], (f"{asked} is not in the scored matches and no mode there upconverts; {modes[0]}, the first in "
+                      "the mode order, is the reference instead.")
+
+
 def analyse_click(loaded, statements, requested_reference, table, game):
     """The matches' tables; `game` is the game whose sessions hold them (None when sessions.csv does
     not say, or names several)."""
@@ -111,10 +137,9 @@ def analyse_click(loaded, statements, requested_reference, table, game):
         return click
     participants = sorted({m["participant"] for m in matches}, key=natural_key)
     modes = table.order({m["mode"] for m in matches})
-    reference = requested_reference if requested_reference in modes else modes[0]
-    if reference != requested_reference:
-        click["notes"].append(f"The reference mode {requested_reference} is not in the scored matches; the first "
-                              f"mode present in the mode order, {reference}, is the reference instead.")
+    reference, note = choose_reference(requested_reference, modes, table)
+    if note:
+        click["notes"].append(note)
     others = [m for m in modes if m != reference]
     click.update(participants=participants, modes=modes, reference_mode=reference)
     try:
@@ -163,21 +188,24 @@ def analyse(export_dir, reference_mode):
     matches = inputs.load_matches(export_dir)
     statements = inputs.load_statements(export_dir)
     sessions = inputs.load_sessions(export_dir)
-    mode_rows = inputs.load_modes(export_dir)
+    records, source, table_notes = inputs.load_conditions(export_dir)
     described = inputs.load_games(export_dir)
-    table = ModeTable(mode_rows)
+    table = ConditionTable(records)
     results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
-               "sessions": None, "modes": mode_rows or [], "mode_order": [], "games": {}, "sign_tests": [],
-               "click": None, "figures": [], "notes": []}
+               "sessions": None, "modes": table.summary(), "mode_order": [], "games": {}, "sign_tests": [],
+               "click": None, "figures": [], "notes": [], "conditions": table.records, "conditions_file": source}
     if isinstance(sessions, str):
         results["notes"].append(sessions)
     else:
         results["sessions"] = sessions
-    if mode_rows is None:
+    if source is None:
         results["notes"].append("No modes.csv (an export from before warplab wrote one): modes in the order of their "
                                 "ids, none known as an upconversion mode, so no Table 2 and no histograms.")
+    elif source == inputs.MODES:
+        results["inputs"][inputs.MODES] = {"modes": len(records)}
     else:
-        results["inputs"][inputs.MODES] = {"modes": len(mode_rows)}
+        results["inputs"][inputs.CONDITIONS] = {"rows": len(records), "conditions": len(table.rows)}
+    results["notes"] += table_notes
     for game in order_games(games, described):
         wording = described.get(game, {"hits_are": "hits", "shots_are": "shots"})
         summary, tests = analyse_game(game, games[game], table, wording)
@@ -196,6 +224,10 @@ def analyse(export_dir, reference_mode):
     if results["click"]:
         all_modes |= set(results["click"]["modes"])
     results["mode_order"] = table.order(all_modes)
+    unlisted = [m for m in results["mode_order"] if not table.known(m)]
+    if source is not None and unlisted:
+        results["notes"].append(f"{source} does not list {', '.join(unlisted)}: they follow the others by name, and "
+                                "none counts as an upconversion mode.")
     return results
 
 
@@ -203,16 +235,18 @@ def draw_figures(results, out_dir):
     """Draws every figure, records its file name in results, and returns the paths written."""
     from warplab_analysis import figures  # matplotlib only once the input has been accepted
     written, taken = [], set()
-    table = ModeTable(results["modes"])
-    palette = table.all_modes()
+    table = ConditionTable(results["conditions"])
+    palette = table.all_conditions()
     tests_by_game = {}
     for test in results["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
     for game, summary in results["games"].items():
         stem = file_stem(game, taken)
         name = f"{stem}_hit_rates.png"
+        labels = {m: legend_label(m, table.latency(m, game)) for m in summary["modes"]}
         figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
-                                 summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette)
+                                 summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette,
+                                 labels)
         summary["figures"]["hit_rates"] = name
         written.append(name)
         panels = []
@@ -229,7 +263,8 @@ def draw_figures(results, out_dir):
             written.append(name)
         elif len(summary["modes"]) > 1:
             upconverting = [m for m in palette if table.upconverts(m)]
-            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or 'modes.csv lists none'}): "
+            lists_none = f"{results['conditions_file'] or inputs.MODES} lists none"
+            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or lists_none}): "
                                     "no histograms of differences.")
     click = results["click"]
     if click and click["modes"]:
@@ -239,6 +274,13 @@ def draw_figures(results, out_dir):
         written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
+
+
+def legend_label(mode, latency):
+    """The mode, and how long a mouse step takes to reach the screen in it where the table says."""
+    if latency is None:
+        return mode
+    return f"{mode} (view {latency[0]:.1f}–{latency[1]:.1f} ms)"
 
 
 def finite_or_none(value):
@@ -259,7 +301,9 @@ def main(argv=None):
     parser.add_argument("--out", required=True, metavar="REPORT_DIR",
                         help="where to write report.md, report.json and the figures (created if missing)")
     parser.add_argument("--reference-mode", default=DEFAULT_REFERENCE, metavar="MODE",
-                        help=f"the click game's mode every other mode is compared with (default {DEFAULT_REFERENCE})")
+                        help=f"the condition (a mode of the matches) every other one is compared with (default "
+                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
+                             "upconverts, else the first)")
     args = parser.parse_args(argv)
     try:
         results = analyse(args.export_dir, args.reference_mode)

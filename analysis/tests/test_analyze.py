@@ -7,6 +7,7 @@ suite fast); the entry-point tests run `analysis/analyze` as a user would.
 """
 import json
 import math
+import re
 import shutil
 import statistics
 import subprocess
@@ -231,14 +232,18 @@ def fmt_cell(v):
 GAMES_HEADER = "game,hits_are,shots_are"
 
 
-def write_click_export(export, game="click"):
-    with_modes(export)
+def write_click_export(export, game="click", rename=None, table=None):
+    """rename: {mode of CLICK: the name the export gives it}; table: writes the condition table
+    (default: with_modes)."""
+    rename = rename or {}
+    (table or with_modes)(export)
     write(export / "games.csv", [GAMES_HEADER, f"{game},green hits,clicks"])
     matches = [MATCH_HEADER]
     ratings = ["participant,session,round,scored_phase,match,mode,statement_index,statement,value,answered_with"]
     hitrates = {}
     k = 0
-    for (p, mode), games in CLICK.items():
+    for (p, preset), games in CLICK.items():
+        mode = rename.get(preset, preset)
         practice = [(99, 0, 0, 1, 1)]  # wild values: must be ignored
         for scored, (g, r, m, *rs) in [(False, x) for x in practice] + [(True, x) for x in games]:
             phase, flag = ("scored", "true") if scored else ("practice", "false")
@@ -415,6 +420,67 @@ def test_without_modes_csv_modes_are_in_id_order_with_a_note(tmp_path):
     assert report["games"]["shooter"]["upconversion_differences"] == []
     md = (tmp_path / "out" / "report.md").read_text()
     assert "No modes.csv" in md and "Modes: conv15; warp15to120." in md
+
+
+# What the analysis reported for exports written before conditions.csv (modes.csv, or neither),
+# as analysis/analyze wrote it from these exports before it read conditions.csv. Such an export
+# must keep giving the same numbers, orders and notes.
+BEFORE = DATA / "modes_csv_reports"
+# report.json's keys that the analysis has added since the pinned reports were written: the
+# condition table's rows (here modes.csv's, mapped) and which file they come from.
+ADDED_KEYS = {"conditions", "conditions_file"}
+
+
+def modes_csv_exports(base):
+    """{name: export folder}: "both", the click export with the thesis's shooter rows (modes.csv,
+    games.csv, sessions.csv); "bare", hit rates alone (no modes.csv)."""
+    both, bare = base / "both", base / "bare"
+    both.mkdir()
+    bare.mkdir()
+    write_click_export(both)
+    shooter = (DATA / "thesis_table1_hitrates.csv").read_text().splitlines()[1:]
+    with open(both / "hitrates.csv", "a") as f:
+        f.write("\n".join(shooter) + "\n")
+    write(both / "games.csv", [GAMES_HEADER, "shooter,hits,shots", "click,green hits,clicks"])
+    rows = [(p, m, h, 20) for p, h in (("a", 5), ("b", 7), ("c", 9)) for m in ("warp15to120", "conv15", "lag50")]
+    write(bare / "hitrates.csv", hitrate_lines(rows))
+    return {"both": both, "bare": bare}
+
+
+def assert_same(got, expected, where):
+    """Equal, floats to 12 significant digits (another scipy may differ in the last bits)."""
+    if isinstance(expected, dict):
+        assert isinstance(got, dict) and list(got) == list(expected), where
+        for key in expected:
+            assert_same(got[key], expected[key], f"{where}.{key}")
+    elif isinstance(expected, list):
+        assert isinstance(got, list) and len(got) == len(expected), where
+        for k, (g, e) in enumerate(zip(got, expected)):
+            assert_same(g, e, f"{where}[{k}]")
+    elif isinstance(expected, float):
+        assert got == pytest.approx(expected, rel=1e-12, abs=1e-15), where
+    else:
+        assert got == expected, where
+
+
+def without_conditions_section(md):
+    """report.md less the section that describes each condition's parts (added since)."""
+    return re.sub(r"## Conditions\n.*?(?=\n## )", "", md, flags=re.S).replace("\n\n\n", "\n\n")
+
+
+@pytest.mark.parametrize("name", ["both", "bare"])
+def test_modes_csv_export_reports_as_before(tmp_path, name):
+    export = modes_csv_exports(tmp_path)[name]
+    code, report = run_in_process(export, tmp_path / "out")
+    assert code == 0
+    expected = json.loads((BEFORE / f"{name}.json").read_text(encoding="utf-8"))
+    assert report.pop("export_dir") == str(export)
+    assert set(report) - set(expected) == ADDED_KEYS and set(expected) <= set(report)
+    assert report["conditions_file"] == ("modes.csv" if name == "both" else None)
+    assert [r["condition"] for r in report["conditions"]] == [m["mode"] for m in expected["modes"]]
+    assert_same({k: report[k] for k in expected}, expected, "report")
+    md = (tmp_path / "out" / "report.md").read_text(encoding="utf-8").replace(str(export), "EXPORT")
+    assert without_conditions_section(md) == (BEFORE / f"{name}.md").read_text(encoding="utf-8")
 
 
 def test_click_reference_fallback_and_no_statsmodels(tmp_path, monkeypatch):

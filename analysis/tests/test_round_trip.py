@@ -112,19 +112,58 @@ def test_report_has_both_games_tables_and_figures(study):
     assert "shooter_hit_rates.png" in data["figures"] and "click_measures.png" in data["figures"]
 
 
+def read_csv(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        return list(csv.DictReader(f))
+
+
 def test_modes_and_games_come_from_the_export(study):
     _, export, report = study
-    # The analysis tests' modes.csv is what export writes for the published presets: its rows
-    # are rows of the real file (which may list more modes after them).
-    exported = (export / "modes.csv").read_text(encoding="utf-8").splitlines()
-    fixture = (ROOT / "analysis" / "tests" / "data" / "modes.csv").read_text(encoding="utf-8").splitlines()
-    assert exported[:len(fixture)] == fixture
-    with open(export / "games.csv", newline="", encoding="utf-8") as f:
-        games = {r["game"]: (r["hits_are"], r["shots_are"]) for r in csv.DictReader(f)}
-    assert games == {"shooter": ("hits", "shots"), "click": ("green hits", "clicks")}
     data = json.loads((report / "report.json").read_text())
-    assert [m["mode"] for m in data["modes"]] == [line.split(",")[0] for line in exported[1:]]
+    if (export / "conditions.csv").exists():
+        check_conditions_csv(export, report, data)
+    else:
+        # An export from before conditions.csv. The analysis tests' modes.csv is what export writes
+        # for the published presets: its rows are rows of the real file (which may list more modes).
+        exported = (export / "modes.csv").read_text(encoding="utf-8").splitlines()
+        fixture = (ROOT / "analysis" / "tests" / "data" / "modes.csv").read_text(encoding="utf-8").splitlines()
+        assert exported[:len(fixture)] == fixture
+        assert [m["mode"] for m in data["modes"]] == [line.split(",")[0] for line in exported[1:]]
+        assert "warp15to120 (rendered at 15 Hz, the frames between warped" in (report / "report.md").read_text()
+    games = {r["game"]: (r["hits_are"], r["shots_are"]) for r in read_csv(export / "games.csv")}
+    assert games == {"shooter": ("hits", "shots"), "click": ("green hits", "clicks")}
     assert data["click"]["game"] == "click"
     text = (report / "report.md").read_text()
     assert "rate = green hits out of clicks" in text and "rate = hits out of shots" in text
-    assert "warp15to120 (rendered at 15 Hz, the frames between warped" in text
+
+
+def check_conditions_csv(export, report, data):
+    """conditions.csv names every condition the sessions used, with the columns docs/export.md
+    lists, and gives the presets the parts the analysis tests' copy (data/conditions.csv) gives
+    them; its latencies are the export's own, which that copy only imitates."""
+    rows = read_csv(export / "conditions.csv")
+    with open(export / "conditions.csv", newline="", encoding="utf-8") as f:
+        header = next(csv.reader(f))
+    assert header == ["condition", "render_hz", "lag_frames", "fill", "late_warp", "view_latency_min_ms",
+                      "view_latency_max_ms", "scene_latency_min_ms", "scene_latency_max_ms", "fill_hz", "refresh_hz",
+                      "game", "description"]
+    names = list(dict.fromkeys(r["condition"] for r in rows))
+    assert data["conditions_file"] == "conditions.csv"
+    assert [m["mode"] for m in data["modes"]] == names
+    assert {r["mode"] for r in read_csv(export / "hitrates.csv")} <= set(names)
+    fixture = {r["condition"]: r for r in read_csv(ROOT / "analysis" / "tests" / "data" / "conditions.csv")}
+    for r in rows:
+        preset = fixture.get(r["condition"])
+        if preset is None:
+            continue
+        for column in ("render_hz", "fill_hz"):
+            assert float(r[column] or 0) == float(preset[column] or 0), (r["condition"], column)
+        for column in ("fill", "late_warp"):
+            assert r[column] == preset[column], (r["condition"], column)
+        # The preset's lag in ms, to the nearest whole display frame at this refresh.
+        refresh = float(r["refresh_hz"])
+        lag_ms = int(r["lag_frames"]) * 1000 / refresh
+        assert abs(lag_ms - int(preset["lag_frames"]) * 1000 / float(preset["refresh_hz"])) <= 500 / refresh + 1e-9, \
+            r["condition"]
+    text = (report / "report.md").read_text()
+    assert "## Conditions" in text and all(f"| {name} |" in text for name in data["mode_order"] if name in names)

@@ -5,8 +5,8 @@
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
   of seed 000 Table 2).
-Each mode keeps one colour in every figure: its place in `palette`, every mode modes.csv lists in
-the report's mode order (stats.ModeTable.all_modes).
+Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
+table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
 import math
 
@@ -21,15 +21,17 @@ MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
 
 
 def colour(mode, palette):
-    """One colour per mode: the modes of modes.csv by their place in the mode order, others by name."""
+    """One colour per mode: those the condition table lists by their place in the mode order, others by name."""
     cmap = plt.get_cmap("tab10")
     if mode in palette:
         return cmap(palette.index(mode) % 10)
     return plt.get_cmap("Dark2")(sum(map(ord, mode)) % 8)
 
 
-def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette):
-    """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv)."""
+def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette, labels=None):
+    """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv);
+    labels: each mode's legend entry (the mode's name where absent)."""
+    labels = labels or {}
     fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
     x = np.arange(len(participants))
     # Modes side by side within a participant's column: equal hit rates (common with few shots)
@@ -38,7 +40,7 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     for k, mode in enumerate(modes):
         y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
         ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="-", linewidth=0.8, markersize=5,
-                color=colour(mode, palette), label=mode)
+                color=colour(mode, palette), label=labels.get(mode, mode))
     ax.set_xticks(x)
     ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
     ax.set_xlim(-0.5, len(participants) - 0.5)

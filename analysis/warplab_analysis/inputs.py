@@ -18,12 +18,24 @@ MATCHES = "matches.csv"
 RATINGS = "ratings.csv"
 SESSIONS = "sessions.csv"
 MODES = "modes.csv"
+CONDITIONS = "conditions.csv"
 GAMES = "games.csv"
 
 HITRATES_REQUIRED = ["participant", "game", "mode", "shots", "hits"]
 MATCHES_REQUIRED = ["participant", "scored_phase", "mode", "green_hits", "red_hits", "misses"]
 RATINGS_REQUIRED = ["statement_index", "statement"]
 MODES_REQUIRED = ["mode", "description", "render_rate_hz", "added_lag_ms", "upconverts"]
+CONDITIONS_REQUIRED = ["condition", "render_hz", "lag_frames", "fill", "late_warp", "view_latency_min_ms",
+                       "view_latency_max_ms", "scene_latency_min_ms", "scene_latency_max_ms", "fill_hz", "refresh_hz",
+                       "game", "description"]
+HOLD = "hold"  # the fill that holds the last render: no frames made in between
+LATE_WARPS = ("none", "rotation", "depth")
+# What the rows of one condition share: everything but the refresh, the game and what follows from
+# the refresh (lag in whole display frames, latencies).
+SHARED_PARTS = ("render_hz", "fill", "fill_hz", "late_warp")
+CONDITION_RECORD = ("condition", "description", "render_hz", "lag_frames", "added_lag_ms", "fill", "fill_hz",
+                    "late_warp", "view_latency_min_ms", "view_latency_max_ms", "scene_latency_min_ms",
+                    "scene_latency_max_ms", "refresh_hz", "game", "upconverts")
 GAMES_REQUIRED = ["game", "hits_are", "shots_are"]
 RATING_COLUMN = re.compile(r"rating_(\d+)$")
 
@@ -46,6 +58,7 @@ def read_table(path, required):
         with open(path, newline="", encoding="utf-8-sig") as f:
             reader = csv.reader(f, strict=True)
             header = None
+            header_line = 0
             records = []
             end_of_previous = 0
             for fields in reader:
@@ -55,6 +68,7 @@ def read_table(path, required):
                     continue  # a blank line
                 if header is None:
                     header = [name.strip() for name in fields]
+                    header_line = first_line
                     continue
                 if len(fields) != len(header):
                     raise BadInput(f"{path}: line {first_line} has {len(fields)} fields but the header has "
@@ -76,7 +90,7 @@ def read_table(path, required):
         raise BadInput(f"{path}: the file is empty, expected a header line with columns {', '.join(required)}.")
     for column in required:
         if column not in header:
-            raise BadInput(f"{path}: missing column '{column}'.")
+            raise BadInput(f"{path}: line {header_line}, the header, is missing column '{column}'.")
     return Table(path, header, records)
 
 
@@ -249,12 +263,89 @@ def session_games(export_dir):
     return {record["file"]: record["game"] for record in table.records if record["game"]}
 
 
-def load_modes(export_dir):
-    """None without modes.csv; else its records in file order: mode, description, render_rate_hz,
-    added_lag_ms, upconverts (the export's copy of warplab's mode table)."""
-    path = os.path.join(export_dir, MODES)
-    if not os.path.exists(path):
-        return None
+def conditions_record(**parts):
+    """One condition row as conditions.ConditionTable takes it; parts a file lacks stay None."""
+    record = dict.fromkeys(CONDITION_RECORD)
+    record.update(parts)
+    return record
+
+
+def load_conditions(export_dir):
+    """(records, the file they come from, notes): conditions.csv's rows when it is there, else
+    modes.csv's (an export from before conditions.csv) mapped into the same records, else
+    (None, None, []). Records as conditions.py describes them, in file order."""
+    path = os.path.join(export_dir, CONDITIONS)
+    old = os.path.join(export_dir, MODES)
+    if os.path.exists(path):
+        notes = []
+        if os.path.exists(old):
+            notes.append(f"{CONDITIONS} is read and {MODES} beside it is not ({MODES} is what exports wrote before "
+                         f"{CONDITIONS}; a later export into the same folder leaves it there).")
+        return read_conditions(path), CONDITIONS, notes
+    if os.path.exists(old):
+        return read_modes(old), MODES, []
+    return None, None, []
+
+
+def positive(table, record, column, *, optional=False):
+    value = number(table, record, column, optional=optional)
+    if value is not None and value <= 0:
+        raise BadInput(f"{table.path}: line {record['_line']}, column '{column}' is not above 0: "
+                       f"{record[column]!r}.")
+    return value
+
+
+def read_conditions(path):
+    table = read_table(path, CONDITIONS_REQUIRED)
+    records, first_of_name, first_seen = [], {}, {}
+    for record in table.records:
+        line = record["_line"]
+        where = f"{table.path}: line {line}, column"
+        name = text(table, record, "condition")
+        late_warp = text(table, record, "late_warp")
+        if late_warp not in LATE_WARPS:
+            raise BadInput(f"{where} 'late_warp' is not {', '.join(LATE_WARPS[:-1])} or {LATE_WARPS[-1]}: "
+                           f"{late_warp!r}.")
+        fill = text(table, record, "fill")
+        refresh_hz = positive(table, record, "refresh_hz")
+        lag_frames = number(table, record, "lag_frames", integer=True)
+        row = conditions_record(
+            condition=name, description=record["description"], render_hz=positive(table, record, "render_hz"),
+            lag_frames=lag_frames, added_lag_ms=lag_frames * 1000 / refresh_hz, fill=fill,
+            fill_hz=positive(table, record, "fill_hz", optional=fill == HOLD), late_warp=late_warp,
+            refresh_hz=refresh_hz, game=text(table, record, "game"),
+            upconverts=fill != HOLD or late_warp != "none")
+        for kind in ("view", "scene"):
+            low, high = f"{kind}_latency_min_ms", f"{kind}_latency_max_ms"
+            for column in (low, high):
+                row[column] = number(table, record, column)
+                if row[column] < 0:
+                    raise BadInput(f"{where} '{column}' is negative: {record[column]!r}.")
+            if row[high] < row[low]:
+                raise BadInput(f"{where} '{high}' ({record[high]}) is below column '{low}' ({record[low]}).")
+        key = (name, refresh_hz, row["game"])
+        if key in first_seen:
+            raise BadInput(f"{where} 'condition': {name!r} has a second row for refresh_hz {record['refresh_hz']} "
+                           f"and game {row['game']!r} (the first is on line {first_seen[key]}).")
+        first_seen[key] = line
+        # The parts are the condition; only what follows from the display refresh may differ.
+        if name in first_of_name:
+            earlier, earlier_record = first_of_name[name]
+            for column in SHARED_PARTS:
+                if row[column] != earlier[column]:
+                    raise BadInput(f"{where} '{column}': {name!r} has {record[column]!r} here but "
+                                   f"{earlier_record[column]!r} on line {earlier_record['_line']} (the rows of one "
+                                   "condition differ only in refresh_hz, game, lag_frames and the latencies).")
+        else:
+            first_of_name[name] = (row, record)
+        records.append(row)
+    return records
+
+
+def read_modes(path):
+    """modes.csv's rows as condition records: its upconverts column as written, what fills the
+    frames between renders from its method (or upconversion kind), and no late warp (warplab
+    had none when it wrote modes.csv)."""
     table = read_table(path, MODES_REQUIRED)
     rows, first_seen = [], {}
     for record in table.records:
@@ -263,10 +354,17 @@ def load_modes(export_dir):
             raise BadInput(f"{table.path}: line {record['_line']}, column 'mode': {mode!r} has a second row (the first "
                            f"is on line {first_seen[mode]}).")
         first_seen[mode] = record["_line"]
-        rows.append({"mode": mode, "description": record["description"],
-                     "render_rate_hz": number(table, record, "render_rate_hz"),
-                     "added_lag_ms": number(table, record, "added_lag_ms"),
-                     "upconverts": boolean(table, record, "upconverts")})
+        upconverts = boolean(table, record, "upconverts")
+        fill = HOLD
+        if upconverts:
+            fill = record.get("method") or record.get("upconversion") or None
+        fill_hz = None
+        if "upconverted_rate_hz" in record:
+            fill_hz = number(table, record, "upconverted_rate_hz", optional=True)
+        rows.append(conditions_record(
+            condition=mode, description=record["description"], render_hz=number(table, record, "render_rate_hz"),
+            added_lag_ms=number(table, record, "added_lag_ms"), fill=fill, fill_hz=fill_hz, late_warp="none",
+            upconverts=upconverts))
     return rows
 
 

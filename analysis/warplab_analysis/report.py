@@ -5,8 +5,9 @@ participant, the hit-rate figure, sign tests for every pair of modes, Table 2 di
 each upconversion mode, Table 3 quartiles, histograms, then a planning table (participants a
 study would need, this data as pilot). A game whose sessions played matches (matches.csv; the
 click game): the layout of Yang et al.'s Table 2 (seed 000 §8) first, then the same hit-rate
-sections on what its hits and shots count (games.csv: green hits / clicks). Modes are described
-as modes.csv describes them.
+sections on what its hits and shots count (games.csv: green hits / clicks). A mode names a
+condition, described as the export's condition table (conditions.csv, or modes.csv before it)
+describes it: its words and, in a section of their own, its parts and latencies.
 Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
 """
 import math
@@ -204,6 +205,61 @@ def click_sections(out, click, level):
     out.append(table(["Measure", "F", "df", "p", "participants", "dropped"], rows))
 
 
+def ms(value):
+    return fmt(value, ".2f")
+
+
+def hz(value):
+    return fmt(value, "g")
+
+
+def conditions_section(out, results):
+    """One row per condition, display refresh and game the data has: what the mode's name stands
+    for, so a reader sees the latencies the modes compare without the protocol file. Columns the
+    table has nothing for (modes.csv has no refresh, game or latencies) are left out."""
+    rows_of = {}
+    for record in results["conditions"]:
+        rows_of.setdefault(record["condition"], []).append(record)
+    listed = [m for m in results["mode_order"] if m in rows_of]
+    if not listed:
+        return
+    source = results["conditions_file"]
+    out.append("## Conditions\n")
+    if source == "modes.csv":
+        words = ("What each mode is, as modes.csv gives it (an export from before conditions.csv, which says no "
+                 "display refresh, game or latencies).")
+    else:
+        words = (f"What each mode is, as {source} gives it: one row per display refresh and game it ran at. Added "
+                 "lag = lag frames × 1000 / refresh. Latency, min–max over where in the render cycle a step falls: "
+                 "view, a mouse step to the screen; scene, a change of the world's motion to the screen.")
+    out.append(words + " A mode upconverts when its fill is not hold or it late-warps.\n")
+    columns = [("mode", lambda r: cell(r["condition"])),
+               ("refresh (Hz)", lambda r: None if r["refresh_hz"] is None else hz(r["refresh_hz"])),
+               ("game", lambda r: None if r["game"] is None else cell(r["game"])),
+               ("render (Hz)", lambda r: hz(r["render_hz"])),
+               ("added lag (ms)", lambda r: ms(r["added_lag_ms"])),
+               ("lag frames", lambda r: None if r["lag_frames"] is None else str(r["lag_frames"])),
+               ("fill", fill_cell),
+               ("late warp", lambda r: cell(r["late_warp"])),
+               ("upconverts", lambda r: "yes" if r["upconverts"] else "no")]
+    for kind in ("view", "scene"):
+        columns.append((f"{kind} latency (ms)", lambda r, kind=kind: None if r[f"{kind}_latency_min_ms"] is None else
+                        f"{ms(r[f'{kind}_latency_min_ms'])}–{ms(r[f'{kind}_latency_max_ms'])}"))
+    cells = [[get(r) for _, get in columns] for name in listed for r in rows_of[name]]
+    keep = [k for k in range(len(columns)) if any(row[k] is not None for row in cells)]
+    out.append(table([columns[k][0] for k in keep],
+                     [[NOTHING if row[k] is None else row[k] for k in keep] for row in cells]))
+
+
+def fill_cell(record):
+    """What fills the frames between renders, at how many frames a second where it makes any."""
+    if record["fill"] is None:
+        return NOTHING
+    if record["fill_hz"] is None or record["fill"] == "hold":
+        return cell(record["fill"])
+    return f"{cell(record['fill'])}, {hz(record['fill_hz'])} Hz"
+
+
 def render(results):
     out = ["# warplab study report\n"]
     files = ", ".join(name + " (" + ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in info.items()) + ")"
@@ -220,6 +276,7 @@ def render(results):
                                      for m in results["mode_order"]) + ".\n")
     for note in results["notes"]:
         out.append(f"{note}\n")
+    conditions_section(out, results)
     tests_by_game = {}
     for test in results["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)

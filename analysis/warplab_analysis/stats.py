@@ -16,53 +16,6 @@ import scipy.stats
 QUARTILE_KEYS = ("min", "q25", "median", "q75", "max")
 
 
-class ModeTable:
-    """What modes.csv (the export's copy of warplab's mode table) says about each mode, and the
-    order in which the report compares them.
-
-    rows: modes.csv's records in file order, each with `mode`, `description`, `render_rate_hz`,
-    `added_lag_ms` and `upconverts`; None without modes.csv, when every mode is unknown.
-
-    The order puts the upconversion modes first (in modes.csv's order), so a sign test's
-    a − b is upconversion minus the other mode, as the thesis reports it; then the other modes
-    from the least added lag and, at equal lag, the highest render rate (conv120 before conv15
-    before lag50); modes.csv's order breaks ties. Modes modes.csv does not list come last, by id.
-    """
-
-    def __init__(self, rows):
-        self.rows = {r["mode"]: r for r in rows or []}
-        self.index = {r["mode"]: k for k, r in enumerate(rows or [])}
-
-    def known(self, mode):
-        return mode in self.rows
-
-    def upconverts(self, mode):
-        return mode in self.rows and self.rows[mode]["upconverts"]
-
-    def description(self, mode):
-        return self.rows[mode]["description"] if mode in self.rows else None
-
-    def conventional_rate(self, mode):
-        """The render rate of a mode that neither upconverts nor adds lag (conv120: 120); else None."""
-        row = self.rows.get(mode)
-        if row is None or row["upconverts"] or row["added_lag_ms"] != 0:
-            return None
-        return row["render_rate_hz"]
-
-    def order(self, modes):
-        def key(mode):
-            row = self.rows[mode]
-            if row["upconverts"]:
-                return 0, 0.0, 0.0, self.index[mode]
-            return 1, row["added_lag_ms"], -row["render_rate_hz"], self.index[mode]
-        known = sorted((m for m in set(modes) if m in self.rows), key=key)
-        return known + sorted(m for m in set(modes) if m not in self.rows)
-
-    def all_modes(self):
-        """Every mode modes.csv lists, in the comparison order: what gives each mode its colour."""
-        return self.order(self.rows)
-
-
 def sign_test_two_sided_p(positive, n):
     """Two-sided p of `positive` successes in n fair coin flips: scipy's binomtest; 1.0 when n = 0.
 
