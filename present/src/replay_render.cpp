@@ -26,8 +26,17 @@ constexpr double kSilhouetteMarginPx = 2.0;
 std::uint32_t gameObject(std::uint32_t id) { return id >= scene::kIdTarget ? id : scene::kIdNone; }
 
 // The cross-check of the analytic scoring against the id buffer, on frames whose image is an
-// exact render of what they depict (rendered or held; warped and interpolated images only
-// approximate it).
+// exact render of what they depict: rendered or held, and a held render late-warped by the
+// camera's rotation (the games' cameras only turn about their eye, so a rotation reprojection
+// is the render from the new camera, objects where the render had them). Other warped and
+// interpolated images only approximate what they depict.
+bool exactImage(const game::ShownFrame& shown) {
+    const auto kind = shown.schedule.kind;
+    if (kind == condition::FrameKind::Rendered || kind == condition::FrameKind::Held) return true;
+    return kind == condition::FrameKind::Warped && shown.condition.lateWarp == condition::LateWarp::Rotation &&
+        shown.condition.fillKind() == condition::Fill::Hold;
+}
+
 class PointerCheck {
 public:
     PointerCheck(const game::Game& game, const session::SessionData& data, double toFrameX, double toFrameY)
@@ -38,10 +47,7 @@ public:
 
     // `ids`: the displayed frame's id attachment (the HUD leaves it untouched).
     void check(const game::ShownFrame& shown, const image::ImageU32& ids, ReplayRenderResult& result) {
-        const auto kind = shown.schedule.kind;
-        if (shown.blank || shown.frozen ||
-            !(kind == condition::FrameKind::Rendered || kind == condition::FrameKind::Held))
-            return;
+        if (shown.blank || shown.frozen || !exactImage(shown)) return;
         const int width = ids.width, height = ids.height;
         const bool cursor = shown.pointer == game::PointerKind::Cursor;
         const int ix = std::clamp(static_cast<int>(cursor ? shown.cursor.x * toFrameX_ : width * 0.5), 0, width - 1);
@@ -123,7 +129,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         ++result.written;
     }
     out << "wrote " << result.written << " frames to " << request.outDir << "; pointer cross-check on "
-        << result.checked << " rendered or held frames (" << result.eventsChecked << " of them logged clicks or shots, "
+        << result.checked << " frames whose image is exact (" << result.eventsChecked << " of them logged clicks or shots, "
         << result.nearSilhouette << " skipped within " << kSilhouetteMarginPx
         << " px of a silhouette): the id read back disagrees on " << result.disagreed << "\n";
     for (const auto& d : result.disagreements) out << "  " << d << "\n";

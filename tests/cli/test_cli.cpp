@@ -247,7 +247,7 @@ namespace {
 
 // The only session file a run left in `dir`.
 
-// replay --render's tally: "pointer cross-check on N rendered or held frames (E of them
+// replay --render's tally: "pointer cross-check on N frames whose image is exact (E of them
 // logged clicks or shots, ...): the id read back disagrees on D".
 struct CrossCheck {
     int frames = -1, events = -1, disagreed = -1;
@@ -256,7 +256,7 @@ CrossCheck crossCheckIn(const std::string& output) {
     CrossCheck c;
     const auto at = output.find("pointer cross-check on ");
     if (at == std::string::npos) return c;
-    std::sscanf(output.c_str() + at, "pointer cross-check on %d rendered or held frames (%d", &c.frames, &c.events);
+    std::sscanf(output.c_str() + at, "pointer cross-check on %d frames whose image is exact (%d", &c.frames, &c.events);
     const auto d = output.find("disagrees on ", at);
     if (d != std::string::npos) c.disagreed = std::stoi(output.substr(d + 13));
     return c;
