@@ -48,10 +48,12 @@ int runConditions(const ParsedArgs& args) {
     for (const auto& r : rows) {
         const condition::Condition& c = r.summary.condition;
         std::string fill = c.fill;
-        if (c.fillKind() != condition::Fill::Hold) fill += " " + condition::number(c.fillHz.value_or(study->refreshHz()));
-        std::printf("%-20s %5s Hz %2lld frames %-14s %-9s %-34s %s\n", c.name.c_str(), condition::number(c.renderHz).c_str(),
-                    static_cast<long long>(r.summary.lagFrames), fill.c_str(), condition::lateWarpName(c.lateWarp),
-                    range(r.summary.viewS, r.summary.refreshHz).c_str(), range(r.summary.sceneS, r.summary.refreshHz).c_str());
+        if (c.fillKind() != condition::Fill::Hold)
+            fill += " " + condition::number(c.fillHz.value_or(study->refreshHz()));
+        std::printf("%-20s %5s Hz %2lld frames %-14s %-9s %-34s %s\n", c.name.c_str(),
+                    condition::number(c.renderHz).c_str(), static_cast<long long>(r.summary.lagFrames), fill.c_str(),
+                    condition::lateWarpName(c.lateWarp), range(r.summary.viewS, r.summary.refreshHz).c_str(),
+                    range(r.summary.sceneS, r.summary.refreshHz).c_str());
         if (!c.description.empty()) std::printf("    %s\n", c.description.c_str());
     }
     return 0;

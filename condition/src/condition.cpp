@@ -83,14 +83,9 @@ const std::vector<FillSpelling>& fillSpellings() {
     // The warps are the renderer's mesh warps (tests/present/ checks each is a method that takes
     // a guard band, as a warp's sources need).
     static const std::vector<FillSpelling> list = {
-        {"hold", Fill::Hold},
-        {"warp-full", Fill::Warp},
-        {"warp-nofix", Fill::Warp},
-        {"warp-sparse4", Fill::Warp},
-        {"warp-sparse8", Fill::Warp},
-        {"warp-sparse16", Fill::Warp},
-        {"bireproj", Fill::Bireproj},
-        {"blend", Fill::Blend},
+        {"hold", Fill::Hold},         {"warp-full", Fill::Warp},    {"warp-nofix", Fill::Warp},
+        {"warp-sparse4", Fill::Warp}, {"warp-sparse8", Fill::Warp}, {"warp-sparse16", Fill::Warp},
+        {"bireproj", Fill::Bireproj}, {"blend", Fill::Blend},
     };
     return list;
 }
@@ -202,9 +197,10 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
     // Rates the display cannot run evenly: the refresh must be a whole multiple of each.
     auto uneven = [&](const char* part, double rateHz) {
         const std::string above = rateHz > refreshHz + 1e-9 ? " (it is above the refresh)" : "";
-        return Problem{part, "is " + number(rateHz) + " Hz: the display refresh must be a whole multiple of " +
-                                 number(rateHz) + " Hz, not " + refresh + above + "; rates that fit " + refresh + ": " +
-                                 dividingRates(refreshHz)};
+        return Problem{part,
+                       "is " + number(rateHz) + " Hz: the display refresh must be a whole multiple of " +
+                           number(rateHz) + " Hz, not " + refresh + above + "; rates that fit " + refresh + ": " +
+                           dividingRates(refreshHz)};
     };
     const std::optional<std::int64_t> renderPeriod = framesPer(refreshHz, c.renderHz);
     if (!renderPeriod) return uneven("render_hz", c.renderHz);
@@ -236,14 +232,16 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
                        "the fill's rate (" + number(refreshHz / static_cast<double>(fillPeriod)) +
                            " Hz) must be a whole multiple of render_hz (" + number(c.renderHz) + " Hz)"};
     if (c.lateWarp != LateWarp::None && (*fill == Fill::Bireproj || *fill == Fill::Blend))
-        return Problem{"late_warp", std::string("must be \"none\" with fill \"") + c.fill +
-                                        "\": a late warp re-projects one frame, and " + c.fill +
-                                        " shows two (allowed with it: none)"};
+        return Problem{"late_warp",
+                       std::string("must be \"none\" with fill \"") + c.fill +
+                           "\": a late warp re-projects one frame, and " + c.fill +
+                           " shows two (allowed with it: none)"};
     const std::int64_t lookBack = lag + 2 * *renderPeriod;
     if (lookBack > kMaxLookBackFrames)
         return Problem{c.lagFrames ? "lag_frames" : "lag_ms",
-                       "looks back " + std::to_string(lookBack) + " display frames (the lag plus two render periods), " +
-                           "more than the " + std::to_string(kMaxLookBackFrames) + " a game keeps"};
+                       "looks back " + std::to_string(lookBack) +
+                           " display frames (the lag plus two render periods), " + "more than the " +
+                           std::to_string(kMaxLookBackFrames) + " a game keeps"};
     return std::nullopt;
 }
 

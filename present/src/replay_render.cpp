@@ -129,8 +129,8 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         ++result.written;
     }
     out << "wrote " << result.written << " frames to " << request.outDir << "; pointer cross-check on "
-        << result.checked << " frames whose image is exact (" << result.eventsChecked << " of them logged clicks or shots, "
-        << result.nearSilhouette << " skipped within " << kSilhouetteMarginPx
+        << result.checked << " frames whose image is exact (" << result.eventsChecked
+        << " of them logged clicks or shots, " << result.nearSilhouette << " skipped within " << kSilhouetteMarginPx
         << " px of a silhouette): the id read back disagrees on " << result.disagreed << "\n";
     for (const auto& d : result.disagreements) out << "  " << d << "\n";
     return result;

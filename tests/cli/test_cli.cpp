@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -292,6 +293,76 @@ TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
     const std::string right = replay.output.substr(slash + 1, replay.output.find(' ', slash) - slash - 1);
     EXPECT_EQ(left, right) << replay.output;
     EXPECT_GE(std::stoi(left), 12);
+}
+
+// Kim et al.'s late-warp study, its conditions defined in the protocol file: it runs headless,
+// replays exactly, and replay --render's id-buffer check of the scoring covers the
+// rotation-late-warped frames, the held renders turned to the display camera.
+TEST(CliSession, TheLateWarpProtocolRunsReplaysAndScoresWhatTheWarpedFrameShows) {
+    const std::string dir = scratch("session-kim"), framesDir = scratch("session-kim-frames");
+    const auto run =
+        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                "/protocol/latewarp-kim-quick.json --participant K --out " + dir + " --headless --player bot:3");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string session = sessionIn(dir);
+    ASSERT_FALSE(session.empty());
+    const auto data = warplab::session::readSession(session);
+    std::map<std::string, int> shots;
+    std::vector<std::int64_t> rotationShots;
+    for (const auto& e : data.events)
+        if (e.type == "shot") {
+            ++shots[e.mode];
+            if (e.mode == "lag60x5-rotation") rotationShots.push_back(e.frame);
+        }
+    for (const char* mode : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
+        EXPECT_GE(shots[mode], 1) << mode << " was never shot at";
+    const auto replay = warplab("replay " + session);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_GE(reproducedIn(replay.output), 16) << replay.output;
+    // The frames before a rotation shot, and the shot's own (one near a silhouette is skipped:
+    // the check then tries the next shot).
+    int frames = 0, events = 0;
+    for (const std::int64_t shot : rotationShots) {
+        const auto rendered = warplab("replay " + session + " --render " + framesDir + " --width 320 --height 180 " +
+                                      "--frames " + std::to_string(shot - 12) + ":" + std::to_string(shot));
+        ASSERT_EQ(rendered.status, 0) << rendered.output;
+        const CrossCheck check = crossCheckIn(rendered.output);
+        EXPECT_EQ(check.disagreed, 0) << rendered.output;
+        frames += check.frames;
+        events += check.events;
+        if (events >= 1) break;
+    }
+    EXPECT_GE(frames, 6);  // late-warped frames count as exact
+    EXPECT_GE(events, 1);  // a shot judged in a late-warped frame, against its id buffer
+}
+
+// `warplab conditions` prints what each condition of a protocol is and its latency, the table
+// of the README for the presets and the same numbers for a lab's own.
+TEST(CliConditions, PrintsEachConditionsPartsAndLatency) {
+    const auto csv =
+        warplab("conditions " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/latewarp-kim-quick.json --csv");
+    ASSERT_EQ(csv.status, 0) << csv.output;
+    EXPECT_EQ(csv.output.substr(0, csv.output.find('\n')),
+              "condition,render_hz,lag_frames,fill,late_warp,view_latency_min_ms,view_latency_max_ms,"
+              "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description");
+    EXPECT_TRUE(contains(csv.output,
+                         "\nlag60x5-rotation,60,10,hold,rotation,0,8.333333333333334,83.33333333333333,"
+                         "100,,120,shooter,"))
+        << csv.output;
+    EXPECT_TRUE(contains(csv.output, "\nlag60x5,60,10,hold,none,83.33333333333333,100,83.33333333333333,100,"))
+        << csv.output;
+    const auto table = warplab("conditions " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json");
+    ASSERT_EQ(table.status, 0) << table.output;
+    EXPECT_TRUE(contains(table.output, "warp15to120")) << table.output;
+    EXPECT_TRUE(contains(table.output, "0.0 - 66.7 ms (0 - 8 frames)")) << table.output;
+    // A protocol that does not parse: its sentence and exit status 1; no protocol: usage, 2.
+    const std::string dir = scratch("conditions-bad");
+    std::ofstream(dir + "/bad.json") << R"({"format_version":3,"name":"b","game":"shooter",
+      "conditions":{"x":{"render_hz":60,"fill":"bireproj","late_warp":"rotation"}},"test":{"conditions":["x"]}})";
+    const auto bad = warplab("conditions " + dir + "/bad.json");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_TRUE(contains(bad.output, "conditions.x.late_warp must be \"none\" with fill \"bireproj\"")) << bad.output;
+    EXPECT_EQ(warplab("conditions").status, 2);
 }
 
 TEST(CliSession, ARunDrivenByARecordedSessionsInputGivesTheSameOutcomes) {

@@ -159,6 +159,38 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
     EXPECT_TRUE(warplab::testing::matchesReference("live_rating", rating));
 }
 
+// A protocol's own late-warp conditions in a real window: the bot's session is the headless
+// one, input for input and event for event, and it replays.
+TEST(LiveSession, LateWarpConditionsRunInTheWindowAsHeadless) {
+    const std::string dir = scratch("kim"), headless = scratch("kim-headless");
+    std::ofstream(dir + "/kim-tiny.json") << R"({"format_version":3,"name":"kim-tiny","game":"shooter",
+ "conditions":{"lag60x5":{"render_hz":60,"lag_frames":10},
+               "lag60x5-rotation":{"render_hz":60,"lag_frames":10,"late_warp":"rotation"},
+               "lag60x5-depth":{"render_hz":60,"lag_frames":10,"late_warp":"depth"}},
+ "acclimation":{"duration_s":0.5,"level":0,"mode":"lag60x5-rotation"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5,
+             "high_mode":"lag60x5-depth","low_mode":"lag60x5"},
+ "test":{"conditions":["lag60x5-rotation","lag60x5-depth"],"targets_per_condition":1,"timeout_s":0.5,
+         "pause_s":0.25,"supervisor_starts":false}})";
+    const std::string path = dir + "/kim-tiny.json";
+    const auto window =
+        inWindow("run --protocol " + path + " --participant K --out " + dir +
+                 " --width 160 --height 90 --player bot:3 --seed 4 --screenshots " + dir + " --screenshot-frames 60");
+    ASSERT_EQ(window.status, 0) << window.output;
+    const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant K --out " +
+                                  headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    const auto a = warplab::session::readSession(sessionIn(dir));
+    const auto b = warplab::session::readSession(sessionIn(headless));
+    EXPECT_TRUE(a.completed) << a.note;
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+    ASSERT_EQ(a.inputs.size(), b.inputs.size());
+    EXPECT_TRUE(contains(replayOf(sessionIn(dir)), " outcomes reproduced")) << replayOf(sessionIn(dir));
+    EXPECT_TRUE(fs::exists(dir + "/frame_60.png"));
+}
+
 TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
     const std::string dir = scratch("bad-script");
     std::ofstream(dir + "/script.txt") << "start key enter\n12 jump\n";

@@ -64,10 +64,14 @@ ScheduledFrame oldFrame(const OldMode& m, double refreshHz, std::int64_t k) {
 
 TEST(Conditions, EveryPresetExpandsToTheScheduleItReplaced) {
     const std::vector<std::pair<std::string, OldMode>> old = {
-        {"conv15", {15, 0, OldMode::None, 0}},          {"conv30", {30, 0, OldMode::None, 0}},
-        {"conv60", {60, 0, OldMode::None, 0}},          {"conv120", {120, 0, OldMode::None, 0}},
-        {"lag50", {60, 50, OldMode::None, 0}},          {"lag100", {60, 100, OldMode::None, 0}},
-        {"lag200", {60, 200, OldMode::None, 0}},        {"warp15to120", {15, 0, OldMode::Warp, 120}},
+        {"conv15", {15, 0, OldMode::None, 0}},
+        {"conv30", {30, 0, OldMode::None, 0}},
+        {"conv60", {60, 0, OldMode::None, 0}},
+        {"conv120", {120, 0, OldMode::None, 0}},
+        {"lag50", {60, 50, OldMode::None, 0}},
+        {"lag100", {60, 100, OldMode::None, 0}},
+        {"lag200", {60, 200, OldMode::None, 0}},
+        {"warp15to120", {15, 0, OldMode::Warp, 120}},
         {"bireproj15to60", {15, 0, OldMode::Bidirectional, 60}},
     };
     ASSERT_EQ(presets().size(), old.size());
@@ -83,8 +87,8 @@ TEST(Conditions, EveryPresetExpandsToTheScheduleItReplaced) {
                 // Bidirectional reprojection's repeated frames (B-frames shown twice on a 120 Hz
                 // display) were marked held, and drawn as the I-frame before; they are the same
                 // B-frame again. Everything the scoring reads is unchanged.
-                const bool repeatedBFrame = mode.upconversion == OldMode::Bidirectional && b.kind == FrameKind::Held &&
-                    b.nextSourceIndex != -1;
+                const bool repeatedBFrame =
+                    mode.upconversion == OldMode::Bidirectional && b.kind == FrameKind::Held && b.nextSourceIndex != -1;
                 EXPECT_EQ(a.kind, repeatedBFrame ? FrameKind::Interpolated : b.kind);
                 EXPECT_EQ(a.index, b.index);
                 EXPECT_EQ(a.displayTime, b.displayTime);  // bit for bit

@@ -124,6 +124,30 @@ TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
     for (const auto& c : p.conditions) EXPECT_EQ(perMode[c], 6) << c;
 }
 
+// Conditions a lab composes, beside the presets: Kim et al.'s late warps (from the shipped
+// protocol) and a warp at its own fill rate with a rotation late warp on top.
+std::vector<condition::Condition> composedConditions() {
+    std::vector<condition::Condition> list =
+        protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/latewarp-kim-quick.json")
+            .conditionTable.defined();
+    condition::Condition warp;
+    warp.name = "warp30to60-late";
+    warp.renderHz = 30;
+    warp.lagFrames = 4;
+    warp.fill = "warp-full";
+    warp.fillHz = 60;
+    warp.lateWarp = condition::LateWarp::Rotation;
+    list.push_back(warp);
+    return list;
+}
+
+// Every condition the latency tests measure: the presets, then the composed ones.
+std::vector<std::string> measuredConditions() {
+    std::vector<std::string> names = condition::presetNames();
+    for (const auto& c : composedConditions()) names.push_back(c.name);
+    return names;
+}
+
 // A game whose test phase shows one mode, reached without clicking (training times out).
 struct ModeRig {
     protocol::ShooterProtocol p;
@@ -131,6 +155,7 @@ struct ModeRig {
     ShownFrame last;
     explicit ModeRig(const std::string& mode) {
         p = quick();
+        p.conditionTable = condition::ConditionTable(composedConditions());
         p.acclimationS = 0.0;
         p.supervisorStartsTest = false;
         p.training.timeLimitS = 0.001;  // the first training trial is the only one
@@ -145,14 +170,14 @@ struct ModeRig {
 };
 
 TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
-    for (const auto& mode : condition::presetNames()) {
+    for (const auto& mode : measuredConditions()) {
         for (int phase = 0; phase < 8; ++phase) {
             ModeRig rig(mode);
             for (int i = 0; i < 16 + phase; ++i) rig.last = rig.game->step({});
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});  // the step, read at this frame
             const double stepTime = stepFrame.time;
-            const condition::ModeSchedule schedule(condition::preset(mode), rig.p.refreshHz);
+            const condition::ModeSchedule schedule(rig.p.conditionTable.at(mode), rig.p.refreshHz);
             const double local = stepFrame.schedule.displayTime;
             ShownFrame f = stepFrame;
             while (f.camera.yaw == before) f = rig.game->step({});
@@ -161,14 +186,49 @@ TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
     }
 }
 
+// What a late-warped frame shows, and so what its displayed outcome is judged on: the camera of
+// the display instant; the target where the queued render had it (rotation) or moved on by its
+// velocity to the display instant (depth), never where it truly is now.
+TEST(ShooterGame, LateWarpShowsTheWorldOfItsRenderThroughTheCameraOfNow) {
+    for (const std::string mode : {"lag60x5", "lag60x5-rotation", "lag60x5-depth"}) {
+        SCOPED_TRACE(mode);
+        ModeRig rig(mode);
+        for (int i = 0; i < 30; ++i) rig.last = rig.game->step({i % 3 == 0 ? 40.0 : 0.0, 0.0, 0, 0});
+        int checked = 0;
+        for (int i = 0; i < 40; ++i) {
+            const double yawBefore = rig.last.camera.yaw;
+            const ShownFrame f = rig.game->step({25.0, 0.0, 0, 0});  // turning every frame
+            rig.last = f;
+            if (f.frozen || f.scene.objects.empty()) continue;
+            const auto trial = rig.game->currentTrial();
+            ASSERT_TRUE(trial.has_value());
+            const auto& plane = rig.game->targetPlane();
+            const double sourceTime = static_cast<double>(f.sourceFrame) / rig.p.refreshHz;
+            if (sourceTime < trial->spawnTime) continue;
+            const glm::dvec2 atSource = physics::positionAt(plane, trial->motion, sourceTime - trial->spawnTime);
+            const glm::dvec2 velocity = physics::velocityAt(plane, trial->motion, sourceTime - trial->spawnTime);
+            const glm::dvec2 shown(f.scene.objects.front().position);
+            const glm::dvec2 expected =
+                mode == "lag60x5-depth" ? atSource + velocity * (f.time - sourceTime) : atSource;
+            EXPECT_LT(glm::length(shown - expected), 1e-4) << "frame " << f.frame;
+            if (mode != "lag60x5") {
+                EXPECT_NE(f.camera.yaw, yawBefore) << "the late warp did not turn to the mouse of now";
+                EXPECT_EQ(f.schedule.kind, condition::FrameKind::Warped);
+            }
+            ++checked;
+        }
+        EXPECT_GE(checked, 1);
+    }
+}
+
 // A bounce is a step in the target's motion. It shows in the first displayed frame whose
 // target leaves the straight line the target was on; that must come when the mode's schedule
 // says (conventional: the next render; warp: the next source, since warped frames extrapolate
 // the old velocity; bidirectional: the first B-frame interpolating towards a later I-frame).
 TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
-    for (const auto& mode : condition::presetNames()) {
+    for (const auto& mode : measuredConditions()) {
         ModeRig rig(mode);
-        const condition::ModeSchedule schedule(condition::preset(mode), rig.p.refreshHz);
+        const condition::ModeSchedule schedule(rig.p.conditionTable.at(mode), rig.p.refreshHz);
         bool measured = false;
         for (int attempt = 0; attempt < 8 && !measured; ++attempt) {
             while (rig.last.frozen || rig.last.scene.objects.empty()) rig.last = rig.game->step({});

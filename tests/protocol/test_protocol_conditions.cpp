@@ -108,7 +108,8 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
          "file names)"},
         {"/conditions/lag60x5/lag_ms", 50,
          "conditions.lag60x5.lag_ms and lag_frames are two ways to give the added latency; give one"},
-        {"/conditions/base60/render_hz", "sixty", "conditions.base60.render_hz must be a number greater than 0 and at most 1000, got string \"sixty\""},
+        {"/conditions/base60/render_hz", "sixty",
+         "conditions.base60.render_hz must be a number greater than 0 and at most 1000, got string \"sixty\""},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);
@@ -125,8 +126,9 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
     // render_hz has no default.
     document = kim();
     document["conditions"]["lag60x5"].erase("render_hz");
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': conditions.lag60x5.render_hz is required: conventional renders "
-                                 "per second");
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': conditions.lag60x5.render_hz is required: conventional renders "
+              "per second");
     // Older formats have no conditions: refused naming the version, not read as another study.
     document = kim();
     document["format_version"] = 2;
