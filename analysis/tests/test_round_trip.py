@@ -68,7 +68,8 @@ def study(tmp_path_factory):
     results, export, report = base / "results", base / "export", base / "report"
     results.mkdir()
     for seed, participant in enumerate(PARTICIPANTS, start=1):
-        for protocol in ("shooter-quick.json", "click-quick.json"):
+        # latewarp-kim-quick defines its conditions in the file: names no analysis code has seen.
+        for protocol in ("shooter-quick.json", "click-quick.json", "latewarp-kim-quick.json"):
             run(warplab, "run", "--headless", "--protocol", ROOT / "protocol" / protocol, "--participant",
                 participant, "--out", results, "--player", f"bot:{seed}", "--seed", seed)
     before = {p: p.read_bytes() for p in results.iterdir()}
@@ -167,3 +168,22 @@ def check_conditions_csv(export, report, data):
             r["condition"]
     text = (report / "report.md").read_text()
     assert "## Conditions" in text and all(f"| {name} |" in text for name in data["mode_order"] if name in names)
+
+
+def test_a_condition_the_protocol_defines_reaches_every_table(study):
+    _, export, report = study
+    data = json.loads((report / "report.json").read_text())
+    rows = {r["condition"]: r for r in read_csv(export / "conditions.csv")}
+    assert rows["lag60x5-rotation"]["late_warp"] == "rotation"
+    assert rows["lag60x5-rotation"]["lag_frames"] == "10"
+    assert float(rows["lag60x5-rotation"]["view_latency_max_ms"]) == pytest.approx(1000 / 120)
+    assert float(rows["lag60x5"]["view_latency_min_ms"]) == pytest.approx(10000 / 120)
+    names = [m["mode"] for m in data["modes"]]
+    for name in ("base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"):
+        assert name in names
+    # Late warp upconverts: it comes before the plain lagged condition in every sign test.
+    pairs = {(t["game"], t["a"], t["b"]) for t in data["sign_tests"]}
+    assert ("shooter", "lag60x5-rotation", "lag60x5") in pairs
+    assert ("shooter", "lag60x5-depth", "lag60x5") in pairs
+    text = (report / "report.md").read_text()
+    assert "each frame late-warped by the camera's rotation" in text

@@ -118,12 +118,16 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
         m.rect(cx - arm, cy - thick / 2, 2 * arm, thick, light);
         m.rect(cx - thick / 2, cy - arm, thick, 2 * arm, light);
     }
-    auto drawText = [&](const std::string& s, float centreX, float baselineY, float scale, const float colour[4]) {
+    auto drawText = [&](const std::string& s, float centreX, float baselineY, float scale, const float colour[4],
+                        bool fitWidth = false) {
         const TextTexture& t = m.text(s);
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, t.texture.id());
         glUniform1i(gl::uniform(m.program, "uText"), 0);
         glUniform1i(gl::uniform(m.program, "uTextured"), 1);
+        // A status line wider than the frame (a long refusal on a small window) is drawn
+        // smaller, so that all of it shows rather than its middle.
+        if (fitWidth) scale = std::min(scale, 0.98f * static_cast<float>(w) / static_cast<float>(std::max(1, t.width)));
         const float tw = t.width * scale, th = t.height * scale;
         m.rect(centreX - tw / 2, baselineY, tw, th, colour);
     };
@@ -164,7 +168,7 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     }
     if (!content.status.empty()) {
         const float grey[4] = {0.9f, 0.9f, 0.9f, 0.85f};
-        drawText(content.status, w * 0.5f, h * 0.93f, 0.4f, grey);
+        drawText(content.status, w * 0.5f, h * 0.93f, 0.4f, grey, true);
     }
 
     glBindVertexArray(0);
