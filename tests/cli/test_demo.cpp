@@ -91,6 +91,29 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     EXPECT_TRUE(contains(text, "Planning (shooter)")) << text.substr(0, 2000);
 }
 
+// The demo runs a protocol whose conditions the protocol defines (Kim et al.'s late warp) end
+// to end: its conditions reach the report under their own names, late warp compared with the
+// lag it compensates.
+TEST(CliDemo, RunsTheLateWarpProtocolWithItsOwnConditions) {
+    const std::string out = scratch("kim");
+    const auto demo =
+        warplab("demo --out " + out + " --participants 2 --player bot --protocols latewarp-kim-quick --jobs 2");
+    ASSERT_EQ(demo.status, 0) << demo.output;
+    EXPECT_TRUE(contains(demo.output, "2 sessions in " + out + "/results, every outcome replayed")) << demo.output;
+    std::ifstream in(fs::path(out) / "report" / "report.json");
+    ASSERT_TRUE(in) << demo.output;
+    const nlohmann::json report = nlohmann::json::parse(in);
+    const auto& rates = report.at("games").at("shooter").at("hit_rates");
+    ASSERT_EQ(rates.size(), 2u);
+    for (const auto& [participant, modes] : rates.items())
+        for (const char* mode : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
+            EXPECT_EQ(modes.at(mode).at("shots").get<int>(), 4) << participant << " " << mode;
+    int lateAgainstLag = 0;
+    for (const auto& test : report.at("sign_tests"))
+        lateAgainstLag += test.at("b") == "lag60x5" && (test.at("a") == "lag60x5-rotation" || test.at("a") == "lag60x5-depth");
+    EXPECT_EQ(lateAgainstLag, 2);
+}
+
 TEST(CliDemo, BadInputIsRefusedWithASentenceAndAFailedSessionNamesItsLog) {
     const std::string out = scratch("refused");
     const auto unknown = warplab("demo --out " + out + " --protocols shooter-quick,no-such-protocol");
