@@ -312,13 +312,7 @@ public:
         bindTexture(resolve_, "uMiddleIds", 1, middle_->buffer().impl().ids);
         glUniform1f(gl::uniform(resolve_, "uCount"), static_cast<float>(samples_));
         pass_.draw();
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glUseProgram(0);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glEnable(GL_DEPTH_TEST);
+        endImagePass(2);
         gl::checkErrors("accumulating B-frames");
     }
 

@@ -27,4 +27,16 @@ inline void bindTexture(const gl::Program& program, const char* sampler, int uni
     glUniform1i(gl::uniform(program, sampler), unit);
 }
 
+// Ends an image-space pass: the first `textureUnits` units unbound, no program, the default
+// framebuffer, depth testing back on -- the defaults the other passes assume.
+inline void endImagePass(int textureUnits) {
+    for (int unit = textureUnits - 1; unit >= 0; --unit) {
+        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+        glBindTexture(GL_TEXTURE_2D, 0);
+    }
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glEnable(GL_DEPTH_TEST);
+}
+
 }  // namespace warplab::renderer

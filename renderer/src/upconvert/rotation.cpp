@@ -78,13 +78,7 @@ public:
         glUniform2f(gl::uniform(program_, "uSourceSize"), static_cast<float>(src.width),
                     static_cast<float>(src.height));
         pass_.draw();
-        glActiveTexture(GL_TEXTURE1);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, 0);
-        glUseProgram(0);
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glEnable(GL_DEPTH_TEST);
+        endImagePass(2);
         gl::checkErrors(("rotating a frame (" + info_.name + ")").c_str());
     }
 
