@@ -110,7 +110,8 @@ TEST(CliDemo, RunsTheLateWarpProtocolWithItsOwnConditions) {
             EXPECT_EQ(modes.at(mode).at("shots").get<int>(), 4) << participant << " " << mode;
     int lateAgainstLag = 0;
     for (const auto& test : report.at("sign_tests"))
-        lateAgainstLag += test.at("b") == "lag60x5" && (test.at("a") == "lag60x5-rotation" || test.at("a") == "lag60x5-depth");
+        lateAgainstLag +=
+            test.at("b") == "lag60x5" && (test.at("a") == "lag60x5-rotation" || test.at("a") == "lag60x5-depth");
     EXPECT_EQ(lateAgainstLag, 2);
 }
 
