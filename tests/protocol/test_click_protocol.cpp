@@ -187,7 +187,7 @@ TEST(ClickFiles, ShippedFilesAreInCanonicalForm) {
 }
 
 // Every protocol that ships, whichever game, goes through the shared loader: "game" picks the
-// parser, and each parser asks the one mode table about every mode id the file names.
+// parser, and each parser checks every mode id the file names against the conditions it can run.
 TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
     int count = 0;
     for (const auto& entry : std::filesystem::directory_iterator(protocolDir())) {

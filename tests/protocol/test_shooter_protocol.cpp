@@ -25,7 +25,7 @@ const std::string kSource = "p.json";
 
 std::string shippedPath(const std::string& name) { return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name; }
 
-// Parsing against the one mode table, as the app does.
+// Parsing as the app does: mode ids name presets or the file's own conditions.
 ShooterProtocol parse(const std::string& text, const std::string& source = kSource) {
     return parseShooterProtocol(text, source);
 }
