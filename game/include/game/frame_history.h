@@ -8,13 +8,17 @@
 #include <deque>
 #include <stdexcept>
 
+#include "condition/condition.h"
+
 namespace warplab::game {
 
 template <typename T>
 class FrameHistory {
 public:
-    // More than any mode looks back (lag200 at 120 Hz: 24 frames; bireproj: 8).
-    explicit FrameHistory(std::size_t capacity = 512) : capacity_(capacity) {}
+    // More than any condition may look back (condition::kMaxLookBackFrames: its lag and two
+    // render periods; lag200 at 120 Hz is 24 + 4), with a margin for the frame being made.
+    explicit FrameHistory(std::size_t capacity = static_cast<std::size_t>(condition::kMaxLookBackFrames) + 32)
+        : capacity_(capacity) {}
 
     void record(std::int64_t frame, const T& value) {
         if (values_.empty())
