@@ -352,10 +352,19 @@ struct SessionWriter::Impl {
         while (!writeHeld()) {
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
             if (waiting && Clock::now() >= nextCall) {
-                waiting(std::chrono::duration<double>(Clock::now() - start).count());
+                waiting(std::chrono::duration<double>(Clock::now() - start).count(), WaitingFor::WriteLock);
                 nextCall += std::chrono::seconds(1);
             }
         }
+    }
+
+    // Whether every frame of the -wal is now in the file: a checkpoint copies what no
+    // reader's snapshot still needs from the file; a reader in a transaction since before the
+    // last commits holds those back.
+    bool foldedIntoFile() {
+        int logFrames = -1, copied = -1;
+        const int rc = sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
+        return rc == SQLITE_OK && copied == logFrames;
     }
 };
 
@@ -506,16 +515,34 @@ void SessionWriter::flag(const std::string& name, const std::string& text) {
     w.addingFlags[name] = text;
 }
 
-void SessionWriter::finish(const WaitCallback& waiting) {
+void SessionWriter::finish(const WaitCallback& waiting, double foldWaitS) {
     Impl& w = impl("finish");
     w.checkOpen("finish");
     w.commitAdded();
     w.completing = true;
     w.waitForWrite(waiting);
     w.finished = true;
-    // A finished session becomes one self-contained file (the WAL is folded in and removed),
-    // so it can be copied, archived or read from read-only media. Best effort: a reader that
-    // holds the file open keeps it in WAL mode, which is just as valid.
+    // A finished session becomes one self-contained file, so it can be copied, archived or
+    // read from read-only media: every commit folded into it before the run says it is done.
+    const auto start = Impl::Clock::now();
+    auto nextCall = start + std::chrono::seconds(1);
+    while (!w.foldedIntoFile()) {
+        const double waited = std::chrono::duration<double>(Impl::Clock::now() - start).count();
+        if (waited >= foldWaitS)
+            throw SessionError("The session finished, but its last commits are still only in '" + w.path +
+                               "-wal': another program (export, replay, a DB browser, a sqlite3 script) has held a "
+                               "read transaction on it for " +
+                               std::to_string(static_cast<long>(waited)) +
+                               " s. Keep and copy the two files together until it is folded in: the file alone is not "
+                               "the whole session.");
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        if (waiting && Impl::Clock::now() >= nextCall) {
+            waiting(waited, WaitingFor::Readers);
+            nextCall += std::chrono::seconds(1);
+        }
+    }
+    // The -wal, now redundant, goes where no other program has the file open (a reader that
+    // does keeps WAL mode, which is just as valid: the file alone is whole).
     sqlite3_exec(w.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
 }
 

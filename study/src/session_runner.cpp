@@ -130,10 +130,13 @@ void SessionCommits::tell() {
 }
 
 void SessionCommits::end(bool completed, const std::function<void(const std::string&)>& show) {
-    const auto waiting = [&](double seconds) {
-        const std::string line = "Saving the session: another program has held the write lock on " + writer_.path() +
-            " for " + std::to_string(static_cast<long>(seconds)) +
-            " s. Close it (a DB browser, or sqlite3 without -readonly).";
+    const auto waiting = [&](double seconds, session::SessionWriter::WaitingFor what) {
+        const std::string held = std::to_string(static_cast<long>(seconds)) + " s";
+        const std::string line = what == session::SessionWriter::WaitingFor::WriteLock
+            ? "Saving the session: another program has held the write lock on " + writer_.path() + " for " + held +
+                ". Close it (a DB browser, or sqlite3 without -readonly)."
+            : "Finishing the session: another program has read " + writer_.path() + " for " + held +
+                ", so its last commits cannot yet be folded into the file. Close it (export, replay, a DB browser).";
         if (show) show(line);
         if (static_cast<long>(seconds) % 5 == 1) progress_ << "waiting: " << line << "\n";
     };

@@ -702,7 +702,7 @@ TEST(SessionStoreLock, AnotherProgramsWriteLockDelaysCommitsAndLosesNone) {
     EXPECT_EQ(expectWholeTrials(readSession(path)), 1);  // readers still see what was written
 
     int waits = 0;
-    w.finish([&](double) { ++waits; });
+    w.finish([&](double, SessionWriter::WaitingFor) { ++waits; });
     EXPECT_GE(waits, 3);  // it waited out the lock instead of failing
     EXPECT_EQ(w.heldCommits(), 0u);
     int status = 0;
@@ -717,6 +717,27 @@ TEST(SessionStoreLock, AnotherProgramsWriteLockDelaysCommitsAndLosesNone) {
 
 // How docs/session-format.md says to read a live session: read-only connections, even ones
 // that keep a read transaction open, never hold the writer up.
+// A read-only connection that keeps a read transaction open, as an analyst's DB browser may:
+// it holds the writer's checkpoint back, so commits made meanwhile stay in the -wal.
+class SnapshotReader {
+public:
+    explicit SnapshotReader(const std::string& path) {
+        ok_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
+            sqlite3_exec(db_, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+    }
+    ~SnapshotReader() {
+        sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
+        sqlite3_close(db_);
+    }
+    SnapshotReader(const SnapshotReader&) = delete;
+    SnapshotReader& operator=(const SnapshotReader&) = delete;
+    bool ok() const { return ok_; }
+
+private:
+    sqlite3* db_ = nullptr;
+    bool ok_ = false;
+};
+
 TEST(SessionStoreLock, ReadOnlyReadersNeverDisturbTheWriter) {
     TempDir dir;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
@@ -731,13 +752,72 @@ TEST(SessionStoreLock, ReadOnlyReadersNeverDisturbTheWriter) {
         EXPECT_EQ(sqlite3_exec(flagReader, "SELECT count(*) FROM events", nullptr, nullptr, nullptr), SQLITE_OK);
     }
     EXPECT_EQ(w.heldCommits(), 0u);
+    // The reader's transaction ends while the session finishes, as an export's read does.
+    std::thread release([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+        sqlite3_exec(uriReader, "COMMIT", nullptr, nullptr, nullptr);
+    });
     w.finish();
-    sqlite3_exec(uriReader, "COMMIT", nullptr, nullptr, nullptr);
+    release.join();
     sqlite3_close(uriReader);
     sqlite3_close(flagReader);
     const SessionData data = readSession(w.path());
     EXPECT_EQ(expectWholeTrials(data), 5);
     EXPECT_TRUE(data.completed);
+}
+
+// A session that finishes while a reader holds a read transaction: finish waits for the reader
+// (saying so) and only then returns, with every commit in the file itself, so the file copied
+// alone -- as a lab archives it -- is the whole session.
+TEST(SessionStoreLock, AFinishWaitsForAReaderSoTheFileAloneIsWhole) {
+    TempDir dir, elsewhere;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    writeTrial(w, 0);
+    ASSERT_TRUE(w.commit());
+    std::unique_ptr<SnapshotReader> reader = std::make_unique<SnapshotReader>(w.path());
+    ASSERT_TRUE(reader->ok());
+    for (int t = 1; t < 6; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());
+    }
+    std::thread release([&] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+        reader.reset();
+    });
+    int waits = 0;
+    const auto before = std::chrono::steady_clock::now();
+    w.finish([&](double, SessionWriter::WaitingFor what) {
+        EXPECT_EQ(what, SessionWriter::WaitingFor::Readers);
+        ++waits;
+    });
+    release.join();
+    EXPECT_GE(std::chrono::steady_clock::now() - before, std::chrono::seconds(2));
+    EXPECT_GE(waits, 1);
+    const std::string copy = (elsewhere.path() / "copy.warplab-session").string();
+    fs::copy_file(w.path(), copy);  // the file alone, no -wal
+    const SessionData data = readSession(copy);
+    EXPECT_EQ(expectWholeTrials(data), 6);
+    EXPECT_TRUE(data.completed);
+    EXPECT_FALSE(data.damaged) << data.note;
+}
+
+// A reader that never lets go: finish gives up after its bound and says which file still holds
+// the last commits, so the run does not claim a whole file it has not got.
+TEST(SessionStoreLock, AFinishHeldBackTooLongNamesTheWalStillHoldingCommits) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const SnapshotReader reader(w.path());
+    ASSERT_TRUE(reader.ok());
+    writeTrial(w, 0);
+    ASSERT_TRUE(w.commit());
+    try {
+        w.finish({}, 0.3);
+        ADD_FAILURE() << "finish returned with the last commits only in the -wal";
+    } catch (const SessionError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("its last commits are still only in '" + w.path() + "-wal'"), std::string::npos) << what;
+    }
+    EXPECT_TRUE(fs::exists(w.path() + "-wal"));
 }
 
 // The -wal deleted by another program mid-session, then the process killed: SQLite alone
@@ -848,27 +928,6 @@ TEST(SessionStore, RefusesAPipeAtOnceByName) {
 
 // ============================ damaged files ============================
 
-// A read-only connection that keeps a read transaction open, as an analyst's DB browser may:
-// it holds the writer's checkpoint back, so commits made meanwhile stay in the -wal.
-class SnapshotReader {
-public:
-    explicit SnapshotReader(const std::string& path) {
-        ok_ = sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
-            sqlite3_exec(db_, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
-    }
-    ~SnapshotReader() {
-        sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
-        sqlite3_close(db_);
-    }
-    SnapshotReader(const SnapshotReader&) = delete;
-    SnapshotReader& operator=(const SnapshotReader&) = delete;
-    bool ok() const { return ok_; }
-
-private:
-    sqlite3* db_ = nullptr;
-    bool ok_ = false;
-};
-
 // A finished session cut at many byte offsets, as a full disk or a bad copy leaves it.
 TEST(SessionStoreDamage, TruncatedFileKeepsWholeCommitsOrFailsNamingThePath) {
     TempDir dir;
@@ -964,7 +1023,8 @@ TEST(SessionStoreDamage, DamageInTheWalIsReportedNamingWhatWasLost) {
     EXPECT_NE(data.note.find(" in the write-ahead log"), std::string::npos) << data.note;
     EXPECT_NE(data.note.find("; lost "), std::string::npos) << data.note;
 
-    w.finish();
+    // The reader still holds the last commits out of the file: finish says so.
+    EXPECT_THROW(w.finish({}, 0.1), SessionError);
 }
 
 // A reader's snapshot can hold the checkpoint back, leaving commits only in the -wal; then a
@@ -1006,7 +1066,8 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     EXPECT_LT(expectWholeTrials(data), kTrials);
     EXPECT_FALSE(data.completed);
     expectSame(data.header, sampleHeader());
-    w.finish();
+    // The reader still holds the last commits out of the file: finish says so.
+    EXPECT_THROW(w.finish({}, 0.1), SessionError);
 }
 
 // Garbage over whole pages: whatever survives, reading never crashes or throws anything but

@@ -115,8 +115,12 @@ public:
     std::size_t heldCommits() const;
     double heldForSeconds() const;  // since the oldest held commit; 0 when none is held
     // Waits as long as it takes until every held commit is written, calling
-    // waiting(seconds waited) about once a second meanwhile.
-    using WaitCallback = std::function<void(double secondsWaited)>;
+    // waiting(seconds waited, WaitingFor::WriteLock) about once a second meanwhile.
+    enum class WaitingFor {
+        WriteLock,  // another program holds the write lock: nothing can be written
+        Readers,  // finish(): a reader's open transaction keeps the last commits in the -wal
+    };
+    using WaitCallback = std::function<void(double secondsWaited, WaitingFor what)>;
     void flush(const WaitCallback& waiting = {});
     // What the supervisor must hear at once, each returned once: the session file or its
     // -wal deleted or replaced by another program while it was written (the writer then
@@ -127,9 +131,15 @@ public:
     // the header checksum: a flag describes how the session went, not what it ran.
     void flag(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
-    // the file, leaving one self-contained file. Waits for the write lock like flush().
+    // the file, leaving one self-contained file. Waits for the write lock like flush(). A
+    // reader in a transaction (export, replay, a DB browser, a sqlite3 script) keeps the
+    // commits made since it began out of the file; finish waits for it up to foldWaitS,
+    // calling waiting(seconds, WaitingFor::Readers), and then throws SessionError naming the
+    // -wal that still holds them: the file alone is not the whole session until it is folded.
+    // The -wal itself is removed where no other program has the file open.
     // Adding or committing afterwards is a std::logic_error.
-    void finish(const WaitCallback& waiting = {});
+    static constexpr double kFoldWaitS = 30.0;
+    void finish(const WaitCallback& waiting = {}, double foldWaitS = kFoldWaitS);
 
 private:
     struct Impl;
