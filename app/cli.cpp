@@ -68,7 +68,8 @@ long long ParsedArgs::integer(const std::string& name, long long fallback, long 
         char* end = nullptr;
         errno = 0;
         value = std::strtoll(text, &end, 10);
-        if (startsBlank(it->second) || end == text || *end != '\0' || errno == ERANGE)
+        // "+5" is refused as a typo would be: a seed or a count is written as its digits.
+        if (startsBlank(it->second) || it->second.rfind('+', 0) == 0 || end == text || *end != '\0' || errno == ERANGE)
             throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' needs an integer, got '" +
                              it->second + "'");
     }
@@ -83,7 +84,7 @@ long long wholeInteger(const std::string& text, const std::string& what) {
     char* end = nullptr;
     errno = 0;
     const long long value = std::strtoll(begin, &end, 10);
-    if (startsBlank(text) || end == begin || *end != '\0' || errno == ERANGE)
+    if (startsBlank(text) || text.rfind('+', 0) == 0 || end == begin || *end != '\0' || errno == ERANGE)
         throw UsageError(what + ", got '" + text + "'");
     return value;
 }

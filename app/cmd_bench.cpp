@@ -15,11 +15,16 @@ std::string withQuick(const T& normal, const T& quick) {
     return shown(normal) + " (" + shown(quick) + " with --quick)";
 }
 
-std::vector<std::string> splitList(const std::string& text) {
+// A comma-separated option value; an empty one (or only commas) would silently mean "all" or
+// "none", so it is a wrong command line naming the option.
+std::vector<std::string> splitList(const ParsedArgs& args, const std::string& option) {
     std::vector<std::string> items;
-    std::stringstream ss(text);
+    std::stringstream ss(args.string(option));
     for (std::string item; std::getline(ss, item, ',');)
         if (!item.empty()) items.push_back(item);
+    if (items.empty())
+        throw UsageError("option --" + option + " of 'warplab bench' needs a list of names separated by commas, got '" +
+                         args.string(option) + "'");
     return items;
 }
 
@@ -40,8 +45,8 @@ int runBench(const ParsedArgs& args) {
     if (!(options.durationScale > 0.0 && options.durationScale <= 100.0))
         throw UsageError("option --duration-scale must be in (0, 100]");
     options.seed = static_cast<std::uint64_t>(args.integer("seed", static_cast<long long>(options.seed), 0, 1LL << 62));
-    if (args.has("sequences")) options.sequences = splitList(args.string("sequences"));
-    if (args.has("methods")) options.methods = splitList(args.string("methods"));
+    if (args.has("sequences")) options.sequences = splitList(args, "sequences");
+    if (args.has("methods")) options.methods = splitList(args, "methods");
     // Unknown names are a wrong command line (exit 2), found before a context is made.
     try {
         for (const auto& name : options.sequences) game::makeSequence(name, {});
@@ -51,7 +56,7 @@ int runBench(const ParsedArgs& args) {
     }
     if (args.has("shading-sweep")) {
         options.shadingSweep.clear();
-        for (const auto& item : splitList(args.string("shading-sweep"))) {
+        for (const auto& item : splitList(args, "shading-sweep")) {
             const std::string what = "option --shading-sweep needs integers from 0 to 1000000";
             const long long cost = wholeInteger(item, what);
             if (cost < 0 || cost > 1000000) throw UsageError(what + ", got '" + item + "'");

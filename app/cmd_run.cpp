@@ -125,8 +125,13 @@ int runReplay(const ParsedArgs& args) {
         request.lastFrame = wholeInteger(range.substr(colon + 1), what);
         if (request.firstFrame < 0 || request.lastFrame < request.firstFrame)
             throw UsageError("option --frames needs 0 <= FIRST <= LAST, got '" + range + "'");
-        request.width = static_cast<int>(args.integer("width", 0, 0, scene::kMaxImageSize));
-        request.height = static_cast<int>(args.integer("height", 0, 0, scene::kMaxImageSize));
+        // Unset (0) means the session's display; a size given must be one an image can have.
+        request.width = args.has("width")
+            ? static_cast<int>(args.integer("width", 0, scene::kMinDisplaySize, scene::kMaxImageSize))
+            : 0;
+        request.height = args.has("height")
+            ? static_cast<int>(args.integer("height", 0, scene::kMinDisplaySize, scene::kMaxImageSize))
+            : 0;
         const present::ReplayRenderResult rendered = present::renderReplay(
             request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
         if (rendered.disagreed > 0) {

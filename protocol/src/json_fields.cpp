@@ -158,6 +158,11 @@ Json Reader::parseObject(const std::string& text) const {
     bool inString = false, escaped = false;
     for (const char c : text) {
         if (c == '\n') ++line;
+        // The JSON parser stops at a NUL as at the end of the text, so whatever follows one
+        // (a second document, a binary tail) would be silently ignored.
+        if (c == '\0')
+            throw ProtocolError(prefix + "has a NUL byte at line " + std::to_string(line) +
+                                ": a protocol is text, and nothing after it would be read");
         if (inString) {
             if (escaped)
                 escaped = false;

@@ -33,7 +33,7 @@ namespace {
 
 // The seed after "NAME:" in a player spec, or `fallback` for the bare name.
 std::uint64_t playerSeed(const std::string& player, std::size_t nameLength, std::uint64_t fallback) {
-    if (player.size() <= nameLength) return fallback;
+    if (player.size() < nameLength) return fallback;  // the bare name; "bot:" needs its seed
     const std::string name = player.substr(0, nameLength - 1);
     const std::string digits = player.substr(nameLength);
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 18)

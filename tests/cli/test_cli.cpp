@@ -750,13 +750,20 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
 TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
     const std::string dir = scratch("hostile-protocols");
     const std::string deep = dir + "/deep.json", wide = dir + "/big.json", pipe = dir + "/pipe.json";
+    const std::string nul = dir + "/nul.json";
     { std::ofstream(deep) << std::string(100000, '[') << std::string(100000, ']'); }
+    {
+        // A valid protocol, a NUL, then another document: the parser used to stop at the NUL.
+        std::ifstream quick(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+        std::ofstream(nul) << quick.rdbuf() << '\0' << R"({"format_version": 3})";
+    }
     { std::ofstream(wide) << "{\"name\": \"" << std::string(2 << 20, 'x') << "\"}"; }
     ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
     const std::pair<std::string, std::string> cases[] = {
         {deep, "nested deeper than 32 levels at line 1"},
         {wide, "more than a protocol may be"},
         {pipe, "is not a regular file"},
+        {nul, "has a NUL byte at line 49"},
     };
     for (const auto& [file, why] : cases) {
         const auto r = warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --protocol " +
@@ -796,6 +803,16 @@ TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
          "--participant must be UTF-8"},
         {"run --protocol " + protocol + " --participant " + std::string(200, 'p') + " --out " + dir + " --headless",
          "at most 128 bytes"},
+        // A player spec without its seed, a signed seed, a zero-sized render, empty lists: each
+        // was taken as a default.
+        {"run --protocol " + protocol + " --participant P --out " + dir + " --headless --player bot:",
+         "--player bot:SEED needs a whole number, got ''"},
+        {"run --protocol " + protocol + " --participant P --out " + dir + " --headless --seed +5",
+         "--seed of 'warplab run' needs an integer, got '+5'"},
+        {"replay " + session + " --render " + dir + "/f --width 0", "--width of 'warplab replay' must be"},
+        {"bench --sequences '' --out " + dir + "/b", "--sequences of 'warplab bench' needs a list"},
+        {"bench --methods , --out " + dir + "/b", "--methods of 'warplab bench' needs a list"},
+        {"bench --shading-sweep '' --out " + dir + "/b", "--shading-sweep of 'warplab bench' needs a list"},
     };
     for (const auto& [arguments, named] : cases) {
         const auto r =
