@@ -176,8 +176,10 @@ def click_sections(out, click, level):
         out.append(f"{h} Paired tests against {ref}\n")
         out.append(f"Difference = mode − {ref} per participant. t: paired t-test (df = n − 1; "
                    "F(1, n − 1) = t²). "
-                   "Wilcoxon: signed-rank, zero differences dropped, p = 1 when all are zero; exact for up to 50 "
-                   "non-zero differences, normal approximation beyond. Sign test: exact, two-sided, ties "
+                   "Wilcoxon: signed-rank, two-sided, zero differences dropped (p = 1 when all are zero), tied "
+                   "|differences| given their mid-rank; p exact (the conditional distribution of the statistic given "
+                   "those ranks) for up to 200 non-zero differences, else the normal approximation with tie-corrected "
+                   "variance and continuity correction; the cell says which. Sign test: exact, two-sided, ties "
                    "dropped.\n")
         rows = []
         for measure in click["measures"].values():
@@ -186,7 +188,8 @@ def click_sections(out, click, level):
                 t = v["t"]
                 f_value = t * t if t is not None and math.isfinite(t) else None
                 rows.append([cell(measure["label"]), m, str(v["n"]), fmt(v["mean_diff"], ".3f"), fmt(t, ".3f"),
-                             fmt(f_value, ".3f"), fmt(v["p_t"], ".4g"), fmt(v["p_wilcoxon"], ".4g"),
+                             fmt(f_value, ".3f"), fmt(v["p_t"], ".4g"),
+                             f"{fmt(v['p_wilcoxon'], '.4g')} ({v.get('wilcoxon_method', 'exact')})",
                              f"{v['positive']}/{v['negative']}/{v['ties']}", fmt(v["p_sign"], ".4g")])
         out.append(table(["Measure", "mode", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
                           "+/−/ties", "p (sign)"], rows))

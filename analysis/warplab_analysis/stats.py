@@ -78,13 +78,61 @@ def hit_rate_sign_test(game, a, b, participants):
     }
 
 
+# Up to this many non-zero differences the signed-rank p is the exact conditional one; the
+# distribution has at most n (n + 1) + 1 points in half-ranks, so this is milliseconds.
+WILCOXON_EXACT_LIMIT = 200
+
+
+def wilcoxon_signed_rank(differences):
+    """Two-sided p of Wilcoxon's signed-rank test and how it was found ("exact" or "normal").
+
+    Zero differences are dropped (Wilcoxon's own rule); p = 1 when none remain. Tied |d| get
+    their mid-rank, and the p is then that of the exact conditional distribution: given the
+    ranks, each of the 2^n sign patterns is equally likely under the null, and p is the share
+    whose statistic T+ (the sum of the positive differences' ranks) lies at least as far from
+    its mean as the observed one. Counted in half-ranks, so every T+ is an integer. scipy's
+    exact table assumes untied ranks and is wrong for mid-ranks; R's coin and exactRankTests
+    compute this distribution. Beyond WILCOXON_EXACT_LIMIT differences: the normal
+    approximation with the tie-corrected variance sum(rank^2) / 4 and a continuity correction
+    of 1/2, as R's wilcox.test.
+    """
+    d = np.asarray(differences, dtype=float)
+    d = d[d != 0]
+    n = len(d)
+    if n == 0:
+        return 1.0, "exact"
+    ranks = scipy.stats.rankdata(np.abs(d))
+    if n > WILCOXON_EXACT_LIMIT:
+        t = float(ranks[d > 0].sum())
+        mean = n * (n + 1) / 4.0
+        sd = float(np.sqrt(np.sum(ranks ** 2) / 4.0))
+        z = max(abs(t - mean) - 0.5, 0.0) / sd
+        return float(min(1.0, 2.0 * scipy.stats.norm.sf(z))), "normal"
+    halves = np.rint(2 * ranks).astype(np.int64)
+    total = int(halves.sum())
+    # dist[k] = P(T+ = k half-ranks), built one difference at a time.
+    dist = np.zeros(total + 1)
+    dist[0] = 1.0
+    reach = 0
+    for h in halves:
+        new = dist * 0.5
+        new[h:reach + h + 1] += 0.5 * dist[:reach + 1]
+        dist = new
+        reach += int(h)
+    observed = int(halves[d > 0].sum())
+    # Symmetric about total / 2: as far or farther from it, on either side (integers, so the
+    # comparison is exact).
+    far = np.abs(2 * np.arange(total + 1) - total) >= abs(2 * observed - total)
+    return float(min(1.0, dist[far].sum())), "exact"
+
+
 def paired_tests(mode_values, reference_values):
     """Mode against reference on aligned per-participant values: paired t, Wilcoxon, sign test.
 
     Paired t: None below two pairs; t = 0, p = 1 when every difference is zero; t = ±inf, p = 0
-    when the differences are one non-zero constant. Wilcoxon: zero differences dropped (Wilcoxon's
-    own rule, like the sign test's ties), p = 1 when none remain; scipy's exact null distribution up
-    to 50 non-zero differences, the normal approximation beyond. Sign test: exact, ties dropped.
+    when the differences are one non-zero constant. Wilcoxon: wilcoxon_signed_rank (zero
+    differences dropped, mid-ranks, exact up to WILCOXON_EXACT_LIMIT; which one in
+    "wilcoxon_method"). Sign test: exact, ties dropped.
     """
     x = np.asarray(mode_values, dtype=float)
     y = np.asarray(reference_values, dtype=float)
@@ -100,8 +148,7 @@ def paired_tests(mode_values, reference_values):
             else:
                 test = scipy.stats.ttest_rel(x, y)
                 result["t"], result["p_t"] = float(test.statistic), float(test.pvalue)
-        nonzero = d[d != 0]
-        result["p_wilcoxon"] = float(scipy.stats.wilcoxon(nonzero).pvalue) if len(nonzero) else 1.0
+        result["p_wilcoxon"], result["wilcoxon_method"] = wilcoxon_signed_rank(d)
     positive, negative = int(np.sum(d > 0)), int(np.sum(d < 0))
     result.update(positive=positive, negative=negative, ties=n - positive - negative,
                   p_sign=sign_test_p(positive, positive + negative)[2])
