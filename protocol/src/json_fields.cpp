@@ -193,8 +193,17 @@ Json Reader::parseObject(const std::string& text) const {
         if (reason.rfind("parse error ", 0) == 0) reason.erase(0, 12);
         throw ProtocolError(prefix + "malformed JSON " + reason);
     } catch (const Json::exception& e) {
-        // Valid JSON the library cannot hold, such as 1e400 (out_of_range.406).
-        throw ProtocolError(prefix + "unreadable JSON, " + withoutLibraryPrefix(e.what()));
+        // Valid JSON the library cannot hold, such as 1e400 (out_of_range.406): the library
+        // names the number but not where it is, so the line is found from the number's text.
+        const std::string reason = withoutLibraryPrefix(e.what());
+        const std::size_t open = reason.find('\''), close = reason.rfind('\'');
+        std::string where;
+        if (open != std::string::npos && close > open + 1) {
+            const std::size_t at = text.find(reason.substr(open + 1, close - open - 1));
+            if (at != std::string::npos)
+                where = " at line " + std::to_string(1 + std::count(text.begin(), text.begin() + at, '\n'));
+        }
+        throw ProtocolError(prefix + "unreadable JSON" + where + ", " + reason + " (beyond what a double holds)");
     }
     if (!finder.firstDuplicate().empty()) fail(finder.firstDuplicate(), "appears more than once");
     if (!document.is_object())

@@ -463,7 +463,13 @@ TEST(ProtocolLimits, TheFieldOfViewRangeIsTheOneRenderUses) {
 TEST(ProtocolErrors, HugeNumbersAreRefusedNotWrapped) {
     // 1e400 is valid JSON but overflows a double.
     EXPECT_EQ(errorOfText(R"({"format_version":1,"name":"t","game":"shooter","test":{"timeout_s":1e400}})"),
-              "protocol 'p.json': unreadable JSON, number overflow parsing '1e400'");
+              "protocol 'p.json': unreadable JSON at line 1, number overflow parsing '1e400' (beyond what a double "
+              "holds)");
+    // Its line, in a file of several.
+    EXPECT_EQ(errorOfText("{\"format_version\": 2,\n\"name\": \"t\",\n\"game\": \"shooter\",\n\"target\": "
+                          "{\"radius_m\": 1e999}}"),
+              "protocol 'p.json': unreadable JSON at line 4, number overflow parsing '1e999' (beyond what a double "
+              "holds)");
     // An integer too big for 64 bits becomes a double: not an integer.
     expectContains(errorOfText(R"({"format_version":1,"name":"t","game":"shooter",
                               "test":{"targets_per_condition":100000000000000000000000}})"),
