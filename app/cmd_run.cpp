@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 
 #include "commands.h"
@@ -153,8 +154,11 @@ int runReplay(const ParsedArgs& args) {
                   << r.reproduced << "/" << r.outcomes << " outcomes reproduced before it\n";
         return study::replayExitCode(r);
     }
-    std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, "
-              << static_cast<long long>(r.displaySeconds) << " s of display time replayed in " << r.seconds
+    // Frames as well as seconds: a session under a second long (one ended early) said "0 s".
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, r.displaySeconds < 10 ? "%.2f" : "%.0f", r.displaySeconds);
+    std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, " << r.frames
+              << " frames, " << seconds << " s of display time replayed in " << r.seconds
               << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0) << "x real time)\n";
     return study::replayExitCode(r);
 }

@@ -235,6 +235,7 @@ ReplayResult replaySession(const std::string& sessionPath) {
             ++eventIndex;
         }
         result.displaySeconds = shown.time;
+        ++result.frames;
         if (!result.difference.empty()) break;
     }
     if (result.difference.empty() && eventIndex < data.events.size())

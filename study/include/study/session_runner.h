@@ -83,6 +83,7 @@ struct ReplayResult {
     bool damaged = false;  // committed data was lost or altered (SessionData::damaged)
     double seconds = 0.0;  // wall time of the replay itself
     double displaySeconds = 0.0;  // display time the session covers
+    std::int64_t frames = 0;  // display frames replayed
 };
 
 // What `warplab replay` exits with, so that a script can tell a session worth keeping from one
