@@ -84,8 +84,17 @@ int runWindowed(const ParsedArgs& args) {
 
 }  // namespace
 
+// Options that only a window reads: under --headless they would be silently ignored (a
+// mistyped --cm-per-360 unnoticed, an --input-script that drives nothing).
+const char* const kWindowOnlyOptions[] = {
+    "fullscreen",  "display",           "cm-per-360", "mouse-dpi", "invert-y", "allow-refresh-mismatch",
+    "screenshots", "screenshot-frames", "free-play",  "mode",      "level",    "input-script"};
+
 int runRun(const ParsedArgs& args) {
     if (!args.flag("headless")) return runWindowed(args);
+    for (const char* option : kWindowOnlyOptions)
+        if (args.has(option))
+            throw UsageError(std::string("option --") + option + " only applies in the window; leave out --headless");
     if (args.string("player", "bot") == "human")
         throw UsageError("a human player needs the window; leave out --headless");
     study::HeadlessRun run;

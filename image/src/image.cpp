@@ -5,6 +5,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+
+#include <sys/stat.h>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
@@ -80,6 +82,11 @@ std::vector<unsigned char> readWholeFile(const std::string& path, const char* fo
 }
 
 void writeWholeFile(const std::string& path, const char* format, const void* data, std::size_t size) {
+    // An output is a regular file: opening a pipe for writing would wait for a reader forever,
+    // and a device is nobody's image.
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+        fileError("write", format, path, "it exists and is not a regular file (a pipe, socket, device or folder)");
     std::FILE* raw = std::fopen(path.c_str(), "wb");
     if (!raw) fileError("write", format, path, std::strerror(errno));
     std::unique_ptr<std::FILE, FileCloser> f(raw);

@@ -109,6 +109,17 @@ TEST(Cli, RenderWritesTheFrameAndBuffers) {
     EXPECT_EQ(warplab::image::readPfm(dir + "/raw-ids.pfm").width, 64);
 }
 
+// An output that exists and is not a regular file (a pipe would block the write forever).
+TEST(Cli, AnOutputThatIsNotARegularFileIsRefused) {
+    const std::string dir = scratch("fifo-out");
+    const std::string fifo = dir + "/frame.png";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const auto r = warplab::testing::runCommand("timeout 30 " + std::string(WARPLAB_BINARY) + " render --out " + fifo +
+                                                " --width 64 --height 36");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "'" + fifo + "': it exists and is not a regular file")) << r.output;
+}
+
 TEST(Cli, UnwritableOutputIsNamed) {
     const auto r = warplab("render --width 16 --height 16 --out /nonexistent-dir/frame.png");
     EXPECT_EQ(r.status, 1);
@@ -813,6 +824,11 @@ TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
         {"bench --sequences '' --out " + dir + "/b", "--sequences of 'warplab bench' needs a list"},
         {"bench --methods , --out " + dir + "/b", "--methods of 'warplab bench' needs a list"},
         {"bench --shading-sweep '' --out " + dir + "/b", "--shading-sweep of 'warplab bench' needs a list"},
+        // Window-only options under --headless were ignored, a bad value unnoticed.
+        {"run --protocol " + protocol + " --participant P --out " + dir + " --headless --cm-per-360 abc",
+         "--cm-per-360 only applies in the window"},
+        {"run --protocol " + protocol + " --participant P --out " + dir + " --headless --input-script s.txt",
+         "--input-script only applies in the window"},
     };
     for (const auto& [arguments, named] : cases) {
         const auto r =
