@@ -6,6 +6,7 @@ Most cases call analyze.main() in-process (importing numpy, scipy and matplotlib
 suite fast); the entry-point tests run `analysis/analyze` as a user would.
 """
 import json
+import os
 import math
 import re
 import shutil
@@ -529,7 +530,17 @@ BAD_CASES = {
                          "line 2"),
     "bad rating": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,5,good"], "'rating_2'",
                    "line 2"),
+    # A count no study has: it passed every other check as a whole, finite number.
+    "huge count": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10)]) + ["b,shooter,conv15,1e308,1,0,0"],
+                   "'shots'", "more than any study counts"),
 }
+
+
+def test_a_pipe_named_like_a_csv_is_refused_not_waited_on(tmp_path, capsys):
+    os.mkfifo(tmp_path / "hitrates.csv")
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert "hitrates.csv" in err and "is not a regular file" in err and len(err.strip().splitlines()) == 1
 
 
 @pytest.mark.parametrize("case", sorted(BAD_CASES))

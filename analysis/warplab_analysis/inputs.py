@@ -54,6 +54,9 @@ class Table:
 
 
 def read_table(path, required):
+    # A pipe (or a device) under a CSV's name would block the open or the read for ever.
+    if os.path.exists(path) and not os.path.isfile(path):
+        raise BadInput(f"{path}: is not a regular file (a pipe, socket, device or folder), not a CSV.")
     try:
         with open(path, newline="", encoding="utf-8-sig") as f:
             reader = csv.reader(f, strict=True)
@@ -102,6 +105,11 @@ def text(table, record, column):
     return value
 
 
+# Counts (shots, hits, clicks, indices) above this are a corrupt or hand-made file: a session
+# logs at most a few hundred thousand frames, and 1e308 "shots" would pass every other check.
+MAX_COUNT = 10 ** 12
+
+
 def number(table, record, column, *, integer=False, optional=False):
     """A numeric cell: float (int for integer columns); None for an empty cell where allowed."""
     raw = record[column]
@@ -125,6 +133,8 @@ def number(table, record, column, *, integer=False, optional=False):
         value = int(value)
         if value < 0:
             raise BadInput(f"{where} is negative: {raw!r}.")
+        if value > MAX_COUNT:
+            raise BadInput(f"{where} is {raw}, more than any study counts (at most {MAX_COUNT:.0e}).")
     return value
 
 
