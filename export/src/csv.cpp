@@ -59,8 +59,10 @@ std::string csvText(const std::string& text) {
         }
     }
     // OWASP's "CSV injection" advice: these first characters start a formula in Excel,
-    // LibreOffice and Google Sheets.
-    if (!valid.empty() && std::string("=+-@\t\r").find(valid.front()) != std::string::npos) valid.insert(0, "'");
+    // LibreOffice and Google Sheets. A text that already begins with ' gets one too, so that
+    // the escape is one-to-one: "=1" is written '=1 and "'=1" is written ''=1, and dropping
+    // one leading ' gives back every original.
+    if (!valid.empty() && std::string("=+-@\t\r'").find(valid.front()) != std::string::npos) valid.insert(0, "'");
     if (valid.find_first_of(",\"\r\n") == std::string::npos) return valid;
     std::string quoted = "\"";
     for (char c : valid) {

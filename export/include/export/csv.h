@@ -16,7 +16,9 @@ bool isValidUtf8(const std::string& text);
 
 // One text cell as written: invalid UTF-8 bytes become U+FFFD; a cell beginning with = + - @
 // (or a tab or carriage return) gets a leading ' so that a spreadsheet shows it as text
-// instead of evaluating it; a cell holding , " or a line break is quoted, quotes doubled.
+// instead of evaluating it, and so does one beginning with ' (the escape stays one-to-one:
+// strip one leading ' to read the original); a cell holding , " or a line break is quoted,
+// quotes doubled.
 std::string csvText(const std::string& text);
 // The shortest decimal that reads back as the same double; "" for NaN; "Inf"/"-Inf".
 std::string csvNumber(double value);
