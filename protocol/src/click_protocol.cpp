@@ -15,7 +15,9 @@ using detail::NumberRange;
 
 // Bounds that no study needs to exceed (json_fields.h says why they exist).
 constexpr double kGravityLimit = 100;  // about 10 g
-constexpr double kRadiusLimit = 2;  // m; the box is a few metres across
+// m: below half the smallest side of the physics box (physics::SphereBox, 3.8 m deep), which
+// refused every radius from 1.9 up whatever the other fields said.
+constexpr double kRadiusLimit = 1.8;
 constexpr int kStepRateLimit = 100000;  // Hz
 constexpr int kSphereLimit = 40;
 constexpr double kSpeedLimit = 100;  // m/s

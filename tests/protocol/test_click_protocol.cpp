@@ -407,8 +407,10 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/display/refresh_hz", 0, "display.refresh_hz must be a number between 1 and 1000, got 0"},
         {"/display/vertical_fov_deg", 180, "display.vertical_fov_deg must be a number between 1 and 179, got 180"},
         {"/display/camera_pitch_deg", -90, "display.camera_pitch_deg must be a number between -89 and 89, got -90"},
-        {"/physics/sphere_radius_m", 0, "physics.sphere_radius_m must be a number between 0.01 and 2, got 0"},
-        {"/physics/sphere_radius_m", 2.5, "physics.sphere_radius_m must be a number between 0.01 and 2, got 2.5"},
+        {"/physics/sphere_radius_m", 0, "physics.sphere_radius_m must be a number between 0.01 and 1.8, got 0"},
+        {"/physics/sphere_radius_m", 2.5, "physics.sphere_radius_m must be a number between 0.01 and 1.8, got 2.5"},
+        // 1.9 and up never fit the 3.8 m deep box: refused here, not by the physics later.
+        {"/physics/sphere_radius_m", 1.9, "physics.sphere_radius_m must be a number between 0.01 and 1.8, got 1.9"},
         {"/physics/restitution", 1.1, "physics.restitution must be a number between 0 and 1, got 1.1"},
         {"/physics/sphere_count", 0, "physics.sphere_count must be an integer between 1 and 40, got 0"},
         {"/physics/sphere_count", 41, "physics.sphere_count must be an integer between 1 and 40, got 41"},
@@ -477,13 +479,13 @@ TEST(ClickLimits, TinyPositiveValuesThatBreakLaterMathsAreRefused) {
     EXPECT_EQ(messageFor(yangWith("/input/cursor_pixels_per_count", 1e-310)),
               kPrefix + "input.cursor_pixels_per_count must be a number between 0.001 and 100, got 1e-310");
     EXPECT_EQ(messageFor(yangWith("/physics/sphere_radius_m", 1e-310)),
-              kPrefix + "physics.sphere_radius_m must be a number between 0.01 and 2, got 1e-310");
+              kPrefix + "physics.sphere_radius_m must be a number between 0.01 and 1.8, got 1e-310");
     expectBounds({
         {"/input/cursor_pixels_per_count", 0.001, below(0.001),
          "input.cursor_pixels_per_count must be a number between 0.001 and 100, got "
          "0.0009999999999999998"},
         {"/physics/sphere_radius_m", 0.01, below(0.01),
-         "physics.sphere_radius_m must be a number between 0.01 and 2, got 0.009999999999999998"},
+         "physics.sphere_radius_m must be a number between 0.01 and 1.8, got 0.009999999999999998"},
     });
 }
 
