@@ -1,5 +1,8 @@
 #include "naming.h"
 
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <system_error>
 
@@ -39,6 +42,29 @@ bool anyExists(const std::string& path) {
 void removeSessionFiles(const std::string& path) {
     std::error_code ec;
     for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
+}
+
+void removeAbandonedCreations(const std::string& resultsDir) {
+    const std::string suffix = ".creating";
+    std::error_code ec;
+    for (fs::directory_iterator it(resultsDir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.size() <= suffix.size() + 1 || name[0] != '.' ||
+            name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
+            continue;
+        const std::string rest = name.substr(0, name.size() - suffix.size());
+        const std::size_t dot = rest.rfind('.');
+        if (dot == std::string::npos || dot == 0) continue;
+        const std::string digits = rest.substr(dot + 1);
+        if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos)
+            continue;
+        const auto pid = static_cast<pid_t>(std::stol(digits));
+        if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // running, or not ours to judge
+        std::error_code timeEc;
+        const auto age = fs::file_time_type::clock::now() - fs::last_write_time(it->path(), timeEc);
+        if (timeEc || age < std::chrono::minutes(1)) continue;
+        removeSessionFiles(it->path().string());
+    }
 }
 
 }  // namespace warplab::session::detail

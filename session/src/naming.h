@@ -18,4 +18,10 @@ std::string timeForName(const std::string& iso);
 bool anyExists(const std::string& path);
 void removeSessionFiles(const std::string& path);
 
+// The hidden ".<stem>.<pid>.creating" files (and SQLite's beside them) that a run killed before
+// its header was linked to a session name left in resultsDir: those of processes no longer
+// running, untouched for at least a minute (another rig on a shared folder may be creating one
+// under a pid this machine does not know). The others are left alone.
+void removeAbandonedCreations(const std::string& resultsDir);
+
 }  // namespace warplab::session::detail

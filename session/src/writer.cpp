@@ -411,6 +411,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     const std::string temp =
         (fs::path(resultsDir) / ("." + stem + "." + std::to_string(::getpid()) + ".creating")).string();
     removeSessionFiles(temp);  // a leftover of a killed run with our pid
+    removeAbandonedCreations(resultsDir);  // and those of killed runs that are gone
     auto impl = std::make_unique<Impl>();
     try {
         {

@@ -420,6 +420,29 @@ TEST(SessionStore, NaNComesBackAsNaN) {
     EXPECT_GT(nans, 0);
 }
 
+// A run killed before its header was linked to a session name leaves a hidden .creating file;
+// the next session in the folder removes those of runs that are gone, and leaves a running
+// one's (and a fresh one, which another rig sharing the folder may be writing).
+TEST(SessionStore, CreationsAKilledRunLeftAreRemovedByTheNext) {
+    TempDir dir;
+    auto touch = [&](const std::string& name, bool old) {
+        const fs::path p = dir.path() / name;
+        std::ofstream(p) << "x";
+        if (old) fs::last_write_time(p, fs::file_time_type::clock::now() - std::chrono::minutes(5));
+        return p;
+    };
+    const fs::path gone = touch(".P07_20240501T123456789Z.999999999.creating", true);
+    const fs::path goneWal = touch(".P07_20240501T123456789Z.999999999.creating-wal", true);
+    const fs::path fresh = touch(".P08_20240501T123456789Z.999999998.creating", false);
+    const fs::path running = touch(".P09_20240501T123456789Z." + std::to_string(::getppid()) + ".creating", true);
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    EXPECT_FALSE(fs::exists(gone));
+    EXPECT_FALSE(fs::exists(goneWal));
+    EXPECT_TRUE(fs::exists(fresh));
+    EXPECT_TRUE(fs::exists(running));
+    w.finish();
+}
+
 TEST(SessionStore, FillsInTheStartTimeWhenEmpty) {
     TempDir dir;
     SessionHeader header = sampleHeader();
