@@ -107,7 +107,9 @@ def text(table, record, column):
 
 # Counts (shots, hits, clicks, indices) above this are a corrupt or hand-made file: a session
 # logs at most a few hundred thousand frames, and 1e308 "shots" would pass every other check.
-MAX_COUNT = 10 ** 12
+# Still far above any study, so that exact integer arithmetic on huge hand-made counts (the
+# tie tests use 10^17) stays possible; 10^18 also fits R's and pandas' 64-bit integers.
+MAX_COUNT = 10 ** 18
 
 
 def number(table, record, column, *, integer=False, optional=False):
