@@ -64,6 +64,15 @@ renderer::DisplayImages produceFrame(const std::string& method, const renderer::
     return renderer::readBack(display);
 }
 
+renderer::DisplayImages produceFrom(const std::string& method, const RenderedSource& source,
+                                    const scene::CameraState& camera, double displayTime, int width, int height) {
+    renderer::UpconversionInput input;
+    input.displayTime = displayTime;
+    input.camera = camera;
+    input.previous = source.frame.get();
+    return produceFrame(method, input, width, height);
+}
+
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, double speed) {
     game::ShooterSceneConfig config;
     config.aspect = static_cast<double>(width) / height;

@@ -35,6 +35,9 @@ RenderedSource renderSource(const scene::FrameDescription& frame, int width, int
 // Makes the displayed frame with a registered method (methods are built once per name).
 renderer::DisplayImages produceFrame(const std::string& method, const renderer::UpconversionInput& input, int width,
                                      int height);
+// The same from one source, seen from `camera` at displayTime (warps, rotation, holds).
+renderer::DisplayImages produceFrom(const std::string& method, const RenderedSource& source,
+                                    const scene::CameraState& camera, double displayTime, int width, int height);
 
 // The shooter scene sized for a width x height image, target spawned from `seed`.
 game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);

@@ -36,11 +36,7 @@ scene::FrameDescription stillHangar() {
 
 renderer::DisplayImages show(const std::string& method, const testing::RenderedSource& source,
                              const scene::CameraState& camera, double displayTime) {
-    renderer::UpconversionInput input;
-    input.displayTime = displayTime;
-    input.camera = camera;
-    input.previous = source.frame.get();
-    return testing::produceFrame(method, input, kW, kH);
+    return testing::produceFrom(method, source, camera, displayTime, kW, kH);
 }
 
 // Mean |difference| over R, G and B, 0..255 units.

@@ -26,11 +26,7 @@ scene::FrameDescription shooterAt(double t, std::uint64_t seed = 4, double speed
 
 renderer::DisplayImages warp(const std::string& method, const testing::RenderedSource& source,
                              const scene::CameraState& camera, double displayTime) {
-    renderer::UpconversionInput input;
-    input.displayTime = displayTime;
-    input.camera = camera;
-    input.previous = source.frame.get();
-    return testing::produceFrame(method, input, kW, kH);
+    return testing::produceFrom(method, source, camera, displayTime, kW, kH);
 }
 
 std::vector<glm::vec2> reported(const renderer::DisplayImages& shown) {
