@@ -324,12 +324,19 @@ public:
             return out;
         }
         const session::SessionHeader& h = data.header;
-        const auto key = std::make_tuple(h.participant, h.startedAt, h.seed, h.player, h.protocolJson);
+        // What makes two files copies of one session: its id from format version 3 on (a copy
+        // keeps it; two runs never share one, not even twins started in the same millisecond
+        // with the same participant and seed), what the header says in older files.
+        const SessionKey key = h.sessionId.empty()
+            ? SessionKey{"", h.participant, h.startedAt, h.seed, h.player, h.protocolJson}
+            : SessionKey{h.sessionId, "", "", 0, "", ""};
+        const char* const sameWhat =
+            h.sessionId.empty() ? "participant, start time, seed, player, protocol" : "session_id";
         // A copy of a session already counted intact is a duplicate. Only intact copies count as
         // the original: a damaged or cut copy listed first must not shut out a whole one after it.
         if (const auto seen = firstWith_.find(key); seen != firstWith_.end()) {
             out.status = "duplicate";
-            out.why = "the same session as " + seen->second + " (participant, start time, seed, player, protocol)";
+            out.why = "the same session as " + seen->second + " (" + sameWhat + ")";
         } else {
             if (data.completed && !data.damaged) {
                 firstWith_.emplace(key, name);
@@ -469,7 +476,7 @@ private:
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
     std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
     int ratingColumns_ = 0;
-    using SessionKey = std::tuple<std::string, std::string, std::uint64_t, std::string, std::string>;
+    using SessionKey = std::tuple<std::string, std::string, std::string, std::uint64_t, std::string, std::string>;
     std::map<SessionKey, std::string> firstWith_;  // intact sessions, by what identifies them
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
     std::vector<std::string> warnings_;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -61,11 +62,14 @@ void hashRow(Checksum& c, const Table<Row>& table, const Row& r) {
             field.member);
 }
 
-// One running checksum per table for the rows of the commit being built.
+// One running checksum per table for the rows of the commit being built. From format version
+// 3 on a commit's checksum also hashes the checksum of the commit before it (the header's for
+// the first), so a commit verifies only after its own session's commits, in order.
 struct CommitChecksum {
     Checksum input, frames, events;
-    std::int64_t value() const {
+    std::int64_t value(std::optional<std::int64_t> previous) const {
         Checksum c;
+        if (previous) c.i64(*previous);
         c.i64(static_cast<std::int64_t>(input.value()));
         c.i64(static_cast<std::int64_t>(frames.value()));
         c.i64(static_cast<std::int64_t>(events.value()));

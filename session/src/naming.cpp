@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <system_error>
 
+#include <unistd.h>
+
 namespace warplab::session::detail {
 
 namespace fs = std::filesystem;
@@ -44,15 +46,30 @@ void removeSessionFiles(const std::string& path) {
     for (const char* suffix : {"", "-wal", "-shm", "-journal"}) fs::remove(path + suffix, ec);
 }
 
+std::string hiddenWorkPath(const std::string& resultsDir, const std::string& stem, const char* work) {
+    return (fs::path(resultsDir) / ("." + stem + "." + std::to_string(::getpid()) + "." + work)).string();
+}
+
+namespace {
+
+// "<name>" without ".<work>" when it ends so, else "".
+std::string withoutWork(const std::string& name) {
+    for (const char* work : kHiddenWork) {
+        const std::string suffix = std::string(".") + work;
+        if (name.size() > suffix.size() + 1 && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+            return name.substr(0, name.size() - suffix.size());
+    }
+    return "";
+}
+
+}  // namespace
+
 void removeAbandonedCreations(const std::string& resultsDir) {
-    const std::string suffix = ".creating";
     std::error_code ec;
     for (fs::directory_iterator it(resultsDir, ec), end; !ec && it != end; it.increment(ec)) {
         const std::string name = it->path().filename().string();
-        if (name.size() <= suffix.size() + 1 || name[0] != '.' ||
-            name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
-            continue;
-        const std::string rest = name.substr(0, name.size() - suffix.size());
+        const std::string rest = withoutWork(name);
+        if (name[0] != '.' || rest.empty()) continue;
         const std::size_t dot = rest.rfind('.');
         if (dot == std::string::npos || dot == 0) continue;
         const std::string digits = rest.substr(dot + 1);

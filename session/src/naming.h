@@ -18,10 +18,19 @@ std::string timeForName(const std::string& iso);
 bool anyExists(const std::string& path);
 void removeSessionFiles(const std::string& path);
 
-// The hidden ".<stem>.<pid>.creating" files (and SQLite's beside them) that a run killed before
-// its header was linked to a session name left in resultsDir: those of processes no longer
-// running, untouched for at least a minute (another rig on a shared folder may be creating one
-// under a pid this machine does not know). The others are left alone.
+// A writer builds each session file it writes in a hidden ".<stem>.<pid>.<work>" file beside
+// the session and only then gives it the session's name: when it creates the session, saves it
+// again after another program replaced or overwrote it, or writes a finished session whole.
+inline constexpr const char* kCreating = "creating";
+inline constexpr const char* kRescuing = "rescuing";
+inline constexpr const char* kFinishing = "finishing";
+inline constexpr const char* kHiddenWork[] = {kCreating, kRescuing, kFinishing};
+std::string hiddenWorkPath(const std::string& resultsDir, const std::string& stem, const char* work);
+
+// The hidden files (and SQLite's beside them) that a run killed before it gave one its name
+// left in resultsDir: those of processes no longer running, untouched for at least a minute
+// (another rig on a shared folder may be creating one under a pid this machine does not
+// know). The others are left alone.
 void removeAbandonedCreations(const std::string& resultsDir);
 
 }  // namespace warplab::session::detail

@@ -17,6 +17,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -39,7 +41,63 @@ public:
     explicit Reader(std::string path) : path_(std::move(path)) {}
 
     SessionData read() {
-        open();
+        checkRegularFile();
+        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
+        // finishing): nothing is writing it.
+        std::error_code ec;
+        if (!fs::exists(path_ + "-wal", ec)) {
+            openFile(true);
+            return readOpen();
+        }
+        // With a -wal present a writer may be running, or the -wal may be stale or another
+        // session's. The file alone tells which: a finished file alone is the whole session
+        // (a -wal beside it is one the finish left behind, or one put there), and the file's
+        // own session id is what the -wal's pages must keep.
+        std::optional<SessionData> alone;
+        try {
+            Reader fileAlone(path_);
+            fileAlone.openImage();
+            alone = fileAlone.readOpen();
+        } catch (const SessionError&) {
+            // Unreadable alone (a writer checkpointing into it as we copied it): the -wal decides.
+        }
+        if (alone && alone->completed && !alone->damaged) return std::move(*alone);
+        walLoss_ = lostInWal(path_ + "-wal");
+        SessionData data;
+        try {
+            openFile(false);
+            data = readOpen();
+        } catch (const SessionError& e) {
+            if (!alone) throw;
+            return withoutWal(std::move(*alone), std::string("the file cannot be read with it: ") + e.what());
+        }
+        if (!alone) return data;
+        if (data.header.sessionId != alone->header.sessionId)
+            return withoutWal(std::move(*alone),
+                              "its pages are those of another session (session_id " + data.header.sessionId + ", not " +
+                                  alone->header.sessionId + ")");
+        // Damage that only the -wal brings, costing commits the file alone holds whole: a
+        // -wal of another session (its commits do not chain to this one's), or of an older
+        // copy. The file alone keeps more.
+        if (data.damaged && !alone->damaged && alone->frames.size() >= data.frames.size() &&
+            alone->events.size() >= data.events.size() && alone->inputs.size() >= data.inputs.size())
+            return withoutWal(std::move(*alone), "reading with it ends in " + data.note);
+        return data;
+    }
+
+private:
+    // The file read alone, its -wal refused: whatever the -wal held of this session is lost.
+    SessionData withoutWal(SessionData alone, const std::string& why) const {
+        const std::string alonesNote = alone.note.empty() ? std::string("it holds a complete session") : alone.note;
+        alone.completed = false;
+        alone.damaged = true;
+        alone.note = "damaged (write-ahead log: " + path_ + "-wal is not this file's, " + why +
+            "): read the file without it (" + alonesNote +
+            "); whatever of this session was only in its own -wal is lost";
+        return alone;
+    }
+
+    SessionData readOpen() {
         SessionData data;
         // One read transaction: a session still being written is seen as one consistent
         // snapshot across all tables, never a commits table older than the rows.
@@ -60,7 +118,6 @@ public:
         return data;
     }
 
-private:
     struct Commit {
         std::int64_t id = 0, inputRows = 0, frameRows = 0, eventRows = 0, checksum = 0;
         std::optional<std::int64_t> lastFrame;
@@ -76,6 +133,7 @@ private:
     std::optional<Stop> firstStop_;
     std::optional<WalLoss> walLoss_;  // committed data in the -wal that SQLite cannot read
     std::map<std::string, std::string> flags_;  // meta "flag:<name>" entries
+    std::int64_t headerChecksum_ = 0;  // what the first commit's checksum chains to (version 3 on)
 
     [[noreturn]] void fail(const std::string& sentence) const {
         throw SessionError("Session file " + path_ + " " + sentence);
@@ -100,27 +158,54 @@ private:
         return uri + "?immutable=1";
     }
 
-    void open() {
+    void checkRegularFile() const {
         std::error_code ec;
         const auto status = fs::status(path_, ec);
         if (!fs::exists(status)) fail("does not exist.");
         if (fs::is_directory(status)) fail("is a folder, not a session file.");
         // A FIFO would block the open forever, a device could be anything.
         if (!fs::is_regular_file(status)) fail("is not a regular file (a pipe, socket or device), not a session file.");
+    }
+
+    // whole: no -wal beside the file. A plain read-only open of a WAL-mode file would still
+    // create empty -wal and -shm files next to it; "immutable" reads it as it is and leaves
+    // the folder untouched (export promises that). With a -wal present a writer may be
+    // running, so the read takes part in SQLite's locking as usual.
+    void openFile(bool whole) {
         sqlite3* raw = nullptr;
-        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
-        // finishing): nothing is writing it. A plain read-only open would still create empty
-        // -wal and -shm files next to it; "immutable" reads it as it is and leaves the folder
-        // untouched (export promises that). With a -wal present a writer may be running, so
-        // the read takes part in SQLite's locking as usual.
-        const bool whole = !fs::exists(path_ + "-wal", ec);
-        if (!whole) walLoss_ = lostInWal(path_ + "-wal");
         const std::string name = whole ? immutableUri(path_) : path_;
         const int rc =
             sqlite3_open_v2(name.c_str(), &raw, SQLITE_OPEN_READONLY | (whole ? SQLITE_OPEN_URI : 0), nullptr);
         db_.reset(raw);
         if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
         sqlite3_busy_timeout(db_.get(), 5000);
+        checkOpened();
+    }
+
+    // The file's bytes as they are, without the -wal beside it: SQLite would apply any -wal
+    // it finds next to a file, so the bytes are read into memory and opened there, marked as
+    // a rollback-journal file (header bytes 18 and 19) so that no log is looked for.
+    void openImage() {
+        std::ifstream in(path_, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (!in && !in.eof()) fail("cannot be read.");
+        sqlite3* raw = nullptr;
+        const int rc = sqlite3_open_v2(":memory:", &raw, SQLITE_OPEN_READWRITE, nullptr);
+        db_.reset(raw);
+        if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
+        auto* image = static_cast<unsigned char*>(sqlite3_malloc64(bytes.size() + 1));
+        if (!image) fail("cannot be read: out of memory.");
+        std::memcpy(image, bytes.data(), bytes.size());
+        if (bytes.size() >= 20 && image[18] == 2 && image[19] == 2) image[18] = image[19] = 1;
+        const auto size = static_cast<sqlite3_int64>(bytes.size());
+        if (sqlite3_deserialize(db_.get(), "main", image, size, size + 1,
+                                SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY) != SQLITE_OK)
+            fail("cannot be read: " + errmsg() + ".");
+        checkOpened();
+    }
+
+    void checkOpened() {
+        std::error_code ec;
         // Extra structural checks while walking pages: damaged files fail cleanly sooner.
         sqlite3_exec(db_.get(), "PRAGMA cell_size_check=ON", nullptr, nullptr, nullptr);
         // SQLite refuses a whole file that is shorter than its header says, unless the schema
@@ -186,13 +271,14 @@ private:
                  "; this warplab reads session format versions " + versions + ".");
         }
         Checksum checksum;
-        for (const auto& entry : headerEntries(SessionHeader{})) {
+        for (const auto& entry : headerEntries(SessionHeader{}, h.formatVersion)) {
             checksum.text(entry.first);
             checksum.text(get(entry.first));
         }
         std::uint64_t stored = 0;
         if (!parseNumber(get("header_checksum"), stored) || stored != checksum.value())
             fail("has a damaged header: its checksum does not match its contents.");
+        headerChecksum_ = static_cast<std::int64_t>(stored);
         h.protocolJson = get("protocol_json");
         if (!parseNumber(get("seed"), h.seed)) fail("has an unreadable header: seed is '" + get("seed") + "'.");
         h.participant = get("participant");
@@ -207,6 +293,7 @@ private:
             fail("has an unreadable header: display_height is '" + get("display_height") + "'.");
         h.startedAt = get("started_at");
         h.player = get("player");
+        if (h.formatVersion >= kSessionIdSince) h.sessionId = get("session_id");
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
             if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;
@@ -341,7 +428,10 @@ private:
                 hashRow(sum.frames, layout.frames, frames[static_cast<std::size_t>(r)]);
             for (auto r = before.eventRows; r < c.eventRows; ++r)
                 hashRow(sum.events, layout.events, events[static_cast<std::size_t>(r)]);
-            if (sum.value() != c.checksum) {
+            const bool chained = version_ >= kSessionIdSince;
+            const std::optional<std::int64_t> previous =
+                chained ? std::optional<std::int64_t>(kept ? kept->checksum : headerChecksum_) : std::nullopt;
+            if (sum.value(previous) != c.checksum) {
                 stop("commits", "the rows of commit " + std::to_string(c.id) + " do not match its checksum");
                 break;
             }

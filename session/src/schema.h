@@ -128,11 +128,12 @@ bool parseNumber(const std::string& text, T& out) {
 }
 
 // The header as meta entries, in checksum order (completed_at and header_checksum are not
-// part of it). The single list of header keys: the writer stores these, the reader checks
-// the same keys.
-inline std::vector<std::pair<const char*, std::string>> headerEntries(const SessionHeader& h) {
-    return {
-        {"format_version", std::to_string(kSessionFormatVersion)},
+// part of it), as a file of format `version` holds them. The single list of header keys: the
+// writer stores these, the reader checks the same keys.
+inline std::vector<std::pair<const char*, std::string>> headerEntries(const SessionHeader& h,
+                                                                      int version = kSessionFormatVersion) {
+    std::vector<std::pair<const char*, std::string>> entries = {
+        {"format_version", std::to_string(version)},
         {"protocol_json", h.protocolJson},
         {"seed", numberText(h.seed)},
         {"participant", h.participant},
@@ -145,6 +146,8 @@ inline std::vector<std::pair<const char*, std::string>> headerEntries(const Sess
         {"started_at", h.startedAt},
         {"player", h.player},
     };
+    if (version >= kSessionIdSince) entries.push_back({"session_id", h.sessionId});
+    return entries;
 }
 
 }  // namespace warplab::session::detail

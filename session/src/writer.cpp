@@ -3,6 +3,7 @@
 
 #include "session/records.h"
 
+#include "archive.h"
 #include "checksum.h"
 #include "naming.h"
 #include "schema.h"
@@ -22,6 +23,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -36,7 +38,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, v1_format.h, wal_scan.h).
+// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, archive.h).
 using namespace detail;
 
 std::string utcNow() {
@@ -52,71 +54,80 @@ std::string utcNow() {
     return text;
 }
 
+// 128 random bits as 32 hex digits: two sessions never share one, a copy keeps it.
+std::string newSessionId() {
+    std::random_device random;
+    std::string id;
+    for (int i = 0; i < 4; ++i) {
+        char part[9];
+        std::snprintf(part, sizeof part, "%08x", static_cast<unsigned>(random()));
+        id += part;
+    }
+    return id;
+}
+
+std::int64_t headerChecksum(const SessionHeader& h) {
+    Checksum checksum;
+    for (const auto& [key, value] : headerEntries(h)) {
+        checksum.text(key);
+        checksum.text(value);
+    }
+    return static_cast<std::int64_t>(checksum.value());
+}
+
 // Thrown inside a write while another connection holds the file's write lock: the write is
 // rolled back and everything it would have written stays held for the next try.
 struct LockBusy {};
 
 bool isBusy(int rc) { return (rc & 0xff) == SQLITE_BUSY || (rc & 0xff) == SQLITE_LOCKED; }
 
-// Which file a path names now (device and inode), or nothing when the name is gone.
-std::optional<std::pair<dev_t, ino_t>> fileIdentity(const std::string& path) {
+// What a name means now, as far as telling our own writes from another program's goes: which
+// file (device and inode), how long, when last written, and (for the session file) its
+// 100-byte SQLite header. Nothing when the name is gone.
+struct FileStamp {
+    dev_t device = 0;
+    ino_t inode = 0;
+    off_t size = 0;
+    std::int64_t modifiedNs = 0;
+    std::string head;
+
+    bool sameFile(const FileStamp& o) const { return device == o.device && inode == o.inode; }
+    bool operator==(const FileStamp& o) const {
+        return sameFile(o) && size == o.size && modifiedNs == o.modifiedNs && head == o.head;
+    }
+};
+
+std::optional<FileStamp> stampOf(const std::string& path, bool withHead) {
     struct stat st {};
     if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-    return std::make_pair(st.st_dev, st.st_ino);
+    FileStamp s{st.st_dev, st.st_ino, st.st_size,
+                static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec, ""};
+    if (withHead) {
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd >= 0) {
+            char head[100];
+            const ssize_t n = ::pread(fd, head, sizeof head, 0);
+            if (n > 0) s.head.assign(head, static_cast<std::size_t>(n));
+            ::close(fd);
+        }
+    }
+    return s;
 }
 
-}  // namespace
+// Makes a rename or link in `dir` durable.
+void syncFolder(const std::string& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
 
-struct SessionWriter::Impl {
-    using Clock = std::chrono::steady_clock;
-
+// One SQLite connection to a session file the writer writes, with its statements.
+struct Connection {
     std::string path;
     Db db;
     Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
-    bool writing = false;  // inside writeHeld(): a busy lock is LockBusy, not a failure
-    bool finished = false;
-
-    // Rows are kept in memory until they are written, so another program's write lock can
-    // only delay them (see commit()).
-    struct Rows {
-        std::vector<InputRecord> inputs;
-        std::vector<FrameRecord> frames;
-        std::vector<EventRecord> events;
-    };
-    // Added since the last commit(): part of no commit yet, dropped as in a crash.
-    Rows adding;
-    CommitChecksum addingChecksum;
-    std::map<std::string, std::string> addingFlags;
-    std::optional<std::int64_t> lastInputFrame, lastFrameFrame;  // over every row added
-
-    // Commits made but not yet in the file, oldest first, and what goes with them.
-    struct Held {
-        Rows rows;
-        std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;  // cumulative, after it
-        std::optional<std::int64_t> lastFrame;
-        std::int64_t checksum = 0;
-        std::string committedAt;
-    };
-    std::deque<Held> held;
-    std::map<std::string, std::string> heldFlags;
-    bool completing = false;  // finish(): completed_at still to be written
-    std::optional<Clock::time_point> heldSince;
-    // Rows in every commit so far, written or held: a commit's counts are cumulative.
-    std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;
-
-    // Names that must keep meaning the files this connection writes (checkWhereItWrites).
-    std::optional<std::pair<dev_t, ino_t>> fileId, walId;
-    std::vector<std::string> notices;
-
-    ~Impl() {
-        // Held commits were committed as far as the game knows: one last short try to write
-        // them. What was added after the last commit is dropped, as a crash would drop it.
-        if (!db || (held.empty() && heldFlags.empty() && !completing)) return;
-        try {
-            const auto deadline = Clock::now() + std::chrono::seconds(2);
-            while (!writeHeld() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        } catch (...) {}
-    }
+    bool writing = false;  // inside a write of held commits: a busy lock is LockBusy, not a failure
 
     [[noreturn]] void fail(const std::string& what) const {
         throw SessionError("Cannot write session file " + path + " (" + what + "): " + sqlite3_errmsg(db.get()) + ".");
@@ -124,6 +135,12 @@ struct SessionWriter::Impl {
     void check(int rc, const char* what) const {
         if (writing && isBusy(rc)) throw LockBusy{};
         fail(what);
+    }
+    void open(int flags, const char* what) {
+        sqlite3* raw = nullptr;
+        const int rc = sqlite3_open_v2(path.c_str(), &raw, flags, nullptr);
+        db.reset(raw);
+        if (rc != SQLITE_OK) fail(what);
     }
     void exec(const char* sql, const char* what) {
         const int rc = sqlite3_exec(db.get(), sql, nullptr, nullptr, nullptr);
@@ -135,6 +152,15 @@ struct SessionWriter::Impl {
             fail("preparing a statement");
         return Stmt(raw);
     }
+    void prepareInserts() {
+        insertMeta = prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
+        insertInput = prepare(insertSql(inputTable()));
+        insertFrame = prepare(insertSql(frameTable()));
+        insertEvent = prepare(insertSql(eventTable()));
+        insertCommit = prepare(
+            "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
+            "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
+    }
     void run(sqlite3_stmt* s, const char* what) {
         const int rc = sqlite3_step(s);
         sqlite3_reset(s);
@@ -144,67 +170,6 @@ struct SessionWriter::Impl {
         bindArg(insertMeta.get(), 1, key);
         bindArg(insertMeta.get(), 2, value);
         run(insertMeta.get(), "writing the header");
-    }
-
-    // Opens `path` (which holds at least the header) for appending: WAL, fsync per commit,
-    // statements prepared. Also used to reopen after the files were replaced under us.
-    void openForWriting() {
-        sqlite3* raw = nullptr;
-        const int rc = sqlite3_open_v2(path.c_str(), &raw, SQLITE_OPEN_READWRITE, nullptr);
-        db.reset(raw);
-        if (rc != SQLITE_OK) fail("opening");
-        // No busy wait inside SQLite: a foreign write lock must not stall a live frame. The
-        // writer holds its commits and retries instead (commit(), flush()).
-        sqlite3_busy_timeout(db.get(), 0);
-        // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
-        // intact, and analysts can read a running session. FULL: each commit is fsynced, so
-        // a power cut keeps it as well; one fsync per trial costs nothing next to a
-        // participant's hour (see docs/session-format.md).
-        sqlite3_stmt* rawMode = nullptr;
-        sqlite3_prepare_v2(db.get(), "PRAGMA journal_mode=WAL", -1, &rawMode, nullptr);
-        Stmt mode(rawMode);
-        if (!mode || sqlite3_step(mode.get()) != SQLITE_ROW || columnText(mode.get(), 0) != "wal")
-            fail("switching to WAL mode");
-        mode.reset();
-        exec("PRAGMA synchronous=FULL", "setting synchronous");
-        insertMeta = prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
-        insertInput = prepare(insertSql(inputTable()));
-        insertFrame = prepare(insertSql(frameTable()));
-        insertEvent = prepare(insertSql(eventTable()));
-        insertCommit = prepare(
-            "INSERT INTO commits (input_rows, frame_rows, event_rows, last_frame, "
-            "last_event_id, checksum, committed_at) VALUES (?, ?, ?, ?, ?, ?, ?)");
-        fileId = fileIdentity(path);
-        walId.reset();  // learnt after the first write: SQLite makes the log when it needs it
-    }
-    void close() {
-        insertInput.reset();
-        insertFrame.reset();
-        insertEvent.reset();
-        insertCommit.reset();
-        insertMeta.reset();
-        db.reset();
-    }
-
-    // Makes the rows added since the last commit one commit, held until it is written.
-    void commitAdded() {
-        const bool rows = !adding.inputs.empty() || !adding.frames.empty() || !adding.events.empty();
-        for (auto& [name, text] : addingFlags) heldFlags[name] = std::move(text);
-        addingFlags.clear();
-        if (!rows) return;
-        Held h;
-        h.inputRows = inputRows += static_cast<std::int64_t>(adding.inputs.size());
-        h.frameRows = frameRows += static_cast<std::int64_t>(adding.frames.size());
-        h.eventRows = eventRows += static_cast<std::int64_t>(adding.events.size());
-        h.lastFrame = lastInputFrame;
-        if (lastFrameFrame && (!h.lastFrame || *lastFrameFrame > *h.lastFrame)) h.lastFrame = lastFrameFrame;
-        h.checksum = addingChecksum.value();
-        h.committedAt = utcNow();
-        h.rows = std::move(adding);
-        adding = Rows{};
-        addingChecksum = CommitChecksum{};
-        held.push_back(std::move(h));
-        if (!heldSince) heldSince = Clock::now();
     }
 
     // Binds one record's fields in table order (after its id, for numbered tables) and
@@ -227,100 +192,279 @@ struct SessionWriter::Impl {
         run(s, what);
     }
 
+    // One commit's rows and its `commits` row, inside the caller's transaction.
+    void writeCommit(const CommitRows& h) {
+        for (const InputRecord& r : h.inputs) insert(inputTable(), insertInput.get(), r, 0, "adding an input record");
+        for (const FrameRecord& r : h.frames) insert(frameTable(), insertFrame.get(), r, 0, "adding a frame record");
+        std::int64_t id = h.eventRows - static_cast<std::int64_t>(h.events.size());
+        for (const EventRecord& r : h.events)
+            insert(eventTable(), insertEvent.get(), r, ++id, "adding an event record");
+        sqlite3_stmt* s = insertCommit.get();
+        bindArg(s, 1, h.inputRows);
+        bindArg(s, 2, h.frameRows);
+        bindArg(s, 3, h.eventRows);
+        bindOptional(s, 4, h.lastFrame);
+        bindOptional(s, 5, h.eventRows > 0 ? std::optional<std::int64_t>(h.eventRows) : std::nullopt);
+        bindArg(s, 6, h.checksum);
+        bindArg(s, 7, h.committedAt);
+        run(s, "recording the commit");
+    }
+
+    void close() {
+        insertInput.reset();
+        insertFrame.reset();
+        insertEvent.reset();
+        insertCommit.reset();
+        insertMeta.reset();
+        db.reset();
+    }
+};
+
+}  // namespace
+
+struct SessionWriter::Impl {
+    using Clock = std::chrono::steady_clock;
+
+    std::string resultsDir, stem;  // where the session lives and its name without "-N" and extension
+    SessionHeader header;  // as written: the session id and start time filled in
+    Connection live;  // to the session file at its name (live.path)
+    bool finished = false;
+
+    // Added since the last commit(): part of no commit yet, dropped as in a crash. Rows are
+    // kept in memory until they are written, so another program's write lock can only delay
+    // them (see commit()).
+    CommitRows adding;
+    CommitChecksum addingChecksum;
+    std::map<std::string, std::string> addingFlags;
+    std::optional<std::int64_t> lastInputFrame, lastFrameFrame;  // over every row added
+    std::int64_t lastChecksum = 0;  // of the last commit made, the header's before the first
+
+    // Commits made but not yet in the file, oldest first, and what goes with them.
+    std::deque<CommitRows> held;
+    std::map<std::string, std::string> heldFlags;
+    bool completing = false;  // finish(): completed_at still to be written
+    std::optional<Clock::time_point> heldSince;
+    // Rows in every commit so far, written or held: a commit's counts are cumulative.
+    std::int64_t inputRows = 0, frameRows = 0, eventRows = 0;
+
+    // What is in the file: every commit, flag and the completion written, to write the
+    // session again whole when the file cannot be trusted (rescue()).
+    Archive written;
+    std::map<std::string, std::string> writtenFlags;
+    std::string completedAt;
+
+    // The session file and its -wal as this writer last left them (checkUntouched()).
+    std::optional<FileStamp> fileStamp, walStamp;
+    std::vector<std::string> notices;
+
+    ~Impl() {
+        // Held commits were committed as far as the game knows: one last short try to write
+        // them. What was added after the last commit is dropped, as a crash would drop it.
+        if (!live.db || (held.empty() && heldFlags.empty() && !completing)) return;
+        try {
+            const auto deadline = Clock::now() + std::chrono::seconds(2);
+            while (!writeHeld() && Clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        } catch (...) {}
+    }
+
+    std::string hiddenPath(const char* work) const { return hiddenWorkPath(resultsDir, stem, work); }
+
+    // Writes a session file at `temp`, a name no other program uses: the header, every commit
+    // written so far and every one held, the flags and the completion, in one fsynced
+    // transaction; then switches it to WAL mode when the session goes on writing there.
+    // create() writes its first file so (nothing written or held yet), rescue() and finish()
+    // the whole session again.
+    void buildFile(const std::string& temp, bool wal) const {
+        removeSessionFiles(temp);  // a leftover of a killed run with our pid
+        Connection c;
+        c.path = temp;
+        c.open(SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, "creating");
+        c.exec("PRAGMA synchronous=FULL", "setting synchronous");
+        c.exec("BEGIN IMMEDIATE", "writing the header");
+        c.exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(), "writing the header");
+        for (const char* sql : kSchema) c.exec(sql, "creating the tables");
+        c.exec(inputTable().createSql().c_str(), "creating the tables");
+        c.exec(frameTable().createSql().c_str(), "creating the tables");
+        c.exec(eventTable().createSql().c_str(), "creating the tables");
+        c.prepareInserts();
+        for (const auto& [key, value] : headerEntries(header)) c.putMeta(key, value);
+        c.putMeta("header_checksum", numberText(static_cast<std::uint64_t>(headerChecksum(header))));
+        written.forEach([&](const CommitRows& commit) { c.writeCommit(commit); });
+        for (const CommitRows& commit : held) c.writeCommit(commit);
+        std::map<std::string, std::string> flags = writtenFlags;
+        for (const auto& [name, text] : heldFlags) flags[name] = text;
+        for (const auto& [name, text] : flags) c.putMeta("flag:" + name, text);
+        if (!completedAt.empty()) c.putMeta("completed_at", completedAt);
+        c.exec("COMMIT", "writing the file");
+        // WAL mode is kept in the file: switching here, while nobody else can see the file,
+        // means another program's lock on the named file can never stop the switch.
+        if (wal) c.exec("PRAGMA journal_mode=WAL", "switching to WAL mode");
+        c.close();  // the file is whole and fsynced
+    }
+
+    // Everything held is now in the file (buildFile() or writeHeld() wrote it).
+    void heldAreWritten(const std::string& completionTime) {
+        for (CommitRows& commit : held) written.append(commit);
+        held.clear();
+        for (auto& [name, text] : heldFlags) writtenFlags[name] = std::move(text);
+        heldFlags.clear();
+        if (completing) completedAt = completionTime;
+        completing = false;
+        heldSince.reset();
+    }
+
+    // Opens `live.path` (which holds at least the header) for appending: WAL, fsync per
+    // commit, statements prepared. Also used to go on in a file written again by rescue().
+    void openForWriting() {
+        live.open(SQLITE_OPEN_READWRITE, "opening");
+        // No busy wait inside SQLite: a foreign write lock must not stall a live frame. The
+        // writer holds its commits and retries instead (commit(), flush()).
+        sqlite3_busy_timeout(live.db.get(), 0);
+        // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
+        // intact, and analysts can read a running session. FULL: each commit is fsynced, so
+        // a power cut keeps it as well; one fsync per trial costs nothing next to a
+        // participant's hour (see docs/session-format.md).
+        sqlite3_stmt* rawMode = nullptr;
+        sqlite3_prepare_v2(live.db.get(), "PRAGMA journal_mode=WAL", -1, &rawMode, nullptr);
+        Stmt mode(rawMode);
+        if (!mode || sqlite3_step(mode.get()) != SQLITE_ROW || columnText(mode.get(), 0) != "wal")
+            live.fail("switching to WAL mode");
+        mode.reset();
+        live.exec("PRAGMA synchronous=FULL", "setting synchronous");
+        live.prepareInserts();
+        stampFiles();
+    }
+
+    // Makes the rows added since the last commit one commit, held until it is written.
+    void commitAdded() {
+        const bool rows = !adding.inputs.empty() || !adding.frames.empty() || !adding.events.empty();
+        for (auto& [name, text] : addingFlags) heldFlags[name] = std::move(text);
+        addingFlags.clear();
+        if (!rows) return;
+        CommitRows h = std::move(adding);
+        adding = CommitRows{};
+        h.inputRows = inputRows += static_cast<std::int64_t>(h.inputs.size());
+        h.frameRows = frameRows += static_cast<std::int64_t>(h.frames.size());
+        h.eventRows = eventRows += static_cast<std::int64_t>(h.events.size());
+        h.lastFrame = lastInputFrame;
+        if (lastFrameFrame && (!h.lastFrame || *lastFrameFrame > *h.lastFrame)) h.lastFrame = lastFrameFrame;
+        h.checksum = lastChecksum = addingChecksum.value(lastChecksum);
+        h.committedAt = utcNow();
+        addingChecksum = CommitChecksum{};
+        held.push_back(std::move(h));
+        if (!heldSince) heldSince = Clock::now();
+    }
+
     // Writes every held commit, in order, then the held flags and completed_at, as ONE
     // transaction (fsynced). False, with nothing written, while another connection holds the
     // write lock; any other failure throws SessionError and keeps everything held.
     bool writeHeld() {
         if (held.empty() && heldFlags.empty() && !completing) return true;
-        writing = true;
+        if (checkUntouched()) return true;  // rescue() wrote everything held
+        const std::string completionTime = completing ? utcNow() : completedAt;
+        live.writing = true;
         try {
-            exec("BEGIN IMMEDIATE", "starting a transaction");
-            for (const Held& h : held) {
-                for (const InputRecord& r : h.rows.inputs)
-                    insert(inputTable(), insertInput.get(), r, 0, "adding an input record");
-                for (const FrameRecord& r : h.rows.frames)
-                    insert(frameTable(), insertFrame.get(), r, 0, "adding a frame record");
-                std::int64_t id = h.eventRows - static_cast<std::int64_t>(h.rows.events.size());
-                for (const EventRecord& r : h.rows.events)
-                    insert(eventTable(), insertEvent.get(), r, ++id, "adding an event record");
-                sqlite3_stmt* s = insertCommit.get();
-                bindArg(s, 1, h.inputRows);
-                bindArg(s, 2, h.frameRows);
-                bindArg(s, 3, h.eventRows);
-                bindOptional(s, 4, h.lastFrame);
-                bindOptional(s, 5, h.eventRows > 0 ? std::optional<std::int64_t>(h.eventRows) : std::nullopt);
-                bindArg(s, 6, h.checksum);
-                bindArg(s, 7, h.committedAt);
-                run(s, "recording the commit");
-            }
-            for (const auto& [name, text] : heldFlags) putMeta("flag:" + name, text);
-            if (completing) putMeta("completed_at", utcNow());
-            exec("COMMIT", "committing");
+            live.exec("BEGIN IMMEDIATE", "starting a transaction");
+            for (const CommitRows& h : held) live.writeCommit(h);
+            for (const auto& [name, text] : heldFlags) live.putMeta("flag:" + name, text);
+            if (completing) live.putMeta("completed_at", completionTime);
+            live.exec("COMMIT", "committing");
         } catch (...) {
-            writing = false;
+            live.writing = false;
             // A failed COMMIT may or may not have rolled back by itself; make sure it did,
             // so the file holds exactly what it held before.
-            if (!sqlite3_get_autocommit(db.get())) sqlite3_exec(db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+            if (!sqlite3_get_autocommit(live.db.get()))
+                sqlite3_exec(live.db.get(), "ROLLBACK", nullptr, nullptr, nullptr);
             try {
                 throw;
             } catch (const LockBusy&) {
                 return false;
             }
         }
-        writing = false;
-        held.clear();
-        heldFlags.clear();
-        completing = false;
-        heldSince.reset();
+        live.writing = false;
+        heldAreWritten(completionTime);
         // Fold the log into the main file at once (PASSIVE: never waits for a reader). The
         // -wal then holds no commit the file lacks, so a -wal deleted or damaged later loses
         // nothing written before.
-        sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
-        checkWhereItWrites();
+        sqlite3_wal_checkpoint_v2(live.db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+        stampFiles();
         return true;
     }
 
-    // Another program may delete or replace the session file or its -wal while we write
-    // (a cleanup script, a sync tool). SQLite would go on writing the old, now nameless,
-    // files, and everything from then on would vanish at the next kill. So after each write
-    // the names are checked against the files this connection has open; on a change the
-    // session is saved under its name again from the open files, and the supervisor told.
-    void checkWhereItWrites() {
-        const auto nowFile = fileIdentity(path);
-        const auto nowWal = fileIdentity(path + "-wal");
-        if (!walId) walId = nowWal;
-        const bool fileMoved = nowFile != fileId;
-        const bool walMoved = walId && nowWal != walId;
-        if (!fileMoved && !walMoved) return;
+    void stampFiles() {
+        fileStamp = stampOf(live.path, true);
+        walStamp = stampOf(live.path + "-wal", false);
+    }
 
-        std::string savedTo = path;
-        if (fileMoved) {
-            // The file itself is gone or another one is in its place: a complete copy, from
-            // what this connection sees, goes to the name if it is free, else beside it.
-            // No -wal or -shm of the name may be left either: SQLite would take them for the
-            // new file's.
-            for (int n = 1; anyExists(savedTo); ++n)
-                savedTo = path.substr(0, path.size() - std::strlen(kExtension)) + "-rescued" +
-                    (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
-            Stmt copy = prepare("VACUUM INTO ?");
-            bindArg(copy.get(), 1, savedTo);
-            if (sqlite3_step(copy.get()) != SQLITE_DONE) fail("saving a copy to " + savedTo);
-        } else {
-            // Only the -wal: the checkpoint above copied every commit from the open log into
-            // the file, unless a reader's snapshot held it back; then try again next time.
-            int logFrames = 0, copied = 0;
-            sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
-            if (copied < logFrames) return;
+    // Another program may delete, replace or overwrite the session file or its -wal while
+    // we write: a cleanup script, a sync tool, an old copy put back, `cp` over it, a
+    // truncation. SQLite would go on writing, into nameless files or over whatever is there,
+    // and everything would be lost at the next kill (or at once: "database disk image is
+    // malformed"). Only this writer changes the two files, so before each write they must be
+    // as it left them; if not, the session is written again whole (rescue()), the supervisor
+    // told and the session flagged. True when it was.
+    bool checkUntouched() {
+        const auto file = stampOf(live.path, true);
+        const auto wal = stampOf(live.path + "-wal", false);
+        if (file && fileStamp && *file == *fileStamp && (!walStamp || (wal && *wal == *walStamp))) return false;
+        const std::string name = live.path;
+        if (!file || !fileStamp || !file->sameFile(*fileStamp))
+            rescue("file_replaced", "the session file " + name + " was deleted or replaced by another program", false);
+        else if (!(*file == *fileStamp))
+            rescue("file_overwritten",
+                   "the session file " + name +
+                       " was overwritten in place by another program (an old copy put back, another file copied "
+                       "over it, or cut short)",
+                   false);
+        else
+            rescue("wal_replaced", "the log " + name + "-wal was deleted, replaced or changed by another program",
+                   true);
+        return true;
+    }
+
+    // Writes the whole session again from what this writer wrote and holds, and goes on
+    // there. `replaceName`: the name still holds this session's own file (only its -wal was
+    // touched), which the new file replaces; otherwise the new file takes the name if that is
+    // free, else goes beside it as <name>-rescued.warplab-session, leaving what another
+    // program put there alone.
+    void rescue(const std::string& flagName, const std::string& what, bool replaceName) {
+        // Our -wal and -shm must not stay beside whatever the name now holds: SQLite would
+        // take them for its own. Closed without a checkpoint, which would write our log into
+        // that file.
+        sqlite3_db_config(live.db.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+        live.close();
+        // Beside our own file anything there is ours or must go; beside another program's
+        // file only what is still ours goes.
+        const auto wal = stampOf(live.path + "-wal", false);
+        if (replaceName || (wal && walStamp && wal->sameFile(*walStamp))) {
+            std::error_code ec;
+            fs::remove(live.path + "-wal", ec);
+            fs::remove(live.path + "-shm", ec);
         }
-        const std::string what = fileMoved ? "the session file " + path + " was deleted or replaced by another program"
-                                           : "the log " + path + "-wal was deleted or replaced by another program";
-        close();
-        path = savedTo;
+        std::string target = live.path;
+        if (!replaceName)
+            for (int n = 1; anyExists(target); ++n)
+                target = (fs::path(resultsDir) / stem).string() + "-rescued" + (n > 1 ? "-" + std::to_string(n) : "") +
+                    kExtension;
+        const std::string text = what + "; every commit up to then is saved in " + target;
+        heldFlags[flagName] = text;
+        if (completing) completedAt = utcNow();
+        const std::string temp = hiddenPath(kRescuing);
+        try {
+            buildFile(temp, true);
+            if (replaceName ? ::rename(temp.c_str(), target.c_str()) != 0 : ::link(temp.c_str(), target.c_str()) != 0)
+                throw SessionError("Cannot save the session again as " + target + " (" + what +
+                                   "): " + std::strerror(errno) + ".");
+            syncFolder(resultsDir);
+        } catch (...) {
+            removeSessionFiles(temp);
+            throw;
+        }
+        removeSessionFiles(temp);
+        heldAreWritten(completedAt);
+        live.path = target;
         openForWriting();
-        const std::string text = what + "; every commit up to then is saved in " + path;
         notices.push_back(text);
-        heldFlags[fileMoved ? "file_replaced" : "wal_replaced"] = text;
-        writeHeld();  // the flag; if the lock is taken now, it goes with the next commit
     }
 
     static void checkFollows(const std::optional<std::int64_t>& last, std::int64_t frame, const char* caller) {
@@ -363,8 +507,33 @@ struct SessionWriter::Impl {
     // last commits holds those back.
     bool foldedIntoFile() {
         int logFrames = -1, copied = -1;
-        const int rc = sqlite3_wal_checkpoint_v2(db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
+        const int rc =
+            sqlite3_wal_checkpoint_v2(live.db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
         return rc == SQLITE_OK && copied == logFrames;
+    }
+
+    // finish() when a reader holds the last commits in the -wal: the whole session, written
+    // again in rollback-journal mode, takes the name (rename(2) is atomic: the name always
+    // means a whole file). The reader keeps the file it opened; the old -wal and -shm go
+    // with it. A kill between the rename and their removal leaves a finished file beside a
+    // stale -wal, which readSession recognises and reads without.
+    void replaceWithWholeFile() {
+        const std::string temp = hiddenPath(kFinishing);
+        try {
+            buildFile(temp, false);
+            if (::rename(temp.c_str(), live.path.c_str()) != 0)
+                throw SessionError("Cannot write the finished session " + live.path + ": " + std::strerror(errno) +
+                                   ".");
+            syncFolder(resultsDir);
+        } catch (...) {
+            removeSessionFiles(temp);
+            throw;
+        }
+        sqlite3_db_config(live.db.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+        live.close();
+        std::error_code ec;
+        fs::remove(live.path + "-wal", ec);
+        fs::remove(live.path + "-shm", ec);
     }
 };
 
@@ -379,7 +548,7 @@ SessionWriter::Impl& SessionWriter::impl(const char* caller) const {
     return *impl_;
 }
 
-const std::string& SessionWriter::path() const { return impl("path").path; }
+const std::string& SessionWriter::path() const { return impl("path").live.path; }
 
 SessionWriter SessionWriter::create(const std::string& resultsDir, const SessionHeader& header) {
     if (header.formatVersion != kSessionFormatVersion)
@@ -396,58 +565,45 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     if (!fs::is_directory(status)) throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
     if (::access(resultsDir.c_str(), W_OK | X_OK) != 0)
         throw SessionError("Results folder '" + resultsDir + "' is not writable (" + std::strerror(errno) + ").");
+    // root passes access() on any folder; a folder with no write permission for anyone is
+    // one a lab has marked read-only (an archived study), and stays so.
+    if ((status.permissions() & (fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write)) ==
+        fs::perms::none)
+        throw SessionError("Results folder '" + resultsDir +
+                           "' is read-only (no write permission for anyone); warplab writes no session into it.");
 
-    SessionHeader h = header;
+    auto impl = std::make_unique<Impl>();
+    impl->resultsDir = resultsDir;
+    impl->header = header;
+    SessionHeader& h = impl->header;
     if (h.startedAt.empty()) h.startedAt = utcNow();
-    std::string stem = safeName(h.participant, kMaxNameBytes);
-    if (stem.empty()) stem = "participant";
+    h.sessionId = newSessionId();
+    impl->lastChecksum = headerChecksum(h);
+    impl->stem = safeName(h.participant, kMaxNameBytes);
+    if (impl->stem.empty()) impl->stem = "participant";
     const std::string when = timeForName(h.startedAt);
-    if (!when.empty()) stem += "_" + when;
+    if (!when.empty()) impl->stem += "_" + when;
 
     // The header is written into a hidden file beside the session and only then linked to the
     // session's name: a kill at any instant leaves either no session or a readable one with its
     // header, never an empty file. link(2) refuses an existing name, so "pick a free name" and
     // "create it" stay one step (two rigs sharing a results folder never share a file).
-    const std::string temp =
-        (fs::path(resultsDir) / ("." + stem + "." + std::to_string(::getpid()) + ".creating")).string();
-    removeSessionFiles(temp);  // a leftover of a killed run with our pid
-    removeAbandonedCreations(resultsDir);  // and those of killed runs that are gone
-    auto impl = std::make_unique<Impl>();
+    const std::string temp = impl->hiddenPath(kCreating);
+    removeAbandonedCreations(resultsDir);  // those of killed runs that are gone
     try {
-        {
-            sqlite3* raw = nullptr;
-            const int rc = sqlite3_open_v2(temp.c_str(), &raw, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr);
-            impl->db.reset(raw);
-            impl->path = temp;
-            if (rc != SQLITE_OK) impl->fail("creating");
-            impl->exec("PRAGMA synchronous=FULL", "setting synchronous");
-            impl->exec("BEGIN IMMEDIATE", "writing the header");
-            impl->exec(("PRAGMA application_id=" + std::to_string(kApplicationId)).c_str(), "writing the header");
-            for (const char* sql : kSchema) impl->exec(sql, "creating the tables");
-            impl->exec(inputTable().createSql().c_str(), "creating the tables");
-            impl->exec(frameTable().createSql().c_str(), "creating the tables");
-            impl->exec(eventTable().createSql().c_str(), "creating the tables");
-            impl->insertMeta = impl->prepare("INSERT OR REPLACE INTO meta (key, value) VALUES (?, ?)");
-            Checksum checksum;
-            for (const auto& [key, value] : headerEntries(h)) {
-                impl->putMeta(key, value);
-                checksum.text(key);
-                checksum.text(value);
-            }
-            impl->putMeta("header_checksum", numberText(checksum.value()));
-            impl->exec("COMMIT", "writing the header");
-            impl->insertMeta.reset();
-            // WAL mode is kept in the file: switching here, while nobody else can see the
-            // file, means another program's lock on the named file can never stop the switch.
-            impl->exec("PRAGMA journal_mode=WAL", "switching to WAL mode");
-            impl->db.reset();  // closed: the header is in the file, fsynced
+        try {
+            impl->buildFile(temp, true);
+        } catch (const SessionError& e) {
+            // The first file written in the folder: a failure here is the folder's (a
+            // read-only mount, an ACL, a full disk), so say which folder.
+            throw SessionError("Results folder '" + resultsDir + "' cannot be written: " + e.what());
         }
         for (int n = 1;; ++n) {
-            const std::string name = stem + (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
+            const std::string name = impl->stem + (n > 1 ? "-" + std::to_string(n) : "") + kExtension;
             const std::string candidate = (fs::path(resultsDir) / name).string();
             if (anyExists(candidate)) continue;
             if (::link(temp.c_str(), candidate.c_str()) == 0) {
-                impl->path = candidate;
+                impl->live.path = candidate;
                 break;
             }
             if (errno != EEXIST || n >= 10000)
@@ -456,10 +612,10 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
         removeSessionFiles(temp);  // the other name stays
         impl->openForWriting();
     } catch (...) {
-        const std::string path = impl->path;
+        const std::string path = impl->live.path;
         impl.reset();
         removeSessionFiles(temp);
-        if (path != temp) removeSessionFiles(path);
+        if (!path.empty()) removeSessionFiles(path);
         throw;
     }
     return SessionWriter(std::move(impl));
@@ -525,26 +681,24 @@ void SessionWriter::finish(const WaitCallback& waiting, double foldWaitS) {
     w.finished = true;
     // A finished session becomes one self-contained file, so it can be copied, archived or
     // read from read-only media: every commit folded into it before the run says it is done.
+    // A reader's transaction holds the fold back; after foldWaitS the session is written
+    // again whole instead.
     const auto start = Impl::Clock::now();
     auto nextCall = start + std::chrono::seconds(1);
     while (!w.foldedIntoFile()) {
-        const double waited = std::chrono::duration<double>(Impl::Clock::now() - start).count();
-        if (waited >= foldWaitS)
-            throw SessionError("The session finished, but its last commits are still only in '" + w.path +
-                               "-wal': another program (export, replay, a DB browser, a sqlite3 script) has held a "
-                               "read transaction on it for " +
-                               std::to_string(static_cast<long>(waited)) +
-                               " s. Keep and copy the two files together until it is folded in: the file alone is not "
-                               "the whole session.");
+        if (std::chrono::duration<double>(Impl::Clock::now() - start).count() >= foldWaitS) {
+            w.replaceWithWholeFile();
+            return;
+        }
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
         if (waiting && Impl::Clock::now() >= nextCall) {
-            waiting(waited, WaitingFor::Readers);
+            waiting(std::chrono::duration<double>(Impl::Clock::now() - start).count(), WaitingFor::Readers);
             nextCall += std::chrono::seconds(1);
         }
     }
     // The -wal, now redundant, goes where no other program has the file open (a reader that
     // does keeps WAL mode, which is just as valid: the file alone is whole).
-    sqlite3_exec(w.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
+    sqlite3_exec(w.live.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
 }
 
 }  // namespace warplab::session

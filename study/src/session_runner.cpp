@@ -135,8 +135,9 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
         const std::string line = what == session::SessionWriter::WaitingFor::WriteLock
             ? "Saving the session: another program has held the write lock on " + writer_.path() + " for " + held +
                 ". Close it (a DB browser, or sqlite3 without -readonly)."
-            : "Finishing the session: another program has read " + writer_.path() + " for " + held +
-                ", so its last commits cannot yet be folded into the file. Close it (export, replay, a DB browser).";
+            : "Finishing the session: another program (export, replay, a DB browser) has been reading " +
+                writer_.path() + " for " + held +
+                ", which keeps its last commits out of the file; if it goes on, the session is written again whole.";
         if (show) show(line);
         if (static_cast<long>(seconds) % 5 == 1) progress_ << "waiting: " << line << "\n";
     };

@@ -671,6 +671,14 @@ TEST(CliSession, AVersion1SessionStillReplaysExactly) {
     EXPECT_GT(reproducedIn(replay.output), 12) << replay.output;
 }
 
+// And format 2 (before per-session ids): the click game's outcomes, every one.
+TEST(CliSession, AVersion2SessionStillReplaysExactly) {
+    const auto replay =
+        warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v2-click-quick.warplab-session");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "78/78 outcomes reproduced")) << replay.output;
+}
+
 TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const std::string results = scratch("export-results"), out = scratch("export-out");
     ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +

@@ -500,6 +500,33 @@ TEST(Export, IncompleteFlaggedDuplicateAndDamagedSessionsAreListedAndLeftOutUnle
     EXPECT_EQ(snapshot(results), before);
 }
 
+// Two sessions of one participant started in the same millisecond with the same seed and
+// protocol -- two rigs, or a runner script started twice -- are two sessions, not a copy:
+// their ids differ. A copy of one keeps its id and is the duplicate.
+TEST(Export, TwinSessionsAreTwoSessionsAndOnlyACopyIsADuplicate) {
+    const std::string results = scratch("twins/results"), source = scratch("twins/source"),
+                      other = scratch("twins/other");
+    const auto data = session::readSession(headless("shooter-quick.json", "T", source, 4));
+    session::SessionHeader header = data.header;
+    header.startedAt = "2026-05-06T07:08:09.123Z";
+    std::vector<std::string> paths;
+    for (const std::string& dir : {results, other}) {
+        session::SessionWriter w = session::SessionWriter::create(dir, header);
+        for (const auto& e : data.events) w.addEvent(e);
+        w.finish();
+        paths.push_back(w.path());
+    }
+    fs::copy_file(paths[1], results + "/twin.warplab-session");
+    fs::copy_file(paths[0], results + "/zz-copy.warplab-session");
+    const exporter::ExportSummary summary = exportQuietly(results, scratch("twins/out"));
+    std::map<std::string, std::string> status;
+    for (const auto& s : summary.sessions) status[s.file] = s.status;
+    ASSERT_EQ(status.size(), 3u);
+    EXPECT_EQ(status[fs::path(paths[0]).filename().string()], "ok");
+    EXPECT_EQ(status["twin.warplab-session"], "ok");
+    EXPECT_EQ(status["zz-copy.warplab-session"], "duplicate");
+}
+
 TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
     const std::string results = scratch("ids/results"), source = scratch("ids/source");
     const auto data = session::readSession(headless("shooter-quick.json", "x", source, 5));

@@ -18,8 +18,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -331,11 +334,14 @@ struct Fnv {
 void relabel(const std::string& path, int version) {
     execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
     Fnv h;
-    for (const char* key : {"format_version", "protocol_json", "seed", "participant", "app_version", "gl_renderer",
-                            "gl_version", "refresh_hz", "display_width", "display_height", "started_at", "player"}) {
-        const auto rows = sqlRows(path, std::string("SELECT value FROM meta WHERE key = '") + key + "'");
+    std::vector<std::string> keys = {"format_version", "protocol_json",  "seed",       "participant",
+                                     "app_version",    "gl_renderer",    "gl_version", "refresh_hz",
+                                     "display_width",  "display_height", "started_at", "player"};
+    if (version >= 3) keys.push_back("session_id");
+    for (const std::string& key : keys) {
+        const auto rows = sqlRows(path, "SELECT value FROM meta WHERE key = '" + key + "'");
         ASSERT_EQ(rows.size(), 1u) << key;
-        h.value(std::string(key));
+        h.value(key);
         h.value(rows[0]["value"].get<std::string>());
     }
     execSql(path, "UPDATE meta SET value = '" + std::to_string(h.hash) + "' WHERE key = 'header_checksum'");
@@ -374,7 +380,10 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     const SessionData data = readSession(path);
     header.formatVersion = kSessionFormatVersion;
     expectSame(data.header, header);
-    EXPECT_EQ(data.header.formatVersion, 2);
+    EXPECT_EQ(data.header.formatVersion, 3);
+    // Drawn by create(), whatever the header passed in said.
+    EXPECT_EQ(data.header.sessionId.size(), 32u);
+    EXPECT_EQ(data.header.sessionId.find_first_not_of("0123456789abcdef"), std::string::npos) << data.header.sessionId;
     ASSERT_EQ(data.inputs.size(), inputs.size());
     ASSERT_EQ(data.frames.size(), frames.size());
     ASSERT_EQ(data.events.size(), events.size());
@@ -824,23 +833,31 @@ TEST(SessionStoreLock, AFinishWaitsForAReaderSoTheFileAloneIsWhole) {
     EXPECT_FALSE(data.damaged) << data.note;
 }
 
-// A reader that never lets go: finish gives up after its bound and says which file still holds
-// the last commits, so the run does not claim a whole file it has not got.
-TEST(SessionStoreLock, AFinishHeldBackTooLongNamesTheWalStillHoldingCommits) {
-    TempDir dir;
+// A reader that never lets go: after its bound finish writes the session again whole and
+// gives it the name, so the file alone -- copied, archived, its -wal deleted -- is the whole
+// session. The reader keeps the snapshot it has.
+TEST(SessionStoreLock, AFinishHeldBackTooLongWritesTheSessionWholeUnderItsName) {
+    TempDir dir, elsewhere;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
     const SnapshotReader reader(w.path());
     ASSERT_TRUE(reader.ok());
-    writeTrial(w, 0);
-    ASSERT_TRUE(w.commit());
-    try {
-        w.finish({}, 0.3);
-        ADD_FAILURE() << "finish returned with the last commits only in the -wal";
-    } catch (const SessionError& e) {
-        const std::string what = e.what();
-        EXPECT_NE(what.find("its last commits are still only in '" + w.path() + "-wal'"), std::string::npos) << what;
+    for (int t = 0; t < 4; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());
     }
-    EXPECT_TRUE(fs::exists(w.path() + "-wal"));
+    w.finish({}, 0.3);
+    EXPECT_FALSE(fs::exists(w.path() + "-wal"));
+    EXPECT_FALSE(fs::exists(w.path() + "-shm"));
+    EXPECT_TRUE(reader.ok());
+    const std::string copy = (elsewhere.path() / "copy.warplab-session").string();
+    fs::copy_file(w.path(), copy);
+    const SessionData data = readSession(copy);
+    EXPECT_EQ(expectWholeTrials(data), 4);
+    EXPECT_TRUE(data.completed) << data.note;
+    EXPECT_FALSE(data.damaged) << data.note;
+    // No hidden file is left behind.
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
 }
 
 // The -wal deleted by another program mid-session, then the process killed: SQLite alone
@@ -887,11 +904,11 @@ TEST(SessionStoreKill, ADeletedWalIsNoticedAndLosesNoCommit) {
     EXPECT_EQ(expectWholeTrials(data), 6);
     EXPECT_FALSE(data.damaged) << data.note;
     ASSERT_EQ(data.flags.count("wal_replaced"), 1u);
-    EXPECT_NE(data.flags.at("wal_replaced").find("-wal was deleted or replaced"), std::string::npos);
+    EXPECT_NE(data.flags.at("wal_replaced").find("-wal was deleted"), std::string::npos);
 }
 
-// The session file itself moved away (a sync tool, a careless `mv`): the writer saves a whole
-// copy beside the old name and goes on there.
+// The session file itself moved away (a sync tool, a careless `mv`): the writer saves the whole
+// session under its name again and goes on there.
 TEST(SessionStore, AReplacedSessionFileIsSavedAgainAndTheSessionGoesOn) {
     TempDir dir;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
@@ -904,8 +921,10 @@ TEST(SessionStore, AReplacedSessionFileIsSavedAgainAndTheSessionGoesOn) {
     const auto notices = w.takeNotices();
     ASSERT_EQ(notices.size(), 1u);
     EXPECT_NE(notices[0].find("was deleted or replaced"), std::string::npos) << notices[0];
-    EXPECT_NE(w.path(), path);
-    EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
+    // The name was free again (its -wal and -shm, this writer's, went with the file): the
+    // session is saved under it.
+    EXPECT_EQ(w.path(), path);
+    EXPECT_TRUE(fs::exists(path));
     writeTrial(w, 2);
     w.finish();
     const SessionData data = readSession(w.path());
@@ -913,6 +932,122 @@ TEST(SessionStore, AReplacedSessionFileIsSavedAgainAndTheSessionGoesOn) {
     EXPECT_TRUE(data.completed) << data.note;
     EXPECT_EQ(data.flags.count("file_replaced"), 1u);
     EXPECT_TRUE(w.takeNotices().empty());  // each notice is given once
+}
+
+// Another file put in the session's place: the writer leaves it alone and saves the session
+// beside it.
+TEST(SessionStore, AFileInTheSessionsPlaceIsLeftAloneAndTheSessionSavedBesideIt) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    writeTrial(w, 0);
+    ASSERT_TRUE(w.commit());
+    fs::remove(path);
+    std::ofstream(path) << "someone else's file";
+    writeTrial(w, 1);
+    ASSERT_TRUE(w.commit());
+    ASSERT_EQ(w.takeNotices().size(), 1u);
+    EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
+    w.finish();
+    EXPECT_EQ(expectWholeTrials(readSession(w.path())), 2);
+    std::ifstream in(path);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "someone else's file");
+}
+
+// The live file overwritten in place -- same inode, so no rename shows it: an old copy put
+// back, another file copied over it, the file cut short. SQLite would go on writing into it
+// (ending in "database disk image is malformed", or a file whose copy reads "no complete
+// commit survives"). The writer notices before its next write, saves every commit written
+// before beside it, flags the session and goes on there.
+TEST(SessionStore, AFileOverwrittenInPlaceIsNoticedAndEveryCommitSavedBesideIt) {
+    struct Case {
+        const char* name;
+        std::function<void(const std::string& path, const std::string& oldCopy)> overwrite;
+    };
+    const auto putBytes = [](const std::string& path, const std::string& bytes) {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);  // same inode
+        out << bytes;
+    };
+    const auto bytesOf = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const std::vector<Case> cases = {
+        {"an old copy put back",
+         [&](const std::string& path, const std::string& old) { putBytes(path, bytesOf(old)); }},
+        {"another file copied over it",
+         [&](const std::string& path, const std::string&) { putBytes(path, std::string(5000, 'x')); }},
+        {"cut short",
+         [](const std::string& path, const std::string&) { fs::resize_file(path, fs::file_size(path) / 2); }},
+        {"emptied", [](const std::string& path, const std::string&) { fs::resize_file(path, 0); }},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        TempDir dir, elsewhere;
+        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+        const std::string path = w.path();
+        writeTrial(w, 0);
+        ASSERT_TRUE(w.commit());
+        const std::string old = (elsewhere.path() / "old.warplab-session").string();
+        fs::copy_file(path, old);
+        for (int t = 1; t < 4; ++t) {
+            writeTrial(w, t);
+            ASSERT_TRUE(w.commit());
+        }
+        struct stat before {};
+        ASSERT_EQ(::stat(path.c_str(), &before), 0);
+        c.overwrite(path, old);
+        struct stat after {};
+        ASSERT_EQ(::stat(path.c_str(), &after), 0);
+        ASSERT_EQ(before.st_ino, after.st_ino);  // in place
+        const std::string overwritten = bytesOf(path);
+
+        writeTrial(w, 4);
+        ASSERT_TRUE(w.commit());
+        const auto notices = w.takeNotices();
+        ASSERT_EQ(notices.size(), 1u);
+        EXPECT_NE(notices[0].find("overwritten in place"), std::string::npos) << notices[0];
+        EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
+        writeTrial(w, 5);
+        w.finish();
+        const SessionData data = readSession(w.path());
+        EXPECT_EQ(expectWholeTrials(data), 6);
+        EXPECT_TRUE(data.completed) << data.note;
+        EXPECT_FALSE(data.damaged) << data.note;
+        ASSERT_EQ(data.flags.count("file_overwritten"), 1u);
+        EXPECT_NE(data.flags.at("file_overwritten").find(w.path()), std::string::npos);
+        // What the other program put there stays as it put it, without our -wal beside it.
+        EXPECT_EQ(bytesOf(path), overwritten);
+        EXPECT_FALSE(fs::exists(path + "-wal"));
+    }
+}
+
+// The -wal emptied in place while a reader holds the last commits in it: the writer writes the
+// session whole again under its name, so a kill afterwards loses nothing.
+TEST(SessionStore, AWalEmptiedInPlaceIsNoticedAndTheSessionWrittenWholeAgain) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    const std::string path = w.path();
+    auto reader = std::make_unique<SnapshotReader>(path);
+    ASSERT_TRUE(reader->ok());
+    for (int t = 0; t < 4; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());
+    }
+    fs::resize_file(path + "-wal", 0);
+    writeTrial(w, 4);
+    ASSERT_TRUE(w.commit());
+    ASSERT_EQ(w.takeNotices().size(), 1u);
+    EXPECT_EQ(w.path(), path);
+    reader.reset();
+    // As a kill leaves it: the file alone.
+    TempDir elsewhere;
+    const std::string copy = (elsewhere.path() / "copy.warplab-session").string();
+    copySession(path, copy, kWhole, kNoWal);
+    const SessionData data = readSession(copy);
+    EXPECT_EQ(expectWholeTrials(data), 5);
+    EXPECT_FALSE(data.damaged) << data.note;
+    EXPECT_EQ(data.flags.count("wal_replaced"), 1u);
 }
 
 // Opening a FIFO blocks until someone writes to it: the read runs in a child, so a reader
@@ -1046,8 +1181,67 @@ TEST(SessionStoreDamage, DamageInTheWalIsReportedNamingWhatWasLost) {
     EXPECT_NE(data.note.find(" in the write-ahead log"), std::string::npos) << data.note;
     EXPECT_NE(data.note.find("; lost "), std::string::npos) << data.note;
 
-    // The reader still holds the last commits out of the file: finish says so.
-    EXPECT_THROW(w.finish({}, 0.1), SessionError);
+    // The reader still holds the last commits out of the file: finish writes the session whole.
+    w.finish({}, 0.1);
+    const SessionData finished = readSession(path);
+    EXPECT_TRUE(finished.completed) << finished.note;
+    EXPECT_EQ(expectWholeTrials(finished), kTrials);
+}
+
+// A -wal of a twin run -- same participant, seed, protocol and start time, so the same rows --
+// put beside a session file that a kill left: SQLite applies any -wal it finds, and its pages
+// read as this session's. Each session's commits chain to its own id, so the reader sees that
+// the -wal is not the file's and reads the file without it, keeping every commit it holds.
+TEST(SessionStoreDamage, AnotherSessionsWalIsNotTakenForThisOnes) {
+    for (const bool twinFlagged : {false, true}) {  // with a flag, the -wal holds the twin's header page
+        SCOPED_TRACE(twinFlagged ? "the -wal holds the twin's header" : "the -wal holds the twin's rows");
+        TempDir a, b, x;
+        SessionHeader header = sampleHeader();
+        header.startedAt = "2026-03-04T05:06:07.890Z";
+        SessionWriter first = SessionWriter::create(a.str(), header);
+        for (int t = 0; t < 5; ++t) {
+            writeTrial(first, t);
+            ASSERT_TRUE(first.commit());
+        }
+        SessionWriter twin = SessionWriter::create(b.str(), header);
+        const SnapshotReader holdsTwinsLog(twin.path());  // so its -wal keeps all its commits
+        ASSERT_TRUE(holdsTwinsLog.ok());
+        for (int t = 0; t < 3; ++t) {
+            if (twinFlagged) twin.flag("missed_frames", "trial " + std::to_string(t));
+            writeTrial(twin, t);
+            ASSERT_TRUE(twin.commit());
+        }
+        const std::string copy = (x.path() / "s.warplab-session").string();
+        fs::copy_file(first.path(), copy);
+        fs::copy_file(twin.path() + "-wal", copy + "-wal");
+        const SessionData data = readSession(copy);
+        EXPECT_TRUE(data.damaged) << data.note;
+        EXPECT_FALSE(data.completed);
+        EXPECT_NE(data.note.find(copy + "-wal is not this file's"), std::string::npos) << data.note;
+        EXPECT_EQ(expectWholeTrials(data), 5);
+        EXPECT_TRUE(data.flags.empty());
+    }
+}
+
+// A kill between a held-back finish's rename and its removal of the old -wal leaves the whole
+// finished file beside a stale -wal: the file alone is read, and it is complete.
+TEST(SessionStoreDamage, AFinishedFileBesideAStaleWalReadsComplete) {
+    TempDir dir, x;
+    SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+    auto reader = std::make_unique<SnapshotReader>(w.path());
+    for (int t = 0; t < 3; ++t) {
+        writeTrial(w, t);
+        ASSERT_TRUE(w.commit());
+    }
+    const std::string copy = (x.path() / "s.warplab-session").string();
+    fs::copy_file(w.path() + "-wal", copy + "-wal");  // the log before the finish
+    w.finish({}, 0.1);
+    reader.reset();
+    fs::copy_file(w.path(), copy);
+    const SessionData data = readSession(copy);
+    EXPECT_TRUE(data.completed) << data.note;
+    EXPECT_FALSE(data.damaged) << data.note;
+    EXPECT_EQ(expectWholeTrials(data), 3);
 }
 
 // A reader's snapshot can hold the checkpoint back, leaving commits only in the -wal; then a
@@ -1089,8 +1283,11 @@ TEST(SessionStoreDamage, TruncatedOrMissingWalKeepsWholeCommits) {
     EXPECT_LT(expectWholeTrials(data), kTrials);
     EXPECT_FALSE(data.completed);
     expectSame(data.header, sampleHeader());
-    // The reader still holds the last commits out of the file: finish says so.
-    EXPECT_THROW(w.finish({}, 0.1), SessionError);
+    // The reader still holds the last commits out of the file: finish writes the session whole.
+    w.finish({}, 0.1);
+    const SessionData finished = readSession(path);
+    EXPECT_TRUE(finished.completed) << finished.note;
+    EXPECT_EQ(expectWholeTrials(finished), kTrials);
 }
 
 // Garbage over whole pages: whatever survives, reading never crashes or throws anything but
@@ -1179,25 +1376,25 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
         path = w.path();
         w.finish();
     }
-    for (const int version : {3, 0, -1}) {
+    for (const int version : {4, 0, -1}) {
         execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
         const std::string error = errorOf(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
         EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"), std::string::npos) << error;
-        EXPECT_NE(error.find("reads session format versions 1 and 2."), std::string::npos) << error;
+        EXPECT_NE(error.find("reads session format versions 1, 2 and 3."), std::string::npos) << error;
     }
-    // The schema is checked against the file's own version: a version-2 file that says 1 lacks
+    // The schema is checked against the file's own version: a version-3 file that says 1 lacks
     // version 1's columns.
     relabel(path, 1);
     const std::string v1Error = errorOf(path);
     EXPECT_NE(v1Error.find("does not match the session format 1 schema"), std::string::npos) << v1Error;
     EXPECT_NE(v1Error.find("target_"), std::string::npos) << v1Error;
 
-    relabel(path, 2);
+    relabel(path, 3);
     EXPECT_EQ(errorOf(path), "");
     execSql(path, "ALTER TABLE frames DROP COLUMN kind");
     const std::string schemaError = errorOf(path);
-    EXPECT_NE(schemaError.find("does not match the session format 2 schema"), std::string::npos) << schemaError;
+    EXPECT_NE(schemaError.find("does not match the session format 3 schema"), std::string::npos) << schemaError;
     EXPECT_NE(schemaError.find("kind"), std::string::npos) << schemaError;
 }
 
@@ -1205,7 +1402,8 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
 
 // The serialisation docs/session-format.md spells out, computed here from the rows read back
 // and the field tables: a commit's checksum is FNV-1a 64 of the three tables' hashes, each over
-// its rows' fields in table order. Written independently of the store's own Checksum.
+// its rows' fields in table order, after the checksum of the commit before it (the header's
+// for the first). Written independently of the store's own Checksum.
 TEST(SessionStoreChecksum, FollowsTheDocumentedSerialisation) {
     TempDir dir;
     const std::string path = writeFinishedSession(dir.str(), 3);
@@ -1227,15 +1425,20 @@ TEST(SessionStoreChecksum, FollowsTheDocumentedSerialisation) {
               SQLITE_OK);
     std::size_t inputs = 0, frames = 0, events = 0;
     int commits = 0;
+    const auto headerChecksum = sqlRows(path, "SELECT value FROM meta WHERE key = 'header_checksum'");
+    ASSERT_EQ(headerChecksum.size(), 1u);
+    auto previous = static_cast<std::int64_t>(std::stoull(headerChecksum[0]["value"].get<std::string>()));
     while (sqlite3_step(s) == SQLITE_ROW) {
         const auto in = static_cast<std::size_t>(sqlite3_column_int64(s, 0));
         const auto fr = static_cast<std::size_t>(sqlite3_column_int64(s, 1));
         const auto ev = static_cast<std::size_t>(sqlite3_column_int64(s, 2));
         Fnv commit;
+        commit.integer(previous);
         commit.integer(static_cast<std::int64_t>(rowsHash(data.inputs, inputs, in)));
         commit.integer(static_cast<std::int64_t>(rowsHash(data.frames, frames, fr)));
         commit.integer(static_cast<std::int64_t>(rowsHash(data.events, events, ev)));
         EXPECT_EQ(static_cast<std::int64_t>(commit.hash), sqlite3_column_int64(s, 3)) << "commit " << commits + 1;
+        previous = sqlite3_column_int64(s, 3);
         inputs = in;
         frames = fr;
         events = ev;
@@ -1290,6 +1493,25 @@ TEST(SessionStoreV1, ReadsTheVersion1Fixture) {
     expectSharedColumns(sqlRows(v1Fixture(), "SELECT * FROM input ORDER BY frame"), data.inputs);
     expectSharedColumns(sqlRows(v1Fixture(), "SELECT * FROM frames ORDER BY frame"), data.frames);
     expectSharedColumns(sqlRows(v1Fixture(), "SELECT * FROM events ORDER BY id"), data.events);
+}
+
+// ============================ version 2 ============================
+// tests/data/v2-click-quick.warplab-session was written by the version-2 store (see
+// tests/data/README.md): no session id, commit checksums not chained.
+
+TEST(SessionStoreV2, ReadsTheVersion2FixtureAgainstItsUnchainedChecksums) {
+    const std::string fixture = std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v2-click-quick.warplab-session";
+    const SessionData data = readSession(fixture);
+    EXPECT_EQ(data.header.formatVersion, 2);
+    EXPECT_EQ(data.header.sessionId, "");
+    EXPECT_EQ(data.header.participant, "v2-fixture");
+    EXPECT_EQ(data.header.seed, 5u);
+    EXPECT_TRUE(data.completed);
+    EXPECT_EQ(data.note, "");
+    EXPECT_EQ(data.inputs.size(), 4699u);
+    EXPECT_EQ(data.frames.size(), 4699u);
+    EXPECT_EQ(data.events.size(), 164u);
+    expectSharedColumns(sqlRows(fixture, "SELECT * FROM input ORDER BY frame"), data.inputs);
 }
 
 TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {
@@ -1686,19 +1908,23 @@ TEST(SessionNames, MissingOrUnwritableResultsFailsBeforeCreatingAnything) {
     EXPECT_THROW(SessionWriter::create(file.string(), sampleHeader()), SessionError);
     EXPECT_THROW(SessionWriter::create("", sampleHeader()), SessionError);
 
+    // A folder without write permission: refused by the permission itself, for root too (whom
+    // the kernel lets write anywhere), since a lab that marks a folder read-only means it.
     const fs::path locked = root.path() / "locked";
     fs::create_directory(locked);
     fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
-    if (::access(locked.c_str(), W_OK) == 0) {
-        // Root writes anywhere; a folder the kernel itself refuses stands in.
-        EXPECT_THROW(SessionWriter::create("/proc/self", sampleHeader()), SessionError);
-    } else {
-        try {
-            SessionWriter::create(locked.string(), sampleHeader());
-            ADD_FAILURE() << "no error for an unwritable folder";
-        } catch (const SessionError& e) {
-            EXPECT_NE(std::string(e.what()).find(locked.string()), std::string::npos) << e.what();
-        }
+    try {
+        SessionWriter::create(locked.string(), sampleHeader());
+        ADD_FAILURE() << "no error for an unwritable folder";
+    } catch (const SessionError& e) {
+        EXPECT_NE(std::string(e.what()).find(locked.string()), std::string::npos) << e.what();
+    }
+    // One the kernel refuses whatever its permissions say.
+    try {
+        SessionWriter::create("/proc/self", sampleHeader());
+        ADD_FAILURE() << "no error for /proc/self";
+    } catch (const SessionError& e) {
+        EXPECT_NE(std::string(e.what()).find("Results folder '/proc/self'"), std::string::npos) << e.what();
     }
     EXPECT_TRUE(filesIn(locked).empty());
     EXPECT_EQ(filesIn(root.path()).size(), 2u);  // results.txt and locked, nothing else

@@ -13,11 +13,15 @@
 
 namespace warplab::session {
 
+// 3: a random per-session id in the header, and each commit's checksum chained to the one
+// before it (the first to the header's), so that commits cannot be mixed between sessions.
 // 2: game-neutral frame and event rows (game-specific fields in detail_json). Version 1 files
 // (shooter only) are still read: their shooter columns are folded into detail_json exactly as
-// the shooter writes them today, so they replay (docs/session-format.md, "Version 1").
-inline constexpr int kSessionFormatVersion = 2;
+// the shooter writes them today, so they replay (docs/session-format.md, "Version 1"); version
+// 2 files read with unchained checksums and no session id.
+inline constexpr int kSessionFormatVersion = 3;
 inline constexpr int kOldestSessionFormatVersion = 1;
+inline constexpr int kSessionIdSince = 3;
 
 // Bad or unreadable session files and results folders: one sentence naming the path.
 class SessionError : public std::runtime_error {
@@ -36,6 +40,10 @@ struct SessionHeader {
     int displayWidth = 1920, displayHeight = 1080;
     std::string startedAt;  // ISO 8601 UTC; when empty, create() stores the current time
     std::string player;  // "human", "bot:7", "replay:<path>"
+    // 32 hex digits drawn at random when the session is created (create() ignores what is
+    // passed): what tells one session from another, and a copy from a twin run with the same
+    // participant, seed and start time. "" in files older than format version 3.
+    std::string sessionId;
     int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 
@@ -123,8 +131,9 @@ public:
     using WaitCallback = std::function<void(double secondsWaited, WaitingFor what)>;
     void flush(const WaitCallback& waiting = {});
     // What the supervisor must hear at once, each returned once: the session file or its
-    // -wal deleted or replaced by another program while it was written (the writer then
-    // saves every commit under the name again, or beside it, and flags the session).
+    // -wal deleted, replaced or overwritten in place by another program while it was written
+    // (the writer then writes every commit again under the name, or beside it, and flags the
+    // session; see docs/session-format.md, "Files replaced under a running session").
     std::vector<std::string> takeNotices();
     // Marks the session for its analysts (meta key "flag:<name>", written with the next
     // commit; a later flag of the same name replaces it), e.g. "missed_frames". Not part of
@@ -134,11 +143,11 @@ public:
     // the file, leaving one self-contained file. Waits for the write lock like flush(). A
     // reader in a transaction (export, replay, a DB browser, a sqlite3 script) keeps the
     // commits made since it began out of the file; finish waits for it up to foldWaitS,
-    // calling waiting(seconds, WaitingFor::Readers), and then throws SessionError naming the
-    // -wal that still holds them: the file alone is not the whole session until it is folded.
-    // The -wal itself is removed where no other program has the file open.
-    // Adding or committing afterwards is a std::logic_error.
-    static constexpr double kFoldWaitS = 30.0;
+    // calling waiting(seconds, WaitingFor::Readers), and then writes the whole session again
+    // into a new file that takes the name (the reader keeps the one it has open). Either way
+    // the file alone is the whole session when finish returns. The -wal is removed where no
+    // other program has the file open. Adding or committing afterwards is a std::logic_error.
+    static constexpr double kFoldWaitS = 2.0;
     void finish(const WaitCallback& waiting = {}, double foldWaitS = kFoldWaitS);
 
 private:
