@@ -659,3 +659,22 @@ def test_anova_without_residual_variation_is_infinite_not_rounding_noise():
     assert stats.rm_anova(flat, ["a", "b"])["F"] is None
     noisy = {f"p{k}": {"a": 1.0 + k * 0.1, "b": 3.0 + (k % 2) * 0.5} for k in range(5)}
     assert math.isfinite(stats.rm_anova(noisy, ["a", "b"])["F"])
+
+
+def test_a_study_of_1700_participants_gets_readable_figures(tmp_path):
+    """One column per participant would make the hit-rate figure tens of thousands of pixels wide
+    (matplotlib refuses above 2^16): beyond a screenful of participants it summarises instead."""
+    import matplotlib.image
+
+    export = tmp_path / "export"
+    export.mkdir()
+    with_modes(export)
+    rows = [(f"P{k}", mode, 20 + (k * 7 + j * 5) % 40, 80)
+            for k in range(1, 1701) for j, mode in enumerate(("warp15to120", "conv15", "conv120"))]
+    write(export / "hitrates.csv", hitrate_lines(rows))
+    code, report = run_in_process(export, tmp_path / "out")
+    assert code == 0
+    for name in report["figures"]:
+        height, width = matplotlib.image.imread(tmp_path / "out" / name).shape[:2]
+        assert width <= 3000 and height <= 3000, (name, width, height)
+    assert len(report["games"]["shooter"]["participants"]) == 1700
