@@ -2,7 +2,7 @@
 """Statistics for a warplab study: from the CSVs `warplab export` writes to report.md, report.json
 and PNG figures.
 
-Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE]
+Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE] [--rating-scale MIN:MAX]
 
 A mode (the `mode` column of the other files) names a condition of the export's condition
 table: conditions.csv, or modes.csv in an export from before it (conditions.ConditionTable).
@@ -24,7 +24,7 @@ left out with a note if statsmodels is missing).
 
 Bad input (a missing folder or file, an empty file, a missing column, a cell that is not a
 count, hits above shots, a game with one participant, a condition the table gives no valid
-parts) ends in one sentence on stderr naming the file, column and line, and exit status 1.
+parts, a rating outside the scale, a statement without its rating_k column) ends in one sentence on stderr naming the file, column and line, and exit status 1.
 """
 import argparse
 import importlib
@@ -126,7 +126,7 @@ def choose_reference(requested, modes, table):
 def analyse_click(loaded, statements, requested_reference, table, game):
     """The matches' tables; `game` is the game whose sessions hold them (None when sessions.csv does
     not say, or names several)."""
-    matches, rating_columns, rows, _ = loaded
+    matches, rating_columns, rows = loaded[:3]
     labels = statements[0] if statements else {}
     measures = CLICK_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
     click = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
@@ -179,14 +179,15 @@ def analyse_click(loaded, statements, requested_reference, table, game):
     return click
 
 
-def analyse(export_dir, reference_mode):
+def analyse(export_dir, reference_mode, rating_scale=inputs.DEFAULT_RATING_SCALE):
     if not os.path.exists(export_dir):
         raise BadInput(f"{export_dir}: no such directory (expected the folder `warplab export` wrote).")
     if not os.path.isdir(export_dir):
         raise BadInput(f"{export_dir}: is not a directory (expected the folder `warplab export` wrote).")
     games, hitrate_rows = inputs.load_hitrates(export_dir)
-    matches = inputs.load_matches(export_dir)
+    matches = inputs.load_matches(export_dir, rating_scale)
     statements = inputs.load_statements(export_dir)
+    inputs.check_rating_columns(matches, statements)
     sessions = inputs.load_sessions(export_dir)
     records, source, table_notes = inputs.load_conditions(export_dir)
     described = inputs.load_games(export_dir)
@@ -294,6 +295,18 @@ def finite_or_none(value):
     return value
 
 
+def rating_scale(text):
+    """--rating-scale MIN:MAX, two whole numbers, MIN below MAX (as a protocol's ratings.min, ratings.max)."""
+    low, _, high = text.partition(":")
+    try:
+        low, high = int(low), int(high)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not MIN:MAX, two whole numbers such as 1:7")
+    if low >= high:
+        raise argparse.ArgumentTypeError(f"{text!r}: MIN must be below MAX")
+    return low, high
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, click-game tables and figures from "
                                                                  "the CSVs `warplab export` writes.")
@@ -304,9 +317,12 @@ def main(argv=None):
                         help=f"the condition (a mode of the matches) every other one is compared with (default "
                              f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
                              "upconverts, else the first)")
+    parser.add_argument("--rating-scale", default=inputs.DEFAULT_RATING_SCALE, type=rating_scale, metavar="MIN:MAX",
+                        help="the lowest and highest answer of the protocol's ratings (its ratings.min and "
+                             "ratings.max; default 1:7, the protocol's default); a rating outside it is refused")
     args = parser.parse_args(argv)
     try:
-        results = analyse(args.export_dir, args.reference_mode)
+        results = analyse(args.export_dir, args.reference_mode, args.rating_scale)
     except BadInput as e:
         print(f"analyze: {e}", file=sys.stderr)
         return 1

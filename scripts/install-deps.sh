@@ -21,6 +21,9 @@ packages=(
   # analysis scripts run with Debian's /usr/bin/python3 and these (statsmodels: the click
   # game's repeated-measures ANOVA)
   python3 python3-numpy python3-scipy python3-pandas python3-matplotlib python3-pytest python3-statsmodels
+  # R and exactRankTests: the analysis tests check the report's statistics against R's
+  # (analysis/tests/test_against_r.py) and run the docs' R snippets (test_doc_snippets.py)
+  r-base-core r-cran-exactranktests
 )
 
 missing=()

@@ -530,6 +530,14 @@ BAD_CASES = {
                          "line 2"),
     "bad rating": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,5,good"], "'rating_2'",
                    "line 2"),
+    # Yang et al.'s scale, 1 to 7 (the protocol's default): a 9 would move the mode's mean.
+    "rating above the scale": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,9,3"],
+                               "'rating_1'", "line 2, column 'rating_1' is 9, outside the rating scale 1 to 7"),
+    "rating below the scale": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,4,0"],
+                               "'rating_2'", "line 2, column 'rating_2' is 0, outside the rating scale 1 to 7"),
+    "rating_2 without rating_1": ("matches.csv", [MATCH_HEADER.replace(",rating_1", ""),
+                                                  "a,s,scored,true,0,conv15,,1,1,2,4,45,3"],
+                                  "'rating_1'", "line 1, the header, has column 'rating_2' but no column 'rating_1'"),
     # A count no study has: it passed every other check as a whole, finite number.
     "huge count": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10)]) + ["b,shooter,conv15,1e308,1,0,0"],
                    "'shots'", "more than any study counts"),
@@ -558,6 +566,44 @@ def test_bad_input_is_one_sentence_naming_file_and_column(tmp_path, capsys, case
     assert len(err.strip().splitlines()) == 1, err
     assert name in err and column in err and detail in err, err
     assert not (tmp_path / "out" / "report.json").exists()
+
+
+def drop_column(path, name):
+    lines = path.read_text().splitlines()
+    k = lines[0].split(",").index(name)
+    path.write_text("".join(",".join(c for i, c in enumerate(line.split(",")) if i != k) + "\n" for line in lines))
+
+
+def test_a_statement_without_its_rating_column_is_refused(tmp_path, capsys):
+    """ratings.csv lists statement 0 but matches.csv has no rating_1: the measure would vanish."""
+    write_click_export(tmp_path)
+    drop_column(tmp_path / "matches.csv", "rating_1")
+    drop_column(tmp_path / "matches.csv", "rating_2")
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert ("matches.csv: line 1, the header, has no column 'rating_1', but" in err
+            and "ratings.csv lists statement 0 (statement_index, line 2)" in err), err
+    assert not (tmp_path / "out" / "report.json").exists()
+
+
+def test_a_rating_outside_the_scale_is_refused_and_another_scale_can_be_given(tmp_path, capsys):
+    write_click_export(tmp_path)
+    lines = (tmp_path / "matches.csv").read_text().splitlines()
+    line = next(k for k, row in enumerate(lines) if row.startswith("P1,") and ",true," in row)
+    cells = lines[line].split(",")
+    cells[-2] = "9"  # rating_1 of a scored match
+    lines[line] = ",".join(cells)
+    (tmp_path / "matches.csv").write_text("\n".join(lines) + "\n")
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert f"matches.csv: line {line + 1}, column 'rating_1' is 9, outside the rating scale 1 to 7" in err, err
+    assert "--rating-scale" in err
+    # A protocol with ratings.min 0 and max 10 says so.
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "0:10"]) == 0
+    with pytest.raises(SystemExit):
+        analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "7:1"])
 
 
 def test_missing_folder_and_missing_hitrates(tmp_path, capsys):
@@ -613,3 +659,22 @@ def test_anova_without_residual_variation_is_infinite_not_rounding_noise():
     assert stats.rm_anova(flat, ["a", "b"])["F"] is None
     noisy = {f"p{k}": {"a": 1.0 + k * 0.1, "b": 3.0 + (k % 2) * 0.5} for k in range(5)}
     assert math.isfinite(stats.rm_anova(noisy, ["a", "b"])["F"])
+
+
+def test_a_study_of_1700_participants_gets_readable_figures(tmp_path):
+    """One column per participant would make the hit-rate figure tens of thousands of pixels wide
+    (matplotlib refuses above 2^16): beyond a screenful of participants it summarises instead."""
+    import matplotlib.image
+
+    export = tmp_path / "export"
+    export.mkdir()
+    with_modes(export)
+    rows = [(f"P{k}", mode, 20 + (k * 7 + j * 5) % 40, 80)
+            for k in range(1, 1701) for j, mode in enumerate(("warp15to120", "conv15", "conv120"))]
+    write(export / "hitrates.csv", hitrate_lines(rows))
+    code, report = run_in_process(export, tmp_path / "out")
+    assert code == 0
+    for name in report["figures"]:
+        height, width = matplotlib.image.imread(tmp_path / "out" / name).shape[:2]
+        assert width <= 3000 and height <= 3000, (name, width, height)
+    assert len(report["games"]["shooter"]["participants"]) == 1700

@@ -3,36 +3,20 @@
 themselves, read here with Python's sqlite3 -- a path independent of both warplab's C++ reader
 and the export under test.
 
-Needs the warplab binary: ctest passes it as WARPLAB_BINARY (tests/CMakeLists.txt). Run by hand,
-the test looks for build/app/warplab and is skipped, saying so, when there is none.
+Needs the warplab binary (warplab_binary.py says where it comes from).
 """
 import collections
 import csv
 import json
-import os
 import sqlite3
-import subprocess
 from pathlib import Path
 
 import pytest
 
+from warplab_binary import binary, run
+
 ROOT = Path(__file__).resolve().parents[2]
 PARTICIPANTS = ["P1", "P2", "P3"]
-
-
-def binary():
-    path = os.environ.get("WARPLAB_BINARY") or str(ROOT / "build" / "app" / "warplab")
-    if not os.path.exists(path):
-        if os.environ.get("WARPLAB_BINARY"):
-            pytest.fail(f"WARPLAB_BINARY={path} does not exist")
-        pytest.skip("no warplab binary (build it, or set WARPLAB_BINARY)")
-    return path
-
-
-def run(*args):
-    done = subprocess.run(list(map(str, args)), capture_output=True, text=True, timeout=300)
-    assert done.returncode == 0, f"{args}: {done.stderr}"
-    return done
 
 
 def scored_counts_from_sqlite(session):

@@ -1,6 +1,7 @@
 """The report's figures (PNG, matplotlib's Agg backend, so no display is needed).
 
-- hit rate per participant, one series per mode (seed 004 Figure 32);
+- hit rate per participant, one series per mode (seed 004 Figure 32); beyond
+  PER_PARTICIPANT_LIMIT participants, one box of the participants' hit rates per mode instead;
 - histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
@@ -17,6 +18,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 BIN_WIDTH = 0.05
+# Up to this many participants the hit-rate figure gives each a column (0.38 in, so 26 in and
+# about 2,900 px wide at most); beyond it the columns would be unreadable slivers, and at 1,700
+# participants wider than matplotlib draws (2^16 px), so each mode gets one box instead.
+PER_PARTICIPANT_LIMIT = 60
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
 
 
@@ -32,6 +37,9 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv);
     labels: each mode's legend entry (the mode's name where absent)."""
     labels = labels or {}
+    if len(participants) > PER_PARTICIPANT_LIMIT:
+        hit_rates_summary_figure(path, game, participants, modes, hit_rates, measure, palette, labels)
+        return
     fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
     x = np.arange(len(participants))
     # Modes side by side within a participant's column: equal hit rates (common with few shots)
@@ -50,6 +58,36 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     ax.set_title(f"{game}: hit rate per participant and mode")
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="best", framealpha=0.9)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def hit_rates_summary_figure(path, game, participants, modes, hit_rates, measure, palette, labels):
+    """One box per mode (quartiles, whiskers at 1.5 IQR) over every participant's hit rate, with
+    each participant a faint dot beside it: the spread of Figure 32 when a column each is too many."""
+    fig, ax = plt.subplots(figsize=(max(7.0, 1.1 * len(modes) + 3.0), 5.0), dpi=110)
+    rng = np.random.default_rng(0)  # the dots' jitter: the same figure on every run
+    for k, mode in enumerate(modes):
+        y = np.array([hit_rates[p][mode]["hit_rate"] for p in participants if mode in hit_rates[p]])
+        if len(y) == 0:
+            continue
+        ax.scatter(k + 0.3 + rng.uniform(-0.08, 0.08, len(y)), y, s=3, alpha=min(0.6, 30 / len(y) + 0.05),
+                   color=colour(mode, palette), linewidths=0)
+        box = ax.boxplot([y], positions=[k], widths=0.35, patch_artist=True, showfliers=False,
+                         medianprops={"color": "black"})
+        for patch in box["boxes"]:
+            patch.set_facecolor(colour(mode, palette))
+            patch.set_alpha(0.8)
+    ax.set_xticks(np.arange(len(modes)))
+    ax.set_xticklabels([labels.get(m, m) for m in modes], rotation=30, ha="right", fontsize=8)
+    ax.set_xlim(-0.6, len(modes) - 0.2)
+    ax.set_ylim(0, 1.02)
+    ax.set_xlabel("mode")
+    ax.set_ylabel(f"hit rate ({measure})")
+    ax.set_title(f"{game}: hit rate per mode over {len(participants)} participants (box: quartiles; dots: "
+                 "participants)", fontsize=10)
+    ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)

@@ -38,6 +38,10 @@ CONDITION_RECORD = ("condition", "description", "render_hz", "lag_frames", "adde
                     "scene_latency_max_ms", "refresh_hz", "game", "upconverts")
 GAMES_REQUIRED = ["game", "hits_are", "shots_are"]
 RATING_COLUMN = re.compile(r"rating_(\d+)$")
+# The protocol's default ratings.min and ratings.max, Yang et al.'s 1 (strongly disagree) to 7
+# (strongly agree), seed 000 §8. The export does not carry a protocol's own scale, so a study
+# that set another one says so on the command line (analyze --rating-scale).
+DEFAULT_RATING_SCALE = (1, 7)
 
 
 class BadInput(Exception):
@@ -45,12 +49,14 @@ class BadInput(Exception):
 
 
 class Table:
-    """A CSV's header and its records, each a dict with the record's first line in `_line`."""
+    """A CSV's header (on line `header_line`) and its records, each a dict with the record's first
+    line in `_line`."""
 
-    def __init__(self, path, header, records):
+    def __init__(self, path, header, records, header_line=1):
         self.path = path
         self.header = header
         self.records = records
+        self.header_line = header_line
 
 
 def read_table(path, required):
@@ -94,7 +100,7 @@ def read_table(path, required):
     for column in required:
         if column not in header:
             raise BadInput(f"{path}: line {header_line}, the header, is missing column '{column}'.")
-    return Table(path, header, records)
+    return Table(path, header, records, header_line)
 
 
 def text(table, record, column):
@@ -185,19 +191,27 @@ def load_hitrates(export_dir):
     return games, len(table.records)
 
 
-def load_matches(export_dir):
+def load_matches(export_dir, rating_scale=DEFAULT_RATING_SCALE):
     """None without matches.csv; else (scored match records, rating columns, rows in the file, the
-    `session` of every row).
+    `session` of every row, the table).
 
     A scored record: participant, mode, green_hits, red_hits, misses and `ratings`, a list with one
-    value or None per rating column, in column order rating_1, rating_2, ...
+    value or None per rating column, in column order rating_1, rating_2, ... The columns run from
+    rating_1 without a gap (rating_k answers statement k), and a scored rating lies on
+    rating_scale, (lowest, highest), both ends included.
     """
     path = os.path.join(export_dir, MATCHES)
     if not os.path.exists(path):
         return None
     table = read_table(path, MATCHES_REQUIRED)
     numbered = sorted((int(m.group(1)), name) for name in table.header if (m := RATING_COLUMN.match(name)))
+    for expected, (k, name) in enumerate(numbered, start=1):
+        if k != expected:
+            raise BadInput(f"{path}: line {table.header_line}, the header, has column '{name}' but no column "
+                           f"'rating_{expected}' (rating_k answers statement k, so the columns run from rating_1 "
+                           "without a gap).")
     rating_columns = [name for _, name in numbered]
+    low, high = rating_scale
     optional_numeric = [c for c in ("clicks", "duration_s") if c in table.header]
     scored = []
     sessions = {record.get("session", "") for record in table.records}
@@ -210,23 +224,49 @@ def load_matches(export_dir):
             "green_hits": number(table, record, "green_hits", integer=True),
             "red_hits": number(table, record, "red_hits", integer=True),
             "misses": number(table, record, "misses", integer=True),
-            "ratings": [number(table, record, c, optional=True) for c in rating_columns],
+            "ratings": [rating(table, record, c, low, high) for c in rating_columns],
         }
         for column in optional_numeric:
             number(table, record, column, optional=True)
         scored.append(match)
-    return scored, rating_columns, len(table.records), sessions
+    return scored, rating_columns, len(table.records), sessions, table
+
+
+def rating(table, record, column, low, high):
+    """A rating cell: None when empty (the session ended before it), else a number on the scale."""
+    value = number(table, record, column, optional=True)
+    if value is not None and not low <= value <= high:
+        raise BadInput(f"{table.path}: line {record['_line']}, column '{column}' is {record[column].strip()}, "
+                       f"outside the rating scale {low} to {high} (the protocol's default ratings.min and "
+                       "ratings.max; for a protocol with others, pass --rating-scale MIN:MAX).")
+    return value
+
+
+def check_rating_columns(matches, statements):
+    """Every statement ratings.csv lists has its rating_k column in matches.csv: without it the
+    statement's measure would silently drop out of the report."""
+    if matches is None or statements is None:
+        return
+    table, present = matches[4], set(matches[1])
+    _, _, first_lines, ratings_path = statements
+    for column, line in sorted(first_lines.items()):
+        if f"rating_{column}" not in present:
+            raise BadInput(f"{table.path}: line {table.header_line}, the header, has no column 'rating_{column}', "
+                           f"but {ratings_path} lists statement {column - 1} (statement_index, line {line}), which "
+                           f"rating_{column} answers.")
 
 
 def load_statements(export_dir):
-    """None without ratings.csv; else ({rating column number k+1: statement text}, notes)."""
+    """None without ratings.csv; else ({rating column number k+1: statement text}, notes,
+    {rating column number: the line that first lists the statement}, the file's path)."""
     path = os.path.join(export_dir, RATINGS)
     if not os.path.exists(path):
         return None
     table = read_table(path, RATINGS_REQUIRED)
-    texts = {}
+    texts, first_lines = {}, {}
     for record in table.records:
         index = number(table, record, "statement_index", integer=True)
+        first_lines.setdefault(index + 1, record["_line"])
         counts = texts.setdefault(index + 1, {})
         statement = record["statement"]
         counts[statement] = counts.get(statement, 0) + 1
@@ -238,7 +278,7 @@ def load_statements(export_dir):
             others = "; ".join(repr(t) for t, _ in ordered[1:])
             notes.append(f"ratings.csv gives statement {column - 1} more than one text; the table uses the most "
                          f"frequent, {ordered[0][0]!r} (also seen: {others}).")
-    return labels, notes
+    return labels, notes, first_lines, path
 
 
 def load_sessions(export_dir):
