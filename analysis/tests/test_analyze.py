@@ -201,6 +201,19 @@ def test_one_mode_games_and_missing_modes(tmp_path):
     assert "Only one mode (conv60): no pairs to test." in md
 
 
+
+def test_a_mode_played_without_a_shot_has_no_rate_and_enters_no_test(tmp_path):
+    # hitrates.csv has a row for every participant x mode run; one without a click (shots 0, an
+    # empty hit_rate) is as if the participant lacked the mode: no 0/0, no rate of 0 in a mean.
+    rows = [("a", "warp15to120", 5, 10), ("a", "conv15", 3, 10), ("b", "warp15to120", 4, 10),
+            ("b", "conv15", 5, 10), ("c", "warp15to120", 6, 10)]
+    write(with_modes(tmp_path) / "hitrates.csv", hitrate_lines(rows) + ["c,shooter,conv15,0,0,0,"])
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    test = sign_test(report, "warp15to120", "conv15")
+    assert test["participants"] == 2 and set(test["differences"]) == {"a", "b"}
+    assert "conv15" not in report["games"]["shooter"]["hit_rates"]["c"]
+
 # The click game: two scored matches per participant and mode, a practice match that must not
 # count, two rating statements; P5 lacks conv15 (paired tests use whom they can, the ANOVA drops P5).
 MODES = ["bireproj15to60", "conv60", "conv15"]
@@ -519,8 +532,8 @@ BAD_CASES = {
                  "negative"),
     "hits above shots": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10), ("b", "conv15", 11, 10)]), "'hits'",
                          "line 3"),
-    "zero shots": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10)]) + ["b,shooter,conv15,0,0,0,"], "'shots'",
-                   "line 3"),
+    "hits with zero shots": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10)]) + ["b,shooter,conv15,0,1,0,"],
+                             "'hits'", "line 3"),
     "one participant": ("hitrates.csv", hitrate_lines([("a", "conv15", 3, 10), ("a", "conv60", 5, 10)]),
                         "'participant'", "at least two participants"),
     "no rows": ("hitrates.csv", [HITRATES_HEADER], "hitrates.csv", "no data rows"),

@@ -173,8 +173,6 @@ def load_hitrates(export_dir):
         for column in optional_numeric:
             number(table, record, column, optional=True)
         line = record["_line"]
-        if shots == 0:
-            raise BadInput(f"{table.path}: line {line}, column 'shots' is 0, so there is no hit rate.")
         if hits > shots:
             raise BadInput(f"{table.path}: line {line}, column 'hits' ({hits}) exceeds column 'shots' ({shots}).")
         key = (game, participant, mode)
@@ -182,6 +180,8 @@ def load_hitrates(export_dir):
             raise BadInput(f"{table.path}: line {line}, column 'participant': {participant!r} has a second row "
                            f"for game {game!r} and mode {mode!r} (the first is on line {first_seen[key]}).")
         first_seen[key] = line
+        if shots == 0:
+            continue  # a mode played without a shot or click: it ran, but has no rate to compare
         games.setdefault(game, {}).setdefault(participant, {})[mode] = (hits, shots)
     for game, participants in games.items():
         if len(participants) < 2:

@@ -216,8 +216,14 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
              else
                  f.empty();
          }},
+        // A mode played without a shot or click has no rate: an empty cell (NA), never 0/0.
         {"hit_rate",
-         [](F& f, const R& r) { f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots)); }},
+         [](F& f, const R& r) {
+             if (r.tally.shots == 0)
+                 f.empty();
+             else
+                 f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots));
+         }},
     };
     return columns;
 }
@@ -459,6 +465,9 @@ private:
             t.timeouts += s.timeout;
         }
         for (const auto& m : results.matches) {
+            // A scored match without a click still ran its mode: hitrates.csv has its row, with 0
+            // clicks, so that every participant x mode the study ran is there.
+            if (m.scoredPhase) tallies_.try_emplace({participant, gameName, m.mode});
             if (!m.scoredPhase && !options_.allPhases) continue;
             for (const auto& r : m.ratings) {
                 ratingColumns_ = std::max(ratingColumns_, r.statementIndex + 1);

@@ -216,29 +216,33 @@ std::vector<physics::Sphere> ClickGame::depictedSpheres(const condition::Schedul
         for (auto& s : spheres) s.position += s.velocity * dt;
         return spheres;
     };
-    auto blend = [](const Spheres& before, const Spheres& after, double a, double spanS) {
-        // A sphere only one of the I-frames has (clicked away, or newly entered) is shown from
-        // the nearer one.
+    const WorldDepiction d =
+        depictWorld(schedule_->mode(), f, {matchStart_, protocol_.refreshHz}, WorldClock::Schedule);
+    // A B-frame shows the world of the instant it depicts (the schedule's sceneTime), late by
+    // the interpolation lag and no more: a sphere only one of the I-frames has (clicked away, or
+    // newly entered) is shown as that instant's world has it, there or gone, as the shooter's
+    // target is. (Shown from the nearer I-frame instead, a clicked sphere would stay up to half
+    // an I-period past the depicted instant, past the latency the schedule gives.)
+    const std::optional<Spheres> then = d.how == Depicted::Interpolated ? at(d.depictedFrame) : std::nullopt;
+    auto blend = [&then](const Spheres& before, const Spheres& after, double a, double spanS) {
+        auto in = [](const Spheres& list, auto id) {
+            return std::find_if(list.begin(), list.end(), [&](const auto& o) { return o.id == id; });
+        };
         Spheres out;
         for (const auto& s : before) {
-            const auto other = std::find_if(after.begin(), after.end(), [&](const auto& o) { return o.id == s.id; });
-            if (other == after.end()) {
-                if (a < 0.5) out.push_back(s);
-                continue;
-            }
+            const auto other = in(after, s.id);
+            if (other == after.end()) continue;
             physics::Sphere m = s;
             m.position = s.position + (other->position - s.position) * a;
             m.velocity = (other->position - s.position) / spanS;
             out.push_back(m);
         }
-        for (const auto& s : after)
-            if (a >= 0.5 && std::none_of(before.begin(), before.end(), [&](const auto& o) { return o.id == s.id; }))
-                out.push_back(s);
+        if (then)
+            for (const auto& s : *then)
+                if (in(before, s.id) == before.end() || in(after, s.id) == after.end()) out.push_back(s);
         std::sort(out.begin(), out.end(), [](const auto& x, const auto& y) { return x.id < y.id; });
         return out;
     };
-    const WorldDepiction d =
-        depictWorld(schedule_->mode(), f, {matchStart_, protocol_.refreshHz}, WorldClock::Schedule);
     return *depictedState<Spheres>(d, at, move, blend);
 }
 

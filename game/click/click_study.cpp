@@ -4,6 +4,7 @@
 #include <cstring>
 #include <map>
 #include <utility>
+#include <vector>
 
 #include "click/click_bot.h"
 #include "event_detail.h"
@@ -53,6 +54,10 @@ public:
         out.measure = {"green hits", "clicks"};
         // Ratings follow their match's "match" event; match indices are unique in a session.
         std::map<int, std::size_t> matchAt;
+        // A click counts once its match has ended: a match a session was cut short in has no
+        // result (no matches.csv row), so its clicks, from part of a match, stay out of shots.csv
+        // and hitrates.csv as well, as a shooter trial without its shot does.
+        std::map<int, std::vector<ShotResult>> unfinished;
         for (const auto& e : events) {
             const EventDetail d(e.detailJson);
             if (e.type == "click") {
@@ -68,8 +73,12 @@ public:
                 r.hit = r.outcome == "green";
                 r.time = e.eventTime;
                 r.errorPx = d.number("nearest_green_px");
-                out.shots.push_back(std::move(r));
+                unfinished[e.trial].push_back(std::move(r));
             } else if (e.type == "match") {
+                if (const auto clicks = unfinished.find(e.trial); clicks != unfinished.end()) {
+                    for (auto& r : clicks->second) out.shots.push_back(std::move(r));
+                    unfinished.erase(clicks);
+                }
                 MatchResult m;
                 m.round = e.phase;
                 m.scoredPhase = roundScored(e.phase);

@@ -1,6 +1,9 @@
 #include "game/registry.h"
 
+#include <optional>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "click/click_study.h"
 #include "shooter/shooter_study.h"
@@ -39,6 +42,24 @@ std::vector<RegisteredGame> allGames() {
     return games;
 }
 
+// The other known game whose protocol `jsonText` is, but for its "game" field: the file parses
+// as that game's once its "game" names it. Only a file with fields some game has but not every
+// one can say so; one of only shared fields (a bare header) is any game's.
+std::optional<std::string> gameOfFields(const std::string& jsonText, const std::string& named,
+                                        const std::vector<RegisteredGame>& games, const std::string& sourceName) {
+    if (!protocol::hasGameFields(jsonText)) return std::nullopt;
+    nlohmann::ordered_json document = nlohmann::ordered_json::parse(jsonText, nullptr, false);
+    for (const auto& g : games) {
+        if (g.name == named) continue;
+        document["game"] = g.name;
+        try {
+            g.parse(document.dump(), sourceName);
+            return g.name;
+        } catch (const std::exception&) {}
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<std::string> gameNames() {
@@ -58,8 +79,22 @@ void registerGame(const std::string& name, StudyParser parse) {
 std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string& sourceName) {
     const std::string game = protocol::protocolGame(jsonText, sourceName);
     const std::vector<RegisteredGame> games = allGames();
-    for (const auto& g : games)
-        if (game == g.name) return g.parse(jsonText, sourceName);
+    for (const auto& g : games) {
+        if (game != g.name) continue;
+        try {
+            return g.parse(jsonText, sourceName);
+        } catch (const protocol::ProtocolError&) {
+            // A shooter file with "game": "click" fails the click parser on a field or on its
+            // format_version, neither of which is what is wrong with it.
+            const auto other = gameOfFields(jsonText, game, games, sourceName);
+            if (!other) throw;
+            const auto version = nlohmann::ordered_json::parse(jsonText, nullptr, false).at("format_version");
+            throw protocol::ProtocolError("protocol '" + sourceName + "': game is \"" + game +
+                                          "\", but format_version " + version.dump() + " and the other fields are a " +
+                                          *other + " protocol's (the file reads as one with \"game\": \"" + *other +
+                                          "\")");
+        }
+    }
     std::string known;
     for (const auto& g : games) known += std::string(known.empty() ? "" : ", ") + "\"" + g.name + "\"";
     throw protocol::ProtocolError("protocol '" + sourceName + "': game \"" + game +

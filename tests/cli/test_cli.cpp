@@ -634,6 +634,19 @@ TEST(CliClick, MalformedClickProtocolsAreNamed) {
     const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.output, "\"pong\"")) << r.output;
+    // A shooter file whose "game" was changed to click: the game field is named, not the
+    // shooter's format_version 3 that no click protocol has.
+    std::ifstream kim(std::string(WARPLAB_SOURCE_DIR) + "/protocol/latewarp-kim-quick.json");
+    std::string shooter((std::istreambuf_iterator<char>(kim)), std::istreambuf_iterator<char>());
+    const std::string game = "\"game\": \"shooter\"";
+    ASSERT_NE(shooter.find(game), std::string::npos);
+    shooter.replace(shooter.find(game), game.size(), "\"game\": \"click\"");
+    std::ofstream(dir + "/p.json") << shooter;
+    const auto wrongGame = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    EXPECT_EQ(wrongGame.status, 1);
+    EXPECT_TRUE(contains(wrongGame.output, "p.json': game is \"click\", but format_version 3")) << wrongGame.output;
+    EXPECT_TRUE(contains(wrongGame.output, "shooter protocol's")) << wrongGame.output;
+    EXPECT_EQ(wrongGame.lines(), 1) << wrongGame.output;
     EXPECT_TRUE(sessionIn(dir).empty()) << "a session was started from a bad protocol";
 }
 

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "condition/readme_latency_table.h"
 #include "condition/schedule.h"
 
 namespace warplab::condition {
@@ -88,40 +89,19 @@ TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
 
 // The README's latency cells are the schedule's ranges: each preset's row gives its view and
 // scene latency as "A – B ms" (or "same as view"), which must be what `warplab conditions`
-// prints for it at 120 Hz, to the 0.1 ms the README rounds to.
+// prints for it at 120 Hz, to the 0.1 ms the README rounds to. (tests/game/test_click_game.cpp
+// holds the same cells to a real run.)
 TEST(Modes, ReadmeLatencyCellsAreTheSchedulesRanges) {
-    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/README.md");
-    ASSERT_TRUE(doc.good());
-    bool inSection = false;
-    int rows = 0;
-    for (std::string line; std::getline(doc, line);) {
-        if (line.rfind("## ", 0) == 0) inSection = line == "## Modes and their latency";
-        if (!inSection || line.rfind("| `", 0) != 0) continue;
-        std::vector<std::string> cells;
-        for (std::size_t at = 1, next; (next = line.find(" |", at)) != std::string::npos; at = next + 2)
-            cells.push_back(line.substr(at + 1, next - at - 1));
-        ASSERT_GE(cells.size(), 6u) << line;
-        const std::string id = cells[0].substr(1, cells[0].find('`', 1) - 1);
-        // "A – B ms ..." -> {A, B}
-        auto range = [&](const std::string& cell) {
-            double a = -1, b = -1;
-            const std::size_t dash = cell.find(" – ");
-            EXPECT_NE(dash, std::string::npos) << id << ": " << cell;
-            if (dash == std::string::npos) return std::pair{a, b};
-            a = std::stod(cell.substr(0, dash));
-            b = std::stod(cell.substr(dash + 5));  // " – " is 5 bytes in UTF-8
-            return std::pair{a, b};
-        };
-        const auto view = range(cells[4]);
-        const auto scene = cells[5] == "same as view" ? view : range(cells[5]);
-        const ConditionSummary s = summarize(preset(id), 120.0);
-        EXPECT_NEAR(view.first, s.viewS.min * 1000, 0.05) << id;
-        EXPECT_NEAR(view.second, s.viewS.max * 1000, 0.05) << id;
-        EXPECT_NEAR(scene.first, s.sceneS.min * 1000, 0.05) << id;
-        EXPECT_NEAR(scene.second, s.sceneS.max * 1000, 0.05) << id;
-        ++rows;
+    const readme::ReadmeLatencyTable table = readme::readmeLatencyTable();
+    EXPECT_EQ(table.displayRatesHz.count(120.0), 1u) << "the table is for a 120 Hz display";
+    for (const readme::ReadmeLatencyRow& row : table.rows) {
+        const ConditionSummary s = summarize(preset(row.id), 120.0);
+        EXPECT_NEAR(row.viewMinMs, s.viewS.min * 1000, 0.05) << row.id;
+        EXPECT_NEAR(row.viewMaxMs, s.viewS.max * 1000, 0.05) << row.id;
+        EXPECT_NEAR(row.sceneMinMs, s.sceneS.min * 1000, 0.05) << row.id;
+        EXPECT_NEAR(row.sceneMaxMs, s.sceneS.max * 1000, 0.05) << row.id;
     }
-    EXPECT_EQ(rows, static_cast<int>(presets().size()));
+    EXPECT_EQ(table.rows.size(), presets().size());
 }
 
 TEST(Modes, CheckModeNamesTheProblem) {

@@ -527,6 +527,100 @@ TEST(Export, TwinSessionsAreTwoSessionsAndOnlyACopyIsADuplicate) {
     EXPECT_EQ(status["zz-copy.warplab-session"], "duplicate");
 }
 
+// A session's header under another participant id, with the events given.
+std::string rewriteEvents(const session::SessionData& data, const std::string& dir, const std::string& participant,
+                          const std::vector<session::EventRecord>& events) {
+    session::SessionHeader header = data.header;
+    header.participant = participant;
+    header.startedAt = "";
+    session::SessionWriter w = session::SessionWriter::create(dir, header);
+    for (const auto& e : events) w.addEvent(e);
+    w.finish();
+    return w.path();
+}
+
+bool scoredMatch(const session::EventRecord& e) {
+    return e.type == "match" && nlohmann::json::parse(e.detailJson).at("scored").get<bool>();
+}
+
+// A participant who played a scored match without clicking still ran its mode: hitrates.csv
+// has that participant x mode, with 0 clicks, 0 hits and no rate (an empty cell, NA in R), so
+// every participant x mode run appears, and none has a rate of 0/0.
+TEST(Export, AModePlayedWithoutAClickHasAHitRateRowWithoutARate) {
+    const std::string source = scratch("no-clicks/source"), results = scratch("no-clicks/results");
+    const auto data = session::readSession(headless("click-quick.json", "Z", source, 8));
+    const auto first = std::find_if(data.events.begin(), data.events.end(), scoredMatch);
+    ASSERT_NE(first, data.events.end());
+    const int trial = first->trial;
+    const std::string mode = first->mode;
+    std::vector<session::EventRecord> events;
+    int dropped = 0;
+    std::set<std::string> modes;
+    for (auto e : data.events) {
+        if (scoredMatch(e)) modes.insert(e.mode);
+        if (e.type == "click" && e.trial == trial) {
+            ++dropped;
+            continue;
+        }
+        if (e.type == "match" && e.trial == trial) {
+            auto detail = nlohmann::json::parse(e.detailJson);
+            for (const char* count : {"green_hits", "red_hits", "misses", "clicks"}) detail[count] = 0;
+            e.detailJson = detail.dump();
+        }
+        events.push_back(e);
+    }
+    ASSERT_GT(dropped, 0);
+    rewriteEvents(data, results, "Z", events);
+    const std::string out = scratch("no-clicks/out");
+    exportQuietly(results, out);
+    std::map<std::string, Row> byMode;
+    for (const auto& row : readCsv(out + "/hitrates.csv")) byMode[row.at("mode")] = row;
+    EXPECT_EQ(byMode.size(), modes.size()) << "one row per mode the scored round ran";
+    ASSERT_EQ(byMode.count(mode), 1u) << mode << " has no row";
+    const Row& row = byMode[mode];
+    EXPECT_EQ(row.at("shots"), "0");
+    EXPECT_EQ(row.at("hits"), "0");
+    EXPECT_EQ(row.at("hit_rate"), "");
+    EXPECT_EQ(row.at("timeouts"), "");
+}
+
+// A click-game match a session was cut short in never ended: it has no result, so no
+// matches.csv row, and its clicks are in neither shots.csv nor hitrates.csv, which both count
+// exactly the clicks of the matches matches.csv lists.
+TEST(Export, AClickMatchThatNeverEndedLeavesItsClicksOut) {
+    const std::string source = scratch("cut-match/source"), results = scratch("cut-match/results");
+    const auto data = session::readSession(headless("click-quick.json", "C", source, 9));
+    // Cut just before the second scored match ends, after some of its clicks.
+    std::vector<std::size_t> ends;
+    for (std::size_t i = 0; i < data.events.size(); ++i)
+        if (scoredMatch(data.events[i])) ends.push_back(i);
+    ASSERT_GE(ends.size(), 2u);
+    const std::size_t cut = ends[1];
+    const int cutTrial = data.events[cut].trial;
+    const auto clicksOfCut = std::count_if(data.events.begin(), data.events.begin() + static_cast<std::ptrdiff_t>(cut),
+                                           [&](const auto& e) { return e.type == "click" && e.trial == cutTrial; });
+    ASSERT_GT(clicksOfCut, 0);
+    rewrite(data, results, "C", cut, false);
+
+    exporter::ExportOptions options;
+    options.includeIncomplete = true;
+    const std::string out = scratch("cut-match/out");
+    exportQuietly(results, out, options);
+    std::set<std::string> listed;
+    std::map<std::string, int> clicksByMode;
+    for (const auto& m : readCsv(out + "/matches.csv")) {
+        listed.insert(m.at("match"));
+        clicksByMode[m.at("mode")] += std::stoi(m.at("clicks"));
+    }
+    EXPECT_EQ(listed.count(std::to_string(cutTrial)), 0u);
+    const auto shots = readCsv(out + "/shots.csv");
+    ASSERT_FALSE(shots.empty()) << "the first scored match ended and counts";
+    for (const auto& s : shots) EXPECT_EQ(listed.count(s.at("trial")), 1u) << "a click of match " << s.at("trial");
+    std::map<std::string, int> hitrateClicks;
+    for (const auto& row : readCsv(out + "/hitrates.csv")) hitrateClicks[row.at("mode")] = std::stoi(row.at("shots"));
+    EXPECT_EQ(hitrateClicks, clicksByMode);
+}
+
 TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
     const std::string results = scratch("ids/results"), source = scratch("ids/source");
     const auto data = session::readSession(headless("shooter-quick.json", "x", source, 5));

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "click/click_bot.h"
+#include "condition/readme_latency_table.h"
 #include "click/click_game.h"
 #include "game/screen.h"
 #include "protocol/click_protocol.h"
@@ -179,6 +180,79 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
             EXPECT_DOUBLE_EQ(f.cursor.x - before.x, 40.0 * p.cursorPixelsPerCount) << mode;
         }
     }
+}
+
+// Moves the cursor onto a moving green sphere and clicks (defined below).
+FrameInput clickOnGreen(const ClickGame& game, const protocol::ClickProtocol& p);
+
+// The README's latency table in a real run, at each display rate its section names (the
+// table's 120 Hz, the click game's 60 Hz), for every mode that rate can run. A cursor step comes
+// with frame v's input: it happened in (v - 1, v], so when frame k first shows it, it is k - v
+// to k - v + 1 frames old, and over every phase of the cycle those give the row's view latency,
+// least and most. A click at v takes its sphere from the world after v's sample: the change
+// lies in (v, v + 1], and the first frame k without the sphere shows it k - v - 1 to k - v
+// frames late, within the row's scene latency and at worst its maximum. (The scene minimum is a
+// change of motion, which a B-frame shows as it interpolates towards the later I-frame; a
+// sphere that is gone is gone from the depicted instant on.)
+TEST(ClickGame, ReadmeLatencyTableHoldsInARealRun) {
+    const readme::ReadmeLatencyTable table = readme::readmeLatencyTable();
+    EXPECT_EQ(table.displayRatesHz, (std::set<double>{60.0, 120.0}));
+    int checked = 0;
+    for (const double refresh : table.displayRatesHz) {
+        const double frameMs = 1000.0 / refresh;
+        for (const readme::ReadmeLatencyRow& row : table.rows) {
+            auto p = quick();
+            p.refreshHz = refresh;
+            p.modes = {row.id};
+            p.rounds = {{"only", true, 1}};
+            if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
+            SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
+            ++checked;
+
+            std::int64_t viewLo = 1 << 30, viewHi = -1;
+            for (int phase = 0; phase < 16; ++phase) {
+                ClickGame game(p, 2, kDisplay);
+                ShownFrame shown = startFirstMatch(game);
+                for (int i = 0; i < 40 + phase; ++i) shown = game.step({});
+                const glm::dvec2 before = shown.cursor;
+                const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
+                ShownFrame f = stepFrame;
+                for (int i = 0; i < 100 && f.cursor == before; ++i) f = game.step({});
+                ASSERT_NE(f.cursor, before);
+                viewLo = std::min(viewLo, f.frame - stepFrame.frame);
+                viewHi = std::max(viewHi, f.frame - stepFrame.frame + 1);
+            }
+            EXPECT_NEAR(static_cast<double>(viewLo) * frameMs, row.viewMinMs, 0.05);
+            EXPECT_NEAR(static_cast<double>(viewHi) * frameMs, row.viewMaxMs, 0.05);
+
+            p.matchS = 8;
+            ClickGame game(p, 4, kDisplay);
+            startFirstMatch(game);
+            std::map<std::int64_t, std::int64_t> clickedAt, lastShown;  // by sphere id: frames
+            std::int64_t end = 0;
+            for (int i = 0; i < std::lround(p.matchS * refresh) - 10 && game.world() != nullptr; ++i) {
+                const ShownFrame shown = game.step(i % 7 == 3 ? clickOnGreen(game, p) : FrameInput{});
+                end = shown.frame;
+                for (const auto& o : shown.scene.objects) lastShown[o.id - scene::kIdFirstSphere] = shown.frame;
+                for (const auto& e : game.takeEvents())
+                    if (e.type == "click" && detail(e)["scored"] == "green")
+                        clickedAt[detail(e)["world_sphere"].get<std::int64_t>()] = e.frame;
+            }
+            std::int64_t sceneLo = 1 << 30, sceneHi = -1;
+            int vanished = 0;
+            for (const auto& [id, v] : clickedAt) {
+                if (static_cast<double>(end - v) * frameMs < row.sceneMaxMs + 2 * frameMs) continue;  // still on screen
+                const std::int64_t k = lastShown.at(id) + 1;  // the first frame without it
+                sceneLo = std::min(sceneLo, k - v - 1);
+                sceneHi = std::max(sceneHi, k - v);
+                ++vanished;
+            }
+            ASSERT_GE(vanished, 10);
+            EXPECT_GE(static_cast<double>(sceneLo) * frameMs, row.sceneMinMs - 0.05);
+            EXPECT_NEAR(static_cast<double>(sceneHi) * frameMs, row.sceneMaxMs, 0.05);
+        }
+    }
+    EXPECT_EQ(checked, 9 + 7) << "every row at 120 Hz, and the seven the click game runs at 60 Hz";
 }
 
 // What a lag or conventional frame shows is the world of the frame it was rendered at; a

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "condition/schedule.h"
+#include "game/registry.h"
 #include "protocol/click_protocol.h"
 #include "protocol/shooter_protocol.h"
 
@@ -379,6 +380,50 @@ TEST(ClickErrors, WrongGame) {
     } catch (const ProtocolError& e) {
         EXPECT_EQ(std::string(e.what()),
                   kPrefix + "game must be \"shooter\" for a shooter protocol, got string \"click\"");
+    }
+}
+
+// The loader picks the parser by "game", so a file of one game carrying the other's name fails
+// in a parser that blames a field or the format_version (a shooter file's format_version 3 is
+// newer than any click protocol). The field that is wrong is "game", and the refusal says so.
+TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
+    struct Case {
+        const char* file;
+        const char* named;  // the "game" written into it
+        const char* expected;  // after the prefix
+    };
+    const std::vector<Case> cases{
+        {"latewarp-kim.json", "click",
+         "game is \"click\", but format_version 3 and the other fields are a shooter protocol's (the file reads "
+         "as one with \"game\": \"shooter\")"},
+        {"shooter-quick.json", "click",
+         "game is \"click\", but format_version 2 and the other fields are a shooter protocol's (the file reads "
+         "as one with \"game\": \"shooter\")"},
+        {"click-yang.json", "shooter",
+         "game is \"shooter\", but format_version 1 and the other fields are a click protocol's (the file reads "
+         "as one with \"game\": \"click\")"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.file);
+        Json document = Json::parse(readProtocolFile(protocolDir() + "/" + c.file));
+        document["game"] = c.named;
+        try {
+            game::parseStudy(document.dump(), kSource);
+            ADD_FAILURE() << "expected a ProtocolError";
+        } catch (const ProtocolError& e) {
+            EXPECT_EQ(std::string(e.what()), kPrefix + c.expected);
+        }
+    }
+    // A click file newer than this build is still just that, with or without fields of its own:
+    // a bare header is any game's, and a newer click file's sections are no shooter's.
+    for (const Json& newer :
+         {Json{{"format_version", 3}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 3)}) {
+        try {
+            game::parseStudy(newer.dump(), kSource);
+            ADD_FAILURE() << "expected a ProtocolError";
+        } catch (const ProtocolError& e) {
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 3 is newer than this warplab supports (2)");
+        }
     }
 }
 

@@ -86,4 +86,9 @@ std::string readProtocolFile(const std::string& path);
 // not an object, or has no string "game". Nothing else in the file is checked.
 std::string protocolGame(const std::string& jsonText, const std::string& sourceName);
 
+// Whether the file has a top-level field beyond those every protocol has (format_version, name,
+// description, game, conditions): one that only some game's protocol knows. False for text that
+// is not a JSON object.
+bool hasGameFields(const std::string& jsonText);
+
 }  // namespace warplab::protocol
