@@ -778,6 +778,39 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
     EXPECT_EQ(replay.status, 0) << replay.output;
 }
 
+// A reader (an export, a lab's sqlite3 script) that holds a read transaction from the
+// session's first commit until after its run ends keeps the last commits in the -wal: the run
+// must still leave the whole session in the one file before it says it is done. The file is
+// then copied alone, as an archive script would, and replays in full.
+TEST(CliSession, AReaderHoldingTheFinishBackStillLeavesTheWholeSessionInTheFile) {
+    const std::string dir = scratch("held-finish"), elsewhere = scratch("held-finish-copy");
+    warplab::testing::Result run;
+    std::thread runner([&] {
+        run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                      "/protocol/click-quick.json --participant R --out " + dir + " --headless --player bot:3");
+    });
+    std::string session;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    sqlite3* db = nullptr;
+    const bool reading = !session.empty() &&
+        sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
+        sqlite3_exec(db, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+    runner.join();  // the run ends while the reader still holds its snapshot
+    ASSERT_TRUE(reading) << "could not read '" << session << "': " << run.output;
+    EXPECT_EQ(run.status, 0) << run.output;
+    const std::string copy = elsewhere + "/copy.warplab-session";
+    fs::copy_file(session, copy);  // the file alone
+    sqlite3_exec(db, "COMMIT", nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+    // 0: every outcome reproduced, the session intact and finished -- as many as the original.
+    const auto replay = warplab("replay " + copy), original = warplab("replay " + session);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_GT(reproducedIn(replay.output), 50) << replay.output;
+    EXPECT_EQ(reproducedIn(replay.output), reproducedIn(original.output)) << original.output;
+}
+
 // Protocol files a parser could be driven into the ground by: 100,000 levels of '[' took 54 s
 // and 9 GB before failing (and 30,000 overflowed the stack); an endless pipe hung the read.
 TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
