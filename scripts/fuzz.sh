@@ -84,8 +84,10 @@ fuzz() {
 fuzz warplab_fuzz_protocol 16384 -dict="$work/protocol.dict" -- \
   protocol/*.json tests/fuzz/corpus/protocol/*.json
 # Session files are SQLite pages of 4 KiB; 96 KiB holds the committed seeds whole and cuts the
-# version-1 session (570 KiB) short, which is a truncated file the reader must also handle.
+# version-1 and version-2 sessions (570 KiB, 1.3 MiB) short, which are truncated files the
+# reader must also handle.
 fuzz warplab_fuzz_session 98304 -- \
-  tests/fuzz/corpus/session/*.warplab-session tests/data/v1-shooter-quick.warplab-session
+  tests/fuzz/corpus/session/*.warplab-session tests/data/v1-shooter-quick.warplab-session \
+  tests/data/v2-click-quick.warplab-session
 
 exit "$failed"
