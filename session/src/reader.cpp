@@ -18,7 +18,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <limits>
 #include <map>
 #include <optional>
@@ -186,19 +185,21 @@ private:
     // it finds next to a file, so the bytes are read into memory and opened there, marked as
     // a rollback-journal file (header bytes 18 and 19) so that no log is looked for.
     void openImage() {
-        std::ifstream in(path_, std::ios::binary);
-        const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-        if (!in && !in.eof()) fail("cannot be read.");
+        std::ifstream in(path_, std::ios::binary | std::ios::ate);
+        if (!in) fail("cannot be read.");
+        const auto size = static_cast<sqlite3_int64>(in.tellg());
+        in.seekg(0);
         sqlite3* raw = nullptr;
         const int rc = sqlite3_open_v2(":memory:", &raw, SQLITE_OPEN_READWRITE, nullptr);
         db_.reset(raw);
         if (rc != SQLITE_OK) fail("cannot be opened: " + errmsg() + ".");
-        auto* image = static_cast<unsigned char*>(sqlite3_malloc64(bytes.size() + 1));
+        auto* image = static_cast<unsigned char*>(sqlite3_malloc64(static_cast<sqlite3_uint64>(size) + 1));
         if (!image) fail("cannot be read: out of memory.");
-        std::memcpy(image, bytes.data(), bytes.size());
-        if (bytes.size() >= 20 && image[18] == 2 && image[19] == 2) image[18] = image[19] = 1;
-        const auto size = static_cast<sqlite3_int64>(bytes.size());
-        if (sqlite3_deserialize(db_.get(), "main", image, size, size + 1,
+        in.read(reinterpret_cast<char*>(image), size);
+        const auto got = static_cast<sqlite3_int64>(in.gcount());  // shorter if cut meanwhile
+        if (got >= 20 && image[18] == 2 && image[19] == 2) image[18] = image[19] = 1;
+        // SQLite owns the image from here on, freed with the connection.
+        if (sqlite3_deserialize(db_.get(), "main", image, got, size + 1,
                                 SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY) != SQLITE_OK)
             fail("cannot be read: " + errmsg() + ".");
         checkOpened();
