@@ -5,9 +5,11 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <thread>
 
 namespace warplab::testing {
 
@@ -50,6 +52,16 @@ inline std::string sessionIn(const std::string& dir) {
     for (const auto& entry : std::filesystem::directory_iterator(dir))
         if (entry.path().extension() == ".warplab-session") found = entry.path().string();
     return found;
+}
+
+// The session file a run started in the background writes into `dir`, as soon as it is there
+// ("" if none appears within 30 s).
+inline std::string sessionAppearingIn(const std::string& dir) {
+    std::string session;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return session;
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 using warplab::testing::contains;
 using warplab::testing::Result;
 using warplab::testing::sessionIn;
+using warplab::testing::sessionAppearingIn;
 using warplab::testing::warplab;
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("cli", name); }
@@ -749,10 +750,7 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
                       "/protocol/shooter-thesis.json --participant P --out " + dir + " --headless --player bot:3");
     });
     // As soon as the session file exists, take its write lock, as such a program would.
-    std::string session;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const std::string session = sessionAppearingIn(dir);
     sqlite3* db = nullptr;
     bool locked =
         !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) == SQLITE_OK;
@@ -789,14 +787,13 @@ TEST(CliSession, AReaderHoldingTheFinishBackStillLeavesTheWholeSessionInTheFile)
         run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/click-quick.json --participant R --out " + dir + " --headless --player bot:3");
     });
-    std::string session;
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while ((session = sessionIn(dir)).empty() && std::chrono::steady_clock::now() < deadline)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const std::string session = sessionAppearingIn(dir);
     sqlite3* db = nullptr;
-    const bool reading = !session.empty() &&
-        sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
-        sqlite3_exec(db, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+    bool reading = !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK;
+    if (reading) {
+        sqlite3_busy_timeout(db, 2000);  // the writer may be switching the new file to WAL mode
+        reading = sqlite3_exec(db, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;
+    }
     runner.join();  // the run ends while the reader still holds its snapshot
     ASSERT_TRUE(reading) << "could not read '" << session << "': " << run.output;
     EXPECT_EQ(run.status, 0) << run.output;
