@@ -179,14 +179,15 @@ def analyse_click(loaded, statements, requested_reference, table, game):
     return click
 
 
-def analyse(export_dir, reference_mode, rating_scale=inputs.DEFAULT_RATING_SCALE):
+def analyse(export_dir, reference_mode, rating_scale=None):
+    """rating_scale: (low, high) for every statement, overriding the scales ratings.csv records."""
     if not os.path.exists(export_dir):
         raise BadInput(f"{export_dir}: no such directory (expected the folder `warplab export` wrote).")
     if not os.path.isdir(export_dir):
         raise BadInput(f"{export_dir}: is not a directory (expected the folder `warplab export` wrote).")
     games, hitrate_rows = inputs.load_hitrates(export_dir)
-    matches = inputs.load_matches(export_dir, rating_scale)
     statements = inputs.load_statements(export_dir)
+    matches = inputs.load_matches(export_dir, inputs.rating_scales(statements, rating_scale))
     inputs.check_rating_columns(matches, statements)
     sessions = inputs.load_sessions(export_dir)
     records, source, table_notes = inputs.load_conditions(export_dir)
@@ -317,9 +318,11 @@ def main(argv=None):
                         help=f"the condition (a mode of the matches) every other one is compared with (default "
                              f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
                              "upconverts, else the first)")
-    parser.add_argument("--rating-scale", default=inputs.DEFAULT_RATING_SCALE, type=rating_scale, metavar="MIN:MAX",
-                        help="the lowest and highest answer of the protocol's ratings (its ratings.min and "
-                             "ratings.max; default 1:7, the protocol's default); a rating outside it is refused")
+    parser.add_argument("--rating-scale", type=rating_scale, metavar="MIN:MAX",
+                        help="the lowest and highest answer of every statement, in place of the protocol's "
+                             "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
+                             "from before ratings.csv had them, 1:7, the protocol's default); a rating outside the "
+                             "scale is refused")
     args = parser.parse_args(argv)
     try:
         results = analyse(args.export_dir, args.reference_mode, args.rating_scale)

@@ -246,14 +246,17 @@ def fmt_cell(v):
 GAMES_HEADER = "game,hits_are,shots_are"
 
 
-def write_click_export(export, game="click", rename=None, table=None):
+def write_click_export(export, game="click", rename=None, table=None, scale=None):
     """rename: {mode of CLICK: the name the export gives it}; table: writes the condition table
-    (default: with_modes)."""
+    (default: with_modes); scale: (ratings.min, ratings.max) for ratings.csv's scale_min and
+    scale_max, None for an export from before those columns."""
     rename = rename or {}
     (table or with_modes)(export)
     write(export / "games.csv", [GAMES_HEADER, f"{game},green hits,clicks"])
     matches = [MATCH_HEADER]
-    ratings = ["participant,session,round,scored_phase,match,mode,statement_index,statement,value,answered_with"]
+    ratings = ["participant,session,round,scored_phase,match,mode,statement_index,statement,value,answered_with"
+               + (",scale_min,scale_max" if scale else "")]
+    scale_cells = f",{scale[0]},{scale[1]}" if scale else ""
     hitrates = {}
     k = 0
     for (p, preset), games in CLICK.items():
@@ -266,7 +269,8 @@ def write_click_export(export, game="click", rename=None, table=None):
                            + ",".join(fmt_cell(v) for v in rs))
             for i, v in enumerate(rs):
                 if v is not None:
-                    ratings.append(f'{p},{p}_s.db,{phase},{flag},{k},{mode},{i},"{STATEMENTS[i]}",{v},key')
+                    ratings.append(f'{p},{p}_s.db,{phase},{flag},{k},{mode},{i},"{STATEMENTS[i]}",{v},key'
+                                   + scale_cells)
             if scored:
                 hits, shots = hitrates.get((p, mode), (0, 0))
                 hitrates[(p, mode)] = (hits + g, shots + g + r + m)
@@ -617,6 +621,102 @@ def test_a_rating_outside_the_scale_is_refused_and_another_scale_can_be_given(tm
     assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "0:10"]) == 0
     with pytest.raises(SystemExit):
         analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "7:1"])
+
+
+def set_scored_rating(export, value, column=1):
+    """Sets rating_`column` of P1's first scored match in matches.csv; returns that row's line."""
+    lines = (export / "matches.csv").read_text().splitlines()
+    line = next(k for k, row in enumerate(lines) if row.startswith("P1,") and ",true," in row)
+    cells = lines[line].split(",")
+    cells[len(cells) - len(STATEMENTS) + column - 1] = str(value)
+    lines[line] = ",".join(cells)
+    (export / "matches.csv").write_text("\n".join(lines) + "\n")
+    return line + 1
+
+
+def test_a_study_on_a_0_to_10_scale_needs_no_flag(tmp_path):
+    """ratings.csv records the protocol's scale: a 9 on 0 to 10 is an answer, not bad input."""
+    write_click_export(tmp_path, scale=(0, 10))
+    set_scored_rating(tmp_path, 9)
+    code, report = run_in_process(tmp_path, tmp_path / "out")
+    assert code == 0
+    means = report["click"]["measures"]["rating_1"]["participant_means"]
+    assert means["P1"]["bireproj15to60"] == (9 + 6) / 2
+
+
+def test_a_rating_outside_the_recorded_scale_is_refused(tmp_path, capsys):
+    write_click_export(tmp_path, scale=(0, 10))
+    line = set_scored_rating(tmp_path, 11, column=2)
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert (f"matches.csv: line {line}, column 'rating_2' is 11, outside the rating scale 0 to 10 (statement 1's "
+            "scale_min and scale_max in " in err and "ratings.csv, line " in err), err
+    assert not (tmp_path / "out" / "report.json").exists()
+
+
+def test_an_export_without_the_scale_columns_uses_1_to_7_or_the_flag(tmp_path, capsys):
+    """Exports from before scale_min and scale_max: the protocol's default scale, or the one given."""
+    write_click_export(tmp_path)
+    line = set_scored_rating(tmp_path, 9)
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert (f"matches.csv: line {line}, column 'rating_1' is 9, outside the rating scale 1 to 7 (the protocol's "
+            "default ratings.min and ratings.max: ratings.csv has no scale_min and scale_max" in err
+            and "--rating-scale MIN:MAX" in err), err
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "0:10"]) == 0
+
+
+def test_the_flag_overrides_the_recorded_scale(tmp_path, capsys):
+    write_click_export(tmp_path, scale=(0, 10))
+    line = set_scored_rating(tmp_path, 9)
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--rating-scale", "1:7"]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert (f"matches.csv: line {line}, column 'rating_1' is 9, outside the rating scale 1 to 7 (as "
+            "--rating-scale gives it)." in err), err
+
+
+def rewrite_ratings_cell(export, row, column, value):
+    """Sets `column` of ratings.csv's data row `row` (0-based); returns the row's line."""
+    lines = (export / "ratings.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    cells = lines[row + 1].split(",")
+    cells[header.index(column) - len(header)] = value  # from the end: statements hold no commas there
+    lines[row + 1] = ",".join(cells)
+    (export / "ratings.csv").write_text("\n".join(lines) + "\n")
+    return row + 2
+
+
+# (row, column, value, what the sentence says after "ratings.csv: line N, column 'C' ")
+BAD_SCALES = {
+    "rows of one statement disagree": (2, "scale_max", "7", "is 7, but statement 0's scale_max is 10 on line 2"),
+    "not a whole number": (0, "scale_min", "0.5", "is not a whole number: '0.5'"),
+    "empty": (0, "scale_max", "", "is empty"),
+    "min not below max": (0, "scale_min", "10", "is 10, not below column 'scale_max' (10)"),
+}
+
+
+@pytest.mark.parametrize("case", sorted(BAD_SCALES))
+def test_a_bad_recorded_scale_is_refused(tmp_path, capsys, case):
+    row, column, value, detail = BAD_SCALES[case]
+    write_click_export(tmp_path, scale=(0, 10))
+    line = rewrite_ratings_cell(tmp_path, row, column, value)
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert f"ratings.csv: line {line}, column '{column}' {detail}" in err, err
+    assert not (tmp_path / "out" / "report.json").exists()
+
+
+def test_half_a_recorded_scale_is_refused(tmp_path, capsys):
+    write_click_export(tmp_path, scale=(0, 10))
+    drop_column(tmp_path / "ratings.csv", "scale_max")
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 1
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1, err
+    assert "ratings.csv: line 1, the header, has column 'scale_min' but no column 'scale_max'" in err, err
 
 
 def test_missing_folder_and_missing_hitrates(tmp_path, capsys):

@@ -38,9 +38,11 @@ CONDITION_RECORD = ("condition", "description", "render_hz", "lag_frames", "adde
                     "scene_latency_max_ms", "refresh_hz", "game", "upconverts")
 GAMES_REQUIRED = ["game", "hits_are", "shots_are"]
 RATING_COLUMN = re.compile(r"rating_(\d+)$")
+# ratings.csv's record of the protocol's ratings.min and ratings.max, on every answer.
+SCALE_COLUMNS = ("scale_min", "scale_max")
 # The protocol's default ratings.min and ratings.max, Yang et al.'s 1 (strongly disagree) to 7
-# (strongly agree), seed 000 §8. The export does not carry a protocol's own scale, so a study
-# that set another one says so on the command line (analyze --rating-scale).
+# (strongly agree), seed 000 §8: the scale of an export from before SCALE_COLUMNS, unless
+# analyze --rating-scale gives another.
 DEFAULT_RATING_SCALE = (1, 7)
 
 
@@ -191,15 +193,56 @@ def load_hitrates(export_dir):
     return games, len(table.records)
 
 
-def load_matches(export_dir, rating_scale=DEFAULT_RATING_SCALE):
+class RatingScale:
+    """The lowest and highest answer to a statement, both included, and where they come from in
+    words that follow "outside the rating scale LOW to HIGH (" in a refusal."""
+
+    def __init__(self, low, high, source):
+        self.low, self.high, self.source = low, high, source
+
+
+class Scales(dict):
+    """{rating column number k: RatingScale}; `default` for a k without its own."""
+
+    def __init__(self, default):
+        super().__init__()
+        self.default = default
+
+    def __missing__(self, column):
+        return self.default
+
+
+def rating_scales(statements, override=None):
+    """The Scales of load_statements' `statements`: `override` ((low, high), from --rating-scale)
+    for every statement when given; else the scale ratings.csv records for each; else (no
+    ratings.csv, one without SCALE_COLUMNS, or no answer to the statement) the protocol's default."""
+    if override is not None:
+        return Scales(RatingScale(*override, "as --rating-scale gives it"))
+    recorded = statements[4] if statements else None
+    if statements is None:
+        why = f"there is no {RATINGS} to record the scale"
+    elif recorded is None:
+        why = f"{RATINGS} has no {' and '.join(SCALE_COLUMNS)} (an export from before them)"
+    else:
+        why = f"{RATINGS} lists no answer to this statement to give its scale"
+    scales = Scales(RatingScale(*DEFAULT_RATING_SCALE, f"the protocol's default ratings.min and ratings.max: {why}; "
+                                "for a protocol with others, pass --rating-scale MIN:MAX"))
+    for column, (low, high, line) in (recorded or {}).items():
+        scales[column] = RatingScale(low, high, f"statement {column - 1}'s {' and '.join(SCALE_COLUMNS)} in "
+                                                f"{RATINGS}, line {line}")
+    return scales
+
+
+def load_matches(export_dir, scales=None):
     """None without matches.csv; else (scored match records, rating columns, rows in the file, the
     `session` of every row, the table).
 
     A scored record: participant, mode, green_hits, red_hits, misses and `ratings`, a list with one
     value or None per rating column, in column order rating_1, rating_2, ... The columns run from
-    rating_1 without a gap (rating_k answers statement k), and a scored rating lies on
-    rating_scale, (lowest, highest), both ends included.
+    rating_1 without a gap (rating_k answers statement k), and a scored rating_k lies on
+    scales[k] (rating_scales; default: 1 to 7 for every statement).
     """
+    scales = rating_scales(None) if scales is None else scales
     path = os.path.join(export_dir, MATCHES)
     if not os.path.exists(path):
         return None
@@ -211,7 +254,6 @@ def load_matches(export_dir, rating_scale=DEFAULT_RATING_SCALE):
                            f"'rating_{expected}' (rating_k answers statement k, so the columns run from rating_1 "
                            "without a gap).")
     rating_columns = [name for _, name in numbered]
-    low, high = rating_scale
     optional_numeric = [c for c in ("clicks", "duration_s") if c in table.header]
     scored = []
     sessions = {record.get("session", "") for record in table.records}
@@ -224,7 +266,7 @@ def load_matches(export_dir, rating_scale=DEFAULT_RATING_SCALE):
             "green_hits": number(table, record, "green_hits", integer=True),
             "red_hits": number(table, record, "red_hits", integer=True),
             "misses": number(table, record, "misses", integer=True),
-            "ratings": [rating(table, record, c, low, high) for c in rating_columns],
+            "ratings": [rating(table, record, name, scales[k]) for k, name in numbered],
         }
         for column in optional_numeric:
             number(table, record, column, optional=True)
@@ -232,14 +274,25 @@ def load_matches(export_dir, rating_scale=DEFAULT_RATING_SCALE):
     return scored, rating_columns, len(table.records), sessions, table
 
 
-def rating(table, record, column, low, high):
+def rating(table, record, column, scale):
     """A rating cell: None when empty (the session ended before it), else a number on the scale."""
     value = number(table, record, column, optional=True)
-    if value is not None and not low <= value <= high:
+    if value is not None and not scale.low <= value <= scale.high:
         raise BadInput(f"{table.path}: line {record['_line']}, column '{column}' is {record[column].strip()}, "
-                       f"outside the rating scale {low} to {high} (the protocol's default ratings.min and "
-                       "ratings.max; for a protocol with others, pass --rating-scale MIN:MAX).")
+                       f"outside the rating scale {scale.low} to {scale.high} ({scale.source}).")
     return value
+
+
+def whole(table, record, column):
+    """A whole number of either sign (a scale may start below 0)."""
+    raw = record[column].strip()
+    where = f"{table.path}: line {record['_line']}, column '{column}'"
+    if raw == "":
+        raise BadInput(f"{where} is empty, expected a whole number.")
+    try:
+        return int(raw)
+    except ValueError:
+        raise BadInput(f"{where} is not a whole number: {record[column]!r}.")
 
 
 def check_rating_columns(matches, statements):
@@ -248,7 +301,7 @@ def check_rating_columns(matches, statements):
     if matches is None or statements is None:
         return
     table, present = matches[4], set(matches[1])
-    _, _, first_lines, ratings_path = statements
+    first_lines, ratings_path = statements[2:4]
     for column, line in sorted(first_lines.items()):
         if f"rating_{column}" not in present:
             raise BadInput(f"{table.path}: line {table.header_line}, the header, has no column 'rating_{column}', "
@@ -258,15 +311,25 @@ def check_rating_columns(matches, statements):
 
 def load_statements(export_dir):
     """None without ratings.csv; else ({rating column number k+1: statement text}, notes,
-    {rating column number: the line that first lists the statement}, the file's path)."""
+    {rating column number: the line that first lists the statement}, the file's path, scales):
+    scales None for an export without SCALE_COLUMNS, else {rating column number: (scale_min,
+    scale_max, the line that first gives them)}, one scale per statement."""
     path = os.path.join(export_dir, RATINGS)
     if not os.path.exists(path):
         return None
     table = read_table(path, RATINGS_REQUIRED)
+    present = [c for c in SCALE_COLUMNS if c in table.header]
+    if len(present) == 1:
+        (missing,) = set(SCALE_COLUMNS) - set(present)
+        raise BadInput(f"{path}: line {table.header_line}, the header, has column '{present[0]}' but no column "
+                       f"'{missing}' (the two record the protocol's rating scale together).")
+    scales = {} if present else None
     texts, first_lines = {}, {}
     for record in table.records:
         index = number(table, record, "statement_index", integer=True)
         first_lines.setdefault(index + 1, record["_line"])
+        if scales is not None:
+            scale_of(table, record, index, scales)
         counts = texts.setdefault(index + 1, {})
         statement = record["statement"]
         counts[statement] = counts.get(statement, 0) + 1
@@ -278,7 +341,21 @@ def load_statements(export_dir):
             others = "; ".join(repr(t) for t, _ in ordered[1:])
             notes.append(f"ratings.csv gives statement {column - 1} more than one text; the table uses the most "
                          f"frequent, {ordered[0][0]!r} (also seen: {others}).")
-    return labels, notes, first_lines, path
+    return labels, notes, first_lines, path, scales
+
+
+def scale_of(table, record, index, scales):
+    """Reads a row's scale into scales (load_statements): whole numbers, min below max, and the
+    same on every row of statement `index` (rating_k averages answers, so they share one scale)."""
+    low, high = whole(table, record, "scale_min"), whole(table, record, "scale_max")
+    where = f"{table.path}: line {record['_line']}, column"
+    if low >= high:
+        raise BadInput(f"{where} 'scale_min' is {low}, not below column 'scale_max' ({high}).")
+    first = scales.setdefault(index + 1, (low, high, record["_line"]))
+    for column, value, earlier in (("scale_min", low, first[0]), ("scale_max", high, first[1])):
+        if value != earlier:
+            raise BadInput(f"{where} '{column}' is {value}, but statement {index}'s {column} is {earlier} on line "
+                           f"{first[2]} (the answers to one statement share one scale).")
 
 
 def load_sessions(export_dir):

@@ -187,6 +187,8 @@ const std::vector<Column<RatingRow>>& ratingColumns() {
         {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
         {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
         {"answered_with", [](F& f, const R& r) { f.text(r.rating.answeredWith); }},
+        {"scale_min", [](F& f, const R& r) { f.integer(r.rating.scaleMin); }},
+        {"scale_max", [](F& f, const R& r) { f.integer(r.rating.scaleMax); }},
     };
     return columns;
 }

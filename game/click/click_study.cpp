@@ -95,9 +95,15 @@ public:
             } else if (e.type == "rating") {
                 const auto at = matchAt.find(e.trial);
                 if (at == matchAt.end()) continue;  // cannot happen in a game's own log: a rating follows its match
-                out.matches[at->second].ratings.push_back({static_cast<int>(d.integer("statement_index", 0)),
-                                                           d.text("statement"), static_cast<int>(d.integer("value", 0)),
-                                                           d.text("answered_with")});
+                RatingResult r;
+                r.statementIndex = static_cast<int>(d.integer("statement_index", 0));
+                r.statement = d.text("statement");
+                r.value = static_cast<int>(d.integer("value", 0));
+                r.answeredWith = d.text("answered_with");
+                // The stored protocol's scale: the one the participant answered on.
+                r.scaleMin = protocol_.ratingMin;
+                r.scaleMax = protocol_.ratingMax;
+                out.matches[at->second].ratings.push_back(std::move(r));
             }
         }
         return out;

@@ -690,6 +690,40 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     EXPECT_EQ(standIns, marked);
 }
 
+// ratings.csv carries the scale each answer was given on, from the session's stored protocol,
+// so an analysis reads a study's own ratings.min and ratings.max instead of assuming 1 to 7.
+TEST(Export, RatingsCarryTheProtocolsScale) {
+    const std::string source = scratch("scale/source"), results = scratch("scale/results");
+    auto protocol = nlohmann::json::parse(slurp(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json"));
+    protocol["ratings"]["min"] = 0;
+    protocol["ratings"]["max"] = 10;
+    const std::string path = source + "/click-0-10.json";
+    std::ofstream(path) << protocol.dump(2);
+    study::HeadlessRun run;
+    run.protocolPath = path;
+    run.participant = "T";
+    run.resultsDir = results;
+    run.player = "bot:11";
+    run.seed = 11;
+    std::ostringstream quiet;
+    study::runHeadless(run, quiet);
+
+    const std::string out = scratch("scale/out");
+    exportQuietly(results, out);
+    const auto header = headerOf(out + "/ratings.csv");
+    for (const std::string column : {"scale_min", "scale_max"})
+        ASSERT_NE(std::find(header.begin(), header.end(), column), header.end()) << "ratings.csv has no " << column;
+    const auto ratings = readCsv(out + "/ratings.csv");
+    ASSERT_FALSE(ratings.empty());
+    for (const auto& r : ratings) {
+        EXPECT_EQ(r.at("scale_min"), "0");
+        EXPECT_EQ(r.at("scale_max"), "10");
+        const int value = std::stoi(r.at("value"));
+        EXPECT_GE(value, 0);
+        EXPECT_LE(value, 10);
+    }
+}
+
 TEST(Export, AMissingOrEmptyResultsFolderIsNamed) {
     const std::string out = scratch("errors/out");
     try {

@@ -38,6 +38,9 @@ struct RatingResult {
     std::string statement;
     int value = 0;
     std::string answeredWith;  // "key" or "mouse"
+    // The answers the screen offered, both included: the protocol's ratings.min and ratings.max,
+    // which an analysis cannot know otherwise.
+    int scaleMin = 1, scaleMax = 7;
 };
 
 // One click-game match: a row of matches.csv (its ratings also go to ratings.csv).
