@@ -68,30 +68,31 @@ public:
             data = readOpen();
         } catch (const SessionError& e) {
             if (!alone) throw;
-            return withoutWal(std::move(*alone), std::string("the file cannot be read with it: ") + e.what());
+            return withoutWal(std::move(*alone), "the file cannot be read with " + path_ + "-wal: " + e.what());
         }
         if (!alone) return data;
         if (data.header.sessionId != alone->header.sessionId)
             return withoutWal(std::move(*alone),
-                              "its pages are those of another session (session_id " + data.header.sessionId + ", not " +
+                              path_ + "-wal is another session's (session_id " + data.header.sessionId + ", not " +
                                   alone->header.sessionId + ")");
         // Damage that only the -wal brings, costing commits the file alone holds whole: a
         // -wal of another session (its commits do not chain to this one's), or of an older
         // copy. The file alone keeps more.
-        if (data.damaged && !alone->damaged && alone->frames.size() >= data.frames.size() &&
-            alone->events.size() >= data.events.size() && alone->inputs.size() >= data.inputs.size())
-            return withoutWal(std::move(*alone), "reading with it ends in " + data.note);
+        const auto rows = [](const SessionData& d) { return d.inputs.size() + d.frames.size() + d.events.size(); };
+        if (data.damaged && !alone->damaged && rows(*alone) > rows(data))
+            return withoutWal(std::move(*alone),
+                              path_ + "-wal does not fit this file: reading with it ends " + data.note);
         return data;
     }
 
 private:
-    // The file read alone, its -wal refused: whatever the -wal held of this session is lost.
-    SessionData withoutWal(SessionData alone, const std::string& why) const {
+    // The file read alone, its -wal refused (`why` says why): whatever the -wal held of this
+    // session is lost.
+    static SessionData withoutWal(SessionData alone, const std::string& why) {
         const std::string alonesNote = alone.note.empty() ? std::string("it holds a complete session") : alone.note;
         alone.completed = false;
         alone.damaged = true;
-        alone.note = "damaged (write-ahead log: " + path_ + "-wal is not this file's, " + why +
-            "): read the file without it (" + alonesNote +
+        alone.note = "damaged (write-ahead log: " + why + "): read the file without it (" + alonesNote +
             "); whatever of this session was only in its own -wal is lost";
         return alone;
     }

@@ -25,8 +25,8 @@ namespace fs = std::filesystem;
 
 using warplab::testing::contains;
 using warplab::testing::Result;
-using warplab::testing::sessionIn;
 using warplab::testing::sessionAppearingIn;
+using warplab::testing::sessionIn;
 using warplab::testing::warplab;
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("cli", name); }
@@ -789,7 +789,8 @@ TEST(CliSession, AReaderHoldingTheFinishBackStillLeavesTheWholeSessionInTheFile)
     });
     const std::string session = sessionAppearingIn(dir);
     sqlite3* db = nullptr;
-    bool reading = !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK;
+    bool reading =
+        !session.empty() && sqlite3_open_v2(session.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK;
     if (reading) {
         sqlite3_busy_timeout(db, 2000);  // the writer may be switching the new file to WAL mode
         reading = sqlite3_exec(db, "BEGIN; SELECT count(*) FROM events;", nullptr, nullptr, nullptr) == SQLITE_OK;

@@ -1217,7 +1217,11 @@ TEST(SessionStoreDamage, AnotherSessionsWalIsNotTakenForThisOnes) {
         const SessionData data = readSession(copy);
         EXPECT_TRUE(data.damaged) << data.note;
         EXPECT_FALSE(data.completed);
-        EXPECT_NE(data.note.find(copy + "-wal is not this file's"), std::string::npos) << data.note;
+        EXPECT_EQ(data.note.rfind("damaged (write-ahead log: " + copy + "-wal ", 0), 0u) << data.note;
+        EXPECT_NE(data.note.find(twinFlagged ? "-wal is another session's" : "-wal does not fit this file"),
+                  std::string::npos)
+            << data.note;
+        EXPECT_NE(data.note.find("): read the file without it (incomplete: "), std::string::npos) << data.note;
         EXPECT_EQ(expectWholeTrials(data), 5);
         EXPECT_TRUE(data.flags.empty());
     }
