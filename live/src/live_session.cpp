@@ -114,6 +114,7 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
         return "";
 
     auto header = study::sessionHeader(study, run.participant, run.seed, playerText(run), loop.display());
+    header.planId = run.planId;
     header.glRenderer = loop.glInfo().renderer;
     header.glVersion = loop.glInfo().version;
     header.refreshHz = loop.shownRefreshHz();

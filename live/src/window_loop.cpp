@@ -101,7 +101,7 @@ WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study
 
 WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress)
     : run_(run),
-      study_(game::loadStudy(run.protocolPath)),
+      study_(study::loadRunStudy(run.protocolPath, run.protocolText)),
       script_(run.inputScript.empty() ? InputScript() : InputScript(run.inputScript)),
       opened_(open(run, *study_, progress)),
       window_(*opened_.window),

@@ -295,7 +295,10 @@ private:
             fail("has an unreadable header: display_height is '" + get("display_height") + "'.");
         h.startedAt = get("started_at");
         h.player = get("player");
-        if (h.formatVersion >= kSessionIdSince) h.sessionId = get("session_id");
+        if (h.formatVersion >= kSessionIdSince) {
+            h.sessionId = get("session_id");
+            h.planId = get("plan_id");
+        }
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
             if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;

@@ -146,7 +146,10 @@ inline std::vector<std::pair<const char*, std::string>> headerEntries(const Sess
         {"started_at", h.startedAt},
         {"player", h.player},
     };
-    if (version >= kSessionIdSince) entries.push_back({"session_id", h.sessionId});
+    if (version >= kSessionIdSince) {
+        entries.push_back({"session_id", h.sessionId});
+        entries.push_back({"plan_id", h.planId});
+    }
     return entries;
 }
 

@@ -78,6 +78,10 @@ std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_
     throw std::invalid_argument(unknownPlayer(player));
 }
 
+std::unique_ptr<game::Study> loadRunStudy(const std::string& protocolPath, const std::string& protocolText) {
+    return protocolText.empty() ? game::loadStudy(protocolPath) : game::parseStudy(protocolText, protocolPath);
+}
+
 session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                      const std::string& player, const game::DisplaySize& display) {
     session::SessionHeader header;
@@ -151,11 +155,12 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
 }
 
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
-    const auto study = game::loadStudy(run.protocolPath);
+    const auto study = loadRunStudy(run.protocolPath, run.protocolText);
     const game::DisplaySize display{run.displayWidth, run.displayHeight};
     const auto player = makePlayer(run.player, run.seed, *study, display, run.seeingPlayer);
 
     session::SessionHeader header = sessionHeader(*study, run.participant, run.seed, run.player, display);
+    header.planId = run.planId;
     // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
     if (const std::string drawn = player->perceivedWith(); !drawn.empty()) header.glRenderer = drawn;
     auto writer = session::SessionWriter::create(run.resultsDir, header);

@@ -337,7 +337,10 @@ void relabel(const std::string& path, int version) {
     std::vector<std::string> keys = {"format_version", "protocol_json",  "seed",       "participant",
                                      "app_version",    "gl_renderer",    "gl_version", "refresh_hz",
                                      "display_width",  "display_height", "started_at", "player"};
-    if (version >= 3) keys.push_back("session_id");
+    if (version >= 3) {
+        keys.push_back("session_id");
+        keys.push_back("plan_id");
+    }
     for (const std::string& key : keys) {
         const auto rows = sqlRows(path, "SELECT value FROM meta WHERE key = '" + key + "'");
         ASSERT_EQ(rows.size(), 1u) << key;

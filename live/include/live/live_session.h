@@ -17,6 +17,7 @@ namespace warplab::live {
 
 struct LiveRun {
     std::string protocolPath;
+    std::string protocolText, planId;  // a study plan's run: as study::HeadlessRun's
     std::string participant;
     std::string resultsDir;
     std::string player = "human";  // "human", "bot[:SEED]" or "replay:SESSION"

@@ -44,6 +44,9 @@ struct SessionHeader {
     // passed): what tells one session from another, and a copy from a twin run with the same
     // participant, seed and start time. "" in files older than format version 3.
     std::string sessionId;
+    // The study plan the session was run from (docs/study-plan.md: its `id`); "" for a session
+    // run without one, and in files older than format version 3.
+    std::string planId;
     int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 

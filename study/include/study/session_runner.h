@@ -15,6 +15,10 @@ namespace warplab::study {
 
 struct HeadlessRun {
     std::string protocolPath;
+    // A study plan's run (run --study): the participant's own protocol text, which protocolPath
+    // then only names in messages, and the plan's id for the session header. Both empty
+    // otherwise: the file is the protocol.
+    std::string protocolText, planId;
     std::string participant;
     std::string resultsDir;
     std::string player;  // "bot", "bot:SEED", "sim", "sim:SEED" or "replay:SESSION"
@@ -35,6 +39,8 @@ void checkPlayer(const std::string& player);
 // (unset: "sim" is refused with a sentence saying so).
 std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_t sessionSeed, const game::Study& study,
                                          const game::DisplaySize& display, const game::SeeingPlayerMaker& seeing = {});
+// The study a run plays: `protocolText` when given (named by `protocolPath`), else the file.
+std::unique_ptr<game::Study> loadRunStudy(const std::string& protocolPath, const std::string& protocolText);
 session::SessionHeader sessionHeader(const game::Study& study, const std::string& participant, std::uint64_t seed,
                                      const std::string& player, const game::DisplaySize& display);
 session::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in);
