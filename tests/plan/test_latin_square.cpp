@@ -35,8 +35,7 @@ TEST(LatinSquare, IsBalancedForPositionsAndAdjacentPairs) {
         for (int c = 0; c < n; ++c)
             for (int j = 0; j < n; ++j) EXPECT_EQ(atPosition[c][j], copies) << c << " at position " << j;
         for (int a = 0; a < n; ++a)
-            for (int b = 0; b < n; ++b)
-                EXPECT_EQ(followedBy[a][b], a == b ? 0 : copies) << a << " then " << b;
+            for (int b = 0; b < n; ++b) EXPECT_EQ(followedBy[a][b], a == b ? 0 : copies) << a << " then " << b;
     }
 }
 
