@@ -83,12 +83,12 @@ std::string fnv1a64(const std::string& bytes) {
 
 bool isLowerHex(const std::string& text, std::size_t digits) {
     return text.size() == digits &&
-           std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+        std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 bool isLine(const std::string& text) {
     return !text.empty() && text.size() <= kLineLimit &&
-           std::none_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+        std::none_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
 }
 
 // Shortest text that reads back as the same double; whole numbers without a decimal point.
@@ -208,8 +208,9 @@ public:
     }
     std::uint64_t seed(const Json& value, const std::string& path, std::uint64_t low, std::uint64_t high) const {
         if (!value.is_number_unsigned() || value.get<std::uint64_t>() < low || value.get<std::uint64_t>() > high)
-            file_.fail(path, "must be an integer between " + std::to_string(low) + " and " + std::to_string(high) +
-                                 ", got " + describe(value));
+            file_.fail(path,
+                       "must be an integer between " + std::to_string(low) + " and " + std::to_string(high) + ", got " +
+                           describe(value));
         return value.get<std::uint64_t>();
     }
     std::vector<std::string> strings(const Json& value, const std::string& path) const {
@@ -228,12 +229,12 @@ public:
     static std::string describe(const Json& value) {
         std::string text = value.dump(-1, ' ', true, Json::error_handler_t::replace);
         if (text.size() > 60) text = text.substr(0, 57) + "...";
-        const char* kind = value.is_string()   ? "string "
-                           : value.is_boolean() ? "boolean "
-                           : value.is_null()    ? ""
-                           : value.is_number()  ? "number "
-                           : value.is_array()   ? "array "
-                                                : "object ";
+        const char* kind = value.is_string() ? "string "
+            : value.is_boolean()             ? "boolean "
+            : value.is_null()                ? ""
+            : value.is_number()              ? "number "
+            : value.is_array()               ? "array "
+                                             : "object ";
         return kind + text;
     }
 
@@ -243,8 +244,9 @@ private:
 
 Json parseDocument(const PlanFile& file, const std::string& text) {
     if (text.size() > kMaxPlanBytes)
-        file.fail("is", std::to_string(text.size()) + " bytes, more than a study plan may be (" +
-                            std::to_string(kMaxPlanBytes) + ")");
+        file.fail("is",
+                  std::to_string(text.size()) + " bytes, more than a study plan may be (" +
+                      std::to_string(kMaxPlanBytes) + ")");
     DuplicateKeyFinder finder;
     Json document;
     try {
@@ -283,11 +285,13 @@ StudyPlan fromJson(const PlanFile& file, const Json& document) {
     // The version first: a newer plan may well have keys this build does not know.
     plan.formatVersion = r.integer(r.field(document, "", "format_version"), "format_version");
     if (plan.formatVersion > kPlanFormatVersion)
-        file.fail("format_version", std::to_string(plan.formatVersion) + " is newer than this warplab supports (" +
-                                        std::to_string(kPlanFormatVersion) + ")");
+        file.fail("format_version",
+                  std::to_string(plan.formatVersion) + " is newer than this warplab supports (" +
+                      std::to_string(kPlanFormatVersion) + ")");
     if (plan.formatVersion < 1)
-        file.fail("format_version", "must be between 1 and " + std::to_string(kPlanFormatVersion) + ", got " +
-                                        std::to_string(plan.formatVersion));
+        file.fail("format_version",
+                  "must be between 1 and " + std::to_string(kPlanFormatVersion) + ", got " +
+                      std::to_string(plan.formatVersion));
     r.knownKeys(document, "", {"format_version", "id", "created_at", "seed", "protocols", "participants"});
     plan.id = r.string(r.field(document, "", "id"), "id");
     plan.createdAt = r.string(r.field(document, "", "created_at"), "created_at");
@@ -371,7 +375,8 @@ fs::path protocolPath(const PlanFile& file, const std::string& planDir, const Pr
     const fs::path relative(entry.file);
     if (entry.file.empty() || relative.is_absolute() || relative.has_root_name() ||
         std::any_of(relative.begin(), relative.end(), [](const fs::path& part) { return part == ".."; }))
-        file.fail(where, jsonString(entry.file) + " must be a path inside the plan folder, such as protocols/NAME.json");
+        file.fail(where,
+                  jsonString(entry.file) + " must be a path inside the plan folder, such as protocols/NAME.json");
     return fs::path(planDir) / relative;
 }
 
@@ -383,8 +388,9 @@ std::string protocolText(const PlanFile& file, const std::string& planDir, const
     const std::string text = readBytes(path, ok);
     if (!ok) file.fail(where, jsonString(entry.file) + ": no such file in the plan folder (" + path.string() + ")");
     if (fnv1a64(text) != entry.hash)
-        file.fail(where, jsonString(entry.file) + " has changed since the plan was made (its hash is " + fnv1a64(text) +
-                             ", the plan's " + entry.hash + ")");
+        file.fail(where,
+                  jsonString(entry.file) + " has changed since the plan was made (its hash is " + fnv1a64(text) +
+                      ", the plan's " + entry.hash + ")");
     return text;
 }
 
@@ -398,19 +404,22 @@ void requirePermutation(const PlanFile& file, const std::string& where, const st
             file.fail(where + "[" + std::to_string(k) + "]",
                       "is " + jsonString(order[k]) + ", not a condition of " + of + " (" + listText(conditions) + ")");
         if (!seen.insert(order[k]).second)
-            file.fail(where + "[" + std::to_string(k) + "]", "is " + jsonString(order[k]) + " again: " + where +
-                                                                 " must name each condition of " + of + " once");
+            file.fail(
+                where + "[" + std::to_string(k) + "]",
+                "is " + jsonString(order[k]) + " again: " + where + " must name each condition of " + of + " once");
     }
     if (order.size() != conditions.size())
-        file.fail(where, "is " + listText(order) + ", not an order of the " + std::to_string(conditions.size()) +
-                             " conditions of " + of + " (" + listText(conditions) + ")");
+        file.fail(where,
+                  "is " + listText(order) + ", not an order of the " + std::to_string(conditions.size()) +
+                      " conditions of " + of + " (" + listText(conditions) + ")");
 }
 
 void requireSettings(const PlanFile& file, const std::string& where, const ParticipantSettings& s) {
     auto range = [&](const char* key, double v, double low, double high) {
         if (!(v >= low && v <= high))
-            file.fail(where + " settings." + key, "must be a number between " + formatNumber(low) + " and " +
-                                                      formatNumber(high) + ", got " + formatNumber(v));
+            file.fail(where + " settings." + key,
+                      "must be a number between " + formatNumber(low) + " and " + formatNumber(high) + ", got " +
+                          formatNumber(v));
     };
     if (s.cmPer360) range("cm_per_360", *s.cmPer360, kMinCmPer360, kMaxCmPer360);
     range("mouse_dpi", s.mouseDpi, kMinMouseDpi, kMaxMouseDpi);
@@ -432,22 +441,25 @@ void validate(const PlanFile& file, const std::string& planDir, const StudyPlan&
         const std::string text = protocolText(file, planDir, entry, where + ".file");
         const ParsedProtocol parsed = parseProtocol(text, protocolPath(file, planDir, entry, where).string());
         if (entry.game != parsed.game)
-            file.fail(where + ".game", "is " + jsonString(entry.game) + ", but the file is for " + jsonString(parsed.game));
+            file.fail(where + ".game",
+                      "is " + jsonString(entry.game) + ", but the file is for " + jsonString(parsed.game));
         if (entry.name != parsed.name)
-            file.fail(where + ".name", "is " + jsonString(entry.name) + ", but the file's name is " + jsonString(parsed.name));
+            file.fail(where + ".name",
+                      "is " + jsonString(entry.name) + ", but the file's name is " + jsonString(parsed.name));
         if (entry.conditions != parsed.conditions)
             file.fail(where + ".conditions",
                       "is " + listText(entry.conditions) + ", but the file lists " + listText(parsed.conditions));
         if (entry.blocked != parsed.blocked)
-            file.fail(where + ".blocked", std::string("is ") + (entry.blocked ? "true" : "false") +
-                                              ", but the file " +
-                                              (parsed.blocked ? "plays the list in order" : "shuffles the list"));
+            file.fail(where + ".blocked",
+                      std::string("is ") + (entry.blocked ? "true" : "false") + ", but the file " +
+                          (parsed.blocked ? "plays the list in order" : "shuffles the list"));
     }
 
     if (plan.participants.empty()) file.fail("participants", "is empty: a plan has at least one participant");
     if (plan.participants.size() > static_cast<std::size_t>(kMaxParticipants))
-        file.fail("participants", "has " + std::to_string(plan.participants.size()) + " rows, more than " +
-                                      std::to_string(kMaxParticipants));
+        file.fail(
+            "participants",
+            "has " + std::to_string(plan.participants.size()) + " rows, more than " + std::to_string(kMaxParticipants));
     std::map<std::string, std::size_t> ids;
     std::map<std::uint64_t, std::size_t> seeds;
     const std::size_t protocolCount = plan.protocols.size();
@@ -455,30 +467,32 @@ void validate(const PlanFile& file, const std::string& planDir, const StudyPlan&
         const ParticipantPlan& row = plan.participants[i];
         const std::string where = rowName(i, row.id);
         if (!isLine(row.id))
-            file.fail(where + " id", "must be 1 to " + std::to_string(kLineLimit) +
-                                         " bytes on one line, got " + jsonString(row.id));
+            file.fail(where + " id",
+                      "must be 1 to " + std::to_string(kLineLimit) + " bytes on one line, got " + jsonString(row.id));
         if (const auto [it, fresh] = ids.emplace(row.id, i); !fresh)
-            file.fail(where + " id", jsonString(row.id) + " is also the id of participants[" +
-                                         std::to_string(it->second) + "]");
+            file.fail(where + " id",
+                      jsonString(row.id) + " is also the id of participants[" + std::to_string(it->second) + "]");
         if (row.seed == 0 || row.seed > kMaxParticipantSeed)
-            file.fail(where + " seed", "must be an integer between 1 and " + std::to_string(kMaxParticipantSeed) +
-                                           ", got " + std::to_string(row.seed));
+            file.fail(where + " seed",
+                      "must be an integer between 1 and " + std::to_string(kMaxParticipantSeed) + ", got " +
+                          std::to_string(row.seed));
         if (const auto [it, fresh] = seeds.emplace(row.seed, i); !fresh)
-            file.fail(where + " seed", std::to_string(row.seed) + " is also the seed of " +
-                                           rowName(it->second, plan.participants[it->second].id));
+            file.fail(where + " seed",
+                      std::to_string(row.seed) + " is also the seed of " +
+                          rowName(it->second, plan.participants[it->second].id));
 
         std::vector<int> sorted = row.protocolOrder;
         std::sort(sorted.begin(), sorted.end());
         bool permutation = sorted.size() == protocolCount;
         for (std::size_t k = 0; permutation && k < sorted.size(); ++k) permutation = sorted[k] == static_cast<int>(k);
         if (!permutation)
-            file.fail(where + " protocol_order", "is " + listText(row.protocolOrder) + ", not an order of the " +
-                                                     std::to_string(protocolCount) + " protocols (each of 0.." +
-                                                     std::to_string(protocolCount - 1) + " once)");
+            file.fail(where + " protocol_order",
+                      "is " + listText(row.protocolOrder) + ", not an order of the " + std::to_string(protocolCount) +
+                          " protocols (each of 0.." + std::to_string(protocolCount - 1) + " once)");
         if (row.conditionOrder.size() != protocolCount)
-            file.fail(where + " condition_order", "must hold one list for each of the " +
-                                                      std::to_string(protocolCount) + " protocols, not " +
-                                                      std::to_string(row.conditionOrder.size()));
+            file.fail(where + " condition_order",
+                      "must hold one list for each of the " + std::to_string(protocolCount) + " protocols, not " +
+                          std::to_string(row.conditionOrder.size()));
         for (std::size_t p = 0; p < protocolCount; ++p)
             requirePermutation(file, where + " condition_order[" + std::to_string(p) + "]", row.conditionOrder[p],
                                plan.protocols[p].conditions, "protocols[" + std::to_string(p) + "]");
@@ -514,7 +528,7 @@ std::string objectLines(const Json& object, const std::string& indent) {
     std::size_t k = 0;
     for (const auto& item : object.items())
         text += indent + "  " + jsonString(item.key()) + ": " + inlineJson(item.value()) +
-                (++k < object.size() ? ",\n" : "\n");
+            (++k < object.size() ? ",\n" : "\n");
     return text + indent + "}";
 }
 
@@ -526,7 +540,8 @@ std::string planText(const StudyPlan& plan) {
     header["created_at"] = plan.createdAt;
     header["seed"] = plan.seed;
     std::string text = "{\n";
-    for (const auto& item : header.items()) text += "  " + jsonString(item.key()) + ": " + inlineJson(item.value()) + ",\n";
+    for (const auto& item : header.items())
+        text += "  " + jsonString(item.key()) + ": " + inlineJson(item.value()) + ",\n";
     text += "  \"protocols\": [\n";
     for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
         const ProtocolEntry& e = plan.protocols[p];
@@ -714,8 +729,9 @@ std::string participantProtocolJson(const std::string& planDir, const StudyPlan&
     const PlanFile file(studyJsonPath(planDir));
     if (protocolIndex < 0 || static_cast<std::size_t>(protocolIndex) >= plan.protocols.size() ||
         static_cast<std::size_t>(protocolIndex) >= participant.conditionOrder.size())
-        file.fail("protocols", "has no protocol " + std::to_string(protocolIndex) + " for participant " +
-                                   jsonString(participant.id));
+        file.fail(
+            "protocols",
+            "has no protocol " + std::to_string(protocolIndex) + " for participant " + jsonString(participant.id));
     const ProtocolEntry& entry = plan.protocols[static_cast<std::size_t>(protocolIndex)];
     const std::string where = "protocols[" + std::to_string(protocolIndex) + "].file";
     const std::string text = protocolText(file, planDir, entry, where);

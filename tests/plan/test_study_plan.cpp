@@ -185,9 +185,13 @@ std::string makeRefusal(const std::function<void()>& make) {
 
 TEST(StudyPlan, MakeRefusesWhatCannotBeAPlan) {
     const std::string dir = scratch("make-refusals");
-    EXPECT_NE(makeRefusal([&] { makePlan(dir, {kShooter}, 2, {"a", "a"}, 1); }).find("\"a\" is given twice"),
+    EXPECT_NE(makeRefusal([&] {
+                  makePlan(dir, {kShooter}, 2, {"a", "a"}, 1);
+              }).find("\"a\" is given twice"),
               std::string::npos);
-    EXPECT_NE(makeRefusal([&] { makePlan(dir, {kShooter}, 3, {"a", "b"}, 1); }).find("2 participant ids"),
+    EXPECT_NE(makeRefusal([&] {
+                  makePlan(dir, {kShooter}, 3, {"a", "b"}, 1);
+              }).find("2 participant ids"),
               std::string::npos);
     EXPECT_NE(makeRefusal([&] { makePlan(dir, {kShooter}, 0, {}, 1); }).find("between 1 and"), std::string::npos);
 
@@ -303,9 +307,12 @@ TEST(StudyPlan, ReadRefusesRepeatedIdsAndSeeds) {
     });
     expectRefusal(dir, {"participants[4] (\"P05\") seed", "is also the seed of participants[1] (\"P02\")"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = 0; });
-    expectRefusal(dir, {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number 0"});
+    expectRefusal(dir,
+                  {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number 0"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = std::uint64_t{1} << 53; });
-    expectRefusal(dir, {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number 9007199254740992"});
+    expectRefusal(dir,
+                  {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number "
+                   "9007199254740992"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = -5; });
     expectRefusal(dir, {"participants[4] (\"P05\") seed must be an integer"});
 }
@@ -320,13 +327,16 @@ TEST(StudyPlan, ReadRefusesOrdersThatAreNotPermutations) {
         d["participants"][1]["protocol_order"] = {1, 0};
         d["participants"][0]["condition_order"][0][1] = "conv25";
     });
-    expectRefusal(dir, {"participants[0] (\"P01\") condition_order[0][1] is \"conv25\", not a condition of protocols[0]"});
+    expectRefusal(dir,
+                  {"participants[0] (\"P01\") condition_order[0][1] is \"conv25\", not a condition of protocols[0]"});
     edit(dir, [](Json& d) { d["participants"][0]["condition_order"][0] = {"conv15", "conv120"}; });
-    expectRefusal(dir, {"participants[0] (\"P01\") condition_order[0] is [\"conv15\", \"conv120\"], not an order of the 3"});
+    expectRefusal(dir,
+                  {"participants[0] (\"P01\") condition_order[0] is [\"conv15\", \"conv120\"], not an order of the 3"});
     edit(dir, [](Json& d) { d["participants"][0]["condition_order"][0] = {"conv15", "conv120", "conv15"}; });
     expectRefusal(dir, {"participants[0] (\"P01\") condition_order[0][2] is \"conv15\" again"});
     edit(dir, [](Json& d) { d["participants"][0]["condition_order"].erase(1); });
-    expectRefusal(dir, {"participants[0] (\"P01\") condition_order must hold one list for each of the 2 protocols, not 1"});
+    expectRefusal(dir,
+                  {"participants[0] (\"P01\") condition_order must hold one list for each of the 2 protocols, not 1"});
 }
 
 TEST(StudyPlan, ReadRefusesAProtocolCopyMissingOrChanged) {
