@@ -1,0 +1,748 @@
+#include "plan/study_plan.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <cstdint>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "game/registry.h"
+#include "physics/splitmix.h"
+#include "plan/latin_square.h"
+#include "protocol/study_protocol.h"
+
+namespace warplab::plan {
+namespace {
+
+namespace fs = std::filesystem;
+// Ordered, so study.json and a participant's protocol keep their keys in the order written.
+using Json = nlohmann::ordered_json;
+
+// Where each game's protocol keeps the list a plan counterbalances and the flag that says
+// whether the game shuffles it (docs/study-plan.md). The one table: makePlan reads the list
+// through it, participantProtocolJson writes the participant's order through it.
+struct CounterbalancedList {
+    const char* game;
+    const char* section;
+    const char* list;
+    const char* shuffledFlag;  // true: the session seed randomises the order
+};
+constexpr CounterbalancedList kCounterbalancedLists[] = {
+    {"shooter", "test", "conditions", "interleave"},
+    {"click", "matches", "modes", "shuffle"},
+};
+
+const CounterbalancedList* counterbalancedList(const std::string& game) {
+    for (const auto& entry : kCounterbalancedLists)
+        if (game == entry.game) return &entry;
+    return nullptr;
+}
+
+// Plan files are small: 10000 participants take about 3 MB.
+constexpr std::size_t kMaxPlanBytes = 64u << 20;
+constexpr std::size_t kLineLimit = 200;  // bytes in a participant id, as in a protocol's names
+// A mouse no one uses and a turn no hand makes; tiny positive values would turn into an
+// infinite turn per count, so the lower bounds are real rather than "above 0".
+constexpr double kMinCmPer360 = 0.1, kMaxCmPer360 = 10000;
+constexpr double kMinMouseDpi = 1, kMaxMouseDpi = 100000;
+
+std::string studyJsonPath(const std::string& planDir) { return (fs::path(planDir) / "study.json").string(); }
+
+std::string readBytes(const fs::path& path, bool& ok) {
+    std::ifstream in(path, std::ios::binary);
+    ok = static_cast<bool>(in) && !fs::is_directory(path);
+    if (!ok) return {};
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ok = !in.bad();
+    return text;
+}
+
+std::string hex64(std::uint64_t v) {
+    char text[17];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+    return text;
+}
+
+std::string fnv1a64(const std::string& bytes) {
+    std::uint64_t h = 0xcbf29ce484222325ull;
+    for (const char c : bytes) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+    return hex64(h);
+}
+
+bool isLowerHex(const std::string& text, std::size_t digits) {
+    return text.size() == digits &&
+        std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+bool isLine(const std::string& text) {
+    return !text.empty() && text.size() <= kLineLimit &&
+        std::none_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+}
+
+// Shortest text that reads back as the same double; whole numbers without a decimal point.
+std::string formatNumber(double v) {
+    if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
+    char text[32];
+    for (int precision = 1; precision <= 17; ++precision) {
+        std::snprintf(text, sizeof text, "%.*g", precision, v);
+        if (std::strtod(text, nullptr) == v) break;
+    }
+    return text;
+}
+
+std::string jsonString(const std::string& text) {
+    return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+template <class T, class Show>
+std::string listText(const std::vector<T>& items, Show show) {
+    std::string text = "[";
+    for (std::size_t i = 0; i < items.size(); ++i) text += (i ? ", " : "") + show(items[i]);
+    return text + "]";
+}
+std::string listText(const std::vector<std::string>& items) { return listText(items, jsonString); }
+std::string listText(const std::vector<int>& items) {
+    return listText(items, [](int v) { return std::to_string(v); });
+}
+
+// The file name and, for a participant, the row, at the start of every message.
+class PlanFile {
+public:
+    explicit PlanFile(std::string path) : path_(std::move(path)) {}
+    [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
+        throw PlanError("study plan '" + path_ + "': " + where + " " + reason);
+    }
+    const std::string& path() const { return path_; }
+
+private:
+    std::string path_;
+};
+
+std::string rowName(std::size_t index, const std::string& id) {
+    std::string where = "participants[" + std::to_string(index) + "]";
+    if (isLine(id)) where += " (" + jsonString(id) + ")";
+    return where;
+}
+
+// nlohmann keeps the last of two equal keys without a word; a plan edited by hand with a key
+// written twice is as ambiguous as a misspelt one.
+class DuplicateKeyFinder {
+public:
+    bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
+        if (event == Json::parse_event_t::object_start) {
+            keys_.resize(static_cast<std::size_t>(depth) + 1);
+            keys_[depth].clear();
+        }
+        if (event == Json::parse_event_t::key && !keys_.empty()) {
+            const auto key = parsed.get<std::string>();
+            if (!keys_[depth - 1].insert(key).second && duplicate_.empty()) duplicate_ = key;
+        }
+        return true;
+    }
+    const std::string& duplicate() const { return duplicate_; }
+
+private:
+    std::vector<std::set<std::string>> keys_;
+    std::string duplicate_;
+};
+
+// ----------------------------------------------------------------------------- reading
+
+class JsonReader {
+public:
+    explicit JsonReader(const PlanFile& file) : file_(file) {}
+
+    const Json& field(const Json& object, const std::string& path, const char* key) const {
+        const auto it = object.find(key);
+        if (it == object.end()) file_.fail(join(path, key), "is missing");
+        return *it;
+    }
+    void knownKeys(const Json& object, const std::string& path, const std::vector<const char*>& known) const {
+        for (const auto& item : object.items())
+            if (std::find_if(known.begin(), known.end(), [&](const char* k) { return item.key() == k; }) ==
+                known.end()) {
+                std::string list;
+                for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+                file_.fail(join(path, item.key()),
+                           "is not a known field (" + (path.empty() ? std::string("the plan") : path) + " may have " +
+                               list + ")");
+            }
+    }
+    const Json& object(const Json& value, const std::string& path) const {
+        if (!value.is_object()) file_.fail(path, "must be an object, got " + describe(value));
+        return value;
+    }
+    const Json& array(const Json& value, const std::string& path) const {
+        if (!value.is_array()) file_.fail(path, "must be an array, got " + describe(value));
+        return value;
+    }
+    std::string string(const Json& value, const std::string& path) const {
+        if (!value.is_string()) file_.fail(path, "must be a string, got " + describe(value));
+        return value.get<std::string>();
+    }
+    bool boolean(const Json& value, const std::string& path) const {
+        if (!value.is_boolean()) file_.fail(path, "must be true or false, got " + describe(value));
+        return value.get<bool>();
+    }
+    double number(const Json& value, const std::string& path) const {
+        if (!value.is_number()) file_.fail(path, "must be a number, got " + describe(value));
+        return value.get<double>();
+    }
+    int integer(const Json& value, const std::string& path) const {
+        if (!value.is_number_integer() || value.get<std::int64_t>() < -1000000000 ||
+            value.get<std::int64_t>() > 1000000000)
+            file_.fail(path, "must be an integer, got " + describe(value));
+        return static_cast<int>(value.get<std::int64_t>());
+    }
+    std::uint64_t seed(const Json& value, const std::string& path, std::uint64_t low, std::uint64_t high) const {
+        if (!value.is_number_unsigned() || value.get<std::uint64_t>() < low || value.get<std::uint64_t>() > high)
+            file_.fail(path,
+                       "must be an integer between " + std::to_string(low) + " and " + std::to_string(high) + ", got " +
+                           describe(value));
+        return value.get<std::uint64_t>();
+    }
+    std::vector<std::string> strings(const Json& value, const std::string& path) const {
+        std::vector<std::string> out;
+        for (std::size_t i = 0; i < array(value, path).size(); ++i)
+            out.push_back(string(value[i], path + "[" + std::to_string(i) + "]"));
+        return out;
+    }
+
+    // A participant's row is named by its id too, `participants[3] ("P04")`, and its fields
+    // follow after a space: `participants[3] ("P04") seed`.
+    static std::string join(const std::string& path, const std::string& key) {
+        if (path.empty()) return key;
+        return path + (path.back() == ')' ? " " : ".") + key;
+    }
+    static std::string describe(const Json& value) {
+        std::string text = value.dump(-1, ' ', true, Json::error_handler_t::replace);
+        if (text.size() > 60) text = text.substr(0, 57) + "...";
+        const char* kind = value.is_string() ? "string "
+            : value.is_boolean()             ? "boolean "
+            : value.is_null()                ? ""
+            : value.is_number()              ? "number "
+            : value.is_array()               ? "array "
+                                             : "object ";
+        return kind + text;
+    }
+
+private:
+    const PlanFile& file_;
+};
+
+Json parseDocument(const PlanFile& file, const std::string& text) {
+    if (text.size() > kMaxPlanBytes)
+        file.fail("is",
+                  std::to_string(text.size()) + " bytes, more than a study plan may be (" +
+                      std::to_string(kMaxPlanBytes) + ")");
+    DuplicateKeyFinder finder;
+    Json document;
+    try {
+        document = Json::parse(text, [&finder](int depth, Json::parse_event_t event, Json& parsed) {
+            return finder(depth, event, parsed);
+        });
+    } catch (const Json::exception& e) {
+        std::string reason = e.what();
+        if (const auto close = reason.find("] "); close != std::string::npos) reason.erase(0, close + 2);
+        if (reason.rfind("parse error ", 0) == 0) reason.erase(0, 12);
+        throw PlanError("study plan '" + file.path() + "': malformed JSON " + reason);
+    }
+    if (!finder.duplicate().empty())
+        throw PlanError("study plan '" + file.path() + "': the key " + jsonString(finder.duplicate()) +
+                        " is written twice in one object");
+    if (!document.is_object())
+        throw PlanError("study plan '" + file.path() + "': must be a JSON object, got " +
+                        JsonReader::describe(document));
+    return document;
+}
+
+ParticipantSettings readSettings(const JsonReader& r, const Json& value, const std::string& path) {
+    ParticipantSettings settings;
+    r.object(value, path);
+    r.knownKeys(value, path, {"cm_per_360", "mouse_dpi", "invert_y"});
+    if (value.contains("cm_per_360")) settings.cmPer360 = r.number(value["cm_per_360"], path + ".cm_per_360");
+    if (value.contains("mouse_dpi")) settings.mouseDpi = r.number(value["mouse_dpi"], path + ".mouse_dpi");
+    if (value.contains("invert_y")) settings.invertY = r.boolean(value["invert_y"], path + ".invert_y");
+    return settings;
+}
+
+// study.json into the struct: its keys and their types. What the values must be is validate's.
+StudyPlan fromJson(const PlanFile& file, const Json& document) {
+    const JsonReader r(file);
+    StudyPlan plan;
+    // The version first: a newer plan may well have keys this build does not know.
+    plan.formatVersion = r.integer(r.field(document, "", "format_version"), "format_version");
+    if (plan.formatVersion > kPlanFormatVersion)
+        file.fail("format_version",
+                  std::to_string(plan.formatVersion) + " is newer than this warplab supports (" +
+                      std::to_string(kPlanFormatVersion) + ")");
+    if (plan.formatVersion < 1)
+        file.fail("format_version",
+                  "must be between 1 and " + std::to_string(kPlanFormatVersion) + ", got " +
+                      std::to_string(plan.formatVersion));
+    r.knownKeys(document, "", {"format_version", "id", "created_at", "seed", "protocols", "participants"});
+    plan.id = r.string(r.field(document, "", "id"), "id");
+    plan.createdAt = r.string(r.field(document, "", "created_at"), "created_at");
+    plan.seed = r.seed(r.field(document, "", "seed"), "seed", 0, UINT64_MAX);
+
+    const Json& protocols = r.array(r.field(document, "", "protocols"), "protocols");
+    for (std::size_t p = 0; p < protocols.size(); ++p) {
+        const std::string path = "protocols[" + std::to_string(p) + "]";
+        const Json& entry = r.object(protocols[p], path);
+        r.knownKeys(entry, path, {"file", "name", "game", "hash", "conditions", "blocked"});
+        ProtocolEntry out;
+        out.file = r.string(r.field(entry, path, "file"), path + ".file");
+        out.name = r.string(r.field(entry, path, "name"), path + ".name");
+        out.game = r.string(r.field(entry, path, "game"), path + ".game");
+        out.hash = r.string(r.field(entry, path, "hash"), path + ".hash");
+        out.conditions = r.strings(r.field(entry, path, "conditions"), path + ".conditions");
+        out.blocked = r.boolean(r.field(entry, path, "blocked"), path + ".blocked");
+        plan.protocols.push_back(std::move(out));
+    }
+
+    const Json& participants = r.array(r.field(document, "", "participants"), "participants");
+    for (std::size_t i = 0; i < participants.size(); ++i) {
+        const Json& row = r.object(participants[i], "participants[" + std::to_string(i) + "]");
+        ParticipantPlan out;
+        // The id first, so every later message can name the row by it.
+        const auto id = row.find("id");
+        if (id != row.end() && id->is_string()) out.id = id->get<std::string>();
+        const std::string path = rowName(i, out.id);
+        r.knownKeys(row, path, {"id", "seed", "protocol_order", "condition_order", "settings"});
+        out.id = r.string(r.field(row, path, "id"), path + " id");
+        out.seed = r.seed(r.field(row, path, "seed"), path + " seed", 1, kMaxParticipantSeed);
+        const Json& order = r.array(r.field(row, path, "protocol_order"), path + " protocol_order");
+        for (std::size_t k = 0; k < order.size(); ++k)
+            out.protocolOrder.push_back(r.integer(order[k], path + " protocol_order[" + std::to_string(k) + "]"));
+        const Json& conditions = r.array(r.field(row, path, "condition_order"), path + " condition_order");
+        for (std::size_t p = 0; p < conditions.size(); ++p)
+            out.conditionOrder.push_back(
+                r.strings(conditions[p], path + " condition_order[" + std::to_string(p) + "]"));
+        if (row.contains("settings")) out.settings = readSettings(r, row["settings"], path + " settings");
+        plan.participants.push_back(std::move(out));
+    }
+    return plan;
+}
+
+// ----------------------------------------------------------------------------- protocols
+
+// A protocol file as the plan sees it: parsed by its game's loader, and its counterbalanced
+// list and flag as the loader's canonical copy has them (so a list left to its default counts).
+struct ParsedProtocol {
+    std::string name, game;
+    std::vector<std::string> conditions;
+    bool blocked = false;
+};
+
+// The loader's ProtocolError, as a PlanError with the same sentence.
+ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceName) {
+    std::unique_ptr<game::Study> study;
+    try {
+        study = game::parseStudy(text, sourceName);
+    } catch (const protocol::ProtocolError& e) {
+        throw PlanError(e.what());
+    }
+    ParsedProtocol out;
+    out.name = study->name();
+    out.game = study->game();
+    const CounterbalancedList* list = counterbalancedList(out.game);
+    if (!list)
+        throw PlanError("protocol '" + sourceName + "': a study plan does not know which list of a " +
+                        jsonString(out.game) + " protocol to counterbalance");
+    const Json canonical = Json::parse(study->protocolJson());
+    const Json& section = canonical.at(list->section);
+    out.conditions = section.at(list->list).get<std::vector<std::string>>();
+    out.blocked = !section.at(list->shuffledFlag).get<bool>();
+    return out;
+}
+
+// The protocol copy's path inside the plan folder; a file field that would leave the folder is
+// refused, so a plan cannot point a session at any file on the machine.
+fs::path protocolPath(const PlanFile& file, const std::string& planDir, const ProtocolEntry& entry,
+                      const std::string& where) {
+    const fs::path relative(entry.file);
+    if (entry.file.empty() || relative.is_absolute() || relative.has_root_name() ||
+        std::any_of(relative.begin(), relative.end(), [](const fs::path& part) { return part == ".."; }))
+        file.fail(where,
+                  jsonString(entry.file) + " must be a path inside the plan folder, such as protocols/NAME.json");
+    return fs::path(planDir) / relative;
+}
+
+// The copy's bytes, checked against the plan's hash.
+std::string protocolText(const PlanFile& file, const std::string& planDir, const ProtocolEntry& entry,
+                         const std::string& where) {
+    const fs::path path = protocolPath(file, planDir, entry, where);
+    bool ok = false;
+    const std::string text = readBytes(path, ok);
+    if (!ok) file.fail(where, jsonString(entry.file) + ": no such file in the plan folder (" + path.string() + ")");
+    if (fnv1a64(text) != entry.hash)
+        file.fail(where,
+                  jsonString(entry.file) + " has changed since the plan was made (its hash is " + fnv1a64(text) +
+                      ", the plan's " + entry.hash + ")");
+    return text;
+}
+
+// ----------------------------------------------------------------------------- checks
+
+void requirePermutation(const PlanFile& file, const std::string& where, const std::vector<std::string>& order,
+                        const std::vector<std::string>& conditions, const std::string& of) {
+    std::set<std::string> seen;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        if (std::find(conditions.begin(), conditions.end(), order[k]) == conditions.end())
+            file.fail(where + "[" + std::to_string(k) + "]",
+                      "is " + jsonString(order[k]) + ", not a condition of " + of + " (" + listText(conditions) + ")");
+        if (!seen.insert(order[k]).second)
+            file.fail(
+                where + "[" + std::to_string(k) + "]",
+                "is " + jsonString(order[k]) + " again: " + where + " must name each condition of " + of + " once");
+    }
+    if (order.size() != conditions.size())
+        file.fail(where,
+                  "is " + listText(order) + ", not an order of the " + std::to_string(conditions.size()) +
+                      " conditions of " + of + " (" + listText(conditions) + ")");
+}
+
+void requireSettings(const PlanFile& file, const std::string& where, const ParticipantSettings& s) {
+    auto range = [&](const char* key, double v, double low, double high) {
+        if (!(v >= low && v <= high))
+            file.fail(where + " settings." + key,
+                      "must be a number between " + formatNumber(low) + " and " + formatNumber(high) + ", got " +
+                          formatNumber(v));
+    };
+    if (s.cmPer360) range("cm_per_360", *s.cmPer360, kMinCmPer360, kMaxCmPer360);
+    range("mouse_dpi", s.mouseDpi, kMinMouseDpi, kMaxMouseDpi);
+}
+
+// Everything a plan must be, against itself and the protocol copies in planDir.
+void validate(const PlanFile& file, const std::string& planDir, const StudyPlan& plan) {
+    if (!isLowerHex(plan.id, 32)) file.fail("id", "must be 32 lower-case hex digits, got " + jsonString(plan.id));
+    if (!isLine(plan.createdAt)) file.fail("created_at", "must be one line of text, got " + jsonString(plan.createdAt));
+    if (plan.protocols.empty()) file.fail("protocols", "is empty: a plan runs at least one protocol");
+    std::set<std::string> files;
+    for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
+        const ProtocolEntry& entry = plan.protocols[p];
+        const std::string where = "protocols[" + std::to_string(p) + "]";
+        if (!files.insert(fs::path(entry.file).lexically_normal().string()).second)
+            file.fail(where + ".file", jsonString(entry.file) + " is listed twice");
+        if (!isLowerHex(entry.hash, 16))
+            file.fail(where + ".hash", "must be 16 lower-case hex digits, got " + jsonString(entry.hash));
+        const std::string text = protocolText(file, planDir, entry, where + ".file");
+        const ParsedProtocol parsed = parseProtocol(text, protocolPath(file, planDir, entry, where).string());
+        if (entry.game != parsed.game)
+            file.fail(where + ".game",
+                      "is " + jsonString(entry.game) + ", but the file is for " + jsonString(parsed.game));
+        if (entry.name != parsed.name)
+            file.fail(where + ".name",
+                      "is " + jsonString(entry.name) + ", but the file's name is " + jsonString(parsed.name));
+        if (entry.conditions != parsed.conditions)
+            file.fail(where + ".conditions",
+                      "is " + listText(entry.conditions) + ", but the file lists " + listText(parsed.conditions));
+        if (entry.blocked != parsed.blocked)
+            file.fail(where + ".blocked",
+                      std::string("is ") + (entry.blocked ? "true" : "false") + ", but the file " +
+                          (parsed.blocked ? "plays the list in order" : "shuffles the list"));
+    }
+
+    if (plan.participants.empty()) file.fail("participants", "is empty: a plan has at least one participant");
+    if (plan.participants.size() > static_cast<std::size_t>(kMaxParticipants))
+        file.fail(
+            "participants",
+            "has " + std::to_string(plan.participants.size()) + " rows, more than " + std::to_string(kMaxParticipants));
+    std::map<std::string, std::size_t> ids;
+    std::map<std::uint64_t, std::size_t> seeds;
+    const std::size_t protocolCount = plan.protocols.size();
+    for (std::size_t i = 0; i < plan.participants.size(); ++i) {
+        const ParticipantPlan& row = plan.participants[i];
+        const std::string where = rowName(i, row.id);
+        if (!isLine(row.id))
+            file.fail(where + " id",
+                      "must be 1 to " + std::to_string(kLineLimit) + " bytes on one line, got " + jsonString(row.id));
+        if (const auto [it, fresh] = ids.emplace(row.id, i); !fresh)
+            file.fail(where + " id",
+                      jsonString(row.id) + " is also the id of participants[" + std::to_string(it->second) + "]");
+        if (row.seed == 0 || row.seed > kMaxParticipantSeed)
+            file.fail(where + " seed",
+                      "must be an integer between 1 and " + std::to_string(kMaxParticipantSeed) + ", got " +
+                          std::to_string(row.seed));
+        if (const auto [it, fresh] = seeds.emplace(row.seed, i); !fresh)
+            file.fail(where + " seed",
+                      std::to_string(row.seed) + " is also the seed of " +
+                          rowName(it->second, plan.participants[it->second].id));
+
+        std::vector<int> sorted = row.protocolOrder;
+        std::sort(sorted.begin(), sorted.end());
+        bool permutation = sorted.size() == protocolCount;
+        for (std::size_t k = 0; permutation && k < sorted.size(); ++k) permutation = sorted[k] == static_cast<int>(k);
+        if (!permutation)
+            file.fail(where + " protocol_order",
+                      "is " + listText(row.protocolOrder) + ", not an order of the " + std::to_string(protocolCount) +
+                          " protocols (each of 0.." + std::to_string(protocolCount - 1) + " once)");
+        if (row.conditionOrder.size() != protocolCount)
+            file.fail(where + " condition_order",
+                      "must hold one list for each of the " + std::to_string(protocolCount) + " protocols, not " +
+                          std::to_string(row.conditionOrder.size()));
+        for (std::size_t p = 0; p < protocolCount; ++p)
+            requirePermutation(file, where + " condition_order[" + std::to_string(p) + "]", row.conditionOrder[p],
+                               plan.protocols[p].conditions, "protocols[" + std::to_string(p) + "]");
+        requireSettings(file, where, row.settings);
+    }
+}
+
+// ----------------------------------------------------------------------------- writing
+
+// One line: ", " between elements, ": " after keys.
+std::string inlineJson(const Json& value) {
+    if (value.is_array()) {
+        std::string text = "[";
+        for (std::size_t i = 0; i < value.size(); ++i) text += (i ? ", " : "") + inlineJson(value[i]);
+        return text + "]";
+    }
+    if (value.is_object()) {
+        std::string text = "{";
+        bool first = true;
+        for (const auto& item : value.items()) {
+            text += (first ? "" : ", ") + jsonString(item.key()) + ": " + inlineJson(item.value());
+            first = false;
+        }
+        return text + "}";
+    }
+    if (value.is_number_float()) return formatNumber(value.get<double>());
+    return value.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+// An object on its lines: each key on its own, two spaces deeper than `indent`, values inline.
+std::string objectLines(const Json& object, const std::string& indent) {
+    std::string text = "{\n";
+    std::size_t k = 0;
+    for (const auto& item : object.items())
+        text += indent + "  " + jsonString(item.key()) + ": " + inlineJson(item.value()) +
+            (++k < object.size() ? ",\n" : "\n");
+    return text + indent + "}";
+}
+
+// The order of study.json's keys is the order of docs/study-plan.md's tables.
+std::string planText(const StudyPlan& plan) {
+    Json header;
+    header["format_version"] = plan.formatVersion;
+    header["id"] = plan.id;
+    header["created_at"] = plan.createdAt;
+    header["seed"] = plan.seed;
+    std::string text = "{\n";
+    for (const auto& item : header.items())
+        text += "  " + jsonString(item.key()) + ": " + inlineJson(item.value()) + ",\n";
+    text += "  \"protocols\": [\n";
+    for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
+        const ProtocolEntry& e = plan.protocols[p];
+        Json entry;
+        entry["file"] = e.file;
+        entry["name"] = e.name;
+        entry["game"] = e.game;
+        entry["hash"] = e.hash;
+        entry["conditions"] = e.conditions;
+        entry["blocked"] = e.blocked;
+        text += "    " + objectLines(entry, "    ") + (p + 1 < plan.protocols.size() ? ",\n" : "\n");
+    }
+    text += "  ],\n  \"participants\": [\n";
+    for (std::size_t i = 0; i < plan.participants.size(); ++i) {
+        const ParticipantPlan& row = plan.participants[i];
+        Json entry;
+        entry["id"] = row.id;
+        entry["seed"] = row.seed;
+        entry["protocol_order"] = row.protocolOrder;
+        entry["condition_order"] = row.conditionOrder;
+        Json settings = Json::object();
+        if (row.settings.cmPer360) settings["cm_per_360"] = *row.settings.cmPer360;
+        settings["mouse_dpi"] = row.settings.mouseDpi;
+        settings["invert_y"] = row.settings.invertY;
+        entry["settings"] = settings;
+        text += "    " + objectLines(entry, "    ") + (i + 1 < plan.participants.size() ? ",\n" : "\n");
+    }
+    return text + "  ]\n}\n";
+}
+
+void writeWhole(const fs::path& path, const std::string& bytes, const std::string& what) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) throw PlanError(what + " '" + path.string() + "' could not be written: " + std::strerror(errno));
+}
+
+std::string randomId() {
+    std::random_device device;
+    std::string id;
+    for (int i = 0; i < 2; ++i)
+        id += hex64((static_cast<std::uint64_t>(device()) << 32) ^ static_cast<std::uint64_t>(device()));
+    return id;
+}
+
+std::string utcNow() {
+    const std::time_t now = std::time(nullptr);
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    return text;
+}
+
+std::string defaultId(int index, int count) {
+    const int width = static_cast<int>(std::to_string(count).size());
+    std::string number = std::to_string(index + 1);
+    // Two digits at least: P01..P09 sort before P10 in every file browser.
+    return "P" + std::string(static_cast<std::size_t>(std::max(width, 2)) - number.size(), '0') + number;
+}
+
+}  // namespace
+
+StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& protocolPaths, int participants,
+                   const std::vector<std::string>& ids, std::uint64_t seed) {
+    const std::string prefix = "study plan '" + planDir + "': ";
+    if (participants < 1 || participants > kMaxParticipants)
+        throw PlanError(prefix + "the number of participants must be between 1 and " +
+                        std::to_string(kMaxParticipants) + ", got " + std::to_string(participants));
+    if (!ids.empty() && ids.size() != static_cast<std::size_t>(participants))
+        throw PlanError(prefix + std::to_string(ids.size()) + " participant ids given for " +
+                        std::to_string(participants) + " participants");
+    if (protocolPaths.empty()) throw PlanError(prefix + "a plan runs at least one protocol, none given");
+    if (fs::exists(studyJsonPath(planDir)))
+        throw PlanError(prefix + "already holds a study plan (" + studyJsonPath(planDir) +
+                        "); a plan is made once, in a folder of its own");
+
+    StudyPlan plan;
+    plan.id = randomId();
+    plan.createdAt = utcNow();
+    plan.seed = seed;
+
+    // Every protocol is read and parsed before anything is copied, so a refusal leaves no
+    // half-made plan folder behind.
+    std::vector<std::string> texts;
+    for (const std::string& path : protocolPaths) {
+        std::string text;
+        try {
+            text = protocol::readProtocolFile(path);
+        } catch (const protocol::ProtocolError& e) {
+            throw PlanError(e.what());
+        }
+        const ParsedProtocol parsed = parseProtocol(text, path);
+        ProtocolEntry entry;
+        entry.file = (fs::path("protocols") / fs::path(path).filename()).generic_string();
+        for (std::size_t p = 0; p < plan.protocols.size(); ++p)
+            if (plan.protocols[p].file == entry.file)
+                throw PlanError(prefix + "protocols '" + protocolPaths[p] + "' and '" + path +
+                                "' have the same file name, and the plan keeps both in " + entry.file);
+        entry.name = parsed.name;
+        entry.game = parsed.game;
+        entry.hash = fnv1a64(text);
+        entry.conditions = parsed.conditions;
+        entry.blocked = parsed.blocked;
+        plan.protocols.push_back(std::move(entry));
+        texts.push_back(std::move(text));
+    }
+
+    // Seeds: the top 53 bits of a splitmix64 stream from the plan's seed (kMaxParticipantSeed),
+    // skipping 0 and any repeat.
+    std::uint64_t state = seed;
+    std::set<std::uint64_t> seeds;
+    const auto protocolSquare = balancedLatinSquare(static_cast<int>(plan.protocols.size()));
+    std::vector<std::vector<std::vector<int>>> conditionSquares;
+    for (const ProtocolEntry& entry : plan.protocols)
+        conditionSquares.push_back(balancedLatinSquare(static_cast<int>(entry.conditions.size())));
+    for (int i = 0; i < participants; ++i) {
+        ParticipantPlan row;
+        row.id = ids.empty() ? defaultId(i, participants) : ids[i];
+        do row.seed = physics::splitmix64(state) >> 11;
+        while (row.seed == 0 || !seeds.insert(row.seed).second);
+        row.protocolOrder = protocolSquare[static_cast<std::size_t>(i) % protocolSquare.size()];
+        // Protocol p takes row i + p of its square: with two protocols of the same length the
+        // participant's two condition orders then differ, rather than repeat each other.
+        for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
+            const auto& square = conditionSquares[p];
+            std::vector<std::string> order;
+            for (const int c : square[(static_cast<std::size_t>(i) + p) % square.size()])
+                order.push_back(plan.protocols[p].conditions[static_cast<std::size_t>(c)]);
+            row.conditionOrder.push_back(std::move(order));
+        }
+        plan.participants.push_back(std::move(row));
+    }
+    // Ids are checked as readPlan checks them, before anything is written.
+    const PlanFile planFile(studyJsonPath(planDir));
+    for (std::size_t i = 0; i < plan.participants.size(); ++i) {
+        const std::string& id = plan.participants[i].id;
+        if (!isLine(id))
+            throw PlanError(prefix + "participant id " + std::to_string(i + 1) + " must be 1 to " +
+                            std::to_string(kLineLimit) + " bytes on one line, got " + jsonString(id));
+        for (std::size_t j = 0; j < i; ++j)
+            if (plan.participants[j].id == id)
+                throw PlanError(prefix + "participant id " + jsonString(id) + " is given twice");
+    }
+
+    std::error_code error;
+    fs::create_directories(fs::path(planDir) / "protocols", error);
+    if (error)
+        throw PlanError(prefix + "the folder '" + (fs::path(planDir) / "protocols").string() +
+                        "' could not be made: " + error.message());
+    for (std::size_t p = 0; p < plan.protocols.size(); ++p)
+        writeWhole(fs::path(planDir) / plan.protocols[p].file, texts[p], "the protocol copy");
+    return plan;
+}
+
+void writePlan(const std::string& planDir, const StudyPlan& plan) {
+    const PlanFile file(studyJsonPath(planDir));
+    validate(file, planDir, plan);
+    const fs::path target = file.path();
+    const fs::path partial = fs::path(planDir) / ".study.json.partial";
+    writeWhole(partial, planText(plan), "study plan");
+    std::error_code error;
+    fs::rename(partial, target, error);
+    if (error) throw PlanError("study plan '" + file.path() + "' could not be written: " + error.message());
+}
+
+StudyPlan readPlan(const std::string& planDir) {
+    const PlanFile file(studyJsonPath(planDir));
+    bool ok = false;
+    const std::string text = readBytes(file.path(), ok);
+    if (!ok) throw PlanError("study plan '" + file.path() + "': no such file");
+    StudyPlan plan = fromJson(file, parseDocument(file, text));
+    validate(file, planDir, plan);
+    return plan;
+}
+
+const ParticipantPlan* findParticipant(const StudyPlan& plan, const std::string& id) {
+    for (const ParticipantPlan& row : plan.participants)
+        if (row.id == id) return &row;
+    return nullptr;
+}
+
+std::string participantProtocolJson(const std::string& planDir, const StudyPlan& plan,
+                                    const ParticipantPlan& participant, int protocolIndex) {
+    const PlanFile file(studyJsonPath(planDir));
+    if (protocolIndex < 0 || static_cast<std::size_t>(protocolIndex) >= plan.protocols.size() ||
+        static_cast<std::size_t>(protocolIndex) >= participant.conditionOrder.size())
+        file.fail(
+            "protocols",
+            "has no protocol " + std::to_string(protocolIndex) + " for participant " + jsonString(participant.id));
+    const ProtocolEntry& entry = plan.protocols[static_cast<std::size_t>(protocolIndex)];
+    const std::string where = "protocols[" + std::to_string(protocolIndex) + "].file";
+    const std::string text = protocolText(file, planDir, entry, where);
+    const CounterbalancedList* list = counterbalancedList(entry.game);
+    if (!list) file.fail(where, "is a " + jsonString(entry.game) + " protocol, whose list a study plan does not know");
+    Json document = Json::parse(text);
+    // A section the file leaves out is added with the list alone: its other fields keep their
+    // defaults, as they did in the file.
+    Json& section = document[list->section];
+    section[list->list] = participant.conditionOrder[static_cast<std::size_t>(protocolIndex)];
+    return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+}  // namespace warplab::plan
