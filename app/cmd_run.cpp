@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.h"
@@ -8,6 +9,8 @@
 #include "present/replay_render.h"
 #include "study/session_runner.h"
 #include "participants/eye.h"
+#include "plan/status.h"
+#include "plan/study_plan.h"
 #include "scene/limits.h"
 
 namespace warplab::app {
@@ -27,20 +30,76 @@ void checkParticipant(const std::string& id) {
             throw UsageError(what + "must not hold control characters");
 }
 
+// run --study DIR --participant ID [--protocol NAME] [--again]: the protocol (with the
+// participant's condition order), seed and results folder come from the plan; the protocol is
+// the participant's next one not yet done unless --protocol names one of the plan's. Returns
+// the participant's mouse settings, for a window.
+template <typename Run>
+plan::ParticipantSettings readStudyOptions(const ParsedArgs& args, Run& run) {
+    for (const char* option : {"seed", "out"})
+        if (args.has(option))
+            throw UsageError(std::string("option --") + option + " comes from the study plan with --study");
+    if (!args.has("participant")) throw UsageError("option --participant is required");
+    const std::string dir = args.string("study");
+    const plan::StudyPlan studyPlan = plan::readPlan(dir);
+    const std::string planFile = (std::filesystem::path(dir) / "study.json").string();
+    run.participant = args.string("participant");
+    const plan::ParticipantPlan* participant = plan::findParticipant(studyPlan, run.participant);
+    if (!participant) {
+        std::string ids;
+        for (const auto& p : studyPlan.participants) ids += (ids.empty() ? "" : ", ") + p.id;
+        throw plan::PlanError("study plan '" + planFile + "' has no participant '" + run.participant + "' (it plans " +
+                              ids + ")");
+    }
+    plan::ParticipantStatus status;
+    for (auto& s : plan::studyStatus(dir, studyPlan))
+        if (s.id == participant->id) status = std::move(s);
+    int position = plan::nextProtocol(status);
+    if (args.has("protocol")) {
+        const std::string wanted = args.string("protocol");
+        position = -1;
+        for (std::size_t i = 0; i < status.protocols.size(); ++i) {
+            const plan::ProtocolEntry& e =
+                studyPlan.protocols[static_cast<std::size_t>(status.protocols[i].protocolIndex)];
+            if (e.name == wanted || e.file == wanted || std::filesystem::path(e.file).filename() == wanted)
+                position = static_cast<int>(i);
+        }
+        if (position < 0) throw plan::PlanError("study plan '" + planFile + "' has no protocol '" + wanted + "'");
+    } else if (position < 0) {
+        throw plan::PlanError("participant " + participant->id + " of study plan '" + planFile +
+                              "' has done every protocol; to run one again, name it with --protocol and add --again");
+    }
+    const plan::ProtocolStatus& chosen = status.protocols[static_cast<std::size_t>(position)];
+    const plan::ProtocolEntry& entry = studyPlan.protocols[static_cast<std::size_t>(chosen.protocolIndex)];
+    if ((chosen.state == plan::SessionState::Done || chosen.state == plan::SessionState::Flagged) &&
+        !args.flag("again"))
+        throw plan::PlanError("participant " + participant->id + " already has a complete session of " + entry.name +
+                              " (" + chosen.detail + " in " + plan::resultsFolder(dir) +
+                              "); add --again to record another");
+    run.protocolPath = (std::filesystem::path(dir) / entry.file).string();
+    run.protocolText = plan::participantProtocolJson(dir, studyPlan, *participant, chosen.protocolIndex);
+    run.planId = studyPlan.id;
+    run.resultsDir = plan::resultsFolder(dir);
+    run.seed = participant->seed;
+    return participant->settings;
+}
+
 template <typename Run>
 void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run, bool recorded = true) {
-    run.protocolPath = args.string("protocol");
-    if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
-    if (recorded && !args.has("participant")) throw UsageError("option --participant is required");
-    run.participant = args.string("participant");
-    if (recorded) checkParticipant(run.participant);
-    run.resultsDir = args.string("out", "results");
     run.player = args.string("player", defaultPlayer);
     try {
         study::checkPlayer(run.player);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+    if (args.has("study")) return;  // the rest from the plan: readStudyOptions
+    if (args.flag("again")) throw UsageError("option --again only applies with --study");
+    run.protocolPath = args.string("protocol");
+    if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
+    if (recorded && !args.has("participant")) throw UsageError("option --participant is required");
+    run.participant = args.string("participant");
+    if (recorded) checkParticipant(run.participant);
+    run.resultsDir = args.string("out", "results");
     run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
 }
 
@@ -59,6 +118,15 @@ int runWindowed(const ParsedArgs& args) {
     if (run.cmPer360 < 0.0 || !(run.mouseDpi > 0.0))
         throw UsageError("options --cm-per-360 and --mouse-dpi need positive numbers");
     run.invertY = args.flag("invert-y");
+    if (args.has("study")) {
+        if (args.flag("free-play")) throw UsageError("option --free-play records nothing: leave out --study");
+        // The participant's settings from the plan, unless given here.
+        const plan::ParticipantSettings settings = readStudyOptions(args, run);
+        checkParticipant(run.participant);
+        if (!args.has("cm-per-360") && settings.cmPer360) run.cmPer360 = *settings.cmPer360;
+        if (!args.has("mouse-dpi")) run.mouseDpi = settings.mouseDpi;
+        if (!args.has("invert-y")) run.invertY = settings.invertY;
+    }
     run.allowRefreshMismatch = args.flag("allow-refresh-mismatch");
     run.inputScript = args.string("input-script", "");
     run.screenshotDir = args.string("screenshots", "");
@@ -99,6 +167,10 @@ int runRun(const ParsedArgs& args) {
         throw UsageError("a human player needs the window; leave out --headless");
     study::HeadlessRun run;
     readSessionOptions(args, "bot", run);
+    if (args.has("study")) {
+        readStudyOptions(args, run);
+        checkParticipant(run.participant);
+    }
     run.displayWidth =
         static_cast<int>(args.integer("width", run.displayWidth, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.displayHeight =
@@ -185,7 +257,15 @@ Command runCommand() {
          "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
          "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]",
          {
-             {"protocol", "FILE", "study protocol (JSON), e.g. protocol/shooter-quick.json", ""},
+             {"protocol", "FILE",
+              "study protocol (JSON), e.g. protocol/shooter-quick.json; with --study, which of the plan's protocols "
+              "(its name or file)",
+              "with --study: the participant's next"},
+             {"study", "DIR",
+              "a study plan (warplab study init): protocol, seed, condition order, mouse settings and results folder "
+              "(DIR/results) come from it",
+              ""},
+             {"again", "", "with --study: record another session of a protocol the participant has completed", ""},
              {"participant", "ID", "participant id: stored as data, never used as a path", ""},
              {"out", "DIR", "results folder (must exist and be writable)", "results"},
              {"headless", "", "no window: the player is simulated or replayed", ""},

@@ -27,6 +27,7 @@ Command replayCommand();  // cmd_run.cpp: a replay runs the session again
 Command exportCommand();
 Command demoCommand();
 Command conditionsCommand();
+Command studyCommand();
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

@@ -1,0 +1,40 @@
+// Where a study stands: for each participant of a plan and each of their protocols, what the
+// sessions in the plan's results folder hold (docs/study-plan.md, "Running the study").
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "plan/study_plan.h"
+
+namespace warplab::plan {
+
+// The results folder of a plan: where run --study writes its sessions.
+std::string resultsFolder(const std::string& planDir);
+
+// From best to worst: what counts when a participant has several sessions of one protocol.
+enum class SessionState { Done, Flagged, Incomplete, Damaged, NotStarted };
+const char* stateName(SessionState state);  // "done", "flagged", "incomplete", "damaged", "not started"
+
+struct ProtocolStatus {
+    int protocolIndex = 0;  // into StudyPlan::protocols
+    SessionState state = SessionState::NotStarted;
+    std::string detail;  // the best session's file name and, when not done, why (its note or flags)
+    int sessions = 0;  // of this participant and protocol, in the results folder
+};
+
+struct ParticipantStatus {
+    std::string id;
+    std::vector<ProtocolStatus> protocols;  // in the participant's protocol order
+};
+
+// Reads every session of the plan (header plan_id = the plan's id) in its results folder: by
+// participant and by the stored protocol's name. Unreadable files are not the plan's and are
+// skipped. Participants in plan order.
+std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan);
+
+// Index into participant.protocols of the first one not done (flagged counts as done: the
+// session is whole, its flag is for the analysts), or -1 when every one is.
+int nextProtocol(const ParticipantStatus& participant);
+
+}  // namespace warplab::plan

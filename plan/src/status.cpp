@@ -1,0 +1,95 @@
+#include "plan/status.h"
+
+#include <filesystem>
+#include <map>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "session/session_store.h"
+
+namespace warplab::plan {
+
+namespace fs = std::filesystem;
+
+std::string resultsFolder(const std::string& planDir) { return (fs::path(planDir) / "results").string(); }
+
+const char* stateName(SessionState state) {
+    switch (state) {
+        case SessionState::Done: return "done";
+        case SessionState::Flagged: return "flagged";
+        case SessionState::Incomplete: return "incomplete";
+        case SessionState::Damaged: return "damaged";
+        case SessionState::NotStarted: return "not started";
+    }
+    return "not started";
+}
+
+namespace {
+
+SessionState stateOf(const session::SessionData& data) {
+    if (data.damaged) return SessionState::Damaged;
+    if (!data.completed) return SessionState::Incomplete;
+    return data.flags.empty() ? SessionState::Done : SessionState::Flagged;
+}
+
+std::string protocolName(const std::string& protocolJson) {
+    const auto json = nlohmann::json::parse(protocolJson, nullptr, false);
+    return json.is_object() && json.contains("name") && json["name"].is_string() ? json["name"].get<std::string>()
+                                                                                   : "";
+}
+
+}  // namespace
+
+std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan) {
+    // (participant, protocol name) -> the status so far
+    std::map<std::pair<std::string, std::string>, ProtocolStatus> seen;
+    std::error_code ec;
+    const std::string results = resultsFolder(planDir);
+    for (fs::directory_iterator it(results, ec), end; !ec && it != end; it.increment(ec)) {
+        const fs::path& path = it->path();
+        const std::string name = path.filename().string();
+        if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
+        session::SessionData data;
+        try {
+            data = session::readSession(path.string());
+        } catch (const session::SessionError&) {
+            continue;  // not a session of this plan that can be told
+        }
+        if (data.header.planId != plan.id) continue;
+        ProtocolStatus& s = seen[{data.header.participant, protocolName(data.header.protocolJson)}];
+        ++s.sessions;
+        const SessionState state = stateOf(data);
+        if (s.sessions == 1 || state < s.state) {
+            s.state = state;
+            s.detail = name;
+            if (state == SessionState::Flagged)
+                s.detail += ": flagged " + data.flags.begin()->first + ": " + data.flags.begin()->second;
+            else if (state != SessionState::Done)
+                s.detail += ": " + data.note;
+        }
+    }
+    std::vector<ParticipantStatus> out;
+    for (const ParticipantPlan& p : plan.participants) {
+        ParticipantStatus status{p.id, {}};
+        for (const int index : p.protocolOrder) {
+            ProtocolStatus s;
+            if (const auto found = seen.find({p.id, plan.protocols[static_cast<std::size_t>(index)].name});
+                found != seen.end())
+                s = found->second;
+            s.protocolIndex = index;
+            status.protocols.push_back(s);
+        }
+        out.push_back(std::move(status));
+    }
+    return out;
+}
+
+int nextProtocol(const ParticipantStatus& participant) {
+    for (std::size_t i = 0; i < participant.protocols.size(); ++i)
+        if (participant.protocols[i].state != SessionState::Done && participant.protocols[i].state != SessionState::Flagged)
+            return static_cast<int>(i);
+    return -1;
+}
+
+}  // namespace warplab::plan
