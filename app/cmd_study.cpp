@@ -47,8 +47,8 @@ int runInit(const ParsedArgs& args, const std::string& dir) {
         if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies to study status");
     const auto protocols = commaList(args.string("protocol"), "protocol");
     const auto ids = args.has("ids") ? commaList(args.string("ids"), "ids") : std::vector<std::string>{};
-    const int count = static_cast<int>(
-        args.integer("participants", static_cast<long long>(ids.size()), 1, plan::kMaxParticipants));
+    const int count =
+        static_cast<int>(args.integer("participants", static_cast<long long>(ids.size()), 1, plan::kMaxParticipants));
     if (!ids.empty() && static_cast<int>(ids.size()) != count)
         throw UsageError("option --ids names " + std::to_string(ids.size()) + " participants but --participants says " +
                          std::to_string(count));
@@ -58,8 +58,7 @@ int runInit(const ParsedArgs& args, const std::string& dir) {
     plan::writePlan(dir, made);
     fs::create_directories(plan::resultsFolder(dir));
     std::cout << "study plan " << made.id << ": " << made.participants.size() << " participants, "
-              << made.protocols.size() << " protocols, written to " << (fs::path(dir) / "study.json").string()
-              << "\n";
+              << made.protocols.size() << " protocols, written to " << (fs::path(dir) / "study.json").string() << "\n";
     for (const plan::ParticipantPlan& p : made.participants)
         std::cout << "  " << p.id << "  seed " << p.seed << "  " << orderText(made, p) << "\n";
     std::cout << "next: warplab run --study " << dir << " --participant " << made.participants.front().id << "\n";
@@ -108,9 +107,9 @@ int runStatus(const ParsedArgs& args, const std::string& dir) {
     std::cout << finished << " of " << status.size() << " participants have done every protocol\n";
     if (next)
         std::cout << "next: warplab run --study " << dir << " --participant " << next->id << "   ("
-                  << studyPlan.protocols[static_cast<std::size_t>(
-                                             next->protocols[static_cast<std::size_t>(plan::nextProtocol(*next))]
-                                                 .protocolIndex)]
+                  << studyPlan
+                         .protocols[static_cast<std::size_t>(
+                             next->protocols[static_cast<std::size_t>(plan::nextProtocol(*next))].protocolIndex)]
                          .name
                   << ")\n";
     return 0;

@@ -35,8 +35,7 @@ SessionState stateOf(const session::SessionData& data) {
 
 std::string protocolName(const std::string& protocolJson) {
     const auto json = nlohmann::json::parse(protocolJson, nullptr, false);
-    return json.is_object() && json.contains("name") && json["name"].is_string() ? json["name"].get<std::string>()
-                                                                                   : "";
+    return json.is_object() && json.contains("name") && json["name"].is_string() ? json["name"].get<std::string>() : "";
 }
 
 }  // namespace
@@ -87,7 +86,8 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
 
 int nextProtocol(const ParticipantStatus& participant) {
     for (std::size_t i = 0; i < participant.protocols.size(); ++i)
-        if (participant.protocols[i].state != SessionState::Done && participant.protocols[i].state != SessionState::Flagged)
+        if (participant.protocols[i].state != SessionState::Done &&
+            participant.protocols[i].state != SessionState::Flagged)
             return static_cast<int>(i);
     return -1;
 }

@@ -130,8 +130,8 @@ TEST(CliStudy, RefusalsNameThePlanAndWriteNothing) {
     EXPECT_EQ(sessions(), 2);
 
     // A plan made twice in one folder would change the study under its sessions.
-    const auto twice = warplab("study init " + dir + " --protocol " + protocolFile("shooter-quick.json") +
-                               " --participants 2");
+    const auto twice =
+        warplab("study init " + dir + " --protocol " + protocolFile("shooter-quick.json") + " --participants 2");
     EXPECT_EQ(twice.status, 1) << twice.output;
 }
 
