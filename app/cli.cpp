@@ -1,5 +1,6 @@
 #include "cli.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cctype>
 #include <cmath>
@@ -77,6 +78,18 @@ long long ParsedArgs::integer(const std::string& name, long long fallback, long 
         throw UsageError("option --" + name + " of 'warplab " + commandName_ + "' must be between " +
                          std::to_string(min) + " and " + std::to_string(max) + ", got " + std::to_string(value));
     return value;
+}
+
+std::vector<std::string> commaSeparated(const std::string& text, const std::string& what) {
+    std::vector<std::string> items;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        const std::size_t comma = std::min(text.find(',', at), text.size());
+        items.push_back(text.substr(at, comma - at));
+        if (items.back().empty()) throw UsageError(what);
+        at = comma + 1;
+    }
+    return items;
 }
 
 long long wholeInteger(const std::string& text, const std::string& what) {

@@ -57,6 +57,10 @@ private:
 // quotes `what` (e.g. "option --frames needs FIRST:LAST frame numbers") and the text.
 long long wholeInteger(const std::string& text, const std::string& what);
 
+// "a,b,c" as {"a", "b", "c"}; an empty item (",", "a,,b", "") is a UsageError that says `what`
+// (e.g. "option --ids needs participant ids separated by commas").
+std::vector<std::string> commaSeparated(const std::string& text, const std::string& what);
+
 // Parses args (after the subcommand name). "--help" is reported by has("help"). An option
 // given twice is a UsageError: which of two values was meant is a guess.
 ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& args);

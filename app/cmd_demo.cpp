@@ -54,12 +54,8 @@ bool holdsSessions(const fs::path& dir) {
 // --protocols: names of the protocols shipped in protocol/, or paths to protocol files.
 std::vector<fs::path> protocolPaths(const std::string& list, const fs::path& root) {
     std::vector<fs::path> paths;
-    std::size_t at = 0;
-    while (at <= list.size()) {
-        const std::size_t comma = std::min(list.find(',', at), list.size());
-        const std::string item = list.substr(at, comma - at);
-        at = comma + 1;
-        if (item.empty()) throw UsageError("option --protocols needs protocol names or files separated by commas");
+    for (const std::string& item :
+         commaSeparated(list, "option --protocols needs protocol names or files separated by commas")) {
         const bool named = item.find('/') == std::string::npos && fs::path(item).extension() != ".json";
         const fs::path path = named ? root / "protocol" / (item + ".json") : fs::path(item);
         if (!fs::is_regular_file(path))

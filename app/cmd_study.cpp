@@ -14,20 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "a,b,c" -> {"a", "b", "c"}; an empty item is a UsageError naming the option.
-std::vector<std::string> commaList(const std::string& text, const std::string& option) {
-    std::vector<std::string> items;
-    std::size_t at = 0;
-    while (at <= text.size()) {
-        const std::size_t comma = std::min(text.find(',', at), text.size());
-        const std::string item = text.substr(at, comma - at);
-        if (item.empty()) throw UsageError("option --" + option + " needs a comma-separated list without empty items");
-        items.push_back(item);
-        at = comma + 1;
-    }
-    return items;
-}
-
 std::string orderText(const plan::StudyPlan& plan, const plan::ParticipantPlan& p) {
     std::string text;
     for (const int index : p.protocolOrder) {
@@ -45,8 +31,11 @@ int runInit(const ParsedArgs& args, const std::string& dir) {
     if (!args.has("participants") && !args.has("ids")) throw UsageError("study init needs --participants N or --ids");
     for (const char* option : {"csv"})
         if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies to study status");
-    const auto protocols = commaList(args.string("protocol"), "protocol");
-    const auto ids = args.has("ids") ? commaList(args.string("ids"), "ids") : std::vector<std::string>{};
+    const auto protocols =
+        commaSeparated(args.string("protocol"), "option --protocol needs protocol files separated by commas");
+    const auto ids = args.has("ids")
+        ? commaSeparated(args.string("ids"), "option --ids needs participant ids separated by commas")
+        : std::vector<std::string>{};
     const int count =
         static_cast<int>(args.integer("participants", static_cast<long long>(ids.size()), 1, plan::kMaxParticipants));
     if (!ids.empty() && static_cast<int>(ids.size()) != count)
