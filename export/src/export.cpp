@@ -117,6 +117,8 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
         {"seed", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->header.seed)); })},
         {"started_at", whenRead([](F& f, const R& r) { f.text(r.data->header.startedAt); })},
         {"player", whenRead([](F& f, const R& r) { f.text(r.data->header.player); })},
+        {"session_id", whenRead([](F& f, const R& r) { f.text(r.data->header.sessionId); })},
+        {"plan_id", whenRead([](F& f, const R& r) { f.text(r.data->header.planId); })},
         {"completed", whenRead([](F& f, const R& r) { f.boolean(r.data->completed); })},
         {"flags", whenRead([](F& f, const R& r) { f.text(joined(r.data->flags)); })},
         {"status", [](F& f, const R& r) { f.text(r.outcome.status); }},

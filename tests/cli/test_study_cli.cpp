@@ -88,6 +88,12 @@ TEST(CliStudy, SixParticipantsRunFromThePlanWithTheirOwnSeedsAndOrders) {
 
     const auto exported = warplab("export " + dir + "/results --out " + base + "/export");
     EXPECT_EQ(exported.status, 0) << exported.output;
+    // Every session row says which plan it was run from.
+    std::ifstream sessionsCsv(base + "/export/sessions.csv");
+    int fromThePlan = 0;
+    for (std::string line; std::getline(sessionsCsv, line);)
+        fromThePlan += contains(line, plan["id"].get<std::string>());
+    EXPECT_EQ(fromThePlan, 6);
 }
 
 // What must not happen to a study's data, each refused in one sentence naming the plan, exit 1,
