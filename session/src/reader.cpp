@@ -299,6 +299,8 @@ private:
             h.sessionId = get("session_id");
             h.planId = get("plan_id");
         }
+        if (h.formatVersion >= kResumedSince && !parseResumed(get("resumed"), h.resumed))
+            fail("has an unreadable header: resumed is '" + get("resumed") + "'.");
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
             if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;

@@ -1,6 +1,8 @@
 // The session records' column tables, and replay's comparison that walks them.
 #include "session/records.h"
 
+#include "schema.h"
+
 #include <cstring>
 #include <locale>
 #include <optional>
@@ -191,3 +193,41 @@ std::string firstDifference(const EventRecord& logged, const EventRecord& replay
 }
 
 }  // namespace warplab::session
+
+namespace warplab::session::detail {
+
+std::string resumedText(const std::vector<Resumption>& resumed) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Resumption& r : resumed)
+        list.push_back({{"session_id", r.sessionId},
+                        {"file", r.file},
+                        {"started_at", r.startedAt},
+                        {"player", r.player},
+                        {"frame", r.frame},
+                        {"resumed_at", r.resumedAt}});
+    return list.dump();
+}
+
+bool parseResumed(const std::string& text, std::vector<Resumption>& out) {
+    const auto list = nlohmann::json::parse(text, nullptr, false);
+    if (!list.is_array()) return false;
+    out.clear();
+    for (const auto& item : list) {
+        if (!item.is_object()) return false;
+        Resumption r;
+        for (auto [key, member] :
+             {std::pair{"session_id", &r.sessionId}, std::pair{"file", &r.file}, std::pair{"started_at", &r.startedAt},
+              std::pair{"player", &r.player}, std::pair{"resumed_at", &r.resumedAt}}) {
+            const auto it = item.find(key);
+            if (it == item.end() || !it->is_string()) return false;
+            *member = it->get<std::string>();
+        }
+        const auto frame = item.find("frame");
+        if (frame == item.end() || !frame->is_number_integer() || frame->get<std::int64_t>() < 0) return false;
+        r.frame = frame->get<std::int64_t>();
+        out.push_back(std::move(r));
+    }
+    return true;
+}
+
+}  // namespace warplab::session::detail

@@ -127,6 +127,12 @@ bool parseNumber(const std::string& text, T& out) {
     return r.ec == std::errc() && r.ptr == end;
 }
 
+// meta.resumed: the Resumption list as a JSON array of objects with the keys session_id, file,
+// started_at, player, frame and resumed_at ("[]" for none). parseResumed returns false for
+// text that is not such an array, leaving `out` unspecified.
+std::string resumedText(const std::vector<Resumption>& resumed);
+bool parseResumed(const std::string& text, std::vector<Resumption>& out);
+
 // The header as meta entries, in checksum order (completed_at and header_checksum are not
 // part of it), as a file of format `version` holds them. The single list of header keys: the
 // writer stores these, the reader checks the same keys.
@@ -150,6 +156,7 @@ inline std::vector<std::pair<const char*, std::string>> headerEntries(const Sess
         entries.push_back({"session_id", h.sessionId});
         entries.push_back({"plan_id", h.planId});
     }
+    if (version >= kResumedSince) entries.push_back({"resumed", resumedText(h.resumed)});
     return entries;
 }
 

@@ -34,12 +34,6 @@
 #include <vector>
 
 namespace warplab::session {
-namespace {
-
-namespace fs = std::filesystem;
-
-// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, archive.h).
-using namespace detail;
 
 std::string utcNow() {
     using namespace std::chrono;
@@ -53,6 +47,13 @@ std::string utcNow() {
                   tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(millis));
     return text;
 }
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, archive.h).
+using namespace detail;
 
 // 128 random bits as 32 hex digits: two sessions never share one, a copy keeps it.
 std::string newSessionId() {

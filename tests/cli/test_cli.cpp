@@ -694,6 +694,14 @@ TEST(CliSession, AVersion2SessionStillReplaysExactly) {
     EXPECT_TRUE(contains(replay.output, "78/78 outcomes reproduced")) << replay.output;
 }
 
+// And format 3 (before resumed sessions): the shooter's outcomes, every one.
+TEST(CliSession, AVersion3SessionStillReplaysExactly) {
+    const auto replay =
+        warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v3-shooter-quick.warplab-session");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "39/39 outcomes reproduced")) << replay.output;
+}
+
 TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const std::string results = scratch("export-results"), out = scratch("export-out");
     ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +

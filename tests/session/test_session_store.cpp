@@ -200,6 +200,16 @@ void expectSame(const SessionHeader& a, const SessionHeader& b) {
     EXPECT_EQ(a.displayHeight, b.displayHeight);
     EXPECT_EQ(a.startedAt, b.startedAt);
     EXPECT_EQ(a.player, b.player);
+    EXPECT_EQ(a.planId, b.planId);
+    ASSERT_EQ(a.resumed.size(), b.resumed.size());
+    for (std::size_t i = 0; i < a.resumed.size(); ++i) {
+        EXPECT_EQ(a.resumed[i].sessionId, b.resumed[i].sessionId);
+        EXPECT_EQ(a.resumed[i].file, b.resumed[i].file);
+        EXPECT_EQ(a.resumed[i].startedAt, b.resumed[i].startedAt);
+        EXPECT_EQ(a.resumed[i].player, b.resumed[i].player);
+        EXPECT_EQ(a.resumed[i].frame, b.resumed[i].frame);
+        EXPECT_EQ(a.resumed[i].resumedAt, b.resumed[i].resumedAt);
+    }
     EXPECT_EQ(a.formatVersion, b.formatVersion);
 }
 
@@ -341,6 +351,7 @@ void relabel(const std::string& path, int version) {
         keys.push_back("session_id");
         keys.push_back("plan_id");
     }
+    if (version >= 4) keys.push_back("resumed");
     for (const std::string& key : keys) {
         const auto rows = sqlRows(path, "SELECT value FROM meta WHERE key = '" + key + "'");
         ASSERT_EQ(rows.size(), 1u) << key;
@@ -358,6 +369,11 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     TempDir dir;
     SessionHeader header = sampleHeader("Zoë «P7»\n");
     header.protocolJson = std::string("{\"a\": \"nul\0inside\"}", 20);
+    header.planId = "plan «ß»";
+    header.resumed = {{"0123456789abcdef0123456789abcdef", "P7_a.warplab-session", "2024-05-01T12:00:00.000Z",
+                       "human (cm_per_360=0, dpi=800, invert_y=0)", 0, "2024-05-01T12:05:00.000Z"},
+                      {"fedcba9876543210fedcba9876543210", "P7 \"b\".warplab-session", "2024-05-01T12:05:00.000Z",
+                       "bot:3", std::numeric_limits<std::int64_t>::max(), "2024-05-02T09:00:00.000Z"}};
 
     constexpr int kRows = 60;  // a multiple of every cycle length above, and then some
     std::vector<InputRecord> inputs = {extremeRecord<InputRecord>(false)};
@@ -383,7 +399,7 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     const SessionData data = readSession(path);
     header.formatVersion = kSessionFormatVersion;
     expectSame(data.header, header);
-    EXPECT_EQ(data.header.formatVersion, 3);
+    EXPECT_EQ(data.header.formatVersion, 4);
     // Drawn by create(), whatever the header passed in said.
     EXPECT_EQ(data.header.sessionId.size(), 32u);
     EXPECT_EQ(data.header.sessionId.find_first_not_of("0123456789abcdef"), std::string::npos) << data.header.sessionId;
@@ -1383,12 +1399,12 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
         path = w.path();
         w.finish();
     }
-    for (const int version : {4, 0, -1}) {
+    for (const int version : {5, 0, -1}) {
         execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
         const std::string error = errorOf(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
         EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"), std::string::npos) << error;
-        EXPECT_NE(error.find("reads session format versions 1, 2 and 3."), std::string::npos) << error;
+        EXPECT_NE(error.find("reads session format versions 1, 2, 3 and 4."), std::string::npos) << error;
     }
     // The schema is checked against the file's own version: a version-3 file that says 1 lacks
     // version 1's columns.
@@ -1519,6 +1535,28 @@ TEST(SessionStoreV2, ReadsTheVersion2FixtureAgainstItsUnchainedChecksums) {
     EXPECT_EQ(data.frames.size(), 4699u);
     EXPECT_EQ(data.events.size(), 164u);
     expectSharedColumns(sqlRows(fixture, "SELECT * FROM input ORDER BY frame"), data.inputs);
+}
+
+// ============================ version 3 ============================
+// tests/data/v3-shooter-quick.warplab-session was written by the version-3 store (see
+// tests/data/README.md): a session id and chained checksums, no record of resumption.
+
+TEST(SessionStoreV3, ReadsTheVersion3FixtureAgainstItsChainedChecksums) {
+    const std::string fixture = std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v3-shooter-quick.warplab-session";
+    const SessionData data = readSession(fixture);
+    EXPECT_EQ(data.header.formatVersion, 3);
+    EXPECT_EQ(data.header.sessionId, "3104661b4699d13a2eeadd6106950de6");
+    EXPECT_EQ(data.header.planId, "");
+    EXPECT_TRUE(data.header.resumed.empty());
+    EXPECT_EQ(data.header.participant, "v3-fixture");
+    EXPECT_EQ(data.header.seed, 5u);
+    EXPECT_TRUE(data.completed);
+    EXPECT_FALSE(data.damaged);
+    EXPECT_EQ(data.note, "");
+    EXPECT_EQ(data.inputs.size(), 4686u);
+    EXPECT_EQ(data.frames.size(), 4686u);
+    EXPECT_EQ(data.events.size(), 48u);
+    expectSharedColumns(sqlRows(fixture, "SELECT * FROM events ORDER BY id"), data.events);
 }
 
 TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {

@@ -13,20 +13,33 @@
 
 namespace warplab::session {
 
+// 4: the header says where an interrupted session was resumed (`resumed`).
 // 3: a random per-session id in the header, and each commit's checksum chained to the one
 // before it (the first to the header's), so that commits cannot be mixed between sessions.
 // 2: game-neutral frame and event rows (game-specific fields in detail_json). Version 1 files
 // (shooter only) are still read: their shooter columns are folded into detail_json exactly as
 // the shooter writes them today, so they replay (docs/session-format.md, "Version 1"); version
 // 2 files read with unchained checksums and no session id.
-inline constexpr int kSessionFormatVersion = 3;
+inline constexpr int kSessionFormatVersion = 4;
 inline constexpr int kOldestSessionFormatVersion = 1;
 inline constexpr int kSessionIdSince = 3;
+inline constexpr int kResumedSince = 4;
 
 // Bad or unreadable session files and results folders: one sentence naming the path.
 class SessionError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+// An interrupted session this one carries on (warplab run --resume): its recorded frames up to
+// `frame` were re-simulated, checked and copied into this session, which went on from there.
+struct Resumption {
+    std::string sessionId;  // the interrupted session's session_id
+    std::string file;  // its file name when it was resumed
+    std::string startedAt;  // its started_at
+    std::string player;  // who played it
+    std::int64_t frame = 0;  // the first frame played after resuming: the ones before are its
+    std::string resumedAt;  // ISO 8601 UTC: when it was resumed
 };
 
 struct SessionHeader {
@@ -47,6 +60,10 @@ struct SessionHeader {
     // The study plan the session was run from (docs/study-plan.md: its `id`); "" for a session
     // run without one, and in files older than format version 3.
     std::string planId;
+    // The sessions this one carries on, oldest first: one for each time it was interrupted and
+    // resumed (a resumed session interrupted again carries its predecessor's list and itself).
+    // Empty for a session played in one go, and in files older than format version 4.
+    std::vector<Resumption> resumed;
     int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 
@@ -173,6 +190,9 @@ struct SessionData {
     std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
     std::string note;  // "" when complete; else why not and where it ends
 };
+
+// Now, as the store writes its times: ISO 8601 UTC with milliseconds, e.g. 2024-05-01T12:34:56.789Z.
+std::string utcNow();
 
 // Opens read-only (a running session may be read too). Checks the format version and schema.
 // A truncated or corrupted file yields the commits before the damage, each checked against
