@@ -6,11 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <nlohmann/json.hpp>
-
 #include "game/registry.h"
-#include "session/records.h"
 #include "session/session_store.h"
+#include "rerun.h"
 
 #ifndef WARPLAB_VERSION
 #define WARPLAB_VERSION "0"
@@ -187,23 +185,6 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     return writer.path();
 }
 
-namespace {
-
-// Click sessions recorded before bidirectional reprojection existed say in each match event
-// that a stand-in drew the mode's frames ("stand_in"). That describes the rendering, which
-// replay does not redo, not what was played: it is left out of the comparison, so those
-// sessions still replay (and export still reports it).
-session::EventRecord withoutRenderNotes(session::EventRecord event) {
-    if (event.detailJson.find("\"stand_in\"") == std::string::npos) return event;
-    auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
-    if (!detail.is_object()) return event;
-    detail.erase("stand_in");
-    event.detailJson = detail.dump();
-    return event;
-}
-
-}  // namespace
-
 int replayExitCode(const ReplayResult& result) {
     if (!result.difference.empty()) return kReplayDiffers;
     if (result.damaged) return kReplayDamaged;
@@ -216,38 +197,18 @@ ReplayResult replaySession(const std::string& sessionPath) {
     const session::SessionData data = session::readSession(sessionPath);
     const auto study = game::parseStudy(data.header.protocolJson, sessionPath);
     const auto game = study->newGame(data.header.seed, {data.header.displayWidth, data.header.displayHeight});
+    const Rerun r = rerun(data, *game);
 
     ReplayResult result;
     result.note = data.note;
     result.completed = data.completed;
     result.damaged = data.damaged;
-    for (const auto& e : data.events) result.outcomes += game->isOutcome(e);
-    std::size_t eventIndex = 0;
-    for (const auto& in : data.inputs) {
-        const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
-        for (const auto& replayed : game->takeEvents()) {
-            if (eventIndex >= data.events.size()) {
-                // The store ends before this event was committed: nothing more to check.
-                break;
-            }
-            const std::string diff = session::firstDifference(withoutRenderNotes(data.events[eventIndex]), replayed);
-            const auto& logged = data.events[eventIndex];
-            if (!diff.empty() && result.difference.empty()) {
-                result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +
-                    std::to_string(logged.frame) + "): " + diff;
-            }
-            if (diff.empty() && game->isOutcome(logged)) ++result.reproduced;
-            ++result.events;
-            ++eventIndex;
-        }
-        result.displaySeconds = shown.time;
-        ++result.frames;
-        if (!result.difference.empty()) break;
-    }
-    if (result.difference.empty() && eventIndex < data.events.size())
-        result.difference = "record " + std::to_string(eventIndex + 1) + " (" + data.events[eventIndex].type +
-            " at frame " + std::to_string(data.events[eventIndex].frame) +
-            ") was logged but the replay never produced it";
+    result.outcomes = r.outcomes;
+    result.reproduced = r.reproduced;
+    result.events = r.events;
+    result.difference = r.difference;
+    result.frames = r.frames;
+    result.displaySeconds = r.displaySeconds;
     result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return result;
 }

@@ -1,0 +1,60 @@
+#include "rerun.h"
+
+#include <nlohmann/json.hpp>
+
+#include "session/records.h"
+
+namespace warplab::study {
+namespace {
+
+// Click sessions recorded before bidirectional reprojection existed say in each match event
+// that a stand-in drew the mode's frames ("stand_in"). That describes the rendering, which
+// replay does not redo, not what was played: it is left out of the comparison, so those
+// sessions still replay (and export still reports it).
+session::EventRecord withoutRenderNotes(session::EventRecord event) {
+    if (event.detailJson.find("\"stand_in\"") == std::string::npos) return event;
+    auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
+    if (!detail.is_object()) return event;
+    detail.erase("stand_in");
+    event.detailJson = detail.dump();
+    return event;
+}
+
+}  // namespace
+
+Rerun rerun(const session::SessionData& data, game::Game& game,
+            const std::function<void(std::size_t, const game::ShownFrame&, std::size_t)>& stepped) {
+    Rerun result;
+    for (const auto& e : data.events) result.outcomes += game.isOutcome(e);
+    std::size_t eventIndex = 0;
+    for (std::size_t i = 0; i < data.inputs.size(); ++i) {
+        const session::InputRecord& in = data.inputs[i];
+        const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
+        for (const auto& replayed : game.takeEvents()) {
+            if (eventIndex >= data.events.size()) {
+                // The store ends before this event was committed: nothing more to check.
+                break;
+            }
+            const std::string diff = session::firstDifference(withoutRenderNotes(data.events[eventIndex]), replayed);
+            const auto& logged = data.events[eventIndex];
+            if (!diff.empty() && result.difference.empty()) {
+                result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +
+                    std::to_string(logged.frame) + "): " + diff;
+            }
+            if (diff.empty() && game.isOutcome(logged)) ++result.reproduced;
+            ++result.events;
+            ++eventIndex;
+        }
+        result.displaySeconds = shown.time;
+        ++result.frames;
+        if (stepped) stepped(i, shown, eventIndex);
+        if (!result.difference.empty()) break;
+    }
+    if (result.difference.empty() && eventIndex < data.events.size())
+        result.difference = "record " + std::to_string(eventIndex + 1) + " (" + data.events[eventIndex].type +
+            " at frame " + std::to_string(data.events[eventIndex].frame) +
+            ") was logged but the replay never produced it";
+    return result;
+}
+
+}  // namespace warplab::study
