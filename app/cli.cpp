@@ -135,6 +135,9 @@ ParsedArgs parseArgs(const CommandSpec& spec, const std::vector<std::string>& ar
             parsed.values_[name] = "";
         } else if (inlineValue) {
             parsed.values_[name] = *inlineValue;
+        } else if (option->valueName.front() == '[') {
+            const bool given = i + 1 < args.size() && !args[i + 1].empty() && args[i + 1][0] != '-';
+            parsed.values_[name] = given ? args[++i] : "";
         } else {
             if (i + 1 >= args.size())
                 throw UsageError("option --" + name + " of 'warplab " + spec.name + "' needs a value (" +

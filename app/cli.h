@@ -1,6 +1,6 @@
 // A small command-line parser: each subcommand declares its options; anything else is a
 // usage error naming the offending argument. Kept in-house because the project needs only
-// "--name value" and "--flag" forms plus generated --help text.
+// "--name value", "--flag" and "--name [value]" forms plus generated --help text.
 #pragma once
 
 #include <map>
@@ -16,7 +16,9 @@ namespace warplab::app {
 
 struct OptionSpec {
     std::string name;  // without the leading "--"
-    std::string valueName;  // empty for a flag
+    // Empty for a flag; in brackets ("[SESSION]") for a value that may be left out: the next
+    // argument is taken only when it does not start with "-".
+    std::string valueName;
     std::string help;
     std::string defaultValue;  // shown in --help; empty = none
 };

@@ -71,6 +71,15 @@ plan::ParticipantSettings readStudyOptions(const ParsedArgs& args, Run& run) {
     }
     const plan::ProtocolStatus& chosen = status.protocols[static_cast<std::size_t>(position)];
     const plan::ProtocolEntry& entry = studyPlan.protocols[static_cast<std::size_t>(chosen.protocolIndex)];
+    if (args.has("resume")) {
+        if (!args.string("resume").empty())
+            throw UsageError("option --resume takes no SESSION with --study: the plan's results say which one");
+        if (chosen.resumable.empty())
+            throw plan::PlanError("participant " + participant->id + " has no incomplete session of " + entry.name +
+                                  " to resume in " + plan::resultsFolder(dir) + " (" + plan::stateName(chosen.state) +
+                                  ")");
+        run.resumeFrom = chosen.resumable;
+    }
     if ((chosen.state == plan::SessionState::Done || chosen.state == plan::SessionState::Flagged) &&
         !args.flag("again"))
         throw plan::PlanError("participant " + participant->id + " already has a complete session of " + entry.name +
@@ -94,6 +103,18 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     }
     if (args.has("study")) return;  // the rest from the plan: readStudyOptions
     if (args.flag("again")) throw UsageError("option --again only applies with --study");
+    if (args.has("resume")) {
+        // The interrupted session says what it ran; its folder takes the new session.
+        for (const char* option : {"protocol", "participant", "seed"})
+            if (args.has(option))
+                throw UsageError(std::string("option --") + option + " comes from the session with --resume");
+        run.resumeFrom = args.string("resume");
+        if (run.resumeFrom.empty())
+            throw UsageError("option --resume needs the SESSION to resume (or --study DIR --participant ID)");
+        const std::string folder = std::filesystem::path(run.resumeFrom).parent_path().string();
+        run.resultsDir = args.string("out", folder.empty() ? "." : folder);
+        return;
+    }
     run.protocolPath = args.string("protocol");
     if (run.protocolPath.empty()) throw UsageError("option --protocol is required");
     if (recorded && !args.has("participant")) throw UsageError("option --participant is required");
@@ -266,8 +287,14 @@ Command runCommand() {
               "(DIR/results) come from it",
               ""},
              {"again", "", "with --study: record another session of a protocol the participant has completed", ""},
+             {"resume", "[SESSION]",
+              "carry on an interrupted session: its recorded input is played again and checked up to its last "
+              "completed trial or match, and a new session goes on from there (protocol, seed, participant from "
+              "it); with --study, the participant's incomplete session of the protocol",
+              ""},
              {"participant", "ID", "participant id: stored as data, never used as a path", ""},
-             {"out", "DIR", "results folder (must exist and be writable)", "results"},
+             {"out", "DIR", "results folder (must exist and be writable)",
+              "results; with --resume the session's folder"},
              {"headless", "", "no window: the player is simulated or replayed", ""},
              {"player", "human|bot[:SEED]|sim[:SEED]|replay:SESSION",
               "who plays: the participant (window only), the scripted bot (reads the game's state), the "

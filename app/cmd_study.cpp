@@ -94,13 +94,16 @@ int runStatus(const ParsedArgs& args, const std::string& dir) {
                 std::cout << "      " << s.detail << "\n";
     }
     std::cout << finished << " of " << status.size() << " participants have done every protocol\n";
-    if (next)
-        std::cout << "next: warplab run --study " << dir << " --participant " << next->id << "   ("
-                  << studyPlan
-                         .protocols[static_cast<std::size_t>(
-                             next->protocols[static_cast<std::size_t>(plan::nextProtocol(*next))].protocolIndex)]
-                         .name
-                  << ")\n";
+    if (next) {
+        const plan::ProtocolStatus& s = next->protocols[static_cast<std::size_t>(plan::nextProtocol(*next))];
+        const std::string& name = studyPlan.protocols[static_cast<std::size_t>(s.protocolIndex)].name;
+        std::cout << "next: warplab run --study " << dir << " --participant " << next->id;
+        if (!s.resumable.empty())
+            std::cout << " --resume   (" << name << ": carries on " << fs::path(s.resumable).filename().string()
+                      << " after its last completed trial or match; leave out --resume to start over)\n";
+        else
+            std::cout << "   (" << name << ")\n";
+    }
     return 0;
 }
 

@@ -311,10 +311,30 @@ const std::vector<Column<GameRow>>& gameColumns() {
     return columns;
 }
 
+// Session id -> the file of the resumed session that carries it on (its header's `resumed`).
+using CarriedOn = std::map<std::string, std::string>;
+
+CarriedOn carriedOn(const std::vector<fs::path>& files, const fs::path& resultsDir) {
+    CarriedOn out;
+    std::error_code ec;
+    for (const fs::path& file : files) {
+        session::SessionHeader h;
+        try {
+            h = session::readSessionHeader(file.string());
+        } catch (const session::SessionError&) {
+            continue;  // add() says why it cannot be read
+        }
+        for (const session::Resumption& r : h.resumed)
+            out.emplace(r.sessionId, fs::relative(file, resultsDir, ec).generic_string());
+    }
+    return out;
+}
+
 class Exporter {
 public:
-    Exporter(const fs::path& outDir, const ExportOptions& options)
+    Exporter(const fs::path& outDir, const ExportOptions& options, CarriedOn carriedOn)
         : options_(options),
+          carriedOn_(std::move(carriedOn)),
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
           shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
           ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())) {}
@@ -344,7 +364,11 @@ public:
             h.sessionId.empty() ? "participant, start time, seed, player, protocol" : "session_id";
         // A copy of a session already counted intact is a duplicate. Only intact copies count as
         // the original: a damaged or cut copy listed first must not shut out a whole one after it.
-        if (const auto seen = firstWith_.find(key); seen != firstWith_.end()) {
+        if (const auto by = carriedOn_.find(h.sessionId); !h.sessionId.empty() && by != carriedOn_.end()) {
+            // Its kept trials were copied into the resumed session: counted there, once.
+            out.status = "resumed";
+            out.why = "carried on by " + by->second + ", which holds its completed trials";
+        } else if (const auto seen = firstWith_.find(key); seen != firstWith_.end()) {
             out.status = "duplicate";
             out.why = "the same session as " + seen->second + " (" + sameWhat + ")";
         } else {
@@ -483,6 +507,7 @@ private:
     }
 
     ExportOptions options_;
+    CarriedOn carriedOn_;
     CsvFile sessions_, shots_, ratings_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
@@ -519,7 +544,7 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     if (!fs::is_directory(outDir, ec)) throw std::runtime_error("cannot create the output folder '" + outDir + "'.");
 
     ExportSummary summary;
-    Exporter exporter(outDir, options);
+    Exporter exporter(outDir, options, carriedOn(files, resultsDir));
     for (std::size_t i = 0; i < files.size(); ++i) {
         const std::string name = fs::relative(files[i], resultsDir, ec).generic_string();
         const ExportedSession s = exporter.add(files[i], ec ? files[i].string() : name);

@@ -3,11 +3,14 @@
 #include "live/live_session.h"
 
 #include <map>
+#include <optional>
+#include <stdexcept>
 #include <sstream>
 #include <utility>
 
 #include "game/game.h"
 #include "session/session_store.h"
+#include "study/resume.h"
 #include "study/session_runner.h"
 #include "window_loop.h"
 
@@ -41,14 +44,13 @@ public:
         record.frameMs = timing.frameMs;
         record.renderMs = timing.renderMs;
         record.missedVsyncs = timing.missedVsyncs;
-        Tally& tally = perMode_[shown.mode.empty() ? "(screens)" : shown.mode];
-        tally.missed += record.missedVsyncs;
-        ++tally.frames;
-        tally.late += record.missedVsyncs > 0;
+        count(record);
         writer_.addFrame(record);
         commits_.afterFrame(shown.frame, game_->atCommitPoint());
     }
     std::string screenshotName(std::int64_t frame) const override { return "frame_" + std::to_string(frame); }
+    // A resumed session's kept frames count towards its late frames like the ones shown now.
+    void kept(const session::FrameRecord& record) { count(record); }
 
     // Flags a session with too many late frames, writes what waits (showing the supervisor
     // why it takes long) and prints the missed vsyncs per mode.
@@ -58,6 +60,12 @@ private:
     struct Tally {
         long missed = 0, frames = 0, late = 0;  // missed vsyncs, frames, frames that missed one
     };
+    void count(const session::FrameRecord& record) {
+        Tally& tally = perMode_[record.mode.empty() ? "(screens)" : record.mode];
+        tally.missed += record.missedVsyncs;
+        ++tally.frames;
+        tally.late += record.missedVsyncs > 0;
+    }
     std::unique_ptr<game::Game> game_;
     session::SessionWriter& writer_;
     study::SessionCommits commits_;
@@ -97,14 +105,45 @@ std::string playerText(const LiveRun& run) {
     return text.str();
 }
 
+// A resumed session plays the interrupted one's protocol, seed, participant and plan, on a
+// window of its size (the click game's cursor lives in its pixels).
+LiveRun carryingOn(const LiveRun& given, const study::ResumePoint& resume) {
+    LiveRun run = given;
+    const session::SessionHeader& was = resume.stored.header;
+    run.protocolPath = resume.path;
+    run.protocolText = was.protocolJson;
+    run.seed = was.seed;
+    run.participant = was.participant;
+    run.planId = was.planId;
+    if (!run.fullscreen) {
+        run.width = was.displayWidth;
+        run.height = was.displayHeight;
+    }
+    return run;
+}
+
 }  // namespace
 
-std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress) {
+std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ostream& progress) {
+    std::optional<study::ResumePoint> resume;
+    if (!given.resumeFrom.empty()) resume = study::findResumePoint(given.resumeFrom);
+    const LiveRun run = resume ? carryingOn(given, *resume) : given;
     WindowLoop loop(run, paths, progress);
     const game::Study& study = loop.study();
+    std::string who = "Participant " + run.participant + ", protocol " + study.name();
+    if (resume) {
+        const session::SessionHeader& was = resume->stored.header;
+        if (loop.display().width != was.displayWidth || loop.display().height != was.displayHeight)
+            throw std::runtime_error("session '" + resume->path + "' was played on a " +
+                                     std::to_string(was.displayWidth) + "x" + std::to_string(was.displayHeight) +
+                                     " display but this window is " + std::to_string(loop.display().width) + "x" +
+                                     std::to_string(loop.display().height) +
+                                     ": resume it at the same size (without --fullscreen, or on that display)");
+        progress << study::resumeSummary(*resume) << "\n";
+        who += ", resumed after its last completed trial or match";
+    }
 
     // Start screen (Appendix B: the supervisor checks the participant and the protocol).
-    const std::string who = "Participant " + run.participant + ", protocol " + study.name();
     if (run.screenshotStartScreen) {
         loop.showScreen("warplab", who + ". Press Enter to start.");
         loop.screenshot("start");
@@ -118,10 +157,17 @@ std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::o
     header.glRenderer = loop.glInfo().renderer;
     header.glVersion = loop.glInfo().version;
     header.refreshHz = loop.shownRefreshHz();
-    auto writer = session::SessionWriter::create(run.resultsDir, header);
+    if (resume) header = study::resumedHeader(*resume, header);
+    auto writer = session::SessionWriter::create(
+        run.resultsDir, header, resume ? study::keptRows(*resume) : session::SessionWriter::FirstCommit{});
     progress << "session " << writer.path() << "\n";
 
     SessionPolicy policy(loop, run.seed, writer, progress);
+    if (resume) {
+        study::replayKeptFrames(*resume, policy.game(),
+                                [&](const game::ShownFrame& shown) { loop.sawBeforeResume(shown); });
+        for (std::size_t i = 0; i < resume->keptFrames; ++i) policy.kept(resume->stored.frames[i]);
+    }
     loop.captureMouse(true);
     const WindowLoop::End end = loop.run(policy);
     loop.captureMouse(false);

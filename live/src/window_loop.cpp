@@ -153,11 +153,26 @@ void WindowLoop::screenshot(const std::string& name) {
 
 void WindowLoop::inject(const std::string& when) { script_.inject(window_, when); }
 
+void WindowLoop::sawBeforeResume(const game::ShownFrame& shown) {
+    if (player_) {
+        if (!std::exchange(playerStarted_, true)) player_->first();
+        resumedInput_ = player_->next(shown);
+    }
+    // A frame is made from sources at most a few renders old (a hold, a warp of the last one,
+    // bidirectional reprojection's two around it, whose flow needs the one before).
+    constexpr std::size_t kSourcesKept = 3;
+    if (shown.rendersNow) keptSources_.push_back(shown);
+    if (keptSources_.size() > kSourcesKept) keptSources_.pop_front();
+    firstFrame_ = shown.frame + 1;
+}
+
 WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
     game::Game& game = policy.game();
-    game::FrameInput input = player_ ? player_->first() : game::FrameInput{};
+    game::FrameInput input = !player_ ? game::FrameInput{} : playerStarted_ ? resumedInput_ : player_->first();
+    for (const game::ShownFrame& source : keptSources_) maker_.keepSource(source);
+    keptSources_.clear();
     End end;
-    std::int64_t frame = 0, injectedFor = -1;  // frame: the display frame to show next
+    std::int64_t frame = firstFrame_, injectedFor = -1;  // frame: the display frame to show next
     clock_.restart();
     while (!game.finished() && (!player_ || player_->hasMore())) {
         if (injectedFor != frame) inject(std::to_string(frame));  // once, also across a pause

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -105,6 +106,11 @@ public:
     // Queues the input script's actions for `when` ("start", "end" or a frame number).
     void inject(const std::string& when);
 
+    // A resumed session: the game was stepped through the kept frames, and `shown` was one of
+    // them, in order. The player (a bot) and the frame maker learn what was on screen, and
+    // run() goes on from the frame after the last.
+    void sawBeforeResume(const game::ShownFrame& shown);
+
     struct End {
         bool aborted = false;  // the window closed or the supervisor ended it
         std::int64_t lastFrame = -1;  // the game's last shown frame
@@ -142,6 +148,12 @@ private:
     FeedbackSounds sounds_;
     DisplayClock clock_;
     renderer::PassTimer timer_;
+    // What sawBeforeResume learnt: where run() starts, the player's next input, and the last
+    // few frames that rendered a source (those the first frames after it may be made from).
+    std::int64_t firstFrame_ = 0;
+    bool playerStarted_ = false;
+    game::FrameInput resumedInput_;
+    std::deque<game::ShownFrame> keptSources_;
 };
 
 }  // namespace warplab::live

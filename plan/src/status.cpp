@@ -1,7 +1,9 @@
 #include "plan/status.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -41,24 +43,47 @@ std::string protocolName(const std::string& protocolJson) {
 }  // namespace
 
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan) {
-    // (participant, protocol name) -> the status so far
-    std::map<std::pair<std::string, std::string>, ProtocolStatus> seen;
+    struct Found {
+        fs::path path;
+        session::SessionData data;
+    };
+    std::vector<Found> sessions;
+    std::set<std::string> carriedOn;  // session ids a resumed session carries on
     std::error_code ec;
     const std::string results = resultsFolder(planDir);
     for (fs::directory_iterator it(results, ec), end; !ec && it != end; it.increment(ec)) {
         const fs::path& path = it->path();
         const std::string name = path.filename().string();
         if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
-        session::SessionData data;
+        Found found{path, {}};
         try {
-            data = session::readSession(path.string());
+            found.data = session::readSession(path.string());
         } catch (const session::SessionError&) {
             continue;  // not a session of this plan that can be told
         }
-        if (data.header.planId != plan.id) continue;
+        if (found.data.header.planId != plan.id) continue;
+        // Only the headers are needed from here on.
+        found.data.inputs.clear();
+        found.data.frames.clear();
+        found.data.events.clear();
+        for (const auto& r : found.data.header.resumed) carriedOn.insert(r.sessionId);
+        sessions.push_back(std::move(found));
+    }
+    // Directory order is the file system's; by name (participant, then start time) the last
+    // incomplete session of a protocol is the latest.
+    std::sort(sessions.begin(), sessions.end(), [](const Found& a, const Found& b) { return a.path < b.path; });
+
+    // (participant, protocol name) -> the status so far
+    std::map<std::pair<std::string, std::string>, ProtocolStatus> seen;
+    for (const Found& found : sessions) {
+        const session::SessionData& data = found.data;
+        // A session carried on by a resumed one is part of it, not a session of its own.
+        if (carriedOn.count(data.header.sessionId)) continue;
+        const std::string name = found.path.filename().string();
         ProtocolStatus& s = seen[{data.header.participant, protocolName(data.header.protocolJson)}];
         ++s.sessions;
         const SessionState state = stateOf(data);
+        if (state == SessionState::Incomplete) s.resumable = found.path.string();
         if (s.sessions == 1 || state < s.state) {
             s.state = state;
             s.detail = name;

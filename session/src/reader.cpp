@@ -85,6 +85,19 @@ public:
         return data;
     }
 
+    // The header alone, as SQLite sees the file (with its -wal, if any): what the file says it
+    // is, without reading or checking its records.
+    SessionHeader header() {
+        checkRegularFile();
+        std::error_code ec;
+        openFile(!fs::exists(path_ + "-wal", ec));
+        exec("BEGIN");
+        bool completed = false;
+        SessionHeader h = readHeader(completed);
+        sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+        return h;
+    }
+
 private:
     // The file read alone, its -wal refused (`why` says why): whatever the -wal held of this
     // session is lost.
@@ -500,5 +513,7 @@ private:
 }  // namespace
 
 SessionData readSession(const std::string& path) { return Reader(path).read(); }
+
+SessionHeader readSessionHeader(const std::string& path) { return Reader(path).header(); }
 
 }  // namespace warplab::session

@@ -551,7 +551,8 @@ SessionWriter::Impl& SessionWriter::impl(const char* caller) const {
 
 const std::string& SessionWriter::path() const { return impl("path").live.path; }
 
-SessionWriter SessionWriter::create(const std::string& resultsDir, const SessionHeader& header) {
+SessionWriter SessionWriter::create(const std::string& resultsDir, const SessionHeader& header,
+                                    const FirstCommit& first) {
     if (header.formatVersion != kSessionFormatVersion)
         throw std::invalid_argument("SessionWriter::create: header.formatVersion is " +
                                     std::to_string(header.formatVersion) + " but this warplab writes format version " +
@@ -584,6 +585,15 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
     if (impl->stem.empty()) impl->stem = "participant";
     const std::string when = timeForName(h.startedAt);
     if (!when.empty()) impl->stem += "_" + when;
+    if (!first.inputs.empty() || !first.frames.empty() || !first.events.empty()) {
+        // Added as any rows are, with their checks, and held: buildFile writes them.
+        SessionWriter adding(std::move(impl));
+        for (const InputRecord& r : first.inputs) adding.addInput(r);
+        for (const FrameRecord& r : first.frames) adding.addFrame(r);
+        for (const EventRecord& r : first.events) adding.addEvent(r);
+        impl = std::move(adding.impl_);
+        impl->commitAdded();
+    }
 
     // The header is written into a hidden file beside the session and only then linked to the
     // session's name: a kill at any instant leaves either no session or a readable one with its
@@ -611,6 +621,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
                 throw SessionError("Cannot create session file " + candidate + ": " + std::strerror(errno) + ".");
         }
         removeSessionFiles(temp);  // the other name stays
+        impl->heldAreWritten(impl->completedAt);  // the first commit, if any, is in the file
         impl->openForWriting();
     } catch (...) {
         const std::string path = impl->live.path;

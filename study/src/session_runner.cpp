@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "game/registry.h"
 #include "session/session_store.h"
 #include "rerun.h"
+#include "study/resume.h"
 
 #ifndef WARPLAB_VERSION
 #define WARPLAB_VERSION "0"
@@ -153,19 +155,33 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
 }
 
 std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
-    const auto study = loadRunStudy(run.protocolPath, run.protocolText);
-    const game::DisplaySize display{run.displayWidth, run.displayHeight};
-    const auto player = makePlayer(run.player, run.seed, *study, display, run.seeingPlayer);
+    // A resumed session plays the interrupted one's protocol, seed and display, whatever the run says.
+    std::optional<ResumePoint> resume;
+    if (!run.resumeFrom.empty()) {
+        resume = findResumePoint(run.resumeFrom);
+        progress << resumeSummary(*resume) << "\n";
+    }
+    const session::SessionHeader* was = resume ? &resume->stored.header : nullptr;
+    const auto study =
+        was ? game::parseStudy(was->protocolJson, run.resumeFrom) : loadRunStudy(run.protocolPath, run.protocolText);
+    const game::DisplaySize display = was ? game::DisplaySize{was->displayWidth, was->displayHeight}
+                                          : game::DisplaySize{run.displayWidth, run.displayHeight};
+    const std::uint64_t seed = was ? was->seed : run.seed;
+    const auto player = makePlayer(run.player, seed, *study, display, run.seeingPlayer);
 
-    session::SessionHeader header = sessionHeader(*study, run.participant, run.seed, run.player, display);
+    session::SessionHeader header = sessionHeader(*study, run.participant, seed, run.player, display);
     header.planId = run.planId;
+    if (resume) header = resumedHeader(*resume, header);
     // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
     if (const std::string drawn = player->perceivedWith(); !drawn.empty()) header.glRenderer = drawn;
-    auto writer = session::SessionWriter::create(run.resultsDir, header);
+    auto writer = session::SessionWriter::create(run.resultsDir, header,
+                                                 resume ? keptRows(*resume) : session::SessionWriter::FirstCommit{});
 
-    const auto game = study->newGame(run.seed, display);
+    const auto game = study->newGame(seed, display);
     SessionCommits commits(writer, study->refreshHz(), progress);
     game::FrameInput input = player->first();
+    // The kept frames, shown to the player as they were: it stands where it stood then.
+    if (resume) replayKeptFrames(*resume, *game, [&](const game::ShownFrame& shown) { input = player->next(shown); });
     std::int64_t lastReport = 0;
     const auto reportEvery = static_cast<std::int64_t>(60.0 * study->refreshHz());
     while (!game->finished() && player->hasMore()) {

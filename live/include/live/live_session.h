@@ -22,6 +22,9 @@ struct LiveRun {
     std::string resultsDir;
     std::string player = "human";  // "human", "bot[:SEED]" or "replay:SESSION"
     std::uint64_t seed = 1;
+    // An interrupted session to carry on (study/resume.h): its protocol, seed, participant,
+    // plan and display size replace the run's own.
+    std::string resumeFrom;
     bool fullscreen = false;
     int display = 0;
     int width = 1280, height = 720;  // windowed size; fullscreen takes the display's

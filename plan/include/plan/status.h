@@ -21,6 +21,9 @@ struct ProtocolStatus {
     SessionState state = SessionState::NotStarted;
     std::string detail;  // the best session's file name and, when not done, why (its note or flags)
     int sessions = 0;  // of this participant and protocol, in the results folder
+    // The last (by file name) incomplete session that is not damaged: what run --resume carries
+    // on; "" when there is none.
+    std::string resumable;
 };
 
 struct ParticipantStatus {
@@ -30,7 +33,8 @@ struct ParticipantStatus {
 
 // Reads every session of the plan (header plan_id = the plan's id) in its results folder: by
 // participant and by the stored protocol's name. Unreadable files are not the plan's and are
-// skipped. Participants in plan order.
+// skipped; so is a session that a resumed session carries on (it is part of that one).
+// Participants in plan order.
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan);
 
 // Index into participant.protocols of the first one not done (flagged counts as done: the

@@ -111,7 +111,16 @@ public:
     // the header. Only [A-Za-z0-9_-] of the participant id reach the file name; the raw id is
     // kept in the header only. Throws SessionError naming the path, before creating anything,
     // when the results folder is missing or unwritable.
-    static SessionWriter create(const std::string& resultsDir, const SessionHeader& header);
+    // `first`: rows the session starts with (a resumed session's kept frames, study/resume.h),
+    // its first commit, written with the header before the file takes its name: a kill while
+    // it is created leaves no session or one holding them all. Checked as the add* calls check.
+    struct FirstCommit {
+        std::vector<InputRecord> inputs;
+        std::vector<FrameRecord> frames;
+        std::vector<EventRecord> events;
+    };
+    static SessionWriter create(const std::string& resultsDir, const SessionHeader& header,
+                                const FirstCommit& first = {});
 
     SessionWriter(SessionWriter&&) noexcept;
     SessionWriter& operator=(SessionWriter&&) noexcept;
@@ -200,5 +209,8 @@ std::string utcNow();
 // a file that is missing, not a SQLite database, not a warplab session, another format
 // version, or whose header is unreadable or fails its checksum.
 SessionData readSession(const std::string& path);
+// Only the header (checked against its checksum), without reading the records: for telling
+// which sessions a folder holds. Throws SessionError as readSession does for the header.
+SessionHeader readSessionHeader(const std::string& path);
 
 }  // namespace warplab::session

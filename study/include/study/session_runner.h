@@ -21,6 +21,9 @@ struct HeadlessRun {
     std::string protocolText, planId;
     std::string participant;
     std::string resultsDir;
+    // An interrupted session to carry on (study/resume.h): its protocol, seed, participant,
+    // display and plan replace the run's own.
+    std::string resumeFrom;
     std::string player;  // "bot", "bot:SEED", "sim", "sim:SEED" or "replay:SESSION"
     std::uint64_t seed = 1;  // the session seed: trial order and target spawns
     int displayWidth = 1920;  // the display the session stands for (fits the target plane)

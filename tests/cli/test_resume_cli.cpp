@@ -1,0 +1,236 @@
+// `warplab run --resume`, as a supervisor meets it: a session killed at a random instant and
+// resumed is the session that was never interrupted, row for row; study status and export
+// count it once; and what cannot be resumed is refused, naming the file, with nothing written.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli_support.h"
+#include "session/records.h"
+#include "session/session_store.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using warplab::session::readSession;
+using warplab::session::SessionData;
+using warplab::testing::contains;
+using warplab::testing::warplab;
+
+std::string scratch(const std::string& name) { return warplab::testing::scratch("cli-resume", name); }
+
+std::string protocolFile(const char* name) { return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name; }
+
+std::vector<std::string> sessionsIn(const std::string& dir) {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".warplab-session") found.push_back(entry.path().string());
+    std::sort(found.begin(), found.end());
+    return found;
+}
+
+// The rows of `resumed` against those of `whole`, the same play uninterrupted: "" when every
+// input, frame and event row is the same, else the first difference.
+std::string differenceBetween(const SessionData& whole, const SessionData& resumed) {
+    using warplab::session::firstDifference;
+    if (whole.inputs.size() != resumed.inputs.size())
+        return std::to_string(resumed.inputs.size()) + " input rows, not " + std::to_string(whole.inputs.size());
+    if (whole.frames.size() != resumed.frames.size())
+        return std::to_string(resumed.frames.size()) + " frame rows, not " + std::to_string(whole.frames.size());
+    if (whole.events.size() != resumed.events.size())
+        return std::to_string(resumed.events.size()) + " events, not " + std::to_string(whole.events.size());
+    for (std::size_t i = 0; i < whole.inputs.size(); ++i)
+        if (auto d = firstDifference(whole.inputs[i], resumed.inputs[i]); !d.empty())
+            return "input " + std::to_string(i) + ": " + d;
+    for (std::size_t i = 0; i < whole.frames.size(); ++i)
+        if (auto d = firstDifference(whole.frames[i], resumed.frames[i]); !d.empty())
+            return "frame " + std::to_string(i) + ": " + d;
+    for (std::size_t i = 0; i < whole.events.size(); ++i)
+        if (auto d = firstDifference(whole.events[i], resumed.events[i]); !d.empty())
+            return "event " + std::to_string(i) + ": " + d;
+    return "";
+}
+
+// Runs `arguments` and kills it with SIGKILL after `seconds`.
+void runKilledAfter(double seconds, const std::string& arguments) {
+    std::ostringstream command;
+    command << "timeout -s KILL " << seconds << " " << WARPLAB_BINARY << " " << arguments << " > /dev/null 2>&1";
+    const int raw = std::system(command.str().c_str());
+    (void)raw;
+}
+
+// Kill -9 at random instants of a bot session, then --resume (and once, kill the resumed run
+// too and resume again): the result is the uninterrupted session, every row of it, its header
+// names the session(s) it carries on, and it replays whole.
+void expectResumedEqualsUninterrupted(const char* protocolName) {
+    const std::string protocol = protocolFile(protocolName);
+    const std::string play = " --headless --player bot:4 --seed 11 --width 640 --height 360";
+    const std::string wholeDir = scratch(std::string("whole-") + protocolName);
+    ASSERT_EQ(warplab("run --protocol " + protocol + " --participant R --out " + wholeDir + play).status, 0);
+    const SessionData whole = readSession(sessionsIn(wholeDir).at(0));
+    ASSERT_TRUE(whole.completed);
+
+    std::random_device device;
+    std::mt19937 random(device());
+    std::uniform_real_distribution<double> instant(0.05, 1.2);
+    int resumedMidway = 0;
+    for (int kill = 0; kill < 4; ++kill) {
+        const double at = instant(random);
+        SCOPED_TRACE(std::string(protocolName) + ", killed after " + std::to_string(at) + " s");
+        const std::string dir = scratch(std::string("kill-") + protocolName + "-" + std::to_string(kill));
+        runKilledAfter(at, "run --protocol " + protocol + " --participant R --out " + dir + play);
+        std::vector<std::string> files = sessionsIn(dir);
+        if (files.empty() || readSession(files[0]).completed) continue;  // before the store, or after the end
+        const std::string killed = files[0];
+        const std::string killedId = readSession(killed).header.sessionId;
+        if (kill == 0) {
+            // The resumed run killed too, then resumed in its turn: a chain of two.
+            runKilledAfter(0.5 * at, "run --resume " + killed + " --headless --player bot:4");
+            files = sessionsIn(dir);
+            if (files.size() == 2 && !readSession(files[1]).completed) {
+                const auto again = warplab("run --resume " + files[1] + " --headless --player bot:4");
+                ASSERT_EQ(again.status, 0) << again.output;
+                const SessionData last = readSession(sessionsIn(dir).back());
+                ASSERT_EQ(last.header.resumed.size(), 2u);
+                EXPECT_EQ(last.header.resumed[0].sessionId, killedId);
+                EXPECT_EQ(last.header.resumed[1].sessionId, readSession(files[1]).header.sessionId);
+                EXPECT_EQ(differenceBetween(whole, last), "");
+                ++resumedMidway;
+                continue;
+            }
+            if (files.size() == 2) continue;  // the resumed run finished before its kill: checked below
+        }
+        const auto resumed = warplab("run --resume " + killed + " --headless --player bot:4");
+        ASSERT_EQ(resumed.status, 0) << resumed.output;
+        EXPECT_TRUE(contains(resumed.output, "resuming " + killed + " at frame ")) << resumed.output;
+        files = sessionsIn(dir);
+        ASSERT_EQ(files.size(), 2u);
+        const SessionData result = readSession(files[1]);
+        EXPECT_TRUE(result.completed);
+        ASSERT_EQ(result.header.resumed.size(), 1u);
+        EXPECT_EQ(result.header.resumed[0].sessionId, killedId);
+        EXPECT_EQ(result.header.resumed[0].file, fs::path(killed).filename().string());
+        EXPECT_EQ(result.header.participant, "R");
+        EXPECT_EQ(result.header.seed, 11u);
+        EXPECT_NE(result.header.sessionId, killedId);
+        // Where it was resumed: the frame after the killed session's last commit point.
+        const SessionData before = readSession(killed);
+        EXPECT_LE(static_cast<std::size_t>(result.header.resumed[0].frame), before.inputs.size());
+        EXPECT_GE(result.header.resumed[0].frame, 0);
+        EXPECT_EQ(differenceBetween(whole, result), "");
+        EXPECT_EQ(warplab("replay " + files[1]).status, 0);
+        ++resumedMidway;
+    }
+    EXPECT_GE(resumedMidway, 1) << "no kill landed while the session ran";
+}
+
+TEST(CliResume, AKilledShooterSessionResumedIsTheUninterruptedOne) {
+    expectResumedEqualsUninterrupted("shooter-demo.json");
+}
+
+TEST(CliResume, AKilledClickSessionResumedIsTheUninterruptedOne) {
+    expectResumedEqualsUninterrupted("click-demo.json");
+}
+
+// What cannot be resumed is refused with one sentence naming the file (exit 1), and nothing
+// is written; options that the session itself answers are a usage error (exit 2).
+TEST(CliResume, RefusesWhatCannotBeResumedAndWritesNothing) {
+    const std::string dir = scratch("refusals");
+    ASSERT_EQ(warplab("run --protocol " + protocolFile("shooter-quick.json") + " --participant Q --out " + dir +
+                      " --headless --player bot:2 --seed 3")
+                  .status,
+              0);
+    const std::string complete = sessionsIn(dir).at(0);
+    auto r = warplab("run --resume " + complete + " --headless");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "session '" + complete + "' is complete: there is nothing to resume")) << r.output;
+    EXPECT_EQ(sessionsIn(dir).size(), 1u);
+
+    // A session whose input no longer gives its outcomes: written again, incomplete, with the
+    // bot's shots taken out.
+    SessionData data = readSession(complete);
+    for (auto& input : data.inputs) input.buttons = 0;
+    const std::string doctoredDir = scratch("refusals-doctored");
+    std::string doctored;
+    {
+        auto writer = warplab::session::SessionWriter::create(doctoredDir, data.header);
+        for (const auto& input : data.inputs) writer.addInput(input);
+        for (const auto& frame : data.frames) writer.addFrame(frame);
+        for (const auto& event : data.events) writer.addEvent(event);
+        writer.commit();  // not finished: an interrupted session
+        doctored = writer.path();
+    }
+    r = warplab("run --resume " + doctored + " --headless");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "session '" + doctored + "' does not replay as it was recorded (record "))
+        << r.output;
+    EXPECT_EQ(r.lines(), 1) << r.output;
+    EXPECT_EQ(sessionsIn(doctoredDir).size(), 1u);
+
+    r = warplab("run --resume " + dir + "/none.warplab-session --headless");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "none.warplab-session")) << r.output;
+
+    for (const char* option : {"--protocol x.json", "--participant P", "--seed 4"}) {
+        r = warplab("run --resume " + doctored + " --headless " + option);
+        EXPECT_EQ(r.status, 2) << option << ": " << r.output;
+        EXPECT_TRUE(contains(r.output, "comes from the session with --resume")) << r.output;
+    }
+    r = warplab("run --resume --headless");
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_TRUE(contains(r.output, "option --resume needs the SESSION")) << r.output;
+    EXPECT_EQ(sessionsIn(doctoredDir).size(), 1u);
+}
+
+// Under a study plan: status says to resume, --resume finds the participant's incomplete
+// session, and afterwards status and export count the protocol once, done.
+TEST(CliResume, AStudyParticipantsInterruptedSessionResumesAndCountsOnce) {
+    const std::string dir = scratch("study");
+    ASSERT_EQ(warplab("study init " + dir + " --protocol " + protocolFile("click-demo.json") + "," +
+                      protocolFile("shooter-quick.json") + " --participants 2")
+                  .status,
+              0);
+    auto r = warplab("run --study " + dir + " --participant P01 --headless --resume");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "participant P01 has no incomplete session of ")) << r.output;
+
+    // Interrupted: the sessions of P01's first protocol, cut short by a kill (retried until
+    // one lands while it runs).
+    std::string killed;
+    for (double at = 0.4; at < 3.0 && killed.empty(); at += 0.3) {
+        fs::remove_all(dir + "/results");
+        fs::create_directories(dir + "/results");
+        runKilledAfter(at, "run --study " + dir + " --participant P01 --headless");
+        const auto files = sessionsIn(dir + "/results");
+        if (files.size() == 1 && !readSession(files[0]).completed) killed = files[0];
+    }
+    ASSERT_FALSE(killed.empty()) << "no kill landed while the session ran";
+    r = warplab("study status " + dir);
+    EXPECT_TRUE(contains(r.output, "next: warplab run --study " + dir + " --participant P01 --resume")) << r.output;
+
+    r = warplab("run --study " + dir + " --participant P01 --headless --resume");
+    ASSERT_EQ(r.status, 0) << r.output;
+    r = warplab("study status " + dir + " --csv");
+    // P01's first protocol: done, one session (the interrupted one is part of the resumed).
+    std::istringstream rows(r.output);
+    std::string line;
+    std::getline(rows, line);
+    std::getline(rows, line);
+    EXPECT_TRUE(contains(line, "P01,1,")) << r.output;
+    EXPECT_TRUE(contains(line, ",done,1,")) << r.output;
+
+    const std::string out = scratch("study-export");
+    r = warplab("export " + dir + "/results --out " + out + " --include-incomplete");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, fs::path(killed).filename().string() + ": excluded (resumed: carried on by "))
+        << r.output;
+    EXPECT_TRUE(contains(r.output, "1 included, 1 resumed")) << r.output;
+}
+
+}  // namespace
