@@ -88,7 +88,8 @@ std::string resumeSummary(const ResumePoint& point) {
     if (point.droppedOutcomes > 0)
         text << ", " << point.droppedOutcomes << " of the trial or match it was in the middle of played again";
     if (point.keptInputs < point.stored.inputs.size())
-        text << " (" << point.stored.inputs.size() - point.keptInputs << " frame(s) after its last completed one dropped)";
+        text << " (" << point.stored.inputs.size() - point.keptInputs
+             << " frame(s) after its last completed one dropped)";
     return text.str();
 }
 

@@ -163,6 +163,61 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
     EXPECT_TRUE(warplab::testing::matchesReference("live_rating", rating));
 }
 
+// A window session ended by the supervisor mid-test and resumed in a window: its first frames
+// after the resume point (the frozen last frame of a warp15to120 trial, a warp of a source
+// rendered before that point) look exactly like the uninterrupted session's, since the sources
+// were rendered again from the kept frames; and the whole is the uninterrupted session, event
+// for event.
+TEST(LiveSession, ASessionEndedMidwayResumesInTheWindowAsIfNeverStopped) {
+    const std::string dir = scratch("resume"), whole = scratch("resume-whole"), probe = scratch("resume-probe");
+    const std::string protocol = tinyProtocol(dir);
+    const std::string play = " --width 160 --height 90 --player bot:3";
+    std::ofstream(dir + "/script.txt") << "470 key esc\n470 key q\n";
+    auto r = inWindow("run --protocol " + protocol + " --participant B --out " + dir + play + " --seed 4" +
+                      " --input-script " + dir + "/script.txt");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::string interrupted = sessionIn(dir);
+    ASSERT_FALSE(warplab::session::readSession(interrupted).completed);
+    // Where it resumes: what a headless resume of it says.
+    r = runCommand(std::string(WARPLAB_BINARY) + " run --resume " + interrupted + " --out " + probe +
+                   " --headless --player bot:3");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::int64_t at = warplab::session::readSession(sessionIn(probe)).header.resumed.at(0).frame;
+    ASSERT_GT(at, 200) << "resumed in the test phase, after a trial";
+    std::string frames;
+    for (std::int64_t f = at; f < at + 6; ++f) frames += (frames.empty() ? "" : ",") + std::to_string(f);
+
+    const std::string resumedShots = scratch("resume-shots"), wholeShots = scratch("resume-whole-shots");
+    r = inWindow("run --resume " + interrupted + play + " --screenshots " + resumedShots + " --screenshot-frames " +
+                 frames);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "resuming " + interrupted + " at frame " + std::to_string(at))) << r.output;
+    r = inWindow("run --protocol " + protocol + " --participant B --out " + whole + play + " --seed 4" +
+                 " --screenshots " + wholeShots + " --screenshot-frames " + frames);
+    ASSERT_EQ(r.status, 0) << r.output;
+
+    std::string resumed;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().extension() == ".warplab-session" && entry.path().string() != interrupted)
+            resumed = entry.path().string();
+    ASSERT_FALSE(resumed.empty());
+    const auto a = warplab::session::readSession(resumed);
+    const auto b = warplab::session::readSession(sessionIn(whole));
+    EXPECT_TRUE(a.completed) << a.note;
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+    ASSERT_EQ(a.inputs.size(), b.inputs.size());
+    EXPECT_TRUE(contains(replayOf(resumed), "outcomes reproduced (")) << replayOf(resumed);
+    for (std::int64_t f = at; f < at + 6; ++f) {
+        const std::string name = "/frame_" + std::to_string(f) + ".png";
+        const auto shown = warplab::image::readPng(resumedShots + name);
+        const auto expected = warplab::image::readPng(wholeShots + name);
+        ASSERT_EQ(shown.width, expected.width);
+        EXPECT_EQ(shown.pixels, expected.pixels) << "frame " << f << " differs from the uninterrupted session's";
+    }
+}
+
 // Kim et al.'s late-warp study (its quick protocol, conditions defined in the file) in a real
 // window: the bot's session is the headless one, input for input and event for event, and it
 // replays. About 45 s: the window paces the 43 s of display time in real time.
