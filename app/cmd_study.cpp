@@ -60,7 +60,9 @@ int runStatus(const ParsedArgs& args, const std::string& dir) {
     const plan::StudyPlan studyPlan = plan::readPlan(dir);
     const auto status = plan::studyStatus(dir, studyPlan);
     if (args.flag("csv")) {
-        exporter::CsvFile csv(std::cout, {"participant", "position", "protocol", "status", "sessions", "detail"});
+        exporter::CsvFile csv(
+            std::cout,
+            {"participant", "position", "protocol", "status", "sessions", "done", "planned", "unit", "detail"});
         for (const auto& p : status)
             for (std::size_t i = 0; i < p.protocols.size(); ++i) {
                 const plan::ProtocolStatus& s = p.protocols[i];
@@ -69,6 +71,14 @@ int runStatus(const ParsedArgs& args, const std::string& dir) {
                 csv.text(studyPlan.protocols[static_cast<std::size_t>(s.protocolIndex)].name);
                 csv.text(plan::stateName(s.state));
                 csv.integer(s.sessions);
+                if (s.unit.empty()) {
+                    csv.empty();
+                    csv.empty();
+                } else {
+                    csv.integer(static_cast<long long>(s.done));
+                    csv.integer(static_cast<long long>(s.planned));
+                }
+                csv.text(s.unit);
                 csv.text(s.detail);
                 csv.endRow();
             }
@@ -85,7 +95,7 @@ int runStatus(const ParsedArgs& args, const std::string& dir) {
         std::cout << "  " << p.id << ":";
         for (const plan::ProtocolStatus& s : p.protocols) {
             std::cout << "  " << studyPlan.protocols[static_cast<std::size_t>(s.protocolIndex)].name << " "
-                      << plan::stateName(s.state);
+                      << plan::stateText(s);
             if (s.sessions > 1) std::cout << " (" << s.sessions << " sessions)";
         }
         std::cout << "\n";

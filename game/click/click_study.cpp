@@ -108,6 +108,12 @@ public:
         }
         return out;
     }
+    Progress progress(const std::vector<session::EventRecord>& events) const override {
+        Progress p{"matches", results(events).matches.size(), 0};
+        for (const auto& round : protocol_.rounds)
+            p.planned += protocol_.modes.size() * static_cast<std::size_t>(round.matchesPerMode);
+        return p;
+    }
 
 private:
     bool roundScored(const std::string& round) const {

@@ -1,5 +1,7 @@
 #include "shooter/shooter_study.h"
 
+#include <set>
+
 #include "event_detail.h"
 #include "shooter/shooter_bot.h"
 #include "shooter/shooter_game.h"
@@ -75,6 +77,14 @@ public:
             out.shots.push_back(std::move(r));
         }
         return out;
+    }
+    Progress progress(const std::vector<session::EventRecord>& events) const override {
+        // A test trial ends with its one shot, or its timeout.
+        std::set<int> ended;
+        for (const ShotResult& shot : results(events).shots)
+            if (shot.scoredPhase) ended.insert(shot.trial);
+        return {"test trials", ended.size(),
+                protocol_.conditions.size() * static_cast<std::size_t>(protocol_.targetsPerCondition)};
     }
 
 private:

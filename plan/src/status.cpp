@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "game/registry.h"
 #include "session/session_store.h"
 
 namespace warplab::plan {
@@ -25,6 +26,13 @@ const char* stateName(SessionState state) {
         case SessionState::NotStarted: return "not started";
     }
     return "not started";
+}
+
+std::string stateText(const ProtocolStatus& status) {
+    std::string text = stateName(status.state);
+    if ((status.state == SessionState::Incomplete || status.state == SessionState::Damaged) && !status.unit.empty())
+        text += " (" + std::to_string(status.done) + " of " + std::to_string(status.planned) + " " + status.unit + ")";
+    return text;
 }
 
 namespace {
@@ -46,6 +54,7 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
     struct Found {
         fs::path path;
         session::SessionData data;
+        game::Progress progress;
     };
     std::vector<Found> sessions;
     std::set<std::string> carriedOn;  // session ids a resumed session carries on
@@ -55,13 +64,19 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
         const fs::path& path = it->path();
         const std::string name = path.filename().string();
         if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
-        Found found{path, {}};
+        Found found{path, {}, {}};
         try {
             found.data = session::readSession(path.string());
         } catch (const session::SessionError&) {
             continue;  // not a session of this plan that can be told
         }
         if (found.data.header.planId != plan.id) continue;
+        try {
+            found.progress =
+                game::parseStudy(found.data.header.protocolJson, path.string())->progress(found.data.events);
+        } catch (const std::exception&) {
+            continue;  // its stored protocol does not parse: export says so
+        }
         // Only the headers are needed from here on.
         found.data.inputs.clear();
         found.data.frames.clear();
@@ -86,6 +101,9 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
         if (state == SessionState::Incomplete) s.resumable = found.path.string();
         if (s.sessions == 1 || state < s.state) {
             s.state = state;
+            s.done = found.progress.done;
+            s.planned = found.progress.planned;
+            s.unit = found.progress.unit;
             s.detail = name;
             if (state == SessionState::Flagged)
                 s.detail += ": flagged " + data.flags.begin()->first + ": " + data.flags.begin()->second;

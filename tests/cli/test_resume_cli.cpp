@@ -213,6 +213,10 @@ TEST(CliResume, AStudyParticipantsInterruptedSessionResumesAndCountsOnce) {
     ASSERT_FALSE(killed.empty()) << "no kill landed while the session ran";
     r = warplab("study status " + dir);
     EXPECT_TRUE(contains(r.output, "next: warplab run --study " + dir + " --participant P01 --resume")) << r.output;
+    // How far it got, in the game's unit: the click game's matches (of 21 in click-demo), or
+    // the shooter's test trials.
+    EXPECT_TRUE(contains(r.output, " incomplete (")) << r.output;
+    EXPECT_TRUE(contains(r.output, " matches)") || contains(r.output, " test trials)")) << r.output;
 
     r = warplab("run --study " + dir + " --participant P01 --headless --resume");
     ASSERT_EQ(r.status, 0) << r.output;

@@ -17,6 +17,7 @@
 #include "click/click_game.h"
 #include "game/screen.h"
 #include "protocol/click_protocol.h"
+#include "game/registry.h"
 #include "session/records.h"
 
 namespace warplab::game {
@@ -93,6 +94,16 @@ TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
     EXPECT_GT(greens, clicks / 4) << "the bot should hit green spheres";
     EXPECT_EQ(played.events.back().type, "phase");
     EXPECT_EQ(played.events.back().phase, "done");
+    // How far it got, as study status says it: every match planned, and one fewer without the last.
+    const auto study = loadStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json");
+    const Progress whole = study->progress(played.events);
+    EXPECT_EQ(whole.unit, "matches");
+    EXPECT_EQ(whole.planned, static_cast<std::size_t>(expected));
+    EXPECT_EQ(whole.done, whole.planned);
+    auto cut = played.events;
+    while (cut.back().type != "match") cut.pop_back();
+    cut.pop_back();
+    EXPECT_EQ(study->progress(cut).done, whole.planned - 1);
 }
 
 TEST(ClickGame, SameSeedAndInputSameEventsBitForBit) {

@@ -9,6 +9,7 @@
 
 #include "shooter/shooter_bot.h"
 #include "shooter/shooter_game.h"
+#include "game/registry.h"
 #include "session/records.h"
 #include "protocol/shooter_protocol.h"
 #include "scene/camera.h"
@@ -72,6 +73,17 @@ TEST(ShooterGame, BotPlaysTheQuickProtocolToTheEnd) {
     }
     EXPECT_EQ(testOutcomes, static_cast<int>(p.conditions.size()) * p.targetsPerCondition);
     EXPECT_GT(hits, 0) << "the bot should hit some targets";
+    // How far it got, as study status says it: every test trial of those planned, and of a
+    // session cut before its last trial, one fewer.
+    const auto study = loadStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+    const Progress whole = study->progress(played.events);
+    EXPECT_EQ(whole.unit, "test trials");
+    EXPECT_EQ(whole.planned, p.conditions.size() * static_cast<std::size_t>(p.targetsPerCondition));
+    EXPECT_EQ(whole.done, whole.planned);
+    auto cut = played.events;
+    while (cut.back().type != "shot" && cut.back().type != "timeout") cut.pop_back();
+    cut.pop_back();
+    EXPECT_EQ(study->progress(cut).done, whole.planned - 1);
     EXPECT_EQ(phases.front(), "acclimation");
     EXPECT_EQ(phases.back(), "done");
     EXPECT_NE(std::find(phases.begin(), phases.end(), "training"), phases.end());

@@ -210,6 +210,10 @@ public:
         }
         return out;
     }
+    // Clicks, of no planned number: the toy game runs for a time.
+    Progress progress(const std::vector<session::EventRecord>& events) const override {
+        return {"clicks", results(events).shots.size(), 0};
+    }
 
 private:
     ToyProtocol protocol_;

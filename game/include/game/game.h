@@ -185,6 +185,13 @@ struct Instructions {
     std::string task;  // the rule in words, as the participant hears it
 };
 
+// How far a session got, counted as a supervisor counts it: the shooter's test trials, the
+// click game's matches.
+struct Progress {
+    std::string unit;  // plural noun: "test trials", "matches"
+    std::size_t done = 0, planned = 0;  // planned 0: the protocol plans no number of them
+};
+
 // A protocol file parsed and bound to its game.
 class Study {
 public:
@@ -213,6 +220,8 @@ public:
     // A stored session's events (of a session run with this protocol) as export's rows.
     // Events of other types are skipped; a session cut short gives what it has.
     virtual SessionResults results(const std::vector<session::EventRecord>& events) const = 0;
+    // How far a session of this protocol with these events got, of what the protocol plans.
+    virtual Progress progress(const std::vector<session::EventRecord>& events) const = 0;
 };
 
 }  // namespace warplab::game

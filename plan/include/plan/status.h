@@ -16,11 +16,20 @@ std::string resultsFolder(const std::string& planDir);
 enum class SessionState { Done, Flagged, Incomplete, Damaged, NotStarted };
 const char* stateName(SessionState state);  // "done", "flagged", "incomplete", "damaged", "not started"
 
+struct ProtocolStatus;
+// The state as the supervisor reads it: the name, and for an incomplete or damaged session how
+// far it got, e.g. "incomplete (17 of 675 test trials)".
+std::string stateText(const ProtocolStatus& status);
+
 struct ProtocolStatus {
     int protocolIndex = 0;  // into StudyPlan::protocols
     SessionState state = SessionState::NotStarted;
     std::string detail;  // the best session's file name and, when not done, why (its note or flags)
     int sessions = 0;  // of this participant and protocol, in the results folder
+    // How far the best session got, as its game counts (Study::progress): `done` of `planned`
+    // `unit` ("test trials", "matches"); all 0 and "" when not started.
+    std::size_t done = 0, planned = 0;
+    std::string unit;
     // The last (by file name) incomplete session that is not damaged: what run --resume carries
     // on; "" when there is none.
     std::string resumable;
