@@ -64,7 +64,7 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
                                           "60 key esc\n60 key enter\n"
                                           "# the supervisor's Enter after acclimation begins the test\n"
                                           "200 key enter\nend key enter\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant H1 --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant H1 --out " + dir +
                             " --width 192 --height 108 --input-script " + dir + "/script.txt --screenshots " + dir +
                             " --screenshot-frames 12,20");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -113,7 +113,7 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
 TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
     const std::string dir = scratch("abort");
     std::ofstream(dir + "/script.txt") << "start key enter\n80 key esc\n80 key q\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant A1 --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant A1 --out " + dir +
                             " --width 160 --height 90 --input-script " + dir + "/script.txt");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 79")) << r.output;
@@ -198,7 +198,7 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
 TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
     const std::string dir = scratch("bad-script");
     std::ofstream(dir + "/script.txt") << "start key enter\n12 jump\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant X --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant X --out " + dir +
                             " --width 160 --height 90 --input-script " + dir + "/script.txt");
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "script.txt' line 2: unknown action 'jump'")) << r.output;
@@ -210,7 +210,7 @@ TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
 TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
     const std::string dir = scratch("free-play");
     std::ofstream(dir + "/script.txt") << "5 key 1\n20 key u\n40 key 8\n70 key esc\n70 key q\n";
-    const auto r = inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    const auto r = inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                             "/protocol/click-quick.json --free-play --width 160 --height 90 --out " + dir +
                             " --input-script " + dir + "/script.txt");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -229,7 +229,7 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
     std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
                                           "80 key esc\n80 key q\n";
     const auto r =
-        inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+        inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                  "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " + dir +
                  " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -246,8 +246,8 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {
-    const auto r =
-        runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
+    const auto r = runCommand(std::string(WARPLAB_BINARY) +
+                              " run --seed 1 --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_TRUE(contains(r.output, "needs the window")) << r.output;
 }
