@@ -816,7 +816,7 @@ TEST(CliSession, ASecondRunIntoAFolderInUseIsRefusedUntilTheFirstEnds) {
     }
     EXPECT_EQ(after, files) << "the refused run created nothing";
 
-    // Export and study status read the folder while it is in use, the lock file and all.
+    // Export reads the folder while it is in use, passing over the lock file.
     const auto exported = warplab("export " + dir + " --out " + scratch("folder-in-use-export"));
     EXPECT_EQ(exported.status, 0) << exported.output;
     EXPECT_FALSE(contains(exported.output, ".warplab-lock")) << exported.output;

@@ -189,6 +189,13 @@ TEST(CliStudy, TheExportListsEveryPlannedParticipantWithTheirSeedOrdersAndStatus
         expectedRow(plan["participants"][1], {"done", "not started"}) + "\n" +
         expectedRow(plan["participants"][2], {"not started", "not started"}) + "\n";
 
+    // A lock file a killed run left behind is neither a session nor in the way.
+    std::ofstream(dir + "/results/.warplab-lock") << R"({"pid":1,"participant":"P03"})";
+    const auto status = warplab("study status " + dir);
+    EXPECT_EQ(status.status, 0) << status.output;
+    EXPECT_FALSE(contains(status.output, "warplab-lock")) << status.output;
+    EXPECT_TRUE(contains(status.output, "next: warplab run --study " + dir + " --participant P02")) << status.output;
+
     const auto beside = warplab("export " + dir + "/results --out " + base + "/export");
     ASSERT_EQ(beside.status, 0) << beside.output;
     const auto read = [](const std::string& path) {
