@@ -2,6 +2,8 @@
 // events, the supervisor's pause and abort, and the bot in the window writing the same session
 // as headless. Xvfb reports no refresh rate, so these runs pace frames by timer, as the tool
 // says it will; feedback sounds go to SDL's dummy audio driver.
+#include <unistd.h>
+
 #include <array>
 #include <cstdlib>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include "cli/cli_support.h"
 #include "gl/gl_test_support.h"
 #include "session/records.h"
+#include "session/results_lock.h"
 #include "session/session_store.h"
 #include "image/image.h"
 
@@ -193,6 +196,26 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
     EXPECT_FALSE(contains(replayed, "differ")) << replayed;
     EXPECT_TRUE(fs::exists(dir + "/frame_4000.png"));
+}
+
+// A second window on the rig recorded into the folder beside the first. While another session
+// holds the folder the window run is refused before it opens its window: no start screen, no file.
+TEST(LiveSession, AFolderInUseIsRefusedBeforeTheWindowOpens) {
+    const std::string dir = scratch("folder-in-use");
+    std::ofstream(dir + "/script.txt") << "start key enter\nend key enter\n";
+    const std::string protocol = tinyProtocol(dir);
+    fs::create_directories(dir + "/shots");
+    const warplab::session::ResultsFolderLock held(dir, "HOLDER", "shooter-thesis");
+    const auto r = inWindow("run --seed 1 --protocol " + protocol + " --participant W --out " + dir +
+                            " --width 160 --height 90 --player bot:3 --input-script " + dir +
+                            "/script.txt --screenshots " + dir + "/shots");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output,
+                         "'" + dir + "' is in use by another warplab session (participant HOLDER, " +
+                             "protocol shooter-thesis, pid " + std::to_string(::getpid())))
+        << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty());
+    EXPECT_FALSE(fs::exists(dir + "/shots/start.png")) << "the window opened";
 }
 
 TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
