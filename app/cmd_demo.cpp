@@ -28,6 +28,7 @@
 
 #include "commands.h"
 #include "export/export.h"
+#include "session/results_lock.h"
 #include "study/session_runner.h"
 #include "participants/eye.h"
 #include "game/registry.h"
@@ -129,6 +130,13 @@ int runDemo(const ParsedArgs& args) {
                          "' already holds sessions; a demo analyses only its own, so choose another --out");
     fs::create_directories(results);
     fs::create_directories(logs);
+    // One lock for the folder, taken here and inherited by every child: the demo's sessions
+    // share it, and no `warplab run` writes into it meanwhile (nor another demo).
+    std::string protocolNames;
+    for (const auto& protocol : protocols)
+        protocolNames += (protocolNames.empty() ? "" : ",") + protocol.stem().string();
+    const session::ResultsFolderLock lock(results.string(), player + "-1.." + std::to_string(participants),
+                                          protocolNames);
 
     std::deque<Job> waiting;
     for (int i = 1; i <= participants; ++i)

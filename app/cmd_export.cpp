@@ -15,6 +15,7 @@ int runExport(const ParsedArgs& args) {
     options.allPhases = args.flag("all-phases");
     options.includeIncomplete = args.flag("include-incomplete");
     options.includeFlagged = args.flag("include-flagged");
+    options.studyDir = args.string("study", "");
     const exporter::ExportSummary summary =
         exporter::exportResults(args.positional()[0], args.string("out", "export"), options, std::cerr);
     for (const auto& path : summary.written) std::cout << path << "\n";
@@ -26,7 +27,8 @@ Command exportCommand() {
     return {{"export",
              "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
              "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches and\n"
-             "ratings (docs/export.md). Read-only; damaged files are reported and skipped.",
+             "ratings, and a study plan's participants (docs/export.md). Read-only; damaged files are\n"
+             "reported and skipped.",
              "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",
              {
                  {"out", "DIR", "where the CSVs go (created when missing)", "export"},
@@ -34,6 +36,8 @@ Command exportCommand() {
                  {"include-incomplete", "",
                   "also sessions that never finished (killed mid-way): their completed trials", ""},
                  {"include-flagged", "", "also sessions flagged during their run (e.g. too many missed frames)", ""},
+                 {"study", "DIR", "the study plan (DIR/study.json) that participants.csv lists",
+                  "RESULTS/.. when the sessions were run from a plan"},
              },
              true},
             &runExport};

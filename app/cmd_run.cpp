@@ -1,7 +1,9 @@
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <random>
 
 #include "commands.h"
 #include "export/csv.h"
@@ -12,6 +14,7 @@
 #include "plan/status.h"
 #include "plan/study_plan.h"
 #include "scene/limits.h"
+#include "session/results_lock.h"
 
 namespace warplab::app {
 
@@ -93,6 +96,38 @@ plan::ParticipantSettings readStudyOptions(const ParsedArgs& args, Run& run) {
     return participant->settings;
 }
 
+// The results folder's lock, held for the whole session (docs/live-sessions.md): a second run
+// into the folder is refused here, before it opens a window or creates a file.
+template <typename Run>
+session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
+    // A resumed session's participant and protocol are the interrupted one's.
+    std::string participant = run.participant, protocol;
+    if (!run.resumeFrom.empty()) {
+        const session::SessionHeader was = session::readSessionHeader(run.resumeFrom);
+        participant = was.participant;
+        protocol = study::loadRunStudy(run.resumeFrom, was.protocolJson)->name();
+    } else {
+        protocol = study::loadRunStudy(run.protocolPath, run.protocolText)->name();
+    }
+    try {
+        return session::ResultsFolderLock(run.resultsDir, participant, protocol);
+    } catch (const session::ResultsFolderBusy& e) {
+        throw std::runtime_error(
+            e.what() +
+            std::string(args.has("study") ? "; wait for it to end." : "; wait for it to end, or use another --out."));
+    }
+}
+
+constexpr long long kMaxSeed = 1LL << 62;
+
+// A session seed of the operating system's randomness, 0..kMaxSeed: without --seed (and without
+// a plan) each participant gets their own trial order and target spawns.
+std::uint64_t drawSeed() {
+    std::random_device device;
+    const std::uint64_t bits = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+    return bits & static_cast<std::uint64_t>(kMaxSeed - 1);
+}
+
 template <typename Run>
 void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run, bool recorded = true) {
     run.player = args.string("player", defaultPlayer);
@@ -121,7 +156,13 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     run.participant = args.string("participant");
     if (recorded) checkParticipant(run.participant);
     run.resultsDir = args.string("out", "results");
-    run.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
+    run.seed = args.has("seed") ? static_cast<std::uint64_t>(args.integer("seed", 0, 0, kMaxSeed)) : drawSeed();
+}
+
+// Said once the run holds its folder, so that a session run without --seed can be repeated.
+void tellDrawnSeed(const ParsedArgs& args, std::uint64_t seed) {
+    if (!args.has("seed") && !args.has("study") && !args.has("resume"))
+        std::cerr << "seed " << seed << " drawn at random; --seed " << seed << " repeats this session\n";
 }
 
 int runWindowed(const ParsedArgs& args) {
@@ -166,6 +207,8 @@ int runWindowed(const ParsedArgs& args) {
         live::runFreePlay(run, dataPathsFrom(args), std::cerr);
         return 0;
     }
+    const auto lock = lockResults(args, run);
+    tellDrawnSeed(args, run.seed);
     const std::string path = live::runLive(run, dataPathsFrom(args), std::cerr);
     if (!path.empty()) std::cout << path << "\n";
     return 0;
@@ -205,6 +248,8 @@ int runRun(const ParsedArgs& args) {
     } else if (args.has("gl")) {
         throw UsageError("option --gl only applies with --headless --player sim");
     }
+    const auto lock = lockResults(args, run);
+    tellDrawnSeed(args, run.seed);
     const std::string path = study::runHeadless(run, std::cerr);
     std::cout << path << "\n";
     return 0;
@@ -301,7 +346,7 @@ Command runCommand() {
               "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
               "SEED: its motor noise, default the session seed), or a recorded session's input",
               "human in a window, bot headless"},
-             {"seed", "N", "session seed: trial order and target spawns", shown(headless.seed)},
+             {"seed", "N", "session seed, 0..2^62: trial order and target spawns", "drawn at random, and printed"},
              {"width", "PIXELS",
               "headless: display width the session stands for; window: its width, " +
                   range(scene::kMinDisplaySize, scene::kMaxImageSize),

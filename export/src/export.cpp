@@ -5,6 +5,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <stdexcept>
@@ -13,6 +14,8 @@
 #include "export/csv.h"
 #include "condition/schedule.h"
 #include "game/registry.h"
+#include "plan/status.h"
+#include "plan/study_plan.h"
 #include "session/session_store.h"
 
 namespace warplab::exporter {
@@ -330,6 +333,84 @@ CarriedOn carriedOn(const std::vector<fs::path>& files, const fs::path& resultsD
     return out;
 }
 
+// One planned participant: their plan and where they stand (plan/status.h).
+struct ParticipantRow {
+    const plan::StudyPlan& plan;
+    const plan::ParticipantPlan& participant;
+    const plan::ParticipantStatus& status;
+};
+
+// "name: value; name: value", over the participant's protocols in their order.
+template <class Value>
+std::string perProtocol(const ParticipantRow& r, const Value& value) {
+    std::string out;
+    for (const int index : r.participant.protocolOrder)
+        out += (out.empty() ? "" : "; ") + r.plan.protocols[static_cast<std::size_t>(index)].name + ": " + value(index);
+    return out;
+}
+
+const std::vector<Column<ParticipantRow>>& participantColumns() {
+    using F = CsvFile;
+    using R = ParticipantRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant.id); }},
+        {"seed", [](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.participant.seed)); }},
+        {"protocol_order",
+         [](F& f, const R& r) {
+             std::string out;
+             for (const int index : r.participant.protocolOrder)
+                 out += (out.empty() ? "" : ";") + r.plan.protocols[static_cast<std::size_t>(index)].name;
+             f.text(out);
+         }},
+        {"condition_orders",
+         [](F& f, const R& r) {
+             f.text(perProtocol(r, [&](int index) {
+                 std::string list;
+                 for (const auto& c : r.participant.conditionOrder[static_cast<std::size_t>(index)])
+                     list += (list.empty() ? "" : " ") + c;
+                 return list;
+             }));
+         }},
+        {"cm_per_360",
+         [](F& f, const R& r) {
+             if (r.participant.settings.cmPer360)
+                 f.number(*r.participant.settings.cmPer360);
+             else
+                 f.empty();
+         }},
+        {"mouse_dpi", [](F& f, const R& r) { f.number(r.participant.settings.mouseDpi); }},
+        {"invert_y", [](F& f, const R& r) { f.boolean(r.participant.settings.invertY); }},
+        {"status",
+         [](F& f, const R& r) {
+             f.text(perProtocol(r, [&](int index) -> std::string {
+                 for (const auto& p : r.status.protocols)
+                     if (p.protocolIndex == index) return plan::stateText(p);
+                 return plan::stateName(plan::SessionState::NotStarted);
+             }));
+         }},
+    };
+    return columns;
+}
+
+// The plan folder of a results folder: DIR for DIR/results (as `study init` makes them).
+fs::path planFolderOf(const std::string& resultsDir) {
+    fs::path dir = fs::absolute(resultsDir).lexically_normal();
+    if (dir.filename().empty()) dir = dir.parent_path();
+    return dir.parent_path();
+}
+
+// participants.csv: one row per planned participant, in plan order; its path.
+std::string writeParticipants(const std::string& outDir, const std::string& planDir, const plan::StudyPlan& studyPlan) {
+    CsvFile csv((fs::path(outDir) / "participants.csv").string(), headerOf(participantColumns()));
+    const std::vector<plan::ParticipantStatus> statuses = plan::studyStatus(planDir, studyPlan);
+    for (std::size_t i = 0; i < studyPlan.participants.size(); ++i) {
+        writeCells(csv, participantColumns(), ParticipantRow{studyPlan, studyPlan.participants[i], statuses[i]});
+        csv.endRow();
+    }
+    csv.close();
+    return csv.path();
+}
+
 class Exporter {
 public:
     Exporter(const fs::path& outDir, const ExportOptions& options, CarriedOn carriedOn)
@@ -354,6 +435,7 @@ public:
             return out;
         }
         const session::SessionHeader& h = data.header;
+        if (!h.planId.empty()) ++planIds_[h.planId];
         // What makes two files copies of one session: its id from format version 3 on (a copy
         // keeps it; two runs never share one, not even twins started in the same millisecond
         // with the same participant and seed), what the header says in older files.
@@ -411,6 +493,8 @@ public:
 
     // Said once every session has been read: copies of one session both included.
     const std::vector<std::string>& warnings() const { return warnings_; }
+    // The study plans the readable sessions were run from: plan id, how many sessions.
+    const std::map<std::string, int>& planIds() const { return planIds_; }
 
     // The conditions `study` runs, new ones (by game, name and refresh) in order of first use.
     // One name meaning two things in one export is said, since the analysis keys on names.
@@ -519,6 +603,7 @@ private:
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
     std::vector<std::string> warnings_;
     std::vector<ConditionListing> conditions_;
+    std::map<std::string, int> planIds_;
 };
 
 }  // namespace
@@ -527,7 +612,7 @@ std::vector<CsvColumns> exportColumns() {
     return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
             {"ratings.csv", headerOf(ratingColumns()), ""},   {"conditions.csv", headerOf(conditionColumns()), ""},
-            {"games.csv", headerOf(gameColumns()), ""}};
+            {"games.csv", headerOf(gameColumns()), ""},       {"participants.csv", headerOf(participantColumns()), ""}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
@@ -543,6 +628,12 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     fs::create_directories(outDir, ec);
     if (!fs::is_directory(outDir, ec)) throw std::runtime_error("cannot create the output folder '" + outDir + "'.");
 
+    // The study plan participants.csv lists: --study's, read first so that a bad one ends the
+    // export before it writes anything.
+    std::optional<plan::StudyPlan> studyPlan;
+    std::string planDir = options.studyDir;
+    if (!planDir.empty()) studyPlan = plan::readPlan(planDir);
+
     ExportSummary summary;
     Exporter exporter(outDir, options, carriedOn(files, resultsDir));
     for (std::size_t i = 0; i < files.size(); ++i) {
@@ -556,6 +647,30 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     }
     summary.written = exporter.close(outDir);
     for (const auto& warning : exporter.warnings()) log << "export: warning: " << warning << "\n";
+    // Else the plan beside the results folder, when the sessions were run from one.
+    if (!studyPlan && !exporter.planIds().empty()) {
+        planDir = planFolderOf(resultsDir).string();
+        const std::string planFile = (fs::path(planDir) / "study.json").string();
+        if (!fs::exists(planFile, ec)) {
+            log << "export: warning: the sessions were run from a study plan, but there is no '" << planFile
+                << "'; participants.csv is not written (--study DIR names the plan's folder)\n";
+        } else {
+            try {
+                studyPlan = plan::readPlan(planDir);
+            } catch (const plan::PlanError& e) {
+                log << "export: warning: participants.csv is not written: " << e.what() << "\n";
+            }
+        }
+    }
+    if (studyPlan) {
+        for (const auto& [id, count] : exporter.planIds())
+            if (id != studyPlan->id)
+                log << "export: warning: " << count << (count == 1 ? " session was" : " sessions were")
+                    << " run from another study plan (plan_id " << id << ") than '"
+                    << (fs::path(planDir) / "study.json").string() << "' (id " << studyPlan->id
+                    << "); participants.csv does not count them\n";
+        summary.written.push_back(writeParticipants(outDir, planDir, *studyPlan));
+    }
 
     std::map<std::string, int> byStatus;
     int included = 0;

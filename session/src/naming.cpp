@@ -3,10 +3,15 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <system_error>
 
 #include <unistd.h>
+
+#include "session/session_store.h"
 
 namespace warplab::session::detail {
 
@@ -32,6 +37,22 @@ std::string timeForName(const std::string& iso) {
     for (const char c : iso)
         if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9')) out += c;
     return out.substr(0, 32);
+}
+
+void checkResultsFolder(const std::string& resultsDir) {
+    std::error_code ec;
+    const auto status = fs::status(resultsDir, ec);
+    if (resultsDir.empty() || !fs::exists(status))
+        throw SessionError("Results folder '" + resultsDir + "' does not exist.");
+    if (!fs::is_directory(status)) throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
+    if (::access(resultsDir.c_str(), W_OK | X_OK) != 0)
+        throw SessionError("Results folder '" + resultsDir + "' is not writable (" + std::strerror(errno) + ").");
+    // root passes access() on any folder; a folder with no write permission for anyone is
+    // one a lab has marked read-only (an archived study), and stays so.
+    if ((status.permissions() & (fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write)) ==
+        fs::perms::none)
+        throw SessionError("Results folder '" + resultsDir +
+                           "' is read-only (no write permission for anyone); warplab writes no session into it.");
 }
 
 bool anyExists(const std::string& path) {
@@ -85,3 +106,20 @@ void removeAbandonedCreations(const std::string& resultsDir) {
 }
 
 }  // namespace warplab::session::detail
+
+namespace warplab::session {
+
+std::string utcNow() {
+    using namespace std::chrono;
+    const auto now = system_clock::now();
+    const std::time_t seconds = system_clock::to_time_t(now);
+    const auto millis = duration_cast<milliseconds>(now.time_since_epoch()).count() % 1000;
+    std::tm tm{};
+    gmtime_r(&seconds, &tm);
+    char text[96];  // room for any int the format could meet, so no truncation warning
+    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1,
+                  tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(millis));
+    return text;
+}
+
+}  // namespace warplab::session

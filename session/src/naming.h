@@ -15,6 +15,9 @@ inline constexpr std::size_t kMaxNameBytes = 64;
 // a leading '-' is replaced too so the file name never reads as a command-line option.
 std::string safeName(const std::string& raw, std::size_t maxBytes);
 std::string timeForName(const std::string& iso);
+// Throws SessionError naming the folder when it is missing, not a folder, not writable, or
+// marked read-only for everyone (root included); creates nothing.
+void checkResultsFolder(const std::string& resultsDir);
 bool anyExists(const std::string& path);
 void removeSessionFiles(const std::string& path);
 

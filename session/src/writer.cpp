@@ -34,20 +34,6 @@
 #include <vector>
 
 namespace warplab::session {
-
-std::string utcNow() {
-    using namespace std::chrono;
-    const auto now = system_clock::now();
-    const std::time_t seconds = system_clock::to_time_t(now);
-    const auto millis = duration_cast<milliseconds>(now.time_since_epoch()).count() % 1000;
-    std::tm tm{};
-    gmtime_r(&seconds, &tm);
-    char text[96];  // room for any int the format could meet, so no truncation warning
-    std::snprintf(text, sizeof text, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1,
-                  tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(millis));
-    return text;
-}
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -560,19 +546,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
 
     // Everything that can be checked is checked before the first file exists, so a bad
     // results folder leaves no litter behind.
-    std::error_code ec;
-    const auto status = fs::status(resultsDir, ec);
-    if (resultsDir.empty() || !fs::exists(status))
-        throw SessionError("Results folder '" + resultsDir + "' does not exist.");
-    if (!fs::is_directory(status)) throw SessionError("Results folder '" + resultsDir + "' is not a folder.");
-    if (::access(resultsDir.c_str(), W_OK | X_OK) != 0)
-        throw SessionError("Results folder '" + resultsDir + "' is not writable (" + std::strerror(errno) + ").");
-    // root passes access() on any folder; a folder with no write permission for anyone is
-    // one a lab has marked read-only (an archived study), and stays so.
-    if ((status.permissions() & (fs::perms::owner_write | fs::perms::group_write | fs::perms::others_write)) ==
-        fs::perms::none)
-        throw SessionError("Results folder '" + resultsDir +
-                           "' is read-only (no write permission for anyone); warplab writes no session into it.");
+    checkResultsFolder(resultsDir);
 
     auto impl = std::make_unique<Impl>();
     impl->resultsDir = resultsDir;

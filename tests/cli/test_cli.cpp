@@ -1,6 +1,9 @@
 // The `warplab` binary as a user meets it: bad command lines and bad data end in one clear
 // sentence naming the culprit and a non-zero exit, never a crash; good ones write files.
+#include <signal.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <chrono>
 #include <thread>
 #include <sqlite3.h>
@@ -11,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -313,7 +317,7 @@ TEST(CliSession, HeadlessBotRunThenReplayReproducesEveryOutcome) {
 TEST(CliSession, TheLateWarpProtocolRunsReplaysAndScoresWhatTheWarpedFrameShows) {
     const std::string dir = scratch("session-kim"), framesDir = scratch("session-kim-frames");
     const auto run =
-        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+        warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                 "/protocol/latewarp-kim-quick.json --participant K --out " + dir + " --headless --player bot:3");
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
@@ -416,7 +420,7 @@ TEST(CliSession, KilledRunsKeepEveryCompletedTrialAndReplay) {
 
 TEST(CliSession, TruncatedStoreReplaysUpToItsLastCompleteRecord) {
     const std::string dir = scratch("session-truncate");
-    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/shooter-quick.json --participant T --out " + dir + " --headless --player bot:4")
                   .status,
               0);
@@ -453,7 +457,7 @@ std::string rewritten(const std::string& session, const std::string& dir,
 // failure: a record that differs exits 5, an error that is not the session's exits 1.
 TEST(CliSession, ReplayTellsADifferenceFromAnError) {
     const std::string dir = scratch("session-doctored");
-    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/shooter-quick.json --participant D --out " + dir + " --headless --player bot:4")
                   .status,
               0);
@@ -481,13 +485,13 @@ TEST(CliSession, UnknownPlayerIsABadCommandLine) {
     const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
     const std::string dir = scratch("session-bad-player");
     for (const char* player : {"wizard", "bot:x", "sim:-1"}) {
-        const auto r = warplab("run --protocol " + protocol + " --participant P --out " + dir +
+        const auto r = warplab("run --seed 1 --protocol " + protocol + " --participant P --out " + dir +
                                " --headless --player " + std::string(player));
         EXPECT_EQ(r.status, 2) << player << ": " << r.output;
         EXPECT_EQ(r.lines(), 1) << r.output;
     }
-    const auto r =
-        warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless --player wizard");
+    const auto r = warplab("run --seed 1 --protocol " + protocol + " --participant P --out " + dir +
+                           " --headless --player wizard");
     EXPECT_TRUE(contains(r.output, "unknown player 'wizard' (expected bot, bot:SEED, sim, sim:SEED or replay:SESSION)"))
         << r.output;
     EXPECT_TRUE(sessionIn(dir).empty());
@@ -495,11 +499,12 @@ TEST(CliSession, UnknownPlayerIsABadCommandLine) {
 
 TEST(CliSession, BadResultsFolderOrParticipantNeverEscapes) {
     const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
-    auto r = warplab("run --protocol " + protocol + " --participant P --out /nonexistent/results --headless");
+    auto r = warplab("run --seed 1 --protocol " + protocol + " --participant P --out /nonexistent/results --headless");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.output, "/nonexistent/results")) << r.output;
     const std::string dir = scratch("session-evil");
-    r = warplab("run --protocol " + protocol + " --participant '../../evil/../x' --out " + dir + " --headless");
+    r = warplab("run --seed 1 --protocol " + protocol + " --participant '../../evil/../x' --out " + dir +
+                " --headless");
     ASSERT_EQ(r.status, 0) << r.output;
     const std::string session = sessionIn(dir);
     ASSERT_FALSE(session.empty());
@@ -510,7 +515,7 @@ TEST(CliSession, BadProtocolIsNamed) {
     const std::string dir = scratch("session-bad-protocol");
     std::ofstream(dir + "/p.json")
         << "{\"format_version\":1,\"name\":\"x\",\"game\":\"shooter\",\"test\":{\"targets\":3}}";
-    const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    const auto r = warplab("run --seed 1 --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.output, "test.targets")) << r.output;
     EXPECT_EQ(r.lines(), 1) << r.output;
@@ -523,7 +528,7 @@ namespace {
 
 TEST(CliSession, ReplayRendersTheDisplayedFramesAndCrossChecksTheReticle) {
     const std::string dir = scratch("session-render");
-    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/shooter-quick.json --participant R --out " + dir + " --headless --player bot:2")
                   .status,
               0);
@@ -595,7 +600,7 @@ TEST(CliClick, FullYangSessionHasEveryMatchAndRatingAndReplaysExactly) {
 
 TEST(CliClick, ReplayRenderDrawsTheCursorAndAssertsWhatIsUnderIt) {
     const std::string dir = scratch("click-render");
-    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/click-quick.json --participant R --out " + dir +
                       " --headless --player bot:2 --width 640 --height 360")
                   .status,
@@ -626,13 +631,14 @@ TEST(CliClick, MalformedClickProtocolsAreNamed) {
     };
     for (const auto& [section, field] : cases) {
         std::ofstream(dir + "/p.json") << R"({"format_version":1,"name":"x","game":"click",)" << section << "}";
-        const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+        const auto r =
+            warplab("run --seed 1 --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
         EXPECT_EQ(r.status, 1) << section;
         EXPECT_TRUE(contains(r.output, field)) << section << ": " << r.output;
         EXPECT_EQ(r.lines(), 1) << r.output;
     }
     std::ofstream(dir + "/p.json") << R"({"format_version":1,"name":"x","game":"pong"})";
-    const auto r = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    const auto r = warplab("run --seed 1 --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
     EXPECT_EQ(r.status, 1);
     EXPECT_TRUE(contains(r.output, "\"pong\"")) << r.output;
     // A shooter file whose "game" was changed to click: the game field is named, not the
@@ -643,7 +649,8 @@ TEST(CliClick, MalformedClickProtocolsAreNamed) {
     ASSERT_NE(shooter.find(game), std::string::npos);
     shooter.replace(shooter.find(game), game.size(), "\"game\": \"click\"");
     std::ofstream(dir + "/p.json") << shooter;
-    const auto wrongGame = warplab("run --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
+    const auto wrongGame =
+        warplab("run --seed 1 --protocol " + dir + "/p.json --participant P --out " + dir + " --headless");
     EXPECT_EQ(wrongGame.status, 1);
     EXPECT_TRUE(contains(wrongGame.output, "p.json': game is \"click\", but format_version 3")) << wrongGame.output;
     EXPECT_TRUE(contains(wrongGame.output, "shooter protocol's")) << wrongGame.output;
@@ -704,7 +711,7 @@ TEST(CliSession, AVersion3SessionStillReplaysExactly) {
 
 TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const std::string results = scratch("export-results"), out = scratch("export-out");
-    ASSERT_EQ(warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +
                       " --participant E1 --out " + results + " --headless --player bot:2")
                   .status,
               0);
@@ -732,7 +739,7 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
 // 1353 outcomes.
 TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     const std::string dir = scratch("closed-pipe");
-    const std::string command = "bash -c '" + std::string(WARPLAB_BINARY) + " run --protocol " +
+    const std::string command = "bash -c '" + std::string(WARPLAB_BINARY) + " run --seed 1 --protocol " +
         std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json --participant P --out " + dir +
         " --headless --player bot:2 2>&1 | head -1; exit ${PIPESTATUS[0]}'";
     const auto r = warplab::testing::runCommand(command);
@@ -747,6 +754,92 @@ TEST(CliSession, AClosedOutputPipeDoesNotEndTheSession) {
     EXPECT_GT(outcomes, 1000);
 }
 
+// Without --seed every participant got seed 1, so the same trial order and target spawns. Each
+// run now draws its own, says it, and stores it, and each session replays from its own.
+TEST(CliSession, RunsWithoutASeedDrawTheirOwnAndEachReplays) {
+    const std::string dir = scratch("drawn-seeds");
+    std::set<std::uint64_t> seeds;
+    for (const char* participant : {"D1", "D2"}) {
+        const auto r = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                               "/protocol/shooter-quick.json --participant " + participant + " --out " + dir +
+                               " --headless --player bot:1");
+        ASSERT_EQ(r.status, 0) << r.output;
+        const std::string said = "seed ";
+        const std::size_t at = r.output.find(said);
+        ASSERT_NE(at, std::string::npos) << r.output;
+        const std::uint64_t seed = std::stoull(r.output.substr(at + said.size()));
+        EXPECT_TRUE(contains(r.output,
+                             "seed " + std::to_string(seed) + " drawn at random; --seed " + std::to_string(seed) +
+                                 " repeats this session"))
+            << r.output;
+        EXPECT_LE(seed, 1ULL << 62);
+        seeds.insert(seed);
+        std::string session;
+        for (const auto& entry : fs::directory_iterator(dir))
+            if (contains(entry.path().filename().string(), participant)) session = entry.path().string();
+        EXPECT_EQ(warplab::session::readSession(session).header.seed, seed);
+        const auto replay = warplab("replay " + session);
+        EXPECT_EQ(replay.status, 0) << replay.output;
+    }
+    EXPECT_EQ(seeds.size(), 2u) << "two runs drew the same seed";
+}
+
+// Two runs into one results folder wrote two sessions side by side (two windows stacked on one
+// rig). The second is refused while the first runs, naming the folder and who holds it, and
+// creates nothing; once the first is killed with SIGKILL its lock file blocks no one.
+TEST(CliSession, ASecondRunIntoAFolderInUseIsRefusedUntilTheFirstEnds) {
+    const std::string dir = scratch("folder-in-use");
+    const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json";
+    const std::string binary = WARPLAB_BINARY;
+    const pid_t first = ::fork();
+    ASSERT_GE(first, 0);
+    if (first == 0) {
+        ::freopen("/dev/null", "w", stdout);
+        ::freopen("/dev/null", "w", stderr);
+        ::execl(binary.c_str(), binary.c_str(), "run", "--protocol", protocol.c_str(), "--participant", "FIRST",
+                "--out", dir.c_str(), "--headless", "--player", "bot:3", "--seed", "1", static_cast<char*>(nullptr));
+        std::_Exit(127);
+    }
+    const std::string session = sessionAppearingIn(dir);
+    ASSERT_FALSE(session.empty());
+    std::size_t files = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) files += entry.path().filename().string()[0] != '.';
+
+    const auto second = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                                "/protocol/shooter-quick.json --participant SECOND --out " + dir +
+                                " --headless --player bot:1 --seed 1");
+    EXPECT_EQ(second.status, 1) << second.output;
+    EXPECT_TRUE(contains(second.output,
+                         "'" + dir +
+                             "' is in use by another warplab session (participant FIRST, "
+                             "protocol shooter-thesis, pid " +
+                             std::to_string(first)))
+        << second.output;
+    EXPECT_TRUE(contains(second.output, "wait for it to end, or use another --out")) << second.output;
+    EXPECT_EQ(second.lines(), 1) << second.output;
+    std::size_t after = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        after += entry.path().filename().string()[0] != '.';
+        EXPECT_FALSE(contains(entry.path().filename().string(), "SECOND")) << entry.path();
+    }
+    EXPECT_EQ(after, files) << "the refused run created nothing";
+
+    // Export reads the folder while it is in use, passing over the lock file.
+    const auto exported = warplab("export " + dir + " --out " + scratch("folder-in-use-export"));
+    EXPECT_EQ(exported.status, 0) << exported.output;
+    EXPECT_FALSE(contains(exported.output, ".warplab-lock")) << exported.output;
+
+    ::kill(first, SIGKILL);
+    int status = 0;
+    ::waitpid(first, &status, 0);
+    ASSERT_TRUE(fs::exists(fs::path(dir) / ".warplab-lock")) << "a killed run leaves its lock file";
+    const auto next =
+        warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                "/protocol/shooter-quick.json --participant NEXT --out " + dir + " --headless --player bot:1 --seed 1");
+    EXPECT_EQ(next.status, 0) << next.output;
+    EXPECT_FALSE(fs::exists(fs::path(dir) / ".warplab-lock")) << "a run that ends removes it";
+}
+
 // Another program holding the session file's write lock for 10 s (a DB browser, sqlite3
 // without -readonly, a script's BEGIN IMMEDIATE) made the run exit 1 with "database is
 // locked" at 245 of 1,353 outcomes. The run must go on, say so, and lose nothing.
@@ -754,7 +847,7 @@ TEST(CliSession, AnotherProgramsWriteLockDoesNotEndTheSession) {
     const std::string dir = scratch("write-lock");
     warplab::testing::Result run;
     std::thread runner([&] {
-        run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+        run = warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/shooter-thesis.json --participant P --out " + dir + " --headless --player bot:3");
     });
     // As soon as the session file exists, take its write lock, as such a program would.
@@ -792,7 +885,7 @@ TEST(CliSession, AReaderHoldingTheFinishBackStillLeavesTheWholeSessionInTheFile)
     const std::string dir = scratch("held-finish"), elsewhere = scratch("held-finish-copy");
     warplab::testing::Result run;
     std::thread runner([&] {
-        run = warplab("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+        run = warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                       "/protocol/click-quick.json --participant R --out " + dir + " --headless --player bot:3");
     });
     const std::string session = sessionAppearingIn(dir);
@@ -838,8 +931,9 @@ TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
         {nul, "has a NUL byte at line 49"},
     };
     for (const auto& [file, why] : cases) {
-        const auto r = warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --protocol " +
-                                                    file + " --participant P --out " + dir + " --headless");
+        const auto r =
+            warplab::testing::runCommand("timeout 20 " + std::string(WARPLAB_BINARY) + " run --seed 1 --protocol " +
+                                         file + " --participant P --out " + dir + " --headless");
         EXPECT_EQ(r.status, 1) << r.output;
         EXPECT_TRUE(contains(r.output, file) && contains(r.output, why)) << r.output;
         EXPECT_EQ(r.lines(), 1) << r.output;
@@ -853,7 +947,8 @@ TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
 TEST(Cli, BadFlagValuesAreRefusedWithASentence) {
     const std::string dir = scratch("bad-flags");
     const std::string protocol = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
-    ASSERT_EQ(warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless").status, 0);
+    ASSERT_EQ(warplab("run --seed 1 --protocol " + protocol + " --participant P --out " + dir + " --headless").status,
+              0);
     const std::string session = sessionIn(dir);
     const std::pair<std::string, std::string> cases[] = {
         {"replay " + session + " --render " + dir + "/f --frames 1e3:2e3", "--frames"},
@@ -993,7 +1088,7 @@ TEST(Cli, RenderAndProtocolsShareTheFieldOfViewRange) {
     std::ofstream(protocol) << R"({"format_version": 2, "name": "wide", "game": "shooter",
                                    "display": {"vertical_fov_deg": )"
                             << wide << "}}";
-    const auto run = warplab("run --protocol " + protocol + " --participant P --out " + dir + " --headless");
+    const auto run = warplab("run --seed 1 --protocol " + protocol + " --participant P --out " + dir + " --headless");
     EXPECT_EQ(run.status, 1) << run.output;
     EXPECT_TRUE(contains(run.output, "display.vertical_fov_deg must be a number between 1 and 179, got " + wide))
         << run.output;

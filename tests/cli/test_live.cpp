@@ -2,6 +2,8 @@
 // events, the supervisor's pause and abort, and the bot in the window writing the same session
 // as headless. Xvfb reports no refresh rate, so these runs pace frames by timer, as the tool
 // says it will; feedback sounds go to SDL's dummy audio driver.
+#include <unistd.h>
+
 #include <array>
 #include <cstdlib>
 #include <cstdio>
@@ -14,6 +16,7 @@
 #include "cli/cli_support.h"
 #include "gl/gl_test_support.h"
 #include "session/records.h"
+#include "session/results_lock.h"
 #include "session/session_store.h"
 #include "image/image.h"
 
@@ -64,7 +67,7 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
                                           "60 key esc\n60 key enter\n"
                                           "# the supervisor's Enter after acclimation begins the test\n"
                                           "200 key enter\nend key enter\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant H1 --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant H1 --out " + dir +
                             " --width 192 --height 108 --input-script " + dir + "/script.txt --screenshots " + dir +
                             " --screenshot-frames 12,20");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -113,7 +116,7 @@ TEST(LiveSession, AScriptedParticipantRunsTheWholeFlowAndTheSessionReplays) {
 TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
     const std::string dir = scratch("abort");
     std::ofstream(dir + "/script.txt") << "start key enter\n80 key esc\n80 key q\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant A1 --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant A1 --out " + dir +
                             " --width 160 --height 90 --input-script " + dir + "/script.txt");
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 79")) << r.output;
@@ -250,10 +253,30 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     EXPECT_TRUE(fs::exists(dir + "/frame_4000.png"));
 }
 
+// A second window on the rig recorded into the folder beside the first. While another session
+// holds the folder the window run is refused before it opens its window: no start screen, no file.
+TEST(LiveSession, AFolderInUseIsRefusedBeforeTheWindowOpens) {
+    const std::string dir = scratch("folder-in-use");
+    std::ofstream(dir + "/script.txt") << "start key enter\nend key enter\n";
+    const std::string protocol = tinyProtocol(dir);
+    fs::create_directories(dir + "/shots");
+    const warplab::session::ResultsFolderLock held(dir, "HOLDER", "shooter-thesis");
+    const auto r = inWindow("run --seed 1 --protocol " + protocol + " --participant W --out " + dir +
+                            " --width 160 --height 90 --player bot:3 --input-script " + dir +
+                            "/script.txt --screenshots " + dir + "/shots");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_TRUE(contains(r.output,
+                         "'" + dir + "' is in use by another warplab session (participant HOLDER, " +
+                             "protocol shooter-thesis, pid " + std::to_string(::getpid())))
+        << r.output;
+    EXPECT_TRUE(sessionIn(dir).empty());
+    EXPECT_FALSE(fs::exists(dir + "/shots/start.png")) << "the window opened";
+}
+
 TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
     const std::string dir = scratch("bad-script");
     std::ofstream(dir + "/script.txt") << "start key enter\n12 jump\n";
-    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant X --out " + dir +
+    const auto r = inWindow("run --seed 1 --protocol " + tinyProtocol(dir) + " --participant X --out " + dir +
                             " --width 160 --height 90 --input-script " + dir + "/script.txt");
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "script.txt' line 2: unknown action 'jump'")) << r.output;
@@ -265,7 +288,7 @@ TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
 TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
     const std::string dir = scratch("free-play");
     std::ofstream(dir + "/script.txt") << "5 key 1\n20 key u\n40 key 8\n70 key esc\n70 key q\n";
-    const auto r = inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+    const auto r = inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                             "/protocol/click-quick.json --free-play --width 160 --height 90 --out " + dir +
                             " --input-script " + dir + "/script.txt");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -284,7 +307,7 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
     std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
                                           "80 key esc\n80 key q\n";
     const auto r =
-        inWindow("run --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+        inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
                  "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " + dir +
                  " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
     ASSERT_EQ(r.status, 0) << r.output;
@@ -301,8 +324,8 @@ TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {
-    const auto r =
-        runCommand(std::string(WARPLAB_BINARY) + " run --protocol x.json --participant P --headless --player human");
+    const auto r = runCommand(std::string(WARPLAB_BINARY) +
+                              " run --seed 1 --protocol x.json --participant P --headless --player human");
     EXPECT_EQ(r.status, 2) << r.output;
     EXPECT_TRUE(contains(r.output, "needs the window")) << r.output;
 }

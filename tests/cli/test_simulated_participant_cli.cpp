@@ -21,7 +21,7 @@ std::string protocol(const std::string& name) {
 
 TEST(CliSimulatedParticipant, PlaysShooterQuickToTheEndAndTheSessionReplays) {
     const std::string dir = scratch("shooter");
-    const auto run = warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
+    const auto run = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
                              " --headless --player sim:1");
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
@@ -45,7 +45,7 @@ TEST(CliSimulatedParticipant, PlaysShooterQuickToTheEndAndTheSessionReplays) {
 
 TEST(CliSimulatedParticipant, PlaysClickQuickToTheEndAndTheSessionReplays) {
     const std::string dir = scratch("click");
-    const auto run = warplab("run --protocol " + protocol("click-quick") + " --participant S1 --out " + dir +
+    const auto run = warplab("run --seed 1 --protocol " + protocol("click-quick") + " --participant S1 --out " + dir +
                              " --headless --player sim:2");
     ASSERT_EQ(run.status, 0) << run.output;
     const std::string session = sessionIn(dir);
@@ -67,16 +67,16 @@ TEST(CliSimulatedParticipant, PlaysClickQuickToTheEndAndTheSessionReplays) {
 
 TEST(CliSimulatedParticipant, WrongUsesAreRefusedWithASentence) {
     const std::string dir = scratch("refused");
-    const auto seed = warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
-                              " --headless --player sim:x");
+    const auto seed = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " +
+                              dir + " --headless --player sim:x");
     EXPECT_NE(seed.status, 0);
     EXPECT_TRUE(contains(seed.output, "sim:SEED needs a whole number")) << seed.output;
-    const auto gl = warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
+    const auto gl = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir +
                             " --headless --player bot --gl egl");
     EXPECT_NE(gl.status, 0);
     EXPECT_TRUE(contains(gl.output, "--gl only applies with --headless --player sim")) << gl.output;
-    const auto window =
-        warplab("run --protocol " + protocol("shooter-quick") + " --participant S1 --out " + dir + " --player sim");
+    const auto window = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " +
+                                dir + " --player sim");
     EXPECT_EQ(window.status, 2);
     EXPECT_TRUE(contains(window.output, "runs headless only")) << window.output;
     EXPECT_TRUE(sessionIn(dir).empty());

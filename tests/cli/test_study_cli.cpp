@@ -141,4 +141,90 @@ TEST(CliStudy, RefusalsNameThePlanAndWriteNothing) {
     EXPECT_EQ(twice.status, 1) << twice.output;
 }
 
+// The plan in the export: three bot participants, one who played both protocols, one who played
+// the first of theirs, one who has not started; participants.csv lists all three with the seeds,
+// orders and mouse settings of study.json and where each stands, found beside the results folder
+// or named with --study. A session of another plan in the folder is named and not counted.
+TEST(CliStudy, TheExportListsEveryPlannedParticipantWithTheirSeedOrdersAndStatus) {
+    const std::string base = scratch("participants-csv"), dir = base + "/study", other = base + "/other";
+    const std::string protocols = protocolFile("shooter-quick.json") + "," + protocolFile("click-quick.json");
+    ASSERT_EQ(warplab("study init " + dir + " --protocol " + protocols + " --participants 3 --seed 5").status, 0);
+    nlohmann::json plan = planOf(dir);
+    // A participant's mouse, edited into the plan as a lab would.
+    plan["participants"][1]["settings"] = {{"cm_per_360", 34.5}, {"mouse_dpi", 1600}, {"invert_y", true}};
+    std::ofstream(dir + "/study.json") << plan.dump(2);
+    for (const char* id : {"P01", "P01", "P02"}) {
+        const auto run = warplab("run --study " + dir + " --participant " + id + " --headless --player bot:2");
+        ASSERT_EQ(run.status, 0) << run.output;
+    }
+    ASSERT_EQ(warplab("study init " + other + " --protocol " + protocols + " --participants 1").status, 0);
+    ASSERT_EQ(warplab("run --study " + other + " --participant P01 --headless --player bot:2").status, 0);
+    for (const auto& entry : fs::directory_iterator(other + "/results"))
+        if (entry.path().extension() == ".warplab-session")
+            fs::copy_file(entry.path(), dir + "/results/zz-other-" + entry.path().filename().string());
+
+    // The words and values the plan gives, per participant.
+    const auto expectedRow = [&](const nlohmann::json& p, const std::vector<std::string>& states) {
+        std::string order, conditions, status;
+        for (std::size_t k = 0; k < p["protocol_order"].size(); ++k) {
+            const int index = p["protocol_order"][k];
+            const std::string name = plan["protocols"][index]["name"];
+            order += (k ? ";" : "") + name;
+            std::string list;
+            for (const auto& c : p["condition_order"][index]) list += (list.empty() ? "" : " ") + c.get<std::string>();
+            conditions += (k ? "; " : "") + name + ": " + list;
+            status += (k ? "; " : "") + name + ": " + states[k];
+        }
+        const auto& settings = p["settings"];
+        const std::string cm =
+            settings.contains("cm_per_360") && !settings["cm_per_360"].is_null() ? settings["cm_per_360"].dump() : "";
+        const std::string dpi = settings.contains("mouse_dpi") ? settings["mouse_dpi"].dump() : "800";
+        const std::string invert = settings.value("invert_y", false) ? "true" : "false";
+        return p["id"].get<std::string>() + "," + std::to_string(p["seed"].get<std::uint64_t>()) + "," + order + "," +
+            conditions + "," + cm + "," + dpi + "," + invert + "," + status;
+    };
+    const std::string expected =
+        "participant,seed,protocol_order,condition_orders,cm_per_360,mouse_dpi,invert_y,status\n" +
+        expectedRow(plan["participants"][0], {"done", "done"}) + "\n" +
+        expectedRow(plan["participants"][1], {"done", "not started"}) + "\n" +
+        expectedRow(plan["participants"][2], {"not started", "not started"}) + "\n";
+
+    // A lock file a killed run left behind is neither a session nor in the way.
+    std::ofstream(dir + "/results/.warplab-lock") << R"({"pid":1,"participant":"P03"})";
+    const auto status = warplab("study status " + dir);
+    EXPECT_EQ(status.status, 0) << status.output;
+    EXPECT_FALSE(contains(status.output, "warplab-lock")) << status.output;
+    EXPECT_TRUE(contains(status.output, "next: warplab run --study " + dir + " --participant P02")) << status.output;
+
+    const auto beside = warplab("export " + dir + "/results --out " + base + "/export");
+    ASSERT_EQ(beside.status, 0) << beside.output;
+    const auto read = [](const std::string& path) {
+        std::ifstream in(path);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    EXPECT_EQ(read(base + "/export/participants.csv"), expected);
+    EXPECT_TRUE(contains(beside.output, base + "/export/participants.csv")) << beside.output;
+    EXPECT_TRUE(
+        contains(beside.output,
+                 "1 session was run from another study plan (plan_id " + planOf(other)["id"].get<std::string>() + ")"))
+        << beside.output;
+
+    // Named with --study, from a results folder that is not beside it.
+    const std::string moved = base + "/elsewhere";
+    fs::copy(dir + "/results", moved);
+    const auto named = warplab("export " + moved + " --study " + dir + " --out " + base + "/export2");
+    ASSERT_EQ(named.status, 0) << named.output;
+    EXPECT_EQ(read(base + "/export2/participants.csv"), expected);
+    // Without a plan to be found: a warning, the other CSVs, no participants.csv.
+    const auto lost = warplab("export " + moved + " --out " + base + "/export3");
+    EXPECT_EQ(lost.status, 0) << lost.output;
+    EXPECT_TRUE(contains(lost.output, "there is no '" + base + "/study.json'")) << lost.output;
+    EXPECT_FALSE(fs::exists(base + "/export3/participants.csv"));
+    // --study naming no plan: one sentence, exit 1, nothing written.
+    const auto wrong = warplab("export " + moved + " --study " + base + " --out " + base + "/export4");
+    EXPECT_EQ(wrong.status, 1) << wrong.output;
+    EXPECT_TRUE(contains(wrong.output, base + "/study.json")) << wrong.output;
+    EXPECT_FALSE(fs::exists(base + "/export4/sessions.csv"));
+}
+
 }  // namespace

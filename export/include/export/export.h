@@ -14,6 +14,9 @@ struct ExportOptions {
     bool allPhases = false;  // also practice rounds, acclimation and training
     bool includeIncomplete = false;  // sessions that never finished (killed, or cut by damage)
     bool includeFlagged = false;  // sessions their run flagged (e.g. missed_frames)
+    // The study plan's folder (study.json) for participants.csv; "" means the results folder's
+    // parent, looked at only when the sessions were run from a plan.
+    std::string studyDir;
 };
 
 // What happened to one session file.
@@ -49,7 +52,9 @@ void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>&
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
 // sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, conditions.csv and games.csv into outDir (created
-// when missing). Progress and one line per excluded or damaged session go to `log`.
+// when missing), and participants.csv when there is a study plan (options.studyDir, or the
+// results folder's parent once a session carries a plan_id); a study.json that does not read
+// is a plan::PlanError with options.studyDir and a warning on `log` without it. Progress and one line per excluded or damaged session go to `log`.
 // Throws std::runtime_error naming the folder when resultsDir is not a readable folder or
 // holds no session file; a damaged session file is reported and skipped, not fatal.
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
