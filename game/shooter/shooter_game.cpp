@@ -279,6 +279,7 @@ void ShooterGame::scheduleNextTrial() {
                     levelQueue_.push_back(protocol_.training.highMode);
                 }
                 shuffle(levelQueue_, trialSeed(8, level_));
+                levelTrials_ = levelQueue_.size();
             }
             const std::string mode = levelQueue_.back();
             levelQueue_.pop_back();
@@ -397,12 +398,21 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             shown.phaseText = text;
             break;
         }
-        case Phase::Training: shown.phaseText = "Training: level " + std::to_string(level_); break;
+        case Phase::Training: {
+            // The level's trials: a queue drawn when the level starts, the trial up taken from it.
+            const std::size_t ofLevel = levelTrials_;
+            const std::size_t trial = ofLevel - levelQueue_.size();
+            shown.phaseText = "Training: level " + std::to_string(level_) + ", trial " + std::to_string(trial) +
+                " of " + std::to_string(ofLevel);
+            break;
+        }
         case Phase::AwaitingSupervisor:
             shown.phaseText = "Press Enter to begin";
             shown.promptsEnter = true;
             break;
-        case Phase::Test: shown.phaseText = "Test"; break;
+        case Phase::Test:
+            shown.phaseText = "Test: trial " + std::to_string(testNext_) + " of " + std::to_string(testQueue_.size());
+            break;
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
 

@@ -110,6 +110,7 @@ private:
     int level_ = 0;
     int shotsPerMode_ = 0;
     std::vector<std::string> levelQueue_;  // modes of the remaining trials of this level
+    std::size_t levelTrials_ = 0;  // ... and of all its trials
     int levelHits_[2] = {0, 0}, levelShots_[2] = {0, 0};
     bool missedYet_ = false;
     int testLevel_ = 0;

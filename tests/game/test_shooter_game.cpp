@@ -2,6 +2,7 @@
 // protocol to the end, replays reproduce it, and every mode's measured latency -- a mouse step
 // and a bounce of the target, found in the displayed frames -- is what its schedule says.
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -112,6 +113,45 @@ TEST(ShooterGame, BannerNamesTheScoredOutcomeInItsColour) {
     }
     EXPECT_GT(seen["HIT"], 0);
     EXPECT_GT(seen["MISS"] + seen["TIMEOUT"], 0);
+}
+
+// The participant sees where they are: the trial up and the count of its phase (the test) or
+// of its level (training), numbered as the events number the trials.
+TEST(ShooterGame, PhaseTextCountsTheTrialsOfThePhase) {
+    const auto p = quick();
+    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterBot bot(5, p);
+    FrameInput input;
+    std::vector<int> testTrials;
+    int trainingTrials = 0, trainingInLevel = 0;
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type != "shot" && e.type != "timeout") continue;
+            int trial = 0, of = 0, level = 0;
+            if (e.phase == "test") {
+                ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Test: trial %d of %d", &trial, &of), 2)
+                    << shown.phaseText;
+                EXPECT_EQ(of, static_cast<int>(p.conditions.size()) * p.targetsPerCondition);
+                EXPECT_EQ(trial, e.trial + 1);
+                testTrials.push_back(trial);
+            } else if (e.phase == "training") {
+                ASSERT_EQ(
+                    std::sscanf(shown.phaseText.c_str(), "Training: level %d, trial %d of %d", &level, &trial, &of), 3)
+                    << shown.phaseText;
+                EXPECT_EQ(level, static_cast<int>(detailNumber(e, "difficulty")));
+                trainingInLevel = trial == 1 ? 1 : trainingInLevel + 1;
+                EXPECT_EQ(trial, trainingInLevel);
+                EXPECT_TRUE(of == 2 * p.training.shotsPerLevelEasy || of == 2 * p.training.shotsPerLevelHard) << of;
+                EXPECT_LE(trial, of);
+                ++trainingTrials;
+            }
+        }
+        input = bot.next(shown);
+    }
+    ASSERT_EQ(testTrials.size(), p.conditions.size() * static_cast<std::size_t>(p.targetsPerCondition));
+    for (std::size_t i = 0; i < testTrials.size(); ++i) EXPECT_EQ(testTrials[i], static_cast<int>(i) + 1);
+    EXPECT_GT(trainingTrials, 0);
 }
 
 TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
