@@ -4,6 +4,7 @@
 // judged against the world and against the frame on screen.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -113,6 +114,34 @@ TEST(ClickGame, SameSeedAndInputSameEventsBitForBit) {
     for (std::size_t i = 0; !differ && i < a.events.size(); ++i)
         differ = !session::firstDifference(a.events[i], b.events[i]).empty();
     EXPECT_TRUE(differ);
+}
+
+// The participant sees where they are in the round: "Match 2 of 7 (practice)", "Match 5 of 7",
+// during the match and on its rating screens.
+TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
+    const auto p = quick();
+    ClickGame game(p, 3, kDisplay);
+    ClickBot bot(7, p, kDisplay);
+    FrameInput input = bot.first();
+    std::map<std::string, std::vector<int>> seen;  // round -> the match numbers shown, in order
+    const int perRound = static_cast<int>(p.modes.size());
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        game.takeEvents();
+        if (!shown.mode.empty() || shown.rating) {
+            int n = 0, of = 0;
+            ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Match %d of %d", &n, &of), 2) << shown.phaseText;
+            EXPECT_EQ(of, perRound);
+            const bool practice = shown.phaseText.find("(practice)") != std::string::npos;
+            auto& numbers = seen[practice ? "practice" : "scored"];
+            if (numbers.empty() || numbers.back() != n) numbers.push_back(n);
+        }
+        input = bot.next(shown);
+    }
+    std::vector<int> oneToN(static_cast<std::size_t>(perRound));
+    for (int i = 0; i < perRound; ++i) oneToN[static_cast<std::size_t>(i)] = i + 1;
+    EXPECT_EQ(seen["practice"], oneToN);
+    EXPECT_EQ(seen["scored"], oneToN);
 }
 
 TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersModesBySeed) {
@@ -406,15 +435,73 @@ TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     EXPECT_EQ(scored, (std::vector<std::string>{"green", "miss"}));
 }
 
-TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
+// Steps through the time a new statement ignores presses (the frame that showed it was one).
+void waitOutSettle(ClickGame& game, const protocol::ClickProtocol& p) {
+    for (long i = 1; i < std::lround(kAnswerSettleS * p.refreshHz); ++i) game.step({});
+}
+
+std::vector<int> ratingValues(ClickGame& game) {
+    std::vector<int> values;
+    for (const auto& e : game.takeEvents())
+        if (e.type == "rating") values.push_back(detail(e)["value"]);
+    return values;
+}
+
+// A one-match protocol whose match is over in half a second: its rating screen comes quickly.
+protocol::ClickProtocol oneShortMatch() {
     auto p = quick();
     p.modes = {"conv60"};
     p.rounds = {{"only", true, 1}};
     p.matchS = 0.5;
+    return p;
+}
+
+TEST(ClickGame, ADoubleClickOnARatingBoxAnswersOneStatement) {
+    const auto p = oneShortMatch();
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    while (!shown.rating) shown = game.step({});
+    waitOutSettle(game, p);
+    const glm::dvec4 box = shown.rating->boxes[4];
+    const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
+    game.step({move.x, move.y, 0, 0});
+    game.takeEvents();
+    // Press, release, press again 100 ms (6 frames at 60 Hz) later, release: one double click.
+    game.step({0, 0, kButtonLeft, 0});
+    for (int i = 0; i < 5; ++i) game.step({});
+    shown = game.step({0, 0, kButtonLeft, 0});
+    shown = game.step({});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{5});
+    EXPECT_EQ(shown.rating->index, 1);  // the second statement waits for its own answer
+    // The same goes for a double tap on a digit key; a press after the settle time answers.
+    waitOutSettle(game, p);
+    game.step({0, 0, 0, digitKey(2)});
+    game.step({});
+    game.step({0, 0, 0, digitKey(2)});
+    shown = game.step({});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{2});
+    EXPECT_EQ(shown.rating->index, 2);
+}
+
+TEST(ClickGame, APressHeldFromTheMatchOrPastTheSettleTimeAnswersNothing) {
+    const auto p = oneShortMatch();
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    while (!shown.rating) shown = game.step({0, 0, 0, digitKey(4)});  // held down into the screen
+    for (int i = 0; i < 2 * std::lround(kAnswerSettleS * p.refreshHz); ++i) game.step({0, 0, 0, digitKey(4)});
+    EXPECT_TRUE(ratingValues(game).empty());
+    game.step({});  // released: the next press answers
+    game.step({0, 0, 0, digitKey(4)});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{4});
+}
+
+TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
+    const auto p = oneShortMatch();
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = startFirstMatch(game);
     while (!shown.rating) shown = game.step({});
     EXPECT_EQ(shown.rating->boxes.size(), 7u);
+    waitOutSettle(game, p);
     game.step({0, 0, 0, digitKey(9)});  // out of range: ignored
     game.step({-5000, -5000, 0, 0});  // the top left corner, far from the boxes
     game.step({0, 0, kButtonLeft, 0});  // not on a box: ignored
@@ -423,6 +510,7 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
     EXPECT_EQ(shown.rating->index, 0);  // this frame still shows the first statement
     shown = game.step({});
     EXPECT_EQ(shown.rating->index, 1);
+    waitOutSettle(game, p);
     // Click box 6 (value 6).
     const glm::dvec4 box = shown.rating->boxes[5];
     const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
