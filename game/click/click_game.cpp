@@ -108,6 +108,7 @@ void ClickGame::switchTo(const std::string& mode, int) {
 std::string ClickGame::phase() const {
     switch (phase_) {
         case Phase::Ready: return "ready";
+        case Phase::Instructions: return "instructions";
         case Phase::Match: return "match";
         case Phase::Rating: return "rating";
         case Phase::Done: return "done";
@@ -136,6 +137,15 @@ session::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json deta
     if (!detail.contains("scored")) detail["scored"] = round.scored;
     e.detailJson = detail.dump();
     return e;
+}
+
+void ClickGame::openMatch() {
+    const Match& m = matches_[matchIndex_];
+    const bool opensRound = matchIndex_ == 0 || matches_[matchIndex_ - 1].round != m.round;
+    if (freePlay_ || !opensRound || protocol_.rounds[static_cast<std::size_t>(m.round)].instructions.empty())
+        return beginMatch();
+    phase_ = Phase::Instructions;
+    instructionsShown_ = frame_ + 1;
 }
 
 void ClickGame::beginMatch() {
@@ -172,7 +182,7 @@ void ClickGame::endMatch() {
         statementShown_ = frame_ + 1;
         return;
     }
-    if (++matchIndex_ < matches_.size()) return beginMatch();
+    if (++matchIndex_ < matches_.size()) return openMatch();
     phase_ = Phase::Done;
 }
 
@@ -210,7 +220,7 @@ void ClickGame::answerRating(int value, const char* how) {
     commitPoint_ = true;
     statementShown_ = frame_ + 1;
     if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
-    if (++matchIndex_ < matches_.size()) return beginMatch();
+    if (++matchIndex_ < matches_.size()) return openMatch();
     phase_ = Phase::Done;
     session::EventRecord done;
     done.type = "phase";
@@ -266,6 +276,12 @@ ShownFrame ClickGame::screenFrame() {
     switch (phase_) {
         case Phase::Ready:
             shown.phaseText = "Press Enter to begin";
+            shown.promptsEnter = true;
+            shown.pointer = PointerKind::None;
+            break;
+        case Phase::Instructions:
+            shown.instructions = protocol_.rounds[static_cast<std::size_t>(matches_[matchIndex_].round)].instructions;
+            shown.phaseText = "Press Enter when you have read this";
             shown.promptsEnter = true;
             shown.pointer = PointerKind::None;
             break;
@@ -373,7 +389,25 @@ ShownFrame ClickGame::step(const FrameInput& input) {
     switch (phase_) {
         case Phase::Ready: {
             ShownFrame shown = screenFrame();
-            if (pressed & kKeyEnter) beginMatch();
+            if (pressed & kKeyEnter) openMatch();
+            return shown;
+        }
+        case Phase::Instructions: {
+            ShownFrame shown = screenFrame();
+            if (pressed & kKeyEnter) {
+                const Match& m = matches_[matchIndex_];
+                const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
+                session::EventRecord e;
+                e.type = "instructions";
+                e.phase = round.name;
+                e.detailJson =
+                    nlohmann::json{
+                        {"round", round.name},
+                        {"read_s", static_cast<double>(frame_ - instructionsShown_ + 1) / protocol_.refreshHz}}
+                        .dump();
+                emit(e);
+                beginMatch();
+            }
             return shown;
         }
         case Phase::Match: return matchFrame(click);

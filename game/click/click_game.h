@@ -69,8 +69,10 @@ public:
     static std::uint32_t objectId(const physics::Sphere& sphere);
 
 private:
-    enum class Phase : std::uint8_t { Ready, Match, Rating, Done };
+    enum class Phase : std::uint8_t { Ready, Instructions, Match, Rating, Done };
 
+    // The match at matchIndex_, or first its round's instructions where it opens a round.
+    void openMatch();
     void beginMatch();
     void endMatch();
     void answerRating(int value, const char* how);
@@ -108,6 +110,7 @@ private:
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;
     int statement_ = 0;
+    std::int64_t instructionsShown_ = 0;  // the first frame of the instructions screen
     std::int64_t statementShown_ = 0;  // the first frame that shows the statement being asked
 
     bool freePlay_ = false;

@@ -168,13 +168,13 @@ void ShooterGame::beginPhase(Phase phase) {
     switch (phase) {
         case Phase::Acclimation:
             if (protocol_.acclimationS <= 0.0 && !freePlay_) return beginPhase(Phase::AwaitingSupervisor);
-            return scheduleNextTrial();
+            return openPhase(protocol_.acclimationInstructions);
         case Phase::Training: {
             level_ = protocol_.training.startLevel;
             missedYet_ = false;
             shotsPerMode_ = protocol_.training.shotsPerLevelEasy;
             levelQueue_.clear();
-            return scheduleNextTrial();
+            return openPhase(protocol_.trainingInstructions);
         }
         case Phase::AwaitingSupervisor:
             // Appendix B: after the practice the supervisor's Enter begins the recorded
@@ -193,10 +193,42 @@ void ShooterGame::beginPhase(Phase phase) {
                         std::find(protocol_.conditions.begin(), protocol_.conditions.end(), b);
                 });
             testNext_ = 0;
-            return scheduleNextTrial();
+            return openPhase(protocol_.testInstructions);
         }
         case Phase::Done: return;
     }
+}
+
+void ShooterGame::openPhase(const std::string& instructions) {
+    if (instructions.empty() || freePlay_) return scheduleNextTrial();
+    reading_ = true;
+}
+
+void ShooterGame::finishReading() {
+    reading_ = false;
+    session::EventRecord event;
+    event.type = "instructions";
+    event.eventTime = now();
+    event.detailJson = detailText({{"read_s", static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz}});
+    emit(event);
+    commitPoint_ = true;
+    phaseStartFrame_ = frame_;  // the phase's time limits count from here
+    scheduleNextTrial();
+}
+
+ShownFrame ShooterGame::readingFrame() const {
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.camera = camera_;
+    shown.blank = true;
+    shown.pointer = PointerKind::None;
+    shown.instructions = phase_ == Phase::Acclimation ? protocol_.acclimationInstructions
+        : phase_ == Phase::Training                   ? protocol_.trainingInstructions
+                                                      : protocol_.testInstructions;
+    shown.phaseText = "Press Enter when you have read this";
+    shown.promptsEnter = true;
+    return shown;
 }
 
 void ShooterGame::startTrial(const std::string& mode, int level) {
@@ -349,7 +381,14 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         banner_.clear();
         scheduleNextTrial();
     }
-    if (phase_ == Phase::AwaitingSupervisor && enter) beginPhase(Phase::Training);
+    if (reading_ && enter && frame_ > phaseStartFrame_)  // a press made while the text is up
+        finishReading();
+    else if (phase_ == Phase::AwaitingSupervisor && enter)
+        beginPhase(Phase::Training);
+    if (reading_) {
+        clickGate_.clear();
+        return readingFrame();
+    }
 
     if (frozenFrame_) {
         clickGate_.clear();
@@ -452,7 +491,7 @@ session::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
     session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
-    r.kind = shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind);
+    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     if (!shown.scene.objects.empty()) {

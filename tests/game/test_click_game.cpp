@@ -195,7 +195,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
         for (int phase = 0; phase < 4; ++phase) {
             auto p = quick();
             p.modes = {mode};
-            p.rounds = {{"only", true, 1}};
+            p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             ClickGame game(p, 2, kDisplay);
             ShownFrame shown = startFirstMatch(game);
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
@@ -233,7 +233,7 @@ TEST(ClickGame, ReadmeLatencyTableHoldsInARealRun) {
             auto p = quick();
             p.refreshHz = refresh;
             p.modes = {row.id};
-            p.rounds = {{"only", true, 1}};
+            p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
             SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
             ++checked;
@@ -290,7 +290,7 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
     for (const auto& mode : quick().modes) {
         auto p = quick();
         p.modes = {mode};
-        p.rounds = {{"only", true, 1}};
+        p.rounds = {{"only", true, 1, ""}};  // no instructions screen
         ClickGame game(p, 8, kDisplay);
         startFirstMatch(game);
         std::map<std::int64_t, std::vector<physics::Sphere>> world;  // by session frame
@@ -352,7 +352,7 @@ struct ClickTally {
 ClickTally aimAtTheWorld(const std::string& mode, protocol::Scoring scoring) {
     auto p = quick();
     p.modes = {mode};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 20;
     p.scoring = scoring;
     ClickGame game(p, 4, kDisplay);
@@ -404,7 +404,7 @@ TEST(ClickGame, ClicksAreJudgedAgainstTheWorldAndAgainstTheFrameOnScreen) {
 TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     auto p = quick();
     p.modes = {"lag200"};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.scoring = protocol::Scoring::Displayed;
     p.matchS = 20;
     ClickGame game(p, 4, kDisplay);
@@ -451,7 +451,7 @@ std::vector<int> ratingValues(ClickGame& game) {
 protocol::ClickProtocol oneShortMatch() {
     auto p = quick();
     p.modes = {"conv60"};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 0.5;
     return p;
 }
@@ -493,6 +493,64 @@ TEST(ClickGame, APressHeldFromTheMatchOrPastTheSettleTimeAnswersNothing) {
     game.step({});  // released: the next press answers
     game.step({0, 0, 0, digitKey(4)});
     EXPECT_EQ(ratingValues(game), std::vector<int>{4});
+}
+
+// Each round opens with its instructions: on screen until Enter, then its first match; an
+// event says when the participant went on.
+TEST(ClickGame, EachRoundOpensWithItsInstructionsUntilEnter) {
+    auto p = oneShortMatch();
+    p.ratingsEnabled = false;
+    p.rounds = {{"a", false, 1, "Read A"}, {"b", true, 1, "Read B"}};
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = game.step({0, 0, 0, kKeyEnter});  // the supervisor's ready screen
+    EXPECT_TRUE(shown.instructions.empty());
+    for (int i = 0; i < 30; ++i) {
+        shown = game.step({});
+        EXPECT_EQ(shown.instructions, "Read A");
+        EXPECT_TRUE(shown.promptsEnter);
+        EXPECT_TRUE(shown.blank);
+    }
+    game.takeEvents();
+    game.step({0, 0, 0, kKeyEnter});
+    auto events = game.takeEvents();
+    ASSERT_GE(events.size(), 1u);
+    EXPECT_EQ(events[0].type, "instructions");
+    EXPECT_EQ(events[0].phase, "a");
+    EXPECT_EQ(detail(events[0])["read_s"].get<double>(), 31.0 / p.refreshHz);
+    shown = game.step({});
+    EXPECT_FALSE(shown.blank);
+    EXPECT_EQ(shown.mode, "conv60");
+    while (!shown.blank) shown = game.step({});
+    EXPECT_EQ(shown.instructions, "Read B");  // the next round opens with its own
+    shown = game.step({0, 0, 0, kKeyEnter});
+    shown = game.step({});
+    EXPECT_FALSE(shown.blank);
+    // A round without instructions starts its first match straight away.
+    p.rounds = {{"a", true, 1, ""}};
+    ClickGame plain(p, 1, kDisplay);
+    plain.step({0, 0, 0, kKeyEnter});
+    EXPECT_FALSE(plain.step({}).blank);
+}
+
+TEST(ClickGame, TheBotReadsTheInstructionsAndPlaysOn) {
+    auto p = quick();
+    for (auto& round : p.rounds) round.instructions = protocol::kClickTaskInstructions;
+    const Played played = playWithBot(p, 3, 7);
+    int instructions = 0, matches = 0;
+    for (const auto& e : played.events) {
+        instructions += e.type == "instructions";
+        matches += e.type == "match";
+    }
+    EXPECT_EQ(instructions, static_cast<int>(p.rounds.size()));
+    EXPECT_EQ(matches, 2 * static_cast<int>(p.modes.size()));
+    ClickGame replay(p, 3, kDisplay);
+    std::vector<session::EventRecord> again;
+    for (const auto& in : played.inputs) {
+        replay.step(in);
+        for (auto& e : replay.takeEvents()) again.push_back(e);
+    }
+    ASSERT_EQ(again.size(), played.events.size());
+    for (std::size_t i = 0; i < again.size(); ++i) EXPECT_EQ(session::firstDifference(again[i], played.events[i]), "");
 }
 
 TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {

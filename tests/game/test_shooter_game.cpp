@@ -154,6 +154,47 @@ TEST(ShooterGame, PhaseTextCountsTheTrialsOfThePhase) {
     EXPECT_GT(trainingTrials, 0);
 }
 
+// Each phase opens with its instructions until Enter; the phase's time runs from that Enter.
+TEST(ShooterGame, EachPhaseOpensWithItsInstructionsUntilEnter) {
+    auto p = quick();
+    p.acclimationInstructions = "Read A";
+    p.trainingInstructions = "Read T";
+    p.testInstructions = "Read X";
+    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShownFrame shown = game.step({});
+    EXPECT_EQ(shown.instructions, "Read A");
+    EXPECT_TRUE(shown.promptsEnter);
+    EXPECT_TRUE(shown.blank);
+    for (int i = 0; i < 100; ++i) EXPECT_EQ(game.step({}).instructions, "Read A");
+    game.takeEvents();
+    shown = game.step({0, 0, 0, kKeyEnter});  // frame 101: the acclimation begins
+    EXPECT_FALSE(shown.blank);
+    EXPECT_FALSE(shown.scene.objects.empty()) << "the first target is up at once";
+    auto events = game.takeEvents();
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].type, "instructions");
+    EXPECT_EQ(events[0].phase, "acclimation");
+    EXPECT_EQ(detailNumber(events[0], "read_s"), 101.0 / p.refreshHz);
+    // The bot goes on through every screen; the acclimation lasted its duration from the Enter.
+    ShooterBot bot(5, p);
+    FrameInput input = bot.next(shown);
+    std::vector<std::string> read;
+    std::int64_t trainingOpened = -1;
+    while (!game.finished()) {
+        shown = game.step(input);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type == "instructions") read.push_back(e.phase);
+            if (e.type == "phase" && e.phase == "training") trainingOpened = e.frame;
+        }
+        if (!shown.instructions.empty()) {
+            EXPECT_TRUE(shown.scene.objects.empty());
+        }
+        input = bot.next(shown);
+    }
+    EXPECT_EQ(read, (std::vector<std::string>{"training", "test"}));
+    EXPECT_GE(trainingOpened, 101 + std::llround(p.acclimationS * p.refreshHz));
+}
+
 TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
     auto p = quick();
     p.targetsPerCondition = 6;
