@@ -126,7 +126,10 @@ FrameInput ClickBot::play(const ShownFrame& shown) {
 FrameInput ClickBot::next(const ShownFrame& shown) {
     FrameInput input;
     if (shown.promptsEnter) {
-        if (promptSince_ < 0.0) promptSince_ = shown.time;
+        // Another prompt straight after one (the supervisor's Enter, then instructions) is
+        // told by its text: the key is let go and pressed anew.
+        if (promptSince_ < 0.0 || shown.phaseText != promptText_) promptSince_ = shown.time;
+        promptText_ = shown.phaseText;
         if (shown.time - promptSince_ >= settings_.enterAfterS) input.keys = kKeyEnter;
     } else {
         promptSince_ = -1.0;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <deque>
 #include <map>
 
@@ -59,6 +60,7 @@ private:
     std::map<std::uint32_t, double> clicked_;  // ids it clicked, and when
     bool buttonDown_ = false;
     double promptSince_ = -1.0;
+    std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
     std::string lastMode_;
     int ratingStatement_ = -1;
     double ratingSince_ = 0.0;

@@ -89,8 +89,9 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
         for (const auto& mode : protocol.modes)
             for (int i = 0; i < protocol.rounds[r].matchesPerMode; ++i) order.push_back(mode);
         if (protocol.shuffle) shuffle(order, subSeed(seed, kTagMatchOrder, static_cast<int>(r)));
-        for (const auto& mode : order)
-            matches_.push_back({static_cast<int>(matches_.size()), static_cast<int>(r), mode});
+        for (std::size_t i = 0; i < order.size(); ++i)
+            matches_.push_back({static_cast<int>(matches_.size()), static_cast<int>(r), order[i], static_cast<int>(i),
+                                static_cast<int>(order.size())});
     }
 }
 
@@ -98,7 +99,7 @@ void ClickGame::switchTo(const std::string& mode, int) {
     condition::ModeSchedule(protocol_.conditionTable.at(mode),
                             protocol_.refreshHz);  // throws for a mode this display cannot run
     freePlay_ = true;
-    matches_ = {{0, 0, mode}};
+    matches_ = {{0, 0, mode, 0, 1}};
     matchIndex_ = 0;
     beginMatch();  // from the next frame, with a fresh field
     takeEvents();  // free play records nothing
@@ -107,6 +108,7 @@ void ClickGame::switchTo(const std::string& mode, int) {
 std::string ClickGame::phase() const {
     switch (phase_) {
         case Phase::Ready: return "ready";
+        case Phase::Instructions: return "instructions";
         case Phase::Match: return "match";
         case Phase::Rating: return "rating";
         case Phase::Done: return "done";
@@ -135,6 +137,15 @@ session::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json deta
     if (!detail.contains("scored")) detail["scored"] = round.scored;
     e.detailJson = detail.dump();
     return e;
+}
+
+void ClickGame::openMatch() {
+    const Match& m = matches_[matchIndex_];
+    const bool opensRound = matchIndex_ == 0 || matches_[matchIndex_ - 1].round != m.round;
+    if (freePlay_ || !opensRound || protocol_.rounds[static_cast<std::size_t>(m.round)].instructions.empty())
+        return beginMatch();
+    phase_ = Phase::Instructions;
+    instructionsShown_ = frame_ + 1;
 }
 
 void ClickGame::beginMatch() {
@@ -168,10 +179,17 @@ void ClickGame::endMatch() {
     statement_ = 0;
     if (protocol_.ratingsEnabled) {
         phase_ = Phase::Rating;
+        statementShown_ = frame_ + 1;
         return;
     }
-    if (++matchIndex_ < matches_.size()) return beginMatch();
+    if (++matchIndex_ < matches_.size()) return openMatch();
     phase_ = Phase::Done;
+}
+
+std::string ClickGame::matchCounter(const Match& m) const {
+    const bool scored = protocol_.rounds[static_cast<std::size_t>(m.round)].scored;
+    return "Match " + std::to_string(m.inRound + 1) + " of " + std::to_string(m.ofRound) +
+        (scored ? "" : " (practice)");
 }
 
 RatingPrompt ClickGame::ratingPrompt() const {
@@ -200,8 +218,9 @@ void ClickGame::answerRating(int value, const char* how) {
                      {"value", value},
                      {"answered_with", how}}));
     commitPoint_ = true;
+    statementShown_ = frame_ + 1;
     if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
-    if (++matchIndex_ < matches_.size()) return beginMatch();
+    if (++matchIndex_ < matches_.size()) return openMatch();
     phase_ = Phase::Done;
     session::EventRecord done;
     done.type = "phase";
@@ -260,11 +279,16 @@ ShownFrame ClickGame::screenFrame() {
             shown.promptsEnter = true;
             shown.pointer = PointerKind::None;
             break;
+        case Phase::Instructions:
+            shown.instructions = protocol_.rounds[static_cast<std::size_t>(matches_[matchIndex_].round)].instructions;
+            shown.phaseText = "Press Enter when you have read this";
+            shown.promptsEnter = true;
+            shown.pointer = PointerKind::None;
+            break;
         case Phase::Rating: {
             const Match& m = matches_[matchIndex_];
             shown.rating = ratingPrompt();
-            shown.phaseText = "Match " + std::to_string(m.index + 1) + " of " + std::to_string(matches_.size()) +
-                ": rate the match you just played";
+            shown.phaseText = matchCounter(m) + ": rate the match you just played";
             break;
         }
         case Phase::Match:
@@ -297,9 +321,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
         shown.render.scene.time = now();
         for (const auto& s : world_->spheres()) shown.render.scene.objects.push_back(objectFor(s, physics_.radius));
     }
-    const auto& round = protocol_.rounds[static_cast<std::size_t>(match.round)];
-    shown.phaseText = "Match " + std::to_string(match.index + 1) + " of " + std::to_string(matches_.size()) +
-        (round.scored ? "" : " (practice)");
+    shown.phaseText = matchCounter(match);
 
     click = clickGate_.pass(click, f);
     if (click) {
@@ -367,12 +389,33 @@ ShownFrame ClickGame::step(const FrameInput& input) {
     switch (phase_) {
         case Phase::Ready: {
             ShownFrame shown = screenFrame();
-            if (pressed & kKeyEnter) beginMatch();
+            if (pressed & kKeyEnter) openMatch();
+            return shown;
+        }
+        case Phase::Instructions: {
+            ShownFrame shown = screenFrame();
+            if (pressed & kKeyEnter) {
+                const Match& m = matches_[matchIndex_];
+                const auto& round = protocol_.rounds[static_cast<std::size_t>(m.round)];
+                session::EventRecord e;
+                e.type = "instructions";
+                e.phase = round.name;
+                e.detailJson =
+                    nlohmann::json{
+                        {"round", round.name},
+                        {"read_s", static_cast<double>(frame_ - instructionsShown_ + 1) / protocol_.refreshHz}}
+                        .dump();
+                emit(e);
+                beginMatch();
+            }
             return shown;
         }
         case Phase::Match: return matchFrame(click);
         case Phase::Rating: {
             ShownFrame shown = screenFrame();
+            // A press during the settle time is dropped, not kept for later: what answers is a
+            // press made after it, so a double click or a double tap answers once.
+            if (static_cast<double>(frame_ - statementShown_) < kAnswerSettleS * protocol_.refreshHz) return shown;
             int keyed = 0;
             for (int v = std::max(1, protocol_.ratingMin); v <= std::min(9, protocol_.ratingMax); ++v)
                 if (pressed & digitKey(v)) keyed = v;

@@ -32,6 +32,13 @@ struct ClickHit {
 ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const std::vector<physics::Sphere>& spheres,
                           double radius);
 
+// How long a statement is on screen before a press answers it. The games take presses, not
+// held buttons, but a double click is two presses: its second one, at most a double-click
+// interval (100-500 ms, the desktop defaults) after the first, lands on the statement the first
+// press brought up. Reading a statement takes longer than that, so a press within this time is
+// the previous answer's gesture, and is dropped rather than taken for an answer.
+inline constexpr double kAnswerSettleS = 0.5;
+
 class ClickGame final : public FreePlayGame {
 public:
     ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed, const DisplaySize& display);
@@ -52,6 +59,7 @@ public:
         int index = 0;  // over the whole session
         int round = 0;  // index into protocol.rounds
         std::string mode;
+        int inRound = 0, ofRound = 0;  // its place in its round, and the round's match count
     };
     const std::vector<Match>& matches() const { return matches_; }
     // The world of the match in progress (tests); nullptr between matches.
@@ -61,8 +69,10 @@ public:
     static std::uint32_t objectId(const physics::Sphere& sphere);
 
 private:
-    enum class Phase : std::uint8_t { Ready, Match, Rating, Done };
+    enum class Phase : std::uint8_t { Ready, Instructions, Match, Rating, Done };
 
+    // The match at matchIndex_, or first its round's instructions where it opens a round.
+    void openMatch();
     void beginMatch();
     void endMatch();
     void answerRating(int value, const char* how);
@@ -75,6 +85,8 @@ private:
     session::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     RatingPrompt ratingPrompt() const;
+    // "Match 2 of 7 (practice)": where the participant is in the round being played.
+    std::string matchCounter(const Match& m) const;
 
     protocol::ClickProtocol protocol_;
     std::uint64_t seed_;
@@ -98,6 +110,8 @@ private:
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;
     int statement_ = 0;
+    std::int64_t instructionsShown_ = 0;  // the first frame of the instructions screen
+    std::int64_t statementShown_ = 0;  // the first frame that shows the statement being asked
 
     bool freePlay_ = false;
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <deque>
 
 #include "game/game.h"
@@ -44,6 +45,7 @@ private:
     bool clickedThisTarget_ = false;
     bool buttonDown_ = false;
     double promptSince_ = -1.0;
+    std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
 };
 
 }  // namespace warplab::game

@@ -168,13 +168,13 @@ void ShooterGame::beginPhase(Phase phase) {
     switch (phase) {
         case Phase::Acclimation:
             if (protocol_.acclimationS <= 0.0 && !freePlay_) return beginPhase(Phase::AwaitingSupervisor);
-            return scheduleNextTrial();
+            return openPhase(protocol_.acclimationInstructions);
         case Phase::Training: {
             level_ = protocol_.training.startLevel;
             missedYet_ = false;
             shotsPerMode_ = protocol_.training.shotsPerLevelEasy;
             levelQueue_.clear();
-            return scheduleNextTrial();
+            return openPhase(protocol_.trainingInstructions);
         }
         case Phase::AwaitingSupervisor:
             // Appendix B: after the practice the supervisor's Enter begins the recorded
@@ -193,10 +193,42 @@ void ShooterGame::beginPhase(Phase phase) {
                         std::find(protocol_.conditions.begin(), protocol_.conditions.end(), b);
                 });
             testNext_ = 0;
-            return scheduleNextTrial();
+            return openPhase(protocol_.testInstructions);
         }
         case Phase::Done: return;
     }
+}
+
+void ShooterGame::openPhase(const std::string& instructions) {
+    if (instructions.empty() || freePlay_) return scheduleNextTrial();
+    reading_ = true;
+}
+
+void ShooterGame::finishReading() {
+    reading_ = false;
+    session::EventRecord event;
+    event.type = "instructions";
+    event.eventTime = now();
+    event.detailJson = detailText({{"read_s", static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz}});
+    emit(event);
+    commitPoint_ = true;
+    phaseStartFrame_ = frame_;  // the phase's time limits count from here
+    scheduleNextTrial();
+}
+
+ShownFrame ShooterGame::readingFrame() const {
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.camera = camera_;
+    shown.blank = true;
+    shown.pointer = PointerKind::None;
+    shown.instructions = phase_ == Phase::Acclimation ? protocol_.acclimationInstructions
+        : phase_ == Phase::Training                   ? protocol_.trainingInstructions
+                                                      : protocol_.testInstructions;
+    shown.phaseText = "Press Enter when you have read this";
+    shown.promptsEnter = true;
+    return shown;
 }
 
 void ShooterGame::startTrial(const std::string& mode, int level) {
@@ -279,6 +311,7 @@ void ShooterGame::scheduleNextTrial() {
                     levelQueue_.push_back(protocol_.training.highMode);
                 }
                 shuffle(levelQueue_, trialSeed(8, level_));
+                levelTrials_ = levelQueue_.size();
             }
             const std::string mode = levelQueue_.back();
             levelQueue_.pop_back();
@@ -348,7 +381,14 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         banner_.clear();
         scheduleNextTrial();
     }
-    if (phase_ == Phase::AwaitingSupervisor && enter) beginPhase(Phase::Training);
+    if (reading_ && enter && frame_ > phaseStartFrame_)  // a press made while the text is up
+        finishReading();
+    else if (phase_ == Phase::AwaitingSupervisor && enter)
+        beginPhase(Phase::Training);
+    if (reading_) {
+        clickGate_.clear();
+        return readingFrame();
+    }
 
     if (frozenFrame_) {
         clickGate_.clear();
@@ -397,12 +437,21 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             shown.phaseText = text;
             break;
         }
-        case Phase::Training: shown.phaseText = "Training: level " + std::to_string(level_); break;
+        case Phase::Training: {
+            // The level's trials: a queue drawn when the level starts, the trial up taken from it.
+            const std::size_t ofLevel = levelTrials_;
+            const std::size_t trial = ofLevel - levelQueue_.size();
+            shown.phaseText = "Training: level " + std::to_string(level_) + ", trial " + std::to_string(trial) +
+                " of " + std::to_string(ofLevel);
+            break;
+        }
         case Phase::AwaitingSupervisor:
             shown.phaseText = "Press Enter to begin";
             shown.promptsEnter = true;
             break;
-        case Phase::Test: shown.phaseText = "Test"; break;
+        case Phase::Test:
+            shown.phaseText = "Test: trial " + std::to_string(testNext_) + " of " + std::to_string(testQueue_.size());
+            break;
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
 
@@ -442,7 +491,7 @@ session::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
     session::FrameRecord r;
     r.frame = shown.frame;
     r.mode = shown.mode;
-    r.kind = shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind);
+    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     if (!shown.scene.objects.empty()) {

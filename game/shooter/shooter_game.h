@@ -71,6 +71,10 @@ private:
     };
 
     void beginPhase(Phase phase);
+    // The phase's first trial, or first the screen of its instructions where it has some.
+    void openPhase(const std::string& instructions);
+    void finishReading();
+    ShownFrame readingFrame() const;
     void startTrial(const std::string& mode, int level);
     void scheduleNextTrial();
     void finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg);
@@ -95,7 +99,8 @@ private:
     ClickGate clickGate_;
 
     Phase phase_ = Phase::Acclimation;
-    std::int64_t phaseStartFrame_ = 0;
+    std::int64_t phaseStartFrame_ = 0;  // its time runs from here (from the end of its instructions)
+    bool reading_ = false;  // the phase's instructions are on screen
     std::string mode_;
     std::optional<condition::ModeSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;
@@ -110,6 +115,7 @@ private:
     int level_ = 0;
     int shotsPerMode_ = 0;
     std::vector<std::string> levelQueue_;  // modes of the remaining trials of this level
+    std::size_t levelTrials_ = 0;  // ... and of all its trials
     int levelHits_[2] = {0, 0}, levelShots_[2] = {0, 0};
     bool missedYet_ = false;
     int testLevel_ = 0;

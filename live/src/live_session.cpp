@@ -149,8 +149,15 @@ std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std:
         loop.screenshot("start");
     }
     loop.inject("start");
-    if (loop.human() && loop.waitFor("warplab", who + ". Press Enter to start, Esc to leave.", "\r\x1b") != '\r')
-        return "";
+    if (loop.human()) {
+        // S plays the feedback sounds, as often as the supervisor likes, before Enter starts.
+        const std::string text = who + ". Press Enter to start, S to hear the feedback sounds, Esc to leave.";
+        std::string pending;
+        for (char c; (c = loop.waitFor("warplab", text, "\rs\x1b", pending, &pending)) != '\r';) {
+            if (c != 's') return "";
+            loop.playSoundCheck(progress);
+        }
+    }
 
     auto header = study::sessionHeader(study, run.participant, run.seed, playerText(run), loop.display());
     header.planId = run.planId;

@@ -38,6 +38,11 @@ std::vector<float> FeedbackSounds::samples(const std::string& which) {
     return out;
 }
 
+const std::vector<std::string>& FeedbackSounds::names() {
+    static const std::vector<std::string> list{"hit", "miss", "timeout"};
+    return list;
+}
+
 FeedbackSounds::FeedbackSounds() {
     if (SDL_InitSubSystem(SDL_INIT_AUDIO) != 0) {
         why_ = std::string("no audio: ") + SDL_GetError();
@@ -70,6 +75,22 @@ void FeedbackSounds::play(const std::string& which) {
     if (s.empty()) return;
     SDL_ClearQueuedAudio(device_);  // a new outcome cuts the last one short
     SDL_QueueAudio(device_, s.data(), static_cast<Uint32>(s.size() * sizeof(float)));
+}
+
+}  // namespace warplab::live
+
+namespace warplab::live {
+
+void FeedbackSounds::playEach() {
+    if (device_ == 0) return;
+    std::vector<float> all;
+    for (const std::string& name : names()) {
+        const auto s = samples(name);
+        all.insert(all.end(), s.begin(), s.end());
+        all.insert(all.end(), kRate / 2, 0.0f);  // half a second apart: three sounds, not one
+    }
+    SDL_ClearQueuedAudio(device_);
+    SDL_QueueAudio(device_, all.data(), static_cast<Uint32>(all.size() * sizeof(float)));
 }
 
 }  // namespace warplab::live

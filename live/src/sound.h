@@ -18,8 +18,13 @@ public:
 
     bool available() const { return device_ != 0; }
     const std::string& why() const { return why_; }  // why not available
-    // "hit", "miss" or "timeout"; anything else is silent. Never blocks.
+    // Every feedback sound's name, in the order the sound check plays them.
+    static const std::vector<std::string>& names();
+    // One of names(); anything else is silent. Never blocks.
     void play(const std::string& which);
+    // Each of names() in turn with a pause between, so the supervisor can check that all can
+    // be heard before a session. Never blocks.
+    void playEach();
 
     // The samples of a sound (mono float at kRate), for tests and for play().
     static constexpr int kRate = 48000;

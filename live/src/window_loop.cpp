@@ -134,17 +134,31 @@ void WindowLoop::showScreen(const std::string& banner, const std::string& status
 }
 
 char WindowLoop::waitFor(const std::string& banner, const std::string& status, const std::string& keys,
-                         const std::string& pending) {
-    for (const char c : pending)
-        if (keys.find(c) != std::string::npos) return c;
+                         const std::string& pending, std::string* rest) {
+    // The first of `keys` in `read`, and what follows it into *rest.
+    auto first = [&](const std::string& read) -> char {
+        const std::size_t at = read.find_first_of(keys);
+        if (at == std::string::npos) return 0;
+        const char c = read[at];
+        if (rest) *rest = read.substr(at + 1);  // `read` may be *rest
+        return c;
+    };
+    if (const char c = first(pending)) return c;
     for (;;) {
         showScreen(banner, status);
         const renderer::WindowInput in = window_.pollInput();
         if (in.closed) return 0;
-        for (const char c : in.keysPressed)
-            if (keys.find(c) != std::string::npos) return c;
+        if (const char c = first(in.keysPressed)) return c;
         if (!window_.vsyncOn()) std::this_thread::sleep_for(std::chrono::milliseconds(16));
     }
+}
+
+void WindowLoop::playSoundCheck(std::ostream& progress) {
+    progress << "sound check:";
+    for (const std::string& name : FeedbackSounds::names()) progress << " " << name;
+    if (!sounds_.available()) progress << " (not played: " << sounds_.why() << ")";
+    progress << "\n";
+    sounds_.playEach();
 }
 
 void WindowLoop::screenshot(const std::string& name) {

@@ -97,8 +97,11 @@ public:
     void showScreen(const std::string& banner, const std::string& status);
     // Shows a screen until one of `keys` is pressed; 0 when the window closed. `pending`:
     // keys already read with the one that opened the screen (a fast typist, a script).
+    // `rest`, where given, receives the keys read after the one returned, for the next wait.
     char waitFor(const std::string& banner, const std::string& status, const std::string& keys,
-                 const std::string& pending = "");
+                 const std::string& pending = "", std::string* rest = nullptr);
+    // The sound check of the start screen: every feedback sound in turn, said on `progress`.
+    void playSoundCheck(std::ostream& progress);
     // The window's last frame as PNG in the run's screenshot folder.
     void screenshot(const std::string& name);
     // Reads and drops what the window received: keeps it responsive while nothing is shown.

@@ -425,7 +425,13 @@ game::FrameInput SimulatedParticipant::act(const Percept& percept) {
     }
     // The supervisor's Enter, once per prompt.
     if (percept.promptsEnter) {
-        if (promptSince_ < 0.0) promptSince_ = percept.time;
+        // Another prompt straight after one (the supervisor's Enter, then instructions) is
+        // told by its text.
+        if (promptSince_ < 0.0 || percept.phaseText != promptText_) {
+            promptSince_ = percept.time;
+            enterPressed_ = false;
+        }
+        promptText_ = percept.phaseText;
         if (percept.time - promptSince_ >= params_.enterAfterS && !enterPressed_) {
             input.keys |= game::kKeyEnter;
             enterPressed_ = true;

@@ -14,6 +14,7 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     content.banner = shown.banner;
     content.bannerGood = shown.bannerGood;
     content.status = shown.phaseText;
+    content.paragraph = shown.instructions;
     if (shown.rating) {
         renderer::HudRating r;
         r.statement = shown.rating->statement;

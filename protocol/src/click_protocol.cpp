@@ -52,6 +52,7 @@ const std::vector<detail::Key<ClickRound>>& roundKeys() {
             name,
             detail::Keys<R>::boolean("scored", at(&R::scored)),
             detail::Keys<R>::integer("matches_per_mode", at(&R::matchesPerMode), 1, kMatchesPerModeLimit),
+            detail::instructionsKey<R>(at(&R::instructions), kClickInstructionsSince),
         };
     }();
     return keys;
@@ -160,6 +161,8 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     r.nameAndDescription(document, p.name, p.description);
     p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kClickConditionsSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
+    if (p.formatVersion < kClickInstructionsSince)
+        for (ClickRound& round : p.rounds) round.instructions.clear();
 
     // Relations between fields, checked once every field holds its final value.
     if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))

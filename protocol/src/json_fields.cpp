@@ -338,6 +338,22 @@ std::string Reader::line(const Json& value, const std::string& where) const {
     return value.get<std::string>();
 }
 
+void Reader::paragraph(const Json* parent, const std::string& path, const char* key, std::string& out) const {
+    const Json* value = find(parent, key);
+    if (!value) return;
+    bool ok = value->is_string();
+    if (ok) {
+        const auto& text = value->get_ref<const std::string&>();
+        for (unsigned char c : text) ok = ok && (c == '\n' || (c >= 0x20 && c != 0x7f));
+        ok = ok && text.size() <= kParagraphLimit;
+    }
+    if (!ok)
+        fail(joinPath(path, key),
+             "must be a text of at most " + std::to_string(kParagraphLimit) +
+                 " bytes without control characters other than line breaks, got " + describe(*value));
+    out = value->get<std::string>();
+}
+
 void Reader::modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;

@@ -31,6 +31,7 @@ using Json = nlohmann::ordered_json;
 // Bounds that no study needs to exceed; they exist so a slip of the keyboard (an extra zero, a
 // minus sign) is caught before a participant sits down, not to constrain designs.
 inline constexpr std::size_t kLineLimit = 200;  // bytes in a name or a one-line text
+inline constexpr std::size_t kParagraphLimit = 1000;  // bytes in a text a participant reads (instructions)
 
 // Limits that keep a session's data safe (docs/protocol.md has the reasoning). The session
 // writer holds the rows of every frame since the last commit point (end of a trial, a match,
@@ -116,6 +117,9 @@ public:
     }
     // A non-empty single line of at most kLineLimit bytes (names, labels, statements).
     std::string line(const Json& value, const std::string& where) const;
+    // Text for a participant to read: at most kParagraphLimit bytes, line breaks allowed and no
+    // other control characters; may be empty.
+    void paragraph(const Json* parent, const std::string& path, const char* key, std::string& out) const;
 
     // The top-level "conditions" object (new in format_version `since`): each condition's parts,
     // checked on their own; whether each can run is asked once the refresh is final
@@ -252,6 +256,21 @@ struct Keys {
         });
     }
 };
+
+// A phase's "instructions" (new in format_version `since`): the text of the screen that opens
+// the phase, "" for none. Files of older versions have no such screens -- what their sessions
+// were recorded with -- so the parser clears them there and such files may not set one. A
+// struct of an older version is written without them where it has none (what such files
+// mean), and with them where it has some, so that parsing the copy refuses it rather than
+// replaying it without its screens.
+template <class P, class Get>
+Key<P> instructionsKey(Get get, int since) {
+    Key<P> k = Keys<P>::make("instructions", get, [get](const Reader& r, const Json* o, const std::string& path, P& p) {
+                   r.paragraph(o, path, "instructions", get(p));
+               }).since(since, true);
+    k.isDefault = [get](const P& p) { return get(p).empty(); };
+    return k;
+}
 
 template <class P>
 std::vector<const char*> keyNames(const std::vector<Key<P>>& keys) {

@@ -58,8 +58,8 @@ const std::vector<detail::Section<P>>& sections() {
                         {kMousePerCountMin, false, kMousePerCountLimit, false})}},
             {"acclimation",
              {K::number("duration_s", at(&P::acclimationS), {0, true, kAcclimationLimitS, false}),
-              K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit),
-              K::modeId("mode", at(&P::acclimationMode))}},
+              K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit), K::modeId("mode", at(&P::acclimationMode)),
+              detail::instructionsKey<P>(at(&P::acclimationInstructions), kShooterInstructionsSince)}},
             {"training",
              {K::number("base_speed_m_per_s", at(&P::training, &S::baseSpeed), {0, true, kMaxBaseSpeedMPerS, false}),
               K::integer("start_level", at(&P::training, &S::startLevel), 0, kLevelLimit),
@@ -68,7 +68,8 @@ const std::vector<detail::Section<P>>& sections() {
               K::integer("shots_per_level_hard", at(&P::training, &S::shotsPerLevelHard), 1, kShotsLimit),
               K::modeId("high_mode", at(&P::training, &S::highMode)),
               K::modeId("low_mode", at(&P::training, &S::lowMode)),
-              K::number("time_limit_s", at(&P::training, &S::timeLimitS), {0, true, kTrainingLimitS, false})}},
+              K::number("time_limit_s", at(&P::training, &S::timeLimitS), {0, true, kTrainingLimitS, false}),
+              detail::instructionsKey<P>(at(&P::trainingInstructions), kShooterInstructionsSince)}},
             {"test",
              {K::modeList("conditions", at(&P::conditions)),
               K::integer("targets_per_condition", at(&P::targetsPerCondition), 1, kTargetsLimit),
@@ -79,7 +80,8 @@ const std::vector<detail::Section<P>>& sections() {
               // Version 1 has no click_timing and means "display". A struct that says otherwise
               // is written anyway, so that parsing the copy refuses it instead of quietly
               // replaying it differently.
-              K::choice("click_timing", at(&P::clickTiming)).since(2, true)}},
+              K::choice("click_timing", at(&P::clickTiming)).since(2, true),
+              detail::instructionsKey<P>(at(&P::testInstructions), kShooterInstructionsSince)}},
         };
     }();
     return list;
@@ -101,6 +103,9 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
     r.nameAndDescription(document, p.name, p.description);
     p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kShooterConditionsSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
+    if (p.formatVersion < kShooterInstructionsSince)
+        for (std::string* text : {&p.acclimationInstructions, &p.trainingInstructions, &p.testInstructions})
+            text->clear();
     const StaircaseSettings& s = p.training;
 
     // Relations between fields, checked once every field holds its final value.

@@ -60,6 +60,38 @@ struct HudRenderer::Impl {
         return cache.emplace(s, std::move(t)).first->second;
     }
 
+    // `text` broken into lines no wider than `widthPixels` at `scale` of the font's size:
+    // at spaces, and at every line break it has. A word wider than the line keeps a line of
+    // its own.
+    std::vector<std::string> wrapped(const std::string& text, float widthPixels, float scale) {
+        std::vector<std::string> lines;
+        auto fits = [&](const std::string& line) {
+            int w = 0, h = 0;
+            return TTF_SizeUTF8(font, line.c_str(), &w, &h) == 0 && w * scale <= widthPixels;
+        };
+        std::size_t start = 0;
+        while (start <= text.size()) {
+            const std::size_t end = std::min(text.find('\n', start), text.size());
+            std::string line;
+            std::size_t at = start;
+            while (at < end) {
+                const std::size_t space = std::min(text.find(' ', at), end);
+                const std::string word = text.substr(at, space - at);
+                const std::string longer = line.empty() ? word : line + " " + word;
+                if (!line.empty() && !fits(longer)) {
+                    lines.push_back(line);
+                    line = word;
+                } else {
+                    line = longer;
+                }
+                at = space + 1;
+            }
+            lines.push_back(line);
+            start = end + 1;
+        }
+        return lines;
+    }
+
     void rect(float x, float y, float w, float h, const float colour[4]) {
         glUniform4f(gl::uniform(program, "uRect"), x, y, w, h);
         glUniform4f(gl::uniform(program, "uColour"), colour[0], colour[1], colour[2], colour[3]);
@@ -150,6 +182,17 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
                 drawText(r.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
             if (!r.maxLabel.empty())
                 drawText(r.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
+        }
+    }
+    if (!content.paragraph.empty()) {
+        const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f};
+        const float scale = 0.45f, lineHeight = bannerPixels * scale * 1.4f;
+        const std::vector<std::string> lines = m.wrapped(content.paragraph, w * 0.8f, scale);
+        // Centred on the screen as a block, top to bottom (GL is y-up).
+        float y = h * 0.5f + lines.size() * lineHeight * 0.5f - lineHeight;
+        for (const std::string& line : lines) {
+            if (!line.empty()) drawText(line, w * 0.5f, y, scale, white);
+            y -= lineHeight;
         }
     }
     if (content.cursor) {

@@ -129,6 +129,20 @@ TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
     EXPECT_TRUE(contains(replayed, "80 frames, 0.66 s of display time replayed")) << replayed;
 }
 
+// S on the start screen plays the feedback sounds for the supervisor; the session starts only
+// with Enter after it, and records nothing of the check.
+TEST(LiveSession, SOnTheStartScreenPlaysTheFeedbackSoundsBeforeEnterStarts) {
+    const std::string dir = scratch("sound-check");
+    std::ofstream(dir + "/script.txt") << "start key s\nstart key enter\n10 key esc\n10 key q\n";
+    const auto r = inWindow("run --protocol " + tinyProtocol(dir) + " --participant S1 --out " + dir +
+                            " --width 160 --height 90 --input-script " + dir + "/script.txt");
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "sound check: hit miss timeout")) << r.output;
+    EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 9")) << r.output;
+    const auto data = warplab::session::readSession(sessionIn(dir));
+    EXPECT_EQ(data.inputs.size(), 10u);
+}
+
 // The window changes how frames reach a person, never what the session is.
 TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
     for (const std::string protocol : {"tiny", "click-tiny"}) {

@@ -4,6 +4,7 @@
 // judged against the world and against the frame on screen.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
@@ -126,6 +127,34 @@ TEST(ClickGame, SameSeedAndInputSameEventsBitForBit) {
     EXPECT_TRUE(differ);
 }
 
+// The participant sees where they are in the round: "Match 2 of 7 (practice)", "Match 5 of 7",
+// during the match and on its rating screens.
+TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
+    const auto p = quick();
+    ClickGame game(p, 3, kDisplay);
+    ClickBot bot(7, p, kDisplay);
+    FrameInput input = bot.first();
+    std::map<std::string, std::vector<int>> seen;  // round -> the match numbers shown, in order
+    const int perRound = static_cast<int>(p.modes.size());
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        game.takeEvents();
+        if (!shown.mode.empty() || shown.rating) {
+            int n = 0, of = 0;
+            ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Match %d of %d", &n, &of), 2) << shown.phaseText;
+            EXPECT_EQ(of, perRound);
+            const bool practice = shown.phaseText.find("(practice)") != std::string::npos;
+            auto& numbers = seen[practice ? "practice" : "scored"];
+            if (numbers.empty() || numbers.back() != n) numbers.push_back(n);
+        }
+        input = bot.next(shown);
+    }
+    std::vector<int> oneToN(static_cast<std::size_t>(perRound));
+    for (int i = 0; i < perRound; ++i) oneToN[static_cast<std::size_t>(i)] = i + 1;
+    EXPECT_EQ(seen["practice"], oneToN);
+    EXPECT_EQ(seen["scored"], oneToN);
+}
+
 TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersModesBySeed) {
     auto p = quick();
     ClickGame a(p, 5, kDisplay), b(p, 6, kDisplay);
@@ -177,7 +206,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
         for (int phase = 0; phase < 4; ++phase) {
             auto p = quick();
             p.modes = {mode};
-            p.rounds = {{"only", true, 1}};
+            p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             ClickGame game(p, 2, kDisplay);
             ShownFrame shown = startFirstMatch(game);
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
@@ -215,7 +244,7 @@ TEST(ClickGame, ReadmeLatencyTableHoldsInARealRun) {
             auto p = quick();
             p.refreshHz = refresh;
             p.modes = {row.id};
-            p.rounds = {{"only", true, 1}};
+            p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
             SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
             ++checked;
@@ -272,7 +301,7 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
     for (const auto& mode : quick().modes) {
         auto p = quick();
         p.modes = {mode};
-        p.rounds = {{"only", true, 1}};
+        p.rounds = {{"only", true, 1, ""}};  // no instructions screen
         ClickGame game(p, 8, kDisplay);
         startFirstMatch(game);
         std::map<std::int64_t, std::vector<physics::Sphere>> world;  // by session frame
@@ -334,7 +363,7 @@ struct ClickTally {
 ClickTally aimAtTheWorld(const std::string& mode, protocol::Scoring scoring) {
     auto p = quick();
     p.modes = {mode};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 20;
     p.scoring = scoring;
     ClickGame game(p, 4, kDisplay);
@@ -386,7 +415,7 @@ TEST(ClickGame, ClicksAreJudgedAgainstTheWorldAndAgainstTheFrameOnScreen) {
 TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     auto p = quick();
     p.modes = {"lag200"};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.scoring = protocol::Scoring::Displayed;
     p.matchS = 20;
     ClickGame game(p, 4, kDisplay);
@@ -417,15 +446,131 @@ TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     EXPECT_EQ(scored, (std::vector<std::string>{"green", "miss"}));
 }
 
-TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
+// Steps through the time a new statement ignores presses (the frame that showed it was one).
+void waitOutSettle(ClickGame& game, const protocol::ClickProtocol& p) {
+    for (long i = 1; i < std::lround(kAnswerSettleS * p.refreshHz); ++i) game.step({});
+}
+
+std::vector<int> ratingValues(ClickGame& game) {
+    std::vector<int> values;
+    for (const auto& e : game.takeEvents())
+        if (e.type == "rating") values.push_back(detail(e)["value"]);
+    return values;
+}
+
+// A one-match protocol whose match is over in half a second: its rating screen comes quickly.
+protocol::ClickProtocol oneShortMatch() {
     auto p = quick();
     p.modes = {"conv60"};
-    p.rounds = {{"only", true, 1}};
+    p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 0.5;
+    return p;
+}
+
+TEST(ClickGame, ADoubleClickOnARatingBoxAnswersOneStatement) {
+    const auto p = oneShortMatch();
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    while (!shown.rating) shown = game.step({});
+    waitOutSettle(game, p);
+    const glm::dvec4 box = shown.rating->boxes[4];
+    const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
+    game.step({move.x, move.y, 0, 0});
+    game.takeEvents();
+    // Press, release, press again 100 ms (6 frames at 60 Hz) later, release: one double click.
+    game.step({0, 0, kButtonLeft, 0});
+    for (int i = 0; i < 5; ++i) game.step({});
+    shown = game.step({0, 0, kButtonLeft, 0});
+    shown = game.step({});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{5});
+    EXPECT_EQ(shown.rating->index, 1);  // the second statement waits for its own answer
+    // The same goes for a double tap on a digit key; a press after the settle time answers.
+    waitOutSettle(game, p);
+    game.step({0, 0, 0, digitKey(2)});
+    game.step({});
+    game.step({0, 0, 0, digitKey(2)});
+    shown = game.step({});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{2});
+    EXPECT_EQ(shown.rating->index, 2);
+}
+
+TEST(ClickGame, APressHeldFromTheMatchOrPastTheSettleTimeAnswersNothing) {
+    const auto p = oneShortMatch();
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = startFirstMatch(game);
+    while (!shown.rating) shown = game.step({0, 0, 0, digitKey(4)});  // held down into the screen
+    for (int i = 0; i < 2 * std::lround(kAnswerSettleS * p.refreshHz); ++i) game.step({0, 0, 0, digitKey(4)});
+    EXPECT_TRUE(ratingValues(game).empty());
+    game.step({});  // released: the next press answers
+    game.step({0, 0, 0, digitKey(4)});
+    EXPECT_EQ(ratingValues(game), std::vector<int>{4});
+}
+
+// Each round opens with its instructions: on screen until Enter, then its first match; an
+// event says when the participant went on.
+TEST(ClickGame, EachRoundOpensWithItsInstructionsUntilEnter) {
+    auto p = oneShortMatch();
+    p.ratingsEnabled = false;
+    p.rounds = {{"a", false, 1, "Read A"}, {"b", true, 1, "Read B"}};
+    ClickGame game(p, 1, kDisplay);
+    ShownFrame shown = game.step({0, 0, 0, kKeyEnter});  // the supervisor's ready screen
+    EXPECT_TRUE(shown.instructions.empty());
+    for (int i = 0; i < 30; ++i) {
+        shown = game.step({});
+        EXPECT_EQ(shown.instructions, "Read A");
+        EXPECT_TRUE(shown.promptsEnter);
+        EXPECT_TRUE(shown.blank);
+    }
+    game.takeEvents();
+    game.step({0, 0, 0, kKeyEnter});
+    auto events = game.takeEvents();
+    ASSERT_GE(events.size(), 1u);
+    EXPECT_EQ(events[0].type, "instructions");
+    EXPECT_EQ(events[0].phase, "a");
+    EXPECT_EQ(detail(events[0])["read_s"].get<double>(), 31.0 / p.refreshHz);
+    shown = game.step({});
+    EXPECT_FALSE(shown.blank);
+    EXPECT_EQ(shown.mode, "conv60");
+    while (!shown.blank) shown = game.step({});
+    EXPECT_EQ(shown.instructions, "Read B");  // the next round opens with its own
+    shown = game.step({0, 0, 0, kKeyEnter});
+    shown = game.step({});
+    EXPECT_FALSE(shown.blank);
+    // A round without instructions starts its first match straight away.
+    p.rounds = {{"a", true, 1, ""}};
+    ClickGame plain(p, 1, kDisplay);
+    plain.step({0, 0, 0, kKeyEnter});
+    EXPECT_FALSE(plain.step({}).blank);
+}
+
+TEST(ClickGame, TheBotReadsTheInstructionsAndPlaysOn) {
+    auto p = quick();
+    for (auto& round : p.rounds) round.instructions = protocol::kClickTaskInstructions;
+    const Played played = playWithBot(p, 3, 7);
+    int instructions = 0, matches = 0;
+    for (const auto& e : played.events) {
+        instructions += e.type == "instructions";
+        matches += e.type == "match";
+    }
+    EXPECT_EQ(instructions, static_cast<int>(p.rounds.size()));
+    EXPECT_EQ(matches, 2 * static_cast<int>(p.modes.size()));
+    ClickGame replay(p, 3, kDisplay);
+    std::vector<session::EventRecord> again;
+    for (const auto& in : played.inputs) {
+        replay.step(in);
+        for (auto& e : replay.takeEvents()) again.push_back(e);
+    }
+    ASSERT_EQ(again.size(), played.events.size());
+    for (std::size_t i = 0; i < again.size(); ++i) EXPECT_EQ(session::firstDifference(again[i], played.events[i]), "");
+}
+
+TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
+    const auto p = oneShortMatch();
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = startFirstMatch(game);
     while (!shown.rating) shown = game.step({});
     EXPECT_EQ(shown.rating->boxes.size(), 7u);
+    waitOutSettle(game, p);
     game.step({0, 0, 0, digitKey(9)});  // out of range: ignored
     game.step({-5000, -5000, 0, 0});  // the top left corner, far from the boxes
     game.step({0, 0, kButtonLeft, 0});  // not on a box: ignored
@@ -434,6 +579,7 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
     EXPECT_EQ(shown.rating->index, 0);  // this frame still shows the first statement
     shown = game.step({});
     EXPECT_EQ(shown.rating->index, 1);
+    waitOutSettle(game, p);
     // Click box 6 (value 6).
     const glm::dvec4 box = shown.rating->boxes[5];
     const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();

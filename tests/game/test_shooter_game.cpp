@@ -2,6 +2,7 @@
 // protocol to the end, replays reproduce it, and every mode's measured latency -- a mouse step
 // and a bounce of the target, found in the displayed frames -- is what its schedule says.
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -124,6 +125,86 @@ TEST(ShooterGame, BannerNamesTheScoredOutcomeInItsColour) {
     }
     EXPECT_GT(seen["HIT"], 0);
     EXPECT_GT(seen["MISS"] + seen["TIMEOUT"], 0);
+}
+
+// The participant sees where they are: the trial up and the count of its phase (the test) or
+// of its level (training), numbered as the events number the trials.
+TEST(ShooterGame, PhaseTextCountsTheTrialsOfThePhase) {
+    const auto p = quick();
+    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterBot bot(5, p);
+    FrameInput input;
+    std::vector<int> testTrials;
+    int trainingTrials = 0, trainingInLevel = 0;
+    while (!game.finished()) {
+        const ShownFrame shown = game.step(input);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type != "shot" && e.type != "timeout") continue;
+            int trial = 0, of = 0, level = 0;
+            if (e.phase == "test") {
+                ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Test: trial %d of %d", &trial, &of), 2)
+                    << shown.phaseText;
+                EXPECT_EQ(of, static_cast<int>(p.conditions.size()) * p.targetsPerCondition);
+                EXPECT_EQ(trial, e.trial + 1);
+                testTrials.push_back(trial);
+            } else if (e.phase == "training") {
+                ASSERT_EQ(
+                    std::sscanf(shown.phaseText.c_str(), "Training: level %d, trial %d of %d", &level, &trial, &of), 3)
+                    << shown.phaseText;
+                EXPECT_EQ(level, static_cast<int>(detailNumber(e, "difficulty")));
+                trainingInLevel = trial == 1 ? 1 : trainingInLevel + 1;
+                EXPECT_EQ(trial, trainingInLevel);
+                EXPECT_TRUE(of == 2 * p.training.shotsPerLevelEasy || of == 2 * p.training.shotsPerLevelHard) << of;
+                EXPECT_LE(trial, of);
+                ++trainingTrials;
+            }
+        }
+        input = bot.next(shown);
+    }
+    ASSERT_EQ(testTrials.size(), p.conditions.size() * static_cast<std::size_t>(p.targetsPerCondition));
+    for (std::size_t i = 0; i < testTrials.size(); ++i) EXPECT_EQ(testTrials[i], static_cast<int>(i) + 1);
+    EXPECT_GT(trainingTrials, 0);
+}
+
+// Each phase opens with its instructions until Enter; the phase's time runs from that Enter.
+TEST(ShooterGame, EachPhaseOpensWithItsInstructionsUntilEnter) {
+    auto p = quick();
+    p.acclimationInstructions = "Read A";
+    p.trainingInstructions = "Read T";
+    p.testInstructions = "Read X";
+    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShownFrame shown = game.step({});
+    EXPECT_EQ(shown.instructions, "Read A");
+    EXPECT_TRUE(shown.promptsEnter);
+    EXPECT_TRUE(shown.blank);
+    for (int i = 0; i < 100; ++i) EXPECT_EQ(game.step({}).instructions, "Read A");
+    game.takeEvents();
+    shown = game.step({0, 0, 0, kKeyEnter});  // frame 101: the acclimation begins
+    EXPECT_FALSE(shown.blank);
+    EXPECT_FALSE(shown.scene.objects.empty()) << "the first target is up at once";
+    auto events = game.takeEvents();
+    ASSERT_EQ(events.size(), 1u);
+    EXPECT_EQ(events[0].type, "instructions");
+    EXPECT_EQ(events[0].phase, "acclimation");
+    EXPECT_EQ(detailNumber(events[0], "read_s"), 101.0 / p.refreshHz);
+    // The bot goes on through every screen; the acclimation lasted its duration from the Enter.
+    ShooterBot bot(5, p);
+    FrameInput input = bot.next(shown);
+    std::vector<std::string> read;
+    std::int64_t trainingOpened = -1;
+    while (!game.finished()) {
+        shown = game.step(input);
+        for (const auto& e : game.takeEvents()) {
+            if (e.type == "instructions") read.push_back(e.phase);
+            if (e.type == "phase" && e.phase == "training") trainingOpened = e.frame;
+        }
+        if (!shown.instructions.empty()) {
+            EXPECT_TRUE(shown.scene.objects.empty());
+        }
+        input = bot.next(shown);
+    }
+    EXPECT_EQ(read, (std::vector<std::string>{"training", "test"}));
+    EXPECT_GE(trainingOpened, 101 + std::llround(p.acclimationS * p.refreshHz));
 }
 
 TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {

@@ -82,6 +82,7 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
         EXPECT_EQ(a.rounds[i].name, b.rounds[i].name);
         EXPECT_EQ(a.rounds[i].scored, b.rounds[i].scored);
         EXPECT_EQ(a.rounds[i].matchesPerMode, b.rounds[i].matchesPerMode);
+        EXPECT_EQ(a.rounds[i].instructions, b.rounds[i].instructions);
     }
     EXPECT_EQ(a.shuffle, b.shuffle);
     EXPECT_EQ(a.ratingsEnabled, b.ratingsEnabled);
@@ -89,6 +90,12 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
     EXPECT_EQ(a.ratingMin, b.ratingMin);
     EXPECT_EQ(a.ratingMax, b.ratingMax);
     EXPECT_EQ(a.scoring, b.scoring);
+}
+
+// What a file older than format 3 means: no instruction screens.
+ClickProtocol withoutInstructions(ClickProtocol p) {
+    for (auto& round : p.rounds) round.instructions.clear();
+    return p;
 }
 
 // Every field different from its default, so a field the writer forgets comes back as its
@@ -114,7 +121,7 @@ ClickProtocol everyFieldChanged() {
     p.clickTiming = ClickTiming::InputReads;
     p.matchS = 30.5;
     p.modes = {"conv120", "warp15to120"};
-    p.rounds = {{"warm-up", false, 3}, {"a", true, 1}, {"b", true, 4}};
+    p.rounds = {{"warm-up", false, 3, "Two\nlines \"quoted\""}, {"a", true, 1, ""}, {"b", true, 4, "B"}};
     p.shuffle = false;
     p.ratingsEnabled = false;
     p.ratingStatements = {"Only one"};
@@ -154,10 +161,11 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
 
 TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
     const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json");
-    ClickProtocol defaults;
+    ClickProtocol defaults = withoutInstructions({});
     defaults.name = p.name;
     defaults.description = p.description;
-    // The shipped file is format 1: it defines no conditions of its own, so it reads as before.
+    // The shipped file is format 1: it defines no conditions of its own, so it reads as before,
+    // without instruction screens.
     EXPECT_EQ(p.formatVersion, 1);
     defaults.formatVersion = p.formatVersion;
     expectSame(p, defaults);
@@ -212,7 +220,7 @@ TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
 // Defaults and the round trip
 
 TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
-    ClickProtocol expected;
+    ClickProtocol expected = withoutInstructions({});
     expected.name = "t";
     expected.formatVersion = minimal()["format_version"];
     expectSame(parse(minimal().dump()), expected);
@@ -247,13 +255,68 @@ TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
               (std::vector<std::string>{"format_version", "name", "description", "game", "display", "physics", "input",
                                         "matches", "ratings"}));
     EXPECT_EQ(document.at("matches").at("rounds").at(0),
-              (Json{{"name", "warm-up"}, {"scored", false}, {"matches_per_mode", 3}}));
+              (Json{{"name", "warm-up"},
+                    {"scored", false},
+                    {"matches_per_mode", 3},
+                    {"instructions", "Two\nlines \"quoted\""}}));
     EXPECT_EQ(document.at("matches").at("scoring"), "displayed");
     EXPECT_EQ(document.at("physics").at("gravity_m_per_s2"), 1.62);
 }
 
 // ---------------------------------------------------------------------------------------
 // Bad input: one sentence naming file, path and reason
+
+// ---------------------------------------------------------------------------------------
+// Instructions (format 3)
+
+TEST(ClickInstructions, RoundsOpenWithTheTaskInPlainWordsFromFormat3) {
+    Json document = minimal();
+    document["format_version"] = 3;
+    const ClickProtocol p = parse(document.dump());
+    ASSERT_EQ(p.rounds.size(), 2u);
+    for (const auto& round : p.rounds) {
+        EXPECT_NE(round.instructions.find("Click the green ones"), std::string::npos) << round.instructions;
+        EXPECT_NE(round.instructions.find("never click a red one"), std::string::npos) << round.instructions;
+    }
+    // A round the file lists gets the task alone unless it says otherwise; "" shows none.
+    document["matches"]["rounds"] = Json::array({Json{{"name", "a"}}, Json{{"name", "b"}, {"instructions", ""}}});
+    const ClickProtocol listed = parse(document.dump());
+    EXPECT_EQ(listed.rounds[0].instructions, kClickTaskInstructions);
+    EXPECT_EQ(listed.rounds[1].instructions, "");
+    // Older files have no screens, whatever their rounds.
+    for (int version : {1, 2}) {
+        document = minimal();
+        document["format_version"] = version;
+        for (const auto& round : parse(document.dump()).rounds) EXPECT_EQ(round.instructions, "") << version;
+    }
+}
+
+TEST(ClickInstructions, OlderFilesMayNotSetThemAndBadTextIsNamed) {
+    Json document = minimal();
+    document["format_version"] = 2;
+    document["matches"]["rounds"] = Json::array({Json{{"name", "a"}, {"instructions", "Go"}}});
+    EXPECT_EQ(messageFor(document),
+              kPrefix + "matches.rounds[0].instructions is new in format_version 3, but this file is format_version 2");
+    document["format_version"] = 3;
+    document["matches"]["rounds"][0]["instructions"] = 5;
+    EXPECT_EQ(messageFor(document),
+              kPrefix +
+                  "matches.rounds[0].instructions must be a text of at most 1000 bytes without control characters "
+                  "other than line breaks, got 5");
+    document["matches"]["rounds"][0]["instructions"] = std::string(1001, 'x');
+    EXPECT_NE(messageFor(document).find("matches.rounds[0].instructions must be a text"), std::string::npos);
+    document["matches"]["rounds"][0]["instructions"] = "tab\there";
+    EXPECT_NE(messageFor(document).find("matches.rounds[0].instructions must be a text"), std::string::npos);
+}
+
+TEST(ClickInstructions, AnOlderFileRoundTripsWithoutThem) {
+    Json document = minimal();
+    document["format_version"] = 2;
+    const ClickProtocol p = parse(document.dump());
+    const std::string written = toJson(p);
+    EXPECT_EQ(written.find("instructions"), std::string::npos) << written;
+    expectSame(parse(written), p);
+}
 
 TEST(ClickErrors, NegativeGravity) {
     EXPECT_EQ(messageFor(yangWith("/physics/gravity_m_per_s2", -9.81)),
@@ -417,12 +480,12 @@ TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
     // A click file newer than this build is still just that, with or without fields of its own:
     // a bare header is any game's, and a newer click file's sections are no shooter's.
     for (const Json& newer :
-         {Json{{"format_version", 3}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 3)}) {
+         {Json{{"format_version", 4}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 4)}) {
         try {
             game::parseStudy(newer.dump(), kSource);
             ADD_FAILURE() << "expected a ProtocolError";
         } catch (const ProtocolError& e) {
-            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 3 is newer than this warplab supports (2)");
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 4 is newer than this warplab supports (3)");
         }
     }
 }
@@ -435,7 +498,7 @@ TEST(ClickErrors, RoundsAreChecked) {
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/0/matches", 1)),
               kPrefix +
                   "matches.rounds[0].matches is not a known field (matches.rounds[0] may "
-                  "have name, scored, matches_per_mode)");
+                  "have name, scored, matches_per_mode, instructions)");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/name", "practice")),
               kPrefix + "matches.rounds[1].name repeats \"practice\", already matches.rounds[0].name");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", "yes")),
@@ -474,7 +537,7 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 3, "format_version 3 is newer than this warplab supports (2)"},
+        {"/format_version", 4, "format_version 4 is newer than this warplab supports (3)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);

@@ -40,6 +40,9 @@ Json thesisWith(const std::string& pointer, const Json& value) {
     p.name = "t";
     Json document = Json::parse(toJson(p));
     document[Json::json_pointer(pointer)] = value;
+    // An older version's document, as such files are: without the phases' instructions.
+    if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterInstructionsSince)
+        for (const char* phase : {"acclimation", "training", "test"}) document[phase].erase("instructions");
     return document;
 }
 
@@ -79,6 +82,9 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.acclimationS, b.acclimationS);
     EXPECT_EQ(a.acclimationLevel, b.acclimationLevel);
     EXPECT_EQ(a.acclimationMode, b.acclimationMode);
+    EXPECT_EQ(a.acclimationInstructions, b.acclimationInstructions);
+    EXPECT_EQ(a.trainingInstructions, b.trainingInstructions);
+    EXPECT_EQ(a.testInstructions, b.testInstructions);
     EXPECT_EQ(a.training.baseSpeed, b.training.baseSpeed);
     EXPECT_EQ(a.training.startLevel, b.training.startLevel);
     EXPECT_EQ(a.training.maxLevel, b.training.maxLevel);
@@ -98,6 +104,12 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.legacyRules, b.legacyRules);
 }
 
+// What a file older than format 4 means: no instruction screens.
+ShooterProtocol withoutInstructions(ShooterProtocol p) {
+    for (std::string* text : {&p.acclimationInstructions, &p.trainingInstructions, &p.testInstructions}) text->clear();
+    return p;
+}
+
 // Every field different from its default, so a field the writer forgets comes back as its
 // default and fails the comparison.
 ShooterProtocol everyFieldChanged() {
@@ -113,6 +125,9 @@ ShooterProtocol everyFieldChanged() {
     p.acclimationS = 12.5;
     p.acclimationLevel = 3;
     p.acclimationMode = "conv60";
+    p.acclimationInstructions = "Two\nlines";
+    p.trainingInstructions = "";
+    p.testInstructions = "T \"quoted\"";
     p.training.baseSpeed = 0.7;
     p.training.startLevel = 5;
     p.training.maxLevel = 40;
@@ -160,7 +175,7 @@ TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
 }
 
 TEST(ProtocolFiles, ThesisIsWhatTheStructDefaultsSay) {
-    ShooterProtocol defaults;
+    ShooterProtocol defaults = withoutInstructions({});
     const ShooterProtocol p = load(shippedPath("shooter-thesis.json"));
     defaults.name = p.name;
     defaults.description = p.description;
@@ -194,7 +209,7 @@ TEST(ProtocolFiles, ShippedFilesAreInCanonicalForm) {
 // Defaults and the round trip
 
 TEST(ProtocolDefaults, UnsetFieldsTakeTheThesisValues) {
-    ShooterProtocol expected;
+    ShooterProtocol expected = withoutInstructions({});
     expected.name = "t";
     expected.formatVersion = minimal()["format_version"];
     expectSame(parse(minimal().dump()), expected);
@@ -268,12 +283,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 4;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 4 is newer than this warplab supports (3)");
+    document["format_version"] = 5;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 5 is newer than this warplab supports (4)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 4 is newer than this warplab supports (3)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 5 is newer than this warplab supports (4)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -293,7 +308,7 @@ TEST(ProtocolErrors, UnknownNestedFieldIsNamedWithItsPath) {
     EXPECT_EQ(message,
               "protocol 'p.json': test.timout_s is not a known field (test may have conditions, "
               "targets_per_condition, interleave, timeout_s, pause_s, scoring, supervisor_starts, "
-              "click_timing)");
+              "click_timing, instructions)");
     expectContains(errorOf(thesisWith("/training/max_levle", 3)), {"training.max_levle is not a known field"});
     expectContains(errorOf(thesisWith("/display/refresh", 3)), {"display.refresh is not a known field"});
 }
@@ -595,13 +610,53 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion3WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion4WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 3);
+    EXPECT_EQ(kShooterFormatVersion, 4);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);
+}
+
+TEST(ProtocolInstructions, EachPhaseOpensWithTheTaskInPlainWordsFromFormat4) {
+    Json document = minimal();
+    document["format_version"] = 4;
+    const ShooterProtocol p = parse(document.dump());
+    for (const std::string* text : {&p.acclimationInstructions, &p.trainingInstructions, &p.testInstructions}) {
+        EXPECT_NE(text->find("with the mouse"), std::string::npos) << *text;
+        EXPECT_NE(text->find("press the left button to shoot it"), std::string::npos) << *text;
+    }
+    document["test"]["instructions"] = "";
+    EXPECT_EQ(parse(document.dump()).testInstructions, "");
+    for (int version : {1, 2, 3}) {
+        document = minimal();
+        document["format_version"] = version;
+        expectSame(parse(document.dump()), [&] {
+            ShooterProtocol none = withoutInstructions({});
+            none.name = "t";
+            none.formatVersion = version;
+            none.legacyRules = version == 1;
+            return none;
+        }());
+    }
+}
+
+TEST(ProtocolInstructions, OlderFilesMayNotSetThemAndBadTextIsNamed) {
+    Json document = minimal();
+    document["format_version"] = 3;
+    document["training"]["instructions"] = "Go";
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.instructions is new in format_version 4, but this file is format_version 3");
+    document["format_version"] = 4;
+    document["training"]["instructions"] = Json::array();
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': training.instructions must be a text of at most 1000 bytes without control "
+              "characters other than line breaks, got array []");
+    // A struct of an older version that has some cannot be written as that version quietly.
+    ShooterProtocol old = parse(minimal().dump());
+    old.testInstructions = "Go";
+    expectContains(errorOfText(toJson(old)), {"test.instructions is new in format_version 4"});
 }
 
 TEST(ProtocolVersions, Version1MeansLegacyRules) {

@@ -84,7 +84,9 @@ struct ShownFrame {
     bool bannerGood = false;  // green when true, red when false
     std::string phaseText;  // for the participant and supervisor
     std::string feedback;  // "hit", "miss" or "timeout" on the frame a shot or click is judged: a sound
-    bool promptsEnter = false;  // waiting for the supervisor's Enter
+    bool promptsEnter = false;  // waiting for Enter: the supervisor's, or the participant's after reading
+    // A screen of instructions that opens a phase (the protocol's text): read, then Enter.
+    std::string instructions;
     std::optional<RatingPrompt> rating;
 };
 

@@ -236,6 +236,7 @@ private:
     bool buttonDown_ = false;
     std::uint32_t keysDown_ = 0;
     double promptSince_ = -1.0;
+    std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
     bool enterPressed_ = false;  // for the prompt on screen
     // Rating: what the last match felt like.
     std::vector<Moment> match_;

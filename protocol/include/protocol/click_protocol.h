@@ -14,9 +14,16 @@
 namespace warplab::protocol {
 
 // The newest click protocol format this build reads and the one toJson writes.
-// 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions").
-inline constexpr int kClickFormatVersion = 2;
+// 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions"), 3 each
+// round's "instructions" screen.
+inline constexpr int kClickFormatVersion = 3;
 inline constexpr int kClickConditionsSince = 2;
+inline constexpr int kClickInstructionsSince = 3;
+
+// What a round's instructions say unless the protocol says otherwise: the task in plain words.
+inline constexpr const char* kClickTaskInstructions =
+    "Red and green spheres fall and bounce. Click the green ones with the mouse to make them "
+    "vanish; never click a red one, nor empty space.";
 
 // One round: every mode of the study played matchesPerMode times. Yang et al. played an
 // unscored round of one match per mode, then a scored round of two per mode.
@@ -24,6 +31,9 @@ struct ClickRound {
     std::string name;  // written into every match event of the round
     bool scored = true;  // false: played for practice, outcomes logged but not analysed
     int matchesPerMode = 1;
+    // The screen that opens the round, read and continued with Enter; "" for none (and none at
+    // all in files older than format 3).
+    std::string instructions = kClickTaskInstructions;
 };
 
 struct ClickProtocol {
@@ -54,7 +64,10 @@ struct ClickProtocol {
     // presets or these.
     condition::ConditionTable conditionTable;
     std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
-    std::vector<ClickRound> rounds{{"practice", false, 1}, {"scored", true, 2}};
+    std::vector<ClickRound> rounds{
+        {"practice", false, 1, std::string("Practice. ") + kClickTaskInstructions + " Nothing in the practice counts."},
+        {"scored", true, 2,
+         std::string(kClickTaskInstructions) + " From now on every match counts. After each one, say how it felt."}};
     bool shuffle = true;  // random mode order per round, from the session seed
     // ratings.*
     bool ratingsEnabled = true;

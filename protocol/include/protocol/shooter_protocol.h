@@ -14,9 +14,11 @@ namespace warplab::protocol {
 
 // The newest protocol format this build reads. 2 added test.click_timing and fixed the timeout
 // and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
-// replay under the rules they were recorded with. 3 added the protocol's own "conditions".
-inline constexpr int kShooterFormatVersion = 3;
+// replay under the rules they were recorded with. 3 added the protocol's own "conditions", 4
+// each phase's "instructions" screen.
+inline constexpr int kShooterFormatVersion = 4;
 inline constexpr int kShooterConditionsSince = 3;
+inline constexpr int kShooterInstructionsSince = 4;
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;
@@ -49,6 +51,17 @@ struct ShooterProtocol {
     double acclimationS = 300;
     int acclimationLevel = 0;
     std::string acclimationMode = "conv120";
+    // Each phase opens with a screen of its instructions, read and continued with Enter; ""
+    // for none (and none at all in files older than format 4).
+    std::string acclimationInstructions =
+        "Practice. A ball bounces across the hallway: aim at it with the mouse and press the left "
+        "button to shoot it. You have one shot for each ball. Nothing you do in the practice counts.";
+    std::string trainingInstructions =
+        "Training. Aim at the ball with the mouse and press the left button to shoot it, one shot "
+        "for each ball. The balls get faster as you go.";
+    std::string testInstructions =
+        "The test. Aim at the ball with the mouse and press the left button to shoot it, one shot "
+        "for each ball, before it disappears. Be as quick and as accurate as you can.";
     StaircaseSettings training;
     // The conditions the file defines beside the presets ("conditions"); the mode fields and
     // test.conditions name presets or these.
@@ -71,7 +84,7 @@ struct ShooterProtocol {
 };
 
 // sourceName is what messages call the file (its path). Every mode id must name a preset or a
-// condition the file defines, runnable at its refresh. Reads format_version 1 to 3. Throws
+// condition the file defines, runnable at its refresh. Reads format_version 1 to 4. Throws
 // ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:

@@ -1,6 +1,6 @@
 // The heads-up display, drawn last over a displayed frame: the reticle or the cursor, the
-// HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, and the rating
-// screen. Text comes from
+// HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, the rating
+// screen and a screen of instructions. Text comes from
 // SDL2_ttf with a DejaVu font, uploaded as textures; the object-id attachment is left
 // untouched so the id under the reticle still names what the scene shows.
 #pragma once
@@ -34,6 +34,9 @@ struct HudContent {
     std::string banner;  // e.g. "HIT"; empty = none
     bool bannerGood = false;  // green when true, red when false
     std::string status;  // small text at the top, e.g. "Training: level 4"; empty = none
+    // Text to read in the middle of the screen (a phase's instructions), wrapped to the frame's
+    // width; a line break starts a new line. Empty = none.
+    std::string paragraph;
 };
 
 class HudRenderer {
