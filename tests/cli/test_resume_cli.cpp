@@ -3,12 +3,19 @@
 // count it once; and what cannot be resumed is refused, naming the file, with nothing written.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/cli_support.h"
@@ -57,15 +64,37 @@ std::string differenceBetween(const SessionData& whole, const SessionData& resum
     return "";
 }
 
-// Runs `arguments` and kills it with SIGKILL after `seconds`.
-void runKilledAfter(double seconds, const std::string& arguments) {
-    std::ostringstream command;
-    command << "timeout -s KILL " << seconds << " " << WARPLAB_BINARY << " " << arguments << " > /dev/null 2>&1";
-    const int raw = std::system(command.str().c_str());
-    (void)raw;
+// Runs `arguments` in the background and kills it with SIGKILL once the session it writes into
+// `dir` holds at least `frames` committed frames (a headless bot runs far faster than any
+// timer could aim at). False when it ended first.
+bool runKilledAtFrame(const std::string& dir, const std::string& arguments, std::size_t frames) {
+    const std::string command = "exec " + std::string(WARPLAB_BINARY) + " " + arguments + " > /dev/null 2>&1";
+    const pid_t pid = fork();
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    const std::size_t before = sessionsIn(dir).size();
+    for (;;) {
+        int status = 0;
+        if (waitpid(pid, &status, WNOHANG) == pid) return false;
+        const auto files = sessionsIn(dir);
+        if (files.size() > before) {
+            try {
+                if (readSession(files.back()).inputs.size() >= frames) {
+                    kill(pid, SIGKILL);
+                    waitpid(pid, &status, 0);
+                    return true;
+                }
+            } catch (const warplab::session::SessionError&) {
+                // Not readable yet: being created.
+            }
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
 }
 
-// Kill -9 at random instants of a bot session, then --resume (and once, kill the resumed run
+// Kill -9 at random points of a bot session, then --resume (and once, kill the resumed run
 // too and resume again): the result is the uninterrupted session, every row of it, its header
 // names the session(s) it carries on, and it replays whole.
 void expectResumedEqualsUninterrupted(const char* protocolName) {
@@ -76,35 +105,43 @@ void expectResumedEqualsUninterrupted(const char* protocolName) {
     const SessionData whole = readSession(sessionsIn(wholeDir).at(0));
     ASSERT_TRUE(whole.completed);
 
+    // Kill points at random frames of the session (printed with any failure).
     std::random_device device;
     std::mt19937 random(device());
-    std::uniform_real_distribution<double> instant(0.05, 1.2);
+    std::uniform_int_distribution<std::size_t> frame(whole.inputs.size() / 10, whole.inputs.size() * 8 / 10);
     int resumedMidway = 0;
-    for (int kill = 0; kill < 4; ++kill) {
-        const double at = instant(random);
-        SCOPED_TRACE(std::string(protocolName) + ", killed after " + std::to_string(at) + " s");
+    for (int kill = 0; kill < 3; ++kill) {
+        const std::size_t at = frame(random);
+        SCOPED_TRACE(std::string(protocolName) + ", killed at frame " + std::to_string(at));
         const std::string dir = scratch(std::string("kill-") + protocolName + "-" + std::to_string(kill));
-        runKilledAfter(at, "run --protocol " + protocol + " --participant R --out " + dir + play);
+        if (!runKilledAtFrame(dir, "run --protocol " + protocol + " --participant R --out " + dir + play, at)) continue;
         std::vector<std::string> files = sessionsIn(dir);
-        if (files.empty() || readSession(files[0]).completed) continue;  // before the store, or after the end
+        ASSERT_EQ(files.size(), 1u);
         const std::string killed = files[0];
-        const std::string killedId = readSession(killed).header.sessionId;
+        const SessionData before = readSession(killed);
+        if (before.completed) continue;  // the kill came as it finished
+        const std::string killedId = before.header.sessionId;
         if (kill == 0) {
-            // The resumed run killed too, then resumed in its turn: a chain of two.
-            runKilledAfter(0.5 * at, "run --resume " + killed + " --headless --player bot:4");
-            files = sessionsIn(dir);
-            if (files.size() == 2 && !readSession(files[1]).completed) {
-                const auto again = warplab("run --resume " + files[1] + " --headless --player bot:4");
+            // The resumed run killed too, further on, then resumed in its turn: a chain of two.
+            const std::size_t later = at + (whole.inputs.size() - at) / 2;
+            if (runKilledAtFrame(dir, "run --resume " + killed + " --headless --player bot:4", later) &&
+                !readSession(sessionsIn(dir).back()).completed) {
+                files = sessionsIn(dir);
+                ASSERT_EQ(files.size(), 2u);
+                const std::string middle = files[1];
+                const auto again = warplab("run --resume " + middle + " --headless --player bot:4");
                 ASSERT_EQ(again.status, 0) << again.output;
                 const SessionData last = readSession(sessionsIn(dir).back());
                 ASSERT_EQ(last.header.resumed.size(), 2u);
                 EXPECT_EQ(last.header.resumed[0].sessionId, killedId);
-                EXPECT_EQ(last.header.resumed[1].sessionId, readSession(files[1]).header.sessionId);
+                EXPECT_EQ(last.header.resumed[1].sessionId, readSession(middle).header.sessionId);
+                EXPECT_LE(last.header.resumed[0].frame, last.header.resumed[1].frame);
                 EXPECT_EQ(differenceBetween(whole, last), "");
+                EXPECT_EQ(warplab("replay " + sessionsIn(dir).back()).status, 0);
                 ++resumedMidway;
                 continue;
             }
-            if (files.size() == 2) continue;  // the resumed run finished before its kill: checked below
+            fs::remove(sessionsIn(dir).back());  // it finished before the kill: resumed again below
         }
         const auto resumed = warplab("run --resume " + killed + " --headless --player bot:4");
         ASSERT_EQ(resumed.status, 0) << resumed.output;
@@ -119,15 +156,15 @@ void expectResumedEqualsUninterrupted(const char* protocolName) {
         EXPECT_EQ(result.header.participant, "R");
         EXPECT_EQ(result.header.seed, 11u);
         EXPECT_NE(result.header.sessionId, killedId);
-        // Where it was resumed: the frame after the killed session's last commit point.
-        const SessionData before = readSession(killed);
+        // Where it was resumed: after the killed session's last completed trial or match, so
+        // within what it had committed.
         EXPECT_LE(static_cast<std::size_t>(result.header.resumed[0].frame), before.inputs.size());
-        EXPECT_GE(result.header.resumed[0].frame, 0);
+        EXPECT_GT(result.header.resumed[0].frame, 0);
         EXPECT_EQ(differenceBetween(whole, result), "");
         EXPECT_EQ(warplab("replay " + files[1]).status, 0);
         ++resumedMidway;
     }
-    EXPECT_GE(resumedMidway, 1) << "no kill landed while the session ran";
+    EXPECT_GE(resumedMidway, 2) << "the kills did not land while the session ran";
 }
 
 TEST(CliResume, AKilledShooterSessionResumedIsTheUninterruptedOne) {
@@ -200,17 +237,11 @@ TEST(CliResume, AStudyParticipantsInterruptedSessionResumesAndCountsOnce) {
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "participant P01 has no incomplete session of ")) << r.output;
 
-    // Interrupted: the sessions of P01's first protocol, cut short by a kill (retried until
-    // one lands while it runs).
-    std::string killed;
-    for (double at = 0.4; at < 3.0 && killed.empty(); at += 0.3) {
-        fs::remove_all(dir + "/results");
-        fs::create_directories(dir + "/results");
-        runKilledAfter(at, "run --study " + dir + " --participant P01 --headless");
-        const auto files = sessionsIn(dir + "/results");
-        if (files.size() == 1 && !readSession(files[0]).completed) killed = files[0];
-    }
-    ASSERT_FALSE(killed.empty()) << "no kill landed while the session ran";
+    // Interrupted: P01's first session killed a third of the way (the planned protocols run
+    // a few thousand frames each).
+    ASSERT_TRUE(runKilledAtFrame(dir + "/results", "run --study " + dir + " --participant P01 --headless", 1500));
+    const std::string killed = sessionsIn(dir + "/results").at(0);
+    ASSERT_FALSE(readSession(killed).completed);
     r = warplab("study status " + dir);
     EXPECT_TRUE(contains(r.output, "next: warplab run --study " + dir + " --participant P01 --resume")) << r.output;
     // How far it got, in the game's unit: the click game's matches (of 21 in click-demo), or
