@@ -66,6 +66,8 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
         if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
         Found found{path, {}, {}};
         try {
+            // The header first: another plan's session (or one without a plan) is not read whole.
+            if (session::readSessionHeader(path.string()).planId != plan.id) continue;
             found.data = session::readSession(path.string());
         } catch (const session::SessionError&) {
             continue;  // not a session of this plan that can be told
