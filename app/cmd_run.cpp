@@ -136,6 +136,12 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+    // A resumed session goes on on the display it was played on (the click game's cursor
+    // lives in its pixels).
+    if (args.has("resume"))
+        for (const char* option : {"width", "height"})
+            if (args.has(option))
+                throw UsageError(std::string("option --") + option + " comes from the session with --resume");
     if (args.has("study")) return;  // the rest from the plan: readStudyOptions
     if (args.flag("again")) throw UsageError("option --again only applies with --study");
     if (args.has("resume")) {
@@ -321,7 +327,9 @@ Command runCommand() {
          "headlessly with a simulated or recorded player. Writes the session store into the\n"
          "results folder (one file per session) as it runs, then prints its path. In the window:\n"
          "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
-         "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]",
+         "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]\n"
+         "       warplab run --study DIR --participant ID [--resume] [...]\n"
+         "       warplab run --resume SESSION [...]",
          {
              {"protocol", "FILE",
               "study protocol (JSON), e.g. protocol/shooter-quick.json; with --study, which of the plan's protocols "

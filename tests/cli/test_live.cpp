@@ -205,8 +205,9 @@ TEST(LiveSession, ASessionEndedMidwayResumesInTheWindowAsIfNeverStopped) {
     for (std::int64_t f = at; f < at + 6; ++f) frames += (frames.empty() ? "" : ",") + std::to_string(f);
 
     const std::string resumedShots = scratch("resume-shots"), wholeShots = scratch("resume-whole-shots");
-    r = inWindow("run --resume " + interrupted + play + " --screenshots " + resumedShots + " --screenshot-frames " +
-                 frames);
+    // Its size is the interrupted session's.
+    r = inWindow("run --resume " + interrupted + " --player bot:3 --screenshots " + resumedShots +
+                 " --screenshot-frames " + frames);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "resuming " + interrupted + " at frame " + std::to_string(at))) << r.output;
     r = inWindow("run --protocol " + protocol + " --participant B --out " + whole + play + " --seed 4" +

@@ -214,7 +214,7 @@ TEST(CliResume, RefusesWhatCannotBeResumedAndWritesNothing) {
     EXPECT_EQ(r.status, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "none.warplab-session")) << r.output;
 
-    for (const char* option : {"--protocol x.json", "--participant P", "--seed 4"}) {
+    for (const char* option : {"--protocol x.json", "--participant P", "--seed 4", "--width 800"}) {
         r = warplab("run --resume " + doctored + " --headless " + option);
         EXPECT_EQ(r.status, 2) << option << ": " << r.output;
         EXPECT_TRUE(contains(r.output, "comes from the session with --resume")) << r.output;
