@@ -48,7 +48,7 @@ void ClickBot::moveTowards(FrameInput& input, glm::dvec2 goal, glm::dvec2 rate, 
 
 FrameInput ClickBot::rate(const ShownFrame& shown) {
     FrameInput input;
-    const RatingPrompt& r = *shown.rating;
+    const QuestionPrompt& r = *shown.question;
     if (r.index != ratingStatement_) {
         ratingStatement_ = r.index;
         ratingSince_ = shown.time;
@@ -138,7 +138,7 @@ FrameInput ClickBot::next(const ShownFrame& shown) {
     // Screens show the cursor live, so there the bot sees exactly where it is; in a match it
     // keeps track itself, since the frame shows the cursor as late as the mode shows it.
     if (shown.blank) cursor_ = shown.cursor;
-    if (shown.rating) {
+    if (shown.question) {
         input = rate(shown);
         seen_.clear();
         hasTarget_ = false;

@@ -192,9 +192,9 @@ std::string ClickGame::matchCounter(const Match& m) const {
         (scored ? "" : " (practice)");
 }
 
-RatingPrompt ClickGame::ratingPrompt() const {
-    RatingPrompt r;
-    r.statement = protocol_.ratingStatements[static_cast<std::size_t>(statement_)];
+QuestionPrompt ClickGame::questionPrompt() const {
+    QuestionPrompt r;
+    r.prompt = protocol_.ratingStatements[static_cast<std::size_t>(statement_)];
     r.index = statement_;
     r.count = static_cast<int>(protocol_.ratingStatements.size());
     r.min = protocol_.ratingMin;
@@ -287,7 +287,7 @@ ShownFrame ClickGame::screenFrame() {
             break;
         case Phase::Rating: {
             const Match& m = matches_[matchIndex_];
-            shown.rating = ratingPrompt();
+            shown.question = questionPrompt();
             shown.phaseText = matchCounter(m) + ": rate the match you just played";
             break;
         }
@@ -421,8 +421,8 @@ ShownFrame ClickGame::step(const FrameInput& input) {
                 if (pressed & digitKey(v)) keyed = v;
             if (keyed != 0)
                 answerRating(keyed, "key");
-            else if (click && shown.rating->highlighted >= 0)
-                answerRating(protocol_.ratingMin + shown.rating->highlighted, "mouse");
+            else if (click && shown.question->highlighted >= 0)
+                answerRating(protocol_.ratingMin + shown.question->highlighted, "mouse");
             return shown;
         }
         case Phase::Done: return screenFrame();

@@ -84,7 +84,7 @@ private:
     // round's name and whether it is scored (unless the detail says what "scored" means).
     session::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
-    RatingPrompt ratingPrompt() const;
+    QuestionPrompt questionPrompt() const;
     // "Match 2 of 7 (practice)": where the participant is in the round being played.
     std::string matchCounter(const Match& m) const;
 

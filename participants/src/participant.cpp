@@ -385,13 +385,13 @@ int SimulatedParticipant::ratingFor(const std::string& statement, int min, int m
 game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
     game::FrameInput input;
     if (!judged_) judgeMatch();
-    const game::RatingPrompt& r = *percept.rating;
+    const game::QuestionPrompt& r = *percept.question;
     if (r.index != statement_) {
         statement_ = r.index;
         statementSince_ = percept.time;
     }
     if (percept.time - statementSince_ < params_.answerAfterS) return input;
-    const int value = ratingFor(r.statement, r.min, r.max);
+    const int value = ratingFor(r.prompt, r.min, r.max);
     if (value >= 1 && value <= 9) {
         input.keys = game::digitKey(value);
         return input;
@@ -411,7 +411,7 @@ game::FrameInput SimulatedParticipant::act(const Percept& percept) {
         lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
     lastTime_ = percept.time;
     game::FrameInput input;
-    if (percept.rating) {
+    if (percept.question) {
         input = rate(percept);
     } else if (percept.sceneShown) {
         input = play(percept, dt);

@@ -15,16 +15,16 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     content.bannerGood = shown.bannerGood;
     content.status = shown.phaseText;
     content.paragraph = shown.instructions;
-    if (shown.rating) {
-        renderer::HudRating r;
-        r.statement = shown.rating->statement;
-        for (const auto& b : shown.rating->boxes)
+    if (shown.question) {
+        renderer::HudQuestion r;
+        r.prompt = shown.question->prompt;
+        for (const auto& b : shown.question->boxes)
             r.boxes.emplace_back(b.x * toFrameX, b.y * toFrameY, b.z * toFrameX, b.w * toFrameY);
-        r.highlighted = shown.rating->highlighted;
-        r.firstValue = shown.rating->min;
-        r.minLabel = shown.rating->minLabel;
-        r.maxLabel = shown.rating->maxLabel;
-        content.rating = r;
+        r.highlighted = shown.question->highlighted;
+        r.firstValue = shown.question->min;
+        r.minLabel = shown.question->minLabel;
+        r.maxLabel = shown.question->maxLabel;
+        content.question = r;
     }
     return content;
 }

@@ -163,11 +163,11 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
         const float tw = t.width * scale, th = t.height * scale;
         m.rect(centreX - tw / 2, baselineY, tw, th, colour);
     };
-    if (content.rating) {
-        const HudRating& r = *content.rating;
+    if (content.question) {
+        const HudQuestion& r = *content.question;
         const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f}, grey[4] = {0.8f, 0.8f, 0.8f, 0.9f};
         const float fill[4] = {0.25f, 0.27f, 0.33f, 1.0f}, lit[4] = {0.35f, 0.55f, 0.85f, 1.0f};
-        if (!r.statement.empty()) drawText(r.statement, w * 0.5f, h * 0.62f, 0.55f, white);
+        if (!r.prompt.empty()) drawText(r.prompt, w * 0.5f, h * 0.62f, 0.55f, white);
         for (std::size_t i = 0; i < r.boxes.size(); ++i) {
             const glm::vec4 b = r.boxes[i];
             const float y = h - b.y - b.w;  // frame pixels are y-down; GL is y-up

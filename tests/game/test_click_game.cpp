@@ -139,7 +139,7 @@ TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
     while (!game.finished()) {
         const ShownFrame shown = game.step(input);
         game.takeEvents();
-        if (!shown.mode.empty() || shown.rating) {
+        if (!shown.mode.empty() || shown.question) {
             int n = 0, of = 0;
             ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Match %d of %d", &n, &of), 2) << shown.phaseText;
             EXPECT_EQ(of, perRound);
@@ -436,7 +436,7 @@ TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     for (int i = 0; i < 11; ++i) game.step({});
     game.takeEvents();
     std::vector<std::string> scored, displayed;
-    for (const FrameInput in : {FrameInput{0, 0, kButtonLeft, 0}, FrameInput{}, FrameInput{0, 0, kButtonLeft, 0}}) {
+    for (const FrameInput& in : {FrameInput{0, 0, kButtonLeft, 0}, FrameInput{}, FrameInput{0, 0, kButtonLeft, 0}}) {
         game.step(in);
         for (const auto& e : game.takeEvents())
             if (e.type == "click") scored.push_back(detail(e)["scored"]), displayed.push_back(e.displayedOutcome);
@@ -471,9 +471,9 @@ TEST(ClickGame, ADoubleClickOnARatingBoxAnswersOneStatement) {
     const auto p = oneShortMatch();
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = startFirstMatch(game);
-    while (!shown.rating) shown = game.step({});
+    while (!shown.question) shown = game.step({});
     waitOutSettle(game, p);
-    const glm::dvec4 box = shown.rating->boxes[4];
+    const glm::dvec4 box = shown.question->boxes[4];
     const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
     game.step({move.x, move.y, 0, 0});
     game.takeEvents();
@@ -483,7 +483,7 @@ TEST(ClickGame, ADoubleClickOnARatingBoxAnswersOneStatement) {
     shown = game.step({0, 0, kButtonLeft, 0});
     shown = game.step({});
     EXPECT_EQ(ratingValues(game), std::vector<int>{5});
-    EXPECT_EQ(shown.rating->index, 1);  // the second statement waits for its own answer
+    EXPECT_EQ(shown.question->index, 1);  // the second statement waits for its own answer
     // The same goes for a double tap on a digit key; a press after the settle time answers.
     waitOutSettle(game, p);
     game.step({0, 0, 0, digitKey(2)});
@@ -491,14 +491,14 @@ TEST(ClickGame, ADoubleClickOnARatingBoxAnswersOneStatement) {
     game.step({0, 0, 0, digitKey(2)});
     shown = game.step({});
     EXPECT_EQ(ratingValues(game), std::vector<int>{2});
-    EXPECT_EQ(shown.rating->index, 2);
+    EXPECT_EQ(shown.question->index, 2);
 }
 
 TEST(ClickGame, APressHeldFromTheMatchOrPastTheSettleTimeAnswersNothing) {
     const auto p = oneShortMatch();
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = startFirstMatch(game);
-    while (!shown.rating) shown = game.step({0, 0, 0, digitKey(4)});  // held down into the screen
+    while (!shown.question) shown = game.step({0, 0, 0, digitKey(4)});  // held down into the screen
     for (int i = 0; i < 2 * std::lround(kAnswerSettleS * p.refreshHz); ++i) game.step({0, 0, 0, digitKey(4)});
     EXPECT_TRUE(ratingValues(game).empty());
     game.step({});  // released: the next press answers
@@ -568,23 +568,23 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
     const auto p = oneShortMatch();
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = startFirstMatch(game);
-    while (!shown.rating) shown = game.step({});
-    EXPECT_EQ(shown.rating->boxes.size(), 7u);
+    while (!shown.question) shown = game.step({});
+    EXPECT_EQ(shown.question->boxes.size(), 7u);
     waitOutSettle(game, p);
     game.step({0, 0, 0, digitKey(9)});  // out of range: ignored
     game.step({-5000, -5000, 0, 0});  // the top left corner, far from the boxes
     game.step({0, 0, kButtonLeft, 0});  // not on a box: ignored
     game.step({});
     shown = game.step({0, 0, 0, digitKey(3)});
-    EXPECT_EQ(shown.rating->index, 0);  // this frame still shows the first statement
+    EXPECT_EQ(shown.question->index, 0);  // this frame still shows the first statement
     shown = game.step({});
-    EXPECT_EQ(shown.rating->index, 1);
+    EXPECT_EQ(shown.question->index, 1);
     waitOutSettle(game, p);
     // Click box 6 (value 6).
-    const glm::dvec4 box = shown.rating->boxes[5];
+    const glm::dvec4 box = shown.question->boxes[5];
     const glm::dvec2 move = glm::dvec2(box.x + box.z / 2, box.y + box.w / 2) - game.cursor();
     shown = game.step({move.x, move.y, 0, 0});
-    EXPECT_EQ(shown.rating->highlighted, 5);
+    EXPECT_EQ(shown.question->highlighted, 5);
     game.step({0, 0, kButtonLeft, 0});
     std::vector<int> values;
     std::vector<std::string> how;

@@ -81,13 +81,13 @@ TEST(Hud, RatingScreenDrawsTheBoxesWhereTheGamePutThem) {
     renderer::HudContent content;
     content.backdrop = true;
     content.reticle = false;
-    renderer::HudRating rating;
-    rating.statement = "The animation was smooth";
+    renderer::HudQuestion rating;
+    rating.prompt = "The animation was smooth";
     for (int i = 0; i < 7; ++i) rating.boxes.emplace_back(40.0f + i * 36.0f, 100.0f, 24.0f, 24.0f);
     rating.highlighted = 2;
     rating.minLabel = "strongly disagree";
     rating.maxLabel = "strongly agree";
-    content.rating = rating;
+    content.question = rating;
     hud.draw(content, source.frame->gbuffer);
     const auto after = renderer::readBack(source.frame->gbuffer);
     auto blueish = [&](int x, int y) {

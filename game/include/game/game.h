@@ -19,6 +19,7 @@
 #include "condition/schedule.h"
 #include "game/results.h"
 #include "session/session_store.h"
+#include "protocol/questions.h"
 #include "protocol/study_protocol.h"
 #include "scene/scene.h"
 
@@ -30,12 +31,18 @@ inline constexpr std::uint32_t kKeyEnter = 1u;
 // Digits 1..9 answer a rating screen: bit kKeyDigit1 << (digit - 1).
 inline constexpr std::uint32_t kKeyDigit1 = 1u << 1;
 inline constexpr std::uint32_t digitKey(int digit) { return kKeyDigit1 << (digit - 1); }
+// In FrameInput::text: the Backspace key, which takes back the last character typed.
+inline constexpr char kTextBackspace = '\b';
 
 struct FrameInput {
     double mouseDx = 0.0;  // mouse counts since the previous frame; +x right
     double mouseDy = 0.0;  // +y down
     std::uint32_t buttons = 0;
     std::uint32_t keys = 0;
+    // What was typed since the previous frame, UTF-8, in order, each Backspace as
+    // kTextBackspace: the answer to a text question (the window's text input; "" otherwise).
+    // Braced, so that the many {dx, dy, buttons, keys} initialisers need not name it.
+    std::string text{};
 };
 
 // The session's display, in pixels. Its aspect shapes the view, and the click game's cursor
@@ -47,15 +54,22 @@ struct DisplaySize {
 
 enum class PointerKind : std::uint8_t { None, Reticle, Cursor };
 
-// A rating screen (click game, after each match): one statement answered on a scale.
-struct RatingPrompt {
-    std::string statement;
-    int index = 0, count = 0;  // statement `index` of `count`
+// A question screen (after a match or a block, protocol/questions.h): one question, answered
+// by a digit key or a click on its box (Likert, choice), or typed and ended with Enter (text).
+struct QuestionPrompt {
+    protocol::QuestionKind kind = protocol::QuestionKind::Likert;
+    std::string prompt;
+    int index = 0, count = 0;  // question `index` of `count`
+    // Likert: the scale, and the labels under its two ends.
     int min = 1, max = 7;
     std::string minLabel = "strongly disagree", maxLabel = "strongly agree";
-    // One box per value from min to max, to click on: x, y, width, height in display pixels.
+    // What each box says: its value (Likert), its option (choice, numbered from 1).
+    std::vector<std::string> boxLabels;
+    // One box per answer to click on: x, y, width, height in display pixels. A text question
+    // has one, the field the answer is typed into.
     std::vector<glm::dvec4> boxes;
     int highlighted = -1;  // the box under the cursor, -1 for none
+    std::string typed;  // text: the answer so far
 };
 
 // What one displayed frame shows, for the renderer, the HUD and a player looking at it.
@@ -87,7 +101,7 @@ struct ShownFrame {
     bool promptsEnter = false;  // waiting for Enter: the supervisor's, or the participant's after reading
     // A screen of instructions that opens a phase (the protocol's text): read, then Enter.
     std::string instructions;
-    std::optional<RatingPrompt> rating;
+    std::optional<QuestionPrompt> question;
 };
 
 // What the frame on screen shows under its pointer, worked out from the world model and the

@@ -43,6 +43,27 @@ struct RatingResult {
     int scaleMin = 1, scaleMax = 7;
 };
 
+// One answer to a question after a block (a click match, a block of the shooter's test): a row
+// of answers.csv. Every kind of question, every game.
+struct AnswerResult {
+    std::string block;  // what the answer is about: the click round's name, the shooter's "test"
+    bool scoredPhase = false;  // the block is in the part the study analyses
+    int blockIndex = -1;  // click: the match index; shooter: the test block, 0-based
+    std::string mode;  // the block's condition; "" where its trials mixed conditions
+    int questionIndex = 0;  // 0-based, in the protocol's order
+    std::string questionId;  // the protocol's id ("" in sessions of protocols that had none)
+    std::string kind;  // "likert", "choice" or "text"
+    std::string prompt;
+    // Likert: the value; choice: the option's number, from 1; text: none.
+    std::optional<int> value;
+    // Choice: the option's text; text: what was typed; Likert: "".
+    std::string text;
+    std::string answeredWith;  // "key", "mouse" or "typed"
+    int scaleMin = 1, scaleMax = 7;  // Likert: the scale offered; choice: 1 and the option count
+    double time = 0.0;  // display time of the answer, s
+    double answerS = kNotApplicable;  // from the question's appearance to the answer, s
+};
+
 // One click-game match: a row of matches.csv (its ratings also go to ratings.csv).
 struct MatchResult {
     std::string round;
@@ -67,6 +88,7 @@ struct SessionResults {
     HitMeasure measure;  // the same for every session of a game
     std::vector<ShotResult> shots;
     std::vector<MatchResult> matches;  // empty for games without matches
+    std::vector<AnswerResult> answers;  // in the order given; a match's ratings are among them
 };
 
 }  // namespace warplab::game

@@ -36,7 +36,7 @@ Percept Eye::see(const game::ShownFrame& shown) {
     p.phaseText = shown.phaseText;
     p.banner = shown.banner;
     p.promptsEnter = shown.promptsEnter;
-    p.rating = shown.rating;
+    p.question = shown.question;
     if (shown.blank) {
         haveImage_ = false;
         return p;

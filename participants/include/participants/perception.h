@@ -73,7 +73,7 @@ struct Percept {
     std::string phaseText;
     std::string banner;  // "HIT", "MISS", "TIMEOUT" or ""
     bool promptsEnter = false;  // "Press Enter to begin"
-    std::optional<game::RatingPrompt> rating;
+    std::optional<game::QuestionPrompt> question;
 };
 
 // How far the scene moved on screen from the frame `before` to the frame `now`, display pixels,

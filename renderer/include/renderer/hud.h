@@ -18,8 +18,8 @@ namespace warplab::renderer {
 
 // A rating screen: the statement, and one box per answer to click, in the frame's pixels
 // (x right, y down; x, y, width, height), numbered from firstValue.
-struct HudRating {
-    std::string statement;
+struct HudQuestion {
+    std::string prompt;
     std::vector<glm::vec4> boxes;
     int highlighted = -1;  // the box under the cursor
     int firstValue = 1;
@@ -30,7 +30,7 @@ struct HudContent {
     bool backdrop = false;  // a plain dark screen under everything else (no scene shown)
     bool reticle = true;
     std::optional<glm::vec2> cursor;  // the click game's cursor, frame pixels, x right, y down
-    std::optional<HudRating> rating;
+    std::optional<HudQuestion> question;
     std::string banner;  // e.g. "HIT"; empty = none
     bool bannerGood = false;  // green when true, red when false
     std::string status;  // small text at the top, e.g. "Training: level 4"; empty = none
