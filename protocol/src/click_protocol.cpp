@@ -163,6 +163,18 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     detail::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kClickInstructionsSince)
         for (ClickRound& round : p.rounds) round.instructions.clear();
+    if (p.formatVersion < kClickQuestionsSince) {
+        // The ratings section is these files' questions: its statements on its one scale.
+        p.questions.clear();
+        if (p.ratingsEnabled)
+            for (const std::string& statement : p.ratingStatements) {
+                Question q;
+                q.prompt = statement;
+                q.min = p.ratingMin;
+                q.max = p.ratingMax;
+                p.questions.push_back(q);
+            }
+    }
 
     // Relations between fields, checked once every field holds its final value.
     if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))

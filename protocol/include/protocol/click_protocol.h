@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "condition/condition.h"
+#include "protocol/questions.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::protocol {
@@ -19,6 +20,9 @@ namespace warplab::protocol {
 inline constexpr int kClickFormatVersion = 3;
 inline constexpr int kClickConditionsSince = 2;
 inline constexpr int kClickInstructionsSince = 3;
+// From 4 the questions after each match are matches.questions (any kind); older files rate the
+// ratings section's statements, and their sessions log those answers as "rating" events.
+inline constexpr int kClickQuestionsSince = 4;
 
 // What a round's instructions say unless the protocol says otherwise: the task in plain words.
 inline constexpr const char* kClickTaskInstructions =
@@ -69,7 +73,11 @@ struct ClickProtocol {
         {"scored", true, 2,
          std::string(kClickTaskInstructions) + " From now on every match counts. After each one, say how it felt."}};
     bool shuffle = true;  // random mode order per round, from the session seed
-    // ratings.*
+    // What is asked after every match, in order; empty for nothing. Files older than format 4
+    // give it as the ratings section below (their statements as Likert questions on one scale,
+    // with no ids); the game asks this list whatever the version.
+    std::vector<Question> questions = yangRatingQuestions();
+    // ratings.* (format 3 and older; the parser turns them into `questions`)
     bool ratingsEnabled = true;
     std::vector<std::string> ratingStatements{"I enjoyed playing this game", "This game was difficult to play",
                                               "This game was responsive to my input", "The animation was smooth"};

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "condition/condition.h"
+#include "protocol/questions.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::protocol {
@@ -19,6 +20,7 @@ namespace warplab::protocol {
 inline constexpr int kShooterFormatVersion = 4;
 inline constexpr int kShooterConditionsSince = 3;
 inline constexpr int kShooterInstructionsSince = 4;
+inline constexpr int kShooterQuestionsSince = 5;  // test.questions
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;
@@ -68,6 +70,9 @@ struct ShooterProtocol {
     condition::ConditionTable conditionTable;
     std::vector<std::string> conditions{"conv15", "conv120", "warp15to120"};
     int targetsPerCondition = 225;
+    // Asked after each block of the test: after each condition's trials where conditions are
+    // not interleaved, else once after the whole test. None by default (the thesis asked none).
+    std::vector<Question> questions;
     bool interleaveConditions = true;  // random order drawn from the session seed
     double timeoutS = 3;
     double pauseS = 1;
