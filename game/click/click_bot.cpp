@@ -32,7 +32,8 @@ ClickBot::ClickBot(std::uint64_t seed, const protocol::ClickProtocol& protocol, 
       protocol_(protocol),
       display_(display),
       settings_(settings),
-      cursor_(display.width * 0.5, display.height * 0.5) {}
+      cursor_(display.width * 0.5, display.height * 0.5),
+      reader_(settings.answerAfterS, protocol.cursorPixelsPerCount) {}
 
 void ClickBot::moveTowards(FrameInput& input, glm::dvec2 goal, glm::dvec2 rate, double dt) {
     const double step = std::min(1.0, settings_.gainPerS * dt);
@@ -46,18 +47,16 @@ void ClickBot::moveTowards(FrameInput& input, glm::dvec2 goal, glm::dvec2 rate, 
     cursor_.y = std::clamp(cursor_.y + input.mouseDy * perCount, 0.0, static_cast<double>(display_.height));
 }
 
-FrameInput ClickBot::rate(const ShownFrame& shown) {
+FrameInput ClickBot::rate(const ShownFrame& shown, bool waited) {
     FrameInput input;
     const QuestionPrompt& r = *shown.question;
-    if (r.index != ratingStatement_) {
-        ratingStatement_ = r.index;
-        ratingSince_ = shown.time;
-    }
+    if (r.kind != protocol::QuestionKind::Likert)
+        return waited ? reader_.answer(shown, BotQuestionReader::choiceFor(r)) : input;
     const int value = botRating(protocol_.conditionTable.at(lastMode_), protocol_.refreshHz, r.index, r.min, r.max);
     const glm::dvec4 box = r.boxes[static_cast<std::size_t>(value - r.min)];
     const glm::dvec2 centre(box.x + box.z * 0.5, box.y + box.w * 0.5);
-    const bool waited = shown.time - ratingSince_ >= settings_.answerAfterS;
-    if (r.index % 2 == 0 || value > 9) {
+    // Even statements by key, odd ones by mouse; a value no digit key gives always by mouse.
+    if (r.index % 2 == 0 && value >= 1 && value <= 9) {
         if (waited) input.keys = digitKey(value);
         return input;
     }
@@ -138,8 +137,9 @@ FrameInput ClickBot::next(const ShownFrame& shown) {
     // Screens show the cursor live, so there the bot sees exactly where it is; in a match it
     // keeps track itself, since the frame shows the cursor as late as the mode shows it.
     if (shown.blank) cursor_ = shown.cursor;
+    const bool waited = reader_.ready(shown);
     if (shown.question) {
-        input = rate(shown);
+        input = rate(shown, waited);
         seen_.clear();
         hasTarget_ = false;
     } else if (!shown.blank) {

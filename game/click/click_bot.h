@@ -13,6 +13,7 @@
 
 #include "condition/condition.h"
 #include "game/game.h"
+#include "question_bot.h"
 #include "game/random.h"
 #include "protocol/click_protocol.h"
 
@@ -45,7 +46,7 @@ private:
         std::map<std::uint32_t, glm::dvec3> greens;  // id -> screen x, y and radius in pixels
     };
     FrameInput play(const ShownFrame& shown);
-    FrameInput rate(const ShownFrame& shown);
+    FrameInput rate(const ShownFrame& shown, bool waited);
     void moveTowards(FrameInput& input, glm::dvec2 goal, glm::dvec2 rate, double dt);
 
     Random random_;
@@ -62,8 +63,7 @@ private:
     double promptSince_ = -1.0;
     std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
     std::string lastMode_;
-    int ratingStatement_ = -1;
-    double ratingSince_ = 0.0;
+    BotQuestionReader reader_;
 };
 
 }  // namespace warplab::game

@@ -73,7 +73,9 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
       seed_(seed),
       display_(display),
       physics_(physicsFrom(protocol)),
-      clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads) {
+      clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads),
+      questions_(protocol.questions, protocol.refreshHz, display,
+                 /*legacyLayout=*/protocol.formatVersion < protocol::kClickQuestionsSince) {
     using L = scene::HangarLayout;
     camera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     camera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -110,7 +112,7 @@ std::string ClickGame::phase() const {
         case Phase::Ready: return "ready";
         case Phase::Instructions: return "instructions";
         case Phase::Match: return "match";
-        case Phase::Rating: return "rating";
+        case Phase::Questions: return "rating";
         case Phase::Done: return "done";
     }
     return "?";
@@ -176,12 +178,15 @@ void ClickGame::endMatch() {
     commitPoint_ = true;
     world_.reset();
     schedule_.reset();
-    statement_ = 0;
-    if (protocol_.ratingsEnabled) {
-        phase_ = Phase::Rating;
-        statementShown_ = frame_ + 1;
+    if (!questions_.empty()) {
+        phase_ = Phase::Questions;
+        questions_.open(frame_);
         return;
     }
+    nextMatch();
+}
+
+void ClickGame::nextMatch() {
     if (++matchIndex_ < matches_.size()) return openMatch();
     phase_ = Phase::Done;
 }
@@ -192,36 +197,21 @@ std::string ClickGame::matchCounter(const Match& m) const {
         (scored ? "" : " (practice)");
 }
 
-QuestionPrompt ClickGame::questionPrompt() const {
-    QuestionPrompt r;
-    r.prompt = protocol_.ratingStatements[static_cast<std::size_t>(statement_)];
-    r.index = statement_;
-    r.count = static_cast<int>(protocol_.ratingStatements.size());
-    r.min = protocol_.ratingMin;
-    r.max = protocol_.ratingMax;
-    const int n = r.max - r.min + 1;
-    const double size = display_.height / 10.0, gap = size / 2.0;
-    const double left = display_.width * 0.5 - (n * size + (n - 1) * gap) * 0.5;
-    for (int i = 0; i < n; ++i) {
-        const glm::dvec4 box(left + i * (size + gap), display_.height * 0.5, size, size);
-        r.boxes.push_back(box);
-        if (cursor_.x >= box.x && cursor_.x < box.x + box.z && cursor_.y >= box.y && cursor_.y < box.y + box.w)
-            r.highlighted = i;
+void ClickGame::answer(const Answer& a) {
+    if (protocol_.formatVersion < protocol::kClickQuestionsSince) {
+        // Files older than format 4 rate statements, and their sessions log "rating" events
+        // with these keys: kept, so that they replay.
+        emit(matchEvent("rating", {{"statement_index", a.questionIndex},
+                                   {"statement", questions_.questions()[static_cast<std::size_t>(a.questionIndex)].prompt},
+                                   {"value", *a.value},
+                                   {"answered_with", a.answeredWith}}));
+    } else {
+        emit(matchEvent("answer", questions_.answerDetail(a)));
     }
-    return r;
-}
-
-void ClickGame::answerRating(int value, const char* how) {
-    emit(matchEvent("rating",
-                    {{"statement_index", statement_},
-                     {"statement", protocol_.ratingStatements[static_cast<std::size_t>(statement_)]},
-                     {"value", value},
-                     {"answered_with", how}}));
     commitPoint_ = true;
-    statementShown_ = frame_ + 1;
-    if (++statement_ < static_cast<int>(protocol_.ratingStatements.size())) return;
-    if (++matchIndex_ < matches_.size()) return openMatch();
-    phase_ = Phase::Done;
+    if (!questions_.answeredAll()) return;
+    nextMatch();
+    if (phase_ != Phase::Done) return;
     session::EventRecord done;
     done.type = "phase";
     done.phase = "done";
@@ -285,10 +275,13 @@ ShownFrame ClickGame::screenFrame() {
             shown.promptsEnter = true;
             shown.pointer = PointerKind::None;
             break;
-        case Phase::Rating: {
+        case Phase::Questions: {
             const Match& m = matches_[matchIndex_];
-            shown.question = questionPrompt();
-            shown.phaseText = matchCounter(m) + ": rate the match you just played";
+            shown.question = questions_.prompt(cursor_);
+            const bool allLikert = std::all_of(questions_.questions().begin(), questions_.questions().end(),
+                                               [](const auto& q) { return q.kind == protocol::QuestionKind::Likert; });
+            shown.phaseText = matchCounter(m) + (allLikert ? ": rate the match you just played"
+                                                           : ": about the match you just played");
             break;
         }
         case Phase::Match:
@@ -411,18 +404,9 @@ ShownFrame ClickGame::step(const FrameInput& input) {
             return shown;
         }
         case Phase::Match: return matchFrame(click);
-        case Phase::Rating: {
+        case Phase::Questions: {
             ShownFrame shown = screenFrame();
-            // A press during the settle time is dropped, not kept for later: what answers is a
-            // press made after it, so a double click or a double tap answers once.
-            if (static_cast<double>(frame_ - statementShown_) < kAnswerSettleS * protocol_.refreshHz) return shown;
-            int keyed = 0;
-            for (int v = std::max(1, protocol_.ratingMin); v <= std::min(9, protocol_.ratingMax); ++v)
-                if (pressed & digitKey(v)) keyed = v;
-            if (keyed != 0)
-                answerRating(keyed, "key");
-            else if (click && shown.question->highlighted >= 0)
-                answerRating(protocol_.ratingMin + shown.question->highlighted, "mouse");
+            if (const auto a = questions_.step(frame_, *shown.question, pressed, click, input.text)) answer(*a);
             return shown;
         }
         case Phase::Done: return screenFrame();

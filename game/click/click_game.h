@@ -2,8 +2,8 @@
 // state machine on the display clock. Red and green spheres fall and bounce in a box seen by
 // a fixed camera; the player moves a cursor and clicks: a clicked sphere vanishes and counts
 // as a green or a red hit, a click on empty space as a miss. Matches of a fixed length,
-// one per mode and round in a seeded order, each followed by a rating screen of four
-// statements. The cursor is part of the displayed frame, so it shares the mode's frame rate
+// one per mode and round in a seeded order, each followed by the protocol's questions (by
+// default Yang et al.'s four statements, rated 1-7). The cursor is part of the displayed frame, so it shares the mode's frame rate
 // and lag with the spheres. No GL; a session is a pure function of protocol, seed and input.
 #pragma once
 
@@ -17,6 +17,7 @@
 #include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
+#include "questionnaire.h"
 #include "physics/falling_spheres.h"
 #include "protocol/click_protocol.h"
 
@@ -31,13 +32,6 @@ struct ClickHit {
 // The first sphere along a ray (spheres may hide each other).
 ClickHit firstSphereAlong(const glm::dvec3& eye, const glm::dvec3& dir, const std::vector<physics::Sphere>& spheres,
                           double radius);
-
-// How long a statement is on screen before a press answers it. The games take presses, not
-// held buttons, but a double click is two presses: its second one, at most a double-click
-// interval (100-500 ms, the desktop defaults) after the first, lands on the statement the first
-// press brought up. Reading a statement takes longer than that, so a press within this time is
-// the previous answer's gesture, and is dropped rather than taken for an answer.
-inline constexpr double kAnswerSettleS = 0.5;
 
 class ClickGame final : public FreePlayGame {
 public:
@@ -69,22 +63,23 @@ public:
     static std::uint32_t objectId(const physics::Sphere& sphere);
 
 private:
-    enum class Phase : std::uint8_t { Ready, Instructions, Match, Rating, Done };
+    enum class Phase : std::uint8_t { Ready, Instructions, Match, Questions, Done };
 
     // The match at matchIndex_, or first its round's instructions where it opens a round.
     void openMatch();
     void beginMatch();
     void endMatch();
-    void answerRating(int value, const char* how);
+    void answer(const Answer& answer);
+    // After the last question (or the match, without questions): the next match, or the end.
+    void nextMatch();
     ShownFrame matchFrame(bool click);
-    ShownFrame screenFrame();  // ready, rating and done screens
+    ShownFrame screenFrame();  // ready, instructions, question and done screens
     std::vector<physics::Sphere> depictedSpheres(const condition::ScheduledFrame& f) const;
     void emit(session::EventRecord event);
     // An event of the match in progress: its round, index and mode, and the detail with the
     // round's name and whether it is scored (unless the detail says what "scored" means).
     session::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
-    QuestionPrompt questionPrompt() const;
     // "Match 2 of 7 (practice)": where the participant is in the round being played.
     std::string matchCounter(const Match& m) const;
 
@@ -109,9 +104,8 @@ private:
     FrameHistory<std::vector<physics::Sphere>> worldHistory_;  // the world at each frame of the match
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;
-    int statement_ = 0;
+    Questionnaire questions_;
     std::int64_t instructionsShown_ = 0;  // the first frame of the instructions screen
-    std::int64_t statementShown_ = 0;  // the first frame that shows the statement being asked
 
     bool freePlay_ = false;
 

@@ -8,6 +8,7 @@
 
 #include "click/click_bot.h"
 #include "event_detail.h"
+#include "questionnaire.h"
 #include "click/click_game.h"
 #include "protocol/click_protocol.h"
 #include "protocol/study_protocol.h"
@@ -92,18 +93,21 @@ public:
                 m.durationS = d.number("duration_s");
                 matchAt[e.trial] = out.matches.size();
                 out.matches.push_back(std::move(m));
-            } else if (e.type == "rating") {
+            } else if (auto a = answerResult(e, protocol_.questions)) {
+                a->scoredPhase = roundScored(e.phase);
+                // A match's Likert answers are its ratings too (matches.csv, ratings.csv).
                 const auto at = matchAt.find(e.trial);
-                if (at == matchAt.end()) continue;  // cannot happen in a game's own log: a rating follows its match
-                RatingResult r;
-                r.statementIndex = static_cast<int>(d.integer("statement_index", 0));
-                r.statement = d.text("statement");
-                r.value = static_cast<int>(d.integer("value", 0));
-                r.answeredWith = d.text("answered_with");
-                // The stored protocol's scale: the one the participant answered on.
-                r.scaleMin = protocol_.ratingMin;
-                r.scaleMax = protocol_.ratingMax;
-                out.matches[at->second].ratings.push_back(std::move(r));
+                if (a->kind == "likert" && a->value && at != matchAt.end()) {
+                    RatingResult r;
+                    r.statementIndex = a->questionIndex;
+                    r.statement = a->prompt;
+                    r.value = *a->value;
+                    r.answeredWith = a->answeredWith;
+                    r.scaleMin = a->scaleMin;  // the stored protocol's: the one the participant answered on
+                    r.scaleMax = a->scaleMax;
+                    out.matches[at->second].ratings.push_back(std::move(r));
+                }
+                out.answers.push_back(std::move(*a));
             }
         }
         return out;

@@ -1,4 +1,5 @@
 #include "shooter/shooter_bot.h"
+#include "shooter/shooter_game.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +18,7 @@ double wrapAngle(double a) {
 }  // namespace
 
 ShooterBot::ShooterBot(std::uint64_t seed, const protocol::ShooterProtocol& protocol, ShooterBotSettings settings)
-    : random_(seed ^ 0xB07B07B07ULL), protocol_(protocol), settings_(settings) {}
+    : random_(seed ^ 0xB07B07B07ULL), protocol_(protocol), settings_(settings), questions_(settings.answerAfterS, kQuestionCursorPixelsPerCount) {}
 
 FrameInput ShooterBot::next(const ShownFrame& shown) {
     FrameInput input;
@@ -38,6 +39,19 @@ FrameInput ShooterBot::next(const ShownFrame& shown) {
     }
     while (history_.size() > 1 && history_[1].time <= shown.time - settings_.reactionS - 0.1) history_.pop_front();
     if (!seen_.front().target) history_.clear();
+
+    // Questions after a block: answered from the keyboard (the cursor only where no key gives
+    // the answer), a Likert scale at its middle.
+    if (questions_.ready(shown)) {
+        const QuestionPrompt& q = *shown.question;
+        const int value = q.kind == protocol::QuestionKind::Likert ? q.min + (q.max - q.min) / 2
+                                                                   : BotQuestionReader::choiceFor(q);
+        input = questions_.answer(shown, value);
+        if (buttonDown_) input.buttons = 0;  // one-frame presses
+        buttonDown_ = input.buttons != 0;
+        return input;
+    }
+    if (shown.question) return input;  // still reading it
 
     // The supervisor's Enter.
     if (shown.promptsEnter) {

@@ -11,6 +11,7 @@
 
 #include "game/game.h"
 #include "game/random.h"
+#include "question_bot.h"
 #include "protocol/shooter_protocol.h"
 
 namespace warplab::game {
@@ -22,6 +23,7 @@ struct ShooterBotSettings {
     double clickWithin = 0.7;  // clicks when the predicted error is below this share of the target's angular radius
     double minAimS = 0.3;  // never clicks sooner than this after the target appears
     double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
+    double answerAfterS = 0.6;  // a question is answered this long after it appears
 };
 
 class ShooterBot final : public Player {
@@ -46,6 +48,7 @@ private:
     bool buttonDown_ = false;
     double promptSince_ = -1.0;
     std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
+    BotQuestionReader questions_;
 };
 
 }  // namespace warplab::game

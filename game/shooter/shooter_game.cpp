@@ -46,8 +46,13 @@ const char* outcomeName(Outcome outcome) {
     return "?";
 }
 
-ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect)
-    : protocol_(protocol), seed_(seed), clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads) {
+ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, const DisplaySize& display)
+    : protocol_(protocol),
+      seed_(seed),
+      clickGate_(protocol.clickTiming == protocol::ClickTiming::InputReads),
+      questions_(protocol.questions, protocol.refreshHz, display, /*legacyLayout=*/false),
+      display_(display) {
+    const double aspect = display.aspect();
     using L = scene::HangarLayout;
     restingCamera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
@@ -359,11 +364,67 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
     trial_.reset();
     commitPoint_ = true;
     pauseUntil_ = frame_ + 1 + std::llround(protocol_.pauseS * protocol_.refreshHz);
+    if (phase_ != Phase::Test || questions_.empty()) return;
+    // The trial just ended is testQueue_[testNext_ - 1]; a block ends with the test, or where
+    // blocked conditions change.
+    const bool lastOfBlock = testNext_ >= testQueue_.size() ||
+        (!protocol_.interleaveConditions && testQueue_[testNext_] != testQueue_[testNext_ - 1]);
+    if (!lastOfBlock) return;
+    questionsDue_ = true;
+    blockMode_ = protocol_.interleaveConditions ? "" : testQueue_[testNext_ - 1];
+}
+
+ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
+    cameraHistory_.record(frame_, camera_);  // the view stays where the block left it
+    const bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
+    const std::uint32_t pressed = input.keys & ~previousKeys_;
+    previousButtons_ = input.buttons;
+    previousKeys_ = input.keys;
+    const glm::dvec2 moved = questionCursor_ + glm::dvec2(input.mouseDx, input.mouseDy) * kQuestionCursorPixelsPerCount;
+    questionCursor_ = glm::clamp(moved, glm::dvec2(0.0), glm::dvec2(display_.width, display_.height));
+    ShownFrame shown;
+    shown.frame = frame_;
+    shown.time = now();
+    shown.camera = camera_;
+    shown.blank = true;
+    shown.pointer = PointerKind::Cursor;
+    shown.cursor = questionCursor_;
+    shown.question = questions_.prompt(questionCursor_);
+    const int blocks = protocol_.interleaveConditions ? 1 : static_cast<int>(protocol_.conditions.size());
+    shown.phaseText = "Test: block " + std::to_string(block_ + 1) + " of " + std::to_string(blocks) +
+        " done. About the block you just played";
+    if (const auto a = questions_.step(frame_, *shown.question, pressed, click, input.text)) {
+        session::EventRecord event;
+        event.type = "answer";
+        event.trial = block_;
+        event.mode = blockMode_;
+        event.eventTime = now();
+        event.detailJson = questions_.answerDetail(*a).dump();
+        emit(event);
+        commitPoint_ = true;
+        if (questions_.answeredAll()) {
+            asking_ = false;
+            ++block_;
+            pauseUntil_ = frame_ + 1;  // the next frame goes on as after a trial's pause
+        }
+    }
+    return shown;
 }
 
 ShownFrame ShooterGame::step(const FrameInput& input) {
     ++frame_;
     commitPoint_ = false;
+    if (questionsDue_ && frame_ >= pauseUntil_) {
+        // The block's last pause is over: its questions, from this frame.
+        questionsDue_ = false;
+        asking_ = true;
+        pauseUntil_ = -1;
+        frozenFrame_.reset();
+        banner_.clear();
+        questionCursor_ = {display_.width * 0.5, display_.height * 0.5};
+        questions_.open(frame_ - 1);
+    }
+    if (asking_) return questionFrame(input);
     const double refresh = protocol_.refreshHz;
     const double sensitivity = protocol_.mouseRadiansPerCount;
     camera_.yaw = static_cast<float>(camera_.yaw + input.mouseDx * sensitivity);

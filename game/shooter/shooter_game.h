@@ -15,6 +15,7 @@
 #include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
+#include "questionnaire.h"
 #include "condition/schedule.h"
 #include "physics/bouncing_target.h"
 #include "session/session_store.h"
@@ -26,13 +27,18 @@ namespace warplab::game {
 enum class Phase : std::uint8_t { Acclimation, Training, AwaitingSupervisor, Test, Done };
 const char* phaseName(Phase phase);
 
+// On the question screens after a block the mouse moves a cursor instead of the view: this
+// many display pixels per mouse count.
+inline constexpr double kQuestionCursorPixelsPerCount = 1.0;
+
 enum class Outcome : std::uint8_t { None, Hit, Miss, Timeout };
 const char* outcomeName(Outcome outcome);
 
 class ShooterGame final : public FreePlayGame {
 public:
-    // aspect = width / height of the display; it fits the target's plane to the view.
-    ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, double aspect);
+    // The display's aspect fits the target's plane to the view; its pixels lay out the question
+    // screens.
+    ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_t seed, const DisplaySize& display);
 
     ShownFrame step(const FrameInput& input) override;
     bool finished() const override { return phase_ == Phase::Done; }
@@ -78,6 +84,8 @@ private:
     void startTrial(const std::string& mode, int level);
     void scheduleNextTrial();
     void finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg);
+    // A frame of the questions after a block of the test: the mouse moves a cursor, not the view.
+    ShownFrame questionFrame(const FrameInput& input);
     void finishTrainingLevel();
     bool timedOut(const Trial& trial) const;
     std::optional<glm::dvec3> targetAt(double time) const;  // the world; nullopt when no target
@@ -123,6 +131,14 @@ private:
     // Test.
     std::vector<std::string> testQueue_;
     std::size_t testNext_ = 0;
+    // The protocol's questions after each block of the test (a condition's trials, or the whole
+    // test where conditions are interleaved): due once the block's last pause ends.
+    Questionnaire questions_;
+    bool questionsDue_ = false, asking_ = false;
+    int block_ = 0;  // blocks of the test whose questions are answered
+    std::string blockMode_;  // the condition of the block being asked about; "" for a mixed one
+    glm::dvec2 questionCursor_{0.0};
+    DisplaySize display_;
 
     bool freePlay_ = false;
     std::string freeMode_;

@@ -3,6 +3,7 @@
 #include <set>
 
 #include "event_detail.h"
+#include "questionnaire.h"
 #include "shooter/shooter_bot.h"
 #include "shooter/shooter_game.h"
 #include "protocol/shooter_protocol.h"
@@ -18,11 +19,11 @@ public:
     std::string protocolJson() const override { return protocol::toJson(protocol_); }
     double refreshHz() const override { return protocol_.refreshHz; }
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
-        return std::make_unique<ShooterGame>(protocol_, seed, display.aspect());
+        return std::make_unique<ShooterGame>(protocol_, seed, display);
     }
     std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
                                               int difficulty) const override {
-        auto game = std::make_unique<ShooterGame>(protocol_, seed, display.aspect());
+        auto game = std::make_unique<ShooterGame>(protocol_, seed, display);
         game->switchTo(mode, difficulty);
         return game;
     }
@@ -55,6 +56,11 @@ public:
         out.canTimeOut = true;
         out.measure = {"hits", "shots"};  // a timeout is a shot that missed
         for (const auto& e : events) {
+            if (auto a = answerResult(e, protocol_.questions)) {
+                a->scoredPhase = true;  // asked after blocks of the test
+                out.answers.push_back(std::move(*a));
+                continue;
+            }
             if (e.type != "shot" && e.type != "timeout") continue;
             const EventDetail d(e.detailJson);
             ShotResult r;

@@ -390,14 +390,29 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
         statement_ = r.index;
         statementSince_ = percept.time;
     }
-    if (percept.time - statementSince_ < params_.answerAfterS) return input;
-    const int value = ratingFor(r.prompt, r.min, r.max);
+    if (percept.time - statementSince_ < params_.answerAfterS) {
+        typed_ = false;
+        return input;
+    }
+    // What it has no feeling about: a choice's options in turn, a few words typed and sent.
+    if (r.kind == protocol::QuestionKind::Text) {
+        if (!typed_)
+            input.text = "no comment";
+        else
+            input.keys = game::kKeyEnter;
+        typed_ = true;
+        return input;
+    }
+    const int value = r.kind == protocol::QuestionKind::Choice
+        ? 1 + r.index % std::max(1, static_cast<int>(r.boxes.size()))
+        : ratingFor(r.prompt, r.min, r.max);
     if (value >= 1 && value <= 9) {
         input.keys = game::digitKey(value);
         return input;
     }
     // No digit key for it: click its box (the cursor is live on the rating screen).
-    const auto box = r.boxes.at(static_cast<std::size_t>(value - r.min));
+    const auto box =
+        r.boxes.at(static_cast<std::size_t>(r.kind == protocol::QuestionKind::Choice ? value - 1 : value - r.min));
     const glm::dvec2 centre(box.x + box.z * 0.5, box.y + box.w * 0.5);
     calibration_ = percept.pointerAt - hand_;  // the cursor is live here: seen where it is
     move(input, params_.correctionPerS * (centre - percept.pointerAt), 1.0 / knowledge_.refreshHz, true);

@@ -510,7 +510,7 @@ TEST(ClickGame, APressHeldFromTheMatchOrPastTheSettleTimeAnswersNothing) {
 // event says when the participant went on.
 TEST(ClickGame, EachRoundOpensWithItsInstructionsUntilEnter) {
     auto p = oneShortMatch();
-    p.ratingsEnabled = false;
+    p.questions.clear();
     p.rounds = {{"a", false, 1, "Read A"}, {"b", true, 1, "Read B"}};
     ClickGame game(p, 1, kDisplay);
     ShownFrame shown = game.step({0, 0, 0, kKeyEnter});  // the supervisor's ready screen

@@ -29,7 +29,7 @@ struct Played {
 };
 
 Played playWithBot(const protocol::ShooterProtocol& p, std::uint64_t seed, std::uint64_t botSeed) {
-    ShooterGame game(p, seed, 16.0 / 9.0);
+    ShooterGame game(p, seed, DisplaySize{});
     ShooterBot bot(botSeed, p);
     Played out;
     FrameInput input;
@@ -95,7 +95,7 @@ TEST(ShooterGame, SameSeedAndInputSameEventsBitForBit) {
     const auto p = quick();
     const Played a = playWithBot(p, 11, 2);
     // Replaying the recorded input into a fresh game gives the same events.
-    ShooterGame game(p, 11, 16.0 / 9.0);
+    ShooterGame game(p, 11, DisplaySize{});
     std::vector<session::EventRecord> replayed;
     for (const auto& in : a.inputs) {
         game.step(in);
@@ -110,7 +110,7 @@ TEST(ShooterGame, SameSeedAndInputSameEventsBitForBit) {
 // The pause after a shot shows the scored outcome: HIT in green, MISS and TIMEOUT in red.
 TEST(ShooterGame, BannerNamesTheScoredOutcomeInItsColour) {
     const auto p = quick();
-    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterGame game(p, 3, DisplaySize{});
     ShooterBot bot(5, p);
     FrameInput input;
     std::map<std::string, int> seen;
@@ -131,7 +131,7 @@ TEST(ShooterGame, BannerNamesTheScoredOutcomeInItsColour) {
 // of its level (training), numbered as the events number the trials.
 TEST(ShooterGame, PhaseTextCountsTheTrialsOfThePhase) {
     const auto p = quick();
-    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterGame game(p, 3, DisplaySize{});
     ShooterBot bot(5, p);
     FrameInput input;
     std::vector<int> testTrials;
@@ -172,7 +172,7 @@ TEST(ShooterGame, EachPhaseOpensWithItsInstructionsUntilEnter) {
     p.acclimationInstructions = "Read A";
     p.trainingInstructions = "Read T";
     p.testInstructions = "Read X";
-    ShooterGame game(p, 3, 16.0 / 9.0);
+    ShooterGame game(p, 3, DisplaySize{});
     ShownFrame shown = game.step({});
     EXPECT_EQ(shown.instructions, "Read A");
     EXPECT_TRUE(shown.promptsEnter);
@@ -255,7 +255,7 @@ struct ModeRig {
         p.conditions = {mode};
         p.targetsPerCondition = 2;
         p.timeoutS = 2.5;
-        game = std::make_unique<ShooterGame>(p, 5, 16.0 / 9.0);
+        game = std::make_unique<ShooterGame>(p, 5, DisplaySize{});
         for (int i = 0; i < 100000 && game->currentPhase() != Phase::Test; ++i) last = game->step({});
         // Settle onto a fresh test trial.
         while (last.frozen || last.scene.objects.empty()) last = game->step({});
@@ -370,7 +370,7 @@ std::map<std::int64_t, int> timeoutLengths(bool legacy) {
     p.timeoutS = 3.0;
     p.pauseS = 0.0;  // trials 361 frames apart, so spawn frames meet every residue of k / 120
     p.targetsPerCondition = 100;
-    ShooterGame game(p, 9, 16.0 / 9.0);
+    ShooterGame game(p, 9, DisplaySize{});
     std::map<std::int64_t, int> lengths;  // frames from spawn to timeout -> count
     for (int i = 0; i < 2000000 && !game.finished(); ++i) {
         game.step({});
@@ -418,7 +418,7 @@ int unevaluatedTrainingShots(bool legacy, double timeLimitS) {
     p.scoring = protocol::Scoring::World;
     p.pauseS = 0.1;
     p.training.timeLimitS = timeLimitS;
-    ShooterGame game(p, 4, 16.0 / 9.0);
+    ShooterGame game(p, 4, DisplaySize{});
     PerfectShooter shooter{p, game};
     int sinceLevel = 0, hits = 0;
     FrameInput in;
@@ -458,7 +458,7 @@ TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
         p.training.timeLimitS = 0.001;
         p.conditions = {"conv15"};
         p.timeoutS = 2.0;
-        ShooterGame game(p, 3, 16.0 / 9.0);
+        ShooterGame game(p, 3, DisplaySize{});
         ShownFrame last;
         for (int i = 0; i < 100000 && game.currentPhase() != Phase::Test; ++i) last = game.step({});
         while (last.frozen || last.scene.objects.empty()) last = game.step({});

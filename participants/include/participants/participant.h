@@ -245,6 +245,7 @@ private:
     bool judged_ = true;
     int statement_ = -1;
     double statementSince_ = 0.0;
+    bool typed_ = false;  // a text answer has been typed and waits for Enter
 };
 
 }  // namespace warplab::participants
