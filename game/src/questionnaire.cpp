@@ -156,7 +156,7 @@ QuestionPrompt Questionnaire::prompt(glm::dvec2 cursor) const {
     return r;
 }
 
-std::optional<Answer> Questionnaire::step(std::int64_t frame, const QuestionPrompt& shown, std::uint32_t pressedKeys,
+std::optional<Answer> Questionnaire::step(std::int64_t frame, QuestionPrompt& shown, std::uint32_t pressedKeys,
                                           bool click, const std::string& typed) {
     // A press during the settle time is dropped, not kept for later: what answers is a press
     // made after it, so a double click or a double tap answers once.
@@ -189,6 +189,7 @@ std::optional<Answer> Questionnaire::step(std::int64_t frame, const QuestionProm
         }
         case QuestionKind::Text:
             typed_ = editedAnswer(typed_, typed, static_cast<std::size_t>(q.maxLength));
+            shown.typed = typed_;
             if (pressedKeys & kKeyEnter) {
                 a.text = typed_;
                 a.answeredWith = "typed";

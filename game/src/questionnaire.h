@@ -63,8 +63,9 @@ public:
     // The screen of the question up now, with the cursor at `cursor` (display pixels).
     QuestionPrompt prompt(glm::dvec2 cursor) const;
     // Frame `frame`'s input on the screen `shown` (prompt() of this frame): the answer it
-    // gives, if it gives one; the next question is shown from the next frame.
-    std::optional<Answer> step(std::int64_t frame, const QuestionPrompt& shown, std::uint32_t pressedKeys, bool click,
+    // gives, if it gives one; the next question is shown from the next frame. A text
+    // question's screen is updated to show what this frame typed.
+    std::optional<Answer> step(std::int64_t frame, QuestionPrompt& shown, std::uint32_t pressedKeys, bool click,
                                const std::string& typed);
     // An answer as an "answer" event's detail: question_index, question_id, kind, prompt, value
     // (Likert, choice), text (choice, text), answered_with, answer_s.
