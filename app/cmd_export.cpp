@@ -26,9 +26,9 @@ int runExport(const ParsedArgs& args) {
 Command exportCommand() {
     return {{"export",
              "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
-             "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches and\n"
-             "ratings, and a study plan's participants (docs/export.md). Read-only; damaged files are\n"
-             "reported and skipped.",
+             "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches,\n"
+             "ratings, answers to the questions after blocks, and a study plan's participants\n"
+             "(docs/export.md). Read-only; damaged files are reported and skipped.",
              "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",
              {
                  {"out", "DIR", "where the CSVs go (created when missing)", "export"},

@@ -198,6 +198,57 @@ const std::vector<Column<RatingRow>>& ratingColumns() {
     return columns;
 }
 
+struct AnswerRow {
+    Origin from;
+    const game::AnswerResult& answer;
+};
+
+const std::vector<Column<AnswerRow>>& answerColumns() {
+    using F = CsvFile;
+    using R = AnswerRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"game", [](F& f, const R& r) { f.text(r.from.game); }},
+        {"block", [](F& f, const R& r) { f.text(r.answer.block); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.answer.scoredPhase); }},
+        {"block_index", [](F& f, const R& r) { f.integer(r.answer.blockIndex); }},
+        {"mode", [](F& f, const R& r) { f.text(r.answer.mode); }},
+        {"question_index", [](F& f, const R& r) { f.integer(r.answer.questionIndex); }},
+        {"question_id", [](F& f, const R& r) { f.text(r.answer.questionId); }},
+        {"kind", [](F& f, const R& r) { f.text(r.answer.kind); }},
+        {"prompt", [](F& f, const R& r) { f.text(r.answer.prompt); }},
+        // A text answer has no number: an empty cell (NA).
+        {"value",
+         [](F& f, const R& r) {
+             if (r.answer.value)
+                 f.integer(*r.answer.value);
+             else
+                 f.empty();
+         }},
+        {"text", [](F& f, const R& r) { f.text(r.answer.text); }},
+        {"answered_with", [](F& f, const R& r) { f.text(r.answer.answeredWith); }},
+        // The answers offered, both ends included; none for a text question.
+        {"scale_min",
+         [](F& f, const R& r) {
+             if (r.answer.kind == "text")
+                 f.empty();
+             else
+                 f.integer(r.answer.scaleMin);
+         }},
+        {"scale_max",
+         [](F& f, const R& r) {
+             if (r.answer.kind == "text")
+                 f.empty();
+             else
+                 f.integer(r.answer.scaleMax);
+         }},
+        {"time_s", [](F& f, const R& r) { f.number(r.answer.time); }},
+        {"answer_s", [](F& f, const R& r) { f.number(r.answer.answerS); }},
+    };
+    return columns;
+}
+
 struct HitRateRow {
     const std::string& participant;
     const std::string& game;
@@ -418,7 +469,8 @@ public:
           carriedOn_(std::move(carriedOn)),
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
           shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
-          ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())) {}
+          ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())),
+          answers_(file(outDir, "answers.csv"), headerOf(answerColumns())) {}
 
     ExportedSession add(const fs::path& path, const std::string& name) {
         ExportedSession out{name, "ok", false, ""};
@@ -553,7 +605,7 @@ public:
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &hitrates, &matches, &conditions, &games}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &games}) {
             f->close();
             written.push_back(f->path());
         }
@@ -588,11 +640,16 @@ private:
             }
             matches_.emplace_back(participant, session, m);
         }
+        for (const auto& a : results.answers) {
+            if (!a.scoredPhase && !options_.allPhases) continue;
+            writeCells(answers_, answerColumns(), AnswerRow{{participant, session, gameName}, a});
+            answers_.endRow();
+        }
     }
 
     ExportOptions options_;
     CarriedOn carriedOn_;
-    CsvFile sessions_, shots_, ratings_;
+    CsvFile sessions_, shots_, ratings_, answers_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
@@ -611,7 +668,8 @@ private:
 std::vector<CsvColumns> exportColumns() {
     return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""},   {"conditions.csv", headerOf(conditionColumns()), ""},
+            {"ratings.csv", headerOf(ratingColumns()), ""},   {"answers.csv", headerOf(answerColumns()), ""},
+            {"conditions.csv", headerOf(conditionColumns()), ""},
             {"games.csv", headerOf(gameColumns()), ""},       {"participants.csv", headerOf(participantColumns()), ""}};
 }
 
