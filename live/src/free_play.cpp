@@ -71,6 +71,7 @@ void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, gam
         }
     }
     input.keys = 0;  // the keys were the supervisor's, not the game's
+    input.text.clear();  // ... and so were the letters they typed
 }
 
 void FreePlayPolicy::decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) {

@@ -16,28 +16,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// What the window's input means to the game (Enter, digits, the left button) and to the
-// supervisor (Esc, and every key for the pause screen and free play).
-struct Polled {
-    game::FrameInput input;
-    bool escape = false, closed = false;
-    std::string keys;
-};
-
 Polled poll(renderer::Window& window, double countScale, bool invertY) {
-    const renderer::WindowInput in = window.pollInput();
-    Polled p;
-    p.closed = in.closed;
-    p.keys = in.keysPressed;
-    p.input.mouseDx = in.mouseDx * countScale;
-    p.input.mouseDy = in.mouseDy * countScale * (invertY ? -1.0 : 1.0);
-    p.input.buttons = in.leftHeld ? game::kButtonLeft : 0u;
-    for (const char c : in.keysPressed) {
-        if (c == '\r') p.input.keys |= game::kKeyEnter;
-        if (c >= '1' && c <= '9') p.input.keys |= game::digitKey(c - '0');
-        if (c == 27) p.escape = true;
-    }
-    return p;
+    return readInput(window.pollInput(), countScale, invertY);
 }
 
 // A participant's sensitivity as the protocol's counts: cm per full turn at the mouse's DPI.
@@ -48,6 +28,23 @@ double countScaleFor(const LiveRun& run, const game::Study& study) {
 }
 
 }  // namespace
+
+Polled readInput(const renderer::WindowInput& in, double countScale, bool invertY) {
+    Polled p;
+    p.closed = in.closed;
+    p.keys = in.keysPressed;
+    p.input.mouseDx = in.mouseDx * countScale;
+    p.input.mouseDy = in.mouseDy * countScale * (invertY ? -1.0 : 1.0);
+    p.input.buttons = in.leftHeld ? game::kButtonLeft : 0u;
+    static_assert(renderer::kTypedBackspace == game::kTextBackspace, "the window's Backspace is the game's");
+    p.input.text = in.text;
+    for (const char c : in.keysPressed) {
+        if (c == '\r') p.input.keys |= game::kKeyEnter;
+        if (c >= '1' && c <= '9') p.input.keys |= game::digitKey(c - '0');
+        if (c == 27) p.escape = true;
+    }
+    return p;
+}
 
 DisplayClock::DisplayClock(renderer::Window& window, double refreshHz, bool byVsync)
     : window_(window), period_(1.0 / refreshHz), byVsync_(byVsync), last_(Clock::now()), deadline_(last_) {}

@@ -23,6 +23,18 @@
 
 namespace warplab::live {
 
+// What the window's input means to the game (Enter, digits, the left button, typed text) and
+// to the supervisor (Esc, and every key for the pause screen and free play). While a session
+// runs only Esc is the supervisor's: the pause screen reads keys only after it, and a session
+// reads no other key, so a participant typing an answer cannot reach a supervisor's action.
+struct Polled {
+    game::FrameInput input;
+    bool escape = false, closed = false;
+    std::string keys;
+};
+// Mouse counts scaled to the protocol's (and y inverted when asked for).
+Polled readInput(const renderer::WindowInput& in, double countScale, bool invertY);
+
 // One present per vsync, or per timer tick where vsync cannot keep the protocol's rate. A
 // timer that falls far behind starts over from now rather than racing to catch up.
 class DisplayClock {

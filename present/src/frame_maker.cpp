@@ -1,8 +1,42 @@
 #include "present/frame_maker.h"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace warplab::present {
+
+namespace {
+
+renderer::HudQuestion::Kind hudKind(protocol::QuestionKind kind) {
+    switch (kind) {
+        case protocol::QuestionKind::Likert: return renderer::HudQuestion::Kind::Likert;
+        case protocol::QuestionKind::Choice: return renderer::HudQuestion::Kind::Choice;
+        case protocol::QuestionKind::Text: return renderer::HudQuestion::Kind::Text;
+    }
+    throw std::invalid_argument("hudFor: a question of an unknown kind");
+}
+
+renderer::HudQuestion hudQuestionFor(const game::QuestionPrompt& q, double toFrameX, double toFrameY) {
+    renderer::HudQuestion r;
+    r.kind = hudKind(q.kind);
+    r.prompt = q.prompt;
+    for (const auto& b : q.boxes) r.boxes.emplace_back(b.x * toFrameX, b.y * toFrameY, b.z * toFrameX, b.w * toFrameY);
+    r.boxLabels = q.boxLabels;
+    // A Likert prompt without box labels numbers its boxes from its minimum.
+    if (q.kind == protocol::QuestionKind::Likert && r.boxLabels.empty())
+        for (std::size_t i = 0; i < q.boxes.size(); ++i)
+            r.boxLabels.push_back(std::to_string(q.min + static_cast<int>(i)));
+    r.highlighted = q.highlighted;
+    if (q.kind == protocol::QuestionKind::Likert) {
+        r.minLabel = q.minLabel;
+        r.maxLabel = q.maxLabel;
+    }
+    r.typed = q.typed;
+    return r;
+}
+
+}  // namespace
 
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY) {
     renderer::HudContent content;
@@ -15,17 +49,7 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     content.bannerGood = shown.bannerGood;
     content.status = shown.phaseText;
     content.paragraph = shown.instructions;
-    if (shown.question) {
-        renderer::HudQuestion r;
-        r.prompt = shown.question->prompt;
-        for (const auto& b : shown.question->boxes)
-            r.boxes.emplace_back(b.x * toFrameX, b.y * toFrameY, b.z * toFrameX, b.w * toFrameY);
-        r.highlighted = shown.question->highlighted;
-        r.firstValue = shown.question->min;
-        r.minLabel = shown.question->minLabel;
-        r.maxLabel = shown.question->maxLabel;
-        content.question = r;
-    }
+    if (shown.question) content.question = hudQuestionFor(*shown.question, toFrameX, toFrameY);
     return content;
 }
 

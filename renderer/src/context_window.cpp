@@ -37,9 +37,13 @@ public:
         // which the frame log will show as measured frame times.
         vsync_ = SDL_GL_SetSwapInterval(options.vsync ? 1 : 0) == 0 && options.vsync && SDL_GL_GetSwapInterval() == 1;
         initialise(&loadProc, "window");
+        // Typed text, for answers typed on screen: the window system applies the keyboard
+        // layout, Shift, dead keys and input methods, which key codes alone cannot give.
+        SDL_StartTextInput();
     }
 
     ~SdlWindow() override {
+        if (videoInitialised_) SDL_StopTextInput();
         if (context_ != nullptr) SDL_GL_DeleteContext(context_);
         if (window_ != nullptr) SDL_DestroyWindow(window_);
         if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
@@ -61,9 +65,13 @@ public:
                     in.mouseDx += event.motion.xrel;
                     in.mouseDy += event.motion.yrel;
                     break;
+                case SDL_TEXTINPUT: in.text += event.text.text; break;
                 case SDL_KEYDOWN: {
-                    if (event.key.repeat) break;
                     const SDL_Keycode k = event.key.keysym.sym;
+                    // Backspace is editing, not a character, so it has no text event of its
+                    // own; held, it repeats as held letters do.
+                    if (k == SDLK_BACKSPACE) in.text += kTypedBackspace;
+                    if (event.key.repeat) break;
                     if (k == SDLK_RETURN || k == SDLK_KP_ENTER)
                         in.keysPressed += '\r';
                     else if (k == SDLK_ESCAPE)
@@ -110,6 +118,39 @@ public:
             e.key.keysym.sym = c == '\r' ? SDLK_RETURN : static_cast<SDL_Keycode>(c);
             SDL_PushEvent(&e);
         }
+        injectText(in.text);
+    }
+    // As the window system sends typing: text events of whole UTF-8 characters, each within
+    // an event's fixed buffer, and a key press for each Backspace, in the order given.
+    static void injectText(const std::string& text) {
+        constexpr std::size_t kMaxBytes = sizeof(SDL_TextInputEvent::text) - 1;  // and its terminator
+        std::string run;
+        auto flush = [&run] {
+            if (run.empty()) return;
+            SDL_Event e{};
+            e.type = SDL_TEXTINPUT;
+            run.copy(e.text.text, run.size());
+            SDL_PushEvent(&e);
+            run.clear();
+        };
+        for (std::size_t at = 0; at < text.size();) {
+            if (text[at] == kTypedBackspace) {
+                flush();
+                SDL_Event e{};
+                e.type = SDL_KEYDOWN;
+                e.key.state = SDL_PRESSED;
+                e.key.keysym.sym = SDLK_BACKSPACE;
+                SDL_PushEvent(&e);
+                ++at;
+                continue;
+            }
+            std::size_t next = at + 1;  // past this character's continuation bytes
+            while (next < text.size() && (static_cast<unsigned char>(text[next]) & 0xC0) == 0x80) ++next;
+            if (run.size() + (next - at) > kMaxBytes) flush();
+            run.append(text, at, next - at);
+            at = next;
+        }
+        flush();
     }
     void setRelativeMouse(bool on) override {
         // Raw deltas: relative mode without the OS pointer's acceleration (SDL's default warps

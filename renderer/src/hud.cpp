@@ -27,7 +27,10 @@ struct HudRenderer::Impl {
     gl::VertexArray vao = gl::VertexArray::create();
     TTF_Font* font = nullptr;
     int fontPixels = 0;
-    std::map<std::string, TextTexture> cache;  // the few strings a study shows, uploaded once
+    // The strings shown, uploaded once: a study's few fixed ones, and each state of an answer
+    // being typed, which is why the cache is bounded.
+    std::map<std::string, TextTexture> cache;
+    static constexpr std::size_t kCachedTexts = 256;
 
     ~Impl() {
         if (font != nullptr) TTF_CloseFont(font);
@@ -57,8 +60,54 @@ struct HudRenderer::Impl {
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         SDL_FreeSurface(rgba);
         gl::checkErrors("uploading HUD text");
+        if (cache.size() >= kCachedTexts) cache.clear();  // the fixed strings come back at once
         return cache.emplace(s, std::move(t)).first->second;
     }
+
+    // Width of `s` as drawn at `scale`, pixels (its texture's: what centring needs).
+    float widthAt(const std::string& s, float scale) { return s.empty() ? 0.0f : text(s).width * scale; }
+    // Width of `s` at the font's size, pixels, measured without drawing it.
+    int widthOf(const std::string& s) const {
+        int w = 0, h = 0;
+        return s.empty() || TTF_SizeUTF8(font, s.c_str(), &w, &h) != 0 ? 0 : w;
+    }
+
+    // Draws `s` with its bottom-left corner at (left, bottom), GL pixels (y up); returns the
+    // width drawn. The uniforms are the untextured rectangles' again afterwards.
+    float textAt(const std::string& s, float left, float bottom, float scale, const float colour[4]) {
+        if (s.empty()) return 0.0f;  // SDL2_ttf draws no empty string
+        const TextTexture& t = text(s);
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, t.texture.id());
+        glUniform1i(gl::uniform(program, "uText"), 0);
+        glUniform1i(gl::uniform(program, "uTextured"), 1);
+        rect(left, bottom, t.width * scale, t.height * scale, colour);
+        glUniform1i(gl::uniform(program, "uTextured"), 0);
+        return t.width * scale;
+    }
+
+    // The end of `s` that fits in `widthPixels` at `scale`, after an ellipsis when some of its
+    // start is left out: a long answer shows what is being typed.
+    std::string tailThatFits(const std::string& s, float widthPixels, float scale) const {
+        const float room = widthPixels / scale;
+        if (widthOf(s) <= room) return s;
+        static const std::string kEllipsis = "\u2026";
+        std::vector<std::size_t> starts;  // where each UTF-8 character begins
+        for (std::size_t i = 0; i < s.size(); ++i)
+            if ((static_cast<unsigned char>(s[i]) & 0xC0) != 0x80) starts.push_back(i);
+        // The fewest characters left out (a longer tail is never narrower).
+        std::size_t lo = 1, hi = starts.size();  // hi: nothing left but the ellipsis
+        while (lo < hi) {
+            const std::size_t mid = (lo + hi) / 2;
+            if (widthOf(kEllipsis + s.substr(starts[mid])) <= room)
+                hi = mid;
+            else
+                lo = mid + 1;
+        }
+        return hi < starts.size() ? kEllipsis + s.substr(starts[hi]) : kEllipsis;
+    }
+
+    void question(const HudQuestion& q, int w, int h);
 
     // `text` broken into lines no wider than `widthPixels` at `scale` of the font's size:
     // at spaces, and at every line break it has. A word wider than the line keeps a line of
@@ -98,6 +147,66 @@ struct HudRenderer::Impl {
         glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     }
 };
+
+void HudRenderer::Impl::question(const HudQuestion& q, int w, int h) {
+    const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f}, grey[4] = {0.8f, 0.8f, 0.8f, 0.9f};
+    const float light[4] = {1.0f, 1.0f, 1.0f, 0.9f};
+    const float fill[4] = {0.25f, 0.27f, 0.33f, 1.0f}, lit[4] = {0.35f, 0.55f, 0.85f, 1.0f};
+    const float lineHeight = static_cast<float>(TTF_FontHeight(font));  // pixels at scale 1
+    auto centred = [&](const std::string& s, float centreX, float bottom, float scale, const float colour[4]) {
+        // Drawn smaller when wider than the frame, so that all of it shows.
+        scale = std::min(scale, 0.98f * static_cast<float>(w) / std::max(1.0f, widthAt(s, 1.0f)));
+        textAt(s, centreX - widthAt(s, scale) / 2, bottom, scale, colour);
+    };
+
+    // The prompt above the boxes: where the rating screen always had it, or higher when the
+    // game's boxes reach above that (a list of options), clear of the status line.
+    float top = 0.0f;  // the boxes' top edge, GL pixels (y up)
+    for (const glm::vec4& b : q.boxes) top = std::max(top, h - b.y);
+    if (!q.prompt.empty())
+        centred(q.prompt, w * 0.5f, std::min(std::max(h * 0.62f, top + h * 0.08f), h * 0.84f), 0.55f, white);
+
+    for (std::size_t i = 0; i < q.boxes.size(); ++i) {
+        const glm::vec4 b = q.boxes[i];
+        const float x = b.x, y = h - b.y - b.w, bw = b.z, bh = b.w;  // frame pixels are y-down; GL is y-up
+        rect(x - 2, y - 2, bw + 4, bh + 4, light);
+        rect(x, y, bw, bh, static_cast<int>(i) == q.highlighted ? lit : fill);
+        const std::string label = i < q.boxLabels.size() ? q.boxLabels[i] : std::string();
+        switch (q.kind) {
+            case HudQuestion::Kind::Likert:
+                textAt(label, x + (bw - widthAt(label, 0.6f)) * 0.5f, y + bh * 0.2f, 0.6f, white);
+                break;
+            case HudQuestion::Kind::Choice: {
+                // Its number in a column of its own, then the option, shrunk only if it is
+                // wider than what is left of the box.
+                const float pad = std::max(2.0f, bh * 0.25f), scale = std::min(0.45f, 0.7f * bh / lineHeight);
+                const float bottom = y + (bh - lineHeight * scale) * 0.5f;
+                textAt(std::to_string(i + 1), x + pad, bottom, scale, white);
+                const float left = x + pad + widthOf("9  ") * scale, room = x + bw - pad - left;
+                if (!label.empty()) textAt(label, left, bottom, std::min(scale, room / widthAt(label, 1.0f)), white);
+                break;
+            }
+            case HudQuestion::Kind::Text: {
+                // What was typed, its end when it is wider than the field, then the caret.
+                const float pad = std::max(2.0f, bh * 0.2f), scale = std::min(0.45f, 0.65f * bh / lineHeight);
+                const float caretW = std::max(1.0f, h / 300.0f), textH = lineHeight * scale;
+                const float bottom = y + (bh - textH) * 0.5f;
+                const float drawn =
+                    textAt(tailThatFits(q.typed, bw - 2 * pad - 2 * caretW, scale), x + pad, bottom, scale, white);
+                rect(x + pad + drawn + caretW * 0.5f, bottom + textH * 0.1f, caretW, textH * 0.8f, white);
+                if (!q.hint.empty()) centred(q.hint, x + bw * 0.5f, y - h * 0.06f, 0.3f, grey);
+                break;
+            }
+        }
+    }
+    if (q.kind == HudQuestion::Kind::Likert && !q.boxes.empty()) {
+        const glm::vec4 first = q.boxes.front(), last = q.boxes.back();
+        if (!q.minLabel.empty())
+            centred(q.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
+        if (!q.maxLabel.empty())
+            centred(q.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
+    }
+}
 
 HudRenderer::HudRenderer(const DataPaths& paths, const std::string& fontPath) : impl_(std::make_unique<Impl>()) {
     if (!std::ifstream(fontPath))
@@ -152,38 +261,12 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     }
     auto drawText = [&](const std::string& s, float centreX, float baselineY, float scale, const float colour[4],
                         bool fitWidth = false) {
-        const TextTexture& t = m.text(s);
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, t.texture.id());
-        glUniform1i(gl::uniform(m.program, "uText"), 0);
-        glUniform1i(gl::uniform(m.program, "uTextured"), 1);
         // A status line wider than the frame (a long refusal on a small window) is drawn
         // smaller, so that all of it shows rather than its middle.
-        if (fitWidth) scale = std::min(scale, 0.98f * static_cast<float>(w) / static_cast<float>(std::max(1, t.width)));
-        const float tw = t.width * scale, th = t.height * scale;
-        m.rect(centreX - tw / 2, baselineY, tw, th, colour);
+        if (fitWidth) scale = std::min(scale, 0.98f * static_cast<float>(w) / std::max(1.0f, m.widthAt(s, 1.0f)));
+        m.textAt(s, centreX - m.widthAt(s, scale) / 2, baselineY, scale, colour);
     };
-    if (content.question) {
-        const HudQuestion& r = *content.question;
-        const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f}, grey[4] = {0.8f, 0.8f, 0.8f, 0.9f};
-        const float fill[4] = {0.25f, 0.27f, 0.33f, 1.0f}, lit[4] = {0.35f, 0.55f, 0.85f, 1.0f};
-        if (!r.prompt.empty()) drawText(r.prompt, w * 0.5f, h * 0.62f, 0.55f, white);
-        for (std::size_t i = 0; i < r.boxes.size(); ++i) {
-            const glm::vec4 b = r.boxes[i];
-            const float y = h - b.y - b.w;  // frame pixels are y-down; GL is y-up
-            glUniform1i(gl::uniform(m.program, "uTextured"), 0);
-            m.rect(b.x - 2, y - 2, b.z + 4, b.w + 4, light);
-            m.rect(b.x, y, b.z, b.w, static_cast<int>(i) == r.highlighted ? lit : fill);
-            drawText(std::to_string(r.firstValue + static_cast<int>(i)), b.x + b.z * 0.5f, y + b.w * 0.2f, 0.6f, white);
-        }
-        if (!r.boxes.empty()) {
-            const glm::vec4 first = r.boxes.front(), last = r.boxes.back();
-            if (!r.minLabel.empty())
-                drawText(r.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
-            if (!r.maxLabel.empty())
-                drawText(r.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
-        }
-    }
+    if (content.question) m.question(*content.question, w, h);
     if (!content.paragraph.empty()) {
         const float white[4] = {0.95f, 0.95f, 0.95f, 1.0f};
         const float scale = 0.45f, lineHeight = bannerPixels * scale * 1.4f;

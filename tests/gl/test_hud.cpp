@@ -1,7 +1,8 @@
 // The HUD draws over colour only: the reticle at the centre or the cursor where it is, the
-// banner in its colour, the rating screen, and the object ids untouched (the pointer's id
-// cross-check reads them).
+// banner in its colour, the question screens of each kind, and the object ids untouched (the
+// pointer's id cross-check reads them).
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -83,7 +84,10 @@ TEST(Hud, RatingScreenDrawsTheBoxesWhereTheGamePutThem) {
     content.reticle = false;
     renderer::HudQuestion rating;
     rating.prompt = "The animation was smooth";
-    for (int i = 0; i < 7; ++i) rating.boxes.emplace_back(40.0f + i * 36.0f, 100.0f, 24.0f, 24.0f);
+    for (int i = 0; i < 7; ++i) {
+        rating.boxes.emplace_back(40.0f + i * 36.0f, 100.0f, 24.0f, 24.0f);
+        rating.boxLabels.push_back(std::to_string(i + 1));
+    }
     rating.highlighted = 2;
     rating.minLabel = "strongly disagree";
     rating.maxLabel = "strongly agree";
@@ -101,6 +105,120 @@ TEST(Hud, RatingScreenDrawsTheBoxesWhereTheGamePutThem) {
     const std::uint8_t* corner = after.colour.at(2, 170);
     EXPECT_LT(std::abs(corner[0] - 31), 3);
     EXPECT_LT(std::abs(corner[2] - 41), 3);
+}
+
+// The question screens as a person approved them (scripts/approve-references.sh): a list of
+// options and a field of typed text. Over the opaque backdrop, so only the HUD is compared.
+// The glyphs are FreeType's coverage of the DejaVu font, the same bytes wherever the same
+// FreeType draws them; what another rasteriser may change is its bilinear filtering of them at
+// a fraction of their size, a few levels at a glyph's edge. So the mean stays the GL tests'
+// (gl_test_support.h), but no pixel share is allowed over 24 levels beyond a few edge pixels:
+// the shading's silhouette allowance (0.4 %, some 230 pixels here) would pass a missing digit
+// or a changed letter, which is some 10 to 20 pixels.
+testing::ImageThresholds hudThresholds() {
+    testing::ImageThresholds t;
+    t.maxShareOver = 0.0001;  // 5 pixels of 320 x 180
+    return t;
+}
+
+renderer::HudContent questionScreen(const renderer::HudQuestion& question) {
+    renderer::HudContent content;
+    content.backdrop = true;
+    content.reticle = false;
+    content.status = "Match 3 of 14: a few questions about it";
+    content.question = question;
+    return content;
+}
+
+image::ImageRGBA8 drawn(const renderer::HudContent& content) {
+    auto source = hallwayWithTarget();
+    renderer::HudRenderer hud(testing::sourceDataPaths());
+    hud.draw(content, source.frame->gbuffer);
+    return renderer::readBack(source.frame->gbuffer).colour;
+}
+
+// The fill of a box, read near its right edge, clear of any text: (r, g, b).
+std::vector<int> fillAt(const image::ImageRGBA8& image, int x, int y) {
+    const std::uint8_t* p = image.at(x, y);
+    return {p[0], p[1], p[2]};
+}
+
+// Pixels in the rectangle [x0, x1) x [y0, y1) (y down) as bright as text is.
+int brightIn(const image::ImageRGBA8& image, int x0, int y0, int x1, int y1) {
+    int bright = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const std::uint8_t* p = image.at(x, y);
+            bright += p[0] > 150 && p[1] > 150 && p[2] > 150;
+        }
+    return bright;
+}
+
+renderer::HudQuestion choiceQuestion() {
+    renderer::HudQuestion q;
+    q.kind = renderer::HudQuestion::Kind::Choice;
+    q.prompt = "Which match felt smoother?";
+    q.boxLabels = {"The first one", "The second one", "No difference", "I could not tell"};
+    for (int i = 0; i < 4; ++i) q.boxes.emplace_back(70.0f, 62.0f + i * 26.0f, 180.0f, 20.0f);
+    q.highlighted = 1;
+    q.minLabel = "strongly disagree";  // a scale's: a choice does not show them
+    return q;
+}
+
+TEST(Hud, ChoiceScreenMatchesReference) {
+    const renderer::HudQuestion q = choiceQuestion();
+    const image::ImageRGBA8 image = drawn(questionScreen(q));
+    EXPECT_TRUE(testing::matchesReference("hud_choice", image, hudThresholds()));
+    // The highlighted option lit, the others not (read at the boxes' right end, past their text).
+    const std::vector<int> lit{89, 140, 217}, fill{64, 69, 84};
+    EXPECT_EQ(fillAt(image, 245, 62 + 26 + 10), lit);
+    EXPECT_EQ(fillAt(image, 245, 62 + 10), fill);
+    // Each box holds its number and its option, left-aligned: text in its left part, none
+    // between the boxes or past their right end.
+    for (int i = 0; i < 4; ++i) {
+        const int top = 62 + i * 26;
+        EXPECT_GT(brightIn(image, 72, top + 2, 81, top + 18), 2) << "no number in box " << i;
+        EXPECT_GT(brightIn(image, 84, top + 2, 160, top + 18), 20) << "no option in box " << i;
+    }
+    EXPECT_EQ(brightIn(image, 0, 62, 68, 62 + 4 * 26), 0) << "text left of the list";
+    EXPECT_EQ(brightIn(image, 252, 62, kW, 62 + 4 * 26), 0) << "text right of the list";
+    EXPECT_EQ(brightIn(image, 0, 62 + 4 * 26, kW, kH), 0) << "end labels under a choice";
+}
+
+renderer::HudQuestion textQuestion(const std::string& typed) {
+    renderer::HudQuestion q;
+    q.kind = renderer::HudQuestion::Kind::Text;
+    q.prompt = "How did the motion look?";
+    q.boxes = {{40.0f, 84.0f, 240.0f, 24.0f}};
+    q.typed = typed;
+    return q;
+}
+
+// An answer longer than the field.
+std::string longAnswer() {
+    std::string longer;
+    for (int i = 0; i < 6; ++i) longer += "the spheres stuttered when they bounced, ";
+    return longer + "but only then";
+}
+
+TEST(Hud, TextScreenMatchesReference) {
+    const image::ImageRGBA8 image = drawn(questionScreen(textQuestion("smooth, but laggy \xE2\x80\x94 ok")));
+    EXPECT_TRUE(testing::matchesReference("hud_text", image, hudThresholds()));
+    EXPECT_GT(brightIn(image, 44, 88, 160, 104), 60) << "no typed text at the field's left";
+    EXPECT_EQ(brightIn(image, 200, 86, 278, 106), 0) << "the short answer should leave the field's end empty";
+    EXPECT_TRUE(
+        testing::matchesReference("hud_text_long", drawn(questionScreen(textQuestion(longAnswer()))), hudThresholds()));
+}
+
+// A long answer shows its end, the part being typed, and nothing of it leaves the field.
+TEST(Hud, LongTypedTextShowsItsEndInsideTheField) {
+    const image::ImageRGBA8 image = drawn(questionScreen(textQuestion(longAnswer())));
+    // The field spans x 40..280 and y 84..108; its light outline is 2 px around it.
+    EXPECT_EQ(brightIn(image, 0, 84, 37, 108), 0) << "text spills left of the field";
+    EXPECT_EQ(brightIn(image, 283, 84, kW, 108), 0) << "text spills right of the field";
+    // Its end, not its start: dots, then heavy letters; the field shows letters across.
+    const image::ImageRGBA8 ink = drawn(questionScreen(textQuestion(std::string(300, '.') + std::string(40, 'M'))));
+    EXPECT_GT(brightIn(ink, 60, 88, 260, 104), 400) << "the start of the answer is shown, not its end";
 }
 
 TEST(Hud, MissingFontIsNamed) {

@@ -1,5 +1,8 @@
 // A frame shown in a real SDL window (GL 4.1 core through Mesa GLX, under Xvfb in CI) equals
-// the same frame rendered headlessly: the window path adds nothing but the blit.
+// the same frame rendered headlessly: the window path adds nothing but the blit. And the
+// window's text input carries what was typed.
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "gl/gl_test_support.h"
@@ -38,6 +41,30 @@ TEST(Window, ScreenshotMatchesHeadlessRender) {
     window->pumpEvents();
     EXPECT_TRUE(testing::imagesMatch(headless, screenshot, "window_vs_headless"));
     EXPECT_NE(window->info().backend.find("window"), std::string::npos);
+}
+
+// Typing reaches WindowInput::text as the window system sends it: text events of UTF-8 and
+// Backspace as its key, kept in order, each Backspace as kTypedBackspace (not applied: the
+// game edits its answer); keys still arrive as keys.
+TEST(Window, InjectedTextAndBackspaceArriveAsTyped) {
+    renderer::ContextOptions options;
+    options.width = 64;
+    options.height = 36;
+    options.title = "warplab text input test";
+    const auto window = renderer::createWindow(options);
+    window->pumpEvents();  // whatever opening the window queued
+    // More than a text event holds (31 bytes), with a three-byte dash where the first one
+    // fills up: all of it arrives, in order.
+    const std::string before = "the spheres stuttered at first", dash = "\xE2\x80\x94";
+    const std::string b(1, renderer::kTypedBackspace);
+    renderer::WindowInput typed;
+    typed.text = before + dash + " then smooth" + b + b + "th \xC3\xA9" + b + "ok";
+    typed.keysPressed = "4\r";
+    window->injectInput(typed);
+    const renderer::WindowInput got = window->pollInput();
+    EXPECT_EQ(got.text, typed.text);
+    EXPECT_EQ(got.keysPressed, "4\r");
+    EXPECT_EQ(window->pollInput().text, "") << "a poll takes the text it returns";
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 
 namespace warplab::present {
 
-// The HUD of a shown frame: reticle or cursor, banner, phase text, rating screen. Display
+// The HUD of a shown frame: reticle or cursor, banner, phase text, question screen. Display
 // pixels are scaled to the frame's by toFrameX/Y.
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY);
 

@@ -1,10 +1,11 @@
 // The heads-up display, drawn last over a displayed frame: the reticle or the cursor, the
-// HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, the rating
-// screen and a screen of instructions. Text comes from
+// HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, a question
+// screen (a scale, a choice, or text typed on screen) and a screen of instructions. Text comes from
 // SDL2_ttf with a DejaVu font, uploaded as textures; the object-id attachment is left
 // untouched so the id under the reticle still names what the scene shows.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,14 +17,23 @@
 
 namespace warplab::renderer {
 
-// A rating screen: the statement, and one box per answer to click, in the frame's pixels
-// (x right, y down; x, y, width, height), numbered from firstValue.
+// A question screen, one of three kinds (the games' questions after a block). Boxes are in the
+// frame's pixels (x right, y down; x, y, width, height), laid out by the game; the HUD draws
+// into them.
 struct HudQuestion {
-    std::string prompt;
+    enum class Kind : std::uint8_t {
+        Likert,  // a row of boxes, each labelled with its value, the end labels under its ends
+        Choice,  // a list of wide boxes, each its number and its option, left-aligned
+        Text,  // one box, the field: what was typed so far and a caret, the hint under it
+    };
+    Kind kind = Kind::Likert;
+    std::string prompt;  // the statement or question, above the boxes
     std::vector<glm::vec4> boxes;
+    std::vector<std::string> boxLabels;  // what box i says (Likert, choice); a box without one is bare
     int highlighted = -1;  // the box under the cursor
-    int firstValue = 1;
-    std::string minLabel, maxLabel;  // under the first and the last box
+    std::string minLabel, maxLabel;  // Likert: under the first and the last box
+    std::string typed;  // text: the answer so far (UTF-8); its end shows when it is wider than the field
+    std::string hint = "Type your answer, then press Enter";  // text: under the field; "" = none
 };
 
 struct HudContent {

@@ -12,6 +12,11 @@
 
 namespace warplab::renderer {
 
+// Backspace in WindowInput::text: typed text never holds a control character, so one byte
+// can stand for the key that takes a character back (the games read it as their own
+// kTextBackspace, the same byte).
+inline constexpr char kTypedBackspace = '\b';
+
 // What the participant did since the last poll of a window (keys as characters: '\r' Enter,
 // 27 Esc, '0'..'9', lower-case letters, '[' and ']' -- PageUp arrives as '[' and PageDown as
 // ']', as a presentation clicker sends them; others are dropped).
@@ -20,6 +25,10 @@ struct WindowInput {
     double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
     bool leftHeld = false;  // the left button is down now
     std::string keysPressed;  // in the order they were pressed
+    // The text typed, as the window system composed it (UTF-8: layouts, Shift, dead keys and
+    // input methods applied), in order, each Backspace as kTypedBackspace. A letter or digit
+    // key arrives both here and in keysPressed; Enter and Esc only in keysPressed.
+    std::string text;
 };
 
 class Window {
@@ -35,7 +44,8 @@ public:
     // Input since the last poll (pumpEvents and pollInput both drain the queue).
     virtual WindowInput pollInput() = 0;
     // Queues input as if the participant had given it; the next poll reads it (scripted
-    // sessions in tests: mouse motion, a left press, keys as in WindowInput).
+    // sessions in tests: mouse motion, a left press, keys and text as in WindowInput; the
+    // text arrives as text only, without the key presses that would have typed it).
     virtual void injectInput(const WindowInput& input) = 0;
     // Relative mouse mode (hidden, unbounded, raw deltas) for studies.
     virtual void setRelativeMouse(bool on) = 0;
