@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <set>
@@ -25,6 +26,8 @@
 
 #include "export/csv.h"
 #include "game/registry.h"
+#include "protocol/click_protocol.h"
+#include "protocol/shooter_protocol.h"
 #include "export/export.h"
 #include "condition/schedule.h"
 #include "study/session_runner.h"
@@ -721,6 +724,117 @@ TEST(Export, RatingsCarryTheProtocolsScale) {
         const int value = std::stoi(r.at("value"));
         EXPECT_GE(value, 0);
         EXPECT_LE(value, 10);
+    }
+}
+
+// A protocol file in `dir` from a shipped one, changed by `edit`; its path.
+std::string editedProtocol(const std::string& dir, const std::string& shipped,
+                           const std::function<void(nlohmann::json&)>& edit) {
+    auto protocol = nlohmann::json::parse(slurp(std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + shipped));
+    edit(protocol);
+    const std::string path = dir + "/" + shipped;
+    std::ofstream(path) << protocol.dump(2);
+    return path;
+}
+
+// answers.csv: every answer after a block, of every kind and both games, as the events hold
+// them; the click game's Likert answers are its ratings as well.
+TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
+    const std::string source = scratch("answers/source"), results = scratch("answers/results");
+    const nlohmann::json questions = nlohmann::json::parse(R"([
+        {"id": "fun", "kind": "likert", "prompt": "It was fun", "min": 0, "max": 10,
+         "min_label": "not at all", "max_label": "very"},
+        {"id": "better", "kind": "choice", "prompt": "Which felt better?",
+         "options": ["this one", "the one before", "no difference"]},
+        {"id": "comment", "kind": "text", "prompt": "Anything else?"}])");
+    const std::string click = editedProtocol(source, "click-quick.json", [&](nlohmann::json& p) {
+        p["format_version"] = protocol::kClickQuestionsSince;
+        p.erase("ratings");
+        p["matches"]["questions"] = questions;
+    });
+    const std::string shooter = editedProtocol(source, "shooter-quick.json", [&](nlohmann::json& p) {
+        p["format_version"] = protocol::kShooterQuestionsSince;
+        p["test"]["interleave_conditions"] = false;
+        p["test"]["questions"] = nlohmann::json::array({questions[1]});
+    });
+    for (const std::string& path : {click, shooter}) {
+        study::HeadlessRun run;
+        run.protocolPath = path;
+        run.participant = "Q";
+        run.resultsDir = results;
+        run.player = "bot:11";
+        run.seed = 11;
+        std::ostringstream quiet;
+        study::runHeadless(run, quiet);
+    }
+    const std::string out = scratch("answers/out");
+    exportQuietly(results, out);
+    const auto answers = readCsv(out + "/answers.csv");
+    std::map<std::string, std::vector<std::map<std::string, std::string>>> byGame;
+    for (const auto& a : answers) byGame[a.at("game")].push_back(a);
+
+    // Click: the scored round's matches (two modes x one match), three answers each.
+    const auto& clicks = byGame["click"];
+    ASSERT_EQ(clicks.size(), 3u * 2u);
+    for (std::size_t i = 0; i < clicks.size(); ++i) {
+        const auto& a = clicks[i];
+        EXPECT_EQ(a.at("block"), "scored");
+        EXPECT_EQ(a.at("scored_phase"), "true");
+        EXPECT_EQ(a.at("question_index"), std::to_string(i % 3));
+        EXPECT_EQ(a.at("question_id"), questions[i % 3]["id"].get<std::string>());
+        EXPECT_EQ(a.at("kind"), questions[i % 3]["kind"].get<std::string>());
+        EXPECT_EQ(a.at("prompt"), questions[i % 3]["prompt"].get<std::string>());
+        EXPECT_FALSE(a.at("mode").empty());
+        EXPECT_GE(std::stod(a.at("answer_s")), 0.5);  // the settle time, then the bot's reading
+    }
+    EXPECT_EQ(clicks[0].at("scale_min"), "0");
+    EXPECT_EQ(clicks[0].at("scale_max"), "10");
+    EXPECT_EQ(clicks[0].at("text"), "");
+    EXPECT_EQ(clicks[1].at("scale_min"), "1");
+    EXPECT_EQ(clicks[1].at("scale_max"), "3");
+    EXPECT_EQ(clicks[1].at("value"), "2");  // the bot's choice for the second question: the second option
+    EXPECT_EQ(clicks[1].at("text"), "the one before");
+    EXPECT_EQ(clicks[2].at("value"), "");  // text has no number, nor a scale
+    EXPECT_EQ(clicks[2].at("scale_min"), "");
+    EXPECT_EQ(clicks[2].at("text"), "typed by a bot");
+    EXPECT_EQ(clicks[2].at("answered_with"), "typed");
+    // The Likert answers are the matches' ratings.
+    const auto ratings = readCsv(out + "/ratings.csv");
+    ASSERT_EQ(ratings.size(), 2u);
+    EXPECT_EQ(ratings[0].at("statement"), "It was fun");
+    EXPECT_EQ(ratings[0].at("value"), clicks[0].at("value"));
+
+    // Shooter: one answer after each condition's block, about that condition.
+    const auto& shots = byGame["shooter"];
+    ASSERT_EQ(shots.size(), 3u);
+    std::vector<std::string> modes;
+    for (std::size_t i = 0; i < shots.size(); ++i) {
+        EXPECT_EQ(shots[i].at("block"), "test");
+        EXPECT_EQ(shots[i].at("block_index"), std::to_string(i));
+        EXPECT_EQ(shots[i].at("kind"), "choice");
+        modes.push_back(shots[i].at("mode"));
+    }
+    EXPECT_EQ(modes, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
+}
+
+// Click sessions of older formats log their ratings as "rating" events: answers.csv has them too,
+// without ids or answer times.
+TEST(Export, OlderClickRatingsAreAnswersToo) {
+    const std::string results = scratch("old-answers/results");
+    headless("click-quick.json", "R", results, 3);
+    const std::string out = scratch("old-answers/out");
+    exportQuietly(results, out);
+    const auto answers = readCsv(out + "/answers.csv");
+    const auto ratings = readCsv(out + "/ratings.csv");
+    ASSERT_FALSE(ratings.empty());
+    ASSERT_EQ(answers.size(), ratings.size());
+    for (std::size_t i = 0; i < answers.size(); ++i) {
+        EXPECT_EQ(answers[i].at("kind"), "likert");
+        EXPECT_EQ(answers[i].at("question_id"), "");
+        EXPECT_EQ(answers[i].at("answer_s"), "");
+        EXPECT_EQ(answers[i].at("prompt"), ratings[i].at("statement"));
+        EXPECT_EQ(answers[i].at("value"), ratings[i].at("value"));
+        EXPECT_EQ(answers[i].at("block_index"), ratings[i].at("match"));
     }
 }
 
