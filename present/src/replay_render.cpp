@@ -113,7 +113,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
 
     for (const auto& in : data.inputs) {
         if (in.frame > request.lastFrame) break;
-        const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
+        const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game->takeEvents();
         maker.keepSource(shown);
         if (shown.frame < request.firstFrame) continue;

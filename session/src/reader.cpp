@@ -7,7 +7,7 @@
 #include "checksum.h"
 #include "schema.h"
 #include "sqlite_handles.h"
-#include "v1_format.h"
+#include "old_formats.h"
 #include "wal_scan.h"
 
 #include <sqlite3.h>
@@ -32,7 +32,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, v1_format.h, wal_scan.h).
+// The store's shared pieces (sqlite_handles.h, schema.h, checksum.h, naming.h, old_formats.h, wal_scan.h).
 using namespace detail;
 
 class Reader {
@@ -118,13 +118,15 @@ private:
         data.header = readHeader(data.completed);
         data.flags = flags_;
         version_ = data.header.formatVersion;
+        // Versions 1 to 4 have no input `text`: their checksums cover the columns they have.
+        const Table<InputRecord> input =
+            version_ >= kTypedTextSince ? inputTable() : Table<InputRecord>{"input", false, v1To4InputFields()};
         if (version_ == 1)
             readTables(data,
-                       Layout<InputRecord, V1FrameRow, V1EventRow>{{"input", false, v1InputFields()},
-                                                                   {"frames", false, v1FrameFields()},
-                                                                   {"events", true, v1EventFields()}});
+                       Layout<InputRecord, V1FrameRow, V1EventRow>{
+                           input, {"frames", false, v1FrameFields()}, {"events", true, v1EventFields()}});
         else
-            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{inputTable(), frameTable(), eventTable()});
+            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{input, frameTable(), eventTable()});
         // Ending a read transaction writes nothing; after damage SQLite may report the damage
         // again here, which readTables has already accounted for.
         sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);

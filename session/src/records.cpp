@@ -20,6 +20,7 @@ const std::vector<Field<InputRecord>>& fieldsOf<InputRecord>() {
     static const std::vector<Field<R>> fields = {
         {"frame", &R::frame},      {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
         {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
+        {"text", &R::text},
     };
     return fields;
 }

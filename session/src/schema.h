@@ -2,7 +2,7 @@
 // shared by the writer and the reader. The record tables' columns come from session/records.h;
 // docs/session-format.md is the contract with analysts. Keep the three in step, and bump
 // kSessionFormatVersion (keeping a frozen description of the old version for the reader, as
-// v1_format.h does for version 1) when the schema changes.
+// old_formats.h does for versions 1 to 4) when the schema changes.
 #pragma once
 
 #include "session/records.h"
@@ -28,7 +28,7 @@ template <typename Row>
 struct Table {
     const char* name;
     bool numbered;  // an `id INTEGER PRIMARY KEY` comes first
-    const std::vector<Field<Row>>& fields;  // records.h, or v1_format.h's version-1 ones
+    const std::vector<Field<Row>>& fields;  // records.h, or old_formats.h's frozen ones
 
     const char* key() const { return numbered ? "id" : fields.front().column; }
     int columnCount() const { return static_cast<int>(fields.size()) + (numbered ? 1 : 0); }

@@ -75,7 +75,7 @@ void replayKeptFrames(const ResumePoint& point, game::Game& game,
                       const std::function<void(const game::ShownFrame&)>& seen) {
     for (std::size_t i = 0; i < point.keptInputs; ++i) {
         const session::InputRecord& in = point.stored.inputs[i];
-        const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys});
+        const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game.takeEvents();  // the stored ones, checked equal by findResumePoint, are in keptRows
         if (seen) seen(shown);
     }

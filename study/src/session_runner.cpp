@@ -26,6 +26,7 @@ session::InputRecord toRecord(std::int64_t frame, double time, const game::Frame
     r.mouseDy = in.mouseDy;
     r.buttons = in.buttons;
     r.keys = in.keys;
+    r.text = in.text;
     return r;
 }
 

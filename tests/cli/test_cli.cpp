@@ -709,6 +709,15 @@ TEST(CliSession, AVersion3SessionStillReplaysExactly) {
     EXPECT_TRUE(contains(replay.output, "39/39 outcomes reproduced")) << replay.output;
 }
 
+// And format 4 (before typed text, its input rows read with text ""): the click game's
+// outcomes, every one, its ratings included.
+TEST(CliSession, AVersion4SessionStillReplaysExactly) {
+    const auto replay =
+        warplab("replay " + std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v4-click-quick.warplab-session");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "4/4 outcomes reproduced (14 events, 306 frames")) << replay.output;
+}
+
 TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
     const std::string results = scratch("export-results"), out = scratch("export-out");
     ASSERT_EQ(warplab("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json" +

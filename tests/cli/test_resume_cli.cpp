@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sqlite3.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -173,6 +174,50 @@ TEST(CliResume, AKilledShooterSessionResumedIsTheUninterruptedOne) {
 
 TEST(CliResume, AKilledClickSessionResumedIsTheUninterruptedOne) {
     expectResumedEqualsUninterrupted("click-demo.json");
+}
+
+// A session of format 4, before typed text, interrupted: it resumes into a format-5 session
+// whose kept input rows are its own with text "", and which is the uninterrupted session.
+TEST(CliResume, AVersion4SessionResumesIntoAVersion5One) {
+    const std::string fixture = std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v4-click-quick.warplab-session";
+    const SessionData whole = readSession(fixture);
+    ASSERT_TRUE(whole.completed);
+    // The fixture cut back to its first four commits (the first match and a rating), as a kill
+    // after the fourth would leave it: still a version-4 file.
+    const std::string dir = scratch("v4");
+    const std::string cut = dir + "/v4-fixture.warplab-session";
+    fs::copy_file(fixture, cut);
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(cut.c_str(), &db), SQLITE_OK);
+    const char* cutBack =
+        "DELETE FROM meta WHERE key = 'completed_at';"
+        "DELETE FROM input WHERE frame > (SELECT last_frame FROM commits WHERE id = 4);"
+        "DELETE FROM frames WHERE frame > (SELECT last_frame FROM commits WHERE id = 4);"
+        "DELETE FROM events WHERE id > (SELECT event_rows FROM commits WHERE id = 4);"
+        "DELETE FROM commits WHERE id > 4;";
+    const int rc = sqlite3_exec(db, cutBack, nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+    ASSERT_EQ(rc, SQLITE_OK);
+    const SessionData before = readSession(cut);
+    ASSERT_EQ(before.header.formatVersion, 4);
+    ASSERT_FALSE(before.completed);
+    ASSERT_FALSE(before.damaged) << before.note;
+    ASSERT_EQ(before.inputs.size(), 131u);
+
+    const auto resumed = warplab("run --resume " + cut + " --headless --player bot:3");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    const std::vector<std::string> files = sessionsIn(dir);
+    ASSERT_EQ(files.size(), 2u);
+    const std::string result = files[0] == cut ? files[1] : files[0];
+    const SessionData data = readSession(result);
+    EXPECT_EQ(data.header.formatVersion, warplab::session::kSessionFormatVersion);
+    EXPECT_TRUE(data.completed);
+    ASSERT_EQ(data.header.resumed.size(), 1u);
+    EXPECT_EQ(data.header.resumed[0].sessionId, whole.header.sessionId);
+    EXPECT_EQ(differenceBetween(whole, data), "");
+    const auto replay = warplab("replay " + result);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "4/4 outcomes reproduced")) << replay.output;
 }
 
 // What cannot be resumed is refused with one sentence naming the file (exit 1), and nothing

@@ -43,6 +43,7 @@ public:
         commitPoint_ = false;
         const bool pressed = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
         previousButtons_ = input.buttons;
+        typed_ += input.text;
         const double now = static_cast<double>(frame_) / protocol_.refreshHz;
         if (frame_ == 0) emit("phase", {});
         history_.record(frame_, dotAt(now));
@@ -73,7 +74,9 @@ public:
             e.mode = schedule_.mode().name;
             e.worldOutcome = underReticle(dotAt(now).x) ? "hit" : "miss";
             e.displayedOutcome = underReticle(seen.x) ? "hit" : "miss";
-            e.detailJson = nlohmann::json{{"shown_x", seen.x}, {"x", dotAt(now).x}}.dump();
+            // Everything typed so far, as typed (Backspaces kept): replay, and a resumed
+            // session's re-simulation, reproduce it only from the input record's text.
+            e.detailJson = nlohmann::json{{"shown_x", seen.x}, {"typed", typed_}, {"x", dotAt(now).x}}.dump();
             shown.feedback = e.displayedOutcome;
             emit(e);
             commitPoint_ = true;
@@ -132,16 +135,21 @@ private:
     scene::CameraState camera_;
     std::int64_t frame_ = -1;
     std::uint32_t previousButtons_ = 0;
+    std::string typed_;
     int clicks_ = 0;
     bool done_ = false, freePlay_ = false, commitPoint_ = false;
 };
 
 // Clicks, one frame at a time, whenever the dot it sees is near the reticle, and once early on
-// when it is far from it (a miss); then waits half a second.
+// when it is far from it (a miss); then waits half a second. Types now and then meanwhile:
+// letters, multi-byte UTF-8 and Backspaces.
 class ToyBot final : public Player {
 public:
     FrameInput next(const ShownFrame& shown) override {
         FrameInput in;
+        if (shown.frame % 7 == 1) in.text = "a";
+        if (shown.frame % 11 == 2) in.text += "Zoë 日本";
+        if (shown.frame % 13 == 3) in.text += std::string(1, kTextBackspace);
         const double x = shown.scene.objects.empty() ? 1e9 : shown.scene.objects.front().position.x - camera_.eye.x;
         const bool near = std::abs(x) < kRadius * 0.5 || shown.frame == 10;
         if (near && shown.time >= quietUntil_) {

@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -399,7 +400,7 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     const SessionData data = readSession(path);
     header.formatVersion = kSessionFormatVersion;
     expectSame(data.header, header);
-    EXPECT_EQ(data.header.formatVersion, 4);
+    EXPECT_EQ(data.header.formatVersion, 5);
     // Drawn by create(), whatever the header passed in said.
     EXPECT_EQ(data.header.sessionId.size(), 32u);
     EXPECT_EQ(data.header.sessionId.find_first_not_of("0123456789abcdef"), std::string::npos) << data.header.sessionId;
@@ -446,6 +447,56 @@ TEST(SessionStore, NaNComesBackAsNaN) {
     expectNaNs(data.frames[0]);
     expectNaNs(data.events[0]);
     EXPECT_GT(nans, 0);
+}
+
+// The input table's text is what was typed, byte for byte: ASCII, multi-byte UTF-8, Backspace
+// ('\b', as game::kTextBackspace types it), a long paste, nothing. Also what no keyboard
+// types: an embedded NUL and bytes that are not UTF-8. The store keeps whatever it is given
+// (texts are bound with their length), so a replay sees what was recorded, never a shortened
+// or "repaired" text.
+TEST(SessionStore, TypedTextRoundTripsByteForByte) {
+    TempDir dir;
+    const std::vector<std::string> typed = {"",
+                                            "a",
+                                            "Hello, world!",
+                                            "Zoë ß «» 日本 🙂",
+                                            "\b",
+                                            "ab\b\bc\b",
+                                            std::string("x\0y", 3),
+                                            std::string(1, '\0'),
+                                            "\xff\xfe",
+                                            "\xe6\x97",  // a character cut short
+                                            "'; DROP TABLE input; --",
+                                            std::string(4000, 'k'),
+                                            ""};
+    std::string path;
+    {
+        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+        path = w.path();
+        for (std::size_t i = 0; i < typed.size(); ++i) {
+            InputRecord r = sampleRecord<InputRecord>(static_cast<std::int64_t>(i));
+            r.text = typed[i];
+            w.addInput(r);
+            if (i % 4 == 3) w.commit();  // several commits, each checked against its checksum
+        }
+        w.finish();
+    }
+    const SessionData data = readSession(path);
+    EXPECT_TRUE(data.completed) << data.note;
+    ASSERT_EQ(data.inputs.size(), typed.size());
+    for (std::size_t i = 0; i < typed.size(); ++i) {
+        EXPECT_EQ(data.inputs[i].text.size(), typed[i].size()) << "row " << i;
+        EXPECT_EQ(data.inputs[i].text, typed[i]) << "row " << i;
+    }
+    // And so SQL sees it: TEXT holding exactly those bytes.
+    const auto stored = sqlRows(path,
+                                "SELECT typeof(text) AS type, length(CAST(text AS BLOB)) AS bytes FROM input "
+                                "ORDER BY frame");
+    ASSERT_EQ(stored.size(), typed.size());
+    for (std::size_t i = 0; i < typed.size(); ++i) {
+        EXPECT_EQ(stored[i]["type"].get<std::string>(), "text") << "row " << i;
+        EXPECT_EQ(stored[i]["bytes"].get<std::size_t>(), typed[i].size()) << "row " << i;
+    }
 }
 
 // A run killed before its header was linked to a session name leaves a hidden .creating file;
@@ -1140,6 +1191,43 @@ TEST(SessionStoreDamage, TruncatedFileKeepsWholeCommitsOrFailsNamingThePath) {
     EXPECT_GT(refused, 0);
 }
 
+// The typed text is in its commit's checksum like every other column: a changed answer, a
+// Backspace added or taken out, drops the commit it was typed in and everything after it.
+TEST(SessionStoreDamage, AChangedTypedTextFailsItsCommit) {
+    TempDir dir;
+    constexpr int kTrials = 6, kChangedTrial = 3;
+    const std::string path = writeFinishedSession(dir.str(), kTrials);
+    // A frame of that trial with something typed (sampleRecord leaves some empty).
+    std::int64_t frame = static_cast<std::int64_t>(kChangedTrial) * kFramesPerTrial;
+    while (trialInput(frame).text.empty() || trialInput(frame).text.find('\0') != std::string::npos) ++frame;
+    ASSERT_LT(frame, static_cast<std::int64_t>(kChangedTrial + 1) * kFramesPerTrial);
+    std::string sameLength = trialInput(frame).text;
+    sameLength[0] = static_cast<char>(sameLength[0] ^ 0x20);  // one letter's case
+    std::string hex;
+    for (const char c : sameLength) {
+        char byte[3];
+        std::snprintf(byte, sizeof byte, "%02X", static_cast<unsigned char>(c));
+        hex += byte;
+    }
+    const std::string row = " WHERE frame = " + std::to_string(frame);
+    const std::string copy = (dir.path() / "copy.warplab-session").string();
+    for (const std::string& change :
+         {"UPDATE input SET text = text || 'x'" + row, "UPDATE input SET text = text || char(8)" + row,
+          "UPDATE input SET text = ''" + row, "UPDATE input SET text = CAST(X'" + hex + "' AS TEXT)" + row}) {
+        SCOPED_TRACE(change);
+        copySession(path, copy, kWhole, kNoWal);
+        execSql(copy, change);
+        const SessionData data = readSession(copy);
+        EXPECT_FALSE(data.completed);
+        EXPECT_TRUE(data.damaged);
+        EXPECT_NE(
+            data.note.find("the rows of commit " + std::to_string(kChangedTrial + 1) + " do not match its checksum"),
+            std::string::npos)
+            << data.note;
+        EXPECT_EQ(expectWholeTrials(data), kChangedTrial);
+    }
+}
+
 // The writer folds the -wal into the file after every commit, so a -wal lost after a
 // commit loses nothing.
 TEST(SessionStoreDamage, AMissingWalLosesNoWrittenCommit) {
@@ -1399,12 +1487,12 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
         path = w.path();
         w.finish();
     }
-    for (const int version : {5, 0, -1}) {
+    for (const int version : {6, 0, -1}) {
         execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
         const std::string error = errorOf(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
         EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"), std::string::npos) << error;
-        EXPECT_NE(error.find("reads session format versions 1, 2, 3 and 4."), std::string::npos) << error;
+        EXPECT_NE(error.find("reads session format versions 1, 2, 3, 4 and 5."), std::string::npos) << error;
     }
     // The schema is checked against the file's own version: a version-3 file that says 1 lacks
     // version 1's columns.
@@ -1557,6 +1645,66 @@ TEST(SessionStoreV3, ReadsTheVersion3FixtureAgainstItsChainedChecksums) {
     EXPECT_EQ(data.frames.size(), 4686u);
     EXPECT_EQ(data.events.size(), 48u);
     expectSharedColumns(sqlRows(fixture, "SELECT * FROM events ORDER BY id"), data.events);
+}
+
+// ============================ version 4 ============================
+// tests/data/v4-click-quick.warplab-session was written by the version-4 store (see
+// tests/data/README.md): its input table has no `text`, and its checksums were computed
+// without one.
+
+std::string v4Fixture() { return std::string(WARPLAB_SOURCE_DIR) + "/tests/data/v4-click-quick.warplab-session"; }
+
+TEST(SessionStoreV4, ReadsTheVersion4FixtureWithNothingTyped) {
+    const SessionData data = readSession(v4Fixture());
+    EXPECT_EQ(data.header.formatVersion, 4);
+    EXPECT_EQ(data.header.sessionId, "b2178aa22c32feaa69fff36269ab424e");
+    EXPECT_TRUE(data.header.resumed.empty());
+    EXPECT_EQ(data.header.participant, "v4-fixture");
+    EXPECT_EQ(data.header.seed, 5u);
+    // Complete with no note: every commit verified against the checksum version 4 computed.
+    EXPECT_TRUE(data.completed);
+    EXPECT_FALSE(data.damaged);
+    EXPECT_EQ(data.note, "");
+    EXPECT_EQ(data.inputs.size(), 306u);
+    EXPECT_EQ(data.frames.size(), 306u);
+    EXPECT_EQ(data.events.size(), 14u);
+    const auto raw = sqlRows(v4Fixture(), "SELECT * FROM input ORDER BY frame");
+    ASSERT_FALSE(raw.empty());
+    EXPECT_FALSE(raw[0].contains("text")) << raw[0].dump();
+    expectSharedColumns(raw, data.inputs);  // and text, which it lacks, is ""
+    for (const InputRecord& in : data.inputs) EXPECT_EQ(in.text, "") << "frame " << in.frame;
+    expectSharedColumns(sqlRows(v4Fixture(), "SELECT * FROM frames ORDER BY frame"), data.frames);
+    expectSharedColumns(sqlRows(v4Fixture(), "SELECT * FROM events ORDER BY id"), data.events);
+}
+
+// Read by its own version's columns: its checksums still cover the six input columns it has,
+// a `text` column added to it is not read, and a file that says it is version 5 must have one.
+TEST(SessionStoreV4, ReadsItsOwnInputColumnsAndChecksThem) {
+    TempDir dir;
+    const std::string copy = (dir.path() / "v4.warplab-session").string();
+    for (const std::string change : {"UPDATE input SET mouse_dx = mouse_dx + 1 WHERE frame = 200",
+                                     "UPDATE input SET keys = keys + 2 WHERE frame = 200"}) {
+        SCOPED_TRACE(change);
+        copySession(v4Fixture(), copy, kWhole, kNoWal);
+        execSql(copy, change);
+        const SessionData data = readSession(copy);
+        EXPECT_FALSE(data.completed);
+        EXPECT_NE(data.note.find("the rows of commit 6 do not match its checksum"), std::string::npos) << data.note;
+        EXPECT_EQ(data.inputs.size(), 169u);  // commit 5's
+    }
+
+    copySession(v4Fixture(), copy, kWhole, kNoWal);
+    execSql(copy, "ALTER TABLE input ADD COLUMN text TEXT NOT NULL DEFAULT 'typed'");
+    const SessionData extra = readSession(copy);
+    EXPECT_TRUE(extra.completed) << extra.note;
+    ASSERT_EQ(extra.inputs.size(), 306u);
+    EXPECT_EQ(extra.inputs[0].text, "");
+
+    copySession(v4Fixture(), copy, kWhole, kNoWal);
+    relabel(copy, 5);
+    const std::string error = errorOf(copy);
+    EXPECT_NE(error.find("does not match the session format 5 schema"), std::string::npos) << error;
+    EXPECT_NE(error.find("text"), std::string::npos) << error;
 }
 
 TEST(SessionStoreV1, FoldsShooterColumnsIntoEventDetail) {

@@ -179,7 +179,7 @@ private:
             return {};
         }
         const auto& r = records_[next_++];
-        return {r.mouseDx, r.mouseDy, r.buttons, r.keys};
+        return {r.mouseDx, r.mouseDy, r.buttons, r.keys, r.text};
     }
     std::vector<session::InputRecord> records_;
     std::size_t next_ = 0;

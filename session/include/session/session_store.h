@@ -13,6 +13,8 @@
 
 namespace warplab::session {
 
+// 5: the input table's `text`, what was typed on each frame (a text question's answer); files
+// of versions 1 to 4 have no such column and read with text "".
 // 4: the header says where an interrupted session was resumed (`resumed`).
 // 3: a random per-session id in the header, and each commit's checksum chained to the one
 // before it (the first to the header's), so that commits cannot be mixed between sessions.
@@ -20,10 +22,11 @@ namespace warplab::session {
 // (shooter only) are still read: their shooter columns are folded into detail_json exactly as
 // the shooter writes them today, so they replay (docs/session-format.md, "Version 1"); version
 // 2 files read with unchained checksums and no session id.
-inline constexpr int kSessionFormatVersion = 4;
+inline constexpr int kSessionFormatVersion = 5;
 inline constexpr int kOldestSessionFormatVersion = 1;
 inline constexpr int kSessionIdSince = 3;
 inline constexpr int kResumedSince = 4;
+inline constexpr int kTypedTextSince = 5;
 
 // Bad or unreadable session files and results folders: one sentence naming the path.
 class SessionError : public std::runtime_error {
@@ -74,6 +77,9 @@ struct InputRecord {
     double mouseDx = 0, mouseDy = 0;
     std::uint32_t buttons = 0;
     std::uint32_t keys = 0;
+    // What was typed since the previous frame (game::FrameInput::text): UTF-8, each Backspace
+    // as '\b'; "" when nothing was, and in files older than format version 5.
+    std::string text;
 };
 
 // Per displayed frame: what was shown and how it went.

@@ -1,4 +1,5 @@
-// Private to session/: what the reader needs to read a version-1 file as today's records.
+// Private to session/: what the reader needs to read files of older format versions as today's
+// records: the input columns of versions 1 to 4, and version 1's frame and event rows.
 #pragma once
 
 #include "session/records.h"
@@ -13,7 +14,19 @@
 
 namespace warplab::session::detail {
 
-// ---- version 1, read only ----
+// ---- versions 1 to 4, read only: the input table ----
+// Frozen as versions 1 to 4 wrote it, before version 5 added `text`: the column order is also
+// the order their checksums were computed in. Read into today's InputRecord, whose text stays "".
+inline const std::vector<Field<InputRecord>>& v1To4InputFields() {
+    using R = InputRecord;
+    static const std::vector<Field<R>> fields = {
+        {"frame", &R::frame},      {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
+        {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
+    };
+    return fields;
+}
+
+// ---- version 1, read only: the frames and events tables ----
 // Frozen as version 1 wrote them: the column order is also the order its checksums were
 // computed in. A version-1 row type extends today's record with the columns version 2 moved
 // into detail_json; toRecord() below folds them in.
@@ -27,14 +40,6 @@ struct V1EventRow : EventRecord {
     double targetSpeed = 0, spawnTime = 0, aimTime = 0, angularErrorDeg = 0;
 };
 
-inline const std::vector<Field<InputRecord>>& v1InputFields() {
-    using R = InputRecord;
-    static const std::vector<Field<R>> fields = {
-        {"frame", &R::frame},      {"display_time", &R::displayTime}, {"mouse_dx", &R::mouseDx},
-        {"mouse_dy", &R::mouseDy}, {"buttons", &R::buttons},          {"keys", &R::keys},
-    };
-    return fields;
-}
 inline const std::vector<Field<V1FrameRow>>& v1FrameFields() {
     using R = V1FrameRow;
     static const std::vector<Field<R>> fields = {
