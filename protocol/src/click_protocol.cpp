@@ -141,14 +141,7 @@ const std::vector<detail::Section<P>>& sections() {
 }  // namespace
 
 std::vector<std::string> clickProtocolKeys() {
-    // A round's keys follow the matches section's own, as the page documents them.
-    std::vector<std::string> paths;
-    for (const std::string& path : detail::keyPaths(sections())) {
-        if (!paths.empty() && paths.back().rfind("matches.", 0) == 0 && path.rfind("matches.", 0) != 0)
-            for (const auto& k : roundKeys()) paths.push_back(std::string("matches.rounds[].") + k.name);
-        paths.push_back(path);
-    }
-    return paths;
+    return detail::keyPaths(sections(), {{"matches.rounds", detail::keyNames(roundKeys())}});
 }
 
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName) {
