@@ -1,6 +1,7 @@
 #include "protocol/click_protocol.h"
 
 #include "json_fields.h"
+#include "questions_json.h"
 
 namespace warplab::protocol {
 namespace {
@@ -23,7 +24,6 @@ constexpr int kSphereLimit = 40;
 constexpr double kSpeedLimit = 100;  // m/s
 constexpr double kCursorPerCountLimit = 100;
 constexpr int kMatchesPerModeLimit = 100;
-constexpr int kRatingLimit = 100;  // either end of the scale, in magnitude
 // Positive is not enough where a tiny value breaks later maths. 1 cm, a 45th of the default
 // radius, is still drawn; a subnormal radius became a float 0, spheres no click could hit.
 constexpr double kRadiusMin = 0.01;
@@ -96,6 +96,30 @@ void readStatements(const detail::Reader& r, const Json* ratings, const std::str
     p.ratingStatements = std::move(read);
 }
 
+// What a file older than format 4 asks after each match: its ratings section's statements as
+// Likert questions on its one scale, without ids (those files had none), nothing while disabled.
+std::vector<Question> ratingsAsQuestions(const P& p) {
+    std::vector<Question> questions;
+    if (p.ratingsEnabled)
+        for (const std::string& statement : p.ratingStatements) {
+            Question q;
+            q.prompt = statement;
+            q.min = p.ratingMin;
+            q.max = p.ratingMax;
+            questions.push_back(q);
+        }
+    return questions;
+}
+
+// matches.questions, new in format 4. An older struct's questions are its ratings', which the
+// ratings section already writes; where they are not, the key is written so that parsing the
+// copy refuses it rather than asking what the ratings say.
+detail::Key<P> matchQuestionsKey() {
+    detail::Key<P> k = detail::questionsKey<P>(at(&P::questions), kClickQuestionsSince);
+    k.isDefault = [](const P& p) { return p.questions == ratingsAsQuestions(p); };
+    return k;
+}
+
 // Every key of a click protocol below the top level, once (docs/protocol.md lists each).
 const std::vector<detail::Section<P>>& sections() {
     static const std::vector<detail::Section<P>> list = [] {
@@ -126,13 +150,14 @@ const std::vector<detail::Section<P>>& sections() {
             {"matches",
              {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}), K::modeList("modes", at(&P::modes)),
               K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
-              K::choice("scoring", at(&P::scoring))}},
-            {"ratings",
-             {K::boolean("enabled", at(&P::ratingsEnabled)),
-              K::custom("statements", readStatements,
-                        [](Json& o, const P& p) { o["statements"] = p.ratingStatements; }),
-              K::integer("min", at(&P::ratingMin), -kRatingLimit, kRatingLimit),
-              K::integer("max", at(&P::ratingMax), -kRatingLimit, kRatingLimit)}},
+              K::choice("scoring", at(&P::scoring)), matchQuestionsKey()}},
+            detail::Section<P>{"ratings",
+                               {K::boolean("enabled", at(&P::ratingsEnabled)),
+                                K::custom("statements", readStatements,
+                                          [](Json& o, const P& p) { o["statements"] = p.ratingStatements; }),
+                                K::integer("min", at(&P::ratingMin), -kScaleLimit, kScaleLimit),
+                                K::integer("max", at(&P::ratingMax), -kScaleLimit, kScaleLimit)}}
+                .replaced(kClickQuestionsSince, "matches.questions"),
         };
     }();
     return list;
@@ -141,14 +166,9 @@ const std::vector<detail::Section<P>>& sections() {
 }  // namespace
 
 std::vector<std::string> clickProtocolKeys() {
-    // A round's keys follow the matches section's own, as the page documents them.
-    std::vector<std::string> paths;
-    for (const std::string& path : detail::keyPaths(sections())) {
-        if (!paths.empty() && paths.back().rfind("matches.", 0) == 0 && path.rfind("matches.", 0) != 0)
-            for (const auto& k : roundKeys()) paths.push_back(std::string("matches.rounds[].") + k.name);
-        paths.push_back(path);
-    }
-    return paths;
+    return detail::keyPaths(
+        sections(),
+        {{"matches.rounds", detail::keyNames(roundKeys())}, {"matches.questions", detail::questionKeyNames()}});
 }
 
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName) {
@@ -163,18 +183,7 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     detail::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kClickInstructionsSince)
         for (ClickRound& round : p.rounds) round.instructions.clear();
-    if (p.formatVersion < kClickQuestionsSince) {
-        // The ratings section is these files' questions: its statements on its one scale.
-        p.questions.clear();
-        if (p.ratingsEnabled)
-            for (const std::string& statement : p.ratingStatements) {
-                Question q;
-                q.prompt = statement;
-                q.min = p.ratingMin;
-                q.max = p.ratingMax;
-                p.questions.push_back(q);
-            }
-    }
+    if (p.formatVersion < kClickQuestionsSince) p.questions = ratingsAsQuestions(p);
 
     // Relations between fields, checked once every field holds its final value.
     if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))

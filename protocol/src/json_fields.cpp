@@ -324,17 +324,17 @@ void Reader::choice(const Json* parent, const std::string& path, const char* key
     fail(joinPath(path, key), "must be " + alternatives(allowed) + ", got " + describe(*value));
 }
 
-std::string Reader::line(const Json& value, const std::string& where) const {
+std::string Reader::line(const Json& value, const std::string& where, bool allowEmpty) const {
     bool ok = value.is_string();
     if (ok) {
         const auto& text = value.get_ref<const std::string&>();
         for (unsigned char c : text) ok = ok && c >= 0x20 && c != 0x7f;
-        ok = ok && !text.empty() && text.size() <= kLineLimit;
+        ok = ok && (allowEmpty || !text.empty()) && text.size() <= kLineLimit;
     }
     if (!ok)
         fail(where,
-             "must be a non-empty single line of at most " + std::to_string(kLineLimit) + " bytes, got " +
-                 describe(value));
+             std::string(allowEmpty ? "must be a single line" : "must be a non-empty single line") + " of at most " +
+                 std::to_string(kLineLimit) + " bytes, got " + describe(value));
     return value.get<std::string>();
 }
 

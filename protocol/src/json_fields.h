@@ -115,8 +115,9 @@ public:
         for (const auto& entry : EnumNames<E>::list)
             if (name == entry.name) out = entry.value;
     }
-    // A non-empty single line of at most kLineLimit bytes (names, labels, statements).
-    std::string line(const Json& value, const std::string& where) const;
+    // A non-empty single line of at most kLineLimit bytes (names, labels, statements); with
+    // allowEmpty, "" too (a label that may be left blank).
+    std::string line(const Json& value, const std::string& where, bool allowEmpty = false) const;
     // Text for a participant to read: at most kParagraphLimit bytes, line breaks allowed and no
     // other control characters; may be empty.
     void paragraph(const Json* parent, const std::string& path, const char* key, std::string& out) const;
@@ -185,6 +186,21 @@ template <class P>
 struct Section {
     const char* name;
     std::vector<Key<P>> keys;
+    // The format version from which files no longer have the section (0: every version has it),
+    // and the key that holds its data from then on. Older files keep reading it (their sessions
+    // replay with what it says), so its keys stay known; a newer file that has it is refused
+    // naming the replacement, since read it would be ignored and not read it would be a setting
+    // the study silently lost. toJson writes it only for the versions that have it.
+    int replacedIn = 0;
+    const char* replacedBy = "";
+
+    Section replaced(int version, const char* by) const {
+        Section s = *this;
+        s.replacedIn = version;
+        s.replacedBy = by;
+        return s;
+    }
+    bool existsIn(int formatVersion) const { return replacedIn == 0 || formatVersion < replacedIn; }
 };
 
 // The member a key reads and writes: p.*m, or (p.*s).*m for a nested struct. The accessor
@@ -318,23 +334,44 @@ void writeKeys(Json& object, const std::vector<Key<P>>& keys, int formatVersion,
 template <class P>
 void readSections(const Reader& r, const Json& document, const std::vector<Section<P>>& sections, int formatVersion,
                   P& out) {
-    for (const Section<P>& s : sections)
+    for (const Section<P>& s : sections) {
+        if (document.contains(s.name) && !s.existsIn(formatVersion))
+            r.fail(s.name,
+                   std::string("was replaced by ") + s.replacedBy + " in format_version " +
+                       std::to_string(s.replacedIn) + ", and this file is format_version " +
+                       std::to_string(formatVersion) + ": use " + s.replacedBy + " instead");
         if (const Json* object = r.object(document, "", s.name))
             readKeys(r, *object, s.name, s.keys, formatVersion, out);
+    }
 }
 
 template <class P>
 void writeSections(Json& document, const std::vector<Section<P>>& sections, int formatVersion, const P& p) {
-    for (const Section<P>& s : sections) writeKeys(document[s.name], s.keys, formatVersion, p);
+    for (const Section<P>& s : sections)
+        if (s.existsIn(formatVersion)) writeKeys(document[s.name], s.keys, formatVersion, p);
 }
 
-// Every key as a JSON path ("display.refresh_hz"), header first, in table order.
+// The keys of each element of an array of objects: the array's path ("matches.rounds") and the
+// element's keys, in table order.
+struct ElementKeys {
+    std::string array;
+    std::vector<const char*> keys;
+};
+
+// Every key as a JSON path ("display.refresh_hz"), header first, in table order; the keys of an
+// array's elements ("matches.rounds[].name") follow their section's own keys, as the page
+// documents them.
 template <class P>
-std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections) {
+std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections,
+                                  const std::vector<ElementKeys>& elements = {}) {
     std::vector<std::string> paths(kHeaderKeys.begin(), kHeaderKeys.end());
     paths.emplace_back(kConditionsKey);
-    for (const Section<P>& s : sections)
+    for (const Section<P>& s : sections) {
         for (const Key<P>& k : s.keys) paths.push_back(joinPath(s.name, k.name));
+        for (const ElementKeys& e : elements)
+            if (e.array.rfind(std::string(s.name) + ".", 0) == 0)
+                for (const char* k : e.keys) paths.push_back(e.array + "[]." + k);
+    }
     return paths;
 }
 

@@ -1,6 +1,7 @@
 #include "protocol/shooter_protocol.h"
 
 #include "json_fields.h"
+#include "questions_json.h"
 
 namespace warplab::protocol {
 namespace {
@@ -81,7 +82,8 @@ const std::vector<detail::Section<P>>& sections() {
               // is written anyway, so that parsing the copy refuses it instead of quietly
               // replaying it differently.
               K::choice("click_timing", at(&P::clickTiming)).since(2, true),
-              detail::instructionsKey<P>(at(&P::testInstructions), kShooterInstructionsSince)}},
+              detail::instructionsKey<P>(at(&P::testInstructions), kShooterInstructionsSince),
+              detail::questionsKey<P>(at(&P::questions), kShooterQuestionsSince)}},
         };
     }();
     return list;
@@ -89,7 +91,9 @@ const std::vector<detail::Section<P>>& sections() {
 
 }  // namespace
 
-std::vector<std::string> shooterProtocolKeys() { return detail::keyPaths(sections()); }
+std::vector<std::string> shooterProtocolKeys() {
+    return detail::keyPaths(sections(), {{"test.questions", detail::questionKeyNames()}});
+}
 
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName) {
     detail::Reader r(sourceName);

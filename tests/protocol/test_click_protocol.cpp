@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,7 @@
 #include "game/registry.h"
 #include "protocol/click_protocol.h"
 #include "protocol/shooter_protocol.h"
+#include "questions_text.h"
 
 namespace warplab::protocol {
 namespace {
@@ -53,6 +56,8 @@ Json yangWith(const std::string& pointer, const Json& value) {
 
 Json minimal() { return Json{{"format_version", 1}, {"name", "t"}, {"game", "click"}}; }
 
+using test::questionsText;
+
 void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
     EXPECT_EQ(a.rendering.guardBand, b.rendering.guardBand);
     EXPECT_EQ(a.rendering.supersampling, b.rendering.supersampling);
@@ -85,6 +90,7 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
         EXPECT_EQ(a.rounds[i].instructions, b.rounds[i].instructions);
     }
     EXPECT_EQ(a.shuffle, b.shuffle);
+    EXPECT_EQ(questionsText(a.questions), questionsText(b.questions));
     EXPECT_EQ(a.ratingsEnabled, b.ratingsEnabled);
     EXPECT_EQ(a.ratingStatements, b.ratingStatements);
     EXPECT_EQ(a.ratingMin, b.ratingMin);
@@ -92,10 +98,34 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
     EXPECT_EQ(a.scoring, b.scoring);
 }
 
-// What a file older than format 3 means: no instruction screens.
-ClickProtocol withoutInstructions(ClickProtocol p) {
-    for (auto& round : p.rounds) round.instructions.clear();
+// What a file of an older format means: before 3 no instruction screens; before 4 the ratings
+// section's statements, asked as Likert questions on its one scale, with no ids (docs/protocol.md,
+// "Questions").
+ClickProtocol asFormat(ClickProtocol p, int version) {
+    p.formatVersion = version;
+    if (version < 3)
+        for (auto& round : p.rounds) round.instructions.clear();
+    if (version < 4) {
+        p.questions.clear();
+        if (p.ratingsEnabled)
+            for (const std::string& statement : p.ratingStatements) {
+                Question q;
+                q.prompt = statement;
+                q.min = p.ratingMin;
+                q.max = p.ratingMax;
+                p.questions.push_back(q);
+            }
+    }
     return p;
+}
+
+// The same full document as a format 3 file, whose questions are its ratings section.
+Json yang3With(const std::string& pointer, const Json& value) {
+    ClickProtocol p = asFormat({}, 3);
+    p.name = "t";
+    Json document = Json::parse(toJson(p));
+    document[Json::json_pointer(pointer)] = value;
+    return document;
 }
 
 // Every field different from its default, so a field the writer forgets comes back as its
@@ -123,12 +153,35 @@ ClickProtocol everyFieldChanged() {
     p.modes = {"conv120", "warp15to120"};
     p.rounds = {{"warm-up", false, 3, "Two\nlines \"quoted\""}, {"a", true, 1, ""}, {"b", true, 4, "B"}};
     p.shuffle = false;
-    p.ratingsEnabled = false;
-    p.ratingStatements = {"Only one"};
-    p.ratingMin = 0;
-    p.ratingMax = 10;
+    Question likert;
+    likert.id = "calm_1";
+    likert.prompt = "I felt \"calm\" \xc3\xa9";
+    likert.min = -3;
+    likert.max = 3;
+    likert.minLabel = "";  // no label under that end
+    likert.maxLabel = "very";
+    Question choice;
+    choice.id = "Best";
+    choice.kind = QuestionKind::Choice;
+    choice.prompt = "Which looked smoothest?";
+    choice.options = {"the first", "the second", "no difference"};
+    Question text;
+    text.id = "notes";
+    text.kind = QuestionKind::Text;
+    text.prompt = "Anything else?";
+    text.maxLength = 1;
+    p.questions = {likert, choice, text};
     p.scoring = Scoring::Displayed;
     return p;
+}
+
+// The same as a format 3 struct: its ratings section changed, and its questions what that says.
+ClickProtocol everyFieldChangedFormat3() {
+    ClickProtocol p = everyFieldChanged();
+    p.ratingStatements = {"Only one", "And two"};
+    p.ratingMin = 0;
+    p.ratingMax = 10;
+    return asFormat(p, 3);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -161,13 +214,12 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
 
 TEST(ClickFiles, YangIsWhatTheStructDefaultsSay) {
     const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json");
-    ClickProtocol defaults = withoutInstructions({});
+    // The shipped file is format 1: it defines no conditions of its own, so it reads as before,
+    // without instruction screens, rating its ratings section's statements.
+    EXPECT_EQ(p.formatVersion, 1);
+    ClickProtocol defaults = asFormat({}, p.formatVersion);
     defaults.name = p.name;
     defaults.description = p.description;
-    // The shipped file is format 1: it defines no conditions of its own, so it reads as before,
-    // without instruction screens.
-    EXPECT_EQ(p.formatVersion, 1);
-    defaults.formatVersion = p.formatVersion;
     expectSame(p, defaults);
 }
 
@@ -220,9 +272,8 @@ TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
 // Defaults and the round trip
 
 TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
-    ClickProtocol expected = withoutInstructions({});
+    ClickProtocol expected = asFormat({}, minimal()["format_version"]);
     expected.name = "t";
-    expected.formatVersion = minimal()["format_version"];
     expectSame(parse(minimal().dump()), expected);
     Json document = minimal();
     for (const char* section : {"display", "physics", "input", "matches", "ratings"})
@@ -237,23 +288,49 @@ TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
 }
 
 TEST(ClickRoundTrip, EveryFieldSurvivesBitForBit) {
-    const ClickProtocol p = everyFieldChanged();
-    expectSame(parse(toJson(p)), p);
+    for (const ClickProtocol& p : {everyFieldChanged(), everyFieldChangedFormat3()}) {
+        SCOPED_TRACE(p.formatVersion);
+        expectSame(parse(toJson(p)), p);
+    }
 }
 
 TEST(ClickRoundTrip, WriterIsStable) {
-    const std::string once = toJson(everyFieldChanged());
-    EXPECT_EQ(toJson(parse(once)), once);
-    EXPECT_EQ(once.back(), '\n');
+    for (const ClickProtocol& p : {everyFieldChanged(), everyFieldChangedFormat3()}) {
+        SCOPED_TRACE(p.formatVersion);
+        const std::string once = toJson(p);
+        EXPECT_EQ(toJson(parse(once)), once);
+        EXPECT_EQ(once.back(), '\n');
+    }
 }
 
 TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
     const Json document = Json::parse(toJson(everyFieldChanged()));
     std::vector<std::string> keys;
     for (auto it = document.begin(); it != document.end(); ++it) keys.push_back(it.key());
+    // Format 4 asks matches.questions and has no ratings section.
     EXPECT_EQ(keys,
               (std::vector<std::string>{"format_version", "name", "description", "game", "display", "physics", "input",
-                                        "matches", "ratings"}));
+                                        "matches"}));
+    // Each question with every key of its kind, and only those, in the documented order.
+    const Json& questions = document.at("matches").at("questions");
+    ASSERT_EQ(questions.size(), 3u);
+    EXPECT_EQ(questions[0].dump(),
+              Json({{"id", "calm_1"},
+                    {"kind", "likert"},
+                    {"prompt", "I felt \"calm\" \xc3\xa9"},
+                    {"min", -3},
+                    {"max", 3},
+                    {"min_label", ""},
+                    {"max_label", "very"}})
+                  .dump());
+    EXPECT_EQ(questions[1].dump(),
+              Json({{"id", "Best"},
+                    {"kind", "choice"},
+                    {"prompt", "Which looked smoothest?"},
+                    {"options", {"the first", "the second", "no difference"}}})
+                  .dump());
+    EXPECT_EQ(questions[2].dump(),
+              Json({{"id", "notes"}, {"kind", "text"}, {"prompt", "Anything else?"}, {"max_length", 1}}).dump());
     EXPECT_EQ(document.at("matches").at("rounds").at(0),
               (Json{{"name", "warm-up"},
                     {"scored", false},
@@ -318,6 +395,274 @@ TEST(ClickInstructions, AnOlderFileRoundTripsWithoutThem) {
     expectSame(parse(written), p);
 }
 
+// ---------------------------------------------------------------------------------------
+// Questions after each match (format 4): the list every game reads the same way
+
+Json likertQuestion() {
+    return {{"id", "calm"}, {"kind", "likert"},          {"prompt", "I felt calm"}, {"min", 0},
+            {"max", 10},    {"min_label", "not at all"}, {"max_label", "very"}};
+}
+Json choiceQuestion() {
+    return {{"id", "best"},
+            {"kind", "choice"},
+            {"prompt", "Which looked smoothest?"},
+            {"options", {"the first", "the second", "no difference"}}};
+}
+Json textQuestion() { return {{"id", "notes"}, {"kind", "text"}, {"prompt", "Anything else?"}, {"max_length", 80}}; }
+
+// A format 4 file asking `questions` after each match.
+Json withQuestions(const Json& questions) {
+    Json document = minimal();
+    document["format_version"] = 4;
+    document["matches"]["questions"] = questions;
+    return document;
+}
+
+TEST(ClickQuestions, EachKindParses) {
+    const ClickProtocol p = parse(withQuestions({likertQuestion(), choiceQuestion(), textQuestion()}).dump());
+    ASSERT_EQ(p.questions.size(), 3u);
+    const Question &likert = p.questions[0], &choice = p.questions[1], &text = p.questions[2];
+    EXPECT_EQ(likert.id, "calm");
+    EXPECT_EQ(likert.kind, QuestionKind::Likert);
+    EXPECT_EQ(likert.prompt, "I felt calm");
+    EXPECT_EQ(likert.min, 0);
+    EXPECT_EQ(likert.max, 10);
+    EXPECT_EQ(likert.minLabel, "not at all");
+    EXPECT_EQ(likert.maxLabel, "very");
+    EXPECT_EQ(choice.id, "best");
+    EXPECT_EQ(choice.kind, QuestionKind::Choice);
+    EXPECT_EQ(choice.options, (std::vector<std::string>{"the first", "the second", "no difference"}));
+    EXPECT_EQ(text.id, "notes");
+    EXPECT_EQ(text.kind, QuestionKind::Text);
+    EXPECT_EQ(text.maxLength, 80);
+}
+
+TEST(ClickQuestions, UnsetKeysTakeTheirDefaults) {
+    // A question with only an id and a prompt is a 1-7 Likert statement with the agreement
+    // labels; a text question takes a line of up to 200 bytes. Keys may come in any order.
+    const ClickProtocol p = parse(
+        withQuestions({Json{{"prompt", "Fun"}, {"id", "fun"}},
+                       Json{{"options", {"yes", "no"}}, {"prompt", "Again?"}, {"kind", "choice"}, {"id", "again"}},
+                       Json{{"id", "why"}, {"kind", "text"}, {"prompt", "Why?"}}})
+            .dump());
+    ASSERT_EQ(p.questions.size(), 3u);
+    EXPECT_EQ(p.questions[0].kind, QuestionKind::Likert);
+    EXPECT_EQ(p.questions[0].min, 1);
+    EXPECT_EQ(p.questions[0].max, 7);
+    EXPECT_EQ(p.questions[0].minLabel, "strongly disagree");
+    EXPECT_EQ(p.questions[0].maxLabel, "strongly agree");
+    EXPECT_EQ(p.questions[1].options, (std::vector<std::string>{"yes", "no"}));
+    EXPECT_EQ(p.questions[2].maxLength, kMaxTextAnswerBytes);
+    EXPECT_EQ(kMaxTextAnswerBytes, 200);
+    // A label may be left blank: no words under that end of the scale.
+    Json blank = likertQuestion();
+    blank["min_label"] = "";
+    EXPECT_EQ(parse(withQuestions(Json::array({blank})).dump()).questions[0].minLabel, "");
+}
+
+TEST(ClickQuestions, TheDefaultIsYangsFourStatementsAndAnEmptyListAsksNothing) {
+    Json document = minimal();
+    document["format_version"] = 4;
+    const ClickProtocol p = parse(document.dump());
+    // Yang et al. section 8: four statements rated "from 1 (strongly disagree) to 7 (strongly agree)".
+    const std::vector<std::pair<std::string, std::string>> paper{{"enjoyed", "I enjoyed playing this game"},
+                                                                 {"difficult", "This game was difficult to play"},
+                                                                 {"responsive", "This game was responsive to my input"},
+                                                                 {"smooth", "The animation was smooth"}};
+    ASSERT_EQ(p.questions.size(), paper.size());
+    for (std::size_t i = 0; i < paper.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(p.questions[i].id, paper[i].first);
+        EXPECT_EQ(p.questions[i].prompt, paper[i].second);
+        EXPECT_EQ(p.questions[i].kind, QuestionKind::Likert);
+        EXPECT_EQ(p.questions[i].min, 1);
+        EXPECT_EQ(p.questions[i].max, 7);
+        EXPECT_EQ(p.questions[i].minLabel, "strongly disagree");
+        EXPECT_EQ(p.questions[i].maxLabel, "strongly agree");
+    }
+    EXPECT_EQ(questionsText(ClickProtocol{}.questions), questionsText(p.questions));
+    EXPECT_TRUE(parse(withQuestions(Json::array()).dump()).questions.empty());
+}
+
+TEST(ClickQuestions, OlderFilesAskTheirRatingsAsLikertQuestions) {
+    Json document = yang3With("/ratings/statements", {"Smooth?", "Quick?"});
+    document["ratings"]["min"] = 0;
+    document["ratings"]["max"] = 4;
+    const ClickProtocol p = parse(document.dump());
+    ASSERT_EQ(p.questions.size(), 2u);
+    for (std::size_t i = 0; i < 2; ++i) {
+        EXPECT_EQ(p.questions[i].id, "");  // those files named none
+        EXPECT_EQ(p.questions[i].kind, QuestionKind::Likert);
+        EXPECT_EQ(p.questions[i].prompt, i == 0 ? "Smooth?" : "Quick?");
+        EXPECT_EQ(p.questions[i].min, 0);
+        EXPECT_EQ(p.questions[i].max, 4);
+    }
+    // Ratings off: nothing is asked.
+    document["ratings"]["enabled"] = false;
+    EXPECT_TRUE(parse(document.dump()).questions.empty());
+}
+
+TEST(ClickQuestions, AFormat3FileRoundTripsWithItsRatingsAsTheyWere) {
+    Json document = yang3With("/ratings/statements", {"Smooth?", "Quick?"});
+    document["ratings"]["min"] = -2;
+    document["ratings"]["max"] = 2;
+    const ClickProtocol p = parse(document.dump());
+    const Json written = Json::parse(toJson(p));
+    EXPECT_EQ(written.at("format_version"), 3);
+    EXPECT_EQ(written.at("ratings"), document.at("ratings"));
+    EXPECT_FALSE(written.at("matches").contains("questions")) << written.dump();
+    expectSame(parse(written.dump()), p);
+}
+
+TEST(ClickQuestions, AFormat4FileRoundTrips) {
+    ClickProtocol p = parse(withQuestions({likertQuestion(), choiceQuestion(), textQuestion()}).dump());
+    expectSame(parse(toJson(p)), p);
+    p.questions.clear();
+    const std::string written = toJson(p);
+    EXPECT_EQ(Json::parse(written).at("matches").at("questions"), Json::array()) << written;
+    expectSame(parse(written), p);
+}
+
+TEST(ClickQuestions, EachVersionHasOneOfTheTwo) {
+    // matches.questions is new in format 4; the ratings section is gone from it.
+    Json document = withQuestions(Json::array({likertQuestion()}));
+    document["format_version"] = 3;
+    EXPECT_EQ(messageFor(document),
+              kPrefix + "matches.questions is new in format_version 4, but this file is format_version 3");
+    document = minimal();
+    document["format_version"] = 4;
+    document["ratings"] = Json{{"enabled", false}};
+    EXPECT_EQ(messageFor(document),
+              kPrefix +
+                  "ratings was replaced by matches.questions in format_version 4, and this file is format_version 4: "
+                  "use matches.questions instead");
+    // Whatever the section holds, even nothing: it would be read and ignored.
+    document["ratings"] = Json::object();
+    EXPECT_NE(messageFor(document).find("ratings was replaced by matches.questions"), std::string::npos);
+    // A format 3 struct whose questions are not its ratings' cannot be written as format 3:
+    // the copy lists them, and reading it back refuses them instead of asking the ratings.
+    ClickProtocol p = asFormat({}, 3);
+    p.name = "t";
+    p.questions.pop_back();
+    EXPECT_EQ(messageFor(Json::parse(toJson(p))),
+              kPrefix + "matches.questions is new in format_version 4, but this file is format_version 3");
+}
+
+TEST(ClickQuestions, BadQuestionsAreNamedByTheirPath) {
+    struct Case {
+        const char* what;
+        std::function<void(Json& questions)> edit;
+        const char* expected;  // after the prefix
+    };
+    const std::vector<Case> cases{
+        {"missing id", [](Json& q) { q[1].erase("id"); }, "matches.questions[1].id is required but missing"},
+        {"id with a space", [](Json& q) { q[0]["id"] = "no spaces"; },
+         "matches.questions[0].id must be 1 to 40 letters, digits and underscores (it names the answers in "
+         "answers.csv), got string \"no spaces\""},
+        {"empty id", [](Json& q) { q[0]["id"] = ""; },
+         "matches.questions[0].id must be 1 to 40 letters, digits and underscores (it names the answers in "
+         "answers.csv), got string \"\""},
+        {"id of 41", [](Json& q) { q[2]["id"] = std::string(41, 'a'); },
+         "matches.questions[2].id must be 1 to 40 letters, digits and underscores (it names the answers in "
+         "answers.csv), got string \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\""},
+        {"id a number", [](Json& q) { q[0]["id"] = 7; },
+         "matches.questions[0].id must be 1 to 40 letters, digits and underscores (it names the answers in "
+         "answers.csv), got 7"},
+        {"duplicate id", [](Json& q) { q[2]["id"] = "calm"; },
+         "matches.questions[2].id repeats \"calm\", already matches.questions[0].id"},
+        {"unknown kind", [](Json& q) { q[0]["kind"] = "scale"; },
+         "matches.questions[0].kind must be \"likert\", \"choice\" or \"text\", got string \"scale\""},
+        {"missing prompt", [](Json& q) { q[0].erase("prompt"); },
+         "matches.questions[0].prompt is required but missing"},
+        {"prompt of two lines", [](Json& q) { q[1]["prompt"] = "a\nb"; },
+         "matches.questions[1].prompt must be a non-empty single line of at most 200 bytes, got string \"a\\nb\""},
+        {"min = max", [](Json& q) { q[0]["min"] = 10; },
+         "matches.questions[0].min must be less than matches.questions[0].max (10), got 10"},
+        {"min > max", [](Json& q) { q[0]["min"] = 3, q[0]["max"] = 1; },
+         "matches.questions[0].min must be less than matches.questions[0].max (1), got 3"},
+        {"too many points", [](Json& q) { q[0]["max"] = 11; },
+         "matches.questions[0].max gives the scale 12 answers (0 to 11), more than a scale may offer (11)"},
+        {"an end past the limit", [](Json& q) { q[0]["min"] = -101; },
+         "matches.questions[0].min must be an integer between -100 and 100, got -101"},
+        {"label of two lines", [](Json& q) { q[0]["max_label"] = "a\nb"; },
+         "matches.questions[0].max_label must be a single line of at most 200 bytes, got string \"a\\nb\""},
+        {"one option", [](Json& q) { q[1]["options"] = Json::array({"only"}); },
+         "matches.questions[1].options must list 2 to 9 options (one is no choice; each is answered by its digit "
+         "key), got 1"},
+        {"no options", [](Json& q) { q[1]["options"] = Json::array(); },
+         "matches.questions[1].options must list 2 to 9 options (one is no choice; each is answered by its digit "
+         "key), got 0"},
+        {"ten options", [](Json& q) { q[1]["options"] = {"1", "2", "3", "4", "5", "6", "7", "8", "9", "10"}; },
+         "matches.questions[1].options must list 2 to 9 options (one is no choice; each is answered by its digit "
+         "key), got 10"},
+        {"duplicate options", [](Json& q) { q[1]["options"][2] = "the first"; },
+         "matches.questions[1].options[2] repeats \"the first\", already matches.questions[1].options[0]"},
+        {"an empty option", [](Json& q) { q[1]["options"][1] = ""; },
+         "matches.questions[1].options[1] must be a non-empty single line of at most 200 bytes, got string \"\""},
+        {"a choice without options", [](Json& q) { q[1].erase("options"); },
+         "matches.questions[1].options is required for a choice question but missing"},
+        {"max_length 0", [](Json& q) { q[2]["max_length"] = 0; },
+         "matches.questions[2].max_length must be an integer between 1 and 200, got 0"},
+        {"max_length 201", [](Json& q) { q[2]["max_length"] = 201; },
+         "matches.questions[2].max_length must be an integer between 1 and 200, got 201"},
+        {"options in a Likert question",
+         [](Json& q) {
+             q[0]["options"] = {"a", "b"};
+         },
+         "matches.questions[0].options is only for a choice question; this one is likert"},
+        {"options where the kind is left to its default",
+         [](Json& q) {
+             q[0].erase("kind");
+             q[0]["options"] = {"a", "b"};
+         },
+         "matches.questions[0].options is only for a choice question; this one is likert"},
+        {"a scale end in a text question", [](Json& q) { q[2]["min"] = 1; },
+         "matches.questions[2].min is only for a likert question; this one is text"},
+        {"max_length in a choice question", [](Json& q) { q[1]["max_length"] = 5; },
+         "matches.questions[1].max_length is only for a text question; this one is choice"},
+        {"a label in a choice question", [](Json& q) { q[1]["min_label"] = "no"; },
+         "matches.questions[1].min_label is only for a likert question; this one is choice"},
+        {"unknown key", [](Json& q) { q[0]["scale"] = 7; },
+         "matches.questions[0].scale is not a known field (matches.questions[0] may have id, kind, prompt, min, max, "
+         "min_label, max_label, options, max_length)"},
+        {"not an object", [](Json& q) { q[1] = "best"; },
+         "matches.questions[1] must be an object, got string \"best\""},
+        {"not an array", [](Json& q) { q = "calm"; },
+         "matches.questions must be an array of questions, got string \"calm\""},
+        {"21 questions",
+         [](Json& q) {
+             q = Json::array();
+             for (int i = 0; i < 21; ++i) q.push_back(Json{{"id", "q" + std::to_string(i)}, {"prompt", "P"}});
+         },
+         "matches.questions lists 21 questions, more than a list asked after every block may (20)"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        Json questions = {likertQuestion(), choiceQuestion(), textQuestion()};
+        c.edit(questions);
+        EXPECT_EQ(messageFor(withQuestions(questions)), kPrefix + c.expected);
+    }
+}
+
+TEST(ClickQuestions, EachLimitItselfIsAllowed) {
+    Json questions = Json::array();
+    for (int i = 0; i < kMaxQuestions; ++i) questions.push_back(Json{{"id", "q" + std::to_string(i)}, {"prompt", "P"}});
+    EXPECT_EQ(parse(withQuestions(questions).dump()).questions.size(), 20u);
+    Json q = likertQuestion();
+    q["min"] = 90, q["max"] = 100;  // 11 answers, at the limit of an end
+    q["min_label"] = std::string(200, 'x');
+    EXPECT_EQ(messageFor(withQuestions(Json::array({q}))), "");
+    q = choiceQuestion();
+    q["options"] = {"1", "2", "3", "4", "5", "6", "7", "8", "9"};
+    q["id"] = std::string(40, '_');
+    EXPECT_EQ(messageFor(withQuestions(Json::array({q}))), "");
+    q = textQuestion();
+    q["max_length"] = 200;
+    EXPECT_EQ(messageFor(withQuestions(Json::array({q}))), "");
+    q["max_length"] = 1;
+    EXPECT_EQ(messageFor(withQuestions(Json::array({q}))), "");
+}
+
 TEST(ClickErrors, NegativeGravity) {
     EXPECT_EQ(messageFor(yangWith("/physics/gravity_m_per_s2", -9.81)),
               kPrefix + "physics.gravity_m_per_s2 must be a number between 0 and 100, got -9.81");
@@ -375,42 +720,45 @@ TEST(ClickErrors, DuplicateModes) {
               kPrefix + "matches.modes[3] repeats \"conv60\", already matches.modes[0]");
 }
 
+// A format 3 file's ratings section, as its sessions were recorded with.
 TEST(ClickErrors, MissingOrEmptyRatingText) {
     const std::string rule = " must be a non-empty single line of at most 200 bytes, got ";
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements/1", "")),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements/1", "")),
               kPrefix + "ratings.statements[1]" + rule + "string \"\"");
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements/0", nullptr)),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements/0", nullptr)),
               kPrefix + "ratings.statements[0]" + rule + "null");
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements/2", "two\nlines")),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements/2", "two\nlines")),
               kPrefix + "ratings.statements[2]" + rule + "string \"two\\nlines\"");
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements", Json::array())),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements", Json::array())),
               kPrefix +
                   "ratings.statements must list at least one statement while "
                   "ratings.enabled is true");
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements", "I enjoyed playing this game")),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements", "I enjoyed playing this game")),
               kPrefix +
                   "ratings.statements must be an array of statements, got string \"I "
                   "enjoyed playing this game\"");
-    EXPECT_EQ(messageFor(yangWith("/ratings/statements/3", "This game was difficult to play")),
+    EXPECT_EQ(messageFor(yang3With("/ratings/statements/3", "This game was difficult to play")),
               kPrefix +
                   "ratings.statements[3] repeats \"This game was difficult to play\", "
                   "already ratings.statements[1]");
     // No statements is fine when nothing is asked.
-    Json document = yangWith("/ratings/statements", Json::array());
+    Json document = yang3With("/ratings/statements", Json::array());
     document["ratings"]["enabled"] = false;
     EXPECT_TRUE(parse(document.dump()).ratingStatements.empty());
 }
 
 TEST(ClickErrors, RatingMinMustBeBelowMax) {
-    Json document = yangWith("/ratings/min", 7);
+    Json document = yang3With("/ratings/min", 7);
     EXPECT_EQ(messageFor(document), kPrefix + "ratings.min must be less than ratings.max (7), got 7");
     document["ratings"]["max"] = 3;
     EXPECT_EQ(messageFor(document), kPrefix + "ratings.min must be less than ratings.max (3), got 7");
-    EXPECT_EQ(messageFor(yangWith("/ratings/max", 101)),
+    EXPECT_EQ(messageFor(yang3With("/ratings/max", 101)),
               kPrefix + "ratings.max must be an integer between -100 and 100, got 101");
-    document = yangWith("/ratings/min", -3);
+    document = yang3With("/ratings/min", -3);
     document["ratings"]["max"] = 3;
     EXPECT_EQ(parse(document.dump()).ratingMin, -3);
+    EXPECT_EQ(messageFor(yang3With("/ratings/enabled", "yes")),
+              kPrefix + "ratings.enabled must be true or false, got string \"yes\"");
 }
 
 TEST(ClickErrors, StepRateTheRefreshDoesNotDivide) {
@@ -480,12 +828,12 @@ TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
     // A click file newer than this build is still just that, with or without fields of its own:
     // a bare header is any game's, and a newer click file's sections are no shooter's.
     for (const Json& newer :
-         {Json{{"format_version", 4}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 4)}) {
+         {Json{{"format_version", 5}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 5)}) {
         try {
             game::parseStudy(newer.dump(), kSource);
             ADD_FAILURE() << "expected a ProtocolError";
         } catch (const ProtocolError& e) {
-            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 4 is newer than this warplab supports (3)");
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 5 is newer than this warplab supports (4)");
         }
     }
 }
@@ -533,11 +881,10 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
          "input.click_timing must be \"display\" or \"input_reads\", got string \"frame\""},
         {"/matches/scoring", "both", "matches.scoring must be \"world\" or \"displayed\", got string \"both\""},
         {"/matches/shuffle", 1, "matches.shuffle must be true or false, got 1"},
-        {"/ratings/enabled", "yes", "ratings.enabled must be true or false, got string \"yes\""},
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 4, "format_version 4 is newer than this warplab supports (3)"},
+        {"/format_version", 5, "format_version 5 is newer than this warplab supports (4)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);
@@ -656,10 +1003,33 @@ TEST(SharedLoader, ReadingAFileNamesThePath) {
 
 // ============================ the documented keys ============================
 
+// The rows of the first "| key |" table under the heading `heading` of docs/protocol.md.
+std::vector<std::string> keyTableUnder(const std::string& heading) {
+    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/protocol.md");
+    EXPECT_TRUE(doc.good());
+    std::vector<std::string> keys;
+    std::string line;
+    bool under = false, inTable = false;
+    while (std::getline(doc, line)) {
+        if (line.rfind("# ", 0) == 0 || line.rfind("## ", 0) == 0) {
+            if (under) break;
+            under = line == heading;
+        }
+        if (!under) continue;
+        if (line.rfind("| key |", 0) == 0)
+            inTable = true;
+        else if (line.rfind("|", 0) != 0 && inTable)
+            break;
+        if (inTable && line.rfind("| `", 0) == 0) keys.push_back(line.substr(3, line.find('`', 3) - 3));
+    }
+    return keys;
+}
+
 // docs/protocol.md's keys for the game whose part starts at the heading `part` ("# The
 // falling-sphere click game"), as JSON paths: each "| key |" table's rows, under "## Top
 // level" (no prefix), "## `section`" ("section.") or "Each element of `array`:"
-// ("section.array[].").
+// ("section.array[]."). A question list's elements are documented once for every game, under
+// "## Questions": "Each element of `questions`: ... [Questions](#questions)" stands for its rows.
 std::vector<std::string> documentedKeys(const std::string& part) {
     std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/protocol.md");
     EXPECT_TRUE(doc.good());
@@ -679,6 +1049,8 @@ std::vector<std::string> documentedKeys(const std::string& part) {
             prefix = line == "## Top level" ? "" : section.empty() ? "-" : section + ".";
         } else if (line.rfind("Each element of `", 0) == 0) {
             prefix = section + "." + line.substr(17, line.find('`', 17) - 17) + "[].";
+            if (line.find("[Questions](#questions)") != std::string::npos)
+                for (const std::string& key : keyTableUnder("## Questions")) keys.push_back(prefix + key);
         }
         if (line.rfind("| key |", 0) == 0)
             inTable = prefix != "-";

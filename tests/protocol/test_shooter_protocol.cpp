@@ -15,6 +15,7 @@
 
 #include "condition/schedule.h"
 #include "protocol/shooter_protocol.h"
+#include "questions_text.h"
 
 namespace warplab::protocol {
 namespace {
@@ -40,9 +41,12 @@ Json thesisWith(const std::string& pointer, const Json& value) {
     p.name = "t";
     Json document = Json::parse(toJson(p));
     document[Json::json_pointer(pointer)] = value;
-    // An older version's document, as such files are: without the phases' instructions.
+    // An older version's document, as such files are: without the phases' instructions, and
+    // without the test's questions.
     if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterInstructionsSince)
         for (const char* phase : {"acclimation", "training", "test"}) document[phase].erase("instructions");
+    if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterQuestionsSince)
+        document["test"].erase("questions");
     return document;
 }
 
@@ -102,6 +106,7 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.supervisorStartsTest, b.supervisorStartsTest);
     EXPECT_EQ(a.clickTiming, b.clickTiming);
     EXPECT_EQ(a.legacyRules, b.legacyRules);
+    EXPECT_EQ(test::questionsText(a.questions), test::questionsText(b.questions));
 }
 
 // What a file older than format 4 means: no instruction screens.
@@ -144,6 +149,19 @@ ShooterProtocol everyFieldChanged() {
     p.scoring = Scoring::World;
     p.supervisorStartsTest = false;
     p.clickTiming = ClickTiming::InputReads;
+    Question choice;
+    choice.id = "which";
+    choice.kind = QuestionKind::Choice;
+    choice.prompt = "Which block felt the most responsive?";
+    choice.options = {"this one", "the one before", "no difference"};
+    Question likert;
+    likert.id = "hard";
+    likert.prompt = "Hitting the ball was hard";
+    likert.min = 0;
+    likert.max = 10;
+    likert.minLabel = "not at all";
+    likert.maxLabel = "";
+    p.questions = {choice, likert};
     return p;
 }
 
@@ -283,12 +301,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 5;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 5 is newer than this warplab supports (4)");
+    document["format_version"] = 6;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 6 is newer than this warplab supports (5)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 5 is newer than this warplab supports (4)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 6 is newer than this warplab supports (5)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -308,7 +326,7 @@ TEST(ProtocolErrors, UnknownNestedFieldIsNamedWithItsPath) {
     EXPECT_EQ(message,
               "protocol 'p.json': test.timout_s is not a known field (test may have conditions, "
               "targets_per_condition, interleave, timeout_s, pause_s, scoring, supervisor_starts, "
-              "click_timing, instructions)");
+              "click_timing, instructions, questions)");
     expectContains(errorOf(thesisWith("/training/max_levle", 3)), {"training.max_levle is not a known field"});
     expectContains(errorOf(thesisWith("/display/refresh", 3)), {"display.refresh is not a known field"});
 }
@@ -610,10 +628,10 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion4WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion5WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 4);
+    EXPECT_EQ(kShooterFormatVersion, 5);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);
@@ -657,6 +675,77 @@ TEST(ProtocolInstructions, OlderFilesMayNotSetThemAndBadTextIsNamed) {
     ShooterProtocol old = parse(minimal().dump());
     old.testInstructions = "Go";
     expectContains(errorOfText(toJson(old)), {"test.instructions is new in format_version 4"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Questions after each block of the test (format 5), read by the reader every game shares
+
+// A format 5 file asking `questions` after each block of the test.
+Json withTestQuestions(const Json& questions) {
+    Json document = minimal();
+    document["format_version"] = 5;
+    document["test"]["questions"] = questions;
+    return document;
+}
+
+TEST(ProtocolQuestions, NoneByDefaultAndEachKindParses) {
+    Json document = minimal();
+    document["format_version"] = 5;
+    EXPECT_TRUE(parse(document.dump()).questions.empty());  // the thesis asked none
+    EXPECT_TRUE(ShooterProtocol{}.questions.empty());
+    EXPECT_TRUE(parse(withTestQuestions(Json::array()).dump()).questions.empty());
+    const ShooterProtocol p = parse(
+        withTestQuestions({Json{{"id", "smooth"}, {"prompt", "The motion was smooth"}, {"max", 5}},
+                           Json{{"id", "which"}, {"kind", "choice"}, {"prompt", "Better?"}, {"options", {"a", "b"}}},
+                           Json{{"id", "notes"}, {"kind", "text"}, {"prompt", "Notes"}, {"max_length", 50}}})
+            .dump());
+    ASSERT_EQ(p.questions.size(), 3u);
+    EXPECT_EQ(p.questions[0].kind, QuestionKind::Likert);
+    EXPECT_EQ(p.questions[0].min, 1);
+    EXPECT_EQ(p.questions[0].max, 5);
+    EXPECT_EQ(p.questions[1].kind, QuestionKind::Choice);
+    EXPECT_EQ(p.questions[1].options, (std::vector<std::string>{"a", "b"}));
+    EXPECT_EQ(p.questions[2].kind, QuestionKind::Text);
+    EXPECT_EQ(p.questions[2].maxLength, 50);
+}
+
+TEST(ProtocolQuestions, TheCanonicalCopyReadsBackTheSame) {
+    const ShooterProtocol p = everyFieldChanged();
+    const Json written = Json::parse(toJson(p));
+    EXPECT_EQ(written.at("test").at("questions").size(), 2u);
+    expectSame(parse(written.dump()), p);
+    // None is written as [] in format 5 and not at all in older files, which had none.
+    ShooterProtocol none;
+    none.name = "n";
+    EXPECT_EQ(Json::parse(toJson(none)).at("test").at("questions"), Json::array());
+    Json older = minimal();
+    older["format_version"] = 4;
+    EXPECT_EQ(Json::parse(toJson(parse(older.dump()))).at("test").count("questions"), 0u);
+}
+
+TEST(ProtocolQuestions, OlderFilesMayNotAskAny) {
+    Json document = withTestQuestions(Json::array({Json{{"id", "a"}, {"prompt", "A"}}}));
+    document["format_version"] = 4;
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': test.questions is new in format_version 5, but this file is format_version 4");
+    // Nor can a struct of an older version quietly lose them: the copy lists them and is refused.
+    ShooterProtocol p = parse(minimal().dump());
+    p.questions = everyFieldChanged().questions;
+    expectContains(errorOfText(toJson(p)), {"test.questions is new in format_version 5"});
+}
+
+TEST(ProtocolQuestions, BadQuestionsAreNamedByTheirPathInTheTest) {
+    // The same reader as the click game's (tests/protocol/test_click_protocol.cpp has every
+    // case): here each message names test.questions.
+    EXPECT_EQ(errorOf(withTestQuestions(Json::array({Json{{"id", "a"}, {"prompt", "A"}, {"max_length", 9}}}))),
+              "protocol 'p.json': test.questions[0].max_length is only for a text question; this one is likert");
+    EXPECT_EQ(errorOf(withTestQuestions({Json{{"id", "a"}, {"prompt", "A"}}, Json{{"id", "a"}, {"prompt", "B"}}})),
+              "protocol 'p.json': test.questions[1].id repeats \"a\", already test.questions[0].id");
+    EXPECT_EQ(errorOf(withTestQuestions(Json::array({Json{{"prompt", "A"}}}))),
+              "protocol 'p.json': test.questions[0].id is required but missing");
+    EXPECT_EQ(errorOf(withTestQuestions(
+                  Json::array({Json{{"id", "c"}, {"kind", "choice"}, {"prompt", "C"}, {"options", {"x", "x"}}}}))),
+              "protocol 'p.json': test.questions[0].options[1] repeats \"x\", already test.questions[0].options[0]");
 }
 
 TEST(ProtocolVersions, Version1MeansLegacyRules) {

@@ -1,8 +1,9 @@
 // The falling-sphere click game's protocol file (Yang et al. 2011, seed 000 section 8): red and
 // green spheres fall and bounce in a box, the player clicks the green ones and avoids the red
-// ones, in 45 s matches played in each mode, each followed by four 1-7 ratings. Every field is
-// documented, with its JSON key, unit, range and source, in docs/protocol.md. The defaults are
-// the published study, so an unset field in a file means "as in the paper".
+// ones, in 45 s matches played in each mode, each followed by questions (the paper's four 1-7
+// ratings unless the file lists its own). Every field is documented, with its JSON key, unit,
+// range and source, in docs/protocol.md. The defaults are the published study, so an unset
+// field in a file means "as in the paper".
 #pragma once
 
 #include <string>
@@ -16,12 +17,13 @@ namespace warplab::protocol {
 
 // The newest click protocol format this build reads and the one toJson writes.
 // 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions"), 3 each
-// round's "instructions" screen.
-inline constexpr int kClickFormatVersion = 3;
+// round's "instructions" screen, 4 matches.questions in place of the ratings section.
+inline constexpr int kClickFormatVersion = 4;
 inline constexpr int kClickConditionsSince = 2;
 inline constexpr int kClickInstructionsSince = 3;
-// From 4 the questions after each match are matches.questions (any kind); older files rate the
-// ratings section's statements, and their sessions log those answers as "rating" events.
+// From 4 the questions after each match are matches.questions (any kind), and a file may no
+// longer have a ratings section; older files rate the ratings section's statements, and their
+// sessions log those answers as "rating" events.
 inline constexpr int kClickQuestionsSince = 4;
 
 // What a round's instructions say unless the protocol says otherwise: the task in plain words.
@@ -73,9 +75,9 @@ struct ClickProtocol {
         {"scored", true, 2,
          std::string(kClickTaskInstructions) + " From now on every match counts. After each one, say how it felt."}};
     bool shuffle = true;  // random mode order per round, from the session seed
-    // What is asked after every match, in order; empty for nothing. Files older than format 4
-    // give it as the ratings section below (their statements as Likert questions on one scale,
-    // with no ids); the game asks this list whatever the version.
+    // matches.questions: what is asked after every match, in order; empty for nothing. Files
+    // older than format 4 give it as the ratings section below (their statements as Likert
+    // questions on one scale, with no ids); the game asks this list whatever the version.
     std::vector<Question> questions = yangRatingQuestions();
     // ratings.* (format 3 and older; the parser turns them into `questions`)
     bool ratingsEnabled = true;

@@ -32,7 +32,8 @@ struct Question {
     std::string id;  // names the question in answers.csv; unique within the list, [A-Za-z0-9_]
     QuestionKind kind = QuestionKind::Likert;
     std::string prompt;  // the statement or question, one line
-    // Likert: the answers min..max, both included; the labels shown under the two ends.
+    // Likert: the answers min..max, both included; the labels shown under the two ends ("" for
+    // none: a scale may be shown as numbers alone).
     int min = 1, max = 7;
     std::string minLabel = "strongly disagree", maxLabel = "strongly agree";
     // Choice: the options, answered 1..n (by digit or by clicking one).

@@ -16,8 +16,8 @@ namespace warplab::protocol {
 // The newest protocol format this build reads. 2 added test.click_timing and fixed the timeout
 // and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
 // replay under the rules they were recorded with. 3 added the protocol's own "conditions", 4
-// each phase's "instructions" screen.
-inline constexpr int kShooterFormatVersion = 4;
+// each phase's "instructions" screen, 5 the questions after each block of the test.
+inline constexpr int kShooterFormatVersion = 5;
 inline constexpr int kShooterConditionsSince = 3;
 inline constexpr int kShooterInstructionsSince = 4;
 inline constexpr int kShooterQuestionsSince = 5;  // test.questions
@@ -70,8 +70,9 @@ struct ShooterProtocol {
     condition::ConditionTable conditionTable;
     std::vector<std::string> conditions{"conv15", "conv120", "warp15to120"};
     int targetsPerCondition = 225;
-    // Asked after each block of the test: after each condition's trials where conditions are
-    // not interleaved, else once after the whole test. None by default (the thesis asked none).
+    // test.questions (format 5 and later): asked after each block of the test: after each
+    // condition's trials where conditions are not interleaved, else once after the whole test.
+    // None by default (the thesis asked none).
     std::vector<Question> questions;
     bool interleaveConditions = true;  // random order drawn from the session seed
     double timeoutS = 3;
@@ -89,7 +90,7 @@ struct ShooterProtocol {
 };
 
 // sourceName is what messages call the file (its path). Every mode id must name a preset or a
-// condition the file defines, runnable at its refresh. Reads format_version 1 to 4. Throws
+// condition the file defines, runnable at its refresh. Reads format_version 1 to 5. Throws
 // ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:
