@@ -754,7 +754,7 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
     });
     const std::string shooter = editedProtocol(source, "shooter-quick.json", [&](nlohmann::json& p) {
         p["format_version"] = protocol::kShooterQuestionsSince;
-        p["test"]["interleave_conditions"] = false;
+        p["test"]["interleave"] = false;
         p["test"]["questions"] = nlohmann::json::array({questions[1]});
     });
     for (const std::string& path : {click, shooter}) {
@@ -773,9 +773,11 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
     std::map<std::string, std::vector<std::map<std::string, std::string>>> byGame;
     for (const auto& a : answers) byGame[a.at("game")].push_back(a);
 
-    // Click: the scored round's matches (two modes x one match), three answers each.
+    // Click: three answers after each match of the scored round.
     const auto& clicks = byGame["click"];
-    ASSERT_EQ(clicks.size(), 3u * 2u);
+    const auto matches = readCsv(out + "/matches.csv");
+    ASSERT_FALSE(matches.empty());
+    ASSERT_EQ(clicks.size(), 3u * matches.size());
     for (std::size_t i = 0; i < clicks.size(); ++i) {
         const auto& a = clicks[i];
         EXPECT_EQ(a.at("block"), "scored");
@@ -784,7 +786,8 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
         EXPECT_EQ(a.at("question_id"), questions[i % 3]["id"].get<std::string>());
         EXPECT_EQ(a.at("kind"), questions[i % 3]["kind"].get<std::string>());
         EXPECT_EQ(a.at("prompt"), questions[i % 3]["prompt"].get<std::string>());
-        EXPECT_FALSE(a.at("mode").empty());
+        EXPECT_EQ(a.at("mode"), matches[i / 3].at("mode"));
+        EXPECT_EQ(a.at("block_index"), matches[i / 3].at("match"));
         EXPECT_GE(std::stod(a.at("answer_s")), 0.5);  // the settle time, then the bot's reading
     }
     EXPECT_EQ(clicks[0].at("scale_min"), "0");
@@ -800,7 +803,7 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
     EXPECT_EQ(clicks[2].at("answered_with"), "typed");
     // The Likert answers are the matches' ratings.
     const auto ratings = readCsv(out + "/ratings.csv");
-    ASSERT_EQ(ratings.size(), 2u);
+    ASSERT_EQ(ratings.size(), matches.size());
     EXPECT_EQ(ratings[0].at("statement"), "It was fun");
     EXPECT_EQ(ratings[0].at("value"), clicks[0].at("value"));
 
