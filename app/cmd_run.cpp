@@ -197,6 +197,16 @@ int runWindowed(const ParsedArgs& args) {
     }
     run.allowRefreshMismatch = args.flag("allow-refresh-mismatch");
     run.inputScript = args.string("input-script", "");
+    run.everyFrame = args.flag("every-frame");
+    if (args.has("slow-frames")) {
+        const std::string slow = args.string("slow-frames", "");
+        const std::size_t colon = slow.find(':');
+        const std::string why = "option --slow-frames needs MS:EVERY, e.g. 40:10 (40 ms more on every 10th frame)";
+        if (colon == std::string::npos) throw UsageError(why);
+        run.slowMs = static_cast<double>(wholeInteger(slow.substr(0, colon), why));
+        run.slowEvery = static_cast<int>(wholeInteger(slow.substr(colon + 1), why));
+        if (run.slowMs < 0 || run.slowMs > 10000 || run.slowEvery < 1) throw UsageError(why);
+    }
     run.screenshotDir = args.string("screenshots", "");
     run.screenshotStartScreen = !run.screenshotDir.empty();
     const std::string frames = args.string("screenshot-frames", "");
@@ -226,7 +236,8 @@ int runWindowed(const ParsedArgs& args) {
 // mistyped --cm-per-360 unnoticed, an --input-script that drives nothing).
 const char* const kWindowOnlyOptions[] = {
     "fullscreen",  "display",           "cm-per-360", "mouse-dpi", "invert-y", "allow-refresh-mismatch",
-    "screenshots", "screenshot-frames", "free-play",  "mode",      "level",    "input-script"};
+    "screenshots", "screenshot-frames", "free-play",  "mode",      "level",    "input-script",
+    "every-frame", "slow-frames"};
 
 int runRun(const ParsedArgs& args) {
     if (!args.flag("headless")) return runWindowed(args);
@@ -377,6 +388,9 @@ Command runCommand() {
              {"level", "N", "with --free-play: the difficulty (shooter: staircase level) to start at", "0"},
              {"input-script", "FILE", "window, tests: input given as if by the participant (see docs/live-sessions.md)",
               ""},
+             {"every-frame", "", "window, tests: show every display frame however late (slow motion on a slow machine)",
+              "late frames' display frames are skipped"},
+             {"slow-frames", "MS:EVERY", "window, tests: make every EVERY-th frame MS ms slower, as a slow machine", ""},
              {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
               "osmesa"},
              dataDirOption(),

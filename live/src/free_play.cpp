@@ -31,6 +31,7 @@ public:
     void stepped(const game::ShownFrame&, const game::FrameInput&) override { game_->takeEvents(); }
     void decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) override;
     void presented(const game::ShownFrame&, const FrameTiming& timing) override {
+        if (timing.skipped) return;
         late_ += timing.missedVsyncs > 0;
         recentMs_.push_back(timing.frameMs);
         if (recentMs_.size() > static_cast<std::size_t>(refreshHz_)) recentMs_.erase(recentMs_.begin());

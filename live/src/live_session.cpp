@@ -2,6 +2,9 @@
 // supervisor's start and end screens.
 #include "live/live_session.h"
 
+#include <algorithm>
+#include <cstdio>
+#include <deque>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -9,6 +12,7 @@
 #include <utility>
 
 #include "game/game.h"
+#include "session/pacing.h"
 #include "session/session_store.h"
 #include "study/resume.h"
 #include "study/session_runner.h"
@@ -24,7 +28,9 @@ public:
     SessionPolicy(const WindowLoop& loop, std::uint64_t seed, session::SessionWriter& writer, std::ostream& progress)
         : game_(loop.study().newGame(seed, loop.display())),
           writer_(writer),
-          commits_(writer, loop.study().refreshHz(), progress) {}
+          commits_(writer, loop.study().refreshHz(), progress),
+          refreshHz_(loop.shownRefreshHz()),
+          progress_(progress) {}
 
     game::Game& game() override { return *game_; }
     std::string pauseText() const override {
@@ -41,59 +47,87 @@ public:
     }
     void presented(const game::ShownFrame& shown, const FrameTiming& timing) override {
         session::FrameRecord record = game_->frameRecord(shown);
+        // A skipped frame was never on screen: its kind says so, and it has no times.
+        if (timing.skipped) record.kind = session::kSkippedFrameKind;
         record.frameMs = timing.frameMs;
         record.renderMs = timing.renderMs;
         record.missedVsyncs = timing.missedVsyncs;
-        count(record);
+        pacing_.add(record);
+        warnIfOverBudget(record);
         writer_.addFrame(record);
         commits_.afterFrame(shown.frame, game_->atCommitPoint());
     }
     std::string screenshotName(std::int64_t frame) const override { return "frame_" + std::to_string(frame); }
-    // A resumed session's kept frames count towards its late frames like the ones shown now.
-    void kept(const session::FrameRecord& record) { count(record); }
+    // A resumed session's kept frames count towards its pacing like the ones shown now.
+    void kept(const session::FrameRecord& record) { pacing_.add(record); }
 
-    // Flags a session with too many late frames, writes what waits (showing the supervisor
-    // why it takes long) and prints the missed vsyncs per mode.
+    // Flags a session with too many late or skipped frames, stores and prints the pacing per
+    // mode, and writes what waits (showing the supervisor why it takes long).
     void finish(WindowLoop& loop, std::ostream& progress);
 
 private:
-    struct Tally {
-        long missed = 0, frames = 0, late = 0;  // missed vsyncs, frames, frames that missed one
-    };
-    void count(const session::FrameRecord& record) {
-        Tally& tally = perMode_[record.mode.empty() ? "(screens)" : record.mode];
-        tally.missed += record.missedVsyncs;
-        ++tally.frames;
-        tally.late += record.missedVsyncs > 0;
-    }
+    // Says on the supervisor's terminal, at most every few seconds, when the mode on screen
+    // did not keep its rate over the last second.
+    void warnIfOverBudget(const session::FrameRecord& record);
+
     std::unique_ptr<game::Game> game_;
     session::SessionWriter& writer_;
     study::SessionCommits commits_;
-    std::map<std::string, Tally> perMode_;
+    double refreshHz_;
+    std::ostream& progress_;
+    session::PacingTally pacing_;
+    std::deque<session::FrameRecord> lastSecond_;  // mode, kind, frame time: the last refresh's worth
+    std::int64_t warnedAt_ = -1;
 };
 
+void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
+    session::FrameRecord brief = record;
+    brief.detailJson.clear();
+    lastSecond_.push_back(std::move(brief));
+    const auto perSecond = static_cast<std::size_t>(std::max(1.0, refreshHz_));
+    if (lastSecond_.size() > perSecond) lastSecond_.pop_front();
+    const std::int64_t frame = record.frame;
+    if (lastSecond_.size() < perSecond || record.mode.empty() || frame % static_cast<std::int64_t>(perSecond) != 0 ||
+        (warnedAt_ >= 0 && frame - warnedAt_ < 5 * static_cast<std::int64_t>(perSecond)))
+        return;
+    std::vector<session::FrameRecord> recent;
+    for (const auto& f : lastSecond_)
+        if (f.mode == record.mode) recent.push_back(f);
+    const auto summary = session::summarizePacing(recent, refreshHz_);
+    if (summary.empty()) return;
+    const session::ModePacing& p = summary.front();
+    if (p.skipped == 0 && p.overBudget * 10 <= p.shown) return;  // nine in ten on time: no need to say
+    warnedAt_ = frame;
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "warning: %s did not keep its rate in the last second: %lld of %lld display frames skipped, "
+                  "frame time median %.1f ms, max %.1f ms against %.1f ms\n",
+                  p.mode.c_str(), static_cast<long long>(p.skipped), static_cast<long long>(p.shown + p.skipped),
+                  p.medianMs, p.maxMs, p.budgetMs);
+    progress_ << text;
+}
+
 void SessionPolicy::finish(WindowLoop& loop, std::ostream& progress) {
-    // More than 1 % of frames late is more than a study can call "at the protocol's rate":
-    // the store says so, and export can leave such sessions out.
-    Tally all;
-    for (const auto& [mode, tally] : perMode_) {
-        all.missed += tally.missed;
-        all.frames += tally.frames;
-        all.late += tally.late;
+    // More than 1 % of display frames late or skipped is more than a study can call "at the
+    // protocol's rate": the store says so, and export can leave such sessions out.
+    const std::vector<session::ModePacing> pacing = pacing_.summary(refreshHz_);
+    std::int64_t displayFrames = 0, offTime = 0;
+    for (const auto& p : pacing) {
+        displayFrames += p.shown + p.skipped;
+        offTime += p.late + p.skipped;
     }
-    if (all.frames > 0 && all.late * 100 > all.frames) {
+    if (displayFrames > 0 && offTime * 100 > displayFrames) {
         std::ostringstream text;
-        text << all.late << " of " << all.frames << " frames missed their vsync (" << all.missed << " vsyncs in all)";
+        text << offTime << " of " << displayFrames << " display frames late or skipped";
         writer_.flag("missed_frames", text.str());
         progress << "warning: " << text.str() << "; the session is flagged\n";
     }
+    writer_.summarize("pacing", session::pacingText(pacing));
     commits_.end(game_->finished(), [&](const std::string& line) {
         loop.showScreen("Saving", line);
         loop.drainInput();  // keeps the window responsive while it waits
     });
-    progress << "missed vsyncs per mode (missed / frames):";
-    for (const auto& [mode, tally] : perMode_) progress << " " << mode << " " << tally.missed << "/" << tally.frames;
-    progress << "\n";
+    progress << session::pacingReport(pacing);
 }
 
 std::string playerText(const LiveRun& run) {

@@ -50,17 +50,28 @@ DisplayClock::DisplayClock(renderer::Window& window, double refreshHz, bool byVs
     : window_(window), period_(1.0 / refreshHz), byVsync_(byVsync), last_(Clock::now()), deadline_(last_) {}
 
 DisplayClock::Presented DisplayClock::present() {
+    const auto period = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
     if (!byVsync_) {
-        deadline_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(period_));
+        deadline_ += period;
         std::this_thread::sleep_until(deadline_);
     }
     window_.swapBuffers();
     const auto now = Clock::now();
     const double frameS = std::chrono::duration<double>(now - last_).count();
     last_ = now;
-    if (!byVsync_ && now > deadline_ + std::chrono::milliseconds(100)) deadline_ = now;  // fell far behind
     const bool first = std::exchange(first_, false);
-    return {frameS, first ? 0 : std::max(0, static_cast<int>(std::lround(frameS / period_)) - 1)};
+    if (first) {
+        deadline_ = now;
+        return {frameS, 0};
+    }
+    if (!byVsync_) {
+        // Whole ticks past the deadline are display frames this one took: the deadline moves
+        // past them, as the game does, rather than the clock falling behind for good.
+        const int missed = now > deadline_ ? static_cast<int>((now - deadline_) / period) : 0;
+        deadline_ += missed * period;
+        return {frameS, missed};
+    }
+    return {frameS, std::max(0, static_cast<int>(std::lround(frameS / period_)) - 1)};
 }
 
 void DisplayClock::restart() {
@@ -183,11 +194,12 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
     for (const game::ShownFrame& source : keptSources_) maker_.keepSource(source);
     keptSources_.clear();
     End end;
-    std::int64_t frame = firstFrame_, injectedFor = -1;  // frame: the display frame to show next
+    std::int64_t frame = firstFrame_, injectedFor = firstFrame_ - 1;  // frame: the display frame to show next
     clock_.restart();
     while (!game.finished() && (!player_ || player_->hasMore())) {
-        if (injectedFor != frame) inject(std::to_string(frame));  // once, also across a pause
-        injectedFor = frame;
+        // Each frame's scripted input once, also across a pause; a skipped frame's reaches the
+        // next frame shown, as a participant's input does.
+        while (injectedFor < frame) inject(std::to_string(++injectedFor));
         const Polled polled = poll(window_, countScale_, run_.invertY);
         if (human()) input = polled.input;
         if (polled.closed || (polled.escape && !pause(polled.keys, policy.pauseText()))) {
@@ -199,12 +211,31 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
         policy.beforeStep(polled.keys, frame, input);
         const game::ShownFrame shown = game.step(input);
         policy.stepped(shown, input);
-        policy.presented(shown, show(shown, frame, policy));
+        const FrameTiming timing = show(shown, frame, policy);
+        policy.presented(shown, timing);
         if (std::find(run_.screenshotFrames.begin(), run_.screenshotFrames.end(), frame) != run_.screenshotFrames.end())
             screenshot(policy.screenshotName(frame));
         end.lastFrame = shown.frame;
         ++frame;
+        // The display frames this one took from the next: the game steps through them, so a
+        // trial's seconds stay the protocol's, and they are recorded as skipped. The participant
+        // holds what they held (what the mouse did meanwhile reaches the next frame shown); a
+        // player gives its input frame by frame, as if each was shown.
+        const game::FrameInput held{0.0, 0.0, input.buttons, input.keys};
         if (player_) input = player_->next(shown);
+        const int skips = run_.everyFrame ? 0 : timing.missedVsyncs;
+        for (int i = 0; i < skips && !game.finished() && (!player_ || player_->hasMore()); ++i) {
+            const game::FrameInput passedInput = player_ ? input : held;
+            const game::ShownFrame passed = game.step(passedInput);
+            policy.stepped(passed, passedInput);
+            maker_.keepSource(passed);  // a later frame may be made from its render
+            FrameTiming skipped;
+            skipped.skipped = true;
+            policy.presented(passed, skipped);
+            end.lastFrame = passed.frame;
+            ++frame;
+            if (player_) input = player_->next(passed);
+        }
     }
     return end;
 }
@@ -228,6 +259,8 @@ FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, 
     policy.decorate(shown, frame, content);
     hud_.draw(content, screen_.buffer());
     renderer::blitToDefaultFramebuffer(screen_.buffer(), display_.width, display_.height);
+    if (run_.slowEvery > 0 && frame % run_.slowEvery == 0)
+        std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(run_.slowMs));
     const double renderMs = timer_.end().wallMs;
     const DisplayClock::Presented presented = clock_.present();
     if (!shown.feedback.empty()) sounds_.play(shown.feedback);

@@ -36,7 +36,8 @@ struct Polled {
 Polled readInput(const renderer::WindowInput& in, double countScale, bool invertY);
 
 // One present per vsync, or per timer tick where vsync cannot keep the protocol's rate. A
-// timer that falls far behind starts over from now rather than racing to catch up.
+// frame that reaches the screen late says how many display frames it missed; the loop steps
+// the game past them, so that the session's display clock keeps up with the wall clock.
 class DisplayClock {
 public:
     DisplayClock(renderer::Window& window, double refreshHz, bool byVsync);
@@ -58,11 +59,15 @@ private:
     bool first_ = true;
 };
 
-// How one displayed frame reached the screen.
+// How one display frame reached the screen, or that it never did.
 struct FrameTiming {
     double frameMs = 0.0;  // present to present
     double renderMs = 0.0;  // making it (render, warp or blend, HUD) to glFinish
     int missedVsyncs = 0;
+    // The frame before took this frame's display slot: the game stepped through it (its
+    // input is the held buttons and keys; what moved the mouse meanwhile goes to the next
+    // frame shown), its renders were made, and nothing of it was shown.
+    bool skipped = false;
 };
 
 // What makes the loop a recorded session or free play.
@@ -79,7 +84,7 @@ public:
     virtual void stepped(const game::ShownFrame& shown, const game::FrameInput& input) = 0;
     // The HUD over display frame `frame`: `hud` holds the game's; the policy may change its status line.
     virtual void decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) = 0;
-    // The frame is on screen.
+    // The frame is on screen, or was skipped (timing.skipped).
     virtual void presented(const game::ShownFrame& shown, const FrameTiming& timing) = 0;
     // The PNG's name (without .png) of a screenshot of display frame `frame`.
     virtual std::string screenshotName(std::int64_t frame) const = 0;
@@ -131,7 +136,8 @@ public:
         std::int64_t lastFrame = -1;  // the game's last shown frame
     };
     // Shows frames of the policy's game, one per display frame, until it finishes, a
-    // recorded player runs out, or the supervisor ends it.
+    // recorded player runs out, or the supervisor ends it. Display frames a late frame took
+    // are stepped in the game too and not shown (FrameTiming::skipped).
     End run(LoopPolicy& policy);
 
 private:

@@ -117,6 +117,7 @@ private:
         exec("BEGIN");
         data.header = readHeader(data.completed);
         data.flags = flags_;
+        data.summaries = summaries_;
         version_ = data.header.formatVersion;
         // Versions 1 to 4 have no input `text`: their checksums cover the columns they have.
         const Table<InputRecord> input =
@@ -148,6 +149,7 @@ private:
     std::optional<Stop> firstStop_;
     std::optional<WalLoss> walLoss_;  // committed data in the -wal that SQLite cannot read
     std::map<std::string, std::string> flags_;  // meta "flag:<name>" entries
+    std::map<std::string, std::string> summaries_;  // meta "summary:<name>" entries
     std::int64_t headerChecksum_ = 0;  // what the first commit's checksum chains to (version 3 on)
 
     [[noreturn]] void fail(const std::string& sentence) const {
@@ -318,7 +320,10 @@ private:
             fail("has an unreadable header: resumed is '" + get("resumed") + "'.");
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
-            if (key.rfind("flag:", 0) == 0) flags_[key.substr(5)] = value;
+            if (key.rfind(kFlagPrefix, 0) == 0)
+                flags_[key.substr(std::strlen(kFlagPrefix))] = value;
+            else if (key.rfind(kSummaryPrefix, 0) == 0)
+                summaries_[key.substr(std::strlen(kSummaryPrefix))] = value;
         return h;
     }
 

@@ -127,6 +127,10 @@ bool parseNumber(const std::string& text, T& out) {
     return r.ec == std::errc() && r.ptr == end;
 }
 
+// Meta keys of what the writer adds as a session goes: SessionWriter::flag's and summarize's.
+inline constexpr const char* kFlagPrefix = "flag:";
+inline constexpr const char* kSummaryPrefix = "summary:";
+
 // meta.resumed: the Resumption list as a JSON array of objects with the keys session_id, file,
 // started_at, player, frame and resumed_at ("[]" for none). parseResumed returns false for
 // text that is not such an array, leaving `out` unspecified.

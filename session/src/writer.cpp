@@ -222,6 +222,8 @@ struct SessionWriter::Impl {
     // them (see commit()).
     CommitRows adding;
     CommitChecksum addingChecksum;
+    // Meta entries written with the next commit (flags as "flag:<name>", summaries as
+    // "summary:<name>"); then held, then written, as the rows are.
     std::map<std::string, std::string> addingFlags;
     std::optional<std::int64_t> lastInputFrame, lastFrameFrame;  // over every row added
     std::int64_t lastChecksum = 0;  // of the last commit made, the header's before the first
@@ -280,7 +282,7 @@ struct SessionWriter::Impl {
         for (const CommitRows& commit : held) c.writeCommit(commit);
         std::map<std::string, std::string> flags = writtenFlags;
         for (const auto& [name, text] : heldFlags) flags[name] = text;
-        for (const auto& [name, text] : flags) c.putMeta("flag:" + name, text);
+        for (const auto& [key, text] : flags) c.putMeta(key, text);
         if (!completedAt.empty()) c.putMeta("completed_at", completedAt);
         c.exec("COMMIT", "writing the file");
         // WAL mode is kept in the file: switching here, while nobody else can see the file,
@@ -353,7 +355,7 @@ struct SessionWriter::Impl {
         try {
             live.exec("BEGIN IMMEDIATE", "starting a transaction");
             for (const CommitRows& h : held) live.writeCommit(h);
-            for (const auto& [name, text] : heldFlags) live.putMeta("flag:" + name, text);
+            for (const auto& [key, text] : heldFlags) live.putMeta(key, text);
             if (completing) live.putMeta("completed_at", completionTime);
             live.exec("COMMIT", "committing");
         } catch (...) {
@@ -434,7 +436,7 @@ struct SessionWriter::Impl {
                 target = (fs::path(resultsDir) / stem).string() + "-rescued" + (n > 1 ? "-" + std::to_string(n) : "") +
                     kExtension;
         const std::string text = what + "; every commit up to then is saved in " + target;
-        heldFlags[flagName] = text;
+        heldFlags[kFlagPrefix + flagName] = text;
         if (completing) completedAt = utcNow();
         const std::string temp = hiddenPath(kRescuing);
         try {
@@ -655,7 +657,13 @@ std::vector<std::string> SessionWriter::takeNotices() { return std::exchange(imp
 void SessionWriter::flag(const std::string& name, const std::string& text) {
     Impl& w = impl("flag");
     w.checkOpen("flag");
-    w.addingFlags[name] = text;
+    w.addingFlags[kFlagPrefix + name] = text;
+}
+
+void SessionWriter::summarize(const std::string& name, const std::string& text) {
+    Impl& w = impl("summarize");
+    w.checkOpen("summarize");
+    w.addingFlags[kSummaryPrefix + name] = text;
 }
 
 void SessionWriter::finish(const WaitCallback& waiting, double foldWaitS) {

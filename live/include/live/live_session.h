@@ -41,6 +41,14 @@ struct LiveRun {
     // (the end screen); ACTION "key enter|esc|pageup|pagedown|[|]|0-9|a-z", "move DX DY"
     // (mouse counts) or "click" (a left press). Lines starting with # are comments.
     std::string inputScript;
+    // Every display frame is shown, however late: the session runs in slow motion on a machine
+    // too slow for its protocol. For input scripts and screenshots that name session frames
+    // (tests, documentation); a study leaves it off, so that time follows the display.
+    bool everyFrame = false;
+    // Tests of the display clock: every slowEvery-th displayed frame takes slowMs longer to
+    // make (a sleep where the frame is made), as a slow machine's would; 0 for none.
+    double slowMs = 0.0;
+    int slowEvery = 0;
     // Test and documentation aid: write the window's frame as PNG at these session frames.
     std::string screenshotDir;
     std::vector<std::int64_t> screenshotFrames;

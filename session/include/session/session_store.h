@@ -86,7 +86,7 @@ struct InputRecord {
 struct FrameRecord {
     std::int64_t frame = 0;
     std::string mode;  // mode id, e.g. "warp15to120"
-    std::string kind;  // "rendered" | "held" | "warped" | "interpolated" | "frozen"
+    std::string kind;  // "rendered" | "held" | "warped" | "interpolated" | "frozen" | "screen" | "skipped"
     double frameMs = 0;  // measured present to present (live sessions); 0 headless
     double renderMs = 0;  // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
     int missedVsyncs = 0;
@@ -94,6 +94,10 @@ struct FrameRecord {
     std::string detailJson;  // the game's own per-frame state, a JSON object ("" = none):
         // shooter {"target":[x,y,z]}, click {"cursor":[x,y],"spheres":[...]}
 };
+
+// FrameRecord::kind of a display frame the session stepped through but never showed: the frame
+// before it reached the screen late and took its display slot (a live session's display clock).
+inline constexpr const char* kSkippedFrameKind = "skipped";
 
 // One row per trial/shot/click/match/rating/phase change. The columns every game shares are
 // typed; everything game-specific (difficulty, target speed, aim time, cursor, ratings ...)
@@ -174,6 +178,10 @@ public:
     // commit; a later flag of the same name replaces it), e.g. "missed_frames". Not part of
     // the header checksum: a flag describes how the session went, not what it ran.
     void flag(const std::string& name, const std::string& text);
+    // A summary of how the session went for its analysts (meta key "summary:<name>", written
+    // with the next commit; a later one of the same name replaces it), e.g. "pacing"
+    // (session/pacing.h). Like a flag, not part of any checksum, and it changes no outcome.
+    void summarize(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
     // the file, leaving one self-contained file. Waits for the write lock like flush(). A
     // reader in a transaction (export, replay, a DB browser, a sqlite3 script) keeps the
@@ -203,6 +211,7 @@ struct SessionData {
     // (killed, or still running) holds every trial it committed.
     bool damaged = false;
     std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
+    std::map<std::string, std::string> summaries;  // SessionWriter::summarize()s, by name
     std::string note;  // "" when complete; else why not and where it ends
 };
 

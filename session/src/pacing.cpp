@@ -1,0 +1,129 @@
+#include "session/pacing.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+namespace warplab::session {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A frame time within a tenth of the budget of it is on time: vsync intervals jitter by a
+// fraction of a millisecond, and a timer's sleep overshoots by as much.
+constexpr double kOverBudgetShare = 1.1;
+
+}  // namespace
+
+void PacingTally::add(const FrameRecord& f) {
+    Mode* mode = &screens_;
+    if (!f.mode.empty()) {
+        // Few modes a session: a search beats a map.
+        auto it = std::find_if(modes_.begin(), modes_.end(), [&](const Mode& m) { return m.counts.mode == f.mode; });
+        if (it == modes_.end()) {
+            modes_.push_back(Mode{ModePacing{f.mode}, {}});
+            it = modes_.end() - 1;
+        }
+        mode = &*it;
+    }
+    if (f.kind == kSkippedFrameKind) {
+        ++mode->counts.skipped;
+        return;
+    }
+    ++mode->counts.shown;
+    mode->counts.late += f.missedVsyncs > 0;
+    if (f.frameMs > 0.0) mode->frameMs.push_back(f.frameMs);
+}
+
+std::vector<ModePacing> PacingTally::summary(double refreshHz) const {
+    const double budget = refreshHz > 0.0 ? 1000.0 / refreshHz : kNaN;
+    std::vector<ModePacing> out;
+    auto summarize = [&](const Mode& mode) {
+        ModePacing row = mode.counts;
+        row.budgetMs = budget;
+        std::vector<double> t = mode.frameMs;
+        if (t.empty()) {
+            row.medianMs = row.p95Ms = row.maxMs = kNaN;
+            return row;
+        }
+        std::sort(t.begin(), t.end());
+        const std::size_t n = t.size();
+        row.medianMs = n % 2 == 1 ? t[n / 2] : (t[n / 2 - 1] + t[n / 2]) / 2.0;
+        row.p95Ms = t[static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1];
+        row.maxMs = t.back();
+        row.overBudget = 0;
+        for (const double ms : t) row.overBudget += ms > budget * kOverBudgetShare;
+        return row;
+    };
+    for (const Mode& mode : modes_) out.push_back(summarize(mode));
+    if (screens_.counts.shown + screens_.counts.skipped > 0) out.push_back(summarize(screens_));
+    return out;
+}
+
+std::vector<ModePacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz) {
+    PacingTally tally;
+    for (const FrameRecord& f : frames) tally.add(f);
+    return tally.summary(refreshHz);
+}
+
+std::string pacingReport(const std::vector<ModePacing>& pacing) {
+    if (pacing.empty()) return "";
+    char line[256];
+    std::snprintf(line, sizeof line, "pacing per mode (a display frame every %.2f ms):\n", pacing.front().budgetMs);
+    std::string out = line;
+    for (const ModePacing& p : pacing) {
+        const double all = static_cast<double>(std::max<std::int64_t>(1, p.shown + p.skipped));
+        std::snprintf(line, sizeof line,
+                      "  %s: %lld shown, %lld late (%.1f %%), %lld skipped (%.1f %%); frame time median %.1f ms, p95 "
+                      "%.1f, max %.1f\n",
+                      p.mode.empty() ? "(screens)" : p.mode.c_str(), static_cast<long long>(p.shown),
+                      static_cast<long long>(p.late), 100.0 * static_cast<double>(p.late) / all,
+                      static_cast<long long>(p.skipped), 100.0 * static_cast<double>(p.skipped) / all, p.medianMs,
+                      p.p95Ms, p.maxMs);
+        out += line;
+    }
+    return out;
+}
+
+std::string pacingText(const std::vector<ModePacing>& pacing) {
+    nlohmann::json list = nlohmann::json::array();
+    // NaN has no JSON form: null.
+    auto number = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
+    for (const ModePacing& p : pacing)
+        list.push_back({{"mode", p.mode},
+                        {"shown", p.shown},
+                        {"late", p.late},
+                        {"skipped", p.skipped},
+                        {"median_ms", number(p.medianMs)},
+                        {"p95_ms", number(p.p95Ms)},
+                        {"max_ms", number(p.maxMs)},
+                        {"budget_ms", number(p.budgetMs)},
+                        {"over_budget", p.overBudget}});
+    return list.dump();
+}
+
+bool parsePacing(const std::string& text, std::vector<ModePacing>& out) {
+    const auto list = nlohmann::json::parse(text, nullptr, false);
+    if (!list.is_array()) return false;
+    out.clear();
+    auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : kNaN; };
+    for (const auto& o : list) {
+        if (!o.is_object() || !o.contains("mode") || !o["mode"].is_string()) return false;
+        ModePacing p;
+        p.mode = o["mode"].get<std::string>();
+        p.shown = o.value("shown", std::int64_t{0});
+        p.late = o.value("late", std::int64_t{0});
+        p.skipped = o.value("skipped", std::int64_t{0});
+        p.medianMs = number(o.value("median_ms", nlohmann::json()));
+        p.p95Ms = number(o.value("p95_ms", nlohmann::json()));
+        p.maxMs = number(o.value("max_ms", nlohmann::json()));
+        p.budgetMs = number(o.value("budget_ms", nlohmann::json()));
+        p.overBudget = o.value("over_budget", std::int64_t{0});
+        out.push_back(p);
+    }
+    return true;
+}
+
+}  // namespace warplab::session
