@@ -629,6 +629,30 @@ TEST(SessionStore, FlagsTravelWithTheNextCommit) {
     EXPECT_EQ(expectWholeTrials(data), 1);
 }
 
+// A summary (the pacing at the end of a live session) travels like a flag, under its own name:
+// never taken for a flag, kept through the finish's rewrite.
+TEST(SessionStore, SummariesTravelWithTheNextCommitApartFromFlags) {
+    TempDir dir;
+    std::string path;
+    {
+        SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
+        path = w.path();
+        writeTrial(w, 0);
+        w.summarize("pacing", "[]");
+        w.flag("pacing", "a flag of the same name");
+        w.commit();
+        w.summarize("pacing", "[{\"mode\":\"conv60\"}]");
+        w.summarize("unsaid", "never committed");
+        w.finish();
+    }
+    const SessionData data = readSession(path);
+    EXPECT_TRUE(data.completed);
+    EXPECT_EQ(data.summaries.size(), 2u);  // finish() commits what was added
+    EXPECT_EQ(data.summaries.at("pacing"), "[{\"mode\":\"conv60\"}]");
+    EXPECT_EQ(data.flags.size(), 1u);
+    EXPECT_EQ(data.flags.at("pacing"), "a flag of the same name");
+}
+
 TEST(SessionStore, ReadsARunningSessionUpToItsLastCommit) {
     TempDir dir;
     SessionWriter w = SessionWriter::create(dir.str(), sampleHeader());
