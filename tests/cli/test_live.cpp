@@ -17,6 +17,7 @@
 #include "gl/gl_test_support.h"
 #include "session/records.h"
 #include "session/results_lock.h"
+#include "session/pacing.h"
 #include "session/session_store.h"
 #include "image/image.h"
 
@@ -185,6 +186,108 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
     for (int x = 0; x < 160; ++x) boxRows += rating.at(x, 50)[0] > 200;
     EXPECT_GE(boxRows, 7) << "no rating boxes";
     EXPECT_TRUE(warplab::testing::matchesReference("live_rating", rating));
+}
+
+// A machine too slow for its protocol (here: every 7th frame made 100 ms late, at 120 Hz 12
+// display frames) plays at the display's pace, not in slow motion: each late frame is followed
+// by as many skipped display frames as it was late, the frames shown took as long as the
+// display frames they stand for, and the session is the one a bot plays headless, event for
+// event and input for input (a player gives its input for every frame, shown or not).
+TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
+    const std::string dir = scratch("slow"), headless = scratch("slow-headless");
+    const std::string path = tinyProtocol(dir);
+    const auto window = inWindowAsTheDisplayGoes("run --protocol " + path + " --participant B --out " + dir +
+                                                 " --width 160 --height 90 --player bot:3 --seed 4 --slow-frames 100:7");
+    ASSERT_EQ(window.status, 0) << window.output;
+    const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
+                                  headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    const auto a = warplab::session::readSession(sessionIn(dir));
+    const auto b = warplab::session::readSession(sessionIn(headless));
+    ASSERT_TRUE(a.completed) << a.note;
+    ASSERT_EQ(a.inputs.size(), b.inputs.size());
+    for (std::size_t i = 0; i < a.inputs.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+
+    // Every late frame is followed by the display frames it took, skipped; no other frame is.
+    const double periodMs = 1000.0 / 120.0;
+    int skipped = 0, lateByThe100Ms = 0;
+    double shownMs = 0.0;
+    for (std::size_t i = 0; i < a.frames.size(); ++i) {
+        const auto& f = a.frames[i];
+        if (f.kind == warplab::session::kSkippedFrameKind) {
+            ++skipped;
+            continue;
+        }
+        if (i > 0) shownMs += f.frameMs;  // the first frame's time is the start's (shaders compiled), not a display frame's
+        lateByThe100Ms += f.missedVsyncs >= 11;
+        for (int k = 1; k <= f.missedVsyncs && i + k < a.frames.size(); ++k)
+            ASSERT_EQ(a.frames[i + k].kind, warplab::session::kSkippedFrameKind) << "frame " << f.frame + k;
+        if (i + f.missedVsyncs + 1 < a.frames.size()) {
+            ASSERT_NE(a.frames[i + f.missedVsyncs + 1].kind, warplab::session::kSkippedFrameKind)
+                << "frame " << f.frame + f.missedVsyncs + 1;
+        }
+    }
+    EXPECT_GE(lateByThe100Ms, static_cast<int>(a.frames.size() / 7 / 13 / 2)) << "the slow frames were not late";
+    EXPECT_GT(skipped, 0);
+    // After the first, the shown frames' present-to-present times add up to the display frames
+    // they stand for (a timer paces these frames: Xvfb reports no refresh): within 2 % and 3
+    // periods.
+    const double displayMs = static_cast<double>(a.frames.size() - 1) * periodMs;
+    EXPECT_NEAR(shownMs, displayMs, 0.02 * displayMs + 3 * periodMs) << skipped << " skipped of " << a.frames.size();
+
+    // The pacing, printed and stored.
+    EXPECT_TRUE(contains(window.output, "pacing per mode (a display frame every 8.33 ms)")) << window.output;
+    std::vector<warplab::session::ModePacing> pacing;
+    ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
+    std::int64_t storedSkipped = 0;
+    for (const auto& p : pacing) storedSkipped += p.skipped;
+    EXPECT_EQ(storedSkipped, skipped);
+    EXPECT_EQ(a.flags.count("missed_frames"), 1u);
+    const std::string replay = replayOf(sessionIn(dir));
+    EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
+    EXPECT_FALSE(contains(replay, "differs")) << replay;
+}
+
+// A text question answered by typing in the window: the answer as typed, Backspace included,
+// is the session's, and the session replays with it.
+TEST(LiveSession, ATextQuestionIsTypedInTheWindowAndTheSessionReplays) {
+    const std::string dir = scratch("typed");
+    std::ofstream(dir + "/questions.json") << R"({"format_version":4,"name":"click-typed","game":"click",
+ "matches":{"match_s":1.0,"modes":["conv30"],"rounds":[{"name":"scored","scored":true,"matches_per_mode":1,
+   "instructions":""}],
+   "questions":[{"id":"comment","kind":"text","prompt":"How did it look?"},
+                {"id":"better","kind":"choice","prompt":"Which?","options":["this","that"]}]}})";
+    // Enter at the ready screen (frame 0); the match is frames 1-60; the question from 61, taking
+    // answers from 91.
+    std::ofstream(dir + "/script.txt") << "start key enter\n0 key enter\n95 type smooth, but laggx\n"
+                                          "96 type \\by \u2014 ok\n100 key enter\n140 key 2\nend key enter\n";
+    const auto r = inWindow("run --seed 1 --protocol " + dir + "/questions.json --participant T1 --out " + dir +
+                            " --width 160 --height 90 --input-script " + dir + "/script.txt --screenshots " + dir +
+                            " --screenshot-frames 97");
+    ASSERT_EQ(r.status, 0) << r.output;
+    const auto data = warplab::session::readSession(sessionIn(dir));
+    EXPECT_TRUE(data.completed) << data.note;
+    std::vector<std::string> answers;
+    for (const auto& e : data.events)
+        if (e.type == "answer") answers.push_back(e.detailJson);
+    ASSERT_EQ(answers.size(), 2u) << r.output;
+    EXPECT_TRUE(contains(answers[0], "\"text\":\"smooth, but laggy \u2014 ok\"")) << answers[0];
+    EXPECT_TRUE(contains(answers[0], "\"answered_with\":\"typed\"")) << answers[0];
+    EXPECT_TRUE(contains(answers[1], "\"text\":\"that\"")) << answers[1];
+    EXPECT_EQ(data.inputs[96].text, "\by \u2014 ok");
+    const std::string replay = replayOf(sessionIn(dir));
+    EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
+    EXPECT_FALSE(contains(replay, "differs")) << replay;
+    // The question on screen as it was typed: its field holds light text.
+    const auto typed = warplab::image::readPng(dir + "/frame_97.png");
+    int light = 0;
+    for (int y = 45; y < 53; ++y)
+        for (int x = 40; x < 120; ++x) light += typed.at(x, y)[0] > 200;
+    EXPECT_GT(light, 10) << "no typed text in the field";
 }
 
 // A window session ended by the supervisor mid-test and resumed in a window: its first frames
