@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <memory>
 #include <stdexcept>
 
@@ -110,6 +111,11 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     const auto game = study->newGame(data.header.seed, display);
     PointerCheck pointerCheck(*game, data, toFrameX, toFrameY);
     ReplayRenderResult result;
+    // Display frames the live session stepped through without showing (its display clock):
+    // made as sources, since later frames may be made from them, but never pictures.
+    std::set<std::int64_t> skipped;
+    for (const auto& f : data.frames)
+        if (f.kind == session::kSkippedFrameKind) skipped.insert(f.frame);
 
     for (const auto& in : data.inputs) {
         if (in.frame > request.lastFrame) break;
@@ -117,6 +123,10 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         game->takeEvents();
         maker.keepSource(shown);
         if (shown.frame < request.firstFrame) continue;
+        if (skipped.count(shown.frame)) {
+            ++result.skipped;
+            continue;
+        }
         if (!shown.blank) maker.make(shown, displayFrame);
         hud.draw(hudFor(shown, toFrameX, toFrameY), displayFrame.buffer());
         // One read-back a frame serves both the check (ids) and the PNG (colour).
@@ -128,7 +138,9 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         image::writePng(request.outDir + file, images.colour);
         ++result.written;
     }
-    out << "wrote " << result.written << " frames to " << request.outDir << "; pointer cross-check on "
+    out << "wrote " << result.written << " frames to " << request.outDir;
+    if (result.skipped > 0) out << " (and not " << result.skipped << " the session skipped: never shown)";
+    out << "; pointer cross-check on "
         << result.checked << " frames whose image is exact (" << result.eventsChecked
         << " of them logged clicks or shots, " << result.nearSilhouette << " skipped within " << kSilhouetteMarginPx
         << " px of a silhouette): the id read back disagrees on " << result.disagreed << "\n";

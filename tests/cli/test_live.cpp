@@ -250,6 +250,21 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const std::string replay = replayOf(sessionIn(dir));
     EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
     EXPECT_FALSE(contains(replay, "differs")) << replay;
+    // replay --render writes the frames shown, and none for the frames skipped.
+    std::int64_t firstSkipped = -1;
+    for (const auto& f : a.frames)
+        if (f.kind == warplab::session::kSkippedFrameKind && firstSkipped < 0) firstSkipped = f.frame;
+    ASSERT_GT(firstSkipped, 0);
+    const std::string pictures = scratch("slow-render");
+    const auto rendered = runCommand(std::string(WARPLAB_BINARY) + " replay " + sessionIn(dir) + " --render " +
+                                     pictures + " --frames " + std::to_string(firstSkipped - 1) + ":" +
+                                     std::to_string(firstSkipped));
+    ASSERT_EQ(rendered.status, 0) << rendered.output;
+    EXPECT_TRUE(contains(rendered.output, "wrote 1 frames")) << rendered.output;
+    EXPECT_TRUE(contains(rendered.output, "not 1 the session skipped")) << rendered.output;
+    char name[32];
+    std::snprintf(name, sizeof name, "/frame_%07lld.png", static_cast<long long>(firstSkipped - 1));
+    EXPECT_TRUE(fs::exists(pictures + name));
 }
 
 // A text question answered by typing in the window: the answer as typed, Backspace included,

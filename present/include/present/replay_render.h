@@ -21,6 +21,7 @@ struct ReplayRender {
 
 struct ReplayRenderResult {
     int written = 0;  // frames written
+    int skipped = 0;  // frames of the range the live session skipped (never shown): not written
     int checked = 0;  // frames whose id under the pointer was compared with the analytic model
     int eventsChecked = 0;  // ... of which a logged shot or click, also compared with its displayed outcome
     int nearSilhouette = 0;  // frames not counted: the pointer within a pixel or two of an outline
@@ -28,7 +29,8 @@ struct ReplayRenderResult {
     std::vector<std::string> disagreements;  // the first few, one line each
 };
 
-// Replays the session and writes every displayed frame of the range as DIR/frame_NNNNNNN.png,
+// Replays the session and writes every displayed frame of the range as DIR/frame_NNNNNNN.png
+// (frames the record marks skipped were never displayed: none is written for them),
 // made the way its mode makes it (rendered, held, warped, interpolated) with the HUD over it.
 // On frames whose image is an exact render (rendered or held), the object id read back under
 // the reticle or cursor is checked against the game's analytic account of that frame, and on
