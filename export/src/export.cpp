@@ -1,6 +1,7 @@
 #include "export/export.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -16,6 +17,7 @@
 #include "game/registry.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
+#include "session/pacing.h"
 #include "session/session_store.h"
 
 namespace warplab::exporter {
@@ -66,6 +68,36 @@ std::string joined(const std::map<std::string, std::string>& flags) {
 struct Tally {
     std::int64_t shots = 0, hits = 0, timeouts = 0;
 };
+
+// The display frames a live session skipped (never shown: docs/session-format.md), to count
+// those within a stretch of it.
+class SkippedFrames {
+public:
+    SkippedFrames(const session::SessionData& data, double refreshHz) : refreshHz_(refreshHz) {
+        for (const auto& f : data.frames)
+            if (f.kind == session::kSkippedFrameKind) frames_.push_back(f.frame);
+    }
+    // Skipped frames after display time `from` up to and including `to`, seconds; nullopt
+    // where `from` is unknown (NaN).
+    std::optional<std::int64_t> between(double from, double to) const {
+        if (std::isnan(from) || std::isnan(to)) return std::nullopt;
+        const auto first = std::upper_bound(frames_.begin(), frames_.end(), std::llround(from * refreshHz_));
+        const auto last = std::upper_bound(frames_.begin(), frames_.end(), std::llround(to * refreshHz_));
+        return static_cast<std::int64_t>(last - first);
+    }
+    std::int64_t total() const { return static_cast<std::int64_t>(frames_.size()); }
+
+private:
+    double refreshHz_;
+    std::vector<std::int64_t> frames_;  // in order: the frames table is
+};
+
+void optionalInteger(CsvFile& f, const std::optional<std::int64_t>& v) {
+    if (v)
+        f.integer(*v);
+    else
+        f.empty();
+}
 
 // One column of a CSV: its header name and how a row's cell is written. Each file's columns
 // are one table, which its header and every row walk, so the two cannot drift apart, and
@@ -129,6 +161,17 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
         {"trials", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->shots.size())); })},
         {"matches",
          whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->matches.size())); })},
+        // How its frames kept pace with the display (pacing.csv has them per mode).
+        {"display_frames", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
+        {"late_frames", whenRead([](F& f, const R& r) {
+             f.integer(std::count_if(r.data->frames.begin(), r.data->frames.end(),
+                                     [](const session::FrameRecord& x) { return x.missedVsyncs > 0; }));
+         })},
+        {"skipped_frames", whenRead([](F& f, const R& r) {
+             f.integer(std::count_if(r.data->frames.begin(), r.data->frames.end(), [](const session::FrameRecord& x) {
+                 return x.kind == session::kSkippedFrameKind;
+             }));
+         })},
         {"note", [](F& f, const R& r) { f.text(r.outcome.why); }},
     };
     return columns;
@@ -144,6 +187,7 @@ struct Origin {
 struct ShotRow {
     Origin from;
     const game::ShotResult& shot;
+    std::optional<std::int64_t> skipped;  // display frames skipped from the target's appearance to the shot
 };
 
 const std::vector<Column<ShotRow>>& shotColumns() {
@@ -168,6 +212,7 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"error_px", [](F& f, const R& r) { f.number(r.shot.errorPx); }},
         {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
         {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
+        {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
     };
     return columns;
 }
@@ -249,6 +294,31 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
     return columns;
 }
 
+struct PacingRow {
+    const std::string& participant;
+    const std::string& session;
+    const session::ModePacing& pacing;
+};
+
+const std::vector<Column<PacingRow>>& pacingColumns() {
+    using F = CsvFile;
+    using R = PacingRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.session); }},
+        {"mode", [](F& f, const R& r) { f.text(r.pacing.mode); }},
+        {"shown", [](F& f, const R& r) { f.integer(r.pacing.shown); }},
+        {"late", [](F& f, const R& r) { f.integer(r.pacing.late); }},
+        {"skipped", [](F& f, const R& r) { f.integer(r.pacing.skipped); }},
+        {"median_ms", [](F& f, const R& r) { f.number(r.pacing.medianMs); }},
+        {"p95_ms", [](F& f, const R& r) { f.number(r.pacing.p95Ms); }},
+        {"max_ms", [](F& f, const R& r) { f.number(r.pacing.maxMs); }},
+        {"budget_ms", [](F& f, const R& r) { f.number(r.pacing.budgetMs); }},
+        {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
+    };
+    return columns;
+}
+
 struct HitRateRow {
     const std::string& participant;
     const std::string& game;
@@ -287,9 +357,10 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
 }
 
 struct MatchRow {
-    const std::string& participant;
-    const std::string& session;
-    const game::MatchResult& match;
+    std::string participant;
+    std::string session;
+    game::MatchResult match;
+    std::optional<std::int64_t> skipped;  // display frames skipped during the match
 };
 
 // matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
@@ -312,6 +383,7 @@ const std::vector<Column<MatchRow>>& matchColumns() {
         {"misses", [](F& f, const R& r) { f.integer(r.match.misses); }},
         {"clicks", [](F& f, const R& r) { f.integer(r.match.clicks); }},
         {"duration_s", [](F& f, const R& r) { f.number(r.match.durationS); }},
+        {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
     };
     return columns;
 }
@@ -470,7 +542,8 @@ public:
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
           shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
           ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())),
-          answers_(file(outDir, "answers.csv"), headerOf(answerColumns())) {}
+          answers_(file(outDir, "answers.csv"), headerOf(answerColumns())),
+          pacing_(file(outDir, "pacing.csv"), headerOf(pacingColumns())) {}
 
     ExportedSession add(const fs::path& path, const std::string& name) {
         ExportedSession out{name, "ok", false, ""};
@@ -539,7 +612,9 @@ public:
         addConditions(*study, name);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
-        if (out.included) write(h.participant, name, study->game(), results);
+        const SkippedFrames skipped(data, study->refreshHz());
+        writePacing(h.participant, name, data);
+        if (out.included) write(h.participant, name, study->game(), results, skipped);
         return out;
     }
 
@@ -578,8 +653,9 @@ public:
         std::vector<std::string> header = headerOf(matchColumns());
         for (int k = 1; k <= ratingColumns_; ++k) header.push_back(kRatingColumn + std::to_string(k));
         CsvFile matches(file(outDir, "matches.csv"), header);
-        for (const auto& [participant, session, m] : matches_) {
-            writeCells(matches, matchColumns(), MatchRow{participant, session, m});
+        for (const MatchRow& row : matches_) {
+            const game::MatchResult& m = row.match;
+            writeCells(matches, matchColumns(), row);
             for (int k = 0; k < ratingColumns_; ++k) {
                 const auto r = std::find_if(m.ratings.begin(), m.ratings.end(),
                                             [&](const game::RatingResult& x) { return x.statementIndex == k; });
@@ -605,7 +681,8 @@ public:
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &games}) {
+        for (CsvFile* f :
+             {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &games, &pacing_}) {
             f->close();
             written.push_back(f->path());
         }
@@ -615,12 +692,26 @@ public:
 private:
     static std::string file(const fs::path& dir, const char* name) { return (dir / name).string(); }
 
+    // The session's pacing per mode: as its live run stored it, else (a headless session, an
+    // older or interrupted one) from its frames table.
+    void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data) {
+        std::vector<session::ModePacing> pacing;
+        const auto stored = data.summaries.find("pacing");
+        if (stored == data.summaries.end() || !session::parsePacing(stored->second, pacing))
+            pacing = session::summarizePacing(data.frames, data.header.refreshHz);
+        for (const session::ModePacing& p : pacing) {
+            writeCells(pacing_, pacingColumns(), PacingRow{participant, session, p});
+            pacing_.endRow();
+        }
+    }
+
     void write(const std::string& participant, const std::string& session, const std::string& gameName,
-               const game::SessionResults& results) {
+               const game::SessionResults& results, const SkippedFrames& skipped) {
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            writeCells(shots_, shotColumns(), ShotRow{{participant, session, gameName}, s});
+            writeCells(shots_, shotColumns(),
+                       ShotRow{{participant, session, gameName}, s, skipped.between(s.spawnTime, s.time)});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
             Tally& t = tallies_[{participant, gameName, s.mode}];
@@ -638,7 +729,8 @@ private:
                 writeCells(ratings_, ratingColumns(), RatingRow{{participant, session, gameName}, m, r});
                 ratings_.endRow();
             }
-            matches_.emplace_back(participant, session, m);
+            // A match event is logged at its last frame.
+            matches_.push_back({participant, session, m, skipped.between(m.endTime - m.durationS, m.endTime)});
         }
         for (const auto& a : results.answers) {
             if (!a.scoredPhase && !options_.allPhases) continue;
@@ -649,11 +741,11 @@ private:
 
     ExportOptions options_;
     CarriedOn carriedOn_;
-    CsvFile sessions_, shots_, ratings_, answers_;
+    CsvFile sessions_, shots_, ratings_, answers_, pacing_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
-    std::vector<std::tuple<std::string, std::string, game::MatchResult>> matches_;
+    std::vector<MatchRow> matches_;
     int ratingColumns_ = 0;
     using SessionKey = std::tuple<std::string, std::string, std::string, std::uint64_t, std::string, std::string>;
     std::map<SessionKey, std::string> firstWith_;  // intact sessions, by what identifies them
@@ -669,7 +761,7 @@ std::vector<CsvColumns> exportColumns() {
     return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
             {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
             {"ratings.csv", headerOf(ratingColumns()), ""},   {"answers.csv", headerOf(answerColumns()), ""},
-            {"conditions.csv", headerOf(conditionColumns()), ""},
+            {"conditions.csv", headerOf(conditionColumns()), ""}, {"pacing.csv", headerOf(pacingColumns()), ""},
             {"games.csv", headerOf(gameColumns()), ""},       {"participants.csv", headerOf(participantColumns()), ""}};
 }
 

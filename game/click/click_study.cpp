@@ -91,6 +91,7 @@ public:
                 m.misses = static_cast<int>(d.integer("misses", 0));
                 m.clicks = static_cast<int>(d.integer("clicks", 0));
                 m.durationS = d.number("duration_s");
+                m.endTime = e.eventTime;  // the match event is its last frame's
                 matchAt[e.trial] = out.matches.size();
                 out.matches.push_back(std::move(m));
             } else if (auto a = answerResult(e, protocol_.questions)) {

@@ -4,12 +4,16 @@
 // says it will; feedback sounds go to SDL's dummy audio driver.
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
+#include <sstream>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -250,6 +254,29 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const std::string replay = replayOf(sessionIn(dir));
     EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
     EXPECT_FALSE(contains(replay, "differs")) << replay;
+    // The export says it: the session's skipped frames, the pacing per mode.
+    const std::string exported = scratch("slow-export");
+    const auto ex = runCommand(std::string(WARPLAB_BINARY) + " export " + dir + " --out " + exported +
+                               " --include-flagged");
+    ASSERT_EQ(ex.status, 0) << ex.output;
+    auto cellsOf = [](const std::string& line) {
+        std::vector<std::string> cells;
+        std::stringstream in(line);
+        for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+        return cells;
+    };
+    std::ifstream sessionsCsv(exported + "/sessions.csv");
+    std::string header, row;
+    std::getline(sessionsCsv, header);
+    std::getline(sessionsCsv, row);
+    const auto names = cellsOf(header), cells = cellsOf(row);
+    const auto column = std::find(names.begin(), names.end(), "skipped_frames");
+    ASSERT_NE(column, names.end()) << header;
+    EXPECT_EQ(cells.at(static_cast<std::size_t>(column - names.begin())), std::to_string(skipped)) << row;
+    std::ifstream pacingCsv(exported + "/pacing.csv");
+    std::string pacingText((std::istreambuf_iterator<char>(pacingCsv)), std::istreambuf_iterator<char>());
+    EXPECT_TRUE(contains(pacingText, "conv120,")) << pacingText;
+
     // replay --render writes the frames shown, and none for the frames skipped.
     std::int64_t firstSkipped = -1;
     for (const auto& f : a.frames)

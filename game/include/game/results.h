@@ -73,6 +73,7 @@ struct MatchResult {
     std::string standIn;  // method drawn in the mode's place ("" = the mode's own)
     int greenHits = 0, redHits = 0, misses = 0, clicks = 0;
     double durationS = 0.0;
+    double endTime = kNotApplicable;  // display time of the match's last frame, s
     std::vector<RatingResult> ratings;  // as answered; a session cut short may lack some
 };
 
