@@ -162,7 +162,8 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
         {"matches",
          whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->matches.size())); })},
         // How its frames kept pace with the display (pacing.csv has them per mode).
-        {"display_frames", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
+        {"display_frames",
+         whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
         {"late_frames", whenRead([](F& f, const R& r) {
              f.integer(std::count_if(r.data->frames.begin(), r.data->frames.end(),
                                      [](const session::FrameRecord& x) { return x.missedVsyncs > 0; }));
@@ -758,11 +759,12 @@ private:
 }  // namespace
 
 std::vector<CsvColumns> exportColumns() {
-    return {{"sessions.csv", headerOf(sessionColumns()), ""}, {"shots.csv", headerOf(shotColumns()), ""},
-            {"hitrates.csv", headerOf(hitRateColumns()), ""}, {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-            {"ratings.csv", headerOf(ratingColumns()), ""},   {"answers.csv", headerOf(answerColumns()), ""},
-            {"conditions.csv", headerOf(conditionColumns()), ""}, {"pacing.csv", headerOf(pacingColumns()), ""},
-            {"games.csv", headerOf(gameColumns()), ""},       {"participants.csv", headerOf(participantColumns()), ""}};
+    return {
+        {"sessions.csv", headerOf(sessionColumns()), ""},     {"shots.csv", headerOf(shotColumns()), ""},
+        {"hitrates.csv", headerOf(hitRateColumns()), ""},     {"matches.csv", headerOf(matchColumns()), kRatingColumn},
+        {"ratings.csv", headerOf(ratingColumns()), ""},       {"answers.csv", headerOf(answerColumns()), ""},
+        {"conditions.csv", headerOf(conditionColumns()), ""}, {"pacing.csv", headerOf(pacingColumns()), ""},
+        {"games.csv", headerOf(gameColumns()), ""},           {"participants.csv", headerOf(participantColumns()), ""}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,

@@ -112,7 +112,7 @@ std::string ClickGame::phase() const {
         case Phase::Ready: return "ready";
         case Phase::Instructions: return "instructions";
         case Phase::Match: return "match";
-        case Phase::Questions: return "rating";
+        case Phase::Questions: return "questions";
         case Phase::Done: return "done";
     }
     return "?";
@@ -201,10 +201,11 @@ void ClickGame::answer(const Answer& a) {
     if (protocol_.formatVersion < protocol::kClickQuestionsSince) {
         // Files older than format 4 rate statements, and their sessions log "rating" events
         // with these keys: kept, so that they replay.
-        emit(matchEvent("rating", {{"statement_index", a.questionIndex},
-                                   {"statement", questions_.questions()[static_cast<std::size_t>(a.questionIndex)].prompt},
-                                   {"value", *a.value},
-                                   {"answered_with", a.answeredWith}}));
+        emit(matchEvent("rating",
+                        {{"statement_index", a.questionIndex},
+                         {"statement", questions_.questions()[static_cast<std::size_t>(a.questionIndex)].prompt},
+                         {"value", *a.value},
+                         {"answered_with", a.answeredWith}}));
     } else {
         emit(matchEvent("answer", questions_.answerDetail(a)));
     }
@@ -280,8 +281,8 @@ ShownFrame ClickGame::screenFrame() {
             shown.question = questions_.prompt(cursor_);
             const bool allLikert = std::all_of(questions_.questions().begin(), questions_.questions().end(),
                                                [](const auto& q) { return q.kind == protocol::QuestionKind::Likert; });
-            shown.phaseText = matchCounter(m) + (allLikert ? ": rate the match you just played"
-                                                           : ": about the match you just played");
+            shown.phaseText = matchCounter(m) +
+                (allLikert ? ": rate the match you just played" : ": about the match you just played");
             break;
         }
         case Phase::Match:

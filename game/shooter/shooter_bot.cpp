@@ -18,7 +18,10 @@ double wrapAngle(double a) {
 }  // namespace
 
 ShooterBot::ShooterBot(std::uint64_t seed, const protocol::ShooterProtocol& protocol, ShooterBotSettings settings)
-    : random_(seed ^ 0xB07B07B07ULL), protocol_(protocol), settings_(settings), questions_(settings.answerAfterS, kQuestionCursorPixelsPerCount) {}
+    : random_(seed ^ 0xB07B07B07ULL),
+      protocol_(protocol),
+      settings_(settings),
+      questions_(settings.answerAfterS, kQuestionCursorPixelsPerCount) {}
 
 FrameInput ShooterBot::next(const ShownFrame& shown) {
     FrameInput input;
@@ -44,8 +47,8 @@ FrameInput ShooterBot::next(const ShownFrame& shown) {
     // the answer), a Likert scale at its middle.
     if (questions_.ready(shown)) {
         const QuestionPrompt& q = *shown.question;
-        const int value = q.kind == protocol::QuestionKind::Likert ? q.min + (q.max - q.min) / 2
-                                                                   : BotQuestionReader::choiceFor(q);
+        const int value =
+            q.kind == protocol::QuestionKind::Likert ? q.min + (q.max - q.min) / 2 : BotQuestionReader::choiceFor(q);
         input = questions_.answer(shown, value);
         if (buttonDown_) input.buttons = 0;  // one-frame presses
         buttonDown_ = input.buttons != 0;

@@ -61,7 +61,8 @@ std::string editedAnswer(std::string answer, const std::string& typed, std::size
     return answer;
 }
 
-std::optional<AnswerResult> answerResult(const session::EventRecord& e, const std::vector<protocol::Question>& questions) {
+std::optional<AnswerResult> answerResult(const session::EventRecord& e,
+                                         const std::vector<protocol::Question>& questions) {
     const bool legacy = e.type == "rating";
     if (!legacy && e.type != "answer") return std::nullopt;
     const EventDetail d(e.detailJson);
@@ -208,12 +209,9 @@ std::optional<Answer> Questionnaire::step(std::int64_t frame, QuestionPrompt& sh
 
 nlohmann::json Questionnaire::answerDetail(const Answer& a) const {
     const protocol::Question& q = questions_.at(static_cast<std::size_t>(a.questionIndex));
-    nlohmann::json d{{"question_index", a.questionIndex},
-                     {"question_id", q.id},
-                     {"kind", protocol::nameOf(q.kind)},
-                     {"prompt", q.prompt},
-                     {"answered_with", a.answeredWith},
-                     {"answer_s", a.answerS}};
+    nlohmann::json d{{"question_index", a.questionIndex}, {"question_id", q.id},
+                     {"kind", protocol::nameOf(q.kind)},  {"prompt", q.prompt},
+                     {"answered_with", a.answeredWith},   {"answer_s", a.answerS}};
     if (a.value) d["value"] = *a.value;
     if (q.kind != QuestionKind::Likert) d["text"] = a.text;
     return d;

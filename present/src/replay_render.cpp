@@ -140,8 +140,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     }
     out << "wrote " << result.written << " frames to " << request.outDir;
     if (result.skipped > 0) out << " (and not " << result.skipped << " the session skipped: never shown)";
-    out << "; pointer cross-check on "
-        << result.checked << " frames whose image is exact (" << result.eventsChecked
+    out << "; pointer cross-check on " << result.checked << " frames whose image is exact (" << result.eventsChecked
         << " of them logged clicks or shots, " << result.nearSilhouette << " skipped within " << kSilhouetteMarginPx
         << " px of a silhouette): the id read back disagrees on " << result.disagreed << "\n";
     for (const auto& d : result.disagreements) out << "  " << d << "\n";

@@ -200,8 +200,9 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
 TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const std::string dir = scratch("slow"), headless = scratch("slow-headless");
     const std::string path = tinyProtocol(dir);
-    const auto window = inWindowAsTheDisplayGoes("run --protocol " + path + " --participant B --out " + dir +
-                                                 " --width 160 --height 90 --player bot:3 --seed 4 --slow-frames 100:7");
+    const auto window =
+        inWindowAsTheDisplayGoes("run --protocol " + path + " --participant B --out " + dir +
+                                 " --width 160 --height 90 --player bot:3 --seed 4 --slow-frames 100:7");
     ASSERT_EQ(window.status, 0) << window.output;
     const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant B --out " +
                                   headless + " --headless --width 160 --height 90 --player bot:3 --seed 4");
@@ -226,7 +227,8 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
             ++skipped;
             continue;
         }
-        if (i > 0) shownMs += f.frameMs;  // the first frame's time is the start's (shaders compiled), not a display frame's
+        if (i > 0)
+            shownMs += f.frameMs;  // the first frame's time is the start's (shaders compiled), not a display frame's
         lateByThe100Ms += f.missedVsyncs >= 11;
         for (int k = 1; k <= f.missedVsyncs && i + k < a.frames.size(); ++k)
             ASSERT_EQ(a.frames[i + k].kind, warplab::session::kSkippedFrameKind) << "frame " << f.frame + k;
@@ -256,8 +258,8 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     EXPECT_FALSE(contains(replay, "differs")) << replay;
     // The export says it: the session's skipped frames, the pacing per mode.
     const std::string exported = scratch("slow-export");
-    const auto ex = runCommand(std::string(WARPLAB_BINARY) + " export " + dir + " --out " + exported +
-                               " --include-flagged");
+    const auto ex =
+        runCommand(std::string(WARPLAB_BINARY) + " export " + dir + " --out " + exported + " --include-flagged");
     ASSERT_EQ(ex.status, 0) << ex.output;
     auto cellsOf = [](const std::string& line) {
         std::vector<std::string> cells;
@@ -283,9 +285,9 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
         if (f.kind == warplab::session::kSkippedFrameKind && firstSkipped < 0) firstSkipped = f.frame;
     ASSERT_GT(firstSkipped, 0);
     const std::string pictures = scratch("slow-render");
-    const auto rendered = runCommand(std::string(WARPLAB_BINARY) + " replay " + sessionIn(dir) + " --render " +
-                                     pictures + " --frames " + std::to_string(firstSkipped - 1) + ":" +
-                                     std::to_string(firstSkipped));
+    const auto rendered =
+        runCommand(std::string(WARPLAB_BINARY) + " replay " + sessionIn(dir) + " --render " + pictures + " --frames " +
+                   std::to_string(firstSkipped - 1) + ":" + std::to_string(firstSkipped));
     ASSERT_EQ(rendered.status, 0) << rendered.output;
     EXPECT_TRUE(contains(rendered.output, "wrote 1 frames")) << rendered.output;
     EXPECT_TRUE(contains(rendered.output, "not 1 the session skipped")) << rendered.output;

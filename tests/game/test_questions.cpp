@@ -76,13 +76,23 @@ TEST(QuestionText, TypedTextIsEditedAsAParticipantExpects) {
 TEST(QuestionText, AnAnswerIsAlwaysValidUtf8WithinItsLength) {
     // Bytes no character is made of: a lone continuation byte, a cut-off sequence, an overlong
     // form, a surrogate, 0xFF.
-    EXPECT_EQ(editedAnswer("", "a\x80" "b\xC3" "c\xC0\xAF" "d\xED\xA0\x80" "e\xFF", 200), "abcde");
+    EXPECT_EQ(editedAnswer("",
+                           "a\x80"
+                           "b\xC3"
+                           "c\xC0\xAF"
+                           "d\xED\xA0\x80"
+                           "e\xFF",
+                           200),
+              "abcde");
     // The limit is in bytes and never splits a character: what does not fit is dropped.
     EXPECT_EQ(editedAnswer("abc", "d\xC3\xA9", 4), "abcd");
     EXPECT_EQ(editedAnswer("abc", "\xC3\xA9", 5), "abc\xC3\xA9");
     EXPECT_EQ(editedAnswer("abcd", "\bx", 4), "abcx");  // room made by Backspace is usable
     // What nlohmann::json writes without throwing: the event detail of such an answer.
-    const std::string answer = editedAnswer("", "\xF4\x90\x80\x80" "ok\xE0\x80\x80", 200);
+    const std::string answer = editedAnswer("",
+                                            "\xF4\x90\x80\x80"
+                                            "ok\xE0\x80\x80",
+                                            200);
     EXPECT_EQ(answer, "ok");
     EXPECT_NO_THROW(nlohmann::json(answer).dump());
 }
@@ -325,8 +335,9 @@ TEST(ShooterQuestions, ABlockedTestAsksAfterEachConditionsBlock) {
             trialsSince = 0;
         }
     }
-    EXPECT_EQ(askedAbout, (std::vector<std::string>{"conv15", "conv15", "conv15", "conv120", "conv120", "conv120",
-                                                    "warp15to120", "warp15to120", "warp15to120"}));
+    EXPECT_EQ(askedAbout,
+              (std::vector<std::string>{"conv15", "conv15", "conv15", "conv120", "conv120", "conv120", "warp15to120",
+                                        "warp15to120", "warp15to120"}));
     ShooterGame again(p, 2, DisplaySize{});
     EXPECT_EQ(eventDifference(replay(again, played.inputs), played.events), "");
 }
@@ -342,8 +353,8 @@ TEST(ShooterQuestions, AnInterleavedTestAsksOnceAtItsEnd) {
     EXPECT_EQ(answers[0].mode, "");  // the block mixed the conditions
     EXPECT_EQ(detail(answers[0])["value"], 4);  // the bot's Likert answer: the scale's middle
     // After the test's last trial, before it is done.
-    const auto at = std::find_if(played.events.begin(), played.events.end(),
-                                 [](const auto& e) { return e.type == "answer"; });
+    const auto at =
+        std::find_if(played.events.begin(), played.events.end(), [](const auto& e) { return e.type == "answer"; });
     int trialsAfter = 0;
     for (auto it = at; it != played.events.end(); ++it) trialsAfter += it->type == "shot" || it->type == "timeout";
     EXPECT_EQ(trialsAfter, 0);
