@@ -524,9 +524,11 @@ fs::path planFolderOf(const std::string& resultsDir) {
 }
 
 // participants.csv: one row per planned participant, in plan order; its path.
-std::string writeParticipants(const std::string& outDir, const std::string& planDir, const plan::StudyPlan& studyPlan) {
+// Their status from the sessions the export read (those of other plans are passed over).
+std::string writeParticipants(const std::string& outDir, const plan::StudyPlan& studyPlan,
+                              const std::vector<plan::SessionFacts>& sessions) {
     CsvFile csv((fs::path(outDir) / "participants.csv").string(), headerOf(participantColumns()));
-    const std::vector<plan::ParticipantStatus> statuses = plan::studyStatus(planDir, studyPlan);
+    const std::vector<plan::ParticipantStatus> statuses = plan::studyStatus(studyPlan, sessions);
     for (std::size_t i = 0; i < studyPlan.participants.size(); ++i) {
         writeCells(csv, participantColumns(), ParticipantRow{studyPlan, studyPlan.participants[i], statuses[i]});
         csv.endRow();
@@ -610,6 +612,8 @@ public:
 
         const game::SessionResults results = study->results(data.events);
         measures_.emplace(study->game(), results.measure);
+        // What participants.csv needs of a plan's session, so it is not read a second time.
+        if (!h.planId.empty()) planSessions_.push_back(plan::factsOf(path.string(), data, *study));
         addConditions(*study, name);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
@@ -623,6 +627,8 @@ public:
     const std::vector<std::string>& warnings() const { return warnings_; }
     // The study plans the readable sessions were run from: plan id, how many sessions.
     const std::map<std::string, int>& planIds() const { return planIds_; }
+    // The readable sessions run from a plan, as the plan's status reads them.
+    const std::vector<plan::SessionFacts>& planSessions() const { return planSessions_; }
 
     // The conditions `study` runs, new ones (by game, name and refresh) in order of first use.
     // One name meaning two things in one export is said, since the analysis keys on names.
@@ -754,6 +760,7 @@ private:
     std::vector<std::string> warnings_;
     std::vector<ConditionListing> conditions_;
     std::map<std::string, int> planIds_;
+    std::vector<plan::SessionFacts> planSessions_;
 };
 
 }  // namespace
@@ -821,7 +828,7 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
                     << " run from another study plan (plan_id " << id << ") than '"
                     << (fs::path(planDir) / "study.json").string() << "' (id " << studyPlan->id
                     << "); participants.csv does not count them\n";
-        summary.written.push_back(writeParticipants(outDir, planDir, *studyPlan));
+        summary.written.push_back(writeParticipants(outDir, *studyPlan, exporter.planSessions()));
     }
 
     std::map<std::string, int> byStatus;

@@ -37,10 +37,10 @@ std::string stateText(const ProtocolStatus& status) {
 
 namespace {
 
-SessionState stateOf(const session::SessionData& data) {
-    if (data.damaged) return SessionState::Damaged;
-    if (!data.completed) return SessionState::Incomplete;
-    return data.flags.empty() ? SessionState::Done : SessionState::Flagged;
+SessionState stateOf(const SessionFacts& s) {
+    if (s.damaged) return SessionState::Damaged;
+    if (!s.completed) return SessionState::Incomplete;
+    return s.flags.empty() ? SessionState::Done : SessionState::Flagged;
 }
 
 std::string protocolName(const std::string& protocolJson) {
@@ -50,57 +50,54 @@ std::string protocolName(const std::string& protocolJson) {
 
 }  // namespace
 
+SessionFacts factsOf(const std::string& path, const session::SessionData& data, const game::Study& study) {
+    return {path, data.header, data.completed, data.damaged, data.flags, data.note, study.progress(data.events)};
+}
+
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan) {
-    struct Found {
-        fs::path path;
-        session::SessionData data;
-        game::Progress progress;
-    };
-    std::vector<Found> sessions;
-    std::set<std::string> carriedOn;  // session ids a resumed session carries on
+    std::vector<SessionFacts> sessions;
     std::error_code ec;
     const std::string results = resultsFolder(planDir);
     for (fs::directory_iterator it(results, ec), end; !ec && it != end; it.increment(ec)) {
         const fs::path& path = it->path();
         const std::string name = path.filename().string();
         if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
-        Found found{path, {}, {}};
         try {
             // The header first: another plan's session (or one without a plan) is not read whole.
             if (session::readSessionHeader(path.string()).planId != plan.id) continue;
-            found.data = session::readSession(path.string());
-        } catch (const session::SessionError&) {
-            continue;  // not a session of this plan that can be told
-        }
-        if (found.data.header.planId != plan.id) continue;
-        try {
-            found.progress =
-                game::parseStudy(found.data.header.protocolJson, path.string())->progress(found.data.events);
+            const session::SessionData data = session::readSession(path.string());
+            sessions.push_back(
+                factsOf(path.string(), data, *game::parseStudy(data.header.protocolJson, path.string())));
         } catch (const std::exception&) {
-            continue;  // its stored protocol does not parse: export says so
+            continue;  // not a session of this plan that can be told, or its stored protocol does not parse
         }
-        // Only the headers are needed from here on.
-        found.data.inputs.clear();
-        found.data.frames.clear();
-        found.data.events.clear();
-        for (const auto& r : found.data.header.resumed) carriedOn.insert(r.sessionId);
-        sessions.push_back(std::move(found));
     }
+    return studyStatus(plan, std::move(sessions));
+}
+
+std::vector<ParticipantStatus> studyStatus(const StudyPlan& plan, std::vector<SessionFacts> sessions) {
+    sessions.erase(std::remove_if(sessions.begin(), sessions.end(),
+                                  [&](const SessionFacts& s) { return s.header.planId != plan.id; }),
+                   sessions.end());
+    std::set<std::string> carriedOn;  // session ids a resumed session carries on
+    for (const SessionFacts& s : sessions)
+        for (const auto& r : s.header.resumed) carriedOn.insert(r.sessionId);
     // Directory order is the file system's; by name (participant, then start time) the last
     // incomplete session of a protocol is the latest.
-    std::sort(sessions.begin(), sessions.end(), [](const Found& a, const Found& b) { return a.path < b.path; });
+    std::sort(sessions.begin(), sessions.end(), [](const SessionFacts& a, const SessionFacts& b) {
+        return fs::path(a.path).filename() < fs::path(b.path).filename();
+    });
 
     // (participant, protocol name) -> the status so far
     std::map<std::pair<std::string, std::string>, ProtocolStatus> seen;
-    for (const Found& found : sessions) {
-        const session::SessionData& data = found.data;
+    for (const SessionFacts& found : sessions) {
         // A session carried on by a resumed one is part of it, not a session of its own.
-        if (carriedOn.count(data.header.sessionId)) continue;
-        const std::string name = found.path.filename().string();
-        ProtocolStatus& s = seen[{data.header.participant, protocolName(data.header.protocolJson)}];
+        if (carriedOn.count(found.header.sessionId)) continue;
+        const std::string name = fs::path(found.path).filename().string();
+        ProtocolStatus& s = seen[{found.header.participant, protocolName(found.header.protocolJson)}];
         ++s.sessions;
-        const SessionState state = stateOf(data);
-        if (state == SessionState::Incomplete) s.resumable = found.path.string();
+        const SessionState state = stateOf(found);
+        if (state == SessionState::Incomplete) s.resumable = found.path;
         if (s.sessions == 1 || state < s.state) {
             s.state = state;
             s.done = found.progress.done;
@@ -108,9 +105,9 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
             s.unit = found.progress.unit;
             s.detail = name;
             if (state == SessionState::Flagged)
-                s.detail += ": flagged " + data.flags.begin()->first + ": " + data.flags.begin()->second;
+                s.detail += ": flagged " + found.flags.begin()->first + ": " + found.flags.begin()->second;
             else if (state != SessionState::Done)
-                s.detail += ": " + data.note;
+                s.detail += ": " + found.note;
         }
     }
     std::vector<ParticipantStatus> out;

@@ -2,10 +2,13 @@
 // sessions in the plan's results folder hold (docs/study-plan.md, "Running the study").
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "game/game.h"
 #include "plan/study_plan.h"
+#include "session/session_store.h"
 
 namespace warplab::plan {
 
@@ -39,6 +42,23 @@ struct ParticipantStatus {
     std::string id;
     std::vector<ProtocolStatus> protocols;  // in the participant's protocol order
 };
+
+// What the status needs of one session file: its header, how it ended, how far it got.
+struct SessionFacts {
+    std::string path;
+    session::SessionHeader header;
+    bool completed = false, damaged = false;
+    std::map<std::string, std::string> flags;
+    std::string note;
+    game::Progress progress;  // Study::progress of its events
+};
+// The facts of a session read whole, with its stored protocol's study.
+SessionFacts factsOf(const std::string& path, const session::SessionData& data, const game::Study& study);
+
+// Where the plan's participants stand, from the given sessions (those whose plan_id is not the
+// plan's are passed over): by participant and by the stored protocol's name; a session that a
+// resumed session carries on is part of that one. Participants in plan order.
+std::vector<ParticipantStatus> studyStatus(const StudyPlan& plan, std::vector<SessionFacts> sessions);
 
 // Reads every session of the plan (header plan_id = the plan's id) in its results folder: by
 // participant and by the stored protocol's name. Unreadable files are not the plan's and are
