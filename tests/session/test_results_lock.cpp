@@ -17,30 +17,17 @@
 
 #include "session/results_lock.h"
 #include "session/session_store.h"
+#include "temp_dir.h"
 
 namespace warplab::session {
 namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
+class TempDir : public testing::TempDir {
 public:
-    TempDir() {
-        std::string pattern = (fs::temp_directory_path() / "warplab-lock-XXXXXX").string();
-        if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
-        path_ = pattern;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    TempDir(const TempDir&) = delete;
-    TempDir& operator=(const TempDir&) = delete;
-    std::string str() const { return path_.string(); }
-    fs::path lockFile() const { return path_ / kLockFileName; }
-
-private:
-    fs::path path_;
+    TempDir() : testing::TempDir("warplab-lock") {}
+    fs::path lockFile() const { return path() / kLockFileName; }
 };
 
 std::string readText(const fs::path& path) {
