@@ -12,7 +12,9 @@
 #include <stdexcept>
 #include <tuple>
 
+#include "columns.h"
 #include "export/csv.h"
+#include "participants_csv.h"
 #include "condition/schedule.h"
 #include "game/registry.h"
 #include "plan/status.h"
@@ -97,27 +99,6 @@ void optionalInteger(CsvFile& f, const std::optional<std::int64_t>& v) {
         f.integer(*v);
     else
         f.empty();
-}
-
-// One column of a CSV: its header name and how a row's cell is written. Each file's columns
-// are one table, which its header and every row walk, so the two cannot drift apart, and
-// docs/export.md is checked against the tables.
-template <class Row>
-struct Column {
-    const char* name;
-    std::function<void(CsvFile&, const Row&)> write;
-};
-
-template <class Row>
-std::vector<std::string> headerOf(const std::vector<Column<Row>>& columns) {
-    std::vector<std::string> names;
-    for (const auto& c : columns) names.emplace_back(c.name);
-    return names;
-}
-
-template <class Row>
-void writeCells(CsvFile& file, const std::vector<Column<Row>>& columns, const Row& row) {
-    for (const auto& c : columns) c.write(file, row);
 }
 
 // A session file as sessions.csv lists it. An unreadable one has only its name and what
@@ -457,84 +438,11 @@ CarriedOn carriedOn(const std::vector<fs::path>& files, const fs::path& resultsD
     return out;
 }
 
-// One planned participant: their plan and where they stand (plan/status.h).
-struct ParticipantRow {
-    const plan::StudyPlan& plan;
-    const plan::ParticipantPlan& participant;
-    const plan::ParticipantStatus& status;
-};
-
-// "name: value; name: value", over the participant's protocols in their order.
-template <class Value>
-std::string perProtocol(const ParticipantRow& r, const Value& value) {
-    std::string out;
-    for (const int index : r.participant.protocolOrder)
-        out += (out.empty() ? "" : "; ") + r.plan.protocols[static_cast<std::size_t>(index)].name + ": " + value(index);
-    return out;
-}
-
-const std::vector<Column<ParticipantRow>>& participantColumns() {
-    using F = CsvFile;
-    using R = ParticipantRow;
-    static const std::vector<Column<R>> columns = {
-        {"participant", [](F& f, const R& r) { f.text(r.participant.id); }},
-        {"seed", [](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.participant.seed)); }},
-        {"protocol_order",
-         [](F& f, const R& r) {
-             std::string out;
-             for (const int index : r.participant.protocolOrder)
-                 out += (out.empty() ? "" : ";") + r.plan.protocols[static_cast<std::size_t>(index)].name;
-             f.text(out);
-         }},
-        {"condition_orders",
-         [](F& f, const R& r) {
-             f.text(perProtocol(r, [&](int index) {
-                 std::string list;
-                 for (const auto& c : r.participant.conditionOrder[static_cast<std::size_t>(index)])
-                     list += (list.empty() ? "" : " ") + c;
-                 return list;
-             }));
-         }},
-        {"cm_per_360",
-         [](F& f, const R& r) {
-             if (r.participant.settings.cmPer360)
-                 f.number(*r.participant.settings.cmPer360);
-             else
-                 f.empty();
-         }},
-        {"mouse_dpi", [](F& f, const R& r) { f.number(r.participant.settings.mouseDpi); }},
-        {"invert_y", [](F& f, const R& r) { f.boolean(r.participant.settings.invertY); }},
-        {"status",
-         [](F& f, const R& r) {
-             f.text(perProtocol(r, [&](int index) -> std::string {
-                 for (const auto& p : r.status.protocols)
-                     if (p.protocolIndex == index) return plan::stateText(p);
-                 return plan::stateName(plan::SessionState::NotStarted);
-             }));
-         }},
-    };
-    return columns;
-}
-
 // The plan folder of a results folder: DIR for DIR/results (as `study init` makes them).
 fs::path planFolderOf(const std::string& resultsDir) {
     fs::path dir = fs::absolute(resultsDir).lexically_normal();
     if (dir.filename().empty()) dir = dir.parent_path();
     return dir.parent_path();
-}
-
-// participants.csv: one row per planned participant, in plan order; its path.
-// Their status from the sessions the export read (those of other plans are passed over).
-std::string writeParticipants(const std::string& outDir, const plan::StudyPlan& studyPlan,
-                              const std::vector<plan::SessionFacts>& sessions) {
-    CsvFile csv((fs::path(outDir) / "participants.csv").string(), headerOf(participantColumns()));
-    const std::vector<plan::ParticipantStatus> statuses = plan::studyStatus(studyPlan, sessions);
-    for (std::size_t i = 0; i < studyPlan.participants.size(); ++i) {
-        writeCells(csv, participantColumns(), ParticipantRow{studyPlan, studyPlan.participants[i], statuses[i]});
-        csv.endRow();
-    }
-    csv.close();
-    return csv.path();
 }
 
 class Exporter {
