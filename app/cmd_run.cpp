@@ -13,6 +13,7 @@
 #include "participants/eye.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
+#include "protocol/study_protocol.h"
 #include "scene/limits.h"
 #include "session/results_lock.h"
 
@@ -207,6 +208,17 @@ int runWindowed(const ParsedArgs& args) {
         run.slowEvery = static_cast<int>(wholeInteger(slow.substr(colon + 1), why));
         if (run.slowMs < 0 || run.slowMs > 10000 || run.slowEvery < 1) throw UsageError(why);
     }
+    if (args.has("photon-marker")) {
+        run.photonMarker = args.string("photon-marker", "");
+        std::string spellings;
+        bool known = false;
+        for (const auto& entry : protocol::EnumNames<protocol::PhotonMarker>::list) {
+            known = known || run.photonMarker == entry.name;
+            spellings += std::string(spellings.empty() ? "" : ", ") + entry.name;
+        }
+        if (!known)
+            throw UsageError("option --photon-marker needs one of " + spellings + ", got '" + run.photonMarker + "'");
+    }
     run.screenshotDir = args.string("screenshots", "");
     run.screenshotStartScreen = !run.screenshotDir.empty();
     const std::string frames = args.string("screenshot-frames", "");
@@ -235,9 +247,9 @@ int runWindowed(const ParsedArgs& args) {
 // Options that only a window reads: under --headless they would be silently ignored (a
 // mistyped --cm-per-360 unnoticed, an --input-script that drives nothing).
 const char* const kWindowOnlyOptions[] = {
-    "fullscreen",  "display",           "cm-per-360", "mouse-dpi", "invert-y", "allow-refresh-mismatch",
-    "screenshots", "screenshot-frames", "free-play",  "mode",      "level",    "input-script",
-    "every-frame", "slow-frames"};
+    "fullscreen",  "display",           "cm-per-360",   "mouse-dpi", "invert-y", "allow-refresh-mismatch",
+    "screenshots", "screenshot-frames", "free-play",    "mode",      "level",    "input-script",
+    "every-frame", "slow-frames",       "photon-marker"};
 
 int runRun(const ParsedArgs& args) {
     if (!args.flag("headless")) return runWindowed(args);
@@ -390,8 +402,11 @@ Command runCommand() {
               ""},
              {"every-frame", "", "window, tests: show every display frame however late (slow motion on a slow machine)",
               "late frames' display frames are skipped"},
-             {"slow-frames", "MS:EVERY", "window, tests: make every EVERY-th frame MS ms slower, as a slow machine",
-              ""},
+             {"photon-marker", "CORNER",
+              "window: a square for a photodiode in that corner (top_left, top_right, bottom_left, bottom_right; off "
+              "for none), white on the first frame that shows a press (docs/live-sessions.md)",
+              "the protocol's display.photon_marker"},
+             {"slow-frames", "MS:EVERY", "window, tests: make every EVERY-th frame MS ms slower, as a slow machine", ""},
              {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
               "osmesa"},
              dataDirOption(),

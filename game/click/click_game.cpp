@@ -259,6 +259,7 @@ std::vector<physics::Sphere> ClickGame::depictedSpheres(const condition::Schedul
 ShownFrame ClickGame::screenFrame() {
     ShownFrame shown;
     shown.frame = frame_;
+    shown.inputFrame = frame_;
     shown.time = now();
     shown.camera = camera_;
     shown.blank = true;

@@ -224,6 +224,7 @@ void ShooterGame::finishReading() {
 ShownFrame ShooterGame::readingFrame() const {
     ShownFrame shown;
     shown.frame = frame_;
+    shown.inputFrame = frame_;
     shown.time = now();
     shown.camera = camera_;
     shown.blank = true;
@@ -384,6 +385,7 @@ ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
     questionCursor_ = glm::clamp(moved, glm::dvec2(0.0), glm::dvec2(display_.width, display_.height));
     ShownFrame shown;
     shown.frame = frame_;
+    shown.inputFrame = frame_;
     shown.time = now();
     shown.camera = camera_;
     shown.blank = true;
@@ -455,6 +457,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         clickGate_.clear();
         ShownFrame shown = *frozenFrame_;
         shown.frame = frame_;
+        shown.inputFrame = frame_;  // the banner answers the shot at once, whatever the mode's lag
         shown.time = now();
         shown.frozen = true;
         shown.rendersNow = false;

@@ -14,6 +14,7 @@ ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& m
     shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : placement.start + f.nextSourceIndex;
     shown.scene.time = placement.timeAt(f.sceneTime);
     shown.rendersNow = f.rendersNow;
+    shown.inputFrame = cameraFrame(f, placement);
     return shown;
 }
 

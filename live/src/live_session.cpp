@@ -11,6 +11,8 @@
 #include <sstream>
 #include <utility>
 
+#include <nlohmann/json.hpp>
+
 #include "game/game.h"
 #include "session/pacing.h"
 #include "session/session_store.h"
@@ -52,6 +54,15 @@ public:
         record.frameMs = timing.frameMs;
         record.renderMs = timing.renderMs;
         record.missedVsyncs = timing.missedVsyncs;
+        if (timing.photonMarker) {
+            // Beside the game's own keys: the frame a photodiode saw turn white, and the press
+            // it answers, to join a meter's measurements with the schedule's latency.
+            nlohmann::json detail =
+                record.detailJson.empty() ? nlohmann::json::object() : nlohmann::json::parse(record.detailJson);
+            detail["photon_marker"] = true;
+            detail["photon_press"] = timing.photonPress;
+            record.detailJson = detail.dump();
+        }
         pacing_.add(record);
         warnIfOverBudget(record);
         writer_.addFrame(record);

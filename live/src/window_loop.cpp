@@ -27,6 +27,15 @@ double countScaleFor(const LiveRun& run, const game::Study& study) {
     return (2.0 * kPi / countsPerTurn) / study.mouseRadiansPerCount();
 }
 
+// The run's --photon-marker, else the protocol's display.photon_marker.
+protocol::PhotonMarker photonMarkerFor(const LiveRun& run, const game::Study& study) {
+    for (const auto& entry : protocol::EnumNames<protocol::PhotonMarker>::list)
+        if (run.photonMarker == entry.name) return entry.value;
+    if (!run.photonMarker.empty())
+        throw std::invalid_argument("LiveRun::photonMarker '" + run.photonMarker + "' is no display.photon_marker");
+    return study.rendering().photonMarker;
+}
+
 }  // namespace
 
 Polled readInput(const renderer::WindowInput& in, double countScale, bool invertY) {
@@ -119,7 +128,8 @@ WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std
       maker_(paths, display_.width, display_.height, study_->rendering()),
       hud_(paths),
       screen_(display_.width, display_.height),
-      clock_(window_, study_->refreshHz(), opened_.byVsync) {
+      clock_(window_, study_->refreshHz(), opened_.byVsync),
+      photonMarker_(hudPhotonMarker(photonMarkerFor(run, *study_))) {
     if (!sounds_.available()) progress << "note: " << sounds_.why() << "; feedback sounds are off\n";
 }
 
@@ -136,6 +146,7 @@ void WindowLoop::showScreen(const std::string& banner, const std::string& status
     content.banner = banner;
     content.bannerGood = true;
     content.status = status;
+    content.photonMarker = photonMarker_;  // black: a sensor sees no press answered
     hud_.draw(content, screen_.buffer());
     renderer::blitToDefaultFramebuffer(screen_.buffer(), window_.drawableWidth(), window_.drawableHeight());
     window_.swapBuffers();
@@ -211,7 +222,7 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
         policy.beforeStep(polled.keys, frame, input);
         const game::ShownFrame shown = game.step(input);
         policy.stepped(shown, input);
-        const FrameTiming timing = show(shown, frame, policy);
+        const FrameTiming timing = show(shown, frame, policy, photonTiming_.step(shown, input, true));
         policy.presented(shown, timing);
         if (std::find(run_.screenshotFrames.begin(), run_.screenshotFrames.end(), frame) != run_.screenshotFrames.end())
             screenshot(policy.screenshotName(frame));
@@ -228,6 +239,7 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
             const game::FrameInput passedInput = player_ ? input : held;
             const game::ShownFrame passed = game.step(passedInput);
             policy.stepped(passed, passedInput);
+            photonTiming_.step(passed, passedInput, false);  // never seen: the next frame shown answers
             maker_.keepSource(passed);  // a later frame may be made from its render
             FrameTiming skipped;
             skipped.skipped = true;
@@ -249,7 +261,8 @@ bool WindowLoop::pause(const std::string& pending, const std::string& text) {
     return true;
 }
 
-FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy) {
+FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy,
+                             const PhotonMarkerTiming::Answer& marker) {
     // Making the frame, timed to glFinish: what must fit in one refresh. (The glFinish only
     // waits for what the swap would wait for anyway.)
     timer_.begin();
@@ -257,6 +270,8 @@ FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, 
     if (!shown.blank) maker_.make(shown, screen_);
     renderer::HudContent content = present::hudFor(shown, 1.0, 1.0);
     policy.decorate(shown, frame, content);
+    content.photonMarker = photonMarker_;
+    if (content.photonMarker) content.photonMarker->lit = marker.lit;
     hud_.draw(content, screen_.buffer());
     renderer::blitToDefaultFramebuffer(screen_.buffer(), display_.width, display_.height);
     if (run_.slowEvery > 0 && frame % run_.slowEvery == 0)
@@ -264,7 +279,10 @@ FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, 
     const double renderMs = timer_.end().wallMs;
     const DisplayClock::Presented presented = clock_.present();
     if (!shown.feedback.empty()) sounds_.play(shown.feedback);
-    return {presented.frameS * 1000.0, renderMs, presented.missedVsyncs};
+    FrameTiming timing{presented.frameS * 1000.0, renderMs, presented.missedVsyncs};
+    timing.photonMarker = photonMarker_ && marker.lit;
+    timing.photonPress = timing.photonMarker ? marker.press : -1;
+    return timing;
 }
 
 }  // namespace warplab::live

@@ -9,12 +9,14 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "game/game.h"
 #include "input_script.h"
 #include "live/live_session.h"
+#include "photon_marker.h"
 #include "present/frame_maker.h"
 #include "renderer/hud.h"
 #include "renderer/timing.h"
@@ -68,6 +70,9 @@ struct FrameTiming {
     // input is the held buttons and keys; what moved the mouse meanwhile goes to the next
     // frame shown), its renders were made, and nothing of it was shown.
     bool skipped = false;
+    // The photodiode marker turned white on this frame, answering the press at photonPress.
+    bool photonMarker = false;
+    std::int64_t photonPress = -1;
 };
 
 // What makes the loop a recorded session or free play.
@@ -143,7 +148,8 @@ public:
 private:
     // The supervisor's pause (Esc): the display clock stops; true when Enter resumes.
     bool pause(const std::string& pending, const std::string& text);
-    FrameTiming show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy);
+    FrameTiming show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy,
+                     const PhotonMarkerTiming::Answer& marker);
 
     // The window with what the display clock is decided from.
     struct Opened {
@@ -169,6 +175,9 @@ private:
     FeedbackSounds sounds_;
     DisplayClock clock_;
     renderer::PassTimer timer_;
+    // The photodiode marker: where (none when off) and which frames light it.
+    std::optional<renderer::HudPhotonMarker> photonMarker_;
+    PhotonMarkerTiming photonTiming_;
     // What sawBeforeResume learnt: where run() starts, the player's next input, and the last
     // few frames that rendered a source (those the first frames after it may be made from).
     std::int64_t firstFrame_ = 0;

@@ -131,7 +131,7 @@ const std::vector<detail::Section<P>>& sections() {
                       {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}),
             K::choice("refresh_mismatch", at(&P::refreshMismatch)),
         };
-        for (auto& k : detail::renderKeys<P>()) display.push_back(k);
+        for (auto& k : detail::renderKeys<P>(kClickPhotonMarkerSince)) display.push_back(k);
         return std::vector<detail::Section<P>>{
             {"display", display},
             {"physics",

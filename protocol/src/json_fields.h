@@ -377,14 +377,17 @@ std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections,
 
 // display.guard_band and display.supersampling (RenderSettings), alike in every game: new with
 // format 2, so older files are written with them only when they are not the defaults.
+// display.photon_marker came later, in each game's own format version `photonMarkerSince`;
+// older files may not set it (their sessions ran without a marker).
 template <class P>
-std::vector<Key<P>> renderKeys() {
+std::vector<Key<P>> renderKeys(int photonMarkerSince) {
     using K = Keys<P>;
     return {
         K::number("guard_band", at(&P::rendering, &RenderSettings::guardBand), {0, false, scene::kMaxGuardBand, false})
             .since(2),
         K::integer("supersampling", at(&P::rendering, &RenderSettings::supersampling), 1, scene::kMaxSupersampling)
-            .since(2)};
+            .since(2),
+        K::choice("photon_marker", at(&P::rendering, &RenderSettings::photonMarker)).since(photonMarkerSince, true)};
 }
 
 // path[i], the JSON path of an array element.

@@ -49,7 +49,7 @@ const std::vector<detail::Section<P>>& sections() {
                       {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}),
             K::choice("refresh_mismatch", at(&P::refreshMismatch)).since(2),
         };
-        for (auto& k : detail::renderKeys<P>()) display.push_back(k);
+        for (auto& k : detail::renderKeys<P>(kShooterPhotonMarkerSince)) display.push_back(k);
         using S = StaircaseSettings;
         return std::vector<detail::Section<P>>{
             {"display", display},

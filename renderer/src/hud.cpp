@@ -1,6 +1,7 @@
 #include "renderer/hud.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 
@@ -208,6 +209,11 @@ void HudRenderer::Impl::question(const HudQuestion& q, int w, int h) {
     }
 }
 
+int HudPhotonMarker::sidePixels(int frameWidth, int frameHeight) {
+    const int side = std::max(16, static_cast<int>(std::lround(frameHeight * 0.04)));
+    return std::min(side, std::min(frameWidth, frameHeight));
+}
+
 HudRenderer::HudRenderer(const DataPaths& paths, const std::string& fontPath) : impl_(std::make_unique<Impl>()) {
     if (!std::ifstream(fontPath))
         throw AssetError("cannot read HUD font '" + fontPath + "' (install fonts-dejavu-core)");
@@ -295,6 +301,19 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     if (!content.status.empty()) {
         const float grey[4] = {0.9f, 0.9f, 0.9f, 0.85f};
         drawText(content.status, w * 0.5f, h * 0.93f, 0.4f, grey, true);
+    }
+
+    if (content.photonMarker) {
+        // Last and unblended: exactly black or white, whatever is under it.
+        glDisable(GL_BLEND);
+        const HudPhotonMarker& marker = *content.photonMarker;
+        using Corner = HudPhotonMarker::Corner;
+        const int side = HudPhotonMarker::sidePixels(w, h);
+        const bool left = marker.corner == Corner::TopLeft || marker.corner == Corner::BottomLeft;
+        const bool top = marker.corner == Corner::TopLeft || marker.corner == Corner::TopRight;
+        const float black[4] = {0.0f, 0.0f, 0.0f, 1.0f}, white[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+        m.rect(static_cast<float>(left ? 0 : w - side), static_cast<float>(top ? h - side : 0),
+               static_cast<float>(side), static_cast<float>(side), marker.lit ? white : black);
     }
 
     glBindVertexArray(0);

@@ -295,6 +295,58 @@ TEST(ClickGame, ReadmeLatencyTableHoldsInARealRun) {
     EXPECT_EQ(checked, 9 + 7) << "every row at 120 Hz, and the seven the click game runs at 60 Hz";
 }
 
+// A press is on screen where the README's latency table says: the first frame whose inputFrame
+// reaches the press's frame v (what a photodiode marker lights on) is the first whose cursor
+// shows a step made with the press, and over every phase of the cycle it comes k - v to
+// k - v + 1 frames after the press happened (in (v - 1, v]), the row's view latency, least and
+// most. So lag50 at 60 Hz lights 3 frames after the press's, warp15to120 at 120 Hz on its own
+// frame: the first frame made after the press. Screens show their own frame's input.
+TEST(ClickGame, APressIsOnScreenWhereTheReadmeLatencyTableSays) {
+    const readme::ReadmeLatencyTable table = readme::readmeLatencyTable();
+    int checked = 0;
+    for (const double refresh : table.displayRatesHz) {
+        const double frameMs = 1000.0 / refresh;
+        for (const readme::ReadmeLatencyRow& row : table.rows) {
+            auto p = quick();
+            p.refreshHz = refresh;
+            p.modes = {row.id};
+            p.rounds = {{"only", true, 1, ""}};  // no instructions screen
+            if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
+            SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
+            ++checked;
+            std::int64_t lo = 1 << 30, hi = -1;
+            for (int phase = 0; phase < 16; ++phase) {
+                ClickGame game(p, 2, kDisplay);
+                const ShownFrame ready = game.step({});
+                EXPECT_EQ(ready.inputFrame, ready.frame) << "a screen";
+                ShownFrame shown = game.step({0, 0, 0, kKeyEnter});
+                while (shown.blank) shown = game.step({});
+                for (int i = 0; i < 40 + phase; ++i) shown = game.step({});
+                const glm::dvec2 before = shown.cursor;
+                const ShownFrame press = game.step({40.0, 0.0, kButtonLeft, 0});
+                ShownFrame f = press;
+                for (int i = 0; i < 100 && f.inputFrame < press.frame; ++i) {
+                    EXPECT_EQ(f.cursor, before) << "frame " << f.frame << " shows the press before it says so";
+                    f = game.step({});
+                }
+                ASSERT_GE(f.inputFrame, press.frame);
+                EXPECT_NE(f.cursor, before) << "frame " << f.frame << " says it shows the press but does not";
+                lo = std::min(lo, f.frame - press.frame);
+                hi = std::max(hi, f.frame - press.frame + 1);
+                if (row.id == "lag50" && refresh == 60.0) {
+                    EXPECT_EQ(f.frame, press.frame + 3);
+                }
+                if (row.id == "warp15to120") {
+                    EXPECT_EQ(f.frame, press.frame);
+                }
+            }
+            EXPECT_NEAR(static_cast<double>(lo) * frameMs, row.viewMinMs, 0.05);
+            EXPECT_NEAR(static_cast<double>(hi) * frameMs, row.viewMaxMs, 0.05);
+        }
+    }
+    EXPECT_EQ(checked, 9 + 7) << "every row at 120 Hz, and the seven the click game runs at 60 Hz";
+}
+
 // What a lag or conventional frame shows is the world of the frame it was rendered at; a
 // bireproj B-frame lies on the straight line between its two I-frames.
 TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {

@@ -279,6 +279,33 @@ TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
     }
 }
 
+// A frame shows the input its inputFrame names (what a photodiode marker lights on): a mouse
+// step at frame v first turns the view on the first frame whose inputFrame reaches v, in every
+// mode. The freeze frame after a shot answers at once, whatever the mode's lag: the banner is
+// the game's own response, so its inputFrame is its own frame.
+TEST(ShooterGame, InputFrameIsTheInputTheViewShows) {
+    for (const auto& mode : measuredConditions()) {
+        for (int phase = 0; phase < 8; ++phase) {
+            ModeRig rig(mode);
+            for (int i = 0; i < 16 + phase; ++i) rig.last = rig.game->step({});
+            const double before = rig.last.camera.yaw;
+            const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});
+            ShownFrame f = stepFrame;
+            for (int i = 0; i < 100 && f.inputFrame < stepFrame.frame; ++i) {
+                EXPECT_EQ(f.camera.yaw, before) << mode << ": frame " << f.frame << " shows the step before it says so";
+                f = rig.game->step({});
+            }
+            EXPECT_NE(f.camera.yaw, before) << mode << ": frame " << f.frame << " says it shows the step";
+        }
+        ModeRig rig(mode);
+        const ShownFrame shot = rig.game->step({0.0, 0.0, kButtonLeft, 0});
+        EXPECT_LE(shot.inputFrame, shot.frame) << mode;
+        const ShownFrame frozen = rig.game->step({0.0, 0.0, kButtonLeft, 0});
+        ASSERT_TRUE(frozen.frozen) << mode;
+        EXPECT_EQ(frozen.inputFrame, frozen.frame) << mode;
+    }
+}
+
 // What a late-warped frame shows, and so what its displayed outcome is judged on: the camera of
 // the display instant; the target where the queued render had it (rotation) or moved on by its
 // velocity to the display instant (depth), never where it truly is now.

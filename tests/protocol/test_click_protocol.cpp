@@ -61,6 +61,7 @@ using test::questionsText;
 void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
     EXPECT_EQ(a.rendering.guardBand, b.rendering.guardBand);
     EXPECT_EQ(a.rendering.supersampling, b.rendering.supersampling);
+    EXPECT_EQ(a.rendering.photonMarker, b.rendering.photonMarker);
     EXPECT_EQ(a.name, b.name);
     EXPECT_EQ(a.description, b.description);
     EXPECT_EQ(a.formatVersion, b.formatVersion);
@@ -103,6 +104,7 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
 // "Questions").
 ClickProtocol asFormat(ClickProtocol p, int version) {
     p.formatVersion = version;
+    if (version < kClickPhotonMarkerSince) p.rendering.photonMarker = PhotonMarker::Off;
     if (version < 3)
         for (auto& round : p.rounds) round.instructions.clear();
     if (version < 4) {
@@ -134,6 +136,7 @@ ClickProtocol everyFieldChanged() {
     ClickProtocol p;
     p.rendering.guardBand = 0.1 + 0.2;  // not a short decimal
     p.rendering.supersampling = 3;
+    p.rendering.photonMarker = PhotonMarker::TopRight;
     p.name = "all \"changed\" \xc3\xa9";
     p.description = "two\nlines";
     p.refreshHz = 120;
@@ -338,6 +341,25 @@ TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
                     {"instructions", "Two\nlines \"quoted\""}}));
     EXPECT_EQ(document.at("matches").at("scoring"), "displayed");
     EXPECT_EQ(document.at("physics").at("gravity_m_per_s2"), 1.62);
+}
+
+// The photodiode marker (format 5): off unless a corner is named, the shooter's spellings; a
+// file of an older format may not name one.
+TEST(ClickRendering, PhotonMarkerIsACornerOrOffFromFormat5) {
+    EXPECT_EQ(ClickProtocol{}.rendering.photonMarker, PhotonMarker::Off);
+    EXPECT_EQ(parse(yangWith("/display/photon_marker", "bottom_right").dump()).rendering.photonMarker,
+              PhotonMarker::BottomRight);
+    EXPECT_EQ(messageFor(yangWith("/display/photon_marker", "middle")),
+              kPrefix +
+                  "display.photon_marker must be \"off\", \"top_left\", \"top_right\", \"bottom_left\" or "
+                  "\"bottom_right\", got string \"middle\"");
+    Json document = minimal();
+    document["format_version"] = 4;
+    document["display"] = Json{{"photon_marker", "top_left"}};
+    EXPECT_EQ(messageFor(document),
+              kPrefix + "display.photon_marker is new in format_version 5, but this file is format_version 4");
+    document["format_version"] = 5;
+    EXPECT_EQ(parse(document.dump()).rendering.photonMarker, PhotonMarker::TopLeft);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -828,12 +850,12 @@ TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
     // A click file newer than this build is still just that, with or without fields of its own:
     // a bare header is any game's, and a newer click file's sections are no shooter's.
     for (const Json& newer :
-         {Json{{"format_version", 5}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 5)}) {
+         {Json{{"format_version", 6}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 6)}) {
         try {
             game::parseStudy(newer.dump(), kSource);
             ADD_FAILURE() << "expected a ProtocolError";
         } catch (const ProtocolError& e) {
-            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 5 is newer than this warplab supports (4)");
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 6 is newer than this warplab supports (5)");
         }
     }
 }
@@ -884,7 +906,7 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 5, "format_version 5 is newer than this warplab supports (4)"},
+        {"/format_version", 6, "format_version 6 is newer than this warplab supports (5)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);

@@ -47,6 +47,8 @@ Json thesisWith(const std::string& pointer, const Json& value) {
         for (const char* phase : {"acclimation", "training", "test"}) document[phase].erase("instructions");
     if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterQuestionsSince)
         document["test"].erase("questions");
+    if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterPhotonMarkerSince)
+        document["display"].erase("photon_marker");
     return document;
 }
 
@@ -81,6 +83,7 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.verticalFovDeg, b.verticalFovDeg);
     EXPECT_EQ(a.rendering.guardBand, b.rendering.guardBand);
     EXPECT_EQ(a.rendering.supersampling, b.rendering.supersampling);
+    EXPECT_EQ(a.rendering.photonMarker, b.rendering.photonMarker);
     EXPECT_EQ(a.targetRadius, b.targetRadius);
     EXPECT_EQ(a.mouseRadiansPerCount, b.mouseRadiansPerCount);
     EXPECT_EQ(a.acclimationS, b.acclimationS);
@@ -125,6 +128,7 @@ ShooterProtocol everyFieldChanged() {
     p.verticalFovDeg = 0.1 + 0.2 + 70;  // not a short decimal
     p.rendering.guardBand = 0.1 + 0.2;  // not a short decimal
     p.rendering.supersampling = 2;
+    p.rendering.photonMarker = PhotonMarker::BottomLeft;
     p.targetRadius = 1.0 / 3.0;
     p.mouseRadiansPerCount = std::nextafter(0.0022, 1.0);
     p.acclimationS = 12.5;
@@ -301,12 +305,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 6;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 6 is newer than this warplab supports (5)");
+    document["format_version"] = 7;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 7 is newer than this warplab supports (6)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 6 is newer than this warplab supports (5)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 7 is newer than this warplab supports (6)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -628,10 +632,10 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion5WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion6WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 5);
+    EXPECT_EQ(kShooterFormatVersion, 6);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);
@@ -817,6 +821,32 @@ TEST(ProtocolRendering, Version1CopiesNameThemOnlyWhenNotDefault) {
     EXPECT_EQ(written.at("display").at("supersampling"), 2);
     EXPECT_EQ(parse(written.dump()).rendering.supersampling, 2);
     EXPECT_EQ(Json::parse(toJson(ShooterProtocol{})).at("display").at("guard_band"), 0.1);
+}
+
+// The photodiode marker (format 6): off unless a corner is named; a file of an older format
+// may not name one, since its sessions ran without it.
+TEST(ProtocolRendering, PhotonMarkerIsACornerOrOffFromFormat6) {
+    EXPECT_EQ(ShooterProtocol{}.rendering.photonMarker, PhotonMarker::Off);
+    EXPECT_EQ(parse(minimal().dump()).rendering.photonMarker, PhotonMarker::Off);
+    for (const auto& [name, corner] :
+         std::vector<std::pair<const char*, PhotonMarker>>{{"off", PhotonMarker::Off},
+                                                           {"top_left", PhotonMarker::TopLeft},
+                                                           {"top_right", PhotonMarker::TopRight},
+                                                           {"bottom_left", PhotonMarker::BottomLeft},
+                                                           {"bottom_right", PhotonMarker::BottomRight}})
+        EXPECT_EQ(parse(thesisWith("/display/photon_marker", name).dump()).rendering.photonMarker, corner) << name;
+    EXPECT_EQ(errorOf(thesisWith("/display/photon_marker", "centre")),
+              "protocol 'p.json': display.photon_marker must be \"off\", \"top_left\", \"top_right\", "
+              "\"bottom_left\" or \"bottom_right\", got string \"centre\"");
+    Json document = thesisWith("/format_version", 5);
+    document["display"]["photon_marker"] = "top_left";
+    EXPECT_EQ(errorOf(document),
+              "protocol 'p.json': display.photon_marker is new in format_version 6, but this file is format_version 5");
+    // An older struct that has one is written with it, so that its copy is refused, not run without.
+    ShooterProtocol old = parse(thesisWith("/format_version", 5).dump());
+    EXPECT_EQ(Json::parse(toJson(old)).at("display").count("photon_marker"), 0u);
+    old.rendering.photonMarker = PhotonMarker::TopLeft;
+    expectContains(errorOfText(toJson(old)), {"display.photon_marker is new in format_version 6"});
 }
 
 TEST(ProtocolVersions, ClickTimingIsDisplayOrInputReads) {

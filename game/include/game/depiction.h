@@ -31,7 +31,8 @@ struct SchedulePlacement {
 };
 
 // The ShownFrame of session frame `frame` as far as the schedule says: its display time, mode,
-// schedule, sources, depicted scene time and whether it renders now. The game adds the camera
+// schedule, sources, depicted scene time, the input it shows (cameraFrame) and whether it
+// renders now. The game adds the camera
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
 ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement);

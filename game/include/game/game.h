@@ -86,6 +86,11 @@ struct ShownFrame {
     std::int64_t sourceFrame = 0;  // session frame whose render this frame is made from
     std::int64_t nextSourceFrame = -1;  // bidirectional: the later source
     bool frozen = false;  // a pause: the last frame stays on screen
+    // The latest session frame whose input the picture shows: the frame whose camera or pointer
+    // a scheduled frame depicts (cameraFrame), or the frame itself for what the game draws as it
+    // responds (screens, the freeze frame after a shot). A press at frame p is on screen from
+    // the first frame shown with inputFrame >= p: what a photodiode marker lights on.
+    std::int64_t inputFrame = 0;
     bool blank = false;  // nothing of the scene is shown (e.g. a rating screen)
 
     // The pointer as this frame depicts it: the reticle at the centre, or the cursor drawn

@@ -53,6 +53,9 @@ struct LiveRun {
     std::string screenshotDir;
     std::vector<std::int64_t> screenshotFrames;
     bool screenshotStartScreen = false;
+    // The photodiode marker: "" for the protocol's display.photon_marker, else one of its
+    // spellings ("off", "top_left" ...), which replaces it.
+    std::string photonMarker;
     // Free play (runFreePlay): the mode and difficulty it starts in ("" = the protocol's first).
     std::string freePlayMode;
     int freePlayLevel = 0;

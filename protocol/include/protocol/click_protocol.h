@@ -17,14 +17,16 @@ namespace warplab::protocol {
 
 // The newest click protocol format this build reads and the one toJson writes.
 // 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions"), 3 each
-// round's "instructions" screen, 4 matches.questions in place of the ratings section.
-inline constexpr int kClickFormatVersion = 4;
+// round's "instructions" screen, 4 matches.questions in place of the ratings section, 5
+// display.photon_marker.
+inline constexpr int kClickFormatVersion = 5;
 inline constexpr int kClickConditionsSince = 2;
 inline constexpr int kClickInstructionsSince = 3;
 // From 4 the questions after each match are matches.questions (any kind), and a file may no
 // longer have a ratings section; older files rate the ratings section's statements, and their
 // sessions log those answers as "rating" events.
 inline constexpr int kClickQuestionsSince = 4;
+inline constexpr int kClickPhotonMarkerSince = 5;
 
 // What a round's instructions say unless the protocol says otherwise: the task in plain words.
 inline constexpr const char* kClickTaskInstructions =
@@ -51,7 +53,7 @@ struct ClickProtocol {
     double verticalFovDeg = 60;  // display.vertical_fov_deg
     double cameraPitchDeg = -10;  // display.camera_pitch_deg, looks down at the box floor
     RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;  // display.refresh_mismatch, as the shooter's
-    RenderSettings rendering;  // display.guard_band, display.supersampling
+    RenderSettings rendering;  // display.guard_band, display.supersampling, display.photon_marker
     // physics.* (the game maps these onto physics::FallingSphereSettings; keep the same defaults)
     double gravity = 9.81;  // m/s^2, >= 0
     double sphereRadius = 0.45;  // m, (0, 2]

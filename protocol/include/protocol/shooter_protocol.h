@@ -16,11 +16,13 @@ namespace warplab::protocol {
 // The newest protocol format this build reads. 2 added test.click_timing and fixed the timeout
 // and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
 // replay under the rules they were recorded with. 3 added the protocol's own "conditions", 4
-// each phase's "instructions" screen, 5 the questions after each block of the test.
-inline constexpr int kShooterFormatVersion = 5;
+// each phase's "instructions" screen, 5 the questions after each block of the test, 6
+// display.photon_marker.
+inline constexpr int kShooterFormatVersion = 6;
 inline constexpr int kShooterConditionsSince = 3;
 inline constexpr int kShooterInstructionsSince = 4;
 inline constexpr int kShooterQuestionsSince = 5;  // test.questions
+inline constexpr int kShooterPhotonMarkerSince = 6;  // display.photon_marker
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;
@@ -47,7 +49,7 @@ struct ShooterProtocol {
     // A live session on a display whose refresh is known to differ: refuse to start, or warn
     // and pace frames by timer (quick protocols, so they run anywhere).
     RefreshMismatch refreshMismatch = RefreshMismatch::Refuse;
-    RenderSettings rendering;  // display.guard_band, display.supersampling
+    RenderSettings rendering;  // display.guard_band, display.supersampling, display.photon_marker
     double targetRadius = 0.35;  // metres
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
     double acclimationS = 300;
@@ -90,7 +92,7 @@ struct ShooterProtocol {
 };
 
 // sourceName is what messages call the file (its path). Every mode id must name a preset or a
-// condition the file defines, runnable at its refresh. Reads format_version 1 to 5. Throws
+// condition the file defines, runnable at its refresh. Reads format_version 1 to 6. Throws
 // ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a shooter protocol may have, as JSON paths ("display.refresh_hz"), in file order:

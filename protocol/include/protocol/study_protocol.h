@@ -28,6 +28,9 @@ enum class ClickTiming { Display, InputReads };
 // A live session on a display whose refresh is known to differ from the protocol's: refuse to
 // start, or warn and pace frames by timer.
 enum class RefreshMismatch { Refuse, Warn };
+// Where a live session draws its photodiode marker (docs/live-sessions.md, "Measuring
+// click-to-photon latency with a photodiode"), or none.
+enum class PhotonMarker { Off, TopLeft, TopRight, BottomLeft, BottomRight };
 
 template <class E>
 struct EnumName {
@@ -50,6 +53,14 @@ struct EnumNames<RefreshMismatch> {
     static constexpr EnumName<RefreshMismatch> list[] = {{RefreshMismatch::Refuse, "refuse"},
                                                          {RefreshMismatch::Warn, "warn"}};
 };
+template <>
+struct EnumNames<PhotonMarker> {
+    static constexpr EnumName<PhotonMarker> list[] = {{PhotonMarker::Off, "off"},
+                                                      {PhotonMarker::TopLeft, "top_left"},
+                                                      {PhotonMarker::TopRight, "top_right"},
+                                                      {PhotonMarker::BottomLeft, "bottom_left"},
+                                                      {PhotonMarker::BottomRight, "bottom_right"}};
+};
 
 // The JSON spelling of `value`.
 template <class E>
@@ -59,15 +70,19 @@ const char* nameOf(E value) {
     return "?";  // not reached for a value of the enum
 }
 
-// How a session's frames are rendered (the protocol's display.guard_band and
-// display.supersampling, both games alike). They change what a participant sees, never the
-// game's state: the outcomes a session logs replay the same whatever they say.
+// How a session's frames are rendered (the protocol's display.guard_band,
+// display.supersampling and display.photon_marker, both games alike). They change what a
+// participant sees, never the game's state: the outcomes a session logs replay the same
+// whatever they say.
 struct RenderSettings {
     // Warp modes render their sources this fraction of the displayed width and height beyond
     // each side, so what a turn brings into view is really there (renderer::GuardBand).
     double guardBand = 0.1;
     // Samples per pixel side for every conventional frame's colour (1 = none, 2 = 2x2 ...).
     int supersampling = 1;
+    // A live session's square for a photodiode: black, white on the first frame shown that
+    // depicts a left-button press (game::ShownFrame::inputFrame).
+    PhotonMarker photonMarker = PhotonMarker::Off;
 };
 // Their ranges are scene/limits.h's, which the renderer and the command line share.
 

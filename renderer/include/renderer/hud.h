@@ -1,8 +1,8 @@
 // The heads-up display, drawn last over a displayed frame: the reticle or the cursor, the
 // HIT / MISS / TIMEOUT banner of the pause after a shot, a line of phase text, a question
-// screen (a scale, a choice, or text typed on screen) and a screen of instructions. Text comes from
-// SDL2_ttf with a DejaVu font, uploaded as textures; the object-id attachment is left
-// untouched so the id under the reticle still names what the scene shows.
+// screen (a scale, a choice, or text typed on screen), a screen of instructions and a photodiode
+// marker. Text comes from SDL2_ttf with a DejaVu font, uploaded as textures; the object-id
+// attachment is left untouched so the id under the reticle still names what the scene shows.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +36,17 @@ struct HudQuestion {
     std::string hint = "Type your answer, then press Enter";  // text: under the field; "" = none
 };
 
+// A square for a photodiode, flush in a corner of the frame: black, or white on the frame that
+// answers a press. Drawn last, opaque, so a sensor over it sees one clean edge.
+struct HudPhotonMarker {
+    enum class Corner : std::uint8_t { TopLeft, TopRight, BottomLeft, BottomRight };
+    Corner corner = Corner::TopLeft;
+    bool lit = false;
+    // Its side: 4 % of the frame's height, at least 16 pixels (a sensor's aperture), whole
+    // pixels so that its edge falls between two.
+    static int sidePixels(int frameWidth, int frameHeight);
+};
+
 struct HudContent {
     bool backdrop = false;  // a plain dark screen under everything else (no scene shown)
     bool reticle = true;
@@ -47,6 +58,7 @@ struct HudContent {
     // Text to read in the middle of the screen (a phase's instructions), wrapped to the frame's
     // width; a line break starts a new line. Empty = none.
     std::string paragraph;
+    std::optional<HudPhotonMarker> photonMarker;  // none: no marker
 };
 
 class HudRenderer {
