@@ -1,6 +1,9 @@
 // The study window: SDL2 with a GL 4.1 core context and vsync.
 #include <SDL.h>
 
+#include <cstdlib>
+#include <cstring>
+
 #include "context_backends.h"
 #include "renderer/window.h"
 
@@ -8,12 +11,44 @@ namespace warplab::renderer {
 namespace {
 
 void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
+const char* environment(const char* name) {
+    const char* value = std::getenv(name);
+    return value != nullptr ? value : "";
+}
+
+// Why no window can be shown, in one sentence, where SDL found no display: with DISPLAY unset
+// or unreachable SDL 2.26 falls back to its offscreen driver (or, asked to, its dummy one),
+// whose windows nobody sees -- a session would wait at a start screen no one can read.
+std::string noDisplay(const std::string& driver) {
+    const std::string asked = environment("SDL_VIDEODRIVER");
+    if (!asked.empty())
+        return "no window can be shown: SDL_VIDEODRIVER=" + asked + " draws into no screen" +
+            (driver.empty() ? "" : " (SDL chose '" + driver + "')") + "; unset it and run on the machine's display";
+    const std::string display = environment("DISPLAY"), wayland = environment("WAYLAND_DISPLAY");
+    if (display.empty() && wayland.empty())
+        return "no window can be shown: DISPLAY is not set (start warplab from the desktop, or set DISPLAY=:0 for "
+               "the machine's own screen)";
+    return "no window can be shown: the display '" + (display.empty() ? wayland : display) +
+        "' cannot be reached (is its X server running, and may this user draw on it?)";
+}
+
+bool invisibleDriver(const char* driver) {
+    return driver == nullptr || std::strcmp(driver, "offscreen") == 0 || std::strcmp(driver, "dummy") == 0;
+}
 
 class SdlWindow final : public WindowContext {
 public:
     explicit SdlWindow(const ContextOptions& options) {
-        if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
-            throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
+        // Nowhere to look for a display: said before SDL tries (and Wayland's client library
+        // complains about XDG_RUNTIME_DIR). SDL_VIDEODRIVER may still name one (kmsdrm).
+        if (!*environment("SDL_VIDEODRIVER") && !*environment("DISPLAY") && !*environment("WAYLAND_DISPLAY"))
+            throw ContextError(noDisplay(""));
+        if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) throw ContextError(noDisplay(""));
+        if (const char* driver = SDL_GetCurrentVideoDriver(); invisibleDriver(driver)) {
+            const std::string why = noDisplay(driver != nullptr ? driver : "");
+            SDL_QuitSubSystem(SDL_INIT_VIDEO);
+            throw ContextError(why);
+        }
         videoInitialised_ = true;
         SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 4);
         SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);

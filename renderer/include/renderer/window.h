@@ -68,7 +68,9 @@ protected:
 };
 
 // Opens a window with the options' size, title, vsync, visibility, full screen and display
-// (options.backend is not read), or throws ContextError.
+// (options.backend is not read), or throws ContextError: also where there is no display to
+// show it on (DISPLAY unset or unreachable, SDL_VIDEODRIVER=offscreen or dummy), rather than
+// drawing into one of SDL's invisible stand-ins.
 std::unique_ptr<WindowContext> createWindow(const ContextOptions& options);
 
 }  // namespace warplab::renderer
