@@ -6,6 +6,7 @@
 
 #include "context_backends.h"
 #include "renderer/window.h"
+#include "x11_errors.h"
 
 namespace warplab::renderer {
 namespace {
@@ -72,6 +73,7 @@ public:
         // which the frame log will show as measured frame times.
         vsync_ = SDL_GL_SetSwapInterval(options.vsync ? 1 : 0) == 0 && options.vsync && SDL_GL_GetSwapInterval() == 1;
         initialise(&loadProc, "window");
+        if (std::strcmp(SDL_GetCurrentVideoDriver(), "x11") == 0) x11::watchWindowErrors(window_);
         // Typed text, for answers typed on screen: the window system applies the keyboard
         // layout, Shift, dead keys and input methods, which key codes alone cannot give.
         SDL_StartTextInput();
@@ -81,10 +83,14 @@ public:
         if (videoInitialised_) SDL_StopTextInput();
         if (context_ != nullptr) SDL_GL_DeleteContext(context_);
         if (window_ != nullptr) SDL_DestroyWindow(window_);
+        x11::settle();
         if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
     }
 
-    void swapBuffers() override { SDL_GL_SwapWindow(window_); }
+    void swapBuffers() override {
+        SDL_GL_SwapWindow(window_);
+        throwIfLost();
+    }
     bool pumpEvents() override { return !pollInput().closed; }
     WindowInput pollInput() override {
         WindowInput in;
@@ -128,6 +134,7 @@ public:
         // Held now, or pressed since the last poll: a click shorter than a frame still shows as
         // one frame held, and the game scores presses.
         in.leftHeld = pressed || (SDL_GetMouseState(nullptr, nullptr) & SDL_BUTTON(SDL_BUTTON_LEFT)) != 0;
+        throwIfLost();
         return in;
     }
     void injectInput(const WindowInput& in) override {
@@ -212,6 +219,10 @@ public:
     }
 
 private:
+    static void throwIfLost() {
+        if (const std::string error = x11::windowError(); !error.empty()) throw WindowLost(error);
+    }
+
     bool vsync_ = false;
     bool videoInitialised_ = false;
     SDL_Window* window_ = nullptr;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -65,5 +66,13 @@ inline std::string sessionAppearingIn(const std::string& dir) {
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A command prefix that runs a command on a fresh virtual X display (1024x768). xvfb-run -a
+// takes the first display number without a lock file from its start, :99, so two tests that
+// start together under ctest -j may both take it and one fails; each test process starts its
+// search elsewhere.
+inline std::string onXvfb() {
+    return "xvfb-run -a -n " + std::to_string(100 + ::getpid() % 800) + " -s '-screen 0 1024x768x24' ";
+}
 
 }  // namespace warplab::testing

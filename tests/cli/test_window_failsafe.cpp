@@ -1,18 +1,23 @@
 // A live session's window fails safe: without a display to show it on, a run says so at once,
-// before any window, rather than waiting at a start screen nobody sees.
+// before any window, rather than waiting at a start screen nobody sees; a window destroyed or
+// cut off by another program ends in one sentence with the session file intact. Real X events
+// on Xvfb: xdotool destroys the window.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.h"
+#include "session/session_store.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
 using warplab::testing::contains;
+using warplab::testing::Result;
 using warplab::testing::runCommand;
 using warplab::testing::sessionIn;
 
@@ -29,6 +34,28 @@ std::string tinyProtocol(const std::string& dir) {
 }
 
 std::string warplabBinary() { return WARPLAB_BINARY; }
+
+// A participant's session in the background on a fresh virtual X display, its output in
+// DIR/out.txt, and `scene` (sh) acting on its window ($id) meanwhile; `waitfor TEXT [N]` waits
+// until the output holds TEXT N times. Prints "exit STATUS" and the session's output.
+Result sessionWith(const std::string& dir, const std::string& scene) {
+    std::ofstream(dir + "/script.txt") << "start key enter\n";
+    std::ofstream(dir + "/scene.sh")
+        << "x=" << WARPLAB_XDOTOOL << "; out=" << dir << "/out.txt\n"
+        << "waitfor() { i=0; until [ \"$(grep -c \"$1\" $out)\" -ge \"${2:-1}\" ]; do i=$((i+1));"
+           " if [ $i -gt 600 ]; then echo \"never saw '$1'\"; kill $pid; cat $out; exit 99; fi; sleep 0.05; done; }\n"
+        << "started=$(date +%s.%N)\n"
+        << warplabBinary() << " run --seed 1 --protocol " << tinyProtocol(dir) << " --participant F --out " << dir
+        << " --width 160 --height 90 --input-script " << dir << "/script.txt > $out 2>&1 &\n"
+        << "pid=$!\n"
+        << "id=$($x search --sync --name '^warplab: ' | head -1)\n"
+        << "waitfor '^session '\n"
+        << scene << "\n"
+        << "wait $pid; echo \"exit $?\"\n"
+        << "echo \"wall $(echo \"$(date +%s.%N) - $started\" | bc)\"\n"
+        << "cat $out\n";
+    return runCommand("SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + "sh " + dir + "/scene.sh");
+}
 
 TEST(LiveWindow, WithoutADisplayARunSaysSoAtOnceBeforeAnyWindow) {
     const std::string dir = scratch("no-display");
@@ -57,6 +84,38 @@ TEST(LiveWindow, WithoutADisplayARunSaysSoAtOnceBeforeAnyWindow) {
     }
     EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(10));
     EXPECT_TRUE(sessionIn(dir).empty());
+}
+
+// Another program destroys the window (xdotool windowclose) or kills its connection (xkill,
+// xdotool windowkill): one sentence saying so, exit 1, and the session file as a kill leaves
+// it, replaying every committed trial. Xlib alone printed "X Error of failed request:
+// BadDrawable" with the request's opcodes and serial numbers.
+TEST(LiveWindow, AWindowDestroyedUnderTheSessionEndsInOneSentence) {
+    for (const std::string how : {"windowclose", "windowkill"}) {
+        const std::string dir = scratch(how);
+        const auto r = sessionWith(dir, "sleep 1; $x " + how + " $id");
+        EXPECT_TRUE(contains(r.output, "exit 1")) << r.output;
+        EXPECT_FALSE(contains(r.output, "X Error")) << r.output;
+        EXPECT_FALSE(contains(r.output, "XIO")) << r.output;
+        if (how == "windowclose")
+            EXPECT_TRUE(std::regex_search(r.output,
+                                          std::regex("\nwarplab run: the window was destroyed by another "
+                                                     "program \\(the X server answered Bad(Drawable|Window) "
+                                                     "to a request on it\\)\n")))
+                << r.output;
+        else
+            EXPECT_TRUE(std::regex_search(r.output,
+                                          std::regex("\nwarplab: the connection to the X display ':[0-9]+' "
+                                                     "was lost \\(the X server ended, or another program "
+                                                     "killed the window\\); a session keeps every trial "
+                                                     "committed before it\n")))
+                << r.output;
+        const std::string session = sessionIn(dir);
+        ASSERT_FALSE(session.empty()) << r.output;
+        const auto replay = warplab::testing::warplab("replay " + session);
+        EXPECT_EQ(replay.status, 3) << "incomplete, not damaged: " << replay.output;
+        EXPECT_TRUE(contains(replay.output, "outcomes reproduced (")) << replay.output;
+    }
 }
 
 }  // namespace

@@ -31,13 +31,21 @@ struct WindowInput {
     std::string text;
 };
 
+// The window system took the window away while it was in use: another program destroyed it,
+// or the X server refused a request on it. what() is one sentence saying which.
+class WindowLost : public ContextError {
+public:
+    using ContextError::ContextError;
+};
+
 class Window {
 public:
     virtual ~Window() = default;
     Window(const Window&) = delete;
     Window& operator=(const Window&) = delete;
 
-    // Shows the default framebuffer (waits for vsync when enabled).
+    // Shows the default framebuffer (waits for vsync when enabled). Throws WindowLost once the
+    // window system has taken the window away (as pollInput does).
     virtual void swapBuffers() = 0;
     // Handles pending window events; false once the user closed the window.
     virtual bool pumpEvents() = 0;
