@@ -12,6 +12,7 @@ namespace warplab::renderer {
 namespace {
 
 void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
+
 const char* environment(const char* name) {
     const char* value = std::getenv(name);
     return value != nullptr ? value : "";
@@ -91,14 +92,28 @@ public:
         SDL_GL_SwapWindow(window_);
         throwIfLost();
     }
-    bool pumpEvents() override { return !pollInput().closed; }
+    bool pumpEvents() override {
+        const WindowInput in = pollInput();
+        return !in.closed && !in.closeAsked;
+    }
     WindowInput pollInput() override {
         WindowInput in;
         bool pressed = false;
         SDL_Event event;
         while (SDL_PollEvent(&event)) {
             switch (event.type) {
+                // The window manager's close comes as the window's close and then, the last
+                // window asked to close, a quit; a quit alone is a signal (Ctrl+C, SIGTERM).
                 case SDL_QUIT: in.closed = true; break;
+                case SDL_WINDOWEVENT:
+                    switch (event.window.event) {
+                        case SDL_WINDOWEVENT_CLOSE: in.closeAsked = true; break;
+                        case SDL_WINDOWEVENT_FOCUS_LOST:
+                        case SDL_WINDOWEVENT_MINIMIZED:
+                        case SDL_WINDOWEVENT_HIDDEN: in.focusLost = true; break;
+                        default: break;
+                    }
+                    break;
                 case SDL_MOUSEBUTTONDOWN:
                     if (event.button.button == SDL_BUTTON_LEFT) pressed = true;
                     break;
@@ -134,6 +149,7 @@ public:
         // Held now, or pressed since the last poll: a click shorter than a frame still shows as
         // one frame held, and the game scores presses.
         in.leftHeld = pressed || (SDL_GetMouseState(nullptr, nullptr) & SDL_BUTTON(SDL_BUTTON_LEFT)) != 0;
+        if (in.closeAsked) in.closed = false;  // the quit that came with it
         throwIfLost();
         return in;
     }

@@ -1,7 +1,9 @@
 // A live session's window fails safe: without a display to show it on, a run says so at once,
-// before any window, rather than waiting at a start screen nobody sees; a window destroyed or
-// cut off by another program ends in one sentence with the session file intact. Real X events
-// on Xvfb: xdotool destroys the window.
+// before any window, rather than waiting at a start screen nobody sees; the window manager's
+// close asks first; a window that leaves the participant pauses the session; a window
+// destroyed or cut off by another program ends in one sentence with the session file intact.
+// Real X events on Xvfb: xdotool unmaps, focuses, types into and destroys the window, and
+// wm_close sends the close button's message as a window manager would.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -41,7 +43,7 @@ std::string warplabBinary() { return WARPLAB_BINARY; }
 Result sessionWith(const std::string& dir, const std::string& scene) {
     std::ofstream(dir + "/script.txt") << "start key enter\n";
     std::ofstream(dir + "/scene.sh")
-        << "x=" << WARPLAB_XDOTOOL << "; out=" << dir << "/out.txt\n"
+        << "x=" << WARPLAB_XDOTOOL << "; wm_close=" << WARPLAB_WM_CLOSE << "; out=" << dir << "/out.txt\n"
         << "waitfor() { i=0; until [ \"$(grep -c \"$1\" $out)\" -ge \"${2:-1}\" ]; do i=$((i+1));"
            " if [ $i -gt 600 ]; then echo \"never saw '$1'\"; kill $pid; cat $out; exit 99; fi; sleep 0.05; done; }\n"
         << "started=$(date +%s.%N)\n"
@@ -56,6 +58,13 @@ Result sessionWith(const std::string& dir, const std::string& scene) {
         << "cat $out\n";
     return runCommand("SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + "sh " + dir + "/scene.sh");
 }
+
+long long numberAfter(const std::string& text, const std::string& prefix, std::size_t from = 0) {
+    const std::size_t at = text.find(prefix, from);
+    return at == std::string::npos ? -1 : std::stoll(text.substr(at + prefix.size()));
+}
+
+std::string replayOf(const std::string& session) { return warplab::testing::warplab("replay " + session).output; }
 
 TEST(LiveWindow, WithoutADisplayARunSaysSoAtOnceBeforeAnyWindow) {
     const std::string dir = scratch("no-display");
@@ -84,6 +93,61 @@ TEST(LiveWindow, WithoutADisplayARunSaysSoAtOnceBeforeAnyWindow) {
     }
     EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(10));
     EXPECT_TRUE(sessionIn(dir).empty());
+}
+
+// The window manager's close (its button, alt+F4) asks on a screen; Enter plays on, and a
+// second close then Q ends the session, keeping everything as Esc then Q does.
+TEST(LiveWindow, TheWindowManagersCloseAsksFirstAndKeepsEverything) {
+    const std::string dir = scratch("close");
+    const auto r = sessionWith(dir,
+                               "sleep 0.5; $wm_close $id; waitfor 'asked to close'\n"
+                               "sleep 1  # the screen waits for the supervisor\n"
+                               "$x windowfocus --sync $id key Return\n"
+                               "sleep 0.5; $wm_close $id; waitfor 'asked to close' 2\n"
+                               "$x windowfocus --sync $id key q");
+    ASSERT_TRUE(contains(r.output, "exit 0")) << r.output;
+    const long long first = numberAfter(r.output, "paused at frame ");
+    const long long second = numberAfter(r.output, "paused at frame ", r.output.find("asked to close") + 1);
+    ASSERT_GT(first, 0) << r.output;
+    EXPECT_GT(second, first) << "Enter played on:\n" << r.output;
+    EXPECT_TRUE(contains(r.output, "paused at frame " + std::to_string(first) + ": the window was asked to close"))
+        << r.output;
+    EXPECT_TRUE(contains(
+        r.output,
+        "session ended by the supervisor at frame " + std::to_string(second - 1) + "; everything recorded is kept"))
+        << r.output;
+    const std::string session = sessionIn(dir);
+    const auto data = warplab::session::readSession(session);
+    EXPECT_FALSE(data.completed);
+    EXPECT_EQ(static_cast<long long>(data.inputs.size()), second) << "every frame up to the second close is kept";
+    const std::string replayed = replayOf(session);
+    EXPECT_TRUE(contains(replayed, "outcomes reproduced (")) << replayed;
+}
+
+// A window unmapped (minimised, or another window in front: it loses the focus) pauses the
+// session like Esc; nothing is recorded until Enter, back in the window, resumes it.
+TEST(LiveWindow, AWindowThatLeavesTheParticipantPausesTheSession) {
+    const std::string dir = scratch("focus");
+    const auto r = sessionWith(dir,
+                               "sleep 0.5; $x windowunmap --sync $id; waitfor 'lost the focus'\n"
+                               "sleep 2  # away: the trial must not run on\n"
+                               "$x windowmap --sync $id windowfocus --sync $id; sleep 0.3; $x key Return\n"
+                               "sleep 0.5; $x key Escape q");
+    ASSERT_TRUE(contains(r.output, "exit 0")) << r.output;
+    const long long paused = numberAfter(r.output, "paused at frame ");
+    const long long ended = numberAfter(r.output, "session ended by the supervisor at frame ");
+    ASSERT_GT(paused, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "paused at frame " + std::to_string(paused) + ": the window lost the focus"))
+        << r.output;
+    EXPECT_GT(ended, paused) << "Enter resumed it:\n" << r.output;
+    const auto data = warplab::session::readSession(sessionIn(dir));
+    ASSERT_EQ(static_cast<long long>(data.inputs.size()), ended + 1);
+    // Nothing of the 2 s away is in the record: the session's display time falls short of the
+    // run's wall time by at least that, and no frame's measured time spans the pause.
+    const double wall = std::stod(r.output.substr(r.output.find("wall ") + 5));
+    EXPECT_LT(static_cast<double>(ended + 1) / 120.0, wall - 2.0) << r.output;
+    for (const auto& f : data.frames) EXPECT_LT(f.frameMs, 1000.0) << "frame " << f.frame;
+    EXPECT_TRUE(contains(replayOf(sessionIn(dir)), "outcomes reproduced ("));
 }
 
 // Another program destroys the window (xdotool windowclose) or kills its connection (xkill,

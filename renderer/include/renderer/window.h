@@ -21,7 +21,14 @@ inline constexpr char kTypedBackspace = '\b';
 // 27 Esc, '0'..'9', lower-case letters, '[' and ']' -- PageUp arrives as '[' and PageDown as
 // ']', as a presentation clicker sends them; others are dropped).
 struct WindowInput {
+    // Told to end now: SDL's quit without a window's close (SIGINT or SIGTERM, Ctrl+C in the
+    // terminal that started it).
     bool closed = false;
+    // The window manager asked the window to close (its close button, alt+F4): the window
+    // itself is still there, and whoever reads this may ask before anything ends.
+    bool closeAsked = false;
+    // The window left the participant: it lost the keyboard focus, was minimised or hidden.
+    bool focusLost = false;
     double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
     bool leftHeld = false;  // the left button is down now
     std::string keysPressed;  // in the order they were pressed
@@ -47,7 +54,7 @@ public:
     // Shows the default framebuffer (waits for vsync when enabled). Throws WindowLost once the
     // window system has taken the window away (as pollInput does).
     virtual void swapBuffers() = 0;
-    // Handles pending window events; false once the user closed the window.
+    // Handles pending window events; false once the user closed the window (or asked to).
     virtual bool pumpEvents() = 0;
     // Input since the last poll (pumpEvents and pollInput both drain the queue).
     virtual WindowInput pollInput() = 0;
