@@ -9,6 +9,7 @@
 
 #include "game/registry.h"
 #include "image/image.h"
+#include "refresh_rule.h"
 #include "study/session_runner.h"
 
 namespace warplab::live {
@@ -83,14 +84,11 @@ WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study
     const double refresh = study.refreshHz();
     w.measuredHz = w.window->refreshHz();
     w.byVsync = w.window->vsyncOn() && w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) < 0.5;
+    if (refusesRefresh(w.measuredHz, study, run.allowRefreshMismatch))
+        throw std::runtime_error(refreshText(w.measuredHz, refresh, run.protocolPath, true));
     if (w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) >= 0.5) {
-        std::ostringstream why;
-        why << "the display runs at " << w.measuredHz << " Hz but protocol '" << run.protocolPath << "' needs "
-            << refresh << " Hz";
-        if (!run.allowRefreshMismatch && !study.warnsOnRefreshMismatch())
-            throw std::runtime_error(why.str() + "; set the display to " + std::to_string(std::lround(refresh)) +
-                                     " Hz (or pass --allow-refresh-mismatch for a pilot)");
-        progress << "warning: " << why.str() << "; frames are paced by a timer, not by vsync\n";
+        progress << "warning: " << refreshText(w.measuredHz, refresh, run.protocolPath, false)
+                 << "; frames are paced by a timer, not by vsync\n";
     } else if (!w.byVsync) {
         progress << "note: " << (w.measuredHz > 0.0 ? "vsync could not be set" : "the display reports no refresh rate")
                  << "; frames are paced by a timer at " << refresh << " Hz\n";

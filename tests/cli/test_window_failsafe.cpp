@@ -1,9 +1,9 @@
-// A live session's window fails safe: without a display to show it on, a run says so at once,
-// before any window, rather than waiting at a start screen nobody sees; the window manager's
-// close asks first; a window that leaves the participant pauses the session; a window
-// destroyed or cut off by another program ends in one sentence with the session file intact.
-// Real X events on Xvfb: xdotool unmaps, focuses, types into and destroys the window, and
-// wm_close sends the close button's message as a window manager would.
+// A live session's window fails safe: no display is said at once, before any window; what a
+// session needs is checked before its start screen; the window manager's close asks first;
+// a window that leaves the participant pauses the session; a window destroyed or cut off by
+// another program ends in one sentence with the session file intact. Real X events on Xvfb:
+// xdotool unmaps, focuses, types into and destroys the window, and wm_close sends the close
+// button's message as a window manager would.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -25,7 +25,7 @@ using warplab::testing::sessionIn;
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("window-failsafe", name); }
 
-// The shooter in a few seconds, warning (not refusing) of a refresh other than its own.
+// The shooter in a few seconds, warning (not refusing) of Xvfb's unknown refresh.
 std::string tinyProtocol(const std::string& dir) {
     std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
  "display":{"refresh_mismatch":"warn"},
@@ -93,6 +93,40 @@ TEST(LiveWindow, WithoutADisplayARunSaysSoAtOnceBeforeAnyWindow) {
     }
     EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(10));
     EXPECT_TRUE(sessionIn(dir).empty());
+}
+
+// What a session needs is checked before its start screen: the folder (it exists, is writable,
+// no session holds it), room for the session, and a refresh the protocol accepts.
+TEST(LiveWindow, AMissingResultsFolderOrARefusedRefreshStopsTheRunBeforeItsStartScreen) {
+    const std::string dir = scratch("before-start");
+    fs::create_directories(dir + "/shots");
+    std::ofstream(dir + "/script.txt") << "start key esc\n";
+    const std::string window = "SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + warplabBinary();
+    const std::string shots = " --width 160 --height 90 --input-script " + dir + "/script.txt --screenshots " + dir +
+        "/shots --participant M --seed 1";
+    auto r = runCommand(window + " run --protocol " + tinyProtocol(dir) + " --out " + dir + "/missing" + shots);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.output, "warplab run: Results folder '" + dir + "/missing' does not exist.\n");
+    EXPECT_FALSE(fs::exists(dir + "/shots/start.png")) << "the window opened";
+
+    // shooter-thesis refuses a display not at its 120 Hz; Xvfb's, which reports no rate, too.
+    const std::string thesis = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-thesis.json";
+    r = runCommand(window + " run --protocol " + thesis + " --out " + dir + shots);
+    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.output,
+              "warplab run: the display reports no refresh rate, so it cannot be checked against the "
+              "120 Hz that protocol '" +
+                  thesis +
+                  "' needs; set the display to 120 Hz on a system that reports it (or pass "
+                  "--allow-refresh-mismatch for a pilot)\n");
+    EXPECT_FALSE(fs::exists(dir + "/shots/start.png")) << "the start screen was shown";
+    EXPECT_TRUE(sessionIn(dir).empty());
+    // A pilot may: the run then paces by timer, as it says.
+    r = runCommand(window + " run --protocol " + thesis + " --out " + dir + shots + " --allow-refresh-mismatch");
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "note: the display reports no refresh rate; frames are paced by a timer at 120 Hz"))
+        << r.output;
+    EXPECT_TRUE(fs::exists(dir + "/shots/start.png"));
 }
 
 // The window manager's close (its button, alt+F4) asks on a screen; Enter plays on, and a
