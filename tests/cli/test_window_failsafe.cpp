@@ -216,4 +216,12 @@ TEST(LiveWindow, AWindowDestroyedUnderTheSessionEndsInOneSentence) {
     }
 }
 
+TEST(LiveWindow, InfoOfAWindowSaysTheDisplaysRefreshAndWhetherVsyncTook) {
+    const auto r = runCommand(warplab::testing::onXvfb() + warplabBinary() + " info --gl window");
+    ASSERT_EQ(r.status, 0) << r.output;
+    // Xvfb reports no refresh rate, and Mesa's software GLX there takes no swap interval.
+    EXPECT_TRUE(contains(r.output, "\nrefresh:  unknown: the display reports none (0 Hz)\n")) << r.output;
+    EXPECT_TRUE(contains(r.output, "\nvsync:    off: the driver refused a swap interval of 1\n")) << r.output;
+}
+
 }  // namespace
