@@ -32,8 +32,8 @@ using warplab::testing::sessionIn;
 
 // warplab in a window on a fresh virtual X display.
 Result inWindow(const std::string& arguments) {
-    return runCommand("SDL_AUDIODRIVER=dummy xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(WARPLAB_BINARY) +
-                      " " + arguments);
+    return runCommand("SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + std::string(WARPLAB_BINARY) + " " +
+                      arguments);
 }
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
