@@ -70,9 +70,9 @@ renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
 
 const std::vector<Command>& commands() {
     // The order --help lists them in.
-    static const std::vector<Command> list = {infoCommand(), renderCommand(),     benchCommand(),
-                                              runCommand(),  replayCommand(),     exportCommand(),
-                                              demoCommand(), conditionsCommand(), studyCommand()};
+    static const std::vector<Command> list = {infoCommand(),       checkCommand(),  renderCommand(), benchCommand(),
+                                              runCommand(),        replayCommand(), exportCommand(), demoCommand(),
+                                              conditionsCommand(), studyCommand()};
     return list;
 }
 

@@ -16,6 +16,7 @@
 #include "protocol/study_protocol.h"
 #include "scene/limits.h"
 #include "session/results_lock.h"
+#include "study/session_size.h"
 
 namespace warplab::app {
 
@@ -116,6 +117,22 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
         throw std::runtime_error(
             e.what() +
             std::string(args.has("study") ? "; wait for it to end." : "; wait for it to end, or use another --out."));
+    }
+}
+
+// Room on disk for a live session, checked with its folder before the window opens: a disk
+// that fills mid-session ends it at a commit, with the participant seated.
+void requireRoom(const ParsedArgs& args, const live::LiveRun& run) {
+    const auto study = run.resumeFrom.empty()
+        ? study::loadRunStudy(run.protocolPath, run.protocolText)
+        : study::loadRunStudy(run.resumeFrom, session::readSessionHeader(run.resumeFrom).protocolJson);
+    try {
+        study::requireDiskSpace(run.resultsDir, study::estimateSessionSize(*study, {run.width, run.height}),
+                                study->name());
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(
+            e.what() +
+            std::string(args.has("study") ? "; free some space there." : "; free some space, or use another --out."));
     }
 }
 
@@ -236,6 +253,7 @@ int runWindowed(const ParsedArgs& args) {
         return 0;
     }
     const auto lock = lockResults(args, run);
+    requireRoom(args, run);
     tellDrawnSeed(args, run.seed);
     const std::string path = live::runLive(run, dataPathsFrom(args), std::cerr);
     if (!path.empty()) std::cout << path << "\n";

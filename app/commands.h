@@ -28,6 +28,7 @@ Command exportCommand();
 Command demoCommand();
 Command conditionsCommand();
 Command studyCommand();
+Command checkCommand();
 
 // Shared option helpers.
 OptionSpec glOption(const std::string& defaultBackend);

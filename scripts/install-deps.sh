@@ -8,11 +8,15 @@ packages=(
   cmake g++ make pkg-config
   # windowing, GL headers and loaders: SDL2 window, OSMesa and EGL headless contexts
   libsdl2-dev libsdl2-ttf-dev fonts-dejavu-core
+  # Xlib: the window's X errors (its window destroyed by another program, the X server gone)
+  # said in a sentence rather than by Xlib's default handlers (renderer/src/x11_errors.h)
+  libx11-dev
   libgl-dev libegl-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri mesa-common-dev
   # libraries
   libglm-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libsqlite3-dev
-  # tests: GoogleTest, a virtual X server for the window test
-  libgtest-dev xvfb xauth
+  # tests: GoogleTest, a virtual X server for the window tests, and xdotool to unmap, focus,
+  # type into and destroy a window as a window manager or another program would
+  libgtest-dev xvfb xauth xdotool
   # fuzzing (scripts/fuzz.sh): clang; libclang-rt-14-dev holds libFuzzer and the sanitizer
   # runtimes (libclang_rt.fuzzer-x86_64.a ...); llvm-14 the symbolizer for readable reports
   clang libclang-rt-14-dev llvm-14

@@ -27,6 +27,7 @@ public:
 
     game::Game& game() override { return *game_; }
     std::string pauseText() const override { return "Free play. Enter resumes, Q ends."; }
+    std::string closeText() const override { return "Free play. Enter: keep playing, Q: end it."; }
     void beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) override;
     void stepped(const game::ShownFrame&, const game::FrameInput&) override { game_->takeEvents(); }
     void decorate(const game::ShownFrame& shown, std::int64_t frame, renderer::HudContent& hud) override;

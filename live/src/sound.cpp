@@ -59,6 +59,7 @@ FeedbackSounds::FeedbackSounds() {
         SDL_QuitSubSystem(SDL_INIT_AUDIO);
         return;
     }
+    if (const char* driver = SDL_GetCurrentAudioDriver()) driver_ = driver;
     SDL_PauseAudioDevice(device_, 0);
 }
 

@@ -18,6 +18,8 @@ public:
 
     bool available() const { return device_ != 0; }
     const std::string& why() const { return why_; }  // why not available
+    // SDL's audio driver ("pulseaudio", "alsa", ...; "dummy" plays nowhere); "" when none opened.
+    const std::string& driver() const { return driver_; }
     // Every feedback sound's name, in the order the sound check plays them.
     static const std::vector<std::string>& names();
     // One of names(); anything else is silent. Never blocks.
@@ -32,7 +34,7 @@ public:
 
 private:
     std::uint32_t device_ = 0;
-    std::string why_;
+    std::string why_, driver_;
 };
 
 }  // namespace warplab::live

@@ -9,6 +9,7 @@
 
 #include "game/registry.h"
 #include "image/image.h"
+#include "refresh_rule.h"
 #include "study/session_runner.h"
 
 namespace warplab::live {
@@ -41,6 +42,8 @@ protocol::PhotonMarker photonMarkerFor(const LiveRun& run, const game::Study& st
 Polled readInput(const renderer::WindowInput& in, double countScale, bool invertY) {
     Polled p;
     p.closed = in.closed;
+    p.closeAsked = in.closeAsked;
+    p.focusLost = in.focusLost;
     p.keys = in.keysPressed;
     p.input.mouseDx = in.mouseDx * countScale;
     p.input.mouseDy = in.mouseDy * countScale * (invertY ? -1.0 : 1.0);
@@ -101,14 +104,11 @@ WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study
     const double refresh = study.refreshHz();
     w.measuredHz = w.window->refreshHz();
     w.byVsync = w.window->vsyncOn() && w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) < 0.5;
+    if (refusesRefresh(w.measuredHz, study, run.allowRefreshMismatch))
+        throw std::runtime_error(refreshText(w.measuredHz, refresh, run.protocolPath, true));
     if (w.measuredHz > 0.0 && std::abs(w.measuredHz - refresh) >= 0.5) {
-        std::ostringstream why;
-        why << "the display runs at " << w.measuredHz << " Hz but protocol '" << run.protocolPath << "' needs "
-            << refresh << " Hz";
-        if (!run.allowRefreshMismatch && !study.warnsOnRefreshMismatch())
-            throw std::runtime_error(why.str() + "; set the display to " + std::to_string(std::lround(refresh)) +
-                                     " Hz (or pass --allow-refresh-mismatch for a pilot)");
-        progress << "warning: " << why.str() << "; frames are paced by a timer, not by vsync\n";
+        progress << "warning: " << refreshText(w.measuredHz, refresh, run.protocolPath, false)
+                 << "; frames are paced by a timer, not by vsync\n";
     } else if (!w.byVsync) {
         progress << "note: " << (w.measuredHz > 0.0 ? "vsync could not be set" : "the display reports no refresh rate")
                  << "; frames are paced by a timer at " << refresh << " Hz\n";
@@ -118,6 +118,7 @@ WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study
 
 WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress)
     : run_(run),
+      progress_(progress),
       study_(study::loadRunStudy(run.protocolPath, run.protocolText)),
       script_(run.inputScript.empty() ? InputScript() : InputScript(run.inputScript)),
       opened_(open(run, *study_, progress)),
@@ -166,7 +167,10 @@ char WindowLoop::waitFor(const std::string& banner, const std::string& status, c
     for (;;) {
         showScreen(banner, status);
         const renderer::WindowInput in = window_.pollInput();
-        if (in.closed) return 0;
+        if (in.closed || in.closeAsked) {
+            quit_ = in.closed;
+            return 0;
+        }
         if (const char c = first(in.keysPressed)) return c;
         if (!window_.vsyncOn()) std::this_thread::sleep_for(std::chrono::milliseconds(16));
     }
@@ -213,11 +217,12 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
         while (injectedFor < frame) inject(std::to_string(++injectedFor));
         const Polled polled = poll(window_, countScale_, run_.invertY);
         if (human()) input = polled.input;
-        if (polled.closed || (polled.escape && !pause(polled.keys, policy.pauseText()))) {
+        const Stop stop = stopFor(polled);
+        if (polled.closed || (stop != Stop::None && !pause(polled.keys, stop, frame, policy))) {
             end.aborted = true;
             break;
         }
-        if (polled.escape) continue;  // resumed: the frame is polled again
+        if (stop != Stop::None) continue;  // resumed: the frame is polled again
 
         policy.beforeStep(polled.keys, frame, input);
         const game::ShownFrame shown = game.step(input);
@@ -252,10 +257,37 @@ WindowLoop::End WindowLoop::run(LoopPolicy& policy) {
     return end;
 }
 
-bool WindowLoop::pause(const std::string& pending, const std::string& text) {
-    // Nothing is recorded while paused, and ending needs a second key.
+WindowLoop::Stop WindowLoop::stopFor(const Polled& polled) const {
+    if (polled.closeAsked) return Stop::Close;
+    if (polled.escape) return Stop::Escape;
+    // A bot or a recorded player plays on: it does not look at the window.
+    if (polled.focusLost && human()) return Stop::Away;
+    return Stop::None;
+}
+
+bool WindowLoop::pause(const std::string& keys, Stop stop, std::int64_t frame, const LoopPolicy& policy) {
+    // Nothing is recorded while paused, and ending needs a second key. The keys read with the
+    // Esc after it, or with the window manager's close, are the supervisor's answer; those read
+    // with a focus loss were the participant's.
     window_.setRelativeMouse(false);
-    if (waitFor("Paused", text, "\rq", pending.substr(pending.find('\x1b') + 1)) != '\r') return false;
+    std::string pending = stop == Stop::Escape ? keys.substr(keys.find('\x1b') + 1) : stop == Stop::Close ? keys : "";
+    if (stop != Stop::Escape)
+        progress_ << "paused at frame " << frame << ": "
+                  << (stop == Stop::Close ? "the window was asked to close" : "the window lost the focus") << "\n";
+    for (;;) {
+        const bool closing = stop == Stop::Close;
+        const std::string text = closing ? policy.closeText()
+            : stop == Stop::Away ? "The window went to the background, so the session paused. " + policy.pauseText()
+                                 : policy.pauseText();
+        const char c = waitFor(closing ? "Close the session?" : "Paused", text, "\rq", pending);
+        if (c == 'q') return false;
+        if (c == '\r') break;
+        // Closed: a second close (or a quit) ends it; a first one asks.
+        if (closing || quit_) return false;
+        stop = Stop::Close;
+        pending.clear();
+        progress_ << "paused at frame " << frame << ": the window was asked to close\n";
+    }
     captureMouse(true);
     clock_.restart();
     return true;

@@ -32,6 +32,7 @@ namespace warplab::live {
 struct Polled {
     game::FrameInput input;
     bool escape = false, closed = false;
+    bool closeAsked = false, focusLost = false;  // as renderer::WindowInput's
     std::string keys;
 };
 // Mouse counts scaled to the protocol's (and y inverted when asked for).
@@ -82,6 +83,11 @@ public:
     virtual game::Game& game() = 0;
     // The pause screen's line: what Enter and Q do.
     virtual std::string pauseText() const = 0;
+    // The line of the screen that asks whether to end, when the window manager asked the
+    // window to close (its close button, alt+F4).
+    virtual std::string closeText() const {
+        return "Enter: keep playing, Q: end it \xE2\x80\x94 everything recorded so far is kept";
+    }
     // The keys polled for display frame `frame`, before the game steps with `input`; a policy
     // may act on them and change what the game is given.
     virtual void beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) = 0;
@@ -146,8 +152,13 @@ public:
     End run(LoopPolicy& policy);
 
 private:
-    // The supervisor's pause (Esc): the display clock stops; true when Enter resumes.
-    bool pause(const std::string& pending, const std::string& text);
+    // What stops the frames for the supervisor: Esc, the window manager's close, or the window
+    // leaving the participant (focus lost, minimised, hidden) while a human plays.
+    enum class Stop { None, Escape, Close, Away };
+    Stop stopFor(const Polled& polled) const;
+    // The supervisor's pause: the display clock stops and a screen says why; true when Enter
+    // resumes, false when Q (or a second close) ends the session. `keys`: those polled with it.
+    bool pause(const std::string& keys, Stop stop, std::int64_t frame, const LoopPolicy& policy);
     FrameTiming show(const game::ShownFrame& shown, std::int64_t frame, LoopPolicy& policy,
                      const PhotonMarkerTiming::Answer& marker);
 
@@ -162,6 +173,7 @@ private:
 
     // In construction order: what draws needs the window's context, made current by open().
     const LiveRun& run_;
+    std::ostream& progress_;
     std::unique_ptr<game::Study> study_;
     InputScript script_;
     Opened opened_;
@@ -184,6 +196,7 @@ private:
     bool playerStarted_ = false;
     game::FrameInput resumedInput_;
     std::deque<game::ShownFrame> keptSources_;
+    bool quit_ = false;  // the last screen closed for a quit (a signal), not the window manager's close
 };
 
 }  // namespace warplab::live

@@ -1,19 +1,56 @@
 // The study window: SDL2 with a GL 4.1 core context and vsync.
 #include <SDL.h>
 
+#include <cstdlib>
+#include <cstring>
+
 #include "context_backends.h"
 #include "renderer/window.h"
+#include "x11_errors.h"
 
 namespace warplab::renderer {
 namespace {
 
 void* loadProc(const char* name) { return SDL_GL_GetProcAddress(name); }
 
+const char* environment(const char* name) {
+    const char* value = std::getenv(name);
+    return value != nullptr ? value : "";
+}
+
+// Why no window can be shown, in one sentence, where SDL found no display: with DISPLAY unset
+// or unreachable SDL 2.26 falls back to its offscreen driver (or, asked to, its dummy one),
+// whose windows nobody sees -- a session would wait at a start screen no one can read.
+std::string noDisplay(const std::string& driver) {
+    const std::string asked = environment("SDL_VIDEODRIVER");
+    if (!asked.empty())
+        return "no window can be shown: SDL_VIDEODRIVER=" + asked + " draws into no screen" +
+            (driver.empty() ? "" : " (SDL chose '" + driver + "')") + "; unset it and run on the machine's display";
+    const std::string display = environment("DISPLAY"), wayland = environment("WAYLAND_DISPLAY");
+    if (display.empty() && wayland.empty())
+        return "no window can be shown: DISPLAY is not set (start warplab from the desktop, or set DISPLAY=:0 for "
+               "the machine's own screen)";
+    return "no window can be shown: the display '" + (display.empty() ? wayland : display) +
+        "' cannot be reached (is its X server running, and may this user draw on it?)";
+}
+
+bool invisibleDriver(const char* driver) {
+    return driver == nullptr || std::strcmp(driver, "offscreen") == 0 || std::strcmp(driver, "dummy") == 0;
+}
+
 class SdlWindow final : public WindowContext {
 public:
     explicit SdlWindow(const ContextOptions& options) {
-        if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
-            throw ContextError(std::string("cannot open a window: ") + SDL_GetError());
+        // Nowhere to look for a display: said before SDL tries (and Wayland's client library
+        // complains about XDG_RUNTIME_DIR). SDL_VIDEODRIVER may still name one (kmsdrm).
+        if (!*environment("SDL_VIDEODRIVER") && !*environment("DISPLAY") && !*environment("WAYLAND_DISPLAY"))
+            throw ContextError(noDisplay(""));
+        if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) throw ContextError(noDisplay(""));
+        if (const char* driver = SDL_GetCurrentVideoDriver(); invisibleDriver(driver)) {
+            const std::string why = noDisplay(driver != nullptr ? driver : "");
+            SDL_QuitSubSystem(SDL_INIT_VIDEO);
+            throw ContextError(why);
+        }
         videoInitialised_ = true;
         SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 4);
         SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 1);
@@ -37,6 +74,7 @@ public:
         // which the frame log will show as measured frame times.
         vsync_ = SDL_GL_SetSwapInterval(options.vsync ? 1 : 0) == 0 && options.vsync && SDL_GL_GetSwapInterval() == 1;
         initialise(&loadProc, "window");
+        if (std::strcmp(SDL_GetCurrentVideoDriver(), "x11") == 0) x11::watchWindowErrors(window_);
         // Typed text, for answers typed on screen: the window system applies the keyboard
         // layout, Shift, dead keys and input methods, which key codes alone cannot give.
         SDL_StartTextInput();
@@ -46,18 +84,36 @@ public:
         if (videoInitialised_) SDL_StopTextInput();
         if (context_ != nullptr) SDL_GL_DeleteContext(context_);
         if (window_ != nullptr) SDL_DestroyWindow(window_);
+        x11::settle();
         if (videoInitialised_) SDL_QuitSubSystem(SDL_INIT_VIDEO);
     }
 
-    void swapBuffers() override { SDL_GL_SwapWindow(window_); }
-    bool pumpEvents() override { return !pollInput().closed; }
+    void swapBuffers() override {
+        SDL_GL_SwapWindow(window_);
+        throwIfLost();
+    }
+    bool pumpEvents() override {
+        const WindowInput in = pollInput();
+        return !in.closed && !in.closeAsked;
+    }
     WindowInput pollInput() override {
         WindowInput in;
         bool pressed = false;
         SDL_Event event;
         while (SDL_PollEvent(&event)) {
             switch (event.type) {
+                // The window manager's close comes as the window's close and then, the last
+                // window asked to close, a quit; a quit alone is a signal (Ctrl+C, SIGTERM).
                 case SDL_QUIT: in.closed = true; break;
+                case SDL_WINDOWEVENT:
+                    switch (event.window.event) {
+                        case SDL_WINDOWEVENT_CLOSE: in.closeAsked = true; break;
+                        case SDL_WINDOWEVENT_FOCUS_LOST:
+                        case SDL_WINDOWEVENT_MINIMIZED:
+                        case SDL_WINDOWEVENT_HIDDEN: in.focusLost = true; break;
+                        default: break;
+                    }
+                    break;
                 case SDL_MOUSEBUTTONDOWN:
                     if (event.button.button == SDL_BUTTON_LEFT) pressed = true;
                     break;
@@ -93,6 +149,8 @@ public:
         // Held now, or pressed since the last poll: a click shorter than a frame still shows as
         // one frame held, and the game scores presses.
         in.leftHeld = pressed || (SDL_GetMouseState(nullptr, nullptr) & SDL_BUTTON(SDL_BUTTON_LEFT)) != 0;
+        if (in.closeAsked) in.closed = false;  // the quit that came with it
+        throwIfLost();
         return in;
     }
     void injectInput(const WindowInput& in) override {
@@ -177,6 +235,10 @@ public:
     }
 
 private:
+    static void throwIfLost() {
+        if (const std::string error = x11::windowError(); !error.empty()) throw WindowLost(error);
+    }
+
     bool vsync_ = false;
     bool videoInitialised_ = false;
     SDL_Window* window_ = nullptr;

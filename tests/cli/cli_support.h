@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <chrono>
@@ -65,5 +66,15 @@ inline std::string sessionAppearingIn(const std::string& dir) {
 }
 
 inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// A command prefix that runs a command on a fresh virtual X display (1024x768). xvfb-run -a
+// takes the first display number without a lock file from its start, :99, so two tests that
+// start together under ctest -j may both take it and one fails; each test process starts its
+// search elsewhere. -noreset: a server that resets as its last client leaves signals xvfb-run
+// again, and a signal that lands while xvfb-run removes its temporary folder fails the run
+// ("problem while cleaning up temporary directory", exit 5; 3 of 96 quick runs on 2 busy cores).
+inline std::string onXvfb() {
+    return "xvfb-run -a -n " + std::to_string(100 + ::getpid() % 800) + " -s '-screen 0 1024x768x24 -noreset' ";
+}
 
 }  // namespace warplab::testing

@@ -1,7 +1,8 @@
 // Sessions in a real SDL window (Mesa GLX under Xvfb): a participant's input scripted as window
 // events, the supervisor's pause and abort, and the bot in the window writing the same session
-// as headless. Xvfb reports no refresh rate, so these runs pace frames by timer, as the tool
-// says it will; feedback sounds go to SDL's dummy audio driver.
+// as headless. Xvfb reports no refresh rate, so these runs use protocols that warn of it (a
+// protocol that refuses a wrong refresh refuses an unknown one) and pace frames by timer, as
+// the tool says it will; feedback sounds go to SDL's dummy audio driver.
 #include <unistd.h>
 
 #include <algorithm>
@@ -36,8 +37,8 @@ using warplab::testing::sessionIn;
 
 // warplab in a window on a fresh virtual X display.
 Result inWindowAsTheDisplayGoes(const std::string& arguments) {
-    return runCommand("SDL_AUDIODRIVER=dummy xvfb-run -a -s '-screen 0 1024x768x24' " + std::string(WARPLAB_BINARY) +
-                      " " + arguments);
+    return runCommand("SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + std::string(WARPLAB_BINARY) + " " +
+                      arguments);
 }
 // ... with every display frame shown (--every-frame): these tests name session frames in their
 // scripts and screenshots, and Mesa's llvmpipe under Xvfb is slower than the protocols' rates,
@@ -50,9 +51,11 @@ Result inWindow(const std::string& arguments) {
 std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
 
 // A shooter session of a few seconds that still has every phase: acclimation, the supervisor's
-// Enter, training and a test target per condition.
+// Enter, training and a test target per condition. It warns of a refresh other than its 120 Hz,
+// as the quick protocols do, since Xvfb reports none.
 std::string tinyProtocol(const std::string& dir) {
     std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
+ "display":{"refresh_mismatch":"warn"},
  "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
  "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
  "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":true}})";
@@ -60,9 +63,10 @@ std::string tinyProtocol(const std::string& dir) {
 }
 
 // The click game in a few seconds: two modes (one of them interpolating between renders),
-// one short match each, each followed by its four ratings.
+// one short match each, each followed by its four ratings; it too warns of another refresh.
 std::string tinyClickProtocol(const std::string& dir) {
     std::ofstream(dir + "/tiny-click.json") << R"({"format_version":1,"name":"click-tiny","game":"click",
+ "display":{"refresh_mismatch":"warn"},
  "matches":{"match_s":1.0,"modes":["conv30","bireproj15to60"],"rounds":[{"name":"scored","scored":true,"matches_per_mode":1}]}})";
     return dir + "/tiny-click.json";
 }
@@ -301,6 +305,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
 TEST(LiveSession, ATextQuestionIsTypedInTheWindowAndTheSessionReplays) {
     const std::string dir = scratch("typed");
     std::ofstream(dir + "/questions.json") << R"({"format_version":4,"name":"click-typed","game":"click",
+ "display":{"refresh_mismatch":"warn"},
  "matches":{"match_s":1.0,"modes":["conv30"],"rounds":[{"name":"scored","scored":true,"matches_per_mode":1,
    "instructions":""}],
    "questions":[{"id":"comment","kind":"text","prompt":"How did it look?"},

@@ -1,16 +1,16 @@
-# No file of a GL-free module includes a GL, EGL, OSMesa or SDL header (tests/modules/).
+# No file of a GL-free module includes a GL, EGL, OSMesa, SDL or X11 header (tests/modules/).
 set(gl_free scene physics image condition protocol session game study export plan
   participants/include participants/src)
 set(bad "")
 foreach(module IN LISTS gl_free)
   file(GLOB_RECURSE files "${SOURCE_DIR}/${module}/*.h" "${SOURCE_DIR}/${module}/*.cpp")
   foreach(f IN LISTS files)
-    file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](GL/|GLES|EGL/|KHR/|SDL|renderer/)")
+    file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](GL/|GLES|EGL/|KHR/|SDL|X11/|renderer/)")
     foreach(h IN LISTS hits)
       string(APPEND bad "\n  ${f}: ${h}")
     endforeach()
   endforeach()
 endforeach()
 if(bad)
-  message(FATAL_ERROR "GL-free modules include GL or SDL headers:${bad}")
+  message(FATAL_ERROR "GL-free modules include GL, SDL or X11 headers:${bad}")
 endif()

@@ -21,7 +21,14 @@ inline constexpr char kTypedBackspace = '\b';
 // 27 Esc, '0'..'9', lower-case letters, '[' and ']' -- PageUp arrives as '[' and PageDown as
 // ']', as a presentation clicker sends them; others are dropped).
 struct WindowInput {
+    // Told to end now: SDL's quit without a window's close (SIGINT or SIGTERM, Ctrl+C in the
+    // terminal that started it).
     bool closed = false;
+    // The window manager asked the window to close (its close button, alt+F4): the window
+    // itself is still there, and whoever reads this may ask before anything ends.
+    bool closeAsked = false;
+    // The window left the participant: it lost the keyboard focus, was minimised or hidden.
+    bool focusLost = false;
     double mouseDx = 0.0, mouseDy = 0.0;  // raw relative counts, no OS acceleration
     bool leftHeld = false;  // the left button is down now
     std::string keysPressed;  // in the order they were pressed
@@ -31,15 +38,23 @@ struct WindowInput {
     std::string text;
 };
 
+// The window system took the window away while it was in use: another program destroyed it,
+// or the X server refused a request on it. what() is one sentence saying which.
+class WindowLost : public ContextError {
+public:
+    using ContextError::ContextError;
+};
+
 class Window {
 public:
     virtual ~Window() = default;
     Window(const Window&) = delete;
     Window& operator=(const Window&) = delete;
 
-    // Shows the default framebuffer (waits for vsync when enabled).
+    // Shows the default framebuffer (waits for vsync when enabled). Throws WindowLost once the
+    // window system has taken the window away (as pollInput does).
     virtual void swapBuffers() = 0;
-    // Handles pending window events; false once the user closed the window.
+    // Handles pending window events; false once the user closed the window (or asked to).
     virtual bool pumpEvents() = 0;
     // Input since the last poll (pumpEvents and pollInput both drain the queue).
     virtual WindowInput pollInput() = 0;
@@ -68,7 +83,9 @@ protected:
 };
 
 // Opens a window with the options' size, title, vsync, visibility, full screen and display
-// (options.backend is not read), or throws ContextError.
+// (options.backend is not read), or throws ContextError: also where there is no display to
+// show it on (DISPLAY unset or unreachable, SDL_VIDEODRIVER=offscreen or dummy), rather than
+// drawing into one of SDL's invisible stand-ins.
 std::unique_ptr<WindowContext> createWindow(const ContextOptions& options);
 
 }  // namespace warplab::renderer

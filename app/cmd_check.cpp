@@ -1,0 +1,50 @@
+#include <iostream>
+
+#include "commands.h"
+#include "live/check.h"
+#include "scene/limits.h"
+
+namespace warplab::app {
+
+int runCheck(const ParsedArgs& args) {
+    live::CheckRun run;
+    run.protocolPath = args.string("protocol", "");
+    run.resultsDir = args.string("out", run.resultsDir);
+    run.fullscreen = args.flag("fullscreen");
+    run.display = static_cast<int>(args.integer("display", run.display, 0, 63));
+    run.width = static_cast<int>(args.integer("width", run.width, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.height = static_cast<int>(args.integer("height", run.height, scene::kMinDisplaySize, scene::kMaxImageSize));
+    run.allowRefreshMismatch = args.flag("allow-refresh-mismatch");
+    bool failed = false;
+    for (const live::CheckLine& line : live::checkMachine(run, dataPathsFrom(args), std::cout))
+        failed = failed || line.verdict == live::Verdict::Fail;
+    return failed ? 1 : 0;
+}
+
+// The command's options, beside the code that reads them; the window's as `run` takes them.
+Command checkCommand() {
+    const live::CheckRun defaults;
+    return {{"check",
+             "Check this machine before a participant sits down: the GL context, the display's refresh\n"
+             "(reported, and measured over 2 s of swaps), vsync, the frame time of each condition of the\n"
+             "protocol at the window's size against one refresh, the results folder and its lock, disk\n"
+             "space for a session, the audio device. One line per check: ok, warn or FAIL and why.\n"
+             "Exits 1 on any FAIL, so a lab script can gate a session on it.",
+             "warplab check [--protocol P] [--out RESULTS] [--fullscreen] [--display N] [--width W --height H]",
+             {
+                 {"protocol", "FILE", "the study protocol the session will run: its refresh, conditions and size", ""},
+                 {"out", "DIR", "the results folder the session will write into", defaults.resultsDir},
+                 {"fullscreen", "", "fill the display, as run --fullscreen does", ""},
+                 {"display", "N", "which display to check", "0"},
+                 {"width", "PIXELS",
+                  "the window's width when not full screen, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
+                  shown(defaults.width)},
+                 {"height", "PIXELS", "the window's height when not full screen", shown(defaults.height)},
+                 {"allow-refresh-mismatch", "",
+                  "as run's: a refresh other than the protocol's (or none reported) warns instead of failing", ""},
+                 dataDirOption(),
+             }},
+            &runCheck};
+}
+
+}  // namespace warplab::app

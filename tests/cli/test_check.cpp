@@ -1,0 +1,194 @@
+// `warplab check`, the supervisor's pre-flight, on Xvfb and Mesa llvmpipe: a display that
+// reports no refresh rate, no vsync, a software renderer's frame times. Every line is asserted:
+// the machine's own (whose numbers vary) by its form and by its verdict against its numbers.
+#include <chrono>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <unistd.h>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cli/cli_support.h"
+#include "session/results_lock.h"
+
+namespace {
+
+using warplab::testing::contains;
+using warplab::testing::Result;
+using warplab::testing::runCommand;
+
+std::string scratch(const std::string& name) { return warplab::testing::scratch("check", name); }
+
+Result check(const std::string& arguments) {
+    return runCommand("SDL_AUDIODRIVER=dummy " + warplab::testing::onXvfb() + std::string(WARPLAB_BINARY) +
+                      " check --width 160 --height 90 " + arguments);
+}
+
+std::vector<std::string> linesOf(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+std::string protocol(const std::string& name) {
+    return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name + ".json";
+}
+
+const char* const kGl =
+    "warn  gl: llvmpipe \\(LLVM [^)]+\\), OpenGL 4\\.[0-9] \\(Core Profile\\) Mesa [0-9.]+: a software "
+    "renderer, for tests and replays, not for participants";
+const char* const kVsync =
+    "warn  vsync: off: the driver refused a swap interval of 1; a session would pace its frames by a timer";
+const char* const kMeasured =
+    "warn  measured refresh: [0-9.]+ Hz over [0-9.]+ s of swaps: without vsync that is the "
+    "machine's speed, not the display's";
+const char* const kAudio = "warn  audio: SDL's dummy audio driver plays nowhere (SDL_AUDIODRIVER)";
+
+// A frame-time line: its form, and a verdict that says what its numbers say (FAIL: more than
+// 1 % of the frames longer than one refresh, as a session flags them; warn: some). Returns
+// whether it fails.
+bool expectFrameTime(const std::string& line, const std::string& mode, const std::string& refresh,
+                     const std::string& budget) {
+    const std::regex form("(ok  |warn|FAIL)  frame time " + mode +
+                          ": median [0-9.]+ ms, max [0-9.]+ ms over ([0-9]+) frames at 160x90; ([0-9]+) longer than "
+                          "one refresh \\(" +
+                          budget + " ms at " + refresh + "\\)(.*)");
+    std::smatch m;
+    EXPECT_TRUE(std::regex_match(line, m, form)) << line;
+    if (m.empty()) return false;
+    const double frames = std::stod(m[2]), late = std::stod(m[3]);
+    EXPECT_GT(frames, 10) << line;
+    const std::string verdict = m[1];
+    if (late > 0.01 * frames) {
+        EXPECT_EQ(verdict, "FAIL") << line;
+        EXPECT_EQ(m[4], ": more than 1 % of a session's frames would miss their vsync, and it would be flagged");
+    } else if (late > 0) {
+        EXPECT_EQ(verdict, "warn") << line;
+        EXPECT_EQ(m[4], ": those would miss their vsync");
+    } else {
+        EXPECT_EQ(verdict, "ok  ") << line;
+        EXPECT_EQ(m[4], "");
+    }
+    return verdict == "FAIL";
+}
+
+void expectMachineLines(const std::vector<std::string>& lines) {
+    ASSERT_GE(lines.size(), 4u);
+    EXPECT_TRUE(std::regex_match(lines[0], std::regex(kGl))) << lines[0];
+    EXPECT_EQ(lines[2], kVsync);
+    EXPECT_TRUE(std::regex_match(lines[3], std::regex(kMeasured))) << lines[3];
+}
+
+// shooter-thesis refuses a display not at its 120 Hz, and Xvfb's reports none: FAIL, exit 1.
+TEST(Check, OnXvfbTheThesisProtocolFailsTheUnknownRefresh) {
+    const std::string dir = scratch("thesis");
+    const auto r = check("--protocol " + protocol("shooter-thesis") + " --out " + dir);
+    EXPECT_EQ(r.status, 1) << r.output;
+    const auto lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 10u) << r.output;
+    expectMachineLines(lines);
+    EXPECT_EQ(lines[1],
+              "FAIL  refresh: the display reports no refresh rate, so it cannot be checked against the "
+              "120 Hz that protocol '" +
+                  protocol("shooter-thesis") +
+                  "' needs; set the display to 120 Hz on a system that reports it (or pass "
+                  "--allow-refresh-mismatch for a pilot)");
+    // Each of its conditions once, in the protocol's order.
+    expectFrameTime(lines[4], "conv120", "120 Hz", "8.33");
+    expectFrameTime(lines[5], "conv15", "120 Hz", "8.33");
+    expectFrameTime(lines[6], "warp15to120", "120 Hz", "8.33");
+    EXPECT_EQ(lines[7], "ok    results folder: '" + dir + "' is writable and no session holds it");
+    // 248385 frames: the bot's session, which replays the same on every machine.
+    EXPECT_TRUE(std::regex_match(lines[8],
+                                 std::regex("ok    disk: [0-9.]+ [kMG]B free in '" + dir +
+                                            "'; a session of shooter-thesis writes about [0-9.]+ MB and "
+                                            "needs [0-9.]+ MB free \\(248385 frames by its bot at [0-9]+ "
+                                            "bytes each, doubled for a participant, doubled again as it "
+                                            "finishes\\)")))
+        << lines[8];
+    EXPECT_EQ(lines[9], kAudio);
+}
+
+// shooter-quick warns of another refresh, so only the machine's speed can fail it: exit 1
+// exactly when a frame-time line fails (on llvmpipe under load, it may).
+TEST(Check, OnXvfbTheQuickProtocolWarnsOfTheUnknownRefreshAndFailsOnlyOnSpeed) {
+    const std::string dir = scratch("quick");
+    const auto r = check("--protocol " + protocol("shooter-quick") + " --out " + dir);
+    const auto lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 10u) << r.output;
+    expectMachineLines(lines);
+    EXPECT_EQ(lines[1],
+              "warn  refresh: the display reports no refresh rate, so it cannot be checked against the "
+              "120 Hz that protocol '" +
+                  protocol("shooter-quick") + "' needs; a session would pace its frames by a timer");
+    bool slow = false;
+    const char* const modes[] = {"conv120", "conv15", "warp15to120"};
+    for (int i = 0; i < 3; ++i) slow = expectFrameTime(lines[4 + i], modes[i], "120 Hz", "8.33") || slow;
+    EXPECT_EQ(lines[7], "ok    results folder: '" + dir + "' is writable and no session holds it");
+    EXPECT_TRUE(contains(lines[8], "; a session of shooter-quick writes about ")) << lines[8];
+    EXPECT_EQ(lines[9], kAudio);
+    EXPECT_EQ(r.status, slow ? 1 : 0) << r.output;
+}
+
+// Without a protocol it checks the machine alone; a folder that is missing, or that a session
+// holds, fails with the sentence `run` would refuse it with.
+TEST(Check, AMissingResultsFolderOrOneInUseFails) {
+    const std::string dir = scratch("folder");
+    auto r = check("--out " + dir + "/missing");
+    EXPECT_EQ(r.status, 1) << r.output;
+    auto lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 6u) << r.output;
+    expectMachineLines(lines);
+    EXPECT_EQ(lines[1], "warn  refresh: the display reports no refresh rate");
+    EXPECT_EQ(lines[4], "FAIL  results folder: Results folder '" + dir + "/missing' does not exist.");
+    EXPECT_EQ(lines[5], kAudio);
+
+    const warplab::session::ResultsFolderLock held(dir, "P07", "shooter-thesis");
+    r = check("--out " + dir);
+    EXPECT_EQ(r.status, 1) << r.output;
+    lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 6u) << r.output;
+    EXPECT_EQ(lines[4].rfind("FAIL  results folder: Results folder '" + dir +
+                                 "' is in use by another warplab session (participant P07, protocol shooter-thesis, "
+                                 "pid " +
+                                 std::to_string(::getpid()),
+                             0),
+              0u)
+        << lines[4];
+}
+
+// No display: the window's checks fail in one line, at once; the rest are still checked.
+TEST(Check, WithoutADisplayTheWindowFailsAndTheRestIsChecked) {
+    const std::string dir = scratch("no-display");
+    const auto started = std::chrono::steady_clock::now();
+    const auto r = runCommand("env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER SDL_AUDIODRIVER=dummy timeout 10 " +
+                              std::string(WARPLAB_BINARY) + " check --out " + dir);
+    EXPECT_LT(std::chrono::steady_clock::now() - started, std::chrono::seconds(5));
+    EXPECT_EQ(r.status, 1);
+    const auto lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 4u) << r.output;
+    EXPECT_EQ(lines[0],
+              "FAIL  window: no window can be shown: DISPLAY is not set (start warplab from the desktop, or set "
+              "DISPLAY=:0 for the machine's own screen)");
+    EXPECT_EQ(lines[1], "ok    results folder: '" + dir + "' is writable and no session holds it");
+    EXPECT_TRUE(std::regex_match(lines[2], std::regex("ok    disk: [0-9.]+ [kMG]B free in '" + dir + "'"))) << lines[2];
+    EXPECT_EQ(lines[3], kAudio);
+}
+
+TEST(Check, HelpAndABadCommandLine) {
+    auto r = warplab::testing::warplab("check --help");
+    EXPECT_EQ(r.status, 0);
+    EXPECT_TRUE(contains(r.output, "usage: warplab check [--protocol P]")) << r.output;
+    EXPECT_TRUE(contains(r.output, "--allow-refresh-mismatch")) << r.output;
+    EXPECT_TRUE(contains(warplab::testing::warplab("--help").output, "\n  check ")) << "listed among the commands";
+    for (const std::string bad : {"--width 0", "--display -1", "--bogus"}) {
+        r = warplab::testing::warplab("check " + bad);
+        EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+        EXPECT_EQ(r.lines(), 1) << r.output;
+    }
+}
+
+}  // namespace
