@@ -424,7 +424,8 @@ Command runCommand() {
               "window: a square for a photodiode in that corner (top_left, top_right, bottom_left, bottom_right; off "
               "for none), white on the first frame that shows a press (docs/live-sessions.md)",
               "the protocol's display.photon_marker"},
-             {"slow-frames", "MS:EVERY", "window, tests: make every EVERY-th frame MS ms slower, as a slow machine", ""},
+             {"slow-frames", "MS:EVERY", "window, tests: make every EVERY-th frame MS ms slower, as a slow machine",
+              ""},
              {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
               "osmesa"},
              dataDirOption(),
