@@ -15,6 +15,7 @@ int runCheck(const ParsedArgs& args) {
     run.width = static_cast<int>(args.integer("width", run.width, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.height = static_cast<int>(args.integer("height", run.height, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.allowRefreshMismatch = args.flag("allow-refresh-mismatch");
+    run.photonCorner = args.string("photon", "");
     bool failed = false;
     for (const live::CheckLine& line : live::checkMachine(run, dataPathsFrom(args), std::cout))
         failed = failed || line.verdict == live::Verdict::Fail;
@@ -30,7 +31,8 @@ Command checkCommand() {
              "protocol at the window's size against one refresh, the results folder and its lock, disk\n"
              "space for a session, the audio device. One line per check: ok, warn or FAIL and why.\n"
              "Exits 1 on any FAIL, so a lab script can gate a session on it.",
-             "warplab check [--protocol P] [--out RESULTS] [--fullscreen] [--display N] [--width W --height H]",
+             "warplab check [--protocol P] [--out RESULTS] [--fullscreen] [--display N] [--width W --height H]\n"
+             "              [--photon CORNER]",
              {
                  {"protocol", "FILE", "the study protocol the session will run: its refresh, conditions and size", ""},
                  {"out", "DIR", "the results folder the session will write into", defaults.resultsDir},
@@ -42,6 +44,10 @@ Command checkCommand() {
                  {"height", "PIXELS", "the window's height when not full screen", shown(defaults.height)},
                  {"allow-refresh-mismatch", "",
                   "as run's: a refresh other than the protocol's (or none reported) warns instead of failing", ""},
+                 {"photon", "CORNER",
+                  "show the photodiode marker's test pattern in that corner (top_left, top_right, bottom_left, "
+                  "bottom_right): white and black for 0.25 s each, ten times",
+                  ""},
                  dataDirOption(),
              }},
             &runCheck};

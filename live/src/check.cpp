@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <memory>
 #include <optional>
+#include <thread>
 
 #include "game/game.h"
 #include "present/frame_maker.h"
+#include "photon_marker.h"
 #include "refresh_rule.h"
 #include "renderer/hud.h"
 #include "renderer/timing.h"
@@ -90,6 +92,7 @@ public:
                        ? "on: each swap waits for the display"
                        : "off: the driver refused a swap interval of 1; a session would pace its frames by a timer");
         measured();
+        if (!run_.photonCorner.empty()) photonPattern();
         if (!study_) return;
         std::vector<std::string> modes;  // each once, in the protocol's order (phases repeat them)
         for (const std::string& mode : study_->modes())
@@ -134,6 +137,7 @@ private:
             last = now;
         }
         const double measuredHz = intervals.empty() ? 0.0 : 1.0 / median(intervals);
+        measuredHz_ = window_->vsyncOn() ? measuredHz : 0.0;  // unpaced swaps measure nothing
         const std::string seen = hertz(measuredHz) + " over " + number(secondsSince(start), 1) + " s of swaps";
         if (!window_->vsyncOn()) {
             lines_.add(Verdict::Warn, "measured refresh",
@@ -213,6 +217,43 @@ private:
         lines_.add(verdict, "frame time " + mode, detail);
     }
 
+    // The marker's square wave, frame by frame at the measured refresh (or a timer at 60 Hz
+    // where there is none), as a session would draw it: on the backdrop, nothing else moving.
+    void photonPattern() {
+        protocol::PhotonMarker corner = protocol::PhotonMarker::Off;
+        for (const auto& entry : protocol::EnumNames<protocol::PhotonMarker>::list)
+            if (run_.photonCorner == entry.name) corner = entry.value;
+        std::optional<renderer::HudPhotonMarker> marker = hudPhotonMarker(corner);
+        if (!marker) {
+            lines_.add(Verdict::Fail, "photon", "'" + run_.photonCorner + "' is no corner for the marker");
+            return;
+        }
+        const double hz = measuredHz_ > 0.0 ? measuredHz_ : 60.0;
+        const int half = std::max(1, static_cast<int>(std::lround(run_.photonOnS * hz)));
+        renderer::HudContent content;
+        content.backdrop = true;
+        content.reticle = false;
+        content.status = "photodiode test pattern";
+        const auto start = Clock::now();
+        for (int frame = 0; frame < 2 * half * run_.photonCycles; ++frame) {
+            marker->lit = frame % (2 * half) < half;
+            content.photonMarker = marker;
+            hud_->draw(content, screen_->buffer());
+            renderer::blitToDefaultFramebuffer(screen_->buffer(), display_.width, display_.height);
+            if (!window_->vsyncOn())
+                std::this_thread::sleep_until(
+                    start +
+                    std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>((frame + 1) / hz)));
+            window_->swapBuffers();
+            poll();
+        }
+        lines_.add(Verdict::Ok, "photon",
+                   "the marker in the " + run_.photonCorner + " corner was white for " + std::to_string(half) +
+                       " frames and black for " + std::to_string(half) + ", " + std::to_string(run_.photonCycles) +
+                       " times (" + number(2.0 * half / hz * run_.photonCycles, 1) + " s): a meter over it reads a " +
+                       number(hz / (2.0 * half), 2) + " Hz square wave");
+    }
+
     void screen(const std::string& doing) {
         renderer::HudContent content;
         content.backdrop = true;
@@ -241,6 +282,7 @@ private:
     std::unique_ptr<renderer::WindowContext> window_;
     game::DisplaySize display_;
     double reportedHz_ = 0.0;
+    double measuredHz_ = 0.0;  // of vsynced swaps; 0 without vsync
     // What draws: made once the window gives a context, gone before it.
     std::optional<renderer::HudRenderer> hud_;
     std::optional<renderer::DisplayFrame> screen_;

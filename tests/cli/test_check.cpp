@@ -192,3 +192,21 @@ TEST(Check, HelpAndABadCommandLine) {
 }
 
 }  // namespace
+
+namespace {
+
+// --photon shows the marker's square wave and says what a meter over it should read: at
+// Xvfb's unknown refresh the frames are paced at 60 Hz, so 0.25 s is 15 frames and a cycle 0.5 s.
+TEST(Check, ThePhotonPatternSaysWhatAMeterShouldRead) {
+    const Result r = check("--photon bottom_right");
+    EXPECT_TRUE(warplab::testing::contains(
+        r.output,
+        "photon: the marker in the bottom_right corner was white for 15 frames and black for 15, 10 times (5.0 s): "
+        "a meter over it reads a 2.00 Hz square wave"))
+        << r.output;
+    const Result bad = check("--photon middle");
+    EXPECT_EQ(bad.status, 1) << bad.output;
+    EXPECT_TRUE(warplab::testing::contains(bad.output, "photon: 'middle' is no corner for the marker")) << bad.output;
+}
+
+}  // namespace

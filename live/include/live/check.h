@@ -26,6 +26,13 @@ struct CheckRun {
     bool allowRefreshMismatch = false;
     double refreshSeconds = 2.0;  // swaps timed for the measured refresh
     double conditionSeconds = 1.0;  // frames made per condition, after its first renders
+    // The photodiode's test pattern (`--photon CORNER`, display.photon_marker's spelling; "" for
+    // none): the marker in that corner white for photonOnS, black for as long, photonCycles
+    // times, counted in display frames, so a meter's threshold and placement can be checked
+    // against a known square wave before a session.
+    std::string photonCorner;
+    double photonOnS = 0.25;
+    int photonCycles = 10;
 };
 
 enum class Verdict { Ok, Warn, Fail };
