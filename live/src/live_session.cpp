@@ -119,17 +119,20 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
 }
 
 void SessionPolicy::finish(WindowLoop& loop, std::ostream& progress) {
-    // More than 1 % of display frames late or skipped is more than a study can call "at the
-    // protocol's rate": the store says so, and export can leave such sessions out.
+    // More display frames late or skipped than the protocol allows (display.max_late_share, 1 %
+    // unless it says otherwise) is more than a study can call "at the protocol's rate": the
+    // store says so, and export can leave such sessions out.
     const std::vector<session::ModePacing> pacing = pacing_.summary(refreshHz_);
     std::int64_t displayFrames = 0, offTime = 0;
     for (const auto& p : pacing) {
         displayFrames += p.shown + p.skipped;
         offTime += p.late + p.skipped;
     }
-    if (displayFrames > 0 && offTime * 100 > displayFrames) {
+    const double allowed = loop.study().rendering().maxLateShare;
+    if (displayFrames > 0 && static_cast<double>(offTime) > allowed * static_cast<double>(displayFrames)) {
         std::ostringstream text;
-        text << offTime << " of " << displayFrames << " display frames late or skipped";
+        text << offTime << " of " << displayFrames << " display frames late or skipped (more than " << allowed * 100.0
+             << " %)";
         writer_.flag("missed_frames", text.str());
         progress << "warning: " << text.str() << "; the session is flagged\n";
     }

@@ -387,7 +387,9 @@ std::vector<Key<P>> renderKeys(int photonMarkerSince) {
             .since(2),
         K::integer("supersampling", at(&P::rendering, &RenderSettings::supersampling), 1, scene::kMaxSupersampling)
             .since(2),
-        K::choice("photon_marker", at(&P::rendering, &RenderSettings::photonMarker)).since(photonMarkerSince, true)};
+        K::choice("photon_marker", at(&P::rendering, &RenderSettings::photonMarker)).since(photonMarkerSince, true),
+        K::number("max_late_share", at(&P::rendering, &RenderSettings::maxLateShare), {0, false, 1, false})
+            .since(photonMarkerSince, true)};
 }
 
 // path[i], the JSON path of an array element.

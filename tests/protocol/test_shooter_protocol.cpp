@@ -48,7 +48,7 @@ Json thesisWith(const std::string& pointer, const Json& value) {
     if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterQuestionsSince)
         document["test"].erase("questions");
     if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterPhotonMarkerSince)
-        document["display"].erase("photon_marker");
+        document["display"].erase("photon_marker"), document["display"].erase("max_late_share");
     return document;
 }
 
@@ -900,6 +900,19 @@ TEST(ProtocolLoad, ErrorsInAFileNameItsPath) {
         EXPECT_EQ(std::string(e.what()),
                   "protocol '" + path + "': test.timeout_s must be a number greater than 0 and at most 120, got 0");
     }
+}
+
+// The share of late or skipped display frames that flags a live session (format 6): 1 % unless
+// the file says otherwise, a share from 0 to 1, and not in an older file.
+TEST(ProtocolRendering, MaxLateShareIsAShareFromFormat6) {
+    EXPECT_EQ(ShooterProtocol{}.rendering.maxLateShare, 0.01);
+    EXPECT_EQ(parse(thesisWith("/display/max_late_share", 0.05).dump()).rendering.maxLateShare, 0.05);
+    expectContains(errorOf(thesisWith("/display/max_late_share", 1.5)), {"display.max_late_share", "between 0 and 1"});
+    Json document = thesisWith("/format_version", 5);
+    document["display"]["max_late_share"] = 0.05;
+    EXPECT_EQ(
+        errorOf(document),
+        "protocol 'p.json': display.max_late_share is new in format_version 6, but this file is format_version 5");
 }
 
 }  // namespace

@@ -83,6 +83,9 @@ struct RenderSettings {
     // A live session's square for a photodiode: black, white on the first frame shown that
     // depicts a left-button press (game::ShownFrame::inputFrame).
     PhotonMarker photonMarker = PhotonMarker::Off;
+    // A live session whose display frames were late or skipped (its display clock) more often
+    // than this share is flagged missed_frames, so that an analysis can leave it out.
+    double maxLateShare = 0.01;
 };
 // Their ranges are scene/limits.h's, which the renderer and the command line share.
 
