@@ -257,14 +257,7 @@ std::vector<physics::Sphere> ClickGame::depictedSpheres(const condition::Schedul
 }
 
 ShownFrame ClickGame::screenFrame() {
-    ShownFrame shown;
-    shown.frame = frame_;
-    shown.inputFrame = frame_;
-    shown.time = now();
-    shown.camera = camera_;
-    shown.blank = true;
-    shown.pointer = PointerKind::Cursor;
-    shown.cursor = cursor_;
+    ShownFrame shown = screenShownFrame(frame_, now(), camera_, PointerKind::Cursor, cursor_);
     switch (phase_) {
         case Phase::Ready:
             shown.phaseText = "Press Enter to begin";

@@ -222,13 +222,7 @@ void ShooterGame::finishReading() {
 }
 
 ShownFrame ShooterGame::readingFrame() const {
-    ShownFrame shown;
-    shown.frame = frame_;
-    shown.inputFrame = frame_;
-    shown.time = now();
-    shown.camera = camera_;
-    shown.blank = true;
-    shown.pointer = PointerKind::None;
+    ShownFrame shown = screenShownFrame(frame_, now(), camera_, PointerKind::None);
     shown.instructions = phase_ == Phase::Acclimation ? protocol_.acclimationInstructions
         : phase_ == Phase::Training                   ? protocol_.trainingInstructions
                                                       : protocol_.testInstructions;
@@ -383,14 +377,7 @@ ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
     previousKeys_ = input.keys;
     const glm::dvec2 moved = questionCursor_ + glm::dvec2(input.mouseDx, input.mouseDy) * kQuestionCursorPixelsPerCount;
     questionCursor_ = glm::clamp(moved, glm::dvec2(0.0), glm::dvec2(display_.width, display_.height));
-    ShownFrame shown;
-    shown.frame = frame_;
-    shown.inputFrame = frame_;
-    shown.time = now();
-    shown.camera = camera_;
-    shown.blank = true;
-    shown.pointer = PointerKind::Cursor;
-    shown.cursor = questionCursor_;
+    ShownFrame shown = screenShownFrame(frame_, now(), camera_, PointerKind::Cursor, questionCursor_);
     shown.question = questions_.prompt(questionCursor_);
     const int blocks = protocol_.interleaveConditions ? 1 : static_cast<int>(protocol_.conditions.size());
     shown.phaseText = "Test: block " + std::to_string(block_ + 1) + " of " + std::to_string(blocks) +

@@ -18,6 +18,19 @@ ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& m
     return shown;
 }
 
+ShownFrame screenShownFrame(std::int64_t frame, double time, const scene::CameraState& camera, PointerKind pointer,
+                            glm::dvec2 cursor) {
+    ShownFrame shown;
+    shown.frame = frame;
+    shown.time = time;
+    shown.inputFrame = frame;
+    shown.camera = camera;
+    shown.blank = true;
+    shown.pointer = pointer;
+    shown.cursor = cursor;
+    return shown;
+}
+
 std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlacement& placement) {
     return placement.frameAt(f.cameraTime);
 }

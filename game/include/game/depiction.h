@@ -36,6 +36,10 @@ struct SchedulePlacement {
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
 ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement);
+// A screen's ShownFrame (ready, instructions, questions, done): no scene, the camera at rest
+// where the game has it, the pointer as given; it answers this frame's input at once.
+ShownFrame screenShownFrame(std::int64_t frame, double time, const scene::CameraState& camera, PointerKind pointer,
+                            glm::dvec2 cursor = glm::dvec2(0.0));
 // The session frame whose camera (mouse, cursor) frame `f` shows.
 std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlacement& placement);
 
