@@ -204,14 +204,18 @@ private:
         const double budget = 1000.0 / study_->refreshHz();
         const auto late = std::count_if(ms.begin(), ms.end(), [&](double m) { return m > budget; });
         const double lateShare = ms.empty() ? 0.0 : static_cast<double>(late) / static_cast<double>(ms.size());
-        const Verdict verdict = lateShare > kLateShareFlagged ? Verdict::Fail : late > 0 ? Verdict::Warn : Verdict::Ok;
+        // A session with more of its frames late than its protocol allows is flagged in its store
+        // (missed_frames, SessionPolicy::finish in live_session.cpp): a machine that would be fails.
+        const double allowed = study_->rendering().maxLateShare;
+        const Verdict verdict = lateShare > allowed ? Verdict::Fail : late > 0 ? Verdict::Warn : Verdict::Ok;
         std::string detail = "median " + number(median(ms), 1) + " ms, max " +
             number(ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()), 1) + " ms over " +
             std::to_string(ms.size()) + " frames at " + std::to_string(display_.width) + "x" +
             std::to_string(display_.height) + "; " + std::to_string(late) + " longer than one refresh (" +
             number(budget, 2) + " ms at " + hertz(study_->refreshHz()) + ")";
         if (verdict == Verdict::Fail)
-            detail += ": more than 1 % of a session's frames would miss their vsync, and it would be flagged";
+            detail += ": more than " + number(100.0 * allowed, allowed < 0.01 ? 2 : 0) +
+                " % of a session's frames would miss their vsync, and it would be flagged";
         else if (verdict == Verdict::Warn)
             detail += ": those would miss their vsync";
         lines_.add(verdict, "frame time " + mode, detail);
@@ -272,9 +276,6 @@ private:
     }
 
     static constexpr double kMaxConditionSeconds = 20.0;
-    // A session with more than 1 % of its frames late is flagged in its store (missed_frames,
-    // SessionPolicy::finish in live_session.cpp): a machine that would do so fails.
-    static constexpr double kLateShareFlagged = 0.01;
     const CheckRun& run_;
     const game::Study* study_;
     const renderer::DataPaths& paths_;
