@@ -92,8 +92,13 @@ private:
 };
 
 void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
-    session::FrameRecord brief = record;
-    brief.detailJson.clear();
+    // What pacing reads of a frame, without the game's detail (copied every frame otherwise).
+    session::FrameRecord brief;
+    brief.frame = record.frame;
+    brief.mode = record.mode;
+    brief.kind = record.kind;
+    brief.frameMs = record.frameMs;
+    brief.missedVsyncs = record.missedVsyncs;
     lastSecond_.push_back(std::move(brief));
     const auto perSecond = static_cast<std::size_t>(std::max(1.0, refreshHz_));
     if (lastSecond_.size() > perSecond) lastSecond_.pop_front();
