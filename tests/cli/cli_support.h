@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -75,6 +76,18 @@ inline bool contains(const std::string& text, const std::string& part) { return 
 // ("problem while cleaning up temporary directory", exit 5; 3 of 96 quick runs on 2 busy cores).
 inline std::string onXvfb() {
     return "xvfb-run -a -n " + std::to_string(100 + ::getpid() % 800) + " -s '-screen 0 1024x768x24 -noreset' ";
+}
+
+// A shooter protocol of a few seconds, written into `dir`, that still has every phase:
+// acclimation, the supervisor's Enter, training and a test target per condition. It warns of a
+// refresh other than its 120 Hz, as the quick protocols do, since Xvfb reports none. Its path.
+inline std::string tinyProtocol(const std::string& dir) {
+    std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
+ "display":{"refresh_mismatch":"warn"},
+ "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
+ "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":true}})";
+    return dir + "/tiny.json";
 }
 
 }  // namespace warplab::testing

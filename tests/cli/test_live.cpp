@@ -50,17 +50,7 @@ Result inWindow(const std::string& arguments) {
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
 
-// A shooter session of a few seconds that still has every phase: acclimation, the supervisor's
-// Enter, training and a test target per condition. It warns of a refresh other than its 120 Hz,
-// as the quick protocols do, since Xvfb reports none.
-std::string tinyProtocol(const std::string& dir) {
-    std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
- "display":{"refresh_mismatch":"warn"},
- "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
- "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
- "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":true}})";
-    return dir + "/tiny.json";
-}
+using warplab::testing::tinyProtocol;
 
 // The click game in a few seconds: two modes (one of them interpolating between renders),
 // one short match each, each followed by its four ratings; it too warns of another refresh.

@@ -25,15 +25,7 @@ using warplab::testing::sessionIn;
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("window-failsafe", name); }
 
-// The shooter in a few seconds, warning (not refusing) of Xvfb's unknown refresh.
-std::string tinyProtocol(const std::string& dir) {
-    std::ofstream(dir + "/tiny.json") << R"({"format_version":2,"name":"shooter-tiny","game":"shooter",
- "display":{"refresh_mismatch":"warn"},
- "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
- "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
- "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":true}})";
-    return dir + "/tiny.json";
-}
+using warplab::testing::tinyProtocol;
 
 std::string warplabBinary() { return WARPLAB_BINARY; }
 
