@@ -133,6 +133,8 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
         {"seed", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->header.seed)); })},
         {"started_at", whenRead([](F& f, const R& r) { f.text(r.data->header.startedAt); })},
         {"player", whenRead([](F& f, const R& r) { f.text(r.data->header.player); })},
+        // A simulated participant's traits (a JSON object), "" for anyone else.
+        {"player_model", whenRead([](F& f, const R& r) { f.text(r.data->header.playerModel); })},
         {"session_id", whenRead([](F& f, const R& r) { f.text(r.data->header.sessionId); })},
         {"plan_id", whenRead([](F& f, const R& r) { f.text(r.data->header.planId); })},
         {"completed", whenRead([](F& f, const R& r) { f.boolean(r.data->completed); })},

@@ -318,6 +318,7 @@ private:
         }
         if (h.formatVersion >= kResumedSince && !parseResumed(get("resumed"), h.resumed))
             fail("has an unreadable header: resumed is '" + get("resumed") + "'.");
+        if (h.formatVersion >= kPlayerModelSince) h.playerModel = get("player_model");
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
             if (key.rfind(kFlagPrefix, 0) == 0)

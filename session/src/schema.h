@@ -161,6 +161,7 @@ inline std::vector<std::pair<const char*, std::string>> headerEntries(const Sess
         entries.push_back({"plan_id", h.planId});
     }
     if (version >= kResumedSince) entries.push_back({"resumed", resumedText(h.resumed)});
+    if (version >= kPlayerModelSince) entries.push_back({"player_model", h.playerModel});
     return entries;
 }
 

@@ -175,6 +175,7 @@ std::string runHeadless(const HeadlessRun& run, std::ostream& progress) {
     if (resume) header = resumedHeader(*resume, header);
     // A player that sees drew the frames it saw: its inputs are reproducible on the same GL.
     if (const std::string drawn = player->perceivedWith(); !drawn.empty()) header.glRenderer = drawn;
+    header.playerModel = player->model();
     auto writer = session::SessionWriter::create(run.resultsDir, header,
                                                  resume ? keptRows(*resume) : session::SessionWriter::FirstCommit{});
 

@@ -184,6 +184,7 @@ void expectSame(const SessionHeader& a, const SessionHeader& b) {
     EXPECT_EQ(a.startedAt, b.startedAt);
     EXPECT_EQ(a.player, b.player);
     EXPECT_EQ(a.planId, b.planId);
+    EXPECT_EQ(a.playerModel, b.playerModel);
     ASSERT_EQ(a.resumed.size(), b.resumed.size());
     for (std::size_t i = 0; i < a.resumed.size(); ++i) {
         EXPECT_EQ(a.resumed[i].sessionId, b.resumed[i].sessionId);
@@ -335,6 +336,7 @@ void relabel(const std::string& path, int version) {
         keys.push_back("plan_id");
     }
     if (version >= 4) keys.push_back("resumed");
+    if (version >= 6) keys.push_back("player_model");
     for (const std::string& key : keys) {
         const auto rows = sqlRows(path, "SELECT value FROM meta WHERE key = '" + key + "'");
         ASSERT_EQ(rows.size(), 1u) << key;
@@ -353,6 +355,7 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     SessionHeader header = sampleHeader("Zoë «P7»\n");
     header.protocolJson = std::string("{\"a\": \"nul\0inside\"}", 20);
     header.planId = "plan «ß»";
+    header.playerModel = "{\"reaction_s\":0.2,\"note\":\"«ß»\"}";
     header.resumed = {{"0123456789abcdef0123456789abcdef", "P7_a.warplab-session", "2024-05-01T12:00:00.000Z",
                        "human (cm_per_360=0, dpi=800, invert_y=0)", 0, "2024-05-01T12:05:00.000Z"},
                       {"fedcba9876543210fedcba9876543210", "P7 \"b\".warplab-session", "2024-05-01T12:05:00.000Z",
@@ -382,7 +385,7 @@ TEST(SessionStore, RoundTripsEveryFieldBitExactly) {
     const SessionData data = readSession(path);
     header.formatVersion = kSessionFormatVersion;
     expectSame(data.header, header);
-    EXPECT_EQ(data.header.formatVersion, 5);
+    EXPECT_EQ(data.header.formatVersion, 6);
     // Drawn by create(), whatever the header passed in said.
     EXPECT_EQ(data.header.sessionId.size(), 32u);
     EXPECT_EQ(data.header.sessionId.find_first_not_of("0123456789abcdef"), std::string::npos) << data.header.sessionId;
@@ -1485,6 +1488,28 @@ TEST(SessionStoreDamage, NotASessionFailsNamingThePath) {
     EXPECT_FALSE(fs::exists(missing));
 }
 
+// Version 5 had no player_model: such a file reads with none, whatever meta holds besides.
+TEST(SessionStore, AVersion5FileReadsWithoutAPlayerModel) {
+    TempDir dir;
+    SessionHeader header = sampleHeader();
+    header.playerModel = "{\"reaction_s\":0.2}";
+    std::string path;
+    {
+        SessionWriter w = SessionWriter::create(dir.str(), header);
+        path = w.path();
+        w.finish();
+    }
+    EXPECT_EQ(readSessionHeader(path).playerModel, header.playerModel);
+    relabel(path, 5);
+    const SessionHeader five = readSessionHeader(path);
+    EXPECT_EQ(five.formatVersion, 5);
+    EXPECT_EQ(five.playerModel, "");
+    // And the model is in the version-6 checksum: changed, the header is damaged.
+    relabel(path, 6);
+    execSql(path, "UPDATE meta SET value = '{}' WHERE key = 'player_model'");
+    EXPECT_NE(errorOf(path).find("checksum does not match"), std::string::npos) << errorOf(path);
+}
+
 TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
     TempDir dir;
     std::string path;
@@ -1493,12 +1518,12 @@ TEST(SessionStoreDamage, OtherFormatVersionsNameTheVersions) {
         path = w.path();
         w.finish();
     }
-    for (const int version : {6, 0, -1}) {
+    for (const int version : {7, 0, -1}) {
         execSql(path, "UPDATE meta SET value = '" + std::to_string(version) + "' WHERE key = 'format_version'");
         const std::string error = errorOf(path);
         EXPECT_NE(error.find(path), std::string::npos) << error;
         EXPECT_NE(error.find("is session format version " + std::to_string(version) + ";"), std::string::npos) << error;
-        EXPECT_NE(error.find("reads session format versions 1, 2, 3, 4 and 5."), std::string::npos) << error;
+        EXPECT_NE(error.find("reads session format versions 1, 2, 3, 4, 5 and 6."), std::string::npos) << error;
     }
     // The schema is checked against the file's own version: a version-3 file that says 1 lacks
     // version 1's columns.

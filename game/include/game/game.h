@@ -162,6 +162,8 @@ public:
     // What drew the frames this player looked at, "" for a player that sees none. Sessions
     // record it: such a player's inputs are reproducible on the same GL implementation.
     virtual std::string perceivedWith() const { return {}; }
+    // A simulated player's own parameters as a JSON object, "" for others. Sessions record it.
+    virtual std::string model() const { return {}; }
 };
 
 // Makes a player that sees (the perceptual simulated participant) from its seed. It draws

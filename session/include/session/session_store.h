@@ -22,11 +22,12 @@ namespace warplab::session {
 // (shooter only) are still read: their shooter columns are folded into detail_json exactly as
 // the shooter writes them today, so they replay (docs/session-format.md, "Version 1"); version
 // 2 files read with unchained checksums and no session id.
-inline constexpr int kSessionFormatVersion = 5;
+inline constexpr int kSessionFormatVersion = 6;
 inline constexpr int kOldestSessionFormatVersion = 1;
 inline constexpr int kSessionIdSince = 3;
 inline constexpr int kResumedSince = 4;
 inline constexpr int kTypedTextSince = 5;
+inline constexpr int kPlayerModelSince = 6;
 
 // Bad or unreadable session files and results folders: one sentence naming the path.
 class SessionError : public std::runtime_error {
@@ -67,6 +68,10 @@ struct SessionHeader {
     // resumed (a resumed session interrupted again carries its predecessor's list and itself).
     // Empty for a session played in one go, and in files older than format version 4.
     std::vector<Resumption> resumed;
+    // A simulated player's own parameters as a JSON object (a simulated participant's traits,
+    // drawn from its seed: participants/population.h); "" for a person, a bot or a replay, and
+    // in files older than format version 6.
+    std::string playerModel;
     int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 
