@@ -57,6 +57,17 @@ renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fall
     }
 }
 
+OptionSpec populationOption() {
+    return {"population", "FILE",
+            "with simulated participants: the population their traits are drawn from (docs/simulated-participant.md)",
+            "assets/population.json"};
+}
+
+participants::Population populationFrom(const ParsedArgs& args, const renderer::DataPaths& paths) {
+    return participants::readPopulation(args.has("population") ? args.path("population", "")
+                                                               : participants::populationPath(paths.assetDir));
+}
+
 renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
     std::string root = WARPLAB_DEFAULT_DATA_DIR;
     if (const char* env = std::getenv("WARPLAB_DATA_DIR"); env != nullptr && *env != '\0') root = env;

@@ -123,6 +123,7 @@ int runDemo(const ParsedArgs& args) {
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
     if (backend == renderer::GlBackend::Window) throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
     const fs::path root = fs::path(paths.shaderDir).parent_path();
+    const participants::Population population = populationFrom(args, paths);  // refused now, not in a child
     const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
     const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";
     if (holdsSessions(results))
@@ -162,7 +163,7 @@ int runDemo(const ParsedArgs& args) {
             run.resultsDir = results.string();
             run.player = player + ":" + std::to_string(job.participant);
             run.seed = static_cast<std::uint64_t>(job.participant);
-            run.seeingPlayer = participants::perceptualPlayerMaker(paths, backend);
+            run.seeingPlayer = participants::perceptualPlayerMaker(paths, backend, population);
             std::cout.flush();
             std::cerr.flush();
             const pid_t pid = fork();
@@ -248,6 +249,7 @@ Command demoCommand() {
                   "shooter-demo,click-demo"},
                  {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
                  glOption("osmesa"),
+                 populationOption(),
                  dataDirOption(),
              }},
             &runDemo};

@@ -291,9 +291,12 @@ int runRun(const ParsedArgs& args) {
         const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
         if (backend == renderer::GlBackend::Window)
             throw UsageError("option --gl: the simulated participant draws headless (osmesa or egl)");
-        run.seeingPlayer = participants::perceptualPlayerMaker(dataPathsFrom(args), backend);
+        const renderer::DataPaths paths = dataPathsFrom(args);
+        run.seeingPlayer = participants::perceptualPlayerMaker(paths, backend, populationFrom(args, paths));
     } else if (args.has("gl")) {
         throw UsageError("option --gl only applies with --headless --player sim");
+    } else if (args.has("population")) {
+        throw UsageError("option --population only applies with --headless --player sim");
     }
     const auto lock = lockResults(args, run);
     tellDrawnSeed(args, run.seed);
@@ -428,6 +431,7 @@ Command runCommand() {
               ""},
              {"gl", "osmesa|egl", "with --headless --player sim: the context the simulated participant draws in",
               "osmesa"},
+             populationOption(),
              dataDirOption(),
          }},
         &runRun};

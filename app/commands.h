@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli.h"
+#include "participants/population.h"
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 
@@ -36,5 +37,8 @@ OptionSpec dataDirOption();
 renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback);
 // shaders/ and assets/ under --data-dir, else $WARPLAB_DATA_DIR, else the build's source tree.
 renderer::DataPaths dataPathsFrom(const ParsedArgs& args);
+// The simulated participants' population: --population FILE, else assets/population.json.
+OptionSpec populationOption();
+participants::Population populationFrom(const ParsedArgs& args, const renderer::DataPaths& paths);
 
 }  // namespace warplab::app

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -99,7 +100,7 @@ glm::dvec2 pursuitVelocity(const MotionEstimate& target, double now, glm::dvec2 
 
 bool decidesToClick(glm::dvec2 predictedError, glm::dvec2 seenError, double targetRadius, double aimedForS,
                     const ParticipantParams& params) {
-    const double within = params.clickWithin * targetRadius;
+    const double within = params.clickWithin * (1.0 + params.urgencyPerS * std::max(0.0, aimedForS)) * targetRadius;
     return aimedForS >= params.minAimS && glm::length(predictedError) < within && glm::length(seenError) < within;
 }
 
@@ -108,7 +109,10 @@ bool decidesToClick(glm::dvec2 predictedError, glm::dvec2 seenError, double targ
 
 SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const ParticipantParams& params,
                                            std::uint64_t seed)
-    : knowledge_(knowledge), params_(params), random_(game::mix(seed ^ 0x5133A1E7ULL)) {
+    : knowledge_(knowledge),
+      params_(params),
+      random_(game::mix(seed ^ 0x5133A1E7ULL)),
+      ratingRandom_(game::mix(seed ^ 0x7A71A6E5ULL)) {
     if (knowledge.radiansPerCount > 0.0) {
         // Mouse right turns right (+yaw); mouse down (+y) pitches down.
         unitsPerCount_ = {knowledge.radiansPerCount, -knowledge.radiansPerCount};
@@ -148,9 +152,84 @@ void SimulatedParticipant::move(game::FrameInput& input, glm::dvec2 velocity, do
     input.mouseDy = sent.y;
 }
 
+namespace {
+
+// The same image as the frame before: the same objects in the same places over the same
+// picture, to the bit (a held frame is drawn once and perceived once by the eye).
+bool sameImage(const Percept& a, const Percept& b) {
+    if (a.sceneShown != b.sceneShown || a.objects.size() != b.objects.size() || a.pointerAt != b.pointerAt ||
+        a.detail.luma.size() != b.detail.luma.size())
+        return false;
+    for (std::size_t i = 0; i < a.objects.size(); ++i)
+        if (a.objects[i].id != b.objects[i].id || a.objects[i].centre != b.objects[i].centre) return false;
+    return a.detail.luma.empty() ||
+        std::memcmp(a.detail.luma.data(), b.detail.luma.data(), a.detail.luma.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+glm::dvec2 SimulatedParticipant::handAt(double time) const {
+    if (handLog_.empty()) return hand_;
+    if (time <= handLog_.front().first) return handLog_.front().second;
+    for (std::size_t i = 1; i < handLog_.size(); ++i)
+        if (handLog_[i].first >= time) {
+            const auto& [t0, h0] = handLog_[i - 1];
+            const auto& [t1, h1] = handLog_[i];
+            return t1 > t0 ? glm::mix(h0, h1, (time - t0) / (t1 - t0)) : h1;
+        }
+    return handLog_.back().second;
+}
+
+void SimulatedParticipant::judgeDelay(double now) {
+    // How late the pointer on screen follows the hand: the delay that best lines up how far the
+    // pointer moved between new images a baseline apart with how far the hand moved over the
+    // same span that much earlier (a quarter second: long enough to see a movement, short
+    // enough that drift between belief and screen does not count). Judged a few times a
+    // second, and only from spans in which the hand moved: a still hand shows no delay.
+    if (now - lastDelayJudged_ < 0.1 || pointerLog_.size() < 4) return;
+    const double dt = now - std::max(lastDelayJudged_, now - 1.0);
+    lastDelayJudged_ = now;
+    constexpr double kBaselineS = 0.25, kMaxDelayS = 0.4;
+    const double step = 1.0 / knowledge_.refreshHz;
+    double bestError = std::numeric_limits<double>::infinity(), best = 0.0, motion = 0.0;
+    for (double d = 0.0; d <= kMaxDelayS + 1e-9; d += step) {
+        double error = 0.0;
+        int pairs = 0;
+        std::size_t j = 0;
+        for (std::size_t i = 1; i < pointerLog_.size(); ++i) {
+            const double ti = pointerLog_[i].first;
+            while (j + 1 < i && pointerLog_[j + 1].first <= ti - kBaselineS) ++j;
+            const double span = ti - pointerLog_[j].first;
+            if (span < kBaselineS - 1e-9 || span > 2.0 * kBaselineS) continue;
+            const glm::dvec2 shown = pointerLog_[i].second - pointerLog_[j].second;
+            const glm::dvec2 moved = handAt(ti - d) - handAt(pointerLog_[j].first - d);
+            const glm::dvec2 e = shown - moved;
+            error += glm::dot(e, e);
+            if (d == 0.0) motion += glm::dot(shown, shown);
+            ++pairs;
+        }
+        if (pairs == 0) return;
+        error /= pairs;
+        if (d == 0.0) motion /= pairs;
+        if (error < bestError - 1e-12) {
+            bestError = error;
+            best = d;
+        }
+    }
+    // A movement the pointer's error is small against, else the judgement is noise.
+    if (motion <= 4.0 * bestError || motion <= 0.0) return;
+    seenDelay_ += (best - seenDelay_) * (1.0 - std::exp(-dt / params_.delayFollowS));
+}
+
 void SimulatedParticipant::remember(const Percept& percept) {
-    Sighting s{percept.time,     percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {}, percept.pointer,
-               percept.pointerAt};
+    // A held image shows what it showed when it appeared: it is seen then, not now.
+    if (!lastPercept_ || !sameImage(*lastPercept_, percept)) onset_ = percept.time;
+    const bool newImage = onset_ == percept.time;
+    lastPercept_ = percept;
+    handLog_.emplace_back(percept.time, hand_);
+    while (handLog_.size() > 2 && handLog_[1].first < percept.time - 2.0) handLog_.pop_front();
+    Sighting s{percept.time,    onset_,           percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {},
+               percept.pointer, percept.pointerAt};
     const bool reticle = percept.pointer == game::PointerKind::Reticle;
     if (reticle) {
         s.picture = percept.picture;
@@ -196,6 +275,13 @@ void SimulatedParticipant::remember(const Percept& percept) {
         s.things.push_back(
             {o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
     }
+    // The pointer as each new image shows it: the cursor where it is drawn, the view as seen.
+    if (s.valid && newImage && s.pointer != game::PointerKind::None) {
+        pointerLog_.emplace_back(percept.time, reticle ? s.view : s.pointerAt);
+        while (!pointerLog_.empty() && pointerLog_.front().first < percept.time - params_.delayWindowS)
+            pointerLog_.pop_front();
+    }
+    judgeDelay(percept.time);
     sightings_.push_back(std::move(s));
     const double keepFrom = percept.time - params_.reactionS - params_.motionWindowS - 0.05;
     while (sightings_.size() > 1 && sightings_[1].time <= keepFrom) sightings_.pop_front();
@@ -222,7 +308,7 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     // frame it acts on against where its hand was when that frame was shown, slowly.
     if (view != nullptr && view->valid && view->pointer == game::PointerKind::Cursor) {
         const double rate = 1.0 - std::exp(-dt / params_.recalibrationS);
-        calibration_ += rate * ((view->pointerAt - view->hand) - calibration_);
+        calibration_ += rate * ((view->pointerAt - handAt(view->onset - bridged())) - calibration_);
     }
     judged_ = false;
     statement_ = -1;
@@ -234,8 +320,11 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     // Where it points now: with a reticle, the view the frame it acts on showed, turned on by
     // what the hand has done since (efference copy); with a cursor, its hand, corrected by what
     // it has seen of the cursor.
-    const glm::dvec2 pointer =
-        view->pointer == game::PointerKind::Reticle ? view->view + (hand_ - view->hand) : hand_ + calibration_;
+    // The image it acts on appeared at its onset and showed the view as it was a seen delay
+    // before that, as far as the internal model bridges it.
+    const glm::dvec2 pointer = view->pointer == game::PointerKind::Reticle
+        ? view->view + (hand_ - handAt(view->onset - bridged()))
+        : hand_ + calibration_;
     aim_ = pointer;
     const glm::dvec2 handBefore = hand_;
     const auto sees = [&](const Sighting& s, std::uint32_t id) -> const Thing* {
@@ -250,10 +339,16 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
         it = gone || now - it->second > params_.forgetClickedS ? clicked_.erase(it) : std::next(it);
     }
     if (target_ && (sees(*view, *target_) == nullptr || clicked_.count(*target_))) target_.reset();
+    // Where only red is left, the field fills up with it (a clicked sphere is what makes room
+    // for a new one): after a while without a green one in sight, a red one is cleared away.
+    bool greenInSight = false;
+    for (const auto& t : view->things) greenInSight = greenInSight || (t.green && !clicked_.count(t.id));
+    if (greenInSight || !view->valid) lastGreenSeen_ = now;
+    const bool clearRed = knowledge_.greenOnly && now - lastGreenSeen_ > params_.clearRedAfterS;
     if (!target_ && view->valid) {
         double best = std::numeric_limits<double>::infinity();
         for (const auto& t : view->things) {
-            if ((knowledge_.greenOnly && !t.green) || clicked_.count(t.id)) continue;
+            if ((knowledge_.greenOnly && !t.green && !clearRed) || clicked_.count(t.id)) continue;
             const double d = glm::length(t.where - pointer);
             if (d < best) {
                 best = d;
@@ -272,30 +367,32 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     const double maxSeenSpeed = handUnitsPerRadian() * glm::radians(params_.maxSeenSpeedDegPerS);
     for (const auto& s : sightings_) {
         if (s.time > view->time) break;
-        if (s.time < view->time - params_.motionWindowS - 1e-9) continue;
+        if (s.onset < view->onset - params_.motionWindowS - 1e-9) continue;
         // A frame held on screen shows nothing new: motion is judged from the changes seen. A
         // change faster than any target moves is a jump, not motion -- a new target, or the
         // view misjudged (the hall repeats itself) -- and the motion is judged afresh from it.
         const Thing* t = sees(s, *target_);
         if (!t || (!samples.empty() && samples.back().position == t->where)) continue;
         if (!samples.empty() &&
-            glm::length(t->where - samples.back().position) > maxSeenSpeed * (s.time - samples.back().time))
+            glm::length(t->where - samples.back().position) > maxSeenSpeed * (s.onset - samples.back().time))
             samples.clear();
-        samples.push_back({s.time, t->where});
+        samples.push_back({s.onset, t->where});
     }
     MotionEstimate seen = estimateMotion(samples, params_.perceivesAcceleration, 0.5 * params_.motionWindowS);
     const double maxAcceleration = handUnitsPerRadian() * glm::radians(params_.maxAccelerationDegPerS2);
     if (glm::length(seen.acceleration) > maxAcceleration)
         seen.acceleration *= maxAcceleration / glm::length(seen.acceleration);
-    glm::dvec2 velocity = pursuitVelocity(seen, now, pointer, params_);
+    // Extrapolated across its reaction time and the share of the display's delay it bridges.
+    const double ahead = now + bridged();
+    glm::dvec2 velocity = pursuitVelocity(seen, ahead, pointer, params_);
     // Pursuit saturates (Meyer, Lasker & Robinson 1985): the part that follows the target's
     // motion is no faster than maxPursuitDegPerS.
-    const glm::dvec2 follow = params_.pursuitGain * seen.velocityAt(now);
+    const glm::dvec2 follow = params_.pursuitGain * seen.velocityAt(ahead);
     const double maxSpeed = handUnitsPerRadian() * glm::radians(params_.maxPursuitDegPerS);
     if (glm::length(follow) > maxSpeed) velocity -= follow * (1.0 - maxSpeed / glm::length(follow));
     move(input, velocity, dt, true);
     // The press counts at the next frame, with the hand where it has just been sent.
-    const glm::dvec2 predicted = seen.positionAt(now + dt);
+    const glm::dvec2 predicted = seen.positionAt(ahead + dt);
     const Thing& inView = *sees(*view, *target_);
     aim_ = pointer + (hand_ - handBefore);
     if (decidesToClick(predicted - aim_, inView.offset, inView.radius, now - aimingSince_, params_)) {
@@ -379,6 +476,9 @@ int SimulatedParticipant::ratingFor(const std::string& statement, int min, int m
         value = responsiveness_;
     else if (text.find("smooth") != std::string::npos)
         value = smoothness_;
+    // This participant's use of the scale, and the noise of one answer.
+    value =
+        4.0 + params_.ratingScale * (value - 4.0) + params_.ratingBias + params_.ratingNoise * ratingRandom_.gaussian();
     return std::clamp(static_cast<int>(std::lround(min + (value - 1.0) / 6.0 * (max - min))), min, max);
 }
 
@@ -389,6 +489,7 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
     if (r.index != statement_) {
         statement_ = r.index;
         statementSince_ = percept.time;
+        answer_.reset();
     }
     if (percept.time - statementSince_ < params_.answerAfterS) {
         typed_ = false;
@@ -405,7 +506,8 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
     }
     const int value = r.kind == protocol::QuestionKind::Choice
         ? 1 + r.index % std::max(1, static_cast<int>(r.boxes.size()))
-        : ratingFor(r.prompt, r.min, r.max);
+        : (answer_ ? *answer_ : ratingFor(r.prompt, r.min, r.max));
+    answer_ = value;  // decided once per question (its noise drawn once)
     if (value >= 1 && value <= 9) {
         input.keys = game::digitKey(value);
         return input;
@@ -435,6 +537,7 @@ game::FrameInput SimulatedParticipant::act(const Percept& percept) {
         // sees where it is.
         if (percept.pointer == game::PointerKind::Cursor) calibration_ = percept.pointerAt - hand_;
         sightings_.clear();
+        pointerLog_.clear();
         target_.reset();
         move(input, {}, dt, false);
     }

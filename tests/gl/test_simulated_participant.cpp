@@ -12,8 +12,10 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "participants/eye.h"
+#include "participants/population.h"
 #include "participants/ideal_params.h"
 #include "click/click_game.h"
 #include "game/registry.h"
@@ -248,6 +250,39 @@ TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {
     EXPECT_GE(compared, 1);
 }
 
+// A world changed where the frame does not show it -- every object's velocity, the mode's name,
+// the outcome the game has judged -- with the pictures unchanged: the same actions, to the bit.
+// An eye that let any of it through to the participant would make them differ.
+TEST(SimulatedParticipant, AChangedWorldWithIdenticalFramesGivesIdenticalActions) {
+    const auto study = shooterAt60();
+    auto game = study->newFreePlay(2, kDisplay, "conv60", 12);
+    auto honest = playerFor(*study, 4);
+    auto fooled = playerFor(*study, 4);
+    game::FrameInput input = honest.first();
+    fooled.first();
+    int moved = 0, presses = 0;
+    for (int frame = 0; frame < 360; ++frame) {
+        const game::ShownFrame shown = game->step(input);
+        game::ShownFrame changed = shown;
+        changed.mode = "another";
+        changed.feedback = shown.feedback.empty() ? "" : "timeout";
+        for (auto* snapshot : {&changed.scene, &changed.render.scene})
+            for (auto& o : snapshot->objects) {
+                o.velocity = -3.0f * o.velocity + glm::vec3(5.0f, 0.0f, 1.0f);
+                o.angularVelocity = glm::vec3(9.0f);
+            }
+        input = honest.next(shown);
+        const game::FrameInput other = fooled.next(changed);
+        ASSERT_EQ(std::memcmp(&input.mouseDx, &other.mouseDx, sizeof(double)), 0) << "frame " << frame;
+        ASSERT_EQ(std::memcmp(&input.mouseDy, &other.mouseDy, sizeof(double)), 0) << "frame " << frame;
+        ASSERT_EQ(input.buttons, other.buttons) << "frame " << frame;
+        moved += input.mouseDx != 0.0;
+        presses += input.buttons != 0;
+    }
+    EXPECT_GT(moved, 120);  // it played: the comparison is of actions, not of idleness
+    EXPECT_GE(presses, 2);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Behaviour
 
@@ -268,6 +303,41 @@ TEST(SimulatedParticipant, ALongerReactionTimeLowersItsHitRate) {
     const double slowRate = hitRate(*study, "conv60", 12, 12, slow);
     // Measured: 12/12 against 5/12 (20 targets: 1.00 against 0.40).
     EXPECT_LT(slowRate, quickRate - 0.3) << "hit rate " << quickRate << " without delay, " << slowRate << " with 0.4 s";
+}
+
+// The demo's shooter calibrates its difficulty as the thesis did (seed 004 §5.3.3): its
+// training staircase raises the target's speed until the 120 Hz misses outnumber the 15 Hz
+// hits, so the test runs where 120 Hz is not saturated. A participant drawn from the shipped
+// population, as `warplab demo` draws them.
+TEST(SimulatedParticipant, TheDemoShootersStaircaseEndsWhere120HzIsNotSaturated) {
+    const auto study = game::loadStudy(protocolPath("shooter-demo"));
+    const auto population =
+        participants::readPopulation(participants::populationPath(testing::sourceDataPaths().assetDir));
+    constexpr std::uint64_t kSeed = 3;
+    testing::glContext();
+    participants::PerceptualPlayer player(nullptr, *study, kDisplay, testing::sourceDataPaths(), kSeed,
+                                          participants::drawParticipant(population, kSeed));
+    auto game = study->newGame(kSeed, kDisplay);
+    game::FrameInput input = player.first();
+    std::vector<nlohmann::json> levels;
+    bool limited = false;
+    for (int frame = 0; frame < 400 * 120 && game->phase() != "test"; ++frame) {
+        const game::ShownFrame shown = game->step(input);
+        for (const auto& e : game->takeEvents()) {
+            if (e.type == "level") levels.push_back(nlohmann::json::parse(e.detailJson));
+            limited = limited || e.type == "training_limit";
+        }
+        input = player.next(shown);
+    }
+    ASSERT_EQ(game->phase(), "test");
+    ASSERT_FALSE(levels.empty());
+    EXPECT_FALSE(limited) << "the staircase ran out of time at level " << levels.back()["difficulty"];
+    const auto& last = levels.back();
+    // Stopped by the thesis's rule, above where it started ...
+    EXPECT_GT(last["high_miss_rate"].get<double>(), last["low_hit_rate"].get<double>());
+    EXPECT_GT(last["difficulty"].get<int>(), levels.front()["difficulty"].get<int>());
+    // ... where 120 Hz misses: a hit rate below 0.9 (measured: 0.75 at level 17, 4 shots).
+    EXPECT_LT(1.0 - last["high_miss_rate"].get<double>(), 0.9);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -44,11 +44,17 @@ TEST(SimulatedParticipant, MotionEstimateRecoversAParabolaAndALine) {
 
 TEST(SimulatedParticipant, ItClicksOnlyWhenBothThePredictedAndTheSeenErrorAreSmall) {
     participants::ParticipantParams p;
+    p.urgencyPerS = 0.0;
     const double r = 10.0;  // within 0.7 * 10
     EXPECT_TRUE(participants::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.5, p));
     EXPECT_FALSE(participants::decidesToClick({8.0, 0.0}, {0.0, 3.0}, r, 0.5, p));  // predicted off
     EXPECT_FALSE(participants::decidesToClick({3.0, 0.0}, {0.0, 8.0}, r, 0.5, p));  // seen off
     EXPECT_FALSE(participants::decidesToClick({3.0, 0.0}, {0.0, 3.0}, r, 0.05, p));  // not aimed long enough
+    // Urgency: after 2 s of aiming at 0.5 per second, twice the criterion (1.4 of the radius).
+    p.urgencyPerS = 0.5;
+    EXPECT_FALSE(participants::decidesToClick({8.0, 0.0}, {0.0, 3.0}, r, 0.1, p));
+    EXPECT_TRUE(participants::decidesToClick({13.0, 0.0}, {0.0, 13.0}, r, 2.0, p));
+    EXPECT_FALSE(participants::decidesToClick({15.0, 0.0}, {0.0, 3.0}, r, 2.0, p));
 }
 
 // The participant alone, fed percepts made by hand: a green object on screen and the cursor

@@ -74,17 +74,21 @@ PerceptualPlayer::PerceptualPlayer(std::unique_ptr<renderer::GlContext> context,
                                    std::uint64_t seed, const ParticipantParams& params)
     : context_(std::move(context)),
       eye_(std::make_unique<Eye>(paths, display, study.rendering(), params.perceptWidth)),
-      participant_(taskKnowledge(study, display), params, seed) {}
+      participant_(taskKnowledge(study, display), params, seed),
+      model_(participantJson(params)) {}
 
 game::FrameInput PerceptualPlayer::next(const game::ShownFrame& shown) { return participant_.act(eye_->see(shown)); }
 
-game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend) {
-    return [paths, backend](std::uint64_t seed, const game::Study& study, const game::DisplaySize& display) {
-        renderer::ContextOptions options;
-        options.backend = backend;
-        options.visible = false;
-        return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display, paths, seed);
-    };
+game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend,
+                                              const Population& population) {
+    return
+        [paths, backend, population](std::uint64_t seed, const game::Study& study, const game::DisplaySize& display) {
+            renderer::ContextOptions options;
+            options.backend = backend;
+            options.visible = false;
+            return std::make_unique<PerceptualPlayer>(renderer::createContext(options), study, display, paths, seed,
+                                                      drawParticipant(population, seed));
+        };
 }
 
 std::string PerceptualPlayer::perceivedWith() const {

@@ -101,6 +101,15 @@ struct ParticipantParams {
     // the target at least minAimS. Model choice (a speed-accuracy trade-off).
     double clickWithin = 0.7;
     double minAimS = 0.1;
+    // The longer it has aimed at one target, the less sure it waits to be: the criterion grows
+    // by this share of itself per second of aiming (an urgency signal: Cisek, Puskas & El-Murr
+    // 2009, J. Neurosci. 29:11560-11571). People in the thesis's study rarely let the 3 s pass
+    // (1.6 % timeouts, seed 004 §6). Model choice.
+    double urgencyPerS = 0.5;
+    // The click game: with no green sphere in sight for this long, it clicks a red one away to
+    // make room (the field holds a fixed number of spheres and only a click frees a place).
+    // Model choice; Yang et al.'s people hit 1.9 to 6.7 red spheres per 45 s match.
+    double clearRedAfterS = 1.0;
     // A clicked object is not aimed at again until it has been seen gone, or this long.
     double forgetClickedS = 1.0;
     // Reticle games: with nothing to aim at, the participant turns back to the view it started
@@ -115,6 +124,23 @@ struct ParticipantParams {
     // choice: slower than the loop's delay (reaction time plus a 200 ms lag), so that a lagging
     // cursor misleads it without making it oscillate without end.
     double recalibrationS = 0.3;
+    // The display's delay, as the participant sees it -- how late the pointer on screen follows
+    // its hand -- is bridged by its internal model by this share: it extrapolates the targets
+    // and its own pointer that much further. People adapt to a constant visual feedback delay
+    // within minutes, in part (Cunningham, Billock & Tsou 2001, Psychol. Sci. 12:532-535;
+    // Smith 1972 on delayed sensory feedback); how fully is a trait of the population.
+    double delayAdaptation = 0.0;
+    // The delay is judged over the last `delayWindowS` of play and followed with this time
+    // constant. Model choices.
+    double delayWindowS = 1.0;
+    double delayFollowS = 0.5;
+    // Rating: the felt value (1..7) is stretched about the scale's middle by ratingScale,
+    // shifted by ratingBias and blurred by Gaussian noise of ratingNoise (each answer its own),
+    // then rounded. People differ in how much of a scale they use and where they sit on it
+    // (response styles: Baumgartner & Steenkamp 2001, J. Marketing Res. 38:143-156).
+    double ratingScale = 1.0;
+    double ratingBias = 0.0;
+    double ratingNoise = 0.0;
     double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
     double answerAfterS = 1.0;  // reading a rating statement before answering it
     // Percept resolution: width in pixels (height keeps the display's aspect). 160 x 90 puts
@@ -176,6 +202,8 @@ public:
 
     // Where it believes it points, in the units of the world as it sees it (see remember()).
     glm::dvec2 pointerBelief() const { return aim_; }
+    // How late, in seconds, it sees the pointer on screen follow its hand (0 until judged).
+    double seenDelay() const { return seenDelay_; }
 
 private:
     struct Thing {
@@ -187,6 +215,7 @@ private:
     };
     struct Sighting {
         double time;
+        double onset;  // when this image first appeared (a held image shows what it showed then)
         bool valid;  // shows a scene in play (no banner, not a screen)
         std::vector<Thing> things;
         Thumbnail picture;
@@ -204,6 +233,9 @@ private:
     void move(game::FrameInput& input, glm::dvec2 velocity, double dt, bool pursuing);
     void remember(const Percept& percept);
     glm::dvec2 homeward(const Sighting& view, glm::dvec2 aim, double now);  // hand velocity back to the start view
+    glm::dvec2 handAt(double time) const;  // where the hand was, from its log
+    void judgeDelay(double now);  // updates seenDelay_ from the pointer log
+    double bridged() const { return params_.delayAdaptation * seenDelay_; }
     double handUnitsPerRadian() const;
     int ratingFor(const std::string& statement, int min, int max);
     void judgeMatch();
@@ -211,6 +243,7 @@ private:
     TaskKnowledge knowledge_;
     ParticipantParams params_;
     game::Random random_;
+    game::Random ratingRandom_;  // its own stream: answering a question moves no hand
     glm::dvec2 unitsPerCount_;  // hand units per count in x and y, signed as the game reads them
     glm::dvec2 hand_{0.0};  // where it has commanded its hand to be (efference copy)
     glm::dvec2 calibration_{0.0};  // cursor: where it sees the cursor, less where its hand says
@@ -218,8 +251,17 @@ private:
     glm::dvec2 noise_{0.0};  // the motor noise's current velocity, hand units per second
     double lastTime_ = -1.0;
     std::deque<Sighting> sightings_;
+    // The hand's log (time shown, hand) and the pointer seen at each new image (its onset,
+    // the cursor or the view as seen), for judging the display's delay.
+    std::deque<std::pair<double, glm::dvec2>> handLog_;
+    std::deque<std::pair<double, glm::dvec2>> pointerLog_;
+    double seenDelay_ = 0.0;  // s: how late the pointer on screen follows the hand
+    double lastDelayJudged_ = -1.0;
+    std::optional<Percept> lastPercept_;  // to tell a new image from a held one
+    double onset_ = 0.0;
     std::optional<std::uint32_t> target_;
     double aimingSince_ = 0.0;
+    double lastGreenSeen_ = 0.0;
     std::map<std::uint32_t, double> clicked_;
     std::optional<Thumbnail> home_;  // the view it started with ...
     glm::dvec2 homeHand_{0.0};  // ... and where its hand was then
@@ -244,6 +286,7 @@ private:
     double smoothness_ = 4.0, responsiveness_ = 4.0;
     bool judged_ = true;
     int statement_ = -1;
+    std::optional<int> answer_;  // to the question on screen, once decided
     double statementSince_ = 0.0;
     bool typed_ = false;  // a text answer has been typed and waits for Enter
 };

@@ -11,6 +11,7 @@
 #include "game/game.h"
 #include "participants/participant.h"
 #include "participants/perception.h"
+#include "participants/population.h"
 #include "present/frame_maker.h"
 #include "renderer/context.h"
 
@@ -47,8 +48,10 @@ private:
 };
 
 // Makes PerceptualPlayers for the GL-free runner, each with a headless context of its own
-// (`backend`: OSMesa or EGL) and the shaders under `paths`.
-game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend);
+// (`backend`: OSMesa or EGL) and the shaders under `paths`, the participant with a seed drawn
+// from `population` (participants/population.h).
+game::SeeingPlayerMaker perceptualPlayerMaker(const renderer::DataPaths& paths, renderer::GlBackend backend,
+                                              const Population& population);
 
 // A game::Player that sees with an Eye and acts as a SimulatedParticipant.
 class PerceptualPlayer final : public game::Player {
@@ -62,11 +65,14 @@ public:
     // The GL implementation the percepts come from (sessions record it: percepts, and so the
     // inputs, are reproducible on the same one).
     std::string perceivedWith() const override;
+    // Its traits (participantJson), recorded in the session's header.
+    std::string model() const override { return model_; }
 
 private:
     std::unique_ptr<renderer::GlContext> context_;  // first: destroyed after the GL objects below
     std::unique_ptr<Eye> eye_;
     SimulatedParticipant participant_;
+    std::string model_;
 };
 
 }  // namespace warplab::participants
