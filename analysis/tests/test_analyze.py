@@ -23,7 +23,7 @@ DATA = Path(__file__).resolve().parent / "data"
 sys.path.insert(0, str(ANALYSIS))
 
 import analyze  # noqa: E402
-from warplab_analysis import stats  # noqa: E402
+from warplab_analysis import papers, stats  # noqa: E402
 
 HITRATES_HEADER = "participant,game,mode,shots,hits,timeouts,hit_rate"
 
@@ -791,3 +791,45 @@ def test_a_study_of_1700_participants_gets_readable_figures(tmp_path):
         height, width = matplotlib.image.imread(tmp_path / "out" / name).shape[:2]
         assert width <= 3000 and height <= 3000, (name, width, height)
     assert len(report["games"]["shooter"]["participants"]) == 1700
+
+
+def papers_rows(md, title):
+    """The cells of each row of the table under the report's heading that starts with `title`."""
+    section = md.split("## Beside the papers' people")[1].split("### " + title)[1].split("\n### ")[0]
+    lines = [line for line in section.splitlines() if line.startswith("| ")][1:]  # the header left out
+    return [[c.strip() for c in line.strip().strip("|").split("|")] for line in lines]
+
+
+def test_the_thesis_data_stands_beside_itself(thesis):
+    """The thesis's own Table 1, analysed, must equal the figures the report sets beside it."""
+    _, out = thesis
+    md = (out / "report.md").read_text(encoding="utf-8")
+    rows = {cells[0]: cells for cells in papers_rows(md, "Shooter and the thesis's Table 1")}
+    assert "sessions.csv does not say who played" in md
+    for mode, (mean, sd) in papers.thesis_hit_rates().items():
+        cells = rows[mode]
+        assert cells[1] == cells[4] == f"{mean:.3f}"
+        assert cells[2] == cells[5] == f"{sd:.3f}"
+        assert cells[3] == cells[6]
+    thesis_rates = papers.thesis_hit_rates()
+    assert rows["conv15"][6] == f"{thesis_rates['conv15'][0] / thesis_rates['conv120'][0]:.2f}" == "0.70"
+
+
+def test_a_simulated_study_says_so_beside_yangs_people(tmp_path):
+    write_click_export(tmp_path)
+    sessions = (tmp_path / "sessions.csv").read_text(encoding="utf-8").replace(",human,", ",sim:3,")
+    (tmp_path / "sessions.csv").write_text(sessions, encoding="utf-8")
+    out = tmp_path / "out"
+    code, report = run_in_process(tmp_path, out)
+    assert code == 0
+    md = (out / "report.md").read_text(encoding="utf-8")
+    assert "participants are **simulated**" in md
+    rows = {(cells[0], cells[1]): cells for cells in papers_rows(md, "Click game and Yang")}
+    green = rows[("Green hits", "conv15")]
+    ours = report["click"]["measures"]["green_hits"]["modes"]
+    assert green[2] == f"{ours['conv15']['mean']:.2f}"
+    assert green[4] == f"{ours['conv15']['mean'] / ours['conv60']['mean']:.2f}"
+    assert green[5:] == ["31.89", "6.82", f"{31.89 / 43.79:.2f}"]
+    # A rating statement is matched to Yang's by its words; counts only have a relative column.
+    enjoyed = rows[("I enjoyed playing this game", "bireproj15to60")]
+    assert enjoyed[5:] == ["4.38", "1.14", "–"] and enjoyed[4] == "–"

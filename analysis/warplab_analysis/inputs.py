@@ -365,9 +365,12 @@ def load_sessions(export_dir):
         return None
     try:
         table = read_table(path, ["included"])
-        summary = {"listed": 0, "included": 0, "by_game": {}}
+        summary = {"listed": 0, "included": 0, "by_game": {}, "players": {}}
         for record in table.records:
             included = boolean(table, record, "included")
+            if included:  # by kind: "sim", "bot", "human", "replay"
+                kind = record.get("player", "").split(":")[0] or "unknown"
+                summary["players"][kind] = summary["players"].get(kind, 0) + 1
             game = record.get("game", "")
             per_game = summary["by_game"].setdefault(game, {"listed": 0, "included": 0})
             for counts in (summary, per_game):

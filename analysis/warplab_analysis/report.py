@@ -11,8 +11,9 @@ describes it: its words and, in a section of their own, its parts and latencies.
 Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
 """
 import math
+import statistics
 
-from . import planning
+from . import papers, planning
 
 NOTHING = "–"
 
@@ -302,4 +303,74 @@ def render(results):
         else:
             out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
+    papers_section(out, results)
     return "\n".join(out)
+
+
+def mean_sd(values):
+    values = [v for v in values if v is not None and math.isfinite(v)]
+    if not values:
+        return None, None
+    return statistics.mean(values), statistics.stdev(values) if len(values) > 1 else None
+
+
+def papers_section(out, results):
+    """This study beside the papers' people, for the modes both have: the thesis's Table 1 (shooter)
+    and Yang et al.'s Table 2 (click game). Says whether this study's participants were simulated."""
+    def shares(modes, paper_modes, best):  # the best mode and another of the paper's
+        return best in modes and len(set(modes) & set(paper_modes)) > 1
+
+    shooter = [(g, s) for g, s in results["games"].items()
+               if shares(s["modes"], papers.THESIS_MODES, papers.THESIS_BEST)]
+    click = results["click"]
+    click = click if click and shares(click["modes"], papers.YANG_MODES, papers.YANG_BEST) else None
+    if not shooter and not click:
+        return
+    players = results["sessions"].get("players", {}) if isinstance(results["sessions"], dict) else {}
+    out.append("## Beside the papers' people\n")
+    if players and set(players) == {"sim"}:
+        who = ("This study's participants are **simulated** (warplab's perceptual model, "
+               "docs/simulated-participant.md), not people: their figures show what the model does, the papers' "
+               "what people did.")
+    elif players:
+        who = ("This study's sessions (" + ", ".join(f"{k}: {n}" for k, n in sorted(players.items())) +
+               ") beside the papers' people.")
+    else:
+        who = "This study beside the papers' people (sessions.csv does not say who played)."
+    out.append(who + " Relative: the mode's mean over the best mode's (120 Hz; 60 fps), the measure the studies' "
+               "own comparisons rest on, since difficulty and skill set the absolute level.\n")
+    for game, summary in shooter:
+        rates = summary["hit_rates"]
+        thesis = papers.thesis_hit_rates()
+        ours = {m: mean_sd([rates[p][m]["hit_rate"] for p in summary["participants"] if m in rates[p]])
+                for m in papers.THESIS_MODES if m in summary["modes"]}
+        best, best_paper = ours[papers.THESIS_BEST][0], thesis[papers.THESIS_BEST][0]
+        out.append(f"### {cell(title(game))} and the thesis's Table 1 (seed 004, 20 people, 225 targets per mode)\n")
+        rows = []
+        for m in [m for m in papers.THESIS_MODES if m in summary["modes"]]:
+            mean, sd = ours[m]
+            rows.append([m, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(mean / best if mean is not None and best else None,
+                                                               ".2f"),
+                         fmt(thesis[m][0], ".3f"), fmt(thesis[m][1], ".3f"), fmt(thesis[m][0] / best_paper, ".2f")])
+        out.append(table(["mode", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
+    if click:
+        ref = papers.YANG_BEST
+        out.append("### Click game and Yang et al.'s Table 2 (seed 000 §8, 33 people, two 45 s matches per mode)\n")
+        out.append("Counts are per match, so their absolute size follows the match length; compare the relative "
+                   "columns. Ratings on 1..7 compare as they are.\n")
+        rows = []
+        for key, measure in click["measures"].items():
+            paper_key = key if key in papers.YANG_TABLE2 else papers.yang_rating_key(measure["label"])
+            if paper_key is None:
+                continue
+            paper = papers.YANG_TABLE2[paper_key]
+            counts = paper_key in ("green_hits", "red_hits", "misses")
+            ref_mean = measure["modes"][ref]["mean"]
+            for m in [m for m in papers.YANG_MODES if m in click["modes"]]:
+                e = measure["modes"][m]
+                relative = e["mean"] / ref_mean if counts and e["mean"] is not None and ref_mean else None
+                rows.append([cell(measure["label"]), m, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
+                             fmt(relative, ".2f") if counts else NOTHING, fmt(paper[m][0], ".2f"),
+                             fmt(paper[m][1], ".2f"),
+                             fmt(paper[m][0] / paper[ref][0], ".2f") if counts else NOTHING])
+        out.append(table(["measure", "mode", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
