@@ -482,7 +482,9 @@ def assert_same(got, expected, where):
 
 
 def without_conditions_section(md):
-    """report.md less the section that describes each condition's parts (added since)."""
+    """report.md less what was added since: the section that describes each condition's parts, and
+    the sections setting the papers' people beside the study."""
+    md = re.sub(r"### Beside the papers' people.*?(?=\n#{1,3} |\Z)", "", md, flags=re.S)
     return re.sub(r"## Conditions\n.*?(?=\n## )", "", md, flags=re.S).replace("\n\n\n", "\n\n")
 
 
@@ -496,6 +498,8 @@ def test_modes_csv_export_reports_as_before(tmp_path, name):
     assert set(report) - set(expected) == ADDED_KEYS and set(expected) <= set(report)
     assert report["conditions_file"] == ("modes.csv" if name == "both" else None)
     assert [r["condition"] for r in report["conditions"]] == [m["mode"] for m in expected["modes"]]
+    if report["sessions"]:
+        assert report["sessions"].pop("players") == {"human": 5}  # added since: who played, by kind
     assert_same({k: report[k] for k in expected}, expected, "report")
     md = (tmp_path / "out" / "report.md").read_text(encoding="utf-8").replace(str(export), "EXPORT")
     assert without_conditions_section(md) == (BEFORE / f"{name}.md").read_text(encoding="utf-8")
@@ -795,7 +799,7 @@ def test_a_study_of_1700_participants_gets_readable_figures(tmp_path):
 
 def papers_rows(md, title):
     """The cells of each row of the table under the report's heading that starts with `title`."""
-    section = md.split("## Beside the papers' people")[1].split("### " + title)[1].split("\n### ")[0]
+    section = md.split("### Beside the papers' people: " + title)[1].split("\n#")[0]
     lines = [line for line in section.splitlines() if line.startswith("| ")][1:]  # the header left out
     return [[c.strip() for c in line.strip().strip("|").split("|")] for line in lines]
 
@@ -804,7 +808,7 @@ def test_the_thesis_data_stands_beside_itself(thesis):
     """The thesis's own Table 1, analysed, must equal the figures the report sets beside it."""
     _, out = thesis
     md = (out / "report.md").read_text(encoding="utf-8")
-    rows = {cells[0]: cells for cells in papers_rows(md, "Shooter and the thesis's Table 1")}
+    rows = {cells[0]: cells for cells in papers_rows(md, "the thesis's Table 1")}
     assert "sessions.csv does not say who played" in md
     for mode, (mean, sd) in papers.thesis_hit_rates().items():
         cells = rows[mode]
@@ -824,7 +828,7 @@ def test_a_simulated_study_says_so_beside_yangs_people(tmp_path):
     assert code == 0
     md = (out / "report.md").read_text(encoding="utf-8")
     assert "participants are **simulated**" in md
-    rows = {(cells[0], cells[1]): cells for cells in papers_rows(md, "Click game and Yang")}
+    rows = {(cells[0], cells[1]): cells for cells in papers_rows(md, "Yang et al.'s Table 2")}
     green = rows[("Green hits", "conv15")]
     ours = report["click"]["measures"]["green_hits"]["modes"]
     assert green[2] == f"{ours['conv15']['mean']:.2f}"

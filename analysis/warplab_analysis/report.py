@@ -297,13 +297,16 @@ def render(results):
             heading = f"{title(game)} game" if game else "Matches"
             out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
             click_sections(out, click, 3)
+            if shares(click["modes"], papers.YANG_MODES, papers.YANG_BEST):
+                yang_section(out, results, click, 3)
             if summary:
                 out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
                 hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
         else:
             out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
-    papers_section(out, results)
+            if shares(summary["modes"], papers.THESIS_MODES, papers.THESIS_BEST):
+                thesis_section(out, results, game, summary, 3)
     return "\n".join(out)
 
 
@@ -314,63 +317,65 @@ def mean_sd(values):
     return statistics.mean(values), statistics.stdev(values) if len(values) > 1 else None
 
 
-def papers_section(out, results):
-    """This study beside the papers' people, for the modes both have: the thesis's Table 1 (shooter)
-    and Yang et al.'s Table 2 (click game). Says whether this study's participants were simulated."""
-    def shares(modes, paper_modes, best):  # the best mode and another of the paper's
-        return best in modes and len(set(modes) & set(paper_modes)) > 1
+def shares(modes, paper_modes, best):
+    """The study played the paper's best mode and another of the paper's: there is something to compare."""
+    return best in modes and len(set(modes) & set(paper_modes)) > 1
 
-    shooter = [(g, s) for g, s in results["games"].items()
-               if shares(s["modes"], papers.THESIS_MODES, papers.THESIS_BEST)]
-    click = results["click"]
-    click = click if click and shares(click["modes"], papers.YANG_MODES, papers.YANG_BEST) else None
-    if not shooter and not click:
-        return
+
+def who_played(results):
+    """What a comparison with the papers says of this study's participants (sessions.csv's player)."""
     players = results["sessions"].get("players", {}) if isinstance(results["sessions"], dict) else {}
-    out.append("## Beside the papers' people\n")
     if players and set(players) == {"sim"}:
         who = ("This study's participants are **simulated** (warplab's perceptual model, "
-               "docs/simulated-participant.md), not people: their figures show what the model does, the papers' "
+               "docs/simulated-participant.md), not people: their figures show what the model does, the paper's "
                "what people did.")
     elif players:
-        who = ("This study's sessions (" + ", ".join(f"{k}: {n}" for k, n in sorted(players.items())) +
-               ") beside the papers' people.")
+        who = "This study's sessions (" + ", ".join(f"{k}: {n}" for k, n in sorted(players.items())) + ")."
     else:
-        who = "This study beside the papers' people (sessions.csv does not say who played)."
-    out.append(who + " Relative: the mode's mean over the best mode's (120 Hz; 60 fps), the measure the studies' "
-               "own comparisons rest on, since difficulty and skill set the absolute level.\n")
-    for game, summary in shooter:
-        rates = summary["hit_rates"]
-        thesis = papers.thesis_hit_rates()
-        ours = {m: mean_sd([rates[p][m]["hit_rate"] for p in summary["participants"] if m in rates[p]])
-                for m in papers.THESIS_MODES if m in summary["modes"]}
-        best, best_paper = ours[papers.THESIS_BEST][0], thesis[papers.THESIS_BEST][0]
-        out.append(f"### {cell(title(game))} and the thesis's Table 1 (seed 004, 20 people, 225 targets per mode)\n")
-        rows = []
-        for m in [m for m in papers.THESIS_MODES if m in summary["modes"]]:
-            mean, sd = ours[m]
-            rows.append([m, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(mean / best if mean is not None and best else None,
-                                                               ".2f"),
-                         fmt(thesis[m][0], ".3f"), fmt(thesis[m][1], ".3f"), fmt(thesis[m][0] / best_paper, ".2f")])
-        out.append(table(["mode", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
-    if click:
-        ref = papers.YANG_BEST
-        out.append("### Click game and Yang et al.'s Table 2 (seed 000 §8, 33 people, two 45 s matches per mode)\n")
-        out.append("Counts are per match, so their absolute size follows the match length; compare the relative "
-                   "columns. Ratings on 1..7 compare as they are.\n")
-        rows = []
-        for key, measure in click["measures"].items():
-            paper_key = key if key in papers.YANG_TABLE2 else papers.yang_rating_key(measure["label"])
-            if paper_key is None:
-                continue
-            paper = papers.YANG_TABLE2[paper_key]
-            counts = paper_key in ("green_hits", "red_hits", "misses")
-            ref_mean = measure["modes"][ref]["mean"]
-            for m in [m for m in papers.YANG_MODES if m in click["modes"]]:
-                e = measure["modes"][m]
-                relative = e["mean"] / ref_mean if counts and e["mean"] is not None and ref_mean else None
-                rows.append([cell(measure["label"]), m, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
-                             fmt(relative, ".2f") if counts else NOTHING, fmt(paper[m][0], ".2f"),
-                             fmt(paper[m][1], ".2f"),
-                             fmt(paper[m][0] / paper[ref][0], ".2f") if counts else NOTHING])
-        out.append(table(["measure", "mode", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
+        who = "sessions.csv does not say who played."
+    return who + (" Relative: the mode's mean over the best mode's, the measure the studies' own comparisons rest "
+                  "on, since difficulty and skill set the absolute level.\n")
+
+
+def thesis_section(out, results, game, summary, level):
+    """The shooter beside the thesis's people (Table 1), for the modes both have."""
+    rates = summary["hit_rates"]
+    thesis = papers.thesis_hit_rates()
+    modes = [m for m in papers.THESIS_MODES if m in summary["modes"]]
+    ours = {m: mean_sd([rates[p][m]["hit_rate"] for p in summary["participants"] if m in rates[p]]) for m in modes}
+    best, best_paper = ours[papers.THESIS_BEST][0], thesis[papers.THESIS_BEST][0]
+    out.append(f"{'#' * level} Beside the papers' people: the thesis's Table 1 (seed 004, 20 people, "
+               f"{papers.THESIS_TARGETS} targets per mode)\n")
+    out.append(who_played(results))
+    rows = []
+    for m in modes:
+        mean, sd = ours[m]
+        relative = mean / best if mean is not None and best else None
+        rows.append([m, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(relative, ".2f"), fmt(thesis[m][0], ".3f"),
+                     fmt(thesis[m][1], ".3f"), fmt(thesis[m][0] / best_paper, ".2f")])
+    out.append(table(["mode", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
+
+
+def yang_section(out, results, click, level):
+    """The click game beside Yang et al.'s people (Table 2), for the modes and measures both have."""
+    ref = papers.YANG_BEST
+    out.append(f"{'#' * level} Beside the papers' people: Yang et al.'s Table 2 (seed 000 §8, 33 people, two 45 s "
+               "matches per mode)\n")
+    out.append(who_played(results))
+    out.append("Counts are per match, so their absolute size follows the match length: compare the relative "
+               "columns. Ratings on 1..7 compare as they are.\n")
+    rows = []
+    for key, measure in click["measures"].items():
+        paper_key = key if key in papers.YANG_TABLE2 else papers.yang_rating_key(measure["label"])
+        if paper_key is None:
+            continue
+        paper = papers.YANG_TABLE2[paper_key]
+        counts = paper_key in ("green_hits", "red_hits", "misses")
+        ref_mean = measure["modes"][ref]["mean"]
+        for m in [m for m in papers.YANG_MODES if m in click["modes"]]:
+            e = measure["modes"][m]
+            relative = e["mean"] / ref_mean if counts and e["mean"] is not None and ref_mean else None
+            rows.append([cell(measure["label"]), m, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
+                         fmt(relative, ".2f") if counts else NOTHING, fmt(paper[m][0], ".2f"),
+                         fmt(paper[m][1], ".2f"), fmt(paper[m][0] / paper[ref][0], ".2f") if counts else NOTHING])
+    out.append(table(["measure", "mode", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
