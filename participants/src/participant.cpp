@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 
@@ -171,13 +172,12 @@ bool sameImage(const Percept& a, const Percept& b) {
 glm::dvec2 SimulatedParticipant::handAt(double time) const {
     if (handLog_.empty()) return hand_;
     if (time <= handLog_.front().first) return handLog_.front().second;
-    for (std::size_t i = 1; i < handLog_.size(); ++i)
-        if (handLog_[i].first >= time) {
-            const auto& [t0, h0] = handLog_[i - 1];
-            const auto& [t1, h1] = handLog_[i];
-            return t1 > t0 ? glm::mix(h0, h1, (time - t0) / (t1 - t0)) : h1;
-        }
-    return handLog_.back().second;
+    const auto later = std::lower_bound(handLog_.begin(), handLog_.end(), time,
+                                        [](const auto& entry, double t) { return entry.first < t; });
+    if (later == handLog_.end()) return handLog_.back().second;
+    const auto& [t0, h0] = *std::prev(later);
+    const auto& [t1, h1] = *later;
+    return t1 > t0 ? glm::mix(h0, h1, (time - t0) / (t1 - t0)) : h1;
 }
 
 void SimulatedParticipant::judgeDelay(double now) {

@@ -88,6 +88,38 @@ TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndC
     EXPECT_GT(clickedAt / 60.0, 0.3);
 }
 
+// The display's delay, judged from the pictures alone: the cursor shown D frames after the hand
+// moved it, a green object circling so that the hand keeps moving. What it judges is D, within
+// a frame, whatever D is -- and nothing while the hand is still.
+double judgedDelay(int delayFrames, bool moving = true) {
+    participants::TaskKnowledge knowledge;
+    knowledge.display = kDisplay;
+    knowledge.pixelsPerCount = 1.0;
+    knowledge.greenOnly = true;
+    participants::ParticipantParams params;
+    params.clickWithin = 0.0;  // it never clicks: the object stays
+    participants::SimulatedParticipant participant(knowledge, params, 3);
+    std::vector<glm::dvec2> cursor = {{960.0, 540.0}};
+    for (int frame = 0; frame < 240; ++frame) {
+        const double t = frame / 60.0;
+        participants::Percept percept;
+        percept.time = t;
+        percept.pointer = game::PointerKind::Cursor;
+        percept.pointerAt = cursor[static_cast<std::size_t>(std::max(0, frame - delayFrames))];
+        const glm::dvec2 at = moving ? glm::dvec2(960.0 + 300.0 * std::cos(2.0 * t), 540.0 + 300.0 * std::sin(2.0 * t))
+                                     : glm::dvec2(960.0, 540.0);
+        percept.objects = {{scene::kIdFirstSphere, at, 40.0, {0.1, 0.8, 0.1}, 60}};
+        const game::FrameInput input = participant.act(percept);
+        cursor.push_back(cursor.back() + glm::dvec2(input.mouseDx, input.mouseDy));
+    }
+    return participant.seenDelay();
+}
+
+TEST(SimulatedParticipant, ItJudgesTheDisplaysDelayFromWhereItSeesTheCursorFollowItsHand) {
+    for (const int frames : {0, 3, 6, 12}) EXPECT_NEAR(judgedDelay(frames), frames / 60.0, 1.0 / 60.0) << frames;
+    EXPECT_EQ(judgedDelay(12, false), 0.0);  // a hand at rest shows no delay
+}
+
 // A reticle game made by hand: targets at fixed directions in the world, the view turned by the
 // participant's own counts, and the percepts it would get -- the target where the view puts it,
 // the pictures left empty, so the view can only be judged by the hand's own turn.

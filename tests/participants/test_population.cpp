@@ -183,3 +183,19 @@ TEST(Population, RatingsVaryAcrossParticipants) {
 
 }  // namespace
 }  // namespace warplab
+
+namespace warplab {
+namespace {
+
+// The docs' table of traits names every trait the model has (and says what the file sets).
+TEST(Population, TheDocsNameEveryTrait) {
+    std::ifstream in(std::string(WARPLAB_SOURCE_DIR) + "/docs/simulated-participant.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    ASSERT_FALSE(text.str().empty());
+    for (const auto& spec : traitSpecs())
+        EXPECT_NE(text.str().find(std::string("| `") + spec.name + "` |"), std::string::npos) << spec.name;
+}
+
+}  // namespace
+}  // namespace warplab
