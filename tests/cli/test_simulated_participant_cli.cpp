@@ -1,10 +1,12 @@
 // `warplab run --headless --player sim[:SEED]`: the perceptual simulated participant plays a
 // whole protocol through the command line, and the session replays from its input log alone.
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
 
 #include "cli/cli_support.h"
+#include "participants/population.h"
 #include "session/session_store.h"
 
 namespace {
@@ -29,6 +31,11 @@ TEST(CliSimulatedParticipant, PlaysShooterQuickToTheEndAndTheSessionReplays) {
     const auto data = warplab::session::readSession(session);
     EXPECT_TRUE(data.completed);
     EXPECT_EQ(data.header.player, "sim:1");
+    // Its traits, drawn from its seed out of the shipped population, are in the header.
+    const auto population = warplab::participants::readPopulation(
+        warplab::participants::populationPath(std::string(WARPLAB_SOURCE_DIR) + "/assets"));
+    EXPECT_EQ(data.header.playerModel,
+              warplab::participants::participantJson(warplab::participants::drawParticipant(population, 1)));
     // The header says which GL drew its percepts: the input log is reproducible on that one.
     EXPECT_TRUE(contains(data.header.glRenderer, "simulated participant")) << data.header.glRenderer;
     int testTrials = 0;
@@ -79,6 +86,19 @@ TEST(CliSimulatedParticipant, WrongUsesAreRefusedWithASentence) {
                                 dir + " --player sim");
     EXPECT_EQ(window.status, 2);
     EXPECT_TRUE(contains(window.output, "runs headless only")) << window.output;
+    EXPECT_TRUE(sessionIn(dir).empty());
+    // A population file that is not one: one sentence naming the file and the field, exit 1.
+    const std::string bad = dir + "/population.json";
+    std::ofstream(bad) << R"({"traits": {"reaction_s": {"median": 7, "spread": 0.1}}})";
+    const auto population = warplab("run --seed 1 --protocol " + protocol("shooter-quick") +
+                                    " --participant S1 --out " + dir + " --headless --player sim --population " + bad);
+    EXPECT_EQ(population.status, 1);
+    EXPECT_TRUE(contains(population.output, "population file '" + bad + "': traits.reaction_s.median is 7, outside"))
+        << population.output;
+    const auto forBot = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " +
+                                dir + " --headless --player bot --population " + bad);
+    EXPECT_EQ(forBot.status, 2);
+    EXPECT_TRUE(contains(forBot.output, "--population only applies with --headless --player sim")) << forBot.output;
     EXPECT_TRUE(sessionIn(dir).empty());
 }
 

@@ -77,7 +77,8 @@ TEST(Population, AParticipantsTraitsAreWrittenAsJsonForTheHeader) {
     participants::ParticipantParams p;
     p.reactionS = 0.25;
     const std::string json = participants::participantJson(p);
-    for (const auto& spec : traitSpecs()) EXPECT_NE(json.find(std::string("\"") + spec.name + "\":"), std::string::npos);
+    for (const auto& spec : traitSpecs())
+        EXPECT_NE(json.find(std::string("\"") + spec.name + "\":"), std::string::npos);
     EXPECT_NE(json.find("\"reaction_s\":0.25"), std::string::npos) << json;
     // And the file the fit writes reads back as it was.
     const participants::Population again =
@@ -113,9 +114,10 @@ TEST(Population, ABadFileIsRefusedNamingTheFileAndTheField) {
     EXPECT_NE(refusal(replaced("\"pursuit_gain\": {\n      \"median\"", "\"pursuit_gain\": {\n      \"mean\""))
                   .find("traits.pursuit_gain needs a number 'median'"),
               std::string::npos);
-    EXPECT_NE(refusal(replaced("\"delay_adaptation\": {\n      \"median\": ", "\"delay_adaptation\": {\n      \"median\": 7"))
-                  .find("traits.delay_adaptation.median is 7"),
-              std::string::npos);
+    EXPECT_NE(
+        refusal(replaced("\"delay_adaptation\": {\n      \"median\": ", "\"delay_adaptation\": {\n      \"median\": 7"))
+            .find("traits.delay_adaptation.median is 7"),
+        std::string::npos);
     EXPECT_NE(refusal(replaced("\"rating_noise\": {\n      \"median\": ", "\"rating_noise\": {\n      \"median\": -"))
                   .find("traits.rating_noise.median"),
               std::string::npos);
