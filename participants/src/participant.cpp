@@ -346,10 +346,21 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     if (greenInSight || !view->valid) lastGreenSeen_ = now;
     const bool clearRed = knowledge_.greenOnly && now - lastGreenSeen_ > params_.clearRedAfterS;
     if (!target_ && view->valid) {
+        // The easiest one: the nearest, counting how far each moves while the participant reacts
+        // and the display lags, as it sees that lag -- where the display is late, a sphere
+        // resting on the floor is an easier choice than a falling one, and people choose so.
+        // It chooses once it has watched the field a tenth of a second: how each one moves is
+        // part of the choice.
+        const Sighting* before = nullptr;  // an image about a tenth of a second older
+        for (const auto& s : sightings_)
+            if (s.valid && s.time <= view->time - 0.1 + 1e-9) before = &s;
+        const double lead = params_.reactionS + seenDelay_;
         double best = std::numeric_limits<double>::infinity();
-        for (const auto& t : view->things) {
+        for (const auto& t : before != nullptr ? view->things : std::vector<Thing>{}) {
             if ((knowledge_.greenOnly && !t.green && !clearRed) || clicked_.count(t.id)) continue;
-            const double d = glm::length(t.where - pointer);
+            double d = glm::length(t.where - pointer);
+            if (const Thing* then = sees(*before, t.id))
+                d += glm::length(t.where - then->where) / (view->time - before->time) * lead;
             if (d < best) {
                 best = d;
                 target_ = t.id;

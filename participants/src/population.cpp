@@ -71,8 +71,8 @@ Population parsePopulation(const std::string& text, const std::string& source) {
     if (!j.contains("traits") || !j["traits"].is_object()) throw fail("has no 'traits' object");
     const auto& traits = j["traits"];
     for (const auto& [key, value] : traits.items()) {
-        const bool known = std::any_of(traitSpecs().begin(), traitSpecs().end(),
-                                       [&](const TraitSpec& s) { return key == s.name; });
+        const bool known =
+            std::any_of(traitSpecs().begin(), traitSpecs().end(), [&](const TraitSpec& s) { return key == s.name; });
         if (!known) throw fail("traits." + key + " is not a trait of the model");
     }
     Population p;

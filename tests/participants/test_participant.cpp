@@ -120,6 +120,31 @@ TEST(SimulatedParticipant, ItJudgesTheDisplaysDelayFromWhereItSeesTheCursorFollo
     EXPECT_EQ(judgedDelay(12, false), 0.0);  // a hand at rest shows no delay
 }
 
+// Of two green spheres it goes for the easier one: a nearer one that moves fast is further
+// away, by the time the hand gets there, than a farther one that rests. (When it chooses, a
+// tenth of a second in, the falling one is 141 px away and the resting one 250 px.)
+TEST(SimulatedParticipant, ItChoosesTheTargetEasiestToReachNotTheNearest) {
+    participants::TaskKnowledge knowledge;
+    knowledge.display = kDisplay;
+    knowledge.pixelsPerCount = 1.0;
+    knowledge.greenOnly = true;
+    participants::SimulatedParticipant participant(knowledge, {}, 5);
+    double handX = 0.0;
+    for (int frame = 0; frame < 24; ++frame) {
+        const double t = frame / 60.0;
+        participants::Percept percept;
+        percept.time = t;
+        percept.pointer = game::PointerKind::Cursor;
+        percept.pointerAt = {960.0 + handX, 540.0};
+        const participants::SeenObject falling{
+            scene::kIdFirstSphere, {1060.0, 340.0 + 1000.0 * t}, 30.0, {0.1, 0.8, 0.1}, 60};
+        const participants::SeenObject resting{scene::kIdFirstSphere + 1, {710.0, 540.0}, 30.0, {0.1, 0.8, 0.1}, 60};
+        percept.objects = {falling, resting};
+        handX += participant.act(percept).mouseDx;
+    }
+    EXPECT_LT(handX, -20.0) << "it went for the falling sphere 100 px away, not the resting one 250 px away";
+}
+
 // A reticle game made by hand: targets at fixed directions in the world, the view turned by the
 // participant's own counts, and the percepts it would get -- the target where the view puts it,
 // the pictures left empty, so the view can only be judged by the hand's own turn.
