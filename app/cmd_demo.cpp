@@ -123,6 +123,8 @@ int runDemo(const ParsedArgs& args) {
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
     if (backend == renderer::GlBackend::Window) throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
     const fs::path root = fs::path(paths.shaderDir).parent_path();
+    if (player == "bot" && args.has("population"))
+        throw UsageError("option --population only applies with --player sim (the bot reads the game)");
     const participants::Population population = populationFrom(args, paths);  // refused now, not in a child
     const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
     const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";

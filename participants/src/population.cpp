@@ -70,10 +70,10 @@ Population parsePopulation(const std::string& text, const std::string& source) {
     if (!j.is_object()) throw fail("is not a JSON object");
     if (!j.contains("traits") || !j["traits"].is_object()) throw fail("has no 'traits' object");
     const auto& traits = j["traits"];
-    for (const auto& [key, value] : traits.items()) {
-        const bool known =
-            std::any_of(traitSpecs().begin(), traitSpecs().end(), [&](const TraitSpec& s) { return key == s.name; });
-        if (!known) throw fail("traits." + key + " is not a trait of the model");
+    for (const auto& item : traits.items()) {
+        const bool known = std::any_of(traitSpecs().begin(), traitSpecs().end(),
+                                       [&](const TraitSpec& s) { return item.key() == s.name; });
+        if (!known) throw fail("traits." + item.key() + " is not a trait of the model");
     }
     Population p;
     if (j.contains("description") && j["description"].is_string()) p.description = j["description"];

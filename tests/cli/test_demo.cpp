@@ -122,6 +122,15 @@ TEST(CliDemo, BadInputIsRefusedWithASentenceAndAFailedSessionNamesItsLog) {
     EXPECT_TRUE(contains(unknown.output, "no-such-protocol.json")) << unknown.output;
     EXPECT_TRUE(filesIn(fs::path(out) / "results", ".warplab-session").empty());
 
+    // A population that is no file is refused before any session starts; the bot has none.
+    const auto population = warplab("demo --out " + out + " --protocols shooter-quick --population " + out + "/none");
+    EXPECT_EQ(population.status, 1) << population.output;
+    EXPECT_TRUE(contains(population.output, "cannot read the population file '" + out + "/none'")) << population.output;
+    const auto bot = warplab("demo --out " + out + " --player bot --population " + out + "/none");
+    EXPECT_EQ(bot.status, 2) << bot.output;
+    EXPECT_TRUE(contains(bot.output, "--population only applies with --player sim")) << bot.output;
+    EXPECT_TRUE(filesIn(fs::path(out) / "results", ".warplab-session").empty());
+
     // A malformed protocol is refused before any session starts, naming its field.
     const fs::path bad = fs::path(out) / "bad.json";
     {

@@ -19,6 +19,15 @@ namespace {
 
 const game::DisplaySize kDisplay{1920, 1080};
 
+// What the click game tells its participants: a cursor, a pixel a count, click green only.
+participants::TaskKnowledge clickKnowledge() {
+    participants::TaskKnowledge knowledge;
+    knowledge.display = kDisplay;
+    knowledge.pixelsPerCount = 1.0;
+    knowledge.greenOnly = true;
+    return knowledge;
+}
+
 TEST(SimulatedParticipant, MotionEstimateRecoversAParabolaAndALine) {
     const glm::dvec2 p0(100.0, 50.0), v(300.0, -40.0), a(0.0, 1150.0);
     std::vector<participants::Sample> samples;
@@ -60,10 +69,7 @@ TEST(SimulatedParticipant, ItClicksOnlyWhenBothThePredictedAndTheSeenErrorAreSma
 // The participant alone, fed percepts made by hand: a green object on screen and the cursor
 // where its own counts have moved it. It gets there and clicks it -- from percepts alone.
 TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndClicks) {
-    participants::TaskKnowledge knowledge;
-    knowledge.display = kDisplay;
-    knowledge.pixelsPerCount = 1.0;
-    knowledge.greenOnly = true;
+    const participants::TaskKnowledge knowledge = clickKnowledge();
     participants::SimulatedParticipant participant(knowledge, {}, 7);
     glm::dvec2 cursor(960.0, 540.0);
     const glm::dvec2 target(1400.0, 300.0);
@@ -92,10 +98,7 @@ TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndC
 // moved it, a green object circling so that the hand keeps moving. What it judges is D, within
 // a frame, whatever D is -- and nothing while the hand is still.
 double judgedDelay(int delayFrames, bool moving = true) {
-    participants::TaskKnowledge knowledge;
-    knowledge.display = kDisplay;
-    knowledge.pixelsPerCount = 1.0;
-    knowledge.greenOnly = true;
+    const participants::TaskKnowledge knowledge = clickKnowledge();
     participants::ParticipantParams params;
     params.clickWithin = 0.0;  // it never clicks: the object stays
     participants::SimulatedParticipant participant(knowledge, params, 3);
@@ -124,10 +127,7 @@ TEST(SimulatedParticipant, ItJudgesTheDisplaysDelayFromWhereItSeesTheCursorFollo
 // away, by the time the hand gets there, than a farther one that rests. (When it chooses, a
 // tenth of a second in, the falling one is 141 px away and the resting one 250 px.)
 TEST(SimulatedParticipant, ItChoosesTheTargetEasiestToReachNotTheNearest) {
-    participants::TaskKnowledge knowledge;
-    knowledge.display = kDisplay;
-    knowledge.pixelsPerCount = 1.0;
-    knowledge.greenOnly = true;
+    const participants::TaskKnowledge knowledge = clickKnowledge();
     participants::SimulatedParticipant participant(knowledge, {}, 5);
     double handX = 0.0;
     for (int frame = 0; frame < 24; ++frame) {
