@@ -305,10 +305,12 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     previousObjects_ = percept.objects;
     if (percept.pointer == game::PointerKind::Cursor) match_.push_back({percept.pointerAt, hand_, changed});
     // Where the cursor is, it knows from its hand and corrects by what it sees: the cursor in the
-    // frame it acts on against where its hand was when that frame was shown, slowly.
+    // frame it acts on against where its hand was when that frame drew it -- the image's onset
+    // less the display's delay as judged -- slowly. (Against where the hand was at the onset, a
+    // lagging cursor would drag the belief back along every movement, and the hand would swing.)
     if (view != nullptr && view->valid && view->pointer == game::PointerKind::Cursor) {
         const double rate = 1.0 - std::exp(-dt / params_.recalibrationS);
-        calibration_ += rate * ((view->pointerAt - handAt(view->onset - bridged())) - calibration_);
+        calibration_ += rate * ((view->pointerAt - handAt(view->onset - seenDelay_)) - calibration_);
     }
     judged_ = false;
     statement_ = -1;
