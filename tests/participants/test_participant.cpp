@@ -94,14 +94,14 @@ TEST(SimulatedParticipant, FromPerceptsAloneItMovesTheCursorOntoAGreenObjectAndC
     EXPECT_GT(clickedAt / 60.0, 0.3);
 }
 
-// The display's delay, judged from the pictures alone: the cursor shown D frames after the hand
-// moved it, a green object circling so that the hand keeps moving. What it judges is D, within
-// a frame, whatever D is -- and nothing while the hand is still.
-double judgedDelay(int delayFrames, bool moving = true) {
-    const participants::TaskKnowledge knowledge = clickKnowledge();
+// Four seconds of the click game with the cursor shown `delayFrames` after the hand moved it and
+// a green object circling (or resting, `moving` false) that it follows and never clicks;
+// `after(frame, participant, cursor)` is called after each frame, the cursor where it truly is.
+template <class After>
+void followWithLaggingCursor(int delayFrames, bool moving, After after) {
     participants::ParticipantParams params;
     params.clickWithin = 0.0;  // it never clicks: the object stays
-    participants::SimulatedParticipant participant(knowledge, params, 3);
+    participants::SimulatedParticipant participant(clickKnowledge(), params, 3);
     std::vector<glm::dvec2> cursor = {{960.0, 540.0}};
     for (int frame = 0; frame < 240; ++frame) {
         const double t = frame / 60.0;
@@ -114,8 +114,19 @@ double judgedDelay(int delayFrames, bool moving = true) {
         percept.objects = {{scene::kIdFirstSphere, at, 40.0, {0.1, 0.8, 0.1}, 60}};
         const game::FrameInput input = participant.act(percept);
         cursor.push_back(cursor.back() + glm::dvec2(input.mouseDx, input.mouseDy));
+        after(frame, participant, cursor.back());
     }
-    return participant.seenDelay();
+}
+
+// The display's delay, judged from the pictures alone, the hand kept moving by the circling
+// object: what it judges is the delay, within a frame, whatever it is -- and nothing while the
+// hand is still.
+double judgedDelay(int delayFrames, bool moving = true) {
+    double judged = 0.0;
+    followWithLaggingCursor(delayFrames, moving, [&](int, const participants::SimulatedParticipant& p, glm::dvec2) {
+        judged = p.seenDelay();
+    });
+    return judged;
 }
 
 TEST(SimulatedParticipant, ItJudgesTheDisplaysDelayFromWhereItSeesTheCursorFollowItsHand) {
@@ -127,31 +138,13 @@ TEST(SimulatedParticipant, ItJudgesTheDisplaysDelayFromWhereItSeesTheCursorFollo
 // judged the delay, even while the hand moves fast -- it compares the cursor it sees with
 // where its hand was when that frame drew it. Mean error over the last two of four seconds.
 double beliefErrorWithLaggingCursor() {
-    const participants::TaskKnowledge knowledge = clickKnowledge();
-    participants::ParticipantParams params;
-    params.clickWithin = 0.0;  // it never clicks: the object stays
-    participants::SimulatedParticipant participant(knowledge, params, 3);
-    std::vector<glm::dvec2> cursor = {{960.0, 540.0}};
     double error = 0.0;
     int counted = 0;
-    for (int frame = 0; frame < 240; ++frame) {
-        const double t = frame / 60.0;
-        participants::Percept percept;
-        percept.time = t;
-        percept.pointer = game::PointerKind::Cursor;
-        percept.pointerAt = cursor[static_cast<std::size_t>(std::max(0, frame - 12))];
-        percept.objects = {{scene::kIdFirstSphere,
-                            {960.0 + 300.0 * std::cos(2.0 * t), 540.0 + 300.0 * std::sin(2.0 * t)},
-                            40.0,
-                            {0.1, 0.8, 0.1},
-                            60}};
-        const game::FrameInput input = participant.act(percept);
-        cursor.push_back(cursor.back() + glm::dvec2(input.mouseDx, input.mouseDy));
-        if (frame >= 120) {
-            error += glm::length(participant.pointerBelief() - cursor.back());
-            ++counted;
-        }
-    }
+    followWithLaggingCursor(12, true, [&](int frame, const participants::SimulatedParticipant& p, glm::dvec2 cursor) {
+        if (frame < 120) return;
+        error += glm::length(p.pointerBelief() - cursor);
+        ++counted;
+    });
     return error / counted;
 }
 
