@@ -68,7 +68,7 @@ def play(warplab, protocol, population_file, seed, out):
 
 
 def green_by_mode(warplab, folders, out):
-    """Green hits of each scored match, summed per mode over participants; and per participant."""
+    """Green hits of the scored matches, summed per mode over participants."""
     export = out / "export"
     if export.exists():
         shutil.rmtree(export)
@@ -82,16 +82,14 @@ def green_by_mode(warplab, folders, out):
     done = subprocess.run([warplab, "export", str(results), "--out", str(export)], capture_output=True, text=True)
     if done.returncode != 0:
         raise RuntimeError(f"warplab export failed: {done.stderr.strip()[-500:]}")
-    total, per = {}, {}
+    total = {}
     with open(export / "matches.csv", newline="") as f:
         for row in csv.DictReader(f):
             if row["scored_phase"] != "true":
                 continue
             g = int(row["green_hits"])
             total[row["mode"]] = total.get(row["mode"], 0) + g
-            per.setdefault(row["participant"], {}).setdefault(row["mode"], 0)
-            per[row["participant"]][row["mode"]] += g
-    return total, per
+    return total
 
 
 def evaluate(args, base, medians, index, log):
@@ -102,7 +100,7 @@ def evaluate(args, base, medians, index, log):
     seeds = range(1, args.participants + 1)
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         folders = list(pool.map(lambda s: play(args.warplab, args.protocol, pop_file, s, out), seeds))
-    total, _ = green_by_mode(args.warplab, folders, out)
+    total = green_by_mode(args.warplab, folders, out)
     ratio = {mode: total.get(mode, 0) / max(1, total.get(BEST, 0)) for mode in MODES}
     objective = float(sum((ratio[m] - PAPER_RATIO[m]) ** 2 for m in MODES if m != BEST))
     entry = {"evaluation": index, "medians": medians, "green_hits": total, "ratio": ratio, "objective": objective}

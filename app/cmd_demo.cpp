@@ -125,7 +125,9 @@ int runDemo(const ParsedArgs& args) {
     const fs::path root = fs::path(paths.shaderDir).parent_path();
     if (player == "bot" && args.has("population"))
         throw UsageError("option --population only applies with --player sim (the bot reads the game)");
-    const participants::Population population = populationFrom(args, paths);  // refused now, not in a child
+    // Read (and a bad file refused) now, not in a child; the bot has no population to read.
+    const participants::Population population =
+        player == "sim" ? populationFrom(args, paths) : participants::uniformPopulation();
     const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
     const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";
     if (holdsSessions(results))

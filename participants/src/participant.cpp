@@ -228,7 +228,8 @@ void SimulatedParticipant::remember(const Percept& percept) {
     lastPercept_ = percept;
     handLog_.emplace_back(percept.time, hand_);
     while (handLog_.size() > 2 && handLog_[1].first < percept.time - 2.0) handLog_.pop_front();
-    Sighting s{percept.time,    onset_,           percept.sceneShown && percept.banner.empty(), {}, {}, hand_, {},
+    // Where the hand was as each frame was shown is in handLog_.
+    Sighting s{percept.time,    onset_,           percept.sceneShown && percept.banner.empty(), {}, {}, {},
                percept.pointer, percept.pointerAt};
     const bool reticle = percept.pointer == game::PointerKind::Reticle;
     if (reticle) {

@@ -219,7 +219,6 @@ private:
         bool valid;  // shows a scene in play (no banner, not a screen)
         std::vector<Thing> things;
         Thumbnail picture;
-        glm::dvec2 hand;  // where the hand was as it was shown
         glm::dvec2 view;  // reticle: the view's direction the frame shows, as seen (see remember())
         game::PointerKind pointer;
         glm::dvec2 pointerAt;
