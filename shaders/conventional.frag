@@ -22,6 +22,7 @@ uniform vec3 uTint;
 uniform int uPanelPattern;
 uniform int uLampCount;
 uniform int uShadingCost;
+uniform int uGeometryOnly;  // a G-buffer pass: ids, velocity and depth, no lighting
 uniform vec3 uLampPosition[MAX_LAMPS];
 uniform vec3 uLampColour[MAX_LAMPS];
 
@@ -59,6 +60,12 @@ void main() {
         outColour = vec4(SKY_COLOUR, 1.0);  // the clear colour, from conventional.cpp
         outId = 0u;
         outVelocity = vec4(0.0);
+        return;
+    }
+    if (uGeometryOnly != 0) {
+        outColour = vec4(0.0, 0.0, 0.0, 1.0);
+        outId = uObjectId;
+        outVelocity = vec4(uLinearVelocity + cross(uAngularVelocity, vWorldPosition - uCentre), 0.0);
         return;
     }
     vec3 n = normalize(vNormal);

@@ -135,6 +135,16 @@ PassTimes timePass(Rig& rig, const BenchOptions& options, renderer::Upconversion
             method.produce(earlier, rig.display);
         }
     }
+    // Methods that build a history over displayed frames: the frames before, as a session
+    // would have shown them.
+    for (int j = std::max(0, k - method.info().historyFrames); j < k; ++j) {
+        renderer::UpconversionInput earlier = input;
+        earlier.displayTime = j / options.refreshHz;
+        const scene::FrameDescription then = sequence.at(earlier.displayTime);
+        earlier.camera = then.camera;
+        earlier.scene = &then.scene;
+        method.produce(earlier, rig.display);
+    }
     // Untimed first pass per method: programs linked, buffers allocated.
     if (rig.warmed.insert(&method).second) method.produce(input, rig.display);
     std::vector<double> wall, gpu;
@@ -160,6 +170,7 @@ Row measureMethod(Rig& rig, const FrameContext& frame, renderer::UpconversionMet
     input.previous = frame.sources.source(previous, banded).frame.get();
     if (info.needsNext) input.next = frame.sources.source(next, banded).frame.get();
     input.scene = &frame.truth.desc.scene;
+    input.shading = rig.shading;
 
     const PassTimes pass = timePass(rig, options, method, input, previous, frame.k, frame.sequence);
     const renderer::DisplayImages shown = renderer::readBack(rig.display);

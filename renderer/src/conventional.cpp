@@ -23,8 +23,6 @@ namespace warplab::renderer {
 
 // ---------------------------------------------------------------------------- GBuffer
 
-namespace {
-
 gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int width, int height) {
     gl::Texture texture = gl::Texture::create();
     glBindTexture(GL_TEXTURE_2D, texture.id());
@@ -37,8 +35,6 @@ gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int wi
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return texture;
 }
-
-}  // namespace
 
 GBuffer::GBuffer(int width, int height) : impl_(std::make_unique<Impl>()) {
     if (glGenTextures == nullptr) throw std::logic_error("GBuffer: no OpenGL context has been created yet");
@@ -180,6 +176,13 @@ const ShadingOptions& checked(const ShadingOptions& shading) {
         throw std::invalid_argument("ConventionalRenderer: supersampling " + std::to_string(shading.supersampling) +
                                     " is outside 1.." + std::to_string(scene::kMaxSupersampling) +
                                     " (samples per pixel side; 1 = off)");
+    const glm::ivec2 step = shading.latticeStep, phase = shading.latticePhase;
+    if (step.x < 1 || step.y < 1 || phase.x < 0 || phase.y < 0 || phase.x >= step.x || phase.y >= step.y)
+        throw std::invalid_argument("ConventionalRenderer: lattice phase (" + std::to_string(phase.x) + ", " +
+                                    std::to_string(phase.y) + ") does not lie in a step of (" + std::to_string(step.x) +
+                                    ", " + std::to_string(step.y) + ")");
+    if (shading.supersampling > 1 && step != glm::ivec2(1))
+        throw std::invalid_argument("ConventionalRenderer: a lattice is shaded without supersampling");
     return shading;
 }
 
@@ -249,7 +252,7 @@ struct ConventionalRenderer::Impl {
     void resolveSamples(GBuffer::Impl& g);
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
-            panelPattern, lampCount, lampPosition, lampColour, shadingCost;
+            panelPattern, lampCount, lampPosition, lampColour, shadingCost, geometryOnly;
     } u{};
 };
 
@@ -269,7 +272,8 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
            gl::uniform(p, "uCentre"),         gl::uniform(p, "uEye"),
            gl::uniform(p, "uTint"),           gl::uniform(p, "uPanelPattern"),
            gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
-           gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost")};
+           gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost"),
+           gl::uniform(p, "uGeometryOnly")};
     m.lamps = hangarLamps();
     m.resolve = gl::buildProgram(
         {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "ssaa_resolve.frag"}}, {}});
@@ -331,13 +335,21 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     glClearBufferfv(GL_COLOR, 2, still);
     glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
 
-    const float aspect = static_cast<float>(g.width) / static_cast<float>(g.height);
+    // The frame the target shades a lattice of (the target itself without one). A frame pixel
+    // centre at NDC 2 (s X + p + 0.5) / W - 1 must land on the target's pixel centre
+    // 2 s (X + 0.5) / W - 1: a shift by (s - 1 - 2 p) / W, the same for every pixel.
+    const glm::ivec2 step = m.shading.latticeStep, phase = m.shading.latticePhase;
+    const glm::vec2 frameSize(static_cast<float>(g.width * step.x), static_cast<float>(g.height * step.y));
+    const float aspect = frameSize.x / frameSize.y;
+    const glm::vec3 latticeShift(static_cast<float>(step.x - 1 - 2 * phase.x) / frameSize.x,
+                                 static_cast<float>(step.y - 1 - 2 * phase.y) / frameSize.y, 0.0f);
+    const glm::mat4 shift = glm::translate(glm::mat4(1.0f), latticeShift);
     const glm::mat4 view = scene::viewMatrix(frame.camera);
-    const glm::mat4 viewProjection = scene::projectionMatrix(frame.camera, aspect) * view;
+    const glm::mat4 viewProjection = shift * scene::projectionMatrix(frame.camera, aspect) * view;
     // Without a flow target the "other" instant is this one: the flow output, not stored, is 0.
     const scene::FrameDescription& other = flowTo != nullptr ? *flowTo : frame;
     const glm::mat4 otherView = scene::viewMatrix(other.camera);
-    const glm::mat4 otherViewProjection = scene::projectionMatrix(other.camera, aspect) * otherView;
+    const glm::mat4 otherViewProjection = shift * scene::projectionMatrix(other.camera, aspect) * otherView;
 
     glUseProgram(m.program.id());
     auto u = [&](const char* name) { return gl::uniform(m.program, name); };
@@ -356,6 +368,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
     glUniform1i(m.u.lampCount, lampCount);
     glUniform1i(m.u.shadingCost, m.shading.shadingCost);
+    glUniform1i(m.u.geometryOnly, m.shading.geometryOnly ? 1 : 0);
     std::vector<glm::vec3> positions, colours;
     for (int i = 0; i < lampCount; ++i) {
         positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);
@@ -395,7 +408,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glDrawBuffers(4, four);
         m.geometry.drawSky(m.program);
     }
-    drawScene(g.height);
+    drawScene(g.height * step.y);
     if (flowTo != nullptr) {
         const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                 GBuffer::Impl::kVelocityAttachment};

@@ -32,6 +32,10 @@ struct GBuffer::Impl {
     static constexpr GLenum kFlowAttachment = GL_COLOR_ATTACHMENT3;
 };
 
+// A 2D texture, clamped at its edges; integer formats fetched exactly (nearest), the rest
+// sampled bilinearly. Left bound to GL_TEXTURE_2D.
+gl::Texture makeTexture(GLint internalFormat, GLenum format, GLenum type, int width, int height);
+
 // Read one attachment back as a plain top-down image.
 image::ImageRGBA8 readColourAttachment(const GBuffer::Impl& g);
 image::ImageU32 readIdAttachment(const GBuffer::Impl& g);

@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 
+#include <glm/glm.hpp>
+
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -62,6 +64,17 @@ struct ShadingOptions {
     // the reticle's pixel and the warp reads them there; only colour is antialiased, so that a
     // method's bilinear resampling is judged against an antialiased truth.
     int supersampling = 1;
+    // Shading a lattice of a larger frame's pixels, one phase at a time (spatio-temporal
+    // upsampling's low-resolution shading, Herzog et al. 2010 section 3.2): the target's pixel
+    // (X, Y) is shaded at the centre of the frame's pixel (X * latticeStep.x + latticePhase.x,
+    // Y * latticeStep.y + latticePhase.y), counted from the bottom left as GL counts, and the
+    // frame is the target's size times latticeStep -- a translation in post-perspective space,
+    // at no cost. Spheres are drawn as finely as the frame needs. {1, 1} is a whole frame.
+    glm::ivec2 latticeStep{1, 1};
+    glm::ivec2 latticePhase{0, 0};
+    // Depth, ids and velocity only, colour left as cleared: the geometry pass of a deferred
+    // renderer, for methods that shade part of the frame themselves.
+    bool geometryOnly = false;
 };
 
 class ConventionalRenderer {

@@ -80,6 +80,9 @@ struct UpconversionInput {
     // The scene at the displayed instant; only for methods with needsScene, which rasterise it
     // again (scene-assisted reprojection). Everything else works from the sources' images.
     const scene::SceneSnapshot* scene = nullptr;
+    // How the sources were shaded (the bench's shading cost): methods that shade part of each
+    // displayed frame themselves (MethodInfo::shadedShare) shade it the same way.
+    ShadingOptions shading;
 };
 
 struct MethodInfo {
@@ -110,6 +113,15 @@ struct MethodInfo {
     // Accepts a banded source at all: the methods above, and the holds, which show its inside
     // (a warp mode's frames at its render instants).
     bool acceptsGuardBand = false;
+    // Shades part of every displayed frame itself, at the displayed instant (spatio-temporal
+    // upsampling, adaptive frameless sampling): this share of the display's pixels, exactly, from
+    // the scene (needsScene), after a geometry pass over all of them. 0 = shows only what the
+    // conventional sources hold.
+    double shadedShare = 0.0;
+    // Builds its picture up over consecutive displayed frames (a history reprojected into each):
+    // the bench makes this many displayed frames before the one it times, untimed, as a session
+    // would have made them. 0 = each frame from its sources alone.
+    int historyFrames = 0;
 };
 
 class UpconversionMethod {
@@ -126,6 +138,9 @@ public:
     // Triangles the last produce() drew (after tessellation), for the bench; NaN for
     // image-space methods that draw no mesh.
     virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }
+    // Pixels the last produce() shaded itself (counted as drawn, not as planned), for methods with
+    // a shadedShare; NaN for the rest.
+    virtual double lastShadedSamples() { return std::numeric_limits<double>::quiet_NaN(); }
 };
 
 // Throws std::invalid_argument naming the method when `source` does not fit `out`: its G-buffer

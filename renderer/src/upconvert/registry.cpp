@@ -13,6 +13,7 @@
 #include "upconvert/rotation.h"
 #include "upconvert/scene_assisted.h"
 #include "upconvert/simple_methods.h"
+#include "upconvert/spatiotemporal.h"
 #include "upconvert/warp.h"
 #include "upconvert/warp_search.h"
 #include "scene/camera.h"
@@ -127,6 +128,16 @@ const std::vector<Entry>& registry() {
          [](const DataPaths& p, Name name) {
              return late(makeWarp(p, name, sparse(8)), name,
                          "late warp with depth and velocities (warp-sparse8) to the displayed instant");
+         }},
+        // Equal shading budgets spent in space and time (seed 001): a quarter or an eighth of
+        // the pixels shaded every displayed frame.
+        {"stu-4",
+         [](const DataPaths& p, Name name) {
+             return makeSpatioTemporal(p, name, {2, 2});
+         }},
+        {"stu-8",
+         [](const DataPaths& p, Name name) {
+             return makeSpatioTemporal(p, name, {4, 2});
          }},
     };
     return entries;
