@@ -23,6 +23,10 @@ uniform int uPanelPattern;
 uniform int uLampCount;
 uniform int uShadingCost;
 uniform int uGeometryOnly;  // a G-buffer pass: ids, velocity and depth, no lighting
+// Shade only the pixels this mask marks (adaptive frameless sampling's samples); the rest are
+// discarded before any shading, depth included.
+uniform int uMasked;
+uniform usampler2D uSampleMask;
 uniform vec3 uLampPosition[MAX_LAMPS];
 uniform vec3 uLampColour[MAX_LAMPS];
 
@@ -55,6 +59,7 @@ float costlyDetail(vec3 p, int iterations) {
 }
 
 void main() {
+    if (uMasked != 0 && texelFetch(uSampleMask, ivec2(gl_FragCoord.xy), 0).r == 0u) discard;
     outFlow = flowOf(gl_FragCoord.xy, vOtherClip, vViewDepth, vOtherViewDepth, uSky != 0);
     if (uSky != 0) {
         outColour = vec4(SKY_COLOUR, 1.0);  // the clear colour, from conventional.cpp

@@ -181,8 +181,8 @@ const ShadingOptions& checked(const ShadingOptions& shading) {
         throw std::invalid_argument("ConventionalRenderer: lattice phase (" + std::to_string(phase.x) + ", " +
                                     std::to_string(phase.y) + ") does not lie in a step of (" + std::to_string(step.x) +
                                     ", " + std::to_string(step.y) + ")");
-    if (shading.supersampling > 1 && step != glm::ivec2(1))
-        throw std::invalid_argument("ConventionalRenderer: a lattice is shaded without supersampling");
+    if (shading.supersampling > 1 && (step != glm::ivec2(1) || shading.sampleMask != 0))
+        throw std::invalid_argument("ConventionalRenderer: a lattice or a sample mask is shaded without supersampling");
     return shading;
 }
 
@@ -252,7 +252,7 @@ struct ConventionalRenderer::Impl {
     void resolveSamples(GBuffer::Impl& g);
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
-            panelPattern, lampCount, lampPosition, lampColour, shadingCost, geometryOnly;
+            panelPattern, lampCount, lampPosition, lampColour, shadingCost, geometryOnly, masked, sampleMask;
     } u{};
 };
 
@@ -273,7 +273,8 @@ ConventionalRenderer::ConventionalRenderer(const DataPaths& paths, ShadingOption
            gl::uniform(p, "uTint"),           gl::uniform(p, "uPanelPattern"),
            gl::uniform(p, "uLampCount"),      gl::uniform(p, "uLampPosition"),
            gl::uniform(p, "uLampColour"),     gl::uniform(p, "uShadingCost"),
-           gl::uniform(p, "uGeometryOnly")};
+           gl::uniform(p, "uGeometryOnly"),   gl::uniform(p, "uMasked"),
+           gl::uniform(p, "uSampleMask")};
     m.lamps = hangarLamps();
     m.resolve = gl::buildProgram(
         {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "ssaa_resolve.frag"}}, {}});
@@ -369,6 +370,12 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     glUniform1i(m.u.lampCount, lampCount);
     glUniform1i(m.u.shadingCost, m.shading.shadingCost);
     glUniform1i(m.u.geometryOnly, m.shading.geometryOnly ? 1 : 0);
+    glUniform1i(m.u.masked, m.shading.sampleMask != 0 ? 1 : 0);
+    if (m.shading.sampleMask != 0) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, m.shading.sampleMask);
+        glUniform1i(m.u.sampleMask, 0);
+    }
     std::vector<glm::vec3> positions, colours;
     for (int i = 0; i < lampCount; ++i) {
         positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);
@@ -430,6 +437,10 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         drawScene(m.samples.height);
         resolveSamples(g);
+    }
+    if (m.shading.sampleMask != 0) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, 0);
     }
     glBindVertexArray(0);
     glUseProgram(0);

@@ -75,6 +75,10 @@ struct ShadingOptions {
     // Depth, ids and velocity only, colour left as cleared: the geometry pass of a deferred
     // renderer, for methods that shade part of the frame themselves.
     bool geometryOnly = false;
+    // Shade only the pixels marked nonzero in this GL texture (GL_R8UI, the target's size), the
+    // rest left as cleared: adaptive frameless sampling's scattered samples, at the cost a
+    // rasteriser pays for them. 0 = every pixel.
+    unsigned sampleMask = 0;
 };
 
 class ConventionalRenderer {

@@ -138,7 +138,7 @@ public:
     // Triangles the last produce() drew (after tessellation), for the bench; NaN for
     // image-space methods that draw no mesh.
     virtual double lastTriangleCount() { return std::numeric_limits<double>::quiet_NaN(); }
-    // Pixels the last produce() shaded itself (counted as drawn, not as planned), for methods with
+    // Pixels the last produce() had shaded (the lattice it rendered, the samples it placed), for methods with
     // a shadedShare; NaN for the rest.
     virtual double lastShadedSamples() { return std::numeric_limits<double>::quiet_NaN(); }
 };

@@ -10,6 +10,7 @@
 #include "gbuffer_gl.h"
 #include "renderer/upconvert.h"
 #include "upconvert/bireproj.h"
+#include "upconvert/frameless.h"
 #include "upconvert/rotation.h"
 #include "upconvert/scene_assisted.h"
 #include "upconvert/simple_methods.h"
@@ -139,6 +140,8 @@ const std::vector<Entry>& registry() {
          [](const DataPaths& p, Name name) {
              return makeSpatioTemporal(p, name, {4, 2});
          }},
+        // The same eighth placed where colour varies (seed 002).
+        {"frameless-8", [](const DataPaths& p, Name name) { return makeFrameless(p, name, 8); }},
     };
     return entries;
 }

@@ -1,5 +1,7 @@
-// Spatio-temporal upsampling (stu-4, stu-8; seed 001) and the conventional renderer's lattice
-// and geometry-only passes it is built from, on cases whose answer is known.
+// The methods that shade part of every displayed frame -- spatio-temporal upsampling (stu-4,
+// stu-8; seed 001) and adaptive frameless sampling (frameless-8; seed 002) -- and the conventional
+// renderer's lattice, geometry-only and masked passes they are built from, on cases whose
+// answer is known.
 #include <algorithm>
 #include <cstdlib>
 #include <memory>
@@ -10,6 +12,7 @@
 
 #include "gl/gl_test_support.h"
 #include "renderer/upconvert.h"
+#include "upconvert/frameless.h"
 
 namespace warplab {
 namespace {
@@ -118,7 +121,7 @@ TEST(Lattice, TheGeometryPassHasTheFullRendersIdsAndDepth) {
 }
 
 TEST(SpatioTemporal, ShadesExactlyItsBudgetEveryFrame) {
-    for (const auto& [name, share] : {std::pair<std::string, int>{"stu-4", 4}, {"stu-8", 8}}) {
+    for (const auto& [name, share] : {std::pair<std::string, int>{"stu-4", 4}, {"stu-8", 8}, {"frameless-8", 8}}) {
         Upsampler stu(name);
         EXPECT_DOUBLE_EQ(stu.method().info().shadedShare, 1.0 / share);
         for (int k = 0; k < 3; ++k) {
@@ -133,7 +136,8 @@ TEST(SpatioTemporal, ShadesExactlyItsBudgetEveryFrame) {
 // cycles at most) and far better than the first frame's spatial upsampling alone. Where it
 // settles is not the ideal: the paper's pixel filter k (fall-off at most 4, section 3.5) keeps
 // mixing the neighbours' samples in, which the hangar's sharp panel seams show (at this size,
-// 27.5 dB for stu-4 and 23.9 dB for stu-8).
+// 27.5 dB for stu-4 and 23.9 dB for stu-8; frameless-8, whose filter narrows where the scene is
+// still, 31.0 dB).
 TEST(SpatioTemporal, AStillSceneSettlesWithinTwoCyclesOfItsLattice) {
     const renderer::GBufferImages truth = testing::renderFrame(still(0.0), kW, kH);
     struct Case {
@@ -141,7 +145,7 @@ TEST(SpatioTemporal, AStillSceneSettlesWithinTwoCyclesOfItsLattice) {
         int cycle;
         double settled;  // the least PSNR it must settle at, dB
     };
-    for (const Case& c : {Case{"stu-4", 4, 26.5}, Case{"stu-8", 8, 23.0}}) {
+    for (const Case& c : {Case{"stu-4", 4, 26.5}, Case{"stu-8", 8, 23.0}, Case{"frameless-8", 8, 29.5}}) {
         Upsampler stu(c.name);
         const double first = image::psnr(stu.frame(still(0.0)).colour, truth.colour);
         double afterTwoCycles = first, last = first;
@@ -168,7 +172,7 @@ TEST(SpatioTemporal, TheTrailOfAMovingTargetIsNotGhosted) {
         return f;
     };
     for (const bool dim : {false, true})
-        for (const std::string name : {"stu-4", "stu-8"}) {
+        for (const std::string name : {"stu-4", "stu-8", "frameless-8"}) {
             const auto at = [&](double t) { return dim ? dimmed(moving(t)) : moving(t); };
             Upsampler stu(name);
             renderer::DisplayImages shown;
@@ -221,6 +225,40 @@ TEST(SpatioTemporal, ADisplayTheLatticeDoesNotDivideIsRefused) {
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("130x72"), std::string::npos) << e.what();
     }
+}
+
+// The target moves over a still background seen by a still camera: after the controller has
+// watched it a while, the cells it crosses get more of the frame's samples than the still ones.
+TEST(Frameless, TheControllerSamplesWhereTheSceneMoves) {
+    Upsampler frameless("frameless-8");
+    const double t0 = 4.0;
+    constexpr int kFrames = 24;
+    for (int k = 0; k < kFrames; ++k) frameless.frame(moving(t0 + k / kRefresh));
+    const renderer::SamplePlacement placed = renderer::lastPlacement(frameless.method());
+    const renderer::GBufferImages last = testing::renderFrame(moving(t0 + (kFrames - 1) / kRefresh), kW, kH);
+    // Cells (bottom-up) the target covers now, against cells it has not come near.
+    double onTarget = 0.0, still = 0.0;
+    int targetCells = 0, stillCells = 0;
+    for (int cy = 0; cy < placed.cellsY; ++cy)
+        for (int cx = 0; cx < placed.cellsX; ++cx) {
+            int target = 0;
+            for (int y = 0; y < placed.cell; ++y)
+                for (int x = 0; x < placed.cell; ++x)
+                    target += last.ids.at(cx * placed.cell + x, kH - 1 - (cy * placed.cell + y)) >= scene::kIdTarget;
+            const int n = placed.counts[static_cast<std::size_t>(cy) * placed.cellsX + cx];
+            if (target > placed.cell * placed.cell / 4) {
+                onTarget += n;
+                ++targetCells;
+            } else if (target == 0) {
+                still += n;
+                ++stillCells;
+            }
+        }
+    ASSERT_GT(targetCells, 0);
+    const double mean = (onTarget + still) / (targetCells + stillCells);
+    EXPECT_GT(onTarget / targetCells, 1.5 * still / stillCells)
+        << onTarget / targetCells << " samples per cell on the target, " << still / stillCells << " elsewhere (mean "
+        << mean << ")";
 }
 
 }  // namespace
