@@ -10,6 +10,11 @@ y: PSNR of the mean squared error over the method's frames (each frame's MSE rec
 Small markers show the same per (method, sequence), shaped by sequence; the dashed line is
 the median conventional_ms, the cost of rendering a frame conventionally.
 
+With --budget-png it also draws the equal-budget figure: RMS error (0..255) against shaded
+samples per second (budget_share times --samples-per-frame times the display rate folded into it
+by the caller), one point per method, one line per family (whole frames, pixel lattice,
+adaptive samples) through each family's least error at each budget.
+
 Bad input (missing file, unreadable CSV, missing column, no rows) ends in one sentence on
 stderr naming the file or column, and exit status 1.
 """
@@ -170,15 +175,77 @@ def plot(table, out_png, title):
     plt.close(fig)
 
 
+FAMILY_STYLES = {"whole frames": ("tab:blue", "o"), "pixel lattice": ("tab:orange", "s"),
+                 "adaptive samples": ("tab:green", "^")}
+
+
+def plot_budget(table, out_png, title, samples_per_share):
+    """Error against shaded samples per second, a line per family through its best at each budget."""
+    for column in ("budget_share", "family"):
+        if column not in table.columns:
+            raise BadInput(f"missing column '{column}' (a bench.csv from before the equal-budget columns).")
+    table = table.copy()
+    table["budget_share"] = pd.to_numeric(table["budget_share"], errors="coerce")
+    fig, ax = plt.subplots(figsize=(9, 6), dpi=120)
+    labels = []
+    for family in dict.fromkeys(table["family"].fillna("")):
+        if not family:
+            continue
+        colour, marker = FAMILY_STYLES.get(family, ("0.4", "D"))
+        rows = table[table["family"] == family]
+        points = []
+        for method in dict.fromkeys(rows["method"]):
+            mrows = rows[rows["method"] == method]
+            share = float(mrows["budget_share"].median())
+            _, psnr, _ = summarise(mrows)
+            if not (math.isfinite(share) and share > 0 and math.isfinite(psnr)):
+                continue
+            rms = 255.0 * 10.0 ** (-psnr / 20.0)
+            x = share * samples_per_share
+            points.append((x, rms, method))
+            ax.scatter([x], [rms], color=colour, marker=marker, s=45, edgecolors="black", linewidths=0.6, zorder=3)
+            labels.append((method, x, rms))
+        best = {}
+        for x, rms, _ in points:
+            best[x] = min(rms, best.get(x, math.inf))
+        xs = sorted(best)
+        if xs:
+            ax.plot(xs, [best[x] for x in xs], color=colour, linewidth=1.5, label=family, zorder=2)
+    ax.set_xscale("log", base=2)
+    # A tick at each budget in the run, named by its share of the display's pixels per frame too.
+    budgets = sorted({x for _, x, _ in labels})
+    if budgets:
+        ax.set_xticks(budgets)
+        ax.set_xticklabels([f"{x / 1e6:.3g} M\n(1/{samples_per_share / x:.0f})" if x < samples_per_share * 0.99
+                            else f"{x / 1e6:.3g} M\n(all)" for x in budgets])
+        ax.xaxis.set_minor_formatter(ticker.NullFormatter())
+    ax.set_xlabel("shaded samples per second (log scale)")
+    ax.set_ylabel("RMS error against the ideal frame (0..255)")
+    ax.set_title(title or "Error at equal shading budgets", fontsize=11)
+    ax.grid(True, which="both", linewidth=0.4, alpha=0.5)
+    ax.margins(x=0.2, y=0.1)
+    fig.canvas.draw()
+    place_labels(ax, fig, labels)
+    ax.legend(title="family (line: its least error at each budget)", fontsize=8, title_fontsize=8, loc="best")
+    fig.tight_layout()
+    fig.savefig(out_png)
+    plt.close(fig)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description="Plot warplab bench's speed against error.")
     parser.add_argument("bench_csv", help="the CSV `warplab bench` writes")
     parser.add_argument("out_png", help="where to write the plot (PNG)")
     parser.add_argument("--title", default=None, help="plot title (the bench passes its GL renderer and size)")
+    parser.add_argument("--budget-png", default=None, help="also write the equal-budget figure here")
+    parser.add_argument("--samples-per-share", type=float, default=1.0,
+                        help="shaded samples per second at a budget share of 1 (width x height x display rate)")
     args = parser.parse_args(argv)
     try:
         table = load(args.bench_csv)
         plot(table, args.out_png, args.title)
+        if args.budget_png:
+            plot_budget(table, args.budget_png, args.title, args.samples_per_share)
     except BadInput as e:
         print(f"plot_bench.py: {e}", file=sys.stderr)
         return 1

@@ -72,7 +72,7 @@ int runBench(const ParsedArgs& args) {
     const auto gl = renderer::createContext(context);
     std::cerr << "bench: " << options.width << "x" << options.height << " on " << gl->info().renderer << "\n";
     bench::runBench(options, paths, gl->info(), std::cout, std::cerr);
-    std::cout << "\nwrote " << options.outDir << "/bench.csv, summary.md, speed_vs_error.png\n";
+    std::cout << "\nwrote " << options.outDir << "/bench.csv, summary.md, speed_vs_error.png, budget_vs_error.png\n";
     return 0;
 }
 
@@ -91,7 +91,7 @@ Command benchCommand() {
               shown(quick.width) + "x" + shown(quick.height) + ", " + shown(quick.framesPerSequence) +
                   " frames per sequence, " + shown(quick.repeats) + " repeats: a few minutes at most",
               ""},
-             {"out", "DIR", "where bench.csv, summary.md and speed_vs_error.png go", "bench-out"},
+             {"out", "DIR", "where bench.csv, summary.md, speed_vs_error.png and budget_vs_error.png go", "bench-out"},
              {"width", "PIXELS", "frame width, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),
               withQuick(bench.width, quick.width)},
              {"height", "PIXELS", "frame height, " + range(scene::kMinDisplaySize, scene::kMaxImageSize),

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <stdexcept>
 
+#include "budget.h"
 #include "measure.h"
 #include "plan.h"
 #include "plot.h"
@@ -73,10 +74,14 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
 
     const ShadingSweep sweep = timeShadingSweep(rig, options, plan);
     std::string summary = summaryMarkdown(options, gl, plan, times, rows, sweep);
+    summary += budgetMarkdown(options, plan, rows, sweep, timeShadedMethods(rig, options, plan)) +
+        "\nbudget_vs_error.png draws the table: error against shaded samples per second, a line per family.\n";
     const std::string plotNote =
         writePlot(paths, csvPath, options.outDir + "/speed_vs_error.png",
-                  gl.renderer + ", " + std::to_string(options.width) + "x" + std::to_string(options.height));
-    if (!plotNote.empty()) summary += "\nspeed_vs_error.png " + plotNote + "\n";
+                  gl.renderer + ", " + std::to_string(options.width) + "x" + std::to_string(options.height),
+                  options.outDir + "/budget_vs_error.png",
+                  static_cast<double>(options.width) * options.height * options.refreshHz);
+    if (!plotNote.empty()) summary += "\nspeed_vs_error.png and budget_vs_error.png " + plotNote + "\n";
     std::ofstream(options.outDir + "/summary.md") << summary;
     out << summary;
 }

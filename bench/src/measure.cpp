@@ -210,10 +210,29 @@ Row measureMethod(Rig& rig, const FrameContext& frame, renderer::UpconversionMet
     row.conventionalMs = info.exposureSamples > 0 ? frame.bruteForces.get(previous, next, info.exposureSamples).ms
                                                   : frame.truth.conventionalMs;
     row.sourceMs = banded ? frame.truth.bandedMs : frame.truth.conventionalMs;
+    row.budgetShare = info.shadedShare > 0.0 ? info.shadedShare : info.sourceRateHz / options.refreshHz;
+    row.family = budgetFamily(info);
+    if (info.shadedShare > 0.0) {
+        std::vector<float> ages = method.lastSampleAges();
+        if (ages.empty()) ages.assign(1, 0.0f);
+        row.ageMeanMs = 1000.0 * mean(std::vector<double>(ages.begin(), ages.end()));
+        std::nth_element(ages.begin(), ages.begin() + static_cast<std::ptrdiff_t>(0.95 * (ages.size() - 1)),
+                         ages.end());
+        row.ageP95Ms = 1000.0 * ages[static_cast<std::size_t>(0.95 * (ages.size() - 1))];
+    } else {
+        // Whole frames: every pixel is as old as the source it shows, or waits as long for the next.
+        const int newest = info.needsNext ? next : previous;
+        row.ageMeanMs = row.ageP95Ms = 1000.0 * std::abs(frame.k - newest) / options.refreshHz;
+    }
     return row;
 }
 
 }  // namespace
+
+std::string budgetFamily(const renderer::MethodInfo& info) {
+    if (info.shadedShare <= 0.0) return "whole frames";
+    return info.adaptivePlacement ? "adaptive samples" : "pixel lattice";
+}
 
 Rig::Rig(const BenchOptions& options, const BenchPlan& plan, const renderer::DataPaths& paths)
     : shading(shadingFor(options)),

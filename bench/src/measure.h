@@ -53,7 +53,17 @@ struct Row {
     double passMs = kNaN, gpuMs = kNaN, conventionalMs = kNaN;
     double sourceMs = kNaN;  // one of the method's own source frames (with its guard band)
     double triangles = kNaN;
+    // Its shading budget: the share of the display's pixels shaded per displayed frame (a 15 Hz
+    // source on a 120 Hz display: 1/8), the way it spends it (budgetFamily), and how old the
+    // newest shading behind its pixels is (or, for a method that needs the next source, how long
+    // the frame waits for it), mean and 95th percentile over the pixels.
+    double budgetShare = kNaN;
+    std::string family;
+    double ageMeanMs = kNaN, ageP95Ms = kNaN;
 };
+
+// The three ways of spending a shading budget the bench compares.
+std::string budgetFamily(const renderer::MethodInfo& info);
 
 // The conventional frames' times over the run, one entry per truth frame: what shows another
 // process loading the machine, and what the guard band costs.

@@ -11,7 +11,7 @@ namespace warplab::bench {
 // Run without a shell, so no path needs quoting; its output (stdout and stderr) is the reason
 // when it fails.
 std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, const std::string& png,
-                      const std::string& title) {
+                      const std::string& title, const std::string& budgetPng, double samplesPerShare) {
     const std::string script = paths.analysisDir + "/plot_bench.py";
     const char* python = "/usr/bin/python3";
     if (!std::filesystem::exists(script)) return "not written: " + script + " is missing";
@@ -29,7 +29,10 @@ std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, 
         dup2(out[1], STDERR_FILENO);
         close(out[0]);
         close(out[1]);
-        const char* argv[] = {python, script.c_str(), csv.c_str(), png.c_str(), "--title", title.c_str(), nullptr};
+        const std::string samples = std::to_string(samplesPerShare);
+        const char* argv[] = {python,        script.c_str(), csv.c_str(),       png.c_str(),           "--title",
+                              title.c_str(), "--budget-png", budgetPng.c_str(), "--samples-per-share", samples.c_str(),
+                              nullptr};
         execv(python, const_cast<char* const*>(argv));
         _exit(127);
     }

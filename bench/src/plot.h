@@ -7,9 +7,11 @@
 
 namespace warplab::bench {
 
-// Empty when the plot was written; otherwise a note for the summary starting "not written: "
+// Writes speed against error to `png` and error at equal shading budgets to `budgetPng`
+// (samplesPerShare: shaded samples per second at a budget share of 1, width x height x display
+// rate). Empty when both were written; otherwise a note for the summary starting "not written: "
 // with the reason.
 std::string writePlot(const renderer::DataPaths& paths, const std::string& csv, const std::string& png,
-                      const std::string& title);
+                      const std::string& title, const std::string& budgetPng, double samplesPerShare);
 
 }  // namespace warplab::bench

@@ -150,7 +150,8 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
 const char* const kCsvHeader =
     "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_"
     "0p5,corr_all_lt_1,"
-    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles";
+    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles,budget_share,"
+    "family,age_mean_ms,age_p95_ms";
 
 std::ofstream openCsv(const std::string& path) {
     std::ofstream csv(path);
@@ -166,7 +167,8 @@ void writeRow(std::ostream& csv, const Row& r) {
         << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5) << ',' << c(r.corr.allLt1) << ','
         << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ',' << c(r.corr.hitLt1) << ',' << field(r.passMs, 3)
         << ',' << field(r.gpuMs, 3) << ',' << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ','
-        << field(r.triangles, 0) << '\n';
+        << field(r.triangles, 0) << ',' << field(r.budgetShare, 6) << ',' << r.family << ',' << field(r.ageMeanMs, 3)
+        << ',' << field(r.ageP95Ms, 3) << '\n';
 }
 
 ShadingSweep timeShadingSweep(Rig& rig, const BenchOptions& options, const BenchPlan& plan) {

@@ -242,8 +242,34 @@ TEST(CliBench, QuickRunWritesTheTableCsvAndPlot) {
     EXPECT_EQ(exact, 4);
     EXPECT_TRUE(fs::exists(dir + "/summary.md"));
     EXPECT_GT(fs::file_size(dir + "/speed_vs_error.png"), 1000u);
+    EXPECT_GT(fs::file_size(dir + "/budget_vs_error.png"), 1000u);
     // Holds take no guard band: nothing in this run has one to report.
     EXPECT_FALSE(contains(r.output, "- guard band:")) << r.output;
+    // The equal-budget table: hold15 shades whole frames at an eighth of the display's rate, with
+    // the 15 Hz source's age; hold120 every frame.
+    EXPECT_TRUE(contains(r.output, "## Equal shading budgets")) << r.output;
+    EXPECT_TRUE(contains(r.output, "| 1/8 | 0.86 M | hold15 | whole frames |")) << r.output;
+    EXPECT_TRUE(contains(r.output, "| 1 | 6.91 M | hold120 | whole frames | 0.00 | inf | 1.0000 | 0.00 | 0.00 |"))
+        << r.output;
+}
+
+// A method that shades part of every frame is in the equal-budget table at its share, with its
+// cost at each shading cost of the sweep and the age of what it shows.
+TEST(CliBench, TheEqualBudgetTableListsPartialShading) {
+    const std::string dir = scratch("bench_budget");
+    const auto r =
+        warplab("bench --quick --frames 2 --repeats 1 --sequences spheres --methods hold30,stu-4 --out " + dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    const std::size_t at = r.output.find("| 1/4 | 1.73 M | stu-4 | pixel lattice |");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string row = r.output.substr(at, r.output.find('\n', at) - at);
+    EXPECT_TRUE(contains(row, "| 0.0 | 0.0 |")) << row;  // shaded at every displayed instant
+    EXPECT_TRUE(contains(r.output, "| 1/4 | 1.73 M | hold30 | whole frames |")) << r.output;
+    std::ifstream csv(dir + "/bench.csv");
+    std::string header;
+    std::getline(csv, header);
+    EXPECT_TRUE(contains(header, ",budget_share,family,age_mean_ms,age_p95_ms")) << header;
+    EXPECT_GT(fs::file_size(dir + "/budget_vs_error.png"), 1000u);
 }
 
 // A name the bench does not know is a wrong command line: exit 2, as README promises.

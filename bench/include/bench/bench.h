@@ -36,8 +36,8 @@ struct BenchOptions {
 // cores; the other fields as BenchOptions' defaults.
 BenchOptions quickBenchOptions();
 
-// Runs the benchmark in the current GL context; writes bench.csv, summary.md and
-// speed_vs_error.png into options.outDir; prints progress to `progress` and the summary to
+// Runs the benchmark in the current GL context; writes bench.csv, summary.md,
+// speed_vs_error.png and budget_vs_error.png into options.outDir; prints progress to `progress` and the summary to
 // `out`. Throws on bad options (naming them) or unwritable output.
 void runBench(const BenchOptions& options, const renderer::DataPaths& paths, const renderer::GlInfo& gl,
               std::ostream& out, std::ostream& progress);

@@ -122,6 +122,9 @@ struct MethodInfo {
     // the bench makes this many displayed frames before the one it times, untimed, as a session
     // would have made them. 0 = each frame from its sources alone.
     int historyFrames = 0;
+    // Places its shaded samples where the picture needs them (adaptive frameless sampling), not
+    // on a fixed pattern.
+    bool adaptivePlacement = false;
 };
 
 class UpconversionMethod {
@@ -141,6 +144,10 @@ public:
     // Pixels the last produce() had shaded (the lattice it rendered, the samples it placed), for methods with
     // a shadedShare; NaN for the rest.
     virtual double lastShadedSamples() { return std::numeric_limits<double>::quiet_NaN(); }
+    // For methods with a shadedShare: per displayed pixel (rows top-down), how long before the
+    // displayed instant the newest sample shaded behind it was made, seconds. Empty: every pixel
+    // shows shading made at the displayed instant.
+    virtual std::vector<float> lastSampleAges() { return {}; }
 };
 
 // Throws std::invalid_argument naming the method when `source` does not fit `out`: its G-buffer

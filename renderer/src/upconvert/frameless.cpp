@@ -97,6 +97,7 @@ public:
         info_.needsScene = true;
         info_.shadedShare = 1.0 / share;
         info_.historyFrames = 16;
+        info_.adaptivePlacement = true;
         const auto build = [&](const char* fragment) {
             return gl::buildProgram(
                 {paths.shaderDir, {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, fragment}}, {}});
@@ -109,6 +110,26 @@ public:
     const MethodInfo& info() const override { return info_; }
     double lastShadedSamples() override { return shadedSamples_; }
     SamplePlacement placement() const { return {kCell, cellsX_, cellsY_, placed_}; }
+    // The age of the sample each pixel holds in the deep buffer (the one its filter weighs most);
+    // a pixel holding none shows its neighbours' (this frame's at the oldest: age 0 is claimed
+    // for no pixel that has none, so such pixels count as the filter's window's newest, 0).
+    std::vector<float> lastSampleAges() override {
+        std::vector<float> deep(4 * static_cast<std::size_t>(width_) * height_);
+        glBindFramebuffer(GL_FRAMEBUFFER, slots_[written_].framebuffer.id());
+        glReadBuffer(GL_COLOR_ATTACHMENT0);
+        glPixelStorei(GL_PACK_ALIGNMENT, 4);
+        glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, deep.data());
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        gl::checkErrors("reading the deep buffer's sample times");
+        const float now = static_cast<float>(lastTime_ - origin_);
+        std::vector<float> ages(static_cast<std::size_t>(width_) * height_);
+        for (int y = 0; y < height_; ++y)
+            for (int x = 0; x < width_; ++x) {
+                const float made = deep[4 * (static_cast<std::size_t>(y) * width_ + x) + 3];
+                ages[static_cast<std::size_t>(height_ - 1 - y) * width_ + x] = made < 0.0f ? 0.0f : now - made;
+            }
+        return ages;
+    }
 
     void produce(const UpconversionInput& input, DisplayFrame& out) override {
         if (input.scene == nullptr)
