@@ -53,6 +53,9 @@ struct Row {
     double passMs = kNaN, gpuMs = kNaN, conventionalMs = kNaN;
     double sourceMs = kNaN;  // one of the method's own source frames (with its guard band)
     double triangles = kNaN;
+    // The pass's stages timed apart (UpconversionMethod::timeStages), each a median over the
+    // repeats; empty for methods of one stage.
+    std::vector<renderer::StageTime> stages;
 };
 
 // The conventional frames' times over the run, one entry per truth frame: what shows another
