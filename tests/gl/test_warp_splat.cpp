@@ -115,8 +115,8 @@ TEST(WarpSplat, CameraRotationMatchesWarpFullsCorrespondences) {
     }
     ASSERT_GT(both, w * h * 8 / 10);
     EXPECT_LE(off * 100, both) << off << " of " << both << " pixels 0.1 px or more from warp-full's source";
-    EXPECT_LE((onlyFull + onlySplat) * 100, both) << onlyFull << " claimed by warp-full only, " << onlySplat
-                                                  << " by the splat only";
+    EXPECT_LE((onlyFull + onlySplat) * 100, both)
+        << onlyFull << " claimed by warp-full only, " << onlySplat << " by the splat only";
     RecordProperty("rotation_off_0p1", off);
 }
 
@@ -181,7 +181,6 @@ TEST(WarpSplat, NoCrackInsideAContinuousSurface) {
                 if (!continuous || !smoothInSource(source.images, still.camera, exact.coords[i])) continue;
                 ++inside;
                 cracks += !claimed(shown, i);
-
             }
         ASSERT_GT(inside, w * h / 2) << c.name;
         EXPECT_EQ(cracks, 0) << c.name << ": pixels left unwritten inside a continuous surface";
@@ -204,8 +203,8 @@ TEST(WarpSplat, RevealedBackgroundIsFilledFromTheBackground) {
     b.scene.objects.front().position += a.scene.objects.front().velocity * static_cast<float>(dt);
     const auto source = testing::renderSource(a, w, h);
     const auto truth = testing::renderSource(b, w, h);
-    const auto exact = bench::trueCorrespondence(b, truth.images.depth, truth.images.ids, a, source.images.depth,
-                                                 source.images.ids);
+    const auto exact =
+        bench::trueCorrespondence(b, truth.images.depth, truth.images.ids, a, source.images.depth, source.images.ids);
     const auto revealed = bench::unseenMasks({&exact}).occluded;
     const int count = static_cast<int>(std::count(revealed.begin(), revealed.end(), std::uint8_t{1}));
     ASSERT_GT(count, 50);
@@ -242,8 +241,9 @@ TEST(WarpSplat, OverlappingSourcesResolveToTheNearerTheSameEveryRun) {
     const auto second = testing::produceFrame(kMethod, from(source, b.camera, dt), w, h);
     EXPECT_EQ(first.colour.pixels, second.colour.pixels);
     EXPECT_EQ(first.ids.data, second.ids.data);
-    EXPECT_EQ(0, std::memcmp(first.correspondence.data.data(), second.correspondence.data.data(),
-                             first.correspondence.data.size() * sizeof(float)));
+    EXPECT_EQ(0,
+              std::memcmp(first.correspondence.data.data(), second.correspondence.data.data(),
+                          first.correspondence.data.size() * sizeof(float)));
     // Where the sphere now covers what the source showed as background, away from its rim.
     int overlapped = 0, lost = 0;
     for (int y = 2; y + 2 < h; ++y)

@@ -89,10 +89,10 @@ public:
             {paths.shaderDir,
              {{GL_COMPUTE_SHADER, "warp_splat_vertices.comp", {"warp_common.glsl", "warp_splat_common.glsl"}}},
              {}});
-        splatProgram_ = gl::buildProgram(
-            {paths.shaderDir,
-             {{GL_COMPUTE_SHADER, "warp_splat.comp", {"warp_common.glsl", "warp_splat_common.glsl"}}},
-             {}});
+        splatProgram_ =
+            gl::buildProgram({paths.shaderDir,
+                              {{GL_COMPUTE_SHADER, "warp_splat.comp", {"warp_common.glsl", "warp_splat_common.glsl"}}},
+                              {}});
         resolveProgram_ = gl::buildProgram(
             {paths.shaderDir,
              {{GL_VERTEX_SHADER, "fullscreen.vert"},
@@ -218,7 +218,8 @@ private:
     // again only when a size changes.
     void allocate(int sw, int sh, int w, int h) {
         if (sw != sourceWidth_ || sh != sourceHeight_) {
-            vertices_ = makeStorage(sizeof(float) * 4 * static_cast<std::size_t>(sw + 2) * static_cast<std::size_t>(sh + 2));
+            vertices_ =
+                makeStorage(sizeof(float) * 4 * static_cast<std::size_t>(sw + 2) * static_cast<std::size_t>(sh + 2));
             sourceWidth_ = sw;
             sourceHeight_ = sh;
         }
