@@ -50,6 +50,7 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
               std::ostream& out, std::ostream& progress) {
     // Everything that can be refused is refused before the first frame.
     const BenchPlan plan = makePlan(options, paths);
+    for (const std::string& why : plan.skipped) progress << "bench: skipped: " << why << "\n";
     std::filesystem::create_directories(options.outDir);
     const std::string csvPath = options.outDir + "/bench.csv";
     std::ofstream csv = openCsv(csvPath);

@@ -116,7 +116,21 @@ struct FrameContext {
 
 struct PassTimes {
     double wallMs = kNaN, gpuMs = kNaN;  // medians over the repeats
+    std::vector<renderer::StageTime> stages;  // each stage's median over the repeats
 };
+
+// Each stage's median over the repeats, in the method's order of stages.
+std::vector<renderer::StageTime> stageMedians(const std::vector<std::vector<renderer::StageTime>>& repeats) {
+    std::vector<renderer::StageTime> medians;
+    if (repeats.empty()) return medians;
+    for (std::size_t i = 0; i < repeats.front().size(); ++i) {
+        std::vector<double> ms;
+        for (const auto& r : repeats)
+            if (i < r.size()) ms.push_back(r[i].wallMs);
+        medians.push_back({repeats.front()[i].name, median(ms)});
+    }
+    return medians;
+}
 
 // Makes the method's frame into rig.display, `options.repeats` times timed.
 PassTimes timePass(Rig& rig, const BenchOptions& options, renderer::UpconversionMethod& method,
@@ -148,14 +162,20 @@ PassTimes timePass(Rig& rig, const BenchOptions& options, renderer::Upconversion
     // Untimed first pass per method: programs linked, buffers allocated.
     if (rig.warmed.insert(&method).second) method.produce(input, rig.display);
     std::vector<double> wall, gpu;
+    std::vector<std::vector<renderer::StageTime>> stages;
+    // A stage ends with glFinish: on llvmpipe the next stage waits for it anyway; on a GPU it
+    // adds a sync or two to the pass time.
+    method.timeStages(true);
     for (int r = 0; r < options.repeats; ++r) {
         rig.timer.begin();
         method.produce(input, rig.display);
         const auto time = rig.timer.end();
         wall.push_back(time.wallMs);
         gpu.push_back(time.gpuMs);
+        stages.push_back(method.lastStageTimes());
     }
-    return {median(wall), median(gpu)};
+    method.timeStages(false);
+    return {median(wall), median(gpu), stageMedians(stages)};
 }
 
 Row measureMethod(Rig& rig, const FrameContext& frame, renderer::UpconversionMethod& method) {
@@ -207,6 +227,7 @@ Row measureMethod(Rig& rig, const FrameContext& frame, renderer::UpconversionMet
     row.triangles = method.lastTriangleCount();
     row.passMs = pass.wallMs;
     row.gpuMs = pass.gpuMs;
+    row.stages = pass.stages;
     row.conventionalMs = info.exposureSamples > 0 ? frame.bruteForces.get(previous, next, info.exposureSamples).ms
                                                   : frame.truth.conventionalMs;
     row.sourceMs = banded ? frame.truth.bandedMs : frame.truth.conventionalMs;

@@ -60,6 +60,9 @@ struct Row {
     double budgetShare = kNaN;
     std::string family;
     double ageMeanMs = kNaN, ageP95Ms = kNaN;
+    // The pass's stages timed apart (UpconversionMethod::timeStages), each a median over the
+    // repeats; empty for methods of one stage.
+    std::vector<renderer::StageTime> stages;
 };
 
 // The three ways of spending a shading budget the bench compares.

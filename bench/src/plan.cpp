@@ -27,6 +27,11 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
     sequenceConfig.seed = options.seed;
     for (const auto& name : sequenceNames) plan.sequences.push_back(game::makeSequence(name, sequenceConfig));
     for (const auto& name : methodNames) {
+        const std::string unavailable = renderer::methodUnavailable(name);
+        if (!unavailable.empty()) {
+            plan.skipped.push_back(unavailable);
+            continue;
+        }
         plan.methods.push_back(renderer::makeMethod(name, paths));
         const renderer::MethodInfo& info = plan.methods.back()->info();
         const double perSource = options.refreshHz / info.sourceRateHz;
@@ -42,6 +47,9 @@ BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths
             throw std::invalid_argument(message.str());
         }
     }
+
+    if (plan.methods.empty())
+        throw std::invalid_argument("no method named can run in this GL context: " + plan.skipped.front());
 
     plan.band = renderer::guardBandFor(options.width, options.height, options.guardBand);
     plan.anyBanded = !(plan.band == renderer::GuardBand{}) &&

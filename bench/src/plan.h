@@ -16,6 +16,9 @@ namespace warplab::bench {
 struct BenchPlan {
     std::vector<std::unique_ptr<game::BenchSequence>> sequences;
     std::vector<std::unique_ptr<renderer::UpconversionMethod>> methods;
+    // The methods the GL context cannot run (warp-splat below OpenGL 4.3), each as the one
+    // sentence that says why: left out of the run and named in the summary.
+    std::vector<std::string> skipped;
     std::vector<std::vector<int>> samplesPerSequence;  // display-frame indices, one list per sequence
     std::size_t totalFrames = 0;  // over all sequences
 
@@ -33,7 +36,9 @@ struct BenchPlan {
     int maskPeriod = 1;
 };
 
+// Needs a current GL context: methods the context cannot run are skipped (BenchPlan::skipped).
 // Throws std::invalid_argument naming the option (size, repeats, an unknown sequence or method,
+// no method left that the context can run,
 // a method whose source rate does not divide the display's or whose source lag is not a whole
 // number of display frames, the guard band).
 BenchPlan makePlan(const BenchOptions& options, const renderer::DataPaths& paths);

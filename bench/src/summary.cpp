@@ -55,6 +55,7 @@ void writeSettings(std::ostream& md, const BenchOptions& options, const renderer
            << "x the pixels; such a source costs " << field(banded, 3) << " ms against " << field(plain, 3)
            << " ms without (median over the frames, ratio " << field(banded / plain, 2) << ")\n";
     }
+    for (const std::string& why : plan.skipped) md << "- skipped: " << why << "\n";
     md << "- conventional frames: repeats of one frame median slowest/fastest " << field(spread, 3)
        << "; over the run 90th/10th percentile " << field(runSpread, 3) << "\n";
     if (spread > 1.3 || runSpread > 3.0)
@@ -124,6 +125,46 @@ void writeTable(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
     for (const auto* info : byRate) summarise(md, "", *info, rows, plan.maskRateHz);
 }
 
+// "splat=12.345;resolve=4.567": a pass's stages for one CSV field, in the method's order.
+std::string stagesField(const std::vector<renderer::StageTime>& stages) {
+    std::string text;
+    for (const auto& st : stages) text += (text.empty() ? "" : ";") + st.name + "=" + field(st.wallMs, 3);
+    return text;
+}
+
+// The methods whose pass has stages (warp-splat: splat, resolve), over all sequences: each
+// stage's median and its share of the median pass.
+void writeStages(std::ostream& md, const BenchPlan& plan, const std::vector<Row>& rows) {
+    bool header = false;
+    for (const auto& m : plan.methods) {
+        const std::string& method = m->info().name;
+        std::vector<double> pass;
+        std::vector<std::string> names;
+        std::vector<std::vector<double>> ms;
+        for (const Row& r : rows) {
+            if (r.method != method || r.stages.empty()) continue;
+            pass.push_back(r.passMs);
+            for (std::size_t i = 0; i < r.stages.size(); ++i) {
+                if (i == names.size()) names.push_back(r.stages[i].name), ms.emplace_back();
+                ms[i].push_back(r.stages[i].wallMs);
+            }
+        }
+        if (names.empty()) continue;
+        if (!header) {
+            md << "\nPasses timed in stages (each stage ended by glFinish; medians over all sequences):\n\n"
+                  "| method | median pass ms | stages: median ms (share of the pass) |\n|---|---:|---|\n";
+            header = true;
+        }
+        const double p = median(pass);
+        std::string text;
+        for (std::size_t i = 0; i < names.size(); ++i) {
+            const double stage = median(ms[i]);
+            text += (i ? ", " : "") + names[i] + " " + field(stage, 3) + " (" + field(100.0 * stage / p, 0) + " %)";
+        }
+        md << "| " << method << " | " << field(p, 3) << " | " << text << " |\n";
+    }
+}
+
 // Where upconversion starts to pay: which methods' passes are cheaper than a conventional frame
 // at each shading cost.
 void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>& rows, const ShadingSweep& sweep) {
@@ -150,8 +191,8 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
 const char* const kCsvHeader =
     "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_"
     "0p5,corr_all_lt_1,"
-    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles,budget_share,"
-    "family,age_mean_ms,age_p95_ms";
+    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles,stage_ms,"
+    "budget_share,family,age_mean_ms,age_p95_ms";
 
 std::ofstream openCsv(const std::string& path) {
     std::ofstream csv(path);
@@ -167,8 +208,8 @@ void writeRow(std::ostream& csv, const Row& r) {
         << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5) << ',' << c(r.corr.allLt1) << ','
         << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ',' << c(r.corr.hitLt1) << ',' << field(r.passMs, 3)
         << ',' << field(r.gpuMs, 3) << ',' << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ','
-        << field(r.triangles, 0) << ',' << field(r.budgetShare, 6) << ',' << r.family << ',' << field(r.ageMeanMs, 3)
-        << ',' << field(r.ageP95Ms, 3) << '\n';
+        << field(r.triangles, 0) << ',' << stagesField(r.stages) << ',' << field(r.budgetShare, 6) << ',' << r.family
+        << ',' << field(r.ageMeanMs, 3) << ',' << field(r.ageP95Ms, 3) << '\n';
 }
 
 ShadingSweep timeShadingSweep(Rig& rig, const BenchOptions& options, const BenchPlan& plan) {
@@ -193,9 +234,11 @@ std::string summaryMarkdown(const BenchOptions& options, const renderer::GlInfo&
     std::ostringstream md;
     writeSettings(md, options, gl, plan, times);
     writeTable(md, plan, rows);
+    writeStages(md, plan, rows);
     writeSweep(md, plan, rows, sweep);
     md << "\nColumns of bench.csv: " << kCsvHeader
-       << ". Empty = does not apply; psnr_db inf = identical to ground truth. PSNR in the table is that of the "
+       << ". Empty = does not apply; psnr_db inf = identical to ground truth; stage_ms lists a pass's stages "
+          "as name=ms;name=ms. PSNR in the table is that of the "
           "mean squared error over the frames. Ratios divide medians measured in this run.\n";
     return md.str();
 }

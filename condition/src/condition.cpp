@@ -80,12 +80,13 @@ std::string number(double value) {
 }
 
 const std::vector<FillSpelling>& fillSpellings() {
-    // The warps are the renderer's mesh warps (tests/present/ checks each is a method that takes
-    // a guard band, as a warp's sources need).
+    // The warps are the renderer's mesh warps and the splat (tests/present/ checks each is a
+    // method that takes a guard band, as a warp's sources need). warp-splat needs OpenGL 4.3;
+    // where the context lacks it, the study shows the renderer's fallback (methodFallback).
     static const std::vector<FillSpelling> list = {
         {"hold", Fill::Hold},         {"warp-full", Fill::Warp},    {"warp-nofix", Fill::Warp},
         {"warp-sparse4", Fill::Warp}, {"warp-sparse8", Fill::Warp}, {"warp-sparse16", Fill::Warp},
-        {"bireproj", Fill::Bireproj}, {"blend", Fill::Blend},
+        {"warp-splat", Fill::Warp},   {"bireproj", Fill::Bireproj}, {"blend", Fill::Blend},
     };
     return list;
 }

@@ -300,6 +300,7 @@ FrameTiming WindowLoop::show(const game::ShownFrame& shown, std::int64_t frame, 
     timer_.begin();
     maker_.keepSource(shown);
     if (!shown.blank) maker_.make(shown, screen_);
+    for (const std::string& note : maker_.takeNotes()) progress_ << "note: " << note << "\n";
     renderer::HudContent content = present::hudFor(shown, 1.0, 1.0);
     policy.decorate(shown, frame, content);
     content.photonMarker = photonMarker_;

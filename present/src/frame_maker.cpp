@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace warplab::present {
 
@@ -141,8 +142,21 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
 
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {
     auto& m = methods_[name];
-    if (!m) m = renderer::makeMethod(name, paths_);
+    if (!m) {
+        // A method this context cannot run (warp-splat below OpenGL 4.3) is shown by its
+        // fallback, and the session says so rather than stopping a participant's run.
+        const std::string why = renderer::methodUnavailable(name);
+        const std::string fallback = why.empty() ? std::string() : renderer::methodFallback(name);
+        if (fallback.empty()) {
+            m = renderer::makeMethod(name, paths_);  // throws the reason when there is one and no fallback
+        } else {
+            notes_.push_back(why + "; its frames are made with " + fallback + " instead");
+            m = renderer::makeMethod(fallback, paths_);
+        }
+    }
     return *m;
 }
+
+std::vector<std::string> FrameMaker::takeNotes() { return std::exchange(notes_, {}); }
 
 }  // namespace warplab::present

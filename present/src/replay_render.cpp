@@ -128,6 +128,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
             continue;
         }
         if (!shown.blank) maker.make(shown, displayFrame);
+        for (const std::string& note : maker.takeNotes()) out << "note: " << note << "\n";
         hud.draw(hudFor(shown, toFrameX, toFrameY), displayFrame.buffer());
         // One read-back a frame serves both the check (ids) and the PNG (colour).
         const renderer::DisplayImages images = renderer::readBack(displayFrame);

@@ -272,6 +272,22 @@ TEST(CliBench, TheEqualBudgetTableListsPartialShading) {
     EXPECT_GT(fs::file_size(dir + "/budget_vs_error.png"), 1000u);
 }
 
+// A context older than OpenGL 4.3 (macOS's 4.1; here Mesa told to report 4.1) cannot run
+// warp-splat's compute passes: the bench says so, leaves it out and runs the rest.
+TEST(CliBench, SkipsAMethodTheContextCannotRunAndSaysWhy) {
+    const std::string dir = scratch("bench-gl41");
+    const auto r = warplab::testing::runCommand(
+        "MESA_GL_VERSION_OVERRIDE=4.1 " + std::string(WARPLAB_BINARY) +
+        " bench --quick --frames 1 --repeats 1 --sequences pan --shading-sweep 0 --methods hold15,warp-splat --out " +
+        dir);
+    ASSERT_EQ(r.status, 0) << r.output;
+    EXPECT_TRUE(
+        contains(r.output, "- skipped: warp-splat needs OpenGL 4.3 compute shaders; this context is OpenGL 4.1"))
+        << r.output;
+    EXPECT_TRUE(contains(r.output, "| pan | hold15 |")) << r.output;
+    EXPECT_FALSE(contains(r.output, "| pan | warp-splat |")) << r.output;
+}
+
 // A name the bench does not know is a wrong command line: exit 2, as README promises.
 TEST(CliBench, UnknownSequenceOrMethodIsNamed) {
     auto r = warplab("bench --quick --sequences orbit --out " + scratch("bench-bad"));

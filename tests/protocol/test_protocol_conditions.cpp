@@ -84,7 +84,7 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
     const std::vector<Case> cases = {
         {"/conditions/lag60x5/fill", "smear",
          "conditions.lag60x5.fill must be \"hold\", \"warp-full\", \"warp-nofix\", \"warp-sparse4\", "
-         "\"warp-sparse8\", \"warp-sparse16\", \"bireproj\" or \"blend\", got string \"smear\""},
+         "\"warp-sparse8\", \"warp-sparse16\", \"warp-splat\", \"bireproj\" or \"blend\", got string \"smear\""},
         {"/conditions/lag60x5/late_warp", "inpaint",
          "conditions.lag60x5.late_warp must be \"none\", \"rotation\" or \"depth\", got string \"inpaint\""},
         {"/conditions/lag60x5/lag_frames", -2,

@@ -31,6 +31,9 @@ public:
     void keepSource(const game::ShownFrame& shown);
     // Draws the frame `shown` into `display` (no HUD).
     void make(const game::ShownFrame& shown, renderer::DisplayFrame& display);
+    // What the maker changed since the last call, one sentence each: a condition's method the
+    // GL context cannot run, shown by its fallback (warp-splat by warp-sparse8 below OpenGL 4.3).
+    std::vector<std::string> takeNotes();
 
 private:
     renderer::UpconversionMethod& method(const std::string& name);
@@ -51,7 +54,8 @@ private:
     // textures and framebuffer) costs llvmpipe more than drawing a small frame into it.
     std::vector<std::unique_ptr<renderer::SourceFrame>> spare_;
     void release(Kept& kept);
-    std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;
+    std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;  // by the name asked for
+    std::vector<std::string> notes_;
 };
 
 }  // namespace warplab::present

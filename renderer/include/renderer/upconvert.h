@@ -127,6 +127,12 @@ struct MethodInfo {
     bool adaptivePlacement = false;
 };
 
+// One stage of a method's pass, timed apart for the bench (UpconversionMethod::timeStages).
+struct StageTime {
+    std::string name;
+    double wallMs = 0.0;
+};
+
 class UpconversionMethod {
 public:
     virtual ~UpconversionMethod() = default;
@@ -148,6 +154,11 @@ public:
     // displayed instant the newest sample shaded behind it was made, seconds. Empty: every pixel
     // shows shading made at the displayed instant.
     virtual std::vector<float> lastSampleAges() { return {}; }
+    // For the bench: with `on`, produce() also ends each of its stages with glFinish and times
+    // it (warp-splat: splat, resolve), and lastStageTimes() gives those of the last produce().
+    // Methods of one stage have none to give; without `on`, none is timed and none given.
+    virtual void timeStages(bool /*on*/) {}
+    virtual std::vector<StageTime> lastStageTimes() const { return {}; }
 };
 
 // Throws std::invalid_argument naming the method when `source` does not fit `out`: its G-buffer
@@ -159,7 +170,15 @@ std::vector<std::string> methodNames();
 // Throws std::invalid_argument naming the unknown method and listing the known ones; needs no
 // GL context, so a command line can be checked before one is made.
 void requireMethod(const std::string& name);
-// Throws as requireMethod for an unknown name.
+// Throws as requireMethod for an unknown name, and std::runtime_error with
+// methodUnavailable's sentence where the current context cannot run it.
 std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths);
+// Why the current GL context cannot run the method, in one sentence ("warp-splat needs OpenGL
+// 4.3 compute shaders; this context is OpenGL 4.1 (...)"); "" when it can. Throws as
+// requireMethod for an unknown name.
+std::string methodUnavailable(const std::string& name);
+// What a study shows instead of a method the context cannot run (warp-splat: warp-sparse8, the
+// mesh warp of warp15to120); "" where there is nothing to fall back on.
+std::string methodFallback(const std::string& name);
 
 }  // namespace warplab::renderer

@@ -60,6 +60,7 @@ const char* stageName(GLenum stage) {
         case GL_GEOMETRY_SHADER: return "geometry";
         case GL_TESS_CONTROL_SHADER: return "tessellation control";
         case GL_TESS_EVALUATION_SHADER: return "tessellation evaluation";
+        case GL_COMPUTE_SHADER: return "compute";
         default: return "unknown-stage";
     }
 }

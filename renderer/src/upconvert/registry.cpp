@@ -17,6 +17,8 @@
 #include "upconvert/spatiotemporal.h"
 #include "upconvert/warp.h"
 #include "upconvert/warp_search.h"
+#include "upconvert/warp_splat.h"
+#include "gl/api.h"
 #include "scene/camera.h"
 #include "scene/limits.h"
 
@@ -28,6 +30,8 @@ using Name = const std::string&;
 struct Entry {
     const char* name;
     std::function<std::unique_ptr<UpconversionMethod>(const DataPaths&, Name)> make;
+    bool needsCompute = false;  // OpenGL 4.3 compute shaders
+    const char* fallback = "";  // what a study shows instead where the context cannot run it
 };
 
 WarpSettings sparse(int patchSize) {
@@ -103,6 +107,7 @@ const std::vector<Entry>& registry() {
         {"warp-sparse8", [](const DataPaths& p, Name name) { return makeWarp(p, name, sparse(8)); }},
         {"warp-sparse16", [](const DataPaths& p, Name name) { return makeWarp(p, name, sparse(16)); }},
         {"warp-search", [](const DataPaths& p, Name name) { return makeWarpSearch(p, name, {}); }},
+        {"warp-splat", [](const DataPaths& p, Name name) { return makeWarpSplat(p, name, {}); }, true, "warp-sparse8"},
         {"bireproj", [](const DataPaths& p, Name name) { return makeBireproj(p, name, {}); }},
         {"bireproj-m1", [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(1, true, true)); }},
         {"bireproj-m2", [](const DataPaths& p, Name name) { return makeBireproj(p, name, bireproj(2, true, true)); }},
@@ -173,8 +178,19 @@ void requireMethod(const std::string& name) { entryNamed(name); }
 
 std::unique_ptr<UpconversionMethod> makeMethod(const std::string& name, const DataPaths& paths) {
     const Entry& e = entryNamed(name);
+    const std::string why = methodUnavailable(name);
+    if (!why.empty()) throw std::runtime_error(why);
     return e.make(paths, e.name);
 }
+
+std::string methodUnavailable(const std::string& name) {
+    const Entry& e = entryNamed(name);
+    std::string why;
+    if (e.needsCompute && !gl::hasCompute(&why)) return name + " needs OpenGL 4.3 compute shaders; " + why;
+    return "";
+}
+
+std::string methodFallback(const std::string& name) { return entryNamed(name).fallback; }
 
 GuardBand guardBandFor(int width, int height, double fraction) {
     if (!(fraction >= 0.0 && fraction <= scene::kMaxGuardBand))

@@ -52,10 +52,10 @@ public:
         }
         stages.push_back({GL_FRAGMENT_SHADER, "warp.frag"});
         program_ = gl::buildProgram({paths.shaderDir, stages, defines});
-        fillProgram_ =
-            gl::buildProgram({paths.shaderDir,
-                              {{GL_VERTEX_SHADER, "fullscreen.vert"}, {GL_FRAGMENT_SHADER, "warp_border_fill.frag"}},
-                              {}});
+        fillProgram_ = gl::buildProgram({paths.shaderDir,
+                                         {{GL_VERTEX_SHADER, "fullscreen.vert"},
+                                          {GL_FRAGMENT_SHADER, "warp_border_fill.frag", {"warp_border.glsl"}}},
+                                         {}});
         primitives_ = gl::Query::create();
     }
 
