@@ -15,7 +15,6 @@
 #include "upconvert/warp_splat.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -26,6 +25,7 @@
 #include "gl/check.h"
 #include "gl/program.h"
 #include "upconvert/fullscreen.h"
+#include "upconvert/stage_clock.h"
 #include "upconvert/warp.h"
 #include "scene/camera.h"
 
@@ -44,32 +44,6 @@ gl::Buffer makeStorage(std::size_t bytes) {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
     return buffer;
 }
-
-// Times the stages of one produce() when the bench asks: each ends with glFinish, so its time
-// is its own and not the next one's.
-class StageClock {
-public:
-    void enable(bool on) { on_ = on; }
-    void start() {
-        times_.clear();
-        if (!on_) return;
-        glFinish();
-        last_ = std::chrono::steady_clock::now();
-    }
-    void done(const char* stage) {
-        if (!on_) return;
-        glFinish();
-        const auto now = std::chrono::steady_clock::now();
-        times_.push_back({stage, std::chrono::duration<double, std::milli>(now - last_).count()});
-        last_ = now;
-    }
-    const std::vector<StageTime>& times() const { return times_; }
-
-private:
-    bool on_ = false;
-    std::chrono::steady_clock::time_point last_;
-    std::vector<StageTime> times_;
-};
 
 class WarpSplatMethod final : public UpconversionMethod {
 public:
