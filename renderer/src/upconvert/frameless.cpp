@@ -25,6 +25,7 @@
 #include "gl/check.h"
 #include "gl/program.h"
 #include "upconvert/fullscreen.h"
+#include "upconvert/stage_clock.h"
 #include "scene/camera.h"
 
 namespace warplab::renderer {
@@ -110,6 +111,8 @@ public:
     const MethodInfo& info() const override { return info_; }
     double lastShadedSamples() override { return shadedSamples_; }
     SamplePlacement placement() const { return {kCell, cellsX_, cellsY_, placed_}; }
+    void timeStages(bool on) override { clock_.enable(on); }
+    std::vector<StageTime> lastStageTimes() const override { return clock_.times(); }
     // The age of the sample each pixel holds in the deep buffer (the one its filter weighs most);
     // a pixel holding none shows its neighbours' (this frame's at the oldest: age 0 is claimed
     // for no pixel that has none, so such pixels count as the filter's window's newest, 0).
@@ -136,6 +139,7 @@ public:
             throw std::invalid_argument(info_.name + ": needs the scene at the displayed instant");
         allocateBuffers(out.width(), out.height());
         advance(input);
+        clock_.start();
         Slot& now = slots_[written_];
         const Slot& before = slots_[1 - written_];
         const scene::FrameDescription frame{input.camera, *input.scene};
@@ -145,8 +149,10 @@ public:
         geometry.geometryOnly = true;
         conventional().setShading(geometry);
         conventional().render(frame, now.geometry);
+        clock_.done("geometry");
         // 2. The controller places this frame's samples from the last frame's statistics.
         placeSamples();
+        clock_.done("control");
         // 3. Shading at those pixels only, at the sources' shading cost.
         ShadingOptions masked;
         masked.shadingCost = input.shading.shadingCost;
@@ -154,10 +160,12 @@ public:
         masked.sampleMask = mask_.id();
         conventional().setShading(masked);
         conventional().render(frame, *shaded_);
-        // 4. The deep buffer, its statistics, and the displayed frame.
+        clock_.done("shading");
+        // 4. The deep buffer, its statistics (read back for the controller), and the displayed frame.
         updateDeepBuffer(input, now, before);
         measureCells(input, now);
         reconstruct(input, now, out);
+        clock_.done("filter");
     }
 
 private:
@@ -399,6 +407,7 @@ private:
     long frameIndex_ = 0;
     glm::mat4 lastViewProjection_{1.0f}, previousViewProjection_{1.0f};
     double shadedSamples_ = std::nan("");
+    StageClock clock_;
 };
 
 }  // namespace

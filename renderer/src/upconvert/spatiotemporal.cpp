@@ -17,6 +17,7 @@
 #include "gl/check.h"
 #include "gl/program.h"
 #include "upconvert/fullscreen.h"
+#include "upconvert/stage_clock.h"
 #include "scene/camera.h"
 
 namespace warplab::renderer {
@@ -68,6 +69,8 @@ public:
 
     const MethodInfo& info() const override { return info_; }
     double lastShadedSamples() override { return shadedSamples_; }
+    void timeStages(bool on) override { clock_.enable(on); }
+    std::vector<StageTime> lastStageTimes() const override { return clock_.times(); }
 
     void produce(const UpconversionInput& input, DisplayFrame& out) override {
         if (input.scene == nullptr)
@@ -79,6 +82,7 @@ public:
                                         std::to_string(step_.x) + "x" + std::to_string(step_.y) + " lattice");
         allocate(width, height);
         advance(input);
+        clock_.start();
         Slot& now = slots_[written_];
         const Slot& before = slots_[1 - written_];
         const scene::FrameDescription frame{input.camera, *input.scene};
@@ -88,6 +92,7 @@ public:
         geometry.geometryOnly = true;
         conventional().setShading(geometry);
         conventional().render(frame, now.geometry);
+        clock_.done("geometry");
         // 2. Shading: the lattice's phase for this frame, at the sources' shading cost.
         ShadingOptions lattice;
         lattice.shadingCost = input.shading.shadingCost;
@@ -97,8 +102,10 @@ public:
         conventional().setShading(lattice);
         conventional().render(frame, *low_);
         shadedSamples_ = static_cast<double>(low_->width()) * low_->height();
+        clock_.done("shading");
         // 3. The filter, into the displayed frame and the history.
         filter(input, now, before, out);
+        clock_.done("filter");
     }
 
 private:
@@ -211,6 +218,7 @@ private:
     long frameIndex_ = 0;
     glm::mat4 lastViewProjection_{1.0f}, previousViewProjection_{1.0f};
     double shadedSamples_ = std::nan("");
+    StageClock clock_;
 };
 
 }  // namespace
