@@ -138,20 +138,10 @@ PassTimes timePass(Rig& rig, const BenchOptions& options, renderer::Upconversion
     // Per-interval work (flow fields) and, for methods that start from the previous
     // displayed frame, the interval's earlier frames: made untimed, as a session
     // would have made them before this one.
+    // Methods that build a history over displayed frames: the frames before, likewise.
     method.prepare(input);
-    if (method.info().usesEarlierFrames) {
-        for (int j = previous + 1; j < k; ++j) {
-            renderer::UpconversionInput earlier = input;
-            earlier.displayTime = j / options.refreshHz;
-            const scene::FrameDescription then = sequence.at(earlier.displayTime);
-            earlier.camera = then.camera;
-            earlier.scene = &then.scene;
-            method.produce(earlier, rig.display);
-        }
-    }
-    // Methods that build a history over displayed frames: the frames before, as a session
-    // would have shown them.
-    for (int j = std::max(0, k - method.info().historyFrames); j < k; ++j) {
+    const int first = method.info().usesEarlierFrames ? previous + 1 : k - method.info().historyFrames;
+    for (int j = std::max(0, first); j < k; ++j) {
         renderer::UpconversionInput earlier = input;
         earlier.displayTime = j / options.refreshHz;
         const scene::FrameDescription then = sequence.at(earlier.displayTime);

@@ -24,6 +24,7 @@
 #include "gbuffer_gl.h"
 #include "gl/check.h"
 #include "gl/program.h"
+#include "upconvert/frame_history.h"
 #include "upconvert/fullscreen.h"
 #include "upconvert/stage_clock.h"
 #include "scene/camera.h"
@@ -32,7 +33,6 @@ namespace warplab::renderer {
 namespace {
 
 constexpr int kCell = 8;  // controller cell side, pixels
-constexpr double kMaxFrameGapS = 0.1;  // as spatio-temporal upsampling: a longer gap starts afresh
 constexpr float kDepthTolerance = 0.01f;
 // The controller's tile error (section 6.1), the variation and undersampling terms' shares; the
 // occlusion term's share goes to undersampling, which is where occlusions and disocclusions
@@ -118,13 +118,13 @@ public:
     // for no pixel that has none, so such pixels count as the filter's window's newest, 0).
     std::vector<float> lastSampleAges() override {
         std::vector<float> deep(4 * static_cast<std::size_t>(width_) * height_);
-        glBindFramebuffer(GL_FRAMEBUFFER, slots_[written_].framebuffer.id());
+        glBindFramebuffer(GL_FRAMEBUFFER, slots_[static_cast<std::size_t>(history_.written())].framebuffer.id());
         glReadBuffer(GL_COLOR_ATTACHMENT0);
         glPixelStorei(GL_PACK_ALIGNMENT, 4);
         glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, deep.data());
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         gl::checkErrors("reading the deep buffer's sample times");
-        const float now = static_cast<float>(lastTime_ - origin_);
+        const float now = static_cast<float>(history_.time() - history_.origin());
         std::vector<float> ages(static_cast<std::size_t>(width_) * height_);
         for (int y = 0; y < height_; ++y)
             for (int x = 0; x < width_; ++x) {
@@ -140,8 +140,8 @@ public:
         allocateBuffers(out.width(), out.height());
         advance(input);
         clock_.start();
-        Slot& now = slots_[written_];
-        const Slot& before = slots_[1 - written_];
+        Slot& now = slots_[static_cast<std::size_t>(history_.written())];
+        const Slot& before = slots_[static_cast<std::size_t>(history_.previous())];
         const scene::FrameDescription frame{input.camera, *input.scene};
 
         // 1. Geometry: depth, ids and velocity of every pixel.
@@ -208,32 +208,14 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glBindTexture(GL_TEXTURE_2D, 0);
         maskPixels_.assign(static_cast<std::size_t>(width) * height, 0);
-        haveLast_ = false;
+        history_.reset();
     }
 
-    // As spatio-temporal upsampling: a repeat of the last frame reads what its first run read.
+    // The frame's place in the history; the statistics the last frame measured steer this one.
     void advance(const UpconversionInput& input) {
-        const double t = input.displayTime;
-        const glm::mat4 viewProjection = viewProjectionOf(input.camera);
-        if (haveLast_ && t == lastTime_) {
-            repeat_ = true;
-            return;
-        }
-        repeat_ = false;
-        const bool follows = haveLast_ && t > lastTime_ && t - lastTime_ <= kMaxFrameGapS;
-        haveHistory_ = follows;
-        dt_ = follows ? t - lastTime_ : 0.0;
-        previousViewProjection_ = lastViewProjection_;
-        frameIndex_ = follows ? frameIndex_ + 1 : 0;
-        if (!follows) {
-            statsKnown_ = false;
-            origin_ = t;
-        }
-        written_ = 1 - written_;
-        lastTime_ = t;
-        lastViewProjection_ = viewProjection;
-        haveLast_ = true;
-        // The statistics the last frame measured steer this one.
+        history_.advance(input.displayTime, viewProjectionOf(input.camera));
+        if (history_.repeat()) return;
+        if (!history_.follows()) statsKnown_ = false;
         if (statsKnown_) statsForPlacing_ = statsLastMeasured_;
     }
 
@@ -274,7 +256,7 @@ private:
         // Which pixels: chosen at random within each cell, from a stream seeded by the frame's
         // place in the sequence (the same frames give the same samples).
         std::fill(maskPixels_.begin(), maskPixels_.end(), std::uint8_t{0});
-        std::mt19937_64 random(0x5eed0000u + static_cast<std::uint64_t>(frameIndex_));
+        std::mt19937_64 random(0x5eed0000u + static_cast<std::uint64_t>(history_.frameIndex()));
         std::vector<int> order;
         long placed = 0;
         for (int cy = 0; cy < cellsY_; ++cy)
@@ -324,14 +306,15 @@ private:
         bindTexture(update_, "uPreviousDepth", 7, previous.depth);
         bindTexture(update_, "uPreviousIds", 8, previous.ids);
         auto u = [&](const char* name) { return gl::uniform(update_, name); };
-        const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(lastViewProjection_)));
+        const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(history_.viewProjection())));
         glUniformMatrix4fv(u("uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
-        glUniformMatrix4fv(u("uPreviousViewProjection"), 1, GL_FALSE, glm::value_ptr(previousViewProjection_));
+        glUniformMatrix4fv(u("uPreviousViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(history_.previousViewProjection()));
         glUniform1f(u("uTime"), static_cast<float>(input.displayTime - timeOrigin()));
-        glUniform1f(u("uDt"), static_cast<float>(dt_));
+        glUniform1f(u("uDt"), static_cast<float>(history_.dt()));
         glUniform1f(u("uNear"), input.camera.nearPlane);
         glUniform1f(u("uFar"), input.camera.farPlane);
-        glUniform1i(u("uHaveHistory"), haveHistory_ ? 1 : 0);
+        glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
         glUniform1f(u("uDepthTolerance"), kDepthTolerance);
         pass_.draw();
         endImagePass(9);
@@ -350,7 +333,7 @@ private:
         glUniform1f(gl::uniform(stats_, "uTime"), static_cast<float>(input.displayTime - timeOrigin()));
         pass_.draw();
         // The controller reads them for the next frame (a small image: cellsX x cellsY).
-        if (!repeat_) {
+        if (!history_.repeat()) {
             statsLastMeasured_.resize(static_cast<std::size_t>(cellsX_) * cellsY_);
             glReadBuffer(GL_COLOR_ATTACHMENT0);
             glReadPixels(0, 0, cellsX_, cellsY_, GL_RGBA, GL_FLOAT, statsLastMeasured_.data());
@@ -375,7 +358,7 @@ private:
         auto u = [&](const char* name) { return gl::uniform(reconstruct_, name); };
         glUniform1i(u("uCell"), kCell);
         glUniform1f(u("uTime"), static_cast<float>(input.displayTime - timeOrigin()));
-        glUniform1f(u("uRefreshHz"), static_cast<float>(dt_ > 0.0 ? 1.0 / dt_ : 120.0));
+        glUniform1f(u("uRefreshHz"), static_cast<float>(history_.dt() > 0.0 ? 1.0 / history_.dt() : 120.0));
         glUniform1f(u("uFreshPerPixel"), 1.0f / static_cast<float>(share_));
         pass_.draw();
         endImagePass(4);
@@ -384,7 +367,7 @@ private:
 
     // Sample times are stored from the start of the run of frames, so that a float keeps them to
     // the microsecond however long the session.
-    double timeOrigin() const { return origin_; }
+    double timeOrigin() const { return history_.origin(); }
 
     MethodInfo info_;
     DataPaths paths_;
@@ -400,12 +383,8 @@ private:
     std::vector<std::uint8_t> maskPixels_;
     std::vector<CellStats> statsLastMeasured_, statsForPlacing_;
     std::vector<int> placed_;
-    bool statsKnown_ = false, repeat_ = false;
-    int written_ = 0;
-    bool haveLast_ = false, haveHistory_ = false;
-    double lastTime_ = 0.0, dt_ = 0.0, origin_ = 0.0;
-    long frameIndex_ = 0;
-    glm::mat4 lastViewProjection_{1.0f}, previousViewProjection_{1.0f};
+    bool statsKnown_ = false;
+    FrameHistory history_;
     double shadedSamples_ = std::nan("");
     StageClock clock_;
 };

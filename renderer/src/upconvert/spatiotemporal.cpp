@@ -16,6 +16,7 @@
 #include "gbuffer_gl.h"
 #include "gl/check.h"
 #include "gl/program.h"
+#include "upconvert/frame_history.h"
 #include "upconvert/fullscreen.h"
 #include "upconvert/stage_clock.h"
 #include "scene/camera.h"
@@ -23,10 +24,6 @@
 namespace warplab::renderer {
 namespace {
 
-// A history is reprojected from the frame before only; a gap longer than this (a cut, or a
-// bench that samples frames far apart) starts it again, so a frame's result depends only on the
-// frames since the last gap.
-constexpr double kMaxFrameGapS = 0.1;
 // h_w's cap: the history never outweighs this many frames' spatial estimates, so that a change
 // the gradient misses still fades in within a few frames.
 constexpr float kMaxHistoryWeight = 16.0f;
@@ -81,10 +78,12 @@ public:
                                         std::to_string(height) + " pixels do not divide into its " +
                                         std::to_string(step_.x) + "x" + std::to_string(step_.y) + " lattice");
         allocate(width, height);
-        advance(input);
+        const float aspect = static_cast<float>(width) / static_cast<float>(height);
+        history_.advance(input.displayTime,
+                         scene::projectionMatrix(input.camera, aspect) * scene::viewMatrix(input.camera));
         clock_.start();
-        Slot& now = slots_[written_];
-        const Slot& before = slots_[1 - written_];
+        Slot& now = slots_[static_cast<std::size_t>(history_.written())];
+        const Slot& before = slots_[static_cast<std::size_t>(history_.previous())];
         const scene::FrameDescription frame{input.camera, *input.scene};
 
         // 1. Geometry: every pixel's depth, id and velocity, no shading.
@@ -98,7 +97,7 @@ public:
         lattice.shadingCost = input.shading.shadingCost;
         lattice.panelPattern = input.shading.panelPattern;
         lattice.latticeStep = step_;
-        lattice.latticePhase = phases_[static_cast<std::size_t>(frameIndex_) % phases_.size()];
+        lattice.latticePhase = phases_[static_cast<std::size_t>(history_.frameIndex()) % phases_.size()];
         conventional().setShading(lattice);
         conventional().render(frame, *low_);
         shadedSamples_ = static_cast<double>(low_->width()) * low_->height();
@@ -129,26 +128,7 @@ private:
         glBindTexture(GL_TEXTURE_2D, 0);
         low_ = std::make_unique<GBuffer>(width / step_.x, height / step_.y);
         framebuffer_ = gl::Framebuffer::create();
-        haveLast_ = false;
-    }
-
-    // Which slot this frame writes and whether the other holds the frame before. A repeat of the
-    // last frame (the bench times a pass several times) reads the same history as its first run.
-    void advance(const UpconversionInput& input) {
-        const double t = input.displayTime;
-        const float aspect = static_cast<float>(slots_[0].geometry.width()) / slots_[0].geometry.height();
-        const glm::mat4 viewProjection =
-            scene::projectionMatrix(input.camera, aspect) * scene::viewMatrix(input.camera);
-        if (haveLast_ && t == lastTime_) return;
-        const bool follows = haveLast_ && t > lastTime_ && t - lastTime_ <= kMaxFrameGapS;
-        haveHistory_ = follows;
-        dt_ = follows ? t - lastTime_ : 0.0;
-        previousViewProjection_ = lastViewProjection_;
-        frameIndex_ = follows ? frameIndex_ + 1 : 0;
-        written_ = 1 - written_;
-        lastTime_ = t;
-        lastViewProjection_ = viewProjection;
-        haveLast_ = true;
+        history_.reset();
     }
 
     void filter(const UpconversionInput& input, const Slot& now, const Slot& before, DisplayFrame& out) {
@@ -180,19 +160,17 @@ private:
         bindTexture(program_, "uPreviousDepth", 8, previous.depth);
         bindTexture(program_, "uPreviousIds", 9, previous.ids);
         auto u = [&](const char* name) { return gl::uniform(program_, name); };
-        const float aspect = static_cast<float>(target.width) / static_cast<float>(target.height);
-        const glm::mat4 viewProjection =
-            scene::projectionMatrix(input.camera, aspect) * scene::viewMatrix(input.camera);
-        const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(viewProjection)));
+        const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(history_.viewProjection())));
         glUniformMatrix4fv(u("uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
-        glUniformMatrix4fv(u("uPreviousViewProjection"), 1, GL_FALSE, glm::value_ptr(previousViewProjection_));
+        glUniformMatrix4fv(u("uPreviousViewProjection"), 1, GL_FALSE,
+                           glm::value_ptr(history_.previousViewProjection()));
         glUniform2i(u("uStep"), step_.x, step_.y);
-        const glm::ivec2 phase = phases_[static_cast<std::size_t>(frameIndex_) % phases_.size()];
+        const glm::ivec2 phase = phases_[static_cast<std::size_t>(history_.frameIndex()) % phases_.size()];
         glUniform2i(u("uPhase"), phase.x, phase.y);
-        glUniform1f(u("uDt"), static_cast<float>(dt_));
+        glUniform1f(u("uDt"), static_cast<float>(history_.dt()));
         glUniform1f(u("uNear"), input.camera.nearPlane);
         glUniform1f(u("uFar"), input.camera.farPlane);
-        glUniform1i(u("uHaveHistory"), haveHistory_ ? 1 : 0);
+        glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
         glUniform1f(u("uMaxHistoryWeight"), kMaxHistoryWeight);
         glUniform1f(u("uDepthTolerance"), kDepthTolerance);
         pass_.draw();
@@ -212,11 +190,7 @@ private:
     std::vector<Slot> slots_;
     std::unique_ptr<GBuffer> low_;
     gl::Framebuffer framebuffer_;
-    int written_ = 0;  // the slot the last frame wrote
-    bool haveLast_ = false, haveHistory_ = false;
-    double lastTime_ = 0.0, dt_ = 0.0;
-    long frameIndex_ = 0;
-    glm::mat4 lastViewProjection_{1.0f}, previousViewProjection_{1.0f};
+    FrameHistory history_;
     double shadedSamples_ = std::nan("");
     StageClock clock_;
 };
