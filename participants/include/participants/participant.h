@@ -143,11 +143,12 @@ struct ParticipantParams {
     double ratingNoise = 0.0;
     double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
     double answerAfterS = 1.0;  // reading a rating statement before answering it
-    // Percept resolution: width in pixels (height keeps the display's aspect). 160 x 90 puts
-    // ~0.67 degrees in a pixel at 60 degrees of view; centroids of a target a few pixels wide
-    // are still sub-pixel. A speed trade-off (llvmpipe draws such frames in milliseconds), not
-    // human acuity.
-    int perceptWidth = 160;
+    // Percept resolution: width in pixels (height keeps the display's aspect). 128 x 72 puts
+    // ~0.83 degrees in a pixel at 60 degrees of view; centroids of a target a few pixels wide
+    // are still sub-pixel. A speed trade-off, not human acuity: llvmpipe's cost of a percept is
+    // mostly per pixel, and 160 x 90 made `warplab demo` 1.3 times slower for figures within
+    // the noise of these (docs/simulated-participant.md, "Speed").
+    int perceptWidth = 128;
 };
 
 // ---------------------------------------------------------------------------------------------
