@@ -13,7 +13,7 @@ Predict: with the fitted population, `warplab demo` plays the shooter (shooter-d
 fit never saw, and its report puts the thesis's Table 1 beside it (docs/simulated-participant.md).
 
     /usr/bin/python3 analysis/fit_participants.py --warplab build/app/warplab \\
-        --participants 4 --evaluations 8 --out fit-out
+        --participants 6 --evaluations 4 --confirm 12 --out fit-out
 writes fit-out/population.json (the fitted population), fit-out/fit.json (every evaluation:
 traits, per-mode ratios, objective) and prints a table of the fitted ratios against the paper's.
 """
@@ -92,18 +92,20 @@ def green_by_mode(warplab, folders, out):
     return total
 
 
-def evaluate(args, base, medians, index, log):
+def evaluate(args, base, medians, index, log, participants=None):
+    participants = participants or args.participants
     out = Path(args.out) / f"eval-{index:02d}"
     out.mkdir(parents=True, exist_ok=True)
     pop_file = out / "population.json"
     pop_file.write_text(json.dumps(population_with(base, medians), indent=2) + "\n")
-    seeds = range(1, args.participants + 1)
+    seeds = range(1, participants + 1)
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         folders = list(pool.map(lambda s: play(args.warplab, args.protocol, pop_file, s, out), seeds))
     total = green_by_mode(args.warplab, folders, out)
     ratio = {mode: total.get(mode, 0) / max(1, total.get(BEST, 0)) for mode in MODES}
     objective = float(sum((ratio[m] - PAPER_RATIO[m]) ** 2 for m in MODES if m != BEST))
-    entry = {"evaluation": index, "medians": medians, "green_hits": total, "ratio": ratio, "objective": objective}
+    entry = {"evaluation": index, "participants": participants, "medians": medians, "green_hits": total,
+             "ratio": ratio, "objective": objective}
     log.append(entry)
     print(f"eval {index:2d}: " + ", ".join(f"{k} {v:.3f}" for k, v in medians.items()) +
           f" -> objective {objective:.4f} (" + " ".join(f"{m} {ratio[m]:.2f}" for m in MODES) + ")",
@@ -125,6 +127,9 @@ def main():
     parser.add_argument("--out", default="fit-out")
     parser.add_argument("--keep", action="store_true", help="keep every evaluation's sessions")
     parser.add_argument("--only", action="store_true", help="evaluate the starting population once, no fit")
+    parser.add_argument("--confirm", type=int, default=0, metavar="N",
+                        help="then play the search's two best values again with N participants and keep the better "
+                             "(the search's noise can order two close values either way)")
     args = parser.parse_args()
     Path(args.out).mkdir(parents=True, exist_ok=True)
     base = json.loads(Path(args.population).read_text())
@@ -139,11 +144,18 @@ def main():
         minimize_scalar(objective, bounds=BOUNDS, method="bounded",
                         options={"maxiter": args.evaluations, "xatol": 0.03})
     best = min(log, key=lambda e: e["objective"])
+    confirmed = []
+    if args.confirm and not args.only:
+        for entry in sorted(log, key=lambda e: e["objective"])[:2]:
+            evaluate(args, base, entry["medians"], len(log) + 1, log, participants=args.confirm)
+            confirmed.append(log[-1])
+        best = min(confirmed, key=lambda e: e["objective"])
     fitted = population_with(base, best["medians"])
     fitted["description"] = (
         f"fitted by analysis/fit_participants.py to Yang et al. 2011 Table 2 (green hits relative to 60 fps) "
-        f"with {args.participants} simulated participants on click-fit; trait fitted: {FITTED}; "
-        f"objective {best['objective']:.4f} after {len(log)} evaluations")
+        f"with {args.participants} simulated participants on click-fit"
+        + (f", the two best confirmed with {args.confirm}" if confirmed else "")
+        + f"; trait fitted: {FITTED}; objective {best['objective']:.4f} after {len(log)} evaluations")
     (Path(args.out) / "population.json").write_text(json.dumps(fitted, indent=2) + "\n")
     (Path(args.out) / "fit.json").write_text(json.dumps({"paper_ratio": PAPER_RATIO, "fitted": FITTED,
                                                          "evaluations": log, "best": best}, indent=2) + "\n")
