@@ -68,32 +68,22 @@ public:
         const int w = out.width(), h = out.height();
         checkSourceSize(source, out, info_);
         // A source with a guard band is larger, its camera widened to the same pixel pitch: the
-        // mesh spans all its pixels, and the target view keeps the displayed field of view.
+        // mesh spans all its pixels (warpMatrices).
         const int sw = src.width, sh = src.height;
         const scene::CameraState& sourceCamera = source.depicts.camera;
-        const glm::mat4 sourceViewProjection =
-            scene::projectionMatrix(sourceCamera, static_cast<float>(sw) / static_cast<float>(sh)) *
-            scene::viewMatrix(sourceCamera);
-        const glm::mat4 targetViewProjection =
-            scene::projectionMatrix(input.camera, static_cast<float>(w) / static_cast<float>(h)) *
-            scene::viewMatrix(input.camera);
-        // Inverted in double: float inversion of a perspective matrix with near 0.05 and far 200
-        // costs several bits where depth is most compressed.
-        const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
-        const glm::mat4 targetInverse = glm::mat4(glm::inverse(glm::dmat4(targetViewProjection)));
-        const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
+        const WarpMatrices m = warpMatrices(source, input, w, h);
         // What warp_common.glsl needs, for the mesh and for the patch flags alike.
         const auto setWarpUniforms = [&](const gl::Program& program) {
             auto u = [&](const char* name) { return gl::uniform(program, name); };
             bindTexture(program, "uSourceDepth", 0, src.depth);
             bindTexture(program, "uSourceVelocity", 1, src.velocity);
-            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceInverse));
-            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
-            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
+            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceInverse));
+            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
+            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetViewProjection));
             glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
             glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
             glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
-            glUniform1f(u("uDt"), dt);
+            glUniform1f(u("uDt"), m.dt);
             glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
         };
 
@@ -109,7 +99,7 @@ public:
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
         glDisable(GL_BLEND);
         glDisable(GL_CULL_FACE);
-        fillBorder(source, input.camera, sourceViewProjection, targetInverse, w, h);
+        fillBorder(source, input.camera, m.sourceViewProjection, m.targetInverse, w, h);
 
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -275,6 +265,22 @@ private:
 };
 
 }  // namespace
+
+WarpMatrices warpMatrices(const SourceFrame& source, const UpconversionInput& input, int width, int height) {
+    const auto& src = source.gbuffer.impl();
+    const scene::CameraState& sourceCamera = source.depicts.camera;
+    WarpMatrices m;
+    m.sourceViewProjection =
+        scene::projectionMatrix(sourceCamera, static_cast<float>(src.width) / static_cast<float>(src.height)) *
+        scene::viewMatrix(sourceCamera);
+    m.targetViewProjection =
+        scene::projectionMatrix(input.camera, static_cast<float>(width) / static_cast<float>(height)) *
+        scene::viewMatrix(input.camera);
+    m.sourceInverse = glm::mat4(glm::inverse(glm::dmat4(m.sourceViewProjection)));
+    m.targetInverse = glm::mat4(glm::inverse(glm::dmat4(m.targetViewProjection)));
+    m.dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
+    return m;
+}
 
 std::unique_ptr<UpconversionMethod> makeWarp(const DataPaths& paths, const std::string& name,
                                              const WarpSettings& settings) {

@@ -2,6 +2,8 @@
 // makeMethod("warp-full" | "warp-nofix" | "warp-sparse4" | "warp-sparse8" | "warp-sparse16").
 #pragma once
 
+#include <glm/glm.hpp>
+
 #include "renderer/upconvert.h"
 
 namespace warplab::renderer {
@@ -20,5 +22,17 @@ struct WarpSettings {
 
 std::unique_ptr<UpconversionMethod> makeWarp(const DataPaths& paths, const std::string& name,
                                              const WarpSettings& settings);
+
+// What warp_common.glsl warps `source` with, to the camera and instant of `input` at a display of
+// width x height: a banded source's camera is widened to the same pixel pitch (its aspect is
+// its own), the display keeps the displayed field of view. Inverted in double: float inversion
+// of a perspective matrix with near 0.05 and far 200 costs several bits where depth is most
+// compressed. Shared by the mesh warps and warp-splat.
+struct WarpMatrices {
+    glm::mat4 sourceViewProjection{1.0f}, targetViewProjection{1.0f};
+    glm::mat4 sourceInverse{1.0f}, targetInverse{1.0f};
+    float dt = 0.0f;  // display time - source time, s
+};
+WarpMatrices warpMatrices(const SourceFrame& source, const UpconversionInput& input, int width, int height);
 
 }  // namespace warplab::renderer

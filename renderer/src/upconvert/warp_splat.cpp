@@ -86,20 +86,8 @@ public:
         const int w = out.width(), h = out.height();
         const int sw = src.width, sh = src.height;
         allocate(sw, sh, w, h);
-        // The matrices as the mesh warps make them: a banded source's camera is widened to the
-        // same pixel pitch, the display keeps the displayed field of view.
         const scene::CameraState& sourceCamera = source.depicts.camera;
-        const glm::mat4 sourceViewProjection =
-            scene::projectionMatrix(sourceCamera, static_cast<float>(sw) / static_cast<float>(sh)) *
-            scene::viewMatrix(sourceCamera);
-        const glm::mat4 targetViewProjection =
-            scene::projectionMatrix(input.camera, static_cast<float>(w) / static_cast<float>(h)) *
-            scene::viewMatrix(input.camera);
-        // Inverted in double, as warp.cpp does: float inversion of a perspective matrix with near
-        // 0.05 and far 200 costs several bits where depth is most compressed.
-        const glm::mat4 sourceInverse = glm::mat4(glm::inverse(glm::dmat4(sourceViewProjection)));
-        const glm::mat4 targetInverse = glm::mat4(glm::inverse(glm::dmat4(targetViewProjection)));
-        const float dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
+        const WarpMatrices m = warpMatrices(source, input, w, h);  // as the mesh warps make them
         const WarpSettings fix;  // the disocclusion fix's sheet rule, shared with the mesh warps
 
         clock_.start();
@@ -119,12 +107,12 @@ public:
             auto u = [&](const char* n) { return gl::uniform(program, n); };
             bindTexture(program, "uSourceDepth", 0, src.depth);
             bindTexture(program, "uSourceVelocity", 1, src.velocity);
-            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceInverse));
-            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
-            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(targetViewProjection));
+            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceInverse));
+            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
+            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetViewProjection));
             glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
             glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
-            glUniform1f(u("uDt"), dt);
+            glUniform1f(u("uDt"), m.dt);
             glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
             glUniform2i(u("uCells"), sw + 1, sh + 1);
         };
@@ -173,8 +161,8 @@ public:
             glUniform1f(u("uSheetDepthRatio"), fix.sheetDepthRatio);
             glUniform1f(u("uNear"), input.camera.nearPlane);
             glUniform1f(u("uFar"), input.camera.farPlane);
-            glUniformMatrix4fv(u("uTargetInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(targetInverse));
-            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(sourceViewProjection));
+            glUniformMatrix4fv(u("uTargetInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetInverse));
+            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
             glUniform3fv(u("uTargetEye"), 1, glm::value_ptr(input.camera.eye));
             glUniform2f(u("uSourceSize"), static_cast<float>(sw), static_cast<float>(sh));
             glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
