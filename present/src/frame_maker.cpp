@@ -140,6 +140,14 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     shows.produce(input, display);
 }
 
+const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& shown) const {
+    const auto kind = shown.schedule.kind;
+    if (kind != condition::FrameKind::Held && kind != condition::FrameKind::Rendered) return nullptr;
+    const auto it = sources_.find(shown.sourceFrame);
+    if (it == sources_.end() || !(it->second.frame->band == renderer::GuardBand{})) return nullptr;
+    return it->second.frame.get();  // make() would show it by hold120: a copy
+}
+
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {
     auto& m = methods_[name];
     if (!m) {

@@ -1,5 +1,6 @@
 // The baseline upconversion methods and the bench's measures on cases whose answer is known.
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -40,6 +41,22 @@ TEST(Methods, Hold120EqualsGroundTruthExactly) {
     EXPECT_EQ(shown.ids.data, truth.images.ids.data);
     EXPECT_TRUE(std::isinf(image::psnr(shown.colour, truth.images.colour)));
     EXPECT_EQ(image::ssimLuminance(shown.colour, truth.images.colour), 1.0);
+}
+
+// What a reader of displayed pixels (the simulated participant's eye) may read instead of the
+// copy hold makes: the same colour and ids, bit for bit; a banded source is refused.
+TEST(Methods, ReadShownIsWhatHoldShows) {
+    const Rendered source = render(shooterAt(0.25));
+    renderer::UpconversionInput input;
+    input.displayTime = 0.25;
+    input.camera = shooterAt(0.25).camera;
+    input.previous = source.frame.get();
+    const auto held = produce("hold120", input);
+    const auto read = renderer::readShown(*source.frame);
+    EXPECT_EQ(read.colour.pixels, held.colour.pixels);
+    EXPECT_EQ(read.ids.data, held.ids.data);
+    const Rendered banded = testing::renderSource(shooterAt(0.25), kW, kH, nullptr, {4, 2});
+    EXPECT_THROW(renderer::readShown(*banded.frame), std::invalid_argument);
 }
 
 TEST(Methods, HoldOfAMovingTargetDiffersFromGroundTruth) {

@@ -48,8 +48,11 @@ Percept Eye::see(const game::ShownFrame& shown) {
     const bool same =
         haveImage_ && (shown.frozen || (kind == condition::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
     if (!same) {
-        maker_.make(shown, frame_);
-        const renderer::DisplayImages images = renderer::readBack(frame_, false);
+        // A held or rendered frame is its source copied: read there, the copy is not made.
+        const renderer::SourceFrame* unchanged = maker_.shownUnchanged(shown);
+        if (unchanged == nullptr) maker_.make(shown, frame_);
+        const renderer::DisplayImages images =
+            unchanged != nullptr ? renderer::readShown(*unchanged) : renderer::readBack(frame_, false);
         const glm::dvec2 toDisplay(static_cast<double>(display_.width) / width_,
                                    static_cast<double>(display_.height) / height_);
         lastObjects_ = findObjects(images.ids, images.colour, toDisplay);

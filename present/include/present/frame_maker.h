@@ -31,6 +31,10 @@ public:
     void keepSource(const game::ShownFrame& shown);
     // Draws the frame `shown` into `display` (no HUD).
     void make(const game::ShownFrame& shown, renderer::DisplayFrame& display);
+    // The kept source whose copy make() would show as `shown`, pixel for pixel (a held or rendered
+    // frame of a source rendered without a guard band), or null: a reader of the displayed
+    // pixels may read them there and skip the copy.
+    const renderer::SourceFrame* shownUnchanged(const game::ShownFrame& shown) const;
     // What the maker changed since the last call, one sentence each: a condition's method the
     // GL context cannot run, shown by its fallback (warp-splat by warp-sparse8 below OpenGL 4.3).
     std::vector<std::string> takeNotes();

@@ -71,6 +71,8 @@ struct DisplayImages {
 };
 // `correspondence` false leaves it empty: what a viewer sees is colour and objects only.
 DisplayImages readBack(const DisplayFrame& frame, bool correspondence = true);
+// A source without a guard band as hold shows it: its colour and ids (no correspondence).
+DisplayImages readShown(const SourceFrame& source);
 
 struct UpconversionInput {
     double displayTime = 0.0;

@@ -220,6 +220,13 @@ void checkSourceSize(const SourceFrame& source, const DisplayFrame& out, const M
         throw std::invalid_argument(info.name + ": source and display sizes differ");
 }
 
+DisplayImages readShown(const SourceFrame& source) {
+    if (!(source.band == GuardBand{}))
+        throw std::invalid_argument("readShown: a source with a guard band shows only its inside");
+    const auto& g = source.gbuffer.impl();
+    return {readColourAttachment(g), readIdAttachment(g), image::ImageF{}};
+}
+
 DisplayImages readBack(const DisplayFrame& frame, bool correspondence) {
     const auto& g = frame.buffer().impl();
     return {readColourAttachment(g), readIdAttachment(g),
