@@ -113,9 +113,9 @@ public:
     SamplePlacement placement() const { return {kCell, cellsX_, cellsY_, placed_}; }
     void timeStages(bool on) override { clock_.enable(on); }
     std::vector<StageTime> lastStageTimes() const override { return clock_.times(); }
-    // The age of the sample each pixel holds in the deep buffer (the one its filter weighs most);
-    // a pixel holding none shows its neighbours' (this frame's at the oldest: age 0 is claimed
-    // for no pixel that has none, so such pixels count as the filter's window's newest, 0).
+    // The age of the sample each pixel holds in the deep buffer (the one its filter weighs most).
+    // A pixel holding none (a disocclusion not sampled yet) counts as 0, so the ages are a lower
+    // bound there.
     std::vector<float> lastSampleAges() override {
         std::vector<float> deep(4 * static_cast<std::size_t>(width_) * height_);
         glBindFramebuffer(GL_FRAMEBUFFER, slots_[static_cast<std::size_t>(history_.written())].framebuffer.id());
