@@ -1,0 +1,280 @@
+#include "tables.h"
+
+#include <algorithm>
+#include <functional>
+
+namespace warplab::exporter {
+namespace {
+
+void optionalInteger(CsvFile& f, const std::optional<std::int64_t>& v) {
+    if (v)
+        f.integer(*v);
+    else
+        f.empty();
+}
+
+// A cell that only a readable session has.
+template <class F>
+std::function<void(CsvFile&, const SessionRow&)> whenRead(F cell) {
+    return [cell](CsvFile& f, const SessionRow& r) {
+        if (r.data == nullptr)
+            f.empty();
+        else
+            cell(f, r);
+    };
+}
+
+}  // namespace
+
+std::string joined(const std::map<std::string, std::string>& flags) {
+    std::string out;
+    for (const auto& [name, text] : flags) out += (out.empty() ? "" : ";") + name;
+    return out;
+}
+
+const std::vector<Column<SessionRow>>& sessionColumns() {
+    using F = CsvFile;
+    using R = SessionRow;
+    static const std::vector<Column<R>> columns = {
+        {"file", [](F& f, const R& r) { f.text(r.file); }},
+        {"participant", whenRead([](F& f, const R& r) { f.text(r.data->header.participant); })},
+        {"game", whenRead([](F& f, const R& r) { f.text(r.study->game()); })},
+        {"protocol", whenRead([](F& f, const R& r) { f.text(r.study->name()); })},
+        {"seed", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->header.seed)); })},
+        {"started_at", whenRead([](F& f, const R& r) { f.text(r.data->header.startedAt); })},
+        {"player", whenRead([](F& f, const R& r) { f.text(r.data->header.player); })},
+        // A simulated participant's traits (a JSON object), "" for anyone else.
+        {"player_model", whenRead([](F& f, const R& r) { f.text(r.data->header.playerModel); })},
+        {"session_id", whenRead([](F& f, const R& r) { f.text(r.data->header.sessionId); })},
+        {"plan_id", whenRead([](F& f, const R& r) { f.text(r.data->header.planId); })},
+        {"completed", whenRead([](F& f, const R& r) { f.boolean(r.data->completed); })},
+        {"flags", whenRead([](F& f, const R& r) { f.text(joined(r.data->flags)); })},
+        {"status", [](F& f, const R& r) { f.text(r.outcome.status); }},
+        {"included", [](F& f, const R& r) { f.boolean(r.outcome.included); }},
+        {"trials", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->shots.size())); })},
+        {"matches",
+         whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->matches.size())); })},
+        // How its frames kept pace with the display (pacing.csv has them per mode).
+        {"display_frames",
+         whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
+        {"late_frames", whenRead([](F& f, const R& r) {
+             f.integer(std::count_if(r.data->frames.begin(), r.data->frames.end(),
+                                     [](const session::FrameRecord& x) { return x.missedVsyncs > 0; }));
+         })},
+        {"skipped_frames", whenRead([](F& f, const R& r) {
+             f.integer(std::count_if(r.data->frames.begin(), r.data->frames.end(), [](const session::FrameRecord& x) {
+                 return x.kind == session::kSkippedFrameKind;
+             }));
+         })},
+        {"note", [](F& f, const R& r) { f.text(r.outcome.why); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<ShotRow>>& shotColumns() {
+    using F = CsvFile;
+    using R = ShotRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"game", [](F& f, const R& r) { f.text(r.from.game); }},
+        {"phase", [](F& f, const R& r) { f.text(r.shot.phase); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.shot.scoredPhase); }},
+        {"trial", [](F& f, const R& r) { f.integer(r.shot.trial); }},
+        {"mode", [](F& f, const R& r) { f.text(r.shot.mode); }},
+        {"outcome", [](F& f, const R& r) { f.text(r.shot.outcome); }},
+        {"hit", [](F& f, const R& r) { f.boolean(r.shot.hit); }},
+        {"world_outcome", [](F& f, const R& r) { f.text(r.shot.worldOutcome); }},
+        {"displayed_outcome", [](F& f, const R& r) { f.text(r.shot.displayedOutcome); }},
+        {"time_s", [](F& f, const R& r) { f.number(r.shot.time); }},
+        {"spawn_time_s", [](F& f, const R& r) { f.number(r.shot.spawnTime); }},
+        {"aim_time_s", [](F& f, const R& r) { f.number(r.shot.aimTime); }},
+        {"angular_error_deg", [](F& f, const R& r) { f.number(r.shot.angularErrorDeg); }},
+        {"error_px", [](F& f, const R& r) { f.number(r.shot.errorPx); }},
+        {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
+        {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
+        {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<RatingRow>>& ratingColumns() {
+    using F = CsvFile;
+    using R = RatingRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
+        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
+        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"statement_index", [](F& f, const R& r) { f.integer(r.rating.statementIndex); }},
+        {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
+        {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
+        {"answered_with", [](F& f, const R& r) { f.text(r.rating.answeredWith); }},
+        {"scale_min", [](F& f, const R& r) { f.integer(r.rating.scaleMin); }},
+        {"scale_max", [](F& f, const R& r) { f.integer(r.rating.scaleMax); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<AnswerRow>>& answerColumns() {
+    using F = CsvFile;
+    using R = AnswerRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
+        {"game", [](F& f, const R& r) { f.text(r.from.game); }},
+        {"block", [](F& f, const R& r) { f.text(r.answer.block); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.answer.scoredPhase); }},
+        {"block_index", [](F& f, const R& r) { f.integer(r.answer.blockIndex); }},
+        {"mode", [](F& f, const R& r) { f.text(r.answer.mode); }},
+        {"question_index", [](F& f, const R& r) { f.integer(r.answer.questionIndex); }},
+        {"question_id", [](F& f, const R& r) { f.text(r.answer.questionId); }},
+        {"kind", [](F& f, const R& r) { f.text(r.answer.kind); }},
+        {"prompt", [](F& f, const R& r) { f.text(r.answer.prompt); }},
+        // A text answer has no number: an empty cell (NA).
+        {"value",
+         [](F& f, const R& r) {
+             if (r.answer.value)
+                 f.integer(*r.answer.value);
+             else
+                 f.empty();
+         }},
+        {"text", [](F& f, const R& r) { f.text(r.answer.text); }},
+        {"answered_with", [](F& f, const R& r) { f.text(r.answer.answeredWith); }},
+        // The answers offered, both ends included; none for a text question.
+        {"scale_min",
+         [](F& f, const R& r) {
+             if (r.answer.kind == "text")
+                 f.empty();
+             else
+                 f.integer(r.answer.scaleMin);
+         }},
+        {"scale_max",
+         [](F& f, const R& r) {
+             if (r.answer.kind == "text")
+                 f.empty();
+             else
+                 f.integer(r.answer.scaleMax);
+         }},
+        {"time_s", [](F& f, const R& r) { f.number(r.answer.time); }},
+        {"answer_s", [](F& f, const R& r) { f.number(r.answer.answerS); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<PacingRow>>& pacingColumns() {
+    using F = CsvFile;
+    using R = PacingRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.session); }},
+        {"mode", [](F& f, const R& r) { f.text(r.pacing.mode); }},
+        {"shown", [](F& f, const R& r) { f.integer(r.pacing.shown); }},
+        {"late", [](F& f, const R& r) { f.integer(r.pacing.late); }},
+        {"skipped", [](F& f, const R& r) { f.integer(r.pacing.skipped); }},
+        {"median_ms", [](F& f, const R& r) { f.number(r.pacing.medianMs); }},
+        {"p95_ms", [](F& f, const R& r) { f.number(r.pacing.p95Ms); }},
+        {"max_ms", [](F& f, const R& r) { f.number(r.pacing.maxMs); }},
+        {"budget_ms", [](F& f, const R& r) { f.number(r.pacing.budgetMs); }},
+        {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<HitRateRow>>& hitRateColumns() {
+    using F = CsvFile;
+    using R = HitRateRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"mode", [](F& f, const R& r) { f.text(r.mode); }},
+        {"shots", [](F& f, const R& r) { f.integer(r.tally.shots); }},
+        {"hits", [](F& f, const R& r) { f.integer(r.tally.hits); }},
+        // The click game has no timeouts: an empty cell, not a zero that claims it measured some.
+        {"timeouts",
+         [](F& f, const R& r) {
+             if (r.canTimeOut)
+                 f.integer(r.tally.timeouts);
+             else
+                 f.empty();
+         }},
+        // A mode played without a shot or click has no rate: an empty cell (NA), never 0/0.
+        {"hit_rate",
+         [](F& f, const R& r) {
+             if (r.tally.shots == 0)
+                 f.empty();
+             else
+                 f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots));
+         }},
+    };
+    return columns;
+}
+
+const std::vector<Column<MatchRow>>& matchColumns() {
+    using F = CsvFile;
+    using R = MatchRow;
+    static const std::vector<Column<R>> columns = {
+        {"participant", [](F& f, const R& r) { f.text(r.participant); }},
+        {"session", [](F& f, const R& r) { f.text(r.session); }},
+        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
+        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
+        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
+        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"stand_in", [](F& f, const R& r) { f.text(r.match.standIn); }},
+        {"green_hits", [](F& f, const R& r) { f.integer(r.match.greenHits); }},
+        {"red_hits", [](F& f, const R& r) { f.integer(r.match.redHits); }},
+        {"misses", [](F& f, const R& r) { f.integer(r.match.misses); }},
+        {"clicks", [](F& f, const R& r) { f.integer(r.match.clicks); }},
+        {"duration_s", [](F& f, const R& r) { f.number(r.match.durationS); }},
+        {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
+    };
+    return columns;
+}
+
+// The conditions the sessions were run in, with their parts and latencies at the refresh they
+// ran at, so the analysis keeps no list of its own. An unset fill rate is an empty cell.
+const std::vector<Column<ConditionListing>>& conditionColumns() {
+    using F = CsvFile;
+    using R = ConditionListing;
+    auto ms = [](double seconds) { return seconds * 1000.0; };
+    static const std::vector<Column<R>> columns = {
+        {"condition", [](F& f, const R& r) { f.text(r.summary.condition.name); }},
+        {"render_hz", [](F& f, const R& r) { f.number(r.summary.condition.renderHz); }},
+        {"lag_frames", [](F& f, const R& r) { f.integer(r.summary.lagFrames); }},
+        {"fill", [](F& f, const R& r) { f.text(r.summary.condition.fill); }},
+        {"late_warp", [](F& f, const R& r) { f.text(condition::lateWarpName(r.summary.condition.lateWarp)); }},
+        {"view_latency_min_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.viewS.min)); }},
+        {"view_latency_max_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.viewS.max)); }},
+        {"scene_latency_min_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.sceneS.min)); }},
+        {"scene_latency_max_ms", [ms](F& f, const R& r) { f.number(ms(r.summary.sceneS.max)); }},
+        {"fill_hz",
+         [](F& f, const R& r) {
+             const condition::Condition& c = r.summary.condition;
+             if (c.fillKind() == condition::Fill::Hold)
+                 f.empty();
+             else
+                 f.number(c.fillHz.value_or(r.summary.refreshHz));
+         }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.summary.refreshHz); }},
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"description", [](F& f, const R& r) { f.text(r.summary.condition.description); }},
+    };
+    return columns;
+}
+
+// What each game's hit rate counts, in its own words, so a report words a game's measure without
+// knowing the game.
+const std::vector<Column<GameRow>>& gameColumns() {
+    using F = CsvFile;
+    using R = GameRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.game); }},
+        {"hits_are", [](F& f, const R& r) { f.text(r.measure.hitsAre); }},
+        {"shots_are", [](F& f, const R& r) { f.text(r.measure.shotsAre); }},
+    };
+    return columns;
+}
+
+}  // namespace warplab::exporter
