@@ -99,6 +99,19 @@ scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point) {
     return camera;
 }
 
+SpherePass sphereMovingAcross(scene::FrameDescription start, const glm::vec3& velocity, const glm::vec3& aim,
+                              int frames) {
+    auto& sphere = start.scene.objects.front();
+    sphere.position = {-1.0f, 4.0f, -6.0f};
+    sphere.velocity = velocity;
+    sphere.halfExtents = glm::vec3(0.6f);
+    start.camera = aimedAt(start.camera, aim);
+    SpherePass pass{start, start, frames / 120.0};
+    pass.later.scene.time = start.scene.time + pass.dt;
+    pass.later.scene.objects.front().position += velocity * static_cast<float>(pass.dt);
+    return pass;
+}
+
 std::string testOutputDir() {
     const char* env = std::getenv("WARPLAB_TEST_OUTPUT");
     const std::string dir = env && *env ? env : std::string(WARPLAB_BINARY_DIR) + "/test-output";

@@ -51,6 +51,16 @@ int blackWhereTruthIsNot(const image::ImageRGBA8& shown, const image::ImageRGBA8
 // Camera turned so the reticle (image centre) is on `point`.
 scene::CameraState aimedAt(scene::CameraState camera, const glm::vec3& point);
 
+// The warps' moving-sphere case: `start`'s target made a 0.6 m sphere at (-1, 4, -6) moving
+// with `velocity`, the camera aimed at `aim`; `later` is the same `frames` display frames
+// (120 Hz) on, the sphere moved by its velocity.
+struct SpherePass {
+    scene::FrameDescription start, later;
+    double dt = 0.0;
+};
+SpherePass sphereMovingAcross(scene::FrameDescription start, const glm::vec3& velocity, const glm::vec3& aim,
+                              int frames);
+
 // Thresholds for comparing a render with a reference, each with its reason.
 struct ImageThresholds {
     // Mean |difference| over all channels: shading arithmetic may differ in the last bits

@@ -108,15 +108,11 @@ glm::dvec2 centroid(const image::ImageU32& ids, std::uint32_t id, int& count) {
 // asked of warp-nofix: its rubber sheets take the sphere's id on half their width, which is
 // the very artefact the fix exists for.
 TEST(Warp, MovingSphereLandsWhereGroundTruthHasIt) {
-    scene::FrameDescription a = shooterAt(0.0);
-    a.scene.objects.front().position = {-1.0f, 4.0f, -6.0f};
-    a.scene.objects.front().velocity = {4.0f, 1.5f, 0.0f};
-    a.scene.objects.front().halfExtents = glm::vec3(0.6f);
-    a.camera = testing::aimedAt(a.camera, {0.0f, 4.3f, -6.0f});
-    const double dt = 7.0 / 120.0;
-    scene::FrameDescription b = a;
-    b.scene.time = dt;
-    b.scene.objects.front().position += a.scene.objects.front().velocity * static_cast<float>(dt);
+    const testing::SpherePass pass =
+        testing::sphereMovingAcross(shooterAt(0.0), {4.0f, 1.5f, 0.0f}, {0.0f, 4.3f, -6.0f}, 7);
+    const scene::FrameDescription& a = pass.start;
+    const scene::FrameDescription& b = pass.later;
+    const double dt = pass.dt;
     const auto source = testing::renderSource(a, kW, kH);
     const auto truth = testing::renderSource(b, kW, kH);
     int truthCount = 0;

@@ -64,7 +64,7 @@ TEST(WarpSplat, IdentityWarpReproducesItsSourceExactly) {
         const int h = w * 9 / 16;
         const auto at = shooterAt(w, h, 0.3, 1, 2.0);
         const auto source = testing::renderSource(at, w, h);
-        const auto shown = testing::produceFrame(kMethod, from(source, at.camera, at.scene.time), w, h);
+        const auto shown = testing::produceFrom(kMethod, source, at.camera, at.scene.time, w, h);
         EXPECT_EQ(shown.colour.pixels, source.images.colour.pixels) << w << "x" << h;
         EXPECT_EQ(shown.ids.data, source.images.ids.data) << w << "x" << h;
         int off = 0;
@@ -84,8 +84,8 @@ TEST(WarpSplat, IdentityWarpOfABandedSourceShowsItsInside) {
     const auto at = shooterAt(w, h, 0.3, 1, 2.0);
     const renderer::GuardBand band = renderer::guardBandFor(w, h, 0.1);
     const auto source = testing::renderSource(at, w, h, nullptr, band);
-    const auto shown = testing::produceFrame(kMethod, from(source, at.camera, at.scene.time), w, h);
-    const auto held = testing::produceFrame("hold120", from(source, at.camera, at.scene.time), w, h);
+    const auto shown = testing::produceFrom(kMethod, source, at.camera, at.scene.time, w, h);
+    const auto held = testing::produceFrom("hold120", source, at.camera, at.scene.time, w, h);
     EXPECT_EQ(shown.colour.pixels, held.colour.pixels);
     EXPECT_EQ(shown.ids.data, held.ids.data);
 }
@@ -102,8 +102,8 @@ TEST(WarpSplat, CameraRotationMatchesWarpFullsCorrespondences) {
     turned.camera.yaw += glm::radians(4.0f);
     turned.camera.pitch += glm::radians(-2.0f);
     const auto source = testing::renderSource(still, w, h);
-    const auto full = testing::produceFrame("warp-full", from(source, turned.camera, 0.0), w, h);
-    const auto splat = testing::produceFrame(kMethod, from(source, turned.camera, 0.0), w, h);
+    const auto full = testing::produceFrom("warp-full", source, turned.camera, 0.0, w, h);
+    const auto splat = testing::produceFrom(kMethod, source, turned.camera, 0.0, w, h);
     int both = 0, onlyFull = 0, onlySplat = 0, off = 0;
     for (std::size_t i = 0; i < full.ids.data.size(); ++i) {
         const bool f = claimed(full, i), s = claimed(splat, i);
@@ -192,15 +192,11 @@ TEST(WarpSplat, NoCrackInsideAContinuousSurface) {
 // sphere's id.
 TEST(WarpSplat, RevealedBackgroundIsFilledFromTheBackground) {
     constexpr int w = 320, h = 180;
-    scene::FrameDescription a = shooterAt(w, h, 0.0);
-    a.scene.objects.front().position = {-1.0f, 4.0f, -6.0f};
-    a.scene.objects.front().velocity = {4.0f, 1.5f, 0.0f};
-    a.scene.objects.front().halfExtents = glm::vec3(0.6f);
-    a.camera = testing::aimedAt(a.camera, {0.0f, 4.3f, -6.0f});
-    const double dt = 7.0 / 120.0;
-    scene::FrameDescription b = a;
-    b.scene.time = dt;
-    b.scene.objects.front().position += a.scene.objects.front().velocity * static_cast<float>(dt);
+    const testing::SpherePass pass =
+        testing::sphereMovingAcross(shooterAt(w, h, 0.0), {4.0f, 1.5f, 0.0f}, {0.0f, 4.3f, -6.0f}, 7);
+    const scene::FrameDescription& a = pass.start;
+    const scene::FrameDescription& b = pass.later;
+    const double dt = pass.dt;
     const auto source = testing::renderSource(a, w, h);
     const auto truth = testing::renderSource(b, w, h);
     const auto exact =
@@ -208,12 +204,12 @@ TEST(WarpSplat, RevealedBackgroundIsFilledFromTheBackground) {
     const auto revealed = bench::unseenMasks({&exact}).occluded;
     const int count = static_cast<int>(std::count(revealed.begin(), revealed.end(), std::uint8_t{1}));
     ASSERT_GT(count, 50);
-    const auto splat = testing::produceFrame(kMethod, from(source, b.camera, dt), w, h);
+    const auto splat = testing::produceFrom(kMethod, source, b.camera, dt, w, h);
     int fromSphere = 0;
     for (std::size_t i = 0; i < revealed.size(); ++i)
         fromSphere += revealed[i] && splat.ids.data[i] == scene::kIdTarget;
     EXPECT_EQ(fromSphere, 0) << "of " << count << " revealed pixels";
-    const auto full = testing::produceFrame("warp-full", from(source, b.camera, dt), w, h);
+    const auto full = testing::produceFrom("warp-full", source, b.camera, dt, w, h);
     // How close the fill comes to the truth is the bench's to measure (disocc MAE); recorded here.
     const double splatError = bench::maskedMeanAbsoluteError(splat.colour, truth.images.colour, revealed);
     const double fullError = bench::maskedMeanAbsoluteError(full.colour, truth.images.colour, revealed);
@@ -226,19 +222,15 @@ TEST(WarpSplat, RevealedBackgroundIsFilledFromTheBackground) {
 // frame is the same bit for bit.
 TEST(WarpSplat, OverlappingSourcesResolveToTheNearerTheSameEveryRun) {
     constexpr int w = 320, h = 180;
-    scene::FrameDescription a = shooterAt(w, h, 0.0);
-    a.scene.objects.front().position = {-1.0f, 4.0f, -6.0f};
-    a.scene.objects.front().velocity = {5.0f, 0.0f, 0.0f};
-    a.scene.objects.front().halfExtents = glm::vec3(0.6f);
-    a.camera = testing::aimedAt(a.camera, {0.0f, 4.0f, -6.0f});
-    const double dt = 6.0 / 120.0;
-    scene::FrameDescription b = a;
-    b.scene.time = dt;
-    b.scene.objects.front().position += a.scene.objects.front().velocity * static_cast<float>(dt);
+    const testing::SpherePass pass =
+        testing::sphereMovingAcross(shooterAt(w, h, 0.0), {5.0f, 0.0f, 0.0f}, {0.0f, 4.0f, -6.0f}, 6);
+    const scene::FrameDescription& a = pass.start;
+    const scene::FrameDescription& b = pass.later;
+    const double dt = pass.dt;
     const auto source = testing::renderSource(a, w, h);
     const auto truth = testing::renderSource(b, w, h);
-    const auto first = testing::produceFrame(kMethod, from(source, b.camera, dt), w, h);
-    const auto second = testing::produceFrame(kMethod, from(source, b.camera, dt), w, h);
+    const auto first = testing::produceFrom(kMethod, source, b.camera, dt, w, h);
+    const auto second = testing::produceFrom(kMethod, source, b.camera, dt, w, h);
     EXPECT_EQ(first.colour.pixels, second.colour.pixels);
     EXPECT_EQ(first.ids.data, second.ids.data);
     EXPECT_EQ(0,
