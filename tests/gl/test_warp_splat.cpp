@@ -210,10 +210,13 @@ TEST(WarpSplat, RevealedBackgroundIsFilledFromTheBackground) {
         fromSphere += revealed[i] && splat.ids.data[i] == scene::kIdTarget;
     EXPECT_EQ(fromSphere, 0) << "of " << count << " revealed pixels";
     const auto full = testing::produceFrom("warp-full", source, b.camera, dt, w, h);
-    // How close the fill comes to the truth is the bench's to measure (disocc MAE); recorded here.
+    // How close the fill comes to the truth: measured 24.3 against warp-full's 17.1 (the bench's
+    // disocc MAE says the same over its sequences); held within 1.5x of the mesh warp's here.
     const double splatError = bench::maskedMeanAbsoluteError(splat.colour, truth.images.colour, revealed);
     const double fullError = bench::maskedMeanAbsoluteError(full.colour, truth.images.colour, revealed);
     RecordProperty("revealed_mae", std::to_string(splatError) + " (warp-full " + std::to_string(fullError) + ")");
+    EXPECT_GT(fullError, 1.0);  // the mesh warp's fill is not exact either: the case is a real disocclusion
+    EXPECT_LT(splatError, 1.5 * fullError) << splatError << " against warp-full's " << fullError;
 }
 
 // The sphere moves onto background that stays: two source surfaces land on the same display
