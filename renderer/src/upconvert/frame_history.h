@@ -13,6 +13,9 @@ public:
     // bench that samples frames far apart) starts it again, so that a frame's result depends
     // only on the frames since the last gap.
     static constexpr double kMaxFrameGapS = 0.1;
+    // A sample reprojected from the frame before shows the same surface when its view depth is
+    // within this share of the point's (scene-assisted reprojection's test, with the object id).
+    static constexpr float kSameSurfaceDepth = 0.01f;
 
     // Call once per displayed frame made, with its instant and camera. A repeat of the last
     // frame (the bench times a pass several times) changes nothing: it reads the history its

@@ -33,7 +33,6 @@ namespace warplab::renderer {
 namespace {
 
 constexpr int kCell = 8;  // controller cell side, pixels
-constexpr float kDepthTolerance = 0.01f;
 // The controller's tile error (section 6.1), the variation and undersampling terms' shares; the
 // occlusion term's share goes to undersampling, which is where occlusions and disocclusions
 // leave pixels without a sample here.
@@ -315,7 +314,7 @@ private:
         glUniform1f(u("uNear"), input.camera.nearPlane);
         glUniform1f(u("uFar"), input.camera.farPlane);
         glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
-        glUniform1f(u("uDepthTolerance"), kDepthTolerance);
+        glUniform1f(u("uDepthTolerance"), FrameHistory::kSameSurfaceDepth);
         pass_.draw();
         endImagePass(9);
     }

@@ -27,9 +27,6 @@ namespace {
 // h_w's cap: the history never outweighs this many frames' spatial estimates, so that a change
 // the gradient misses still fades in within a few frames.
 constexpr float kMaxHistoryWeight = 16.0f;
-// A reprojected texel shows the same surface when its view depth is within this share of the
-// point's (as scene-assisted reprojection's test).
-constexpr float kDepthTolerance = 0.01f;
 
 // The order the lattice's phases are shaded in: each next phase far from the last, so that a
 // frame's samples and the previous frame's interleave (Herzog et al.'s Figure 2 for 2 x 2).
@@ -172,7 +169,7 @@ private:
         glUniform1f(u("uFar"), input.camera.farPlane);
         glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
         glUniform1f(u("uMaxHistoryWeight"), kMaxHistoryWeight);
-        glUniform1f(u("uDepthTolerance"), kDepthTolerance);
+        glUniform1f(u("uDepthTolerance"), FrameHistory::kSameSurfaceDepth);
         pass_.draw();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
         for (GLenum a : five) glFramebufferTexture2D(GL_FRAMEBUFFER, a, GL_TEXTURE_2D, 0, 0);
