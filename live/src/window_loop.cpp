@@ -132,6 +132,7 @@ WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std
       clock_(window_, study_->refreshHz(), opened_.byVsync),
       photonMarker_(hudPhotonMarker(photonMarkerFor(run, *study_))) {
     if (!sounds_.available()) progress << "note: " << sounds_.why() << "; feedback sounds are off\n";
+    maker_.prepareFor(*study_);
 }
 
 WindowLoop::~WindowLoop() = default;

@@ -67,22 +67,31 @@ FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
       height_(height),
       warpBand_(renderer::guardBandFor(width, height, rendering.guardBand)) {}
 
-FrameMaker::Kept FrameMaker::render(const scene::FrameDescription& frame, renderer::GuardBand band,
-                                    const scene::FrameDescription* flowTo) {
-    Kept kept{nullptr, frame};
-    const auto spare = std::find_if(spare_.begin(), spare_.end(), [&](const auto& f) { return f->band == band; });
+renderer::SourceFrame& FrameMaker::rendered(Kept& kept) {
+    if (kept.frame) return *kept.frame;
+    const auto spare = std::find_if(spare_.begin(), spare_.end(), [&](const auto& f) { return f->band == kept.band; });
     if (spare != spare_.end()) {
         kept.frame = std::move(*spare);
         spare_.erase(spare);
     } else {
-        kept.frame = std::make_unique<renderer::SourceFrame>(width_, height_, band);
+        kept.frame = std::make_unique<renderer::SourceFrame>(width_, height_, kept.band);
     }
-    renderer::renderSource(conventional_, frame, *kept.frame, flowTo);
-    return kept;
+    renderer::renderSource(conventional_, kept.shows, *kept.frame, kept.flowTo ? &*kept.flowTo : nullptr);
+    ++rendersDrawn_;
+    return *kept.frame;
 }
 
 void FrameMaker::release(Kept& kept) {
     if (kept.frame) spare_.push_back(std::move(kept.frame));
+}
+
+void FrameMaker::prepareFor(const game::Study& study) {
+    method("hold120");
+    for (const std::string& mode : study.modes()) {
+        const condition::Condition& c = study.conditions().at(mode);
+        for (const std::string& name : {c.sourceMethod(), c.warpMethod(), c.interpolationMethod()})
+            if (!name.empty()) method(name);
+    }
 }
 
 void FrameMaker::keepSource(const game::ShownFrame& shown) {
@@ -91,13 +100,13 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
         // its late warp) says what they need.
         const std::string name = shown.mode.empty() ? std::string() : shown.condition.sourceMethod();
         const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
+        Kept kept{nullptr, shown.render, {}, std::nullopt};
         // Warps render beyond the displayed field of view, so what a turn brings into view is
         // really there; the frames they show as rendered are the band's inside (hold).
-        const renderer::GuardBand band = info && info->takesGuardBand ? warpBand_ : renderer::GuardBand{};
+        if (info && info->takesGuardBand) kept.band = warpBand_;
         // Bidirectional reprojection's I-frames carry their backward flow towards the previous
         // I-frame, drawn in the same pass (seed 000 section 5).
-        const bool flow = info && info->usesSourceFlow && !sources_.empty();
-        Kept kept = render(shown.render, band, flow ? &sources_.rbegin()->second.shows : nullptr);
+        if (info && info->usesSourceFlow && !sources_.empty()) kept.flowTo = sources_.rbegin()->second.shows;
         auto [it, fresh] = sources_.try_emplace(shown.frame);
         if (!fresh) release(it->second);
         it->second = std::move(kept);
@@ -121,31 +130,32 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end()) {
         // Lag modes open with frames queued before the mode started: the scene as it was.
-        it = sources_.emplace(shown.sourceFrame, render({shown.camera, shown.scene}, {})).first;
-    } else if (!shows.info().acceptsGuardBand && !(it->second.frame->band == renderer::GuardBand{})) {
-        // A warp mode's source shown by a method that takes no band (at a change of mode).
-        Kept plain = render(it->second.shows, {});
+        it = sources_.emplace(shown.sourceFrame, Kept{nullptr, {shown.camera, shown.scene}, {}, std::nullopt}).first;
+    } else if (!shows.info().acceptsGuardBand && !(it->second.band == renderer::GuardBand{})) {
+        // A warp mode's source shown by a method that takes no band (at a change of mode): drawn
+        // again without it.
         release(it->second);
-        it->second = std::move(plain);
+        it->second.band = {};
+        it->second.flowTo.reset();
     }
     renderer::UpconversionInput input;
     input.displayTime = shown.scene.time;  // the instant the frame depicts (frozen frames: the shot's)
     input.camera = shown.camera;
-    input.previous = it->second.frame.get();
+    input.previous = &rendered(it->second);
     input.scene = &shown.scene;
     if (kind == condition::FrameKind::Interpolated) {
         const auto next = sources_.find(shown.nextSourceFrame);
-        input.next = next == sources_.end() ? it->second.frame.get() : next->second.frame.get();
+        input.next = next == sources_.end() ? input.previous : &rendered(next->second);
     }
     shows.produce(input, display);
 }
 
-const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& shown) const {
+const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& shown) {
     const auto kind = shown.schedule.kind;
     if (kind != condition::FrameKind::Held && kind != condition::FrameKind::Rendered) return nullptr;
     const auto it = sources_.find(shown.sourceFrame);
-    if (it == sources_.end() || !(it->second.frame->band == renderer::GuardBand{})) return nullptr;
-    return it->second.frame.get();  // make() would show it by hold120: a copy
+    if (it == sources_.end() || !(it->second.band == renderer::GuardBand{})) return nullptr;
+    return &rendered(it->second);  // make() would show it by hold120: a copy
 }
 
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {

@@ -112,7 +112,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     PointerCheck pointerCheck(*game, data, toFrameX, toFrameY);
     ReplayRenderResult result;
     // Display frames the live session stepped through without showing (its display clock):
-    // made as sources, since later frames may be made from them, but never pictures.
+    // kept as sources, since later frames may be made from them, but never pictures.
     std::set<std::int64_t> skipped;
     for (const auto& f : data.frames)
         if (f.kind == session::kSkippedFrameKind) skipped.insert(f.frame);

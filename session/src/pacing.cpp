@@ -70,18 +70,20 @@ std::vector<ModePacing> summarizePacing(const std::vector<FrameRecord>& frames, 
 
 std::string pacingReport(const std::vector<ModePacing>& pacing) {
     if (pacing.empty()) return "";
-    char line[256];
+    char line[512];
     std::snprintf(line, sizeof line, "pacing per mode (a display frame every %.2f ms):\n", pacing.front().budgetMs);
     std::string out = line;
     for (const ModePacing& p : pacing) {
         const double all = static_cast<double>(std::max<std::int64_t>(1, p.shown + p.skipped));
+        // How far short of the display it fell: the frames it showed a second of the display's.
+        const double refreshHz = 1000.0 / p.budgetMs;
         std::snprintf(line, sizeof line,
-                      "  %s: %lld shown, %lld late (%.1f %%), %lld skipped (%.1f %%); frame time median %.1f ms, p95 "
-                      "%.1f, max %.1f\n",
+                      "  %s: %lld shown (%.1f a second of %.0f), %lld late (%.1f %%), %lld skipped (%.1f %%); frame "
+                      "time median %.1f ms, p95 %.1f, max %.1f\n",
                       p.mode.empty() ? "(screens)" : p.mode.c_str(), static_cast<long long>(p.shown),
-                      static_cast<long long>(p.late), 100.0 * static_cast<double>(p.late) / all,
-                      static_cast<long long>(p.skipped), 100.0 * static_cast<double>(p.skipped) / all, p.medianMs,
-                      p.p95Ms, p.maxMs);
+                      static_cast<double>(p.shown) / all * refreshHz, refreshHz, static_cast<long long>(p.late),
+                      100.0 * static_cast<double>(p.late) / all, static_cast<long long>(p.skipped),
+                      100.0 * static_cast<double>(p.skipped) / all, p.medianMs, p.p95Ms, p.maxMs);
         out += line;
     }
     return out;

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
+#include <map>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -288,6 +290,61 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     char name[32];
     std::snprintf(name, sizeof name, "/frame_%07lld.png", static_cast<long long>(firstSkipped - 1));
     EXPECT_TRUE(fs::exists(pictures + name));
+}
+
+// A machine that cannot draw the protocol's frames at its refresh (llvmpipe at 640x360 against
+// 120 Hz: a conventional frame takes several refreshes) shows the game in true time at the rate
+// it manages, never frozen: the display frames a late frame took are stepped through without
+// drawing renders no frame shown needs (FrameMaker draws a source when a frame made needs it).
+// Before, every skipped frame still drew its render, so each late frame made the next later:
+// one frame stayed up for 100 s while the game played on unseen. Every condition is shown at
+// least every half second of wall time, the loop's wall time stays within 1.5x the display
+// time it played, and the session replays exactly.
+TEST(LiveSession, AnOverloadedMachineShowsEveryConditionInTrueTime) {
+    const std::string dir = scratch("overloaded");
+    std::ofstream(dir + "/overloaded.json") << R"({"format_version":2,"name":"shooter-overloaded","game":"shooter",
+ "display":{"refresh_mismatch":"warn"},
+ "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5},
+ "test":{"conditions":["conv15","conv120","warp15to120"],"targets_per_condition":3,"timeout_s":1.0,"pause_s":0.5,
+         "supervisor_starts":false}})";
+    const auto start = std::chrono::steady_clock::now();
+    const auto window = inWindowAsTheDisplayGoes("run --protocol " + dir + "/overloaded.json --participant O --out " +
+                                                 dir + " --width 640 --height 360 --player bot:5 --seed 5");
+    const double wallS = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ASSERT_EQ(window.status, 0) << window.output;
+    const auto a = warplab::session::readSession(sessionIn(dir));
+    ASSERT_TRUE(a.completed) << a.note;
+
+    std::map<std::string, std::int64_t> shown, skipped;
+    std::map<std::string, double> longestMs;
+    double loopMs = 0.0;
+    for (std::size_t i = 1; i < a.frames.size(); ++i) {  // the first frame's time is the start's
+        const auto& f = a.frames[i];
+        if (f.kind == warplab::session::kSkippedFrameKind) {
+            ++skipped[f.mode];
+            continue;
+        }
+        ++shown[f.mode];
+        loopMs += f.frameMs;
+        longestMs[f.mode] = std::max(longestMs[f.mode], f.frameMs);
+    }
+    const double displayMs = static_cast<double>(a.frames.size() - 1) * 1000.0 / 120.0;
+    for (const std::string mode : {"conv15", "conv120", "warp15to120"}) {
+        SCOPED_TRACE(mode);
+        EXPECT_GT(skipped[mode], 0) << "the machine must be overloaded for this case to mean anything";
+        EXPECT_GE(shown[mode], 5) << skipped[mode] << " skipped";
+        EXPECT_LE(longestMs[mode], 500.0) << shown[mode] << " shown, " << skipped[mode] << " skipped";
+    }
+    EXPECT_LE(loopMs, 1.5 * displayMs);
+    // The whole run, window and shader compiles included, against the display time: within
+    // 1.5x and 10 s for the start.
+    EXPECT_LE(wallS, 1.5 * displayMs / 1000.0 + 10.0) << window.output;
+    // The pacing says how far short it fell.
+    EXPECT_TRUE(contains(window.output, "a second of 120")) << window.output;
+    const std::string replay = replayOf(sessionIn(dir));
+    EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
+    EXPECT_FALSE(contains(replay, "differs")) << replay;
 }
 
 // A text question answered by typing in the window: the answer as typed, Backspace included,

@@ -94,7 +94,8 @@ TEST(Pacing, TheStoredTextReadsBack) {
 TEST(Pacing, TheReportNamesEachModeAndTheBudget) {
     const std::string report = pacingReport(summarizePacing(sequence(), 60.0));
     EXPECT_NE(report.find("every 16.67 ms"), std::string::npos) << report;
-    EXPECT_NE(report.find("conv60: 21 shown, 1 late (4.3 %), 2 skipped (8.7 %); frame time median 11.0 ms, p95 20.0, "
+    EXPECT_NE(report.find("conv60: 21 shown (54.8 a second of 60), 1 late (4.3 %), 2 skipped (8.7 %); frame time "
+                          "median 11.0 ms, p95 20.0, "
                           "max 50.0"),
               std::string::npos)
         << report;

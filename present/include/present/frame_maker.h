@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,33 +22,48 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 // Makes each displayed frame the way its mode makes it, from the conventional renders it
 // keeps: a held or rendered frame is its source copied (hold120); warped and interpolated
 // frames use the mode's method.
+//
+// A source is rendered when a frame made needs it, not when the game steps the frame that
+// renders it: a live session on a machine that cannot keep the refresh steps through display
+// frames it does not show, and rendering their sources too would cost the time the skip is
+// meant to win back, so that every late frame made the next one later (a picture frozen for
+// a minute while the game played on). Rendered late, a source is the same picture: it is drawn
+// from the world as the schedule sampled it (ShownFrame::render), never from the time it is drawn.
 class FrameMaker {
 public:
     // `rendering`: the protocol's guard band (warp modes' sources) and supersampling.
     FrameMaker(const renderer::DataPaths& paths, int width, int height, const protocol::RenderSettings& rendering);
 
+    // Builds (compiles) now every method the study's modes make frames with, so that no
+    // condition's first frames wait for a shader compiler: a hitch in the stimulus.
+    void prepareFor(const game::Study& study);
     // Call for every frame the game steps, shown or not: held, lagged and warped frames need
-    // the sources rendered before them.
+    // the sources rendered before them. Notes what the frame renders; draws nothing.
     void keepSource(const game::ShownFrame& shown);
     // Draws the frame `shown` into `display` (no HUD).
     void make(const game::ShownFrame& shown, renderer::DisplayFrame& display);
     // The kept source whose copy make() would show as `shown`, pixel for pixel (a held or rendered
-    // frame of a source rendered without a guard band), or null: a reader of the displayed
-    // pixels may read them there and skip the copy.
-    const renderer::SourceFrame* shownUnchanged(const game::ShownFrame& shown) const;
+    // frame of a source rendered without a guard band), rendered now if it was not yet, or null:
+    // a reader of the displayed pixels may read them there and skip the copy.
+    const renderer::SourceFrame* shownUnchanged(const game::ShownFrame& shown);
+    // How many conventional renders the maker has drawn: what a skipped frame must not add to.
+    std::int64_t rendersDrawn() const { return rendersDrawn_; }
     // What the maker changed since the last call, one sentence each: a condition's method the
     // GL context cannot run, shown by its fallback (warp-splat by warp-sparse8 below OpenGL 4.3).
     std::vector<std::string> takeNotes();
 
 private:
     renderer::UpconversionMethod& method(const std::string& name);
-    // A source as rendered, and the frame it was asked to show (its camera not widened).
+    // A source: the frame it was asked to show (its camera not widened), how to render it, and
+    // once a frame made has needed it, the render (null until then).
     struct Kept {
         std::unique_ptr<renderer::SourceFrame> frame;
         scene::FrameDescription shows;
+        renderer::GuardBand band;
+        std::optional<scene::FrameDescription> flowTo;  // bidirectional reprojection's backward flow
     };
-    Kept render(const scene::FrameDescription& frame, renderer::GuardBand band,
-                const scene::FrameDescription* flowTo = nullptr);
+    // The kept source, rendered if it was not yet.
+    renderer::SourceFrame& rendered(Kept& kept);
 
     renderer::DataPaths paths_;
     renderer::ConventionalRenderer conventional_;
@@ -60,6 +76,7 @@ private:
     void release(Kept& kept);
     std::map<std::string, std::unique_ptr<renderer::UpconversionMethod>> methods_;  // by the name asked for
     std::vector<std::string> notes_;
+    std::int64_t rendersDrawn_ = 0;
 };
 
 }  // namespace warplab::present

@@ -43,7 +43,8 @@ private:
 std::vector<ModePacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz);
 
 // The summary for the supervisor: a heading naming the budget, then a line per mode, e.g.
-//   conv120: 1163 shown, 12 late (1.0 %), 2888 skipped (71.3 %); frame time median 25.1 ms, p95 31.0, max 60.2
+//   conv120: 1163 shown (34.4 a second of 120), 12 late (1.0 %), 2888 skipped (71.3 %); frame time median
+//   25.1 ms, p95 31.0, max 60.2
 std::string pacingReport(const std::vector<ModePacing>& pacing);
 
 // The summary as JSON text (an array of objects, keys as the fields' snake_case names), as the
