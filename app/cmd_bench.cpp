@@ -18,8 +18,8 @@ std::string withQuick(const T& normal, const T& quick) {
 // "none" or a slip of the keyboard, so it is a wrong command line naming the option.
 std::vector<std::string> splitList(const ParsedArgs& args, const std::string& option, const std::string& items) {
     return commaSeparated(args.string(option),
-                          "option --" + option + " of 'warplab bench' needs " + items + " separated by commas, got '" +
-                              args.string(option) + "'");
+                          "option --" + option + " of 'warplab bench' needs a list of " + items +
+                              " separated by commas, got '" + args.string(option) + "'");
 }
 
 }  // namespace

@@ -57,7 +57,9 @@ TEST(Refusals, AnEmptyNameInABenchListIsAWrongCommandLine) {
     for (const std::string list : {"pan,,track", "pan,", ",pan"})
         expectRefused(
             warplab("bench --quick --sequences " + list + " --out " + dir + "/b"), 2,
-            "option --sequences of 'warplab bench' needs sequence names separated by commas, got '" + list + "'", list);
+            "option --sequences of 'warplab bench' needs a list of sequence names separated by commas, got '" + list +
+                "'",
+            list);
     expectRefused(warplab("bench --quick --methods hold15,,blend --out " + dir + "/b"), 2, "--methods", "methods");
     expectRefused(warplab("bench --quick --shading-sweep 0,,256 --out " + dir + "/b"), 2, "--shading-sweep", "sweep");
     EXPECT_FALSE(fs::exists(dir + "/b"));
