@@ -1,6 +1,7 @@
 #include "app.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sys/stat.h>
 
@@ -71,12 +72,28 @@ participants::Population populationFrom(const ParsedArgs& args, const renderer::
 renderer::DataPaths dataPathsFrom(const ParsedArgs& args) {
     std::string root = WARPLAB_DEFAULT_DATA_DIR;
     if (const char* env = std::getenv("WARPLAB_DATA_DIR"); env != nullptr && *env != '\0') root = env;
-    if (args.has("data-dir")) root = args.string("data-dir");
+    if (args.has("data-dir")) {
+        root = args.path("data-dir", "");  // "" would mean the folder /
+        if (!isDirectory(root))
+            throw renderer::AssetError("option --data-dir: '" + root + "' " +
+                                       (std::filesystem::exists(root) ? "is not a folder" : "does not exist"));
+    }
     renderer::DataPaths paths{root + "/shaders", root + "/assets", root + "/analysis"};
     if (!isDirectory(paths.shaderDir))
         throw renderer::AssetError("cannot find warplab's shaders: '" + paths.shaderDir +
                                    "' is not a folder (set --data-dir or WARPLAB_DATA_DIR)");
     return paths;
+}
+
+std::string outputFolder(const ParsedArgs& args, const std::string& option, const std::string& fallback) {
+    const std::string dir = args.path(option, fallback);
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (!isDirectory(dir))
+        throw std::runtime_error(
+            "option --" + option + ": cannot make the folder '" + dir + "' (" +
+            (std::filesystem::exists(dir) ? std::string("a file of that name is there") : error.message()) + ")");
+    return dir;
 }
 
 const std::vector<Command>& commands() {

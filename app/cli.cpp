@@ -180,4 +180,38 @@ std::string listed(const std::vector<int>& values) {
     return text;
 }
 
+std::string quotedForMessage(const std::string& text) {
+    std::string quoted = "'";
+    for (const char ch : text) {
+        const auto byte = static_cast<unsigned char>(ch);
+        if (ch == '\n')
+            quoted += "\\n";
+        else if (ch == '\t')
+            quoted += "\\t";
+        else if (ch == '\r')
+            quoted += "\\r";
+        else if (ch == '\'' || ch == '\\')
+            quoted += std::string("\\") + ch;
+        else if (byte < 0x20 || byte == 0x7f) {
+            char hex[8];
+            std::snprintf(hex, sizeof hex, "\\x%02x", byte);
+            quoted += hex;
+        } else {
+            quoted += ch;
+        }
+    }
+    return quoted + "'";
+}
+
+std::string firstFew(const std::vector<std::string>& items, std::size_t shown) {
+    std::string text;
+    for (std::size_t i = 0; i < items.size() && i < shown; ++i) text += (i == 0 ? "" : ", ") + items[i];
+    if (items.size() <= shown) return text;
+    // 9997 -> "9,997": a count a reader takes in at a glance.
+    std::string more = std::to_string(items.size() - shown);
+    for (auto at = static_cast<std::ptrdiff_t>(more.size()) - 3; at > 0; at -= 3)
+        more.insert(static_cast<std::size_t>(at), ",");
+    return text + ", ... and " + more + " more";
+}
+
 }  // namespace warplab::app

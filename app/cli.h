@@ -83,4 +83,12 @@ std::string shown(T value) {
 std::string range(double low, double high);
 std::string listed(const std::vector<int>& values);
 
+// Text the user typed, for a one-line message: single-quoted, with line breaks, tabs, other
+// control characters, quotes and backslashes escaped (a newline shows as \n), so a message
+// that names it stays one line and shows where it went wrong.
+std::string quotedForMessage(const std::string& text);
+// A list for a one-line message: the first `shown` items, then how many more ("P1, P2, P3, ...
+// and 9,997 more"), so that a list of thousands does not become the message.
+std::string firstFew(const std::vector<std::string>& items, std::size_t shown = 3);
+
 }  // namespace warplab::app

@@ -1,5 +1,4 @@
 #include <iostream>
-#include <sstream>
 
 #include "bench/bench.h"
 #include "bench/sequences.h"
@@ -15,17 +14,12 @@ std::string withQuick(const T& normal, const T& quick) {
     return shown(normal) + " (" + shown(quick) + " with --quick)";
 }
 
-// A comma-separated option value; an empty one (or only commas) would silently mean "all" or
-// "none", so it is a wrong command line naming the option.
-std::vector<std::string> splitList(const ParsedArgs& args, const std::string& option) {
-    std::vector<std::string> items;
-    std::stringstream ss(args.string(option));
-    for (std::string item; std::getline(ss, item, ',');)
-        if (!item.empty()) items.push_back(item);
-    if (items.empty())
-        throw UsageError("option --" + option + " of 'warplab bench' needs a list of names separated by commas, got '" +
-                         args.string(option) + "'");
-    return items;
+// A comma-separated option value; an empty item ("", "a,,b", "a,") would silently mean "all",
+// "none" or a slip of the keyboard, so it is a wrong command line naming the option.
+std::vector<std::string> splitList(const ParsedArgs& args, const std::string& option, const std::string& items) {
+    return commaSeparated(args.string(option),
+                          "option --" + option + " of 'warplab bench' needs a list of " + items +
+                              " separated by commas, got '" + args.string(option) + "'");
 }
 
 }  // namespace
@@ -45,8 +39,8 @@ int runBench(const ParsedArgs& args) {
     if (!(options.durationScale > 0.0 && options.durationScale <= 100.0))
         throw UsageError("option --duration-scale must be in (0, 100]");
     options.seed = static_cast<std::uint64_t>(args.integer("seed", static_cast<long long>(options.seed), 0, 1LL << 62));
-    if (args.has("sequences")) options.sequences = splitList(args, "sequences");
-    if (args.has("methods")) options.methods = splitList(args, "methods");
+    if (args.has("sequences")) options.sequences = splitList(args, "sequences", "sequence names");
+    if (args.has("methods")) options.methods = splitList(args, "methods", "method names");
     // Unknown names are a wrong command line (exit 2), found before a context is made.
     try {
         for (const auto& name : options.sequences) game::makeSequence(name, {});
@@ -56,14 +50,14 @@ int runBench(const ParsedArgs& args) {
     }
     if (args.has("shading-sweep")) {
         options.shadingSweep.clear();
-        for (const auto& item : splitList(args, "shading-sweep")) {
+        for (const auto& item : splitList(args, "shading-sweep", "shading costs")) {
             const std::string what = "option --shading-sweep needs integers from 0 to 1000000";
             const long long cost = wholeInteger(item, what);
             if (cost < 0 || cost > 1000000) throw UsageError(what + ", got '" + item + "'");
             options.shadingSweep.push_back(static_cast<int>(cost));
         }
     }
-    options.outDir = args.string("out", "bench-out");
+    options.outDir = outputFolder(args, "out", "bench-out");  // before the context, so a refusal is all it says
 
     const renderer::DataPaths paths = dataPathsFrom(args);
     renderer::ContextOptions context;

@@ -43,13 +43,16 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A results folder that already holds sessions would mix two demos into one analysis.
-bool holdsSessions(const fs::path& dir) {
+// A session already anywhere under the demo's folder ("" for none): in its results/ it would
+// mix two demos into one analysis, and anywhere else it is someone's data a demo should not
+// write beside (docs: `--out` already holding sessions is a wrong command line).
+std::string sessionUnder(const fs::path& dir) {
     std::error_code error;
-    if (!fs::is_directory(dir, error)) return false;
-    for (const auto& entry : fs::recursive_directory_iterator(dir, error))
-        if (entry.path().extension() == ".warplab-session") return true;
-    return false;
+    if (!fs::is_directory(dir, error)) return "";
+    for (auto it = fs::recursive_directory_iterator(dir, fs::directory_options::skip_permission_denied, error);
+         !error && it != fs::recursive_directory_iterator(); it.increment(error))
+        if (it->path().extension() == ".warplab-session") return it->path().string();
+    return "";
 }
 
 // --protocols: names of the protocols shipped in protocol/, or paths to protocol files.
@@ -112,6 +115,9 @@ std::string sessionOf(const std::string& log) {
 
 int runDemo(const ParsedArgs& args) {
     const std::string out = args.path("out", "demo-out");
+    if (const std::string found = sessionUnder(out); !found.empty())
+        throw UsageError("option --out: '" + out + "' already holds sessions (" + found +
+                         "); a demo analyses only its own, so choose another --out");
     // Two at least: the analysis pairs modes within participants across them.
     const int participants = static_cast<int>(args.integer("participants", 8, 2, 100));
     const std::string player = args.string("player", "sim");
@@ -129,10 +135,7 @@ int runDemo(const ParsedArgs& args) {
     const participants::Population population =
         player == "sim" ? populationFrom(args, paths) : participants::uniformPopulation();
     const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
-    const fs::path results = fs::path(out) / "results", logs = fs::path(out) / "logs";
-    if (holdsSessions(results))
-        throw UsageError("'" + results.string() +
-                         "' already holds sessions; a demo analyses only its own, so choose another --out");
+    const fs::path results = outputFolder(args, "out", out) + "/results", logs = fs::path(out) / "logs";
     fs::create_directories(results);
     fs::create_directories(logs);
     // One lock for the folder, taken here and inherited by every child: the demo's sessions
@@ -237,26 +240,26 @@ int runDemo(const ParsedArgs& args) {
 
 // The command's options, beside the code that reads them.
 Command demoCommand() {
-    return {{"demo",
-             "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
-             "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
-             "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
-             "and the analysis writes a report with figures and the participants a real study would need.",
-             "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
-             {
-                 {"out", "DIR", "results/, logs/, export/ and report/ go here (results/ must hold no sessions yet)",
-                  "demo-out"},
-                 {"participants", "N", "simulated participants, each plays every protocol, 2..100", "8"},
-                 {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
-                  "sim"},
-                 {"protocols", "LIST", "protocols to play, by name (in protocol/) or file, separated by commas",
-                  "shooter-demo,click-demo"},
-                 {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
-                 glOption("osmesa"),
-                 populationOption(),
-                 dataDirOption(),
-             }},
-            &runDemo};
+    return {
+        {"demo",
+         "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
+         "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
+         "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
+         "and the analysis writes a report with figures and the participants a real study would need.",
+         "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
+         {
+             {"out", "DIR", "results/, logs/, export/ and report/ go here (it must hold no sessions yet)", "demo-out"},
+             {"participants", "N", "simulated participants, each plays every protocol, 2..100", "8"},
+             {"player", "sim|bot", "the perceptual simulated participant, or the scripted bot that reads the game",
+              "sim"},
+             {"protocols", "LIST", "protocols to play, by name (in protocol/) or file, separated by commas",
+              "shooter-demo,click-demo"},
+             {"jobs", "N", "sessions run at once, each in its own process, 1..64", "the machine's cores"},
+             glOption("osmesa"),
+             populationOption(),
+             dataDirOption(),
+         }},
+        &runDemo};
 }
 
 }  // namespace warplab::app

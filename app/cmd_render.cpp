@@ -94,6 +94,12 @@ RenderRequest readRequest(const ParsedArgs& args) {
     r.methodName = args.string("method", "");
     if (args.has("method") && r.methodName.find_first_not_of(" \t") == std::string::npos)
         throw UsageError("option --method of 'warplab render' needs a method name, got '" + r.methodName + "'");
+    // An unknown name is a wrong command line (exit 2), found before a context is made.
+    try {
+        if (!r.methodName.empty()) renderer::requireMethod(r.methodName);
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("option --method: ") + e.what());
+    }
     if (r.methodName.empty() &&
         (args.has("source-time") || args.has("truth") || args.has("source-yaw") || args.has("source-pitch") ||
          args.has("next-time") || args.has("error") || args.has("guard-band")))

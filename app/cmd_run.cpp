@@ -29,10 +29,10 @@ void checkParticipant(const std::string& id) {
     const std::string what = "option --participant ";
     if (id.find_first_not_of(" \t") == std::string::npos) throw UsageError(what + "must not be empty or blank");
     if (id.size() > 128) throw UsageError(what + "must be at most 128 bytes, got " + std::to_string(id.size()));
-    if (!exporter::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text");
+    if (!exporter::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text, got " + quotedForMessage(id));
     for (const char c : id)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-            throw UsageError(what + "must not hold control characters");
+            throw UsageError(what + "must not hold control characters, got " + quotedForMessage(id));
 }
 
 // run --study DIR --participant ID [--protocol NAME] [--again]: the protocol (with the
@@ -45,16 +45,17 @@ plan::ParticipantSettings readStudyOptions(const ParsedArgs& args, Run& run) {
         if (args.has(option))
             throw UsageError(std::string("option --") + option + " comes from the study plan with --study");
     if (!args.has("participant")) throw UsageError("option --participant is required");
+    run.participant = args.string("participant");
+    checkParticipant(run.participant);  // no plan holds an id this refuses
     const std::string dir = args.string("study");
     const plan::StudyPlan studyPlan = plan::readPlan(dir);
     const std::string planFile = (std::filesystem::path(dir) / "study.json").string();
-    run.participant = args.string("participant");
     const plan::ParticipantPlan* participant = plan::findParticipant(studyPlan, run.participant);
     if (!participant) {
-        std::string ids;
-        for (const auto& p : studyPlan.participants) ids += (ids.empty() ? "" : ", ") + p.id;
-        throw plan::PlanError("study plan '" + planFile + "' has no participant '" + run.participant + "' (it plans " +
-                              ids + ")");
+        std::vector<std::string> ids;
+        for (const auto& p : studyPlan.participants) ids.push_back(p.id);
+        throw plan::PlanError("study plan '" + planFile + "' has no participant " + quotedForMessage(run.participant) +
+                              " (it plans " + firstFew(ids) + ")");
     }
     plan::ParticipantStatus status;
     for (auto& s : plan::studyStatus(dir, studyPlan))
@@ -154,6 +155,9 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
+    // A recorded session to play is read now, so that a wrong one is all the run says (the
+    // drawn seed's line and the window come after).
+    if (const std::string source = study::replaySource(run.player); !source.empty()) session::readSessionHeader(source);
     // A resumed session goes on on the display it was played on (the click game's cursor
     // lives in its pixels).
     if (args.has("resume"))
@@ -208,7 +212,6 @@ int runWindowed(const ParsedArgs& args) {
         if (args.flag("free-play")) throw UsageError("option --free-play records nothing: leave out --study");
         // The participant's settings from the plan, unless given here.
         const plan::ParticipantSettings settings = readStudyOptions(args, run);
-        checkParticipant(run.participant);
         if (!args.has("cm-per-360") && settings.cmPer360) run.cmPer360 = *settings.cmPer360;
         if (!args.has("mouse-dpi")) run.mouseDpi = settings.mouseDpi;
         if (!args.has("invert-y")) run.invertY = settings.invertY;
@@ -278,10 +281,7 @@ int runRun(const ParsedArgs& args) {
         throw UsageError("a human player needs the window; leave out --headless");
     study::HeadlessRun run;
     readSessionOptions(args, "bot", run);
-    if (args.has("study")) {
-        readStudyOptions(args, run);
-        checkParticipant(run.participant);
-    }
+    if (args.has("study")) readStudyOptions(args, run);
     run.displayWidth =
         static_cast<int>(args.integer("width", run.displayWidth, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.displayHeight =
@@ -297,6 +297,10 @@ int runRun(const ParsedArgs& args) {
         throw UsageError("option --gl only applies with --headless --player sim");
     } else if (args.has("population")) {
         throw UsageError("option --population only applies with --headless --player sim");
+    } else if (args.has("data-dir")) {
+        // Nothing here draws, but a script that hands every command its --data-dir should hear
+        // of a wrong one rather than have it pass unread.
+        dataPathsFrom(args);
     }
     const auto lock = lockResults(args, run);
     tellDrawnSeed(args, run.seed);

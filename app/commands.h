@@ -36,7 +36,12 @@ OptionSpec glOption(const std::string& defaultBackend);
 OptionSpec dataDirOption();
 renderer::GlBackend backendFrom(const ParsedArgs& args, renderer::GlBackend fallback);
 // shaders/ and assets/ under --data-dir, else $WARPLAB_DATA_DIR, else the build's source tree.
+// A --data-dir that is blank (exit 2), missing or not a folder (exit 1) is refused naming it.
 renderer::DataPaths dataPathsFrom(const ParsedArgs& args);
+// The folder an option names for a command's output, made with its parents if need be; one
+// that cannot be made (a file of that name is there) is refused naming the option, before the
+// command has done or printed anything else.
+std::string outputFolder(const ParsedArgs& args, const std::string& option, const std::string& fallback);
 // The simulated participants' population: --population FILE, else assets/population.json.
 OptionSpec populationOption();
 participants::Population populationFrom(const ParsedArgs& args, const renderer::DataPaths& paths);

@@ -1,6 +1,7 @@
 #include "condition/condition.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -47,13 +48,28 @@ std::vector<Condition> makePresets() {
     return list;
 }
 
-// Whole display frames per period of rateHz, or nullopt.
-std::optional<std::int64_t> framesPer(double refreshHz, double rateHz) {
-    if (!(rateHz > 0.0) || !std::isfinite(rateHz)) return std::nullopt;
-    const double ratio = refreshHz / rateHz;
-    const auto whole = static_cast<std::int64_t>(std::llround(ratio));
-    if (whole < 1 || std::abs(ratio - static_cast<double>(whole)) > 1e-9) return std::nullopt;
-    return whole;
+// The shortest text that reads back as the same double: a rate a hair off a divisor must show
+// as written ("59.999999999"), where number() would round it to the divisor ("60").
+std::string exactNumber(double value) {
+    std::ostringstream out;
+    for (int precision = 6; precision <= 17; ++precision) {
+        out.str("");
+        out.precision(precision);
+        out << value;
+        if (std::stod(out.str()) == value) break;
+    }
+    return out.str();
+}
+
+// "2nd", "3rd", "8th": which display frames a rate that fits the refresh takes.
+std::string ordinal(std::int64_t n) {
+    const std::int64_t tens = n % 100, ones = n % 10;
+    const char* suffix = tens >= 11 && tens <= 13 ? "th"
+        : ones == 1                               ? "st"
+        : ones == 2                               ? "nd"
+        : ones == 3                               ? "rd"
+                                                  : "th";
+    return std::to_string(n) + suffix;
 }
 
 // The rates that divide the refresh, for a message: "120, 60, 40, 30, 24, 20, 15 ..." (the
@@ -77,6 +93,16 @@ std::string number(double value) {
     out.precision(6);
     out << value;
     return out.str();
+}
+
+std::optional<std::int64_t> wholeRatio(double total, double part) {
+    if (!(part > 0.0) || !std::isfinite(part) || !(total > 0.0) || !std::isfinite(total)) return std::nullopt;
+    const auto whole = std::llround(total / part);
+    if (whole < 1) return std::nullopt;
+    // A few units in the last place: what the division and the product may round by, and no more.
+    const double slack = 4.0 * std::numeric_limits<double>::epsilon() * total;
+    if (std::abs(part * static_cast<double>(whole) - total) > slack) return std::nullopt;
+    return whole;
 }
 
 const std::vector<FillSpelling>& fillSpellings() {
@@ -197,13 +223,22 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
         return Problem{"render_hz", "must be a positive number of Hz, got " + number(c.renderHz)};
     // Rates the display cannot run evenly: the refresh must be a whole multiple of each.
     auto uneven = [&](const char* part, double rateHz) {
-        const std::string above = rateHz > refreshHz + 1e-9 ? " (it is above the refresh)" : "";
+        const std::string rate = exactNumber(rateHz);
+        // A hair off a rate that fits (59.999999999 Hz at 120 Hz) would run as that rate.
+        const auto near = std::llround(refreshHz / rateHz);
+        if (near >= 1 && std::abs(refreshHz / rateHz - static_cast<double>(near)) < 1e-6) {
+            const std::string runs = exactNumber(refreshHz / static_cast<double>(near));
+            return Problem{part,
+                           "is " + rate + " Hz, which a " + refresh + " display can only run as " + runs + " Hz (" +
+                               (near == 1 ? std::string("every") : "every " + ordinal(near)) +
+                               " display frame); write " + runs};
+        }
+        const std::string above = rateHz > refreshHz ? " (it is above the refresh)" : "";
         return Problem{part,
-                       "is " + number(rateHz) + " Hz: the display refresh must be a whole multiple of " +
-                           number(rateHz) + " Hz, not " + refresh + above + "; rates that fit " + refresh + ": " +
-                           dividingRates(refreshHz)};
+                       "is " + rate + " Hz: the display refresh must be a whole multiple of " + rate + " Hz, not " +
+                           refresh + above + "; rates that fit " + refresh + ": " + dividingRates(refreshHz)};
     };
-    const std::optional<std::int64_t> renderPeriod = framesPer(refreshHz, c.renderHz);
+    const std::optional<std::int64_t> renderPeriod = wholeRatio(refreshHz, c.renderHz);
     if (!renderPeriod) return uneven("render_hz", c.renderHz);
     std::int64_t lag = 0;
     try {
@@ -224,7 +259,7 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
     if (c.fillHz) {
         if (*fill == Fill::Hold)
             return Problem{"fill_hz", "is for a fill that makes frames; \"hold\" makes none (leave fill_hz out)"};
-        const std::optional<std::int64_t> p = framesPer(refreshHz, *c.fillHz);
+        const std::optional<std::int64_t> p = wholeRatio(refreshHz, *c.fillHz);
         if (!p) return uneven("fill_hz", *c.fillHz);
         fillPeriod = *p;
     }

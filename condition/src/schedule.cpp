@@ -45,7 +45,7 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
         case Fill::Hold: {
             // The last render is on screen.
             f.sourceIndex = floorTo(j, renderPeriod_);
-            f.kind = f.sourceIndex == j ? FrameKind::Rendered : FrameKind::Held;
+            f.made = f.sourceIndex == j ? FrameKind::Rendered : FrameKind::Held;
             f.cameraTime = f.sceneTime = f.worldSampleTime = time(f.sourceIndex);
             f.samplesInput = f.rendersNow;
             break;
@@ -55,7 +55,7 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
             // read at each (view latency) and pixels move by their velocity (scene latency).
             const std::int64_t made = floorTo(j, fillPeriod_);
             f.sourceIndex = floorTo(j, renderPeriod_);
-            f.kind = j == f.sourceIndex ? FrameKind::Rendered
+            f.made = j == f.sourceIndex ? FrameKind::Rendered
                                         : (made == f.sourceIndex ? FrameKind::Held : FrameKind::Warped);
             f.cameraTime = f.sceneTime = time(made);
             f.worldSampleTime = time(f.sourceIndex);
@@ -71,8 +71,7 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
             const bool onRender = f.sourceIndex == depicted;
             f.nextSourceIndex = onRender ? -1 : f.sourceIndex + renderPeriod_;
             const bool newFrame = floorTo(j, fillPeriod_) == j;
-            // A frame the fill repeats is made again as it was (the same instant, the same sources).
-            f.kind = onRender ? (newFrame ? FrameKind::Rendered : FrameKind::Held) : FrameKind::Interpolated;
+            f.made = onRender ? (newFrame ? FrameKind::Rendered : FrameKind::Held) : FrameKind::Interpolated;
             f.sceneTime = time(depicted);
             if (fill_ == Fill::Bireproj) {
                 f.cameraTime = f.sceneTime;
@@ -87,6 +86,9 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
             break;
         }
     }
+    // Between the frames the fill makes, its last one is shown again (docs/protocol.md, fill_hz):
+    // held, and made again as it was (the same instant, the same sources).
+    f.kind = floorTo(j, fillPeriod_) == j ? f.made : FrameKind::Held;
     return f;
 }
 
@@ -104,7 +106,7 @@ ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
         // al. 2020); a depth late warp also moves the objects on to this instant.
         f.samplesInput = true;
         if (f.cameraTime != f.displayTime || (mode_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
-            f.kind = FrameKind::Warped;
+            f.kind = f.made = FrameKind::Warped;
         f.cameraTime = f.displayTime;
         if (mode_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
     }

@@ -80,10 +80,10 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
     camera_.eye = {L::kEyeX, L::kEyeY, L::kEyeZ};
     camera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
     camera_.pitch = static_cast<float>(glm::radians(protocol.cameraPitchDeg));
-    const double steps = protocol.stepRateHz / protocol.refreshHz;
-    stepsPerFrame_ = std::llround(steps);
-    if (stepsPerFrame_ < 1 || std::abs(steps - static_cast<double>(stepsPerFrame_)) > 1e-9)
+    const std::optional<std::int64_t> steps = condition::wholeRatio(protocol.stepRateHz, protocol.refreshHz);
+    if (!steps)
         throw std::invalid_argument("ClickGame: physics.step_rate_hz must be a whole multiple of the display refresh");
+    stepsPerFrame_ = *steps;
     cursor_ = {display.width * 0.5, display.height * 0.5};
     physics::FallingSpheres(physics_, seed);  // throws now, naming the field, if the settings cannot work
     for (std::size_t r = 0; r < protocol.rounds.size(); ++r) {
@@ -417,7 +417,7 @@ session::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     nlohmann::json detail{{"cursor", {shown.cursor.x, shown.cursor.y}}};
-    // Spheres where the frame shows something new; a held frame shows its source's.
+    // Spheres where the frame shows something new; a held frame shows the frame before it again.
     if (!shown.blank && shown.schedule.kind != condition::FrameKind::Held) {
         nlohmann::json spheres = nlohmann::json::array();
         for (const auto& o : shown.scene.objects)

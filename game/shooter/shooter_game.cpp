@@ -509,6 +509,9 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     // A press while no target is up never waits for the next target.
     click = clickGate_.pass(click, f, trial_.has_value());
     if (trial_) {
+        // The click first: the frame the timeout falls on still shows the target, so a click on
+        // it is a shot at what the participant saw (aim time exactly timeout_s), not a timeout
+        // (docs/shooter-study.md, "Test").
         if (click) {
             // World: the aim the mouse really has now against the world now. Displayed: what is
             // under the reticle of the frame on screen (its camera, its target).

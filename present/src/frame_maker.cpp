@@ -121,7 +121,7 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
     std::string name = "hold120";
-    const auto kind = shown.schedule.kind;
+    const auto kind = shown.schedule.made;  // a repeated frame is made as the one it repeats
     // Warped frames: the fill's warp, or the late warp of a held frame (to the display
     // instant's camera: shown.camera; and, with depth, the objects moved on to shown.scene.time).
     if (kind == condition::FrameKind::Warped) name = shown.condition.warpMethod();
@@ -151,7 +151,7 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
 }
 
 const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& shown) {
-    const auto kind = shown.schedule.kind;
+    const auto kind = shown.schedule.made;
     if (kind != condition::FrameKind::Held && kind != condition::FrameKind::Rendered) return nullptr;
     const auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end() || !(it->second.band == renderer::GuardBand{})) return nullptr;

@@ -27,12 +27,13 @@ constexpr double kSilhouetteMarginPx = 2.0;
 std::uint32_t gameObject(std::uint32_t id) { return id >= scene::kIdTarget ? id : scene::kIdNone; }
 
 // The cross-check of the analytic scoring against the id buffer, on frames whose image is an
-// exact render of what they depict: rendered or held, and a held render late-warped by the
-// camera's rotation (the games' cameras only turn about their eye, so a rotation reprojection
-// is the render from the new camera, objects where the render had them). Other warped and
-// interpolated images only approximate what they depict.
+// exact render of what they depict: a render copied (rendered or held), and a held render
+// late-warped by the camera's rotation (the games' cameras only turn about their eye, so a
+// rotation reprojection is the render from the new camera, objects where the render had them).
+// Other warped and interpolated images, shown anew or repeated, only approximate what they
+// depict.
 bool exactImage(const game::ShownFrame& shown) {
-    const auto kind = shown.schedule.kind;
+    const auto kind = shown.schedule.made;  // a repeated B-frame is held, and still a B-frame
     if (kind == condition::FrameKind::Rendered || kind == condition::FrameKind::Held) return true;
     return kind == condition::FrameKind::Warped && shown.condition.lateWarp == condition::LateWarp::Rotation &&
         shown.condition.fillKind() == condition::Fill::Hold;

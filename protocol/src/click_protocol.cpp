@@ -186,10 +186,10 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     if (p.formatVersion < kClickQuestionsSince) p.questions = ratingsAsQuestions(p);
 
     // Relations between fields, checked once every field holds its final value.
-    if (!detail::wholeMultiple(p.stepRateHz, p.refreshHz))
+    if (!condition::wholeRatio(p.stepRateHz, p.refreshHz))
         r.fail("physics.step_rate_hz",
                "must be a whole multiple of display.refresh_hz (" + formatNumber(p.refreshHz) + "), got " +
-                   std::to_string(p.stepRateHz));
+                   formatNumber(p.stepRateHz));
     bool anyScored = false;
     for (const ClickRound& round : p.rounds) anyScored = anyScored || round.scored;
     if (!anyScored)

@@ -433,7 +433,9 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         requireKnownKeys(value, path, kConditionKeys);
         condition::Condition c;
         c.name = name;
-        if (value.contains("description")) c.description = line(value["description"], joinPath(path, "description"));
+        // "" is the default written out (writeConditions leaves it out).
+        if (value.contains("description"))
+            c.description = line(value["description"], joinPath(path, "description"), /*allowEmpty=*/true);
         if (!value.contains("render_hz"))
             fail(joinPath(path, "render_hz"), "is required: conventional renders per second");
         number(&value, path, "render_hz", {0, true, kRefreshLimitHz, false}, c.renderHz);
@@ -441,7 +443,7 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
             fail(joinPath(path, "lag_ms"), "and lag_frames are two ways to give the added latency; give one");
         if (value.contains("lag_frames")) {
             int frames = 0;
-            integer(&value, path, "lag_frames", 0, static_cast<int>(condition::kMaxLookBackFrames), frames);
+            integer(&value, path, "lag_frames", 0, condition::kMaxLagFrames, frames);
             c.lagFrames = frames;
         }
         number(&value, path, "lag_ms", {0, false, 1000, false}, c.lagMs);

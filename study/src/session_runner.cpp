@@ -53,9 +53,13 @@ std::string unknownPlayer(const std::string& player) {
 
 bool isSimulatedParticipant(const std::string& player) { return player == "sim" || player.rfind("sim:", 0) == 0; }
 
+std::string replaySource(const std::string& player) { return isReplay(player) ? player.substr(7) : ""; }
+
 void checkPlayer(const std::string& player) {
     if (isBot(player) || isSimulatedParticipant(player))
         playerSeed(player, 4, 0);
+    else if (isReplay(player) && replaySource(player).empty())
+        throw std::invalid_argument("--player replay:SESSION needs the SESSION file whose input to play");
     else if (player != "human" && !isReplay(player))
         throw std::invalid_argument(unknownPlayer(player));
 }
@@ -71,9 +75,9 @@ std::unique_ptr<game::Player> makePlayer(const std::string& player, std::uint64_
         return seeing(seed, study, display);
     }
     if (isReplay(player)) {
-        auto source = session::readSession(player.substr(7));
+        auto source = session::readSession(replaySource(player));
         if (source.inputs.empty())
-            throw std::runtime_error("session '" + player.substr(7) + "' has no input to replay");
+            throw std::runtime_error("session '" + replaySource(player) + "' has no input to replay");
         return std::make_unique<game::RecordedPlayer>(std::move(source.inputs));
     }
     throw std::invalid_argument(unknownPlayer(player));

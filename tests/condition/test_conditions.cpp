@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "condition/schedule.h"
@@ -85,11 +87,12 @@ TEST(Conditions, EveryPresetExpandsToTheScheduleItReplaced) {
                 const ScheduledFrame a = schedule.frame(k), b = oldFrame(mode, refresh, k);
                 SCOPED_TRACE(name + " at " + std::to_string(refresh) + " Hz, frame " + std::to_string(k));
                 // Bidirectional reprojection's repeated frames (B-frames shown twice on a 120 Hz
-                // display) were marked held, and drawn as the I-frame before; they are the same
-                // B-frame again. Everything the scoring reads is unchanged.
+                // display) are held, as they were, but were drawn as the I-frame before; they are
+                // made as the same B-frame again. Everything the scoring reads is unchanged.
                 const bool repeatedBFrame =
                     mode.upconversion == OldMode::Bidirectional && b.kind == FrameKind::Held && b.nextSourceIndex != -1;
-                EXPECT_EQ(a.kind, repeatedBFrame ? FrameKind::Interpolated : b.kind);
+                EXPECT_EQ(a.kind, b.kind);
+                EXPECT_EQ(a.made, repeatedBFrame ? FrameKind::Interpolated : b.kind);
                 EXPECT_EQ(a.index, b.index);
                 EXPECT_EQ(a.displayTime, b.displayTime);  // bit for bit
                 EXPECT_EQ(a.cameraTime, b.cameraTime);
@@ -158,7 +161,7 @@ TEST(Conditions, LateWarpShowsTheMouseAtTheNextFrameAndTheWorldAfterTheLag) {
 }
 
 // Other displays and fill rates: a 144 Hz display rendering at 36 Hz and warping at 72 Hz
-// shows each warped frame twice.
+// shows each warped frame twice: once warped, then held (made again by the warp).
 TEST(Conditions, AFillAtItsOwnRateRepeatsItsFrames) {
     Condition c = composed(36, 0, "warp-sparse8", LateWarp::None);
     c.fillHz = 72;
@@ -168,7 +171,8 @@ TEST(Conditions, AFillAtItsOwnRateRepeatsItsFrames) {
         EXPECT_EQ(f.sourceIndex, k / 4 * 4) << k;
         EXPECT_DOUBLE_EQ(f.cameraTime, static_cast<double>(k / 2 * 2) / 144) << k;
         EXPECT_EQ(f.samplesInput, k % 2 == 0) << k;
-        EXPECT_EQ(f.kind, k % 4 == 0 ? FrameKind::Rendered : k % 4 == 1 ? FrameKind::Held : FrameKind::Warped) << k;
+        EXPECT_EQ(f.kind, k % 4 == 0 ? FrameKind::Rendered : k % 4 == 2 ? FrameKind::Warped : FrameKind::Held) << k;
+        EXPECT_EQ(f.made, k % 4 < 2 ? (k % 4 == 0 ? FrameKind::Rendered : FrameKind::Held) : FrameKind::Warped) << k;
     }
     EXPECT_NEAR(s.viewLatencyRange().max * 144, 2, 1e-9);
     EXPECT_NEAR(s.sceneLatencyRange().max * 144, 4, 1e-9);
@@ -215,8 +219,46 @@ TEST(Conditions, ImpossibleCombinationsNameThePartAndWhatIsAllowed) {
     EXPECT_EQ(problemOf(composed(15, 0, "blend", LateWarp::Depth), 60).rfind("late_warp: must be \"none\"", 0), 0u);
     EXPECT_EQ(problemOf(composed(15, 0, "smear", LateWarp::None), 60).rfind("fill: must be one of hold, warp-full", 0),
               0u);
-    // More look-back than a game's history keeps.
-    EXPECT_EQ(problemOf(composed(60, 479, "hold", LateWarp::None), 60).rfind("lag_frames: looks back 481", 0), 0u);
+    // More look-back than a game's history keeps; the longest lag_frames fits at ordinary rates.
+    EXPECT_EQ(problemOf(composed(60, kMaxLagFrames, "hold", LateWarp::None), 60), "");
+    EXPECT_EQ(
+        problemOf(composed(0.1, kMaxLagFrames, "hold", LateWarp::None), 120).rfind("lag_frames: looks back 2880", 0),
+        0u);
+}
+
+// A rate is the rate it runs at: a hair off one that fits the refresh would run as that one,
+// so it is refused naming both (29.97 Hz on a 59.94 Hz display fits to the last bit).
+TEST(Conditions, ARateAHairOffOneThatFitsIsRefused) {
+    EXPECT_EQ(problemOf(composed(59.999999999, 0, "hold", LateWarp::None), 120),
+              "render_hz: is 59.999999999 Hz, which a 120 Hz display can only run as 60 Hz (every 2nd display frame); "
+              "write 60");
+    EXPECT_EQ(problemOf(composed(120.0000001, 0, "hold", LateWarp::None), 120),
+              "render_hz: is 120.0000001 Hz, which a 120 Hz display can only run as 120 Hz (every display frame); "
+              "write 120");
+    EXPECT_EQ(problemOf(composed(29.97, 0, "hold", LateWarp::None), 59.94), "");
+    EXPECT_EQ(problemOf(composed(144.0 / 7.0, 0, "hold", LateWarp::None), 144), "");
+    Condition fill = composed(15, 0, "warp-sparse8", LateWarp::None);
+    fill.fillHz = 119.9999999999;
+    EXPECT_EQ(
+        problemOf(fill, 120).rfind("fill_hz: is 119.9999999999 Hz, which a 120 Hz display can only run as 120 Hz", 0),
+        0u);
+    EXPECT_EQ(wholeRatio(120, 59.999999999), std::nullopt);
+    EXPECT_EQ(wholeRatio(120, 60), 2);
+    EXPECT_EQ(wholeRatio(480, 60), 8);  // the click game's physics steps per frame
+}
+
+// docs/protocol.md gives the limits a definition's lag is held to: what the parser allows and
+// what a game's history keeps, as the constants say.
+TEST(Conditions, TheProtocolPageStatesTheLagLimits) {
+    std::ifstream in(std::string(WARPLAB_SOURCE_DIR) + "/docs/protocol.md");
+    std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (char& c : page)
+        if (c == '\n') c = ' ';
+    const std::string lagRow =
+        "| `lag_frames` | integer | display frames | 0 | 0\u2013" + std::to_string(kMaxLagFrames) + " |";
+    EXPECT_NE(page.find(lagRow), std::string::npos) << "docs/protocol.md should have: " << lagRow;
+    const std::string lookBack = "may look back at most " + std::to_string(kMaxLookBackFrames) + " display frames";
+    EXPECT_NE(page.find(lookBack), std::string::npos) << "docs/protocol.md should say: " << lookBack;
 }
 
 TEST(Conditions, TheTableFindsPresetsThenTheProtocolsOwn) {

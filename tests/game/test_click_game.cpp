@@ -362,8 +362,8 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
             const ShownFrame shown = game.step({});
             world[shown.frame] = game.world()->spheres();
             const std::int64_t depicted = std::llround(shown.scene.time * p.refreshHz);
-            if (!world.count(depicted) || shown.schedule.kind == condition::FrameKind::Interpolated) {
-                if (shown.schedule.kind != condition::FrameKind::Interpolated) continue;
+            if (!world.count(depicted) || shown.schedule.made == condition::FrameKind::Interpolated) {
+                if (shown.schedule.made != condition::FrameKind::Interpolated) continue;
                 // Interpolated: every shown sphere lies between its two I-frame positions.
                 if (!world.count(shown.sourceFrame) || !world.count(shown.nextSourceFrame)) continue;
                 const auto& a = world.at(shown.sourceFrame);

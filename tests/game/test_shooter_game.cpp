@@ -504,5 +504,38 @@ TEST(ShooterGame, ClickTimingChoosesWhenAPressCounts) {
     }
 }
 
+// The frame a trial times out on still shows the target: a click on it is a shot, with an aim
+// time of exactly timeout_s, and only that frame without a click is a timeout
+// (docs/shooter-study.md, "Test").
+TEST(ShooterGame, AClickOnTheTimeoutFrameIsAShot) {
+    auto p = quick();
+    p.acclimationS = 0.0;
+    p.training.timeLimitS = 0.001;
+    p.conditions = {"conv120"};
+    p.timeoutS = 1.0;
+    const std::int64_t timeoutFrames = std::llround(p.timeoutS * p.refreshHz);
+    std::map<std::string, std::vector<session::EventRecord>> ends;  // by whether it clicked
+    for (const bool click : {false, true}) {
+        ShooterGame game(p, 3, DisplaySize{});
+        ShownFrame last;
+        for (int i = 0; i < 100000 && game.currentPhase() != Phase::Test; ++i) last = game.step({});
+        while (last.frozen || last.scene.objects.empty()) last = game.step({});
+        game.takeEvents();
+        const std::int64_t spawn = std::llround(game.currentTrial()->spawnTime * p.refreshHz);
+        while (game.frameIndex() + 1 < spawn + timeoutFrames) {
+            game.step({});
+            ASSERT_TRUE(game.takeEvents().empty()) << "the trial ended before its timeout frame";
+        }
+        game.step(click ? FrameInput{0, 0, kButtonLeft, 0} : FrameInput{});
+        ends[click ? "click" : "none"] = game.takeEvents();
+    }
+    ASSERT_EQ(ends["none"].size(), 1u);
+    EXPECT_EQ(ends["none"][0].type, "timeout");
+    ASSERT_EQ(ends["click"].size(), 1u);
+    EXPECT_EQ(ends["click"][0].type, "shot");
+    EXPECT_EQ(ends["click"][0].frame, ends["none"][0].frame);
+    EXPECT_DOUBLE_EQ(detailNumber(ends["click"][0], "aim_time"), p.timeoutS);
+}
+
 }  // namespace
 }  // namespace warplab::game

@@ -105,7 +105,7 @@ TEST(FrameMaker, AFrameMadeFromALateRenderIsTheFrameOfAnEagerOne) {
             maker.keepSource(shown);
             if (shown.blank) continue;
             maker.make(shown, display);
-            const bool interpolated = shown.schedule.kind == condition::FrameKind::Interpolated;
+            const bool interpolated = shown.schedule.made == condition::FrameKind::Interpolated;
             const bool afterAnother = interpolated && lastInterval == shown.sourceFrame;
             lastInterval = interpolated ? shown.sourceFrame : -1;
             if (i % 7 != 6) continue;

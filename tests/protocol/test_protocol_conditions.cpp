@@ -89,6 +89,15 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
          "conditions.lag60x5.late_warp must be \"none\", \"rotation\" or \"depth\", got string \"inpaint\""},
         {"/conditions/lag60x5/lag_frames", -2,
          "conditions.lag60x5.lag_frames must be an integer between 0 and 480, got -2"},
+        {"/conditions/lag60x5/lag_frames", 481,
+         "conditions.lag60x5.lag_frames must be an integer between 0 and 480, got 481"},
+        // A hair off a rate that fits is not that rate, though the display would run it as that.
+        {"/conditions/lag60x5/render_hz", 59.999999999,
+         "conditions.lag60x5.render_hz is 59.999999999 Hz, which a 120 Hz display can only run as 60 Hz (every 2nd "
+         "display frame); write 60"},
+        {"/conditions/base60/description", std::string(201, 'x'),
+         "conditions.base60.description must be a single line of at most 200 bytes, got string \"" +
+             std::string(56, 'x') + "..."},
         {"/conditions/lag60x5/render_hz", 240,
          "conditions.lag60x5.render_hz is 240 Hz: the display refresh must be a whole multiple of 240 Hz, not 120 Hz "
          "(it is above the refresh); rates that fit 120 Hz: 120, 60, 40, 30, 24, 20, 15, 12 ..."},
@@ -147,6 +156,21 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
     document["conditions"]["conv60"] = Json{{"render_hz", 60}, {"lag_ms", 0}};
     document["test"]["conditions"][4] = "conv60";
     EXPECT_EQ(errorOf(document), "");
+}
+
+// What docs/protocol.md allows a definition: the default description written out, the longest
+// one, the longest lag_frames (each refused once).
+TEST(ProtocolConditions, TheDocumentedLimitsAreAccepted) {
+    Json document = kim();
+    document["conditions"]["base60"]["description"] = "";
+    document["conditions"]["lag60x5"]["description"] = std::string(200, 'x');
+    document["conditions"]["lag60x5"]["lag_frames"] = 480;
+    ASSERT_EQ(errorOf(document), "");
+    const ShooterProtocol p = parseShooterProtocol(document.dump(), "p.json");
+    EXPECT_EQ(p.conditionTable.at("base60").description, "");
+    EXPECT_EQ(p.conditionTable.at("lag60x5").description.size(), 200u);
+    EXPECT_EQ(p.conditionTable.at("lag60x5").lagFrames, 480);
+    EXPECT_TRUE(parseShooterProtocol(toJson(p), "copy").conditionTable == p.conditionTable);
 }
 
 TEST(ProtocolConditions, TheClickGameDefinesThemToo) {

@@ -47,10 +47,14 @@ inline constexpr const char* kDepthLateWarpMethod = "warp-sparse8";
 // The renderer method of a rotation late warp.
 inline constexpr const char* kRotationLateWarpMethod = "rotation";
 
+// The most added latency a composed condition may give in display frames (lag_frames): 4 s at
+// 120 Hz, a stray digit's worth past any study of latency.
+inline constexpr int kMaxLagFrames = 480;
 // The longest look back a condition may have, in display frames: its lag plus two render
 // periods (a held render, and bidirectional reprojection's wait for the next). Games keep this
-// much of their history (game/frame_history.h).
-inline constexpr std::int64_t kMaxLookBackFrames = 480;
+// much of their history (game/frame_history.h). Room for the longest lag either field allows
+// (lag_frames 480; lag_ms 1000 at the 1000 Hz ceiling) and render periods of hundreds of frames.
+inline constexpr std::int64_t kMaxLookBackFrames = 2048;
 
 struct Condition {
     std::string name;  // as protocols, logs and CSVs write it
@@ -120,5 +124,10 @@ private:
 
 // A rate or a duration for a message: "60", "59.94", "58.333", never "60.000000".
 std::string number(double value);
+
+// total / part when it is a whole number n >= 1 and n parts make total to the last bits of a
+// double (29.97 Hz fits 59.94 Hz twice), else nullopt: 59.999999999 Hz is not 60 Hz, and a
+// display would run it as 60 Hz. How a render, fill or physics rate is checked against a refresh.
+std::optional<std::int64_t> wholeRatio(double total, double part);
 
 }  // namespace warplab::condition

@@ -23,7 +23,14 @@ const char* frameKindName(FrameKind kind);
 struct ScheduledFrame {
     std::int64_t index = 0;  // display frame since the schedule started
     double displayTime = 0.0;  // when it is shown
+    // What the frame is, as the frame log names it: a new render, a new frame of the fill
+    // (warped, interpolated), or held: the frame before it shown again, no new image -- the
+    // hold fill between renders, and a fill slower than the refresh between the frames it makes.
     FrameKind kind = FrameKind::Rendered;
+    // How its image is made: the render of sourceIndex copied (Rendered or Held), or by the
+    // fill's method (Warped, Interpolated). A frame the fill repeats is `kind` Held and made
+    // again as the frame it repeats, so a repeated B-frame shows that B-frame, not its I-frame.
+    FrameKind made = FrameKind::Rendered;
     double cameraTime = 0.0;  // the instant whose camera (mouse) it shows
     double sceneTime = 0.0;  // the instant whose world it shows (warp: by extrapolation)
     // The latest instant at which the world was sampled for it: a change in the world's motion

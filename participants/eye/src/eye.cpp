@@ -44,7 +44,7 @@ Percept Eye::see(const game::ShownFrame& shown) {
     // A frozen frame, or a held one of the source last shown as it was rendered, is the image
     // already on screen pixel for pixel (a hold copies its source): the same percept, without
     // drawing it again.
-    const auto kind = shown.schedule.kind;
+    const auto kind = shown.schedule.made;
     const bool same =
         haveImage_ && (shown.frozen || (kind == condition::FrameKind::Held && shown.sourceFrame == lastMadeSource_));
     if (!same) {

@@ -19,9 +19,9 @@ namespace warplab::present {
 // pixels are scaled to the frame's by toFrameX/Y.
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY);
 
-// Makes each displayed frame the way its mode makes it, from the conventional renders it
-// keeps: a held or rendered frame is its source copied (hold120); warped and interpolated
-// frames use the mode's method.
+// Makes each displayed frame the way its mode makes it (its schedule's `made`), from the
+// conventional renders it keeps: a render copied (hold120), or the mode's method for warped and
+// interpolated frames, repeated ones too.
 //
 // A source is rendered when a frame made needs it, not when the game steps the frame that
 // renders it: a live session on a machine that cannot keep the refresh steps through display

@@ -37,6 +37,9 @@ bool isSimulatedParticipant(const std::string& player);
 // Throws std::invalid_argument, in the words makePlayer would use, when `player` is not a form
 // run --player takes (human, bot[:SEED], sim[:SEED], replay:SESSION); reads no file.
 void checkPlayer(const std::string& player);
+// The SESSION of "replay:SESSION", the recorded session whose input the player plays; "" for
+// the other players.
+std::string replaySource(const std::string& player);
 
 // What headless and live runs share. `seeing` makes the "sim" players, which only run headless
 // (unset: "sim" is refused with a sentence saying so).

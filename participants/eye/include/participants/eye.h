@@ -24,7 +24,7 @@ namespace warplab::participants {
 // (reticle or cursor position), banner, phase text, Enter prompt, rating screen, and whether
 // the scene is shown at all (`blank`); (3) its display time; (4) to skip drawing an image that
 // is already on screen, whether the frame is frozen or a held copy of the source last drawn
-// (`frozen`, `schedule.kind`, `sourceFrame`): the same pixels either way; and a held or
+// (`frozen`, `schedule.made`, `sourceFrame`): the same pixels either way; and a held or
 // rendered frame is read at the source FrameMaker would copy (FrameMaker::shownUnchanged), the
 // same pixels without the copy. Never the scene's objects, the camera, the mode or the outcome
 // for itself.
