@@ -102,10 +102,13 @@ CarriedOn carriedOn(const std::vector<fs::path>& files, const fs::path& resultsD
     return out;
 }
 
-// The plan folder of a results folder: DIR for DIR/results (as `study init` makes them).
+// The plan folder of the folder exported: DIR itself when it holds the plan (export DIR, whose
+// sessions are in DIR/results), else DIR for DIR/results (as `study init` makes them).
 fs::path planFolderOf(const std::string& resultsDir) {
     fs::path dir = fs::absolute(resultsDir).lexically_normal();
     if (dir.filename().empty()) dir = dir.parent_path();
+    std::error_code ec;
+    if (fs::exists(dir / "study.json", ec)) return dir;
     return dir.parent_path();
 }
 

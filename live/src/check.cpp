@@ -248,10 +248,8 @@ private:
     // The marker's square wave, frame by frame at the measured refresh (or a timer at 60 Hz
     // where there is none), as a session would draw it: on the backdrop, nothing else moving.
     void photonPattern() {
-        protocol::PhotonMarker corner = protocol::PhotonMarker::Off;
-        for (const auto& entry : protocol::EnumNames<protocol::PhotonMarker>::list)
-            if (run_.photonCorner == entry.name) corner = entry.value;
-        std::optional<renderer::HudPhotonMarker> marker = hudPhotonMarker(corner);
+        std::optional<renderer::HudPhotonMarker> marker = present::hudPhotonMarker(
+            protocol::valueNamed<protocol::PhotonMarker>(run_.photonCorner).value_or(protocol::PhotonMarker::Off));
         if (!marker) {
             lines_.add(Verdict::Fail, "photon", "'" + run_.photonCorner + "' is no corner for the marker");
             return;

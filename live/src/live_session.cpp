@@ -217,6 +217,7 @@ std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std:
     header.glRenderer = loop.glInfo().renderer;
     header.glVersion = loop.glInfo().version;
     header.refreshHz = loop.shownRefreshHz();
+    header.photonMarker = protocol::nameOf(loop.photonMarker());  // replay --render draws it
     if (resume) header = study::resumedHeader(*resume, header);
     auto writer = session::SessionWriter::create(
         run.resultsDir, header, resume ? study::keptRows(*resume) : session::SessionWriter::FirstCommit{});

@@ -18,16 +18,4 @@ PhotonMarkerTiming::Answer PhotonMarkerTiming::step(const game::ShownFrame& show
     return answer;
 }
 
-std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner) {
-    using Corner = renderer::HudPhotonMarker::Corner;
-    switch (corner) {
-        case protocol::PhotonMarker::Off: return std::nullopt;
-        case protocol::PhotonMarker::TopLeft: return renderer::HudPhotonMarker{Corner::TopLeft, false};
-        case protocol::PhotonMarker::TopRight: return renderer::HudPhotonMarker{Corner::TopRight, false};
-        case protocol::PhotonMarker::BottomLeft: return renderer::HudPhotonMarker{Corner::BottomLeft, false};
-        case protocol::PhotonMarker::BottomRight: return renderer::HudPhotonMarker{Corner::BottomRight, false};
-    }
-    return std::nullopt;
-}
-
 }  // namespace warplab::live

@@ -5,11 +5,8 @@
 
 #include <cstdint>
 #include <deque>
-#include <optional>
 
 #include "game/game.h"
-#include "protocol/study_protocol.h"
-#include "renderer/hud.h"
 
 namespace warplab::live {
 
@@ -30,8 +27,5 @@ private:
     std::uint32_t previousButtons_ = 0;
     std::deque<std::int64_t> pending_;  // frames of the presses not yet shown, in order
 };
-
-// The HUD's marker for a protocol's (or the run's) setting; none when it is off.
-std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner);
 
 }  // namespace warplab::live

@@ -30,11 +30,9 @@ double countScaleFor(const LiveRun& run, const game::Study& study) {
 
 // The run's --photon-marker, else the protocol's display.photon_marker.
 protocol::PhotonMarker photonMarkerFor(const LiveRun& run, const game::Study& study) {
-    for (const auto& entry : protocol::EnumNames<protocol::PhotonMarker>::list)
-        if (run.photonMarker == entry.name) return entry.value;
-    if (!run.photonMarker.empty())
-        throw std::invalid_argument("LiveRun::photonMarker '" + run.photonMarker + "' is no display.photon_marker");
-    return study.rendering().photonMarker;
+    if (run.photonMarker.empty()) return study.rendering().photonMarker;
+    if (const auto corner = protocol::valueNamed<protocol::PhotonMarker>(run.photonMarker)) return *corner;
+    throw std::invalid_argument("LiveRun::photonMarker '" + run.photonMarker + "' is no display.photon_marker");
 }
 
 }  // namespace
@@ -130,7 +128,8 @@ WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std
       hud_(paths),
       screen_(display_.width, display_.height),
       clock_(window_, study_->refreshHz(), opened_.byVsync),
-      photonMarker_(hudPhotonMarker(photonMarkerFor(run, *study_))) {
+      photonCorner_(photonMarkerFor(run, *study_)),
+      photonMarker_(present::hudPhotonMarker(photonCorner_)) {
     if (!sounds_.available()) progress << "note: " << sounds_.why() << "; feedback sounds are off\n";
     maker_.prepareFor(*study_);
 }

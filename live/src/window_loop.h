@@ -118,6 +118,8 @@ public:
     double shownRefreshHz() const;
     // Whether the participant plays (not a bot or a recorded session).
     bool human() const { return player_ == nullptr; }
+    // Where the photodiode marker is drawn (LiveRun::photonMarker, else the protocol's), or off.
+    protocol::PhotonMarker photonMarker() const { return photonCorner_; }
 
     // Relative mouse mode while the participant plays; off on screens, at the end, for bots.
     void captureMouse(bool on);
@@ -187,7 +189,9 @@ private:
     FeedbackSounds sounds_;
     DisplayClock clock_;
     renderer::PassTimer timer_;
-    // The photodiode marker: where (none when off) and which frames light it.
+    // The photodiode marker: its corner or off, how the HUD draws it (none when off) and which
+    // frames light it.
+    const protocol::PhotonMarker photonCorner_;
     std::optional<renderer::HudPhotonMarker> photonMarker_;
     PhotonMarkerTiming photonTiming_;
     // What sawBeforeResume learnt: where run() starts, the player's next input, and the last

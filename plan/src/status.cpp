@@ -54,6 +54,16 @@ SessionFacts factsOf(const std::string& path, const session::SessionData& data, 
     return {path, data.header, data.completed, data.damaged, data.flags, data.note, study.progress(data.events)};
 }
 
+SessionFacts factsOf(const std::string& path, const session::SessionOutline& outline, const game::Study& study) {
+    return {path,
+            outline.header,
+            outline.completed,
+            outline.damaged,
+            outline.flags,
+            outline.note,
+            study.progress(outline.events)};
+}
+
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan) {
     std::vector<SessionFacts> sessions;
     std::error_code ec;
@@ -63,11 +73,13 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
         const std::string name = path.filename().string();
         if (path.extension() != ".warplab-session" || name.front() == '.' || !it->is_regular_file(ec)) continue;
         try {
-            // The header first: another plan's session (or one without a plan) is not read whole.
+            // The header first: another plan's session (or one without a plan) has its events
+            // left unread. A session of the plan is read as far as its last commit, never its
+            // input and frame rows: a participant waits for this at every start.
             if (session::readSessionHeader(path.string()).planId != plan.id) continue;
-            const session::SessionData data = session::readSession(path.string());
+            const session::SessionOutline outline = session::readSessionOutline(path.string());
             sessions.push_back(
-                factsOf(path.string(), data, *game::parseStudy(data.header.protocolJson, path.string())));
+                factsOf(path.string(), outline, *game::parseStudy(outline.header.protocolJson, path.string())));
         } catch (const std::exception&) {
             continue;  // not a session of this plan that can be told, or its stored protocol does not parse
         }

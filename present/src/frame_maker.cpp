@@ -54,6 +54,18 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
     return content;
 }
 
+std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner) {
+    using Corner = renderer::HudPhotonMarker::Corner;
+    switch (corner) {
+        case protocol::PhotonMarker::Off: return std::nullopt;
+        case protocol::PhotonMarker::TopLeft: return renderer::HudPhotonMarker{Corner::TopLeft, false};
+        case protocol::PhotonMarker::TopRight: return renderer::HudPhotonMarker{Corner::TopRight, false};
+        case protocol::PhotonMarker::BottomLeft: return renderer::HudPhotonMarker{Corner::BottomLeft, false};
+        case protocol::PhotonMarker::BottomRight: return renderer::HudPhotonMarker{Corner::BottomRight, false};
+    }
+    return std::nullopt;
+}
+
 FrameMaker::FrameMaker(const renderer::DataPaths& paths, int width, int height,
                        const protocol::RenderSettings& rendering)
     : paths_(paths),

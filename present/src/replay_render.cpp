@@ -6,7 +6,10 @@
 #include <map>
 #include <set>
 #include <memory>
+#include <optional>
 #include <stdexcept>
+
+#include <nlohmann/json.hpp>
 
 #include "game/registry.h"
 #include "session/session_store.h"
@@ -84,6 +87,38 @@ private:
     std::map<std::int64_t, std::uint32_t> loggedObject_;  // what logged shots and clicks say was under the pointer
 };
 
+// The photodiode marker as the session's window drew it: in the corner its header names, or
+// for a file from before the header named it, the protocol's; white on the frames the window
+// lit, which its frame rows mark (docs/session-format.md).
+class RecordedPhotonMarker {
+public:
+    RecordedPhotonMarker(const session::SessionData& data, const game::Study& study, const std::string& path) {
+        const std::string& stored = data.header.photonMarker;
+        const auto corner =
+            stored.empty() ? study.rendering().photonMarker : protocol::valueNamed<protocol::PhotonMarker>(stored);
+        if (!corner)
+            throw std::runtime_error("session file " + path + " has photon_marker '" + stored +
+                                     "' in its header, which is no corner of the marker (off, top_left, top_right, "
+                                     "bottom_left, bottom_right)");
+        marker_ = hudPhotonMarker(*corner);
+        if (!marker_) return;
+        for (const auto& f : data.frames) {
+            if (f.detailJson.find("\"photon_marker\"") == std::string::npos) continue;
+            const auto detail = nlohmann::json::parse(f.detailJson, nullptr, false);
+            if (detail.is_object() && detail.value("photon_marker", false)) lit_.insert(f.frame);
+        }
+    }
+    // Onto the HUD of display frame `frame`.
+    void draw(std::int64_t frame, renderer::HudContent& content) const {
+        content.photonMarker = marker_;
+        if (content.photonMarker) content.photonMarker->lit = lit_.count(frame) > 0;
+    }
+
+private:
+    std::optional<renderer::HudPhotonMarker> marker_;
+    std::set<std::int64_t> lit_;
+};
+
 }  // namespace
 
 ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
@@ -111,6 +146,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     renderer::DisplayFrame displayFrame(width, height);
     const auto game = study->newGame(data.header.seed, display);
     PointerCheck pointerCheck(*game, data, toFrameX, toFrameY);
+    const RecordedPhotonMarker photonMarker(data, *study, request.sessionPath);
     ReplayRenderResult result;
     // Display frames the live session stepped through without showing (its display clock):
     // kept as sources, since later frames may be made from them, but never pictures.
@@ -130,7 +166,9 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
         }
         if (!shown.blank) maker.make(shown, displayFrame);
         for (const std::string& note : maker.takeNotes()) out << "note: " << note << "\n";
-        hud.draw(hudFor(shown, toFrameX, toFrameY), displayFrame.buffer());
+        renderer::HudContent content = hudFor(shown, toFrameX, toFrameY);
+        photonMarker.draw(shown.frame, content);
+        hud.draw(content, displayFrame.buffer());
         // One read-back a frame serves both the check (ids) and the PNG (colour).
         const renderer::DisplayImages images = renderer::readBack(displayFrame);
         pointerCheck.check(shown, images.ids, result);

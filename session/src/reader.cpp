@@ -39,51 +39,11 @@ class Reader {
 public:
     explicit Reader(std::string path) : path_(std::move(path)) {}
 
-    SessionData read() {
-        checkRegularFile();
-        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
-        // finishing): nothing is writing it.
-        std::error_code ec;
-        if (!fs::exists(path_ + "-wal", ec)) {
-            openFile(true);
-            return readOpen();
-        }
-        // With a -wal present a writer may be running, or the -wal may be stale or another
-        // session's. The file alone tells which: a finished file alone is the whole session
-        // (a -wal beside it is one the finish left behind, or one put there), and the file's
-        // own session id is what the -wal's pages must keep.
-        std::optional<SessionData> alone;
-        try {
-            Reader fileAlone(path_);
-            fileAlone.openImage();
-            alone = fileAlone.readOpen();
-        } catch (const SessionError&) {
-            // Unreadable alone (a writer checkpointing into it as we copied it): the -wal decides.
-        }
-        if (alone && alone->completed && !alone->damaged) return std::move(*alone);
-        walLoss_ = lostInWal(path_ + "-wal");
-        SessionData data;
-        try {
-            openFile(false);
-            data = readOpen();
-        } catch (const SessionError& e) {
-            if (!alone) throw;
-            return withoutWal(std::move(*alone), "the file cannot be read with " + path_ + "-wal: " + e.what());
-        }
-        if (!alone) return data;
-        if (data.header.sessionId != alone->header.sessionId)
-            return withoutWal(std::move(*alone),
-                              path_ + "-wal is another session's (session_id " + data.header.sessionId + ", not " +
-                                  alone->header.sessionId + ")");
-        // Damage that only the -wal brings, costing commits the file alone holds whole: a
-        // -wal of another session (its commits do not chain to this one's), or of an older
-        // copy. The file alone keeps more.
-        const auto rows = [](const SessionData& d) { return d.inputs.size() + d.frames.size() + d.events.size(); };
-        if (data.damaged && !alone->damaged && rows(*alone) > rows(data))
-            return withoutWal(std::move(*alone),
-                              path_ + "-wal does not fit this file: reading with it ends " + data.note);
-        return data;
-    }
+    SessionData read() { return readBesideWal(&Reader::readOpen, &Reader::openImage); }
+    // The file alone is opened "immutable" rather than copied whole into memory: that reads
+    // only the pages the outline needs (a writer checkpointing meanwhile may make it
+    // unreadable alone, and then the -wal decides, as for read()).
+    SessionOutline outline() { return readBesideWal(&Reader::outlineOpen, &Reader::openAlone); }
 
     // The header alone, as SQLite sees the file (with its -wal, if any): what the file says it
     // is, without reading or checking its records.
@@ -99,9 +59,63 @@ public:
     }
 
 private:
+    // Reads the file with readOpen, deciding first whether a -wal beside it belongs to it;
+    // openAlone opens the file without its -wal.
+    template <typename Result>
+    Result readBesideWal(Result (Reader::*readOpen)(), void (Reader::*openAlone)()) {
+        checkRegularFile();
+        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
+        // finishing): nothing is writing it.
+        std::error_code ec;
+        if (!fs::exists(path_ + "-wal", ec)) {
+            openFile(true);
+            return (this->*readOpen)();
+        }
+        // With a -wal present a writer may be running, or the -wal may be stale or another
+        // session's. The file alone tells which: a finished file alone is the whole session
+        // (a -wal beside it is one the finish left behind, or one put there), and the file's
+        // own session id is what the -wal's pages must keep.
+        std::optional<Result> alone;
+        try {
+            Reader fileAlone(path_);
+            (fileAlone.*openAlone)();
+            alone = (fileAlone.*readOpen)();
+        } catch (const SessionError&) {
+            // Unreadable alone (a writer checkpointing into it as we copied it): the -wal decides.
+        }
+        if (alone && alone->completed && !alone->damaged) return std::move(*alone);
+        walLoss_ = lostInWal(path_ + "-wal");
+        Result data;
+        try {
+            openFile(false);
+            data = (this->*readOpen)();
+        } catch (const SessionError& e) {
+            if (!alone) throw;
+            return withoutWal(std::move(*alone), "the file cannot be read with " + path_ + "-wal: " + e.what());
+        }
+        if (!alone) return data;
+        if (data.header.sessionId != alone->header.sessionId)
+            return withoutWal(std::move(*alone),
+                              path_ + "-wal is another session's (session_id " + data.header.sessionId + ", not " +
+                                  alone->header.sessionId + ")");
+        // Damage that only the -wal brings, costing commits the file alone holds whole: a
+        // -wal of another session (its commits do not chain to this one's), or of an older
+        // copy. The file alone keeps more.
+        if (data.damaged && !alone->damaged && rowsOf(*alone) > rowsOf(data))
+            return withoutWal(std::move(*alone),
+                              path_ + "-wal does not fit this file: reading with it ends " + data.note);
+        return data;
+    }
+    static std::size_t rowsOf(const SessionData& d) { return d.inputs.size() + d.frames.size() + d.events.size(); }
+    static std::size_t rowsOf(const SessionOutline& o) {
+        return static_cast<std::size_t>(o.inputRows + o.frameRows) + o.events.size();
+    }
+    void openAlone() { openFile(true); }
+
     // The file read alone, its -wal refused (`why` says why): whatever the -wal held of this
     // session is lost.
-    static SessionData withoutWal(SessionData alone, const std::string& why) {
+    template <typename Result>
+    static Result withoutWal(Result alone, const std::string& why) {
         const std::string alonesNote = alone.note.empty() ? std::string("it holds a complete session") : alone.note;
         alone.completed = false;
         alone.damaged = true;
@@ -119,19 +133,36 @@ private:
         data.flags = flags_;
         data.summaries = summaries_;
         version_ = data.header.formatVersion;
-        // Versions 1 to 4 have no input `text`: their checksums cover the columns they have.
-        const Table<InputRecord> input =
-            version_ >= kTypedTextSince ? inputTable() : Table<InputRecord>{"input", false, v1To4InputFields()};
-        if (version_ == 1)
-            readTables(data,
-                       Layout<InputRecord, V1FrameRow, V1EventRow>{
-                           input, {"frames", false, v1FrameFields()}, {"events", true, v1EventFields()}});
-        else
-            readTables(data, Layout<InputRecord, FrameRecord, EventRecord>{input, frameTable(), eventTable()});
+        withLayout([&](const auto& layout) { readTables(data, layout); });
         // Ending a read transaction writes nothing; after damage SQLite may report the damage
         // again here, which readTables has already accounted for.
         sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
         return data;
+    }
+
+    SessionOutline outlineOpen() {
+        SessionOutline out;
+        exec("BEGIN");  // one snapshot, as readOpen's
+        out.header = readHeader(out.completed);
+        out.flags = flags_;
+        out.summaries = summaries_;
+        version_ = out.header.formatVersion;
+        withLayout([&](const auto& layout) { outlineTables(out, layout); });
+        sqlite3_exec(db_.get(), "ROLLBACK", nullptr, nullptr, nullptr);
+        return out;
+    }
+
+    // Calls read(layout) with the tables laid out as the file's format version lays them.
+    template <typename Read>
+    void withLayout(Read&& read) {
+        // Versions 1 to 4 have no input `text`: their checksums cover the columns they have.
+        const Table<InputRecord> input =
+            version_ >= kTypedTextSince ? inputTable() : Table<InputRecord>{"input", false, v1To4InputFields()};
+        if (version_ == 1)
+            read(Layout<InputRecord, V1FrameRow, V1EventRow>{
+                input, {"frames", false, v1FrameFields()}, {"events", true, v1EventFields()}});
+        else
+            read(Layout<InputRecord, FrameRecord, EventRecord>{input, frameTable(), eventTable()});
     }
 
     struct Commit {
@@ -255,10 +286,13 @@ private:
     }
     // A table whose SELECT does not compile is missing or lacks a column: a schema mismatch,
     // or damage to the schema page itself.
-    Stmt prepareTable(const char* table, const char* columns, const char* key) {
-        Stmt s = prepareOrNull(std::string("SELECT ") + columns + " FROM " + table + " ORDER BY " + key);
+    Stmt prepareSelect(const std::string& sql) {
+        Stmt s = prepareOrNull(sql);
         if (!s) fail("does not match the session format " + std::to_string(version_) + " schema: " + errmsg() + ".");
         return s;
+    }
+    Stmt prepareTable(const char* table, const char* columns, const char* key) {
+        return prepareSelect(std::string("SELECT ") + columns + " FROM " + table + " ORDER BY " + key);
     }
 
     SessionHeader readHeader(bool& completed) {
@@ -319,6 +353,7 @@ private:
         if (h.formatVersion >= kResumedSince && !parseResumed(get("resumed"), h.resumed))
             fail("has an unreadable header: resumed is '" + get("resumed") + "'.");
         if (h.formatVersion >= kPlayerModelSince) h.playerModel = get("player_model");
+        if (const auto it = meta.find(kPhotonMarkerKey); it != meta.end()) h.photonMarker = it->second;
         completed = meta.count("completed_at") > 0;
         for (const auto& [key, value] : meta)
             if (key.rfind(kFlagPrefix, 0) == 0)
@@ -415,15 +450,16 @@ private:
         return out;
     }
 
+    static bool commitRow(sqlite3_stmt* s, Commit& c) {
+        return integer(s, 0, c.id) && integer(s, 1, c.inputRows) && integer(s, 2, c.frameRows) &&
+            integer(s, 3, c.eventRows) && optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
+    }
+
     // Reads the rows of a file laid out as `layout` (the file's format version), keeps the
     // commits that verify, and hands them on as today's records.
     template <typename InputRow, typename FrameRow, typename EventRow>
     void readTables(SessionData& data, const Layout<InputRow, FrameRow, EventRow>& layout) {
-        auto commits = readPrefix<Commit>(
-            "commits", prepareTable("commits", kCommitColumns, "id"), [](sqlite3_stmt* s, Commit& c) {
-                return integer(s, 0, c.id) && integer(s, 1, c.inputRows) && integer(s, 2, c.frameRows) &&
-                    integer(s, 3, c.eventRows) && optionalInteger(s, 4, c.lastFrame) && integer(s, 5, c.checksum);
-            });
+        auto commits = readPrefix<Commit>("commits", prepareTable("commits", kCommitColumns, "id"), commitRow);
         auto inputs = readRows(layout.input);
         auto frames = readRows(layout.frames);
         auto events = readRows(layout.events);
@@ -497,6 +533,81 @@ private:
         }
     }
 
+    // The largest key of a table keyed by frame, found through its b-tree without reading the
+    // rows before it: the frame of the row committed last. nullopt for an empty table, or where
+    // it cannot be read (the stop says why).
+    template <typename Row>
+    std::optional<std::int64_t> lastKey(const Table<Row>& table) {
+        Stmt s = prepareSelect(std::string("SELECT max(") + table.key() + ") FROM " + table.name);
+        std::optional<std::int64_t> key;
+        if (sqlite3_step(s.get()) != SQLITE_ROW)
+            stop(table.name, errmsg());
+        else if (!optionalInteger(s.get(), 0, key))
+            stop(table.name, "its last row has a value of the wrong type");
+        return key;
+    }
+
+    // The outline of a file laid out as `layout`: its last commit, found by its key, against
+    // the last keys of the input and frames tables (each a b-tree walked from the top) and
+    // the events, read whole as readTables reads them. What the commits count and the tables
+    // hold must meet exactly, as in a session whose commits all verify.
+    template <typename InputRow, typename FrameRow, typename EventRow>
+    void outlineTables(SessionOutline& out, const Layout<InputRow, FrameRow, EventRow>& layout) {
+        std::optional<Commit> last;
+        {
+            Stmt s = prepareSelect(std::string("SELECT ") + kCommitColumns + " FROM commits ORDER BY id DESC LIMIT 1");
+            Commit c;
+            const int rc = sqlite3_step(s.get());
+            if (rc == SQLITE_ROW && commitRow(s.get(), c))
+                last = c;
+            else if (rc == SQLITE_ROW)
+                stop("commits", "its last row has a value of the wrong type");
+            else if (rc != SQLITE_DONE)
+                stop("commits", errmsg());
+        }
+        const std::optional<std::int64_t> lastInput = lastKey(layout.input), lastFramed = lastKey(layout.frames);
+        auto events = readRows(layout.events);
+        const Commit c = last.value_or(Commit{});
+        const auto eventCount = static_cast<std::int64_t>(events.size());
+        const std::optional<std::int64_t> lastRow = std::max(lastInput, lastFramed);  // nullopt is least
+        const std::string missing = "rows of commit " + std::to_string(c.id) + " are missing";
+        if (c.inputRows > 0 && !lastInput)
+            stop("input", missing);
+        else if (c.frameRows > 0 && !lastFramed)
+            stop("frames", missing);
+        else if (lastRow < c.lastFrame)
+            stop(lastInput <= lastFramed ? "input" : "frames", missing);
+        else if (eventCount < c.eventRows)
+            stop("events", missing);
+        else if (lastRow > c.lastFrame || eventCount > c.eventRows || (c.inputRows == 0 && lastInput) ||
+                 (c.frameRows == 0 && lastFramed))
+            stop("commits", "rows after the last readable commit");
+        events.resize(static_cast<std::size_t>(std::min(eventCount, c.eventRows)));
+        out.events = toRecords(std::move(events));
+        out.commits = c.id;
+        out.inputRows = c.inputRows;
+        out.frameRows = c.frameRows;
+
+        const std::string lastFrame = c.lastFrame ? std::to_string(*c.lastFrame) : std::string("(none)");
+        if (walLoss_ && !firstStop_)
+            firstStop_ = Stop{"write-ahead log",
+                              walLoss_->commits == 0
+                                  ? "its header fails its checksum"
+                                  : "the frame at byte " + std::to_string(walLoss_->byte) + " fails its checksum"};
+        if (firstStop_) {
+            out.completed = false;
+            out.damaged = true;
+            out.note = "damaged (" + firstStop_->where + ": " + firstStop_->why + "): " +
+                (last ? "its last commit, " + std::to_string(c.id) + ", ends after frame " + lastFrame
+                      : std::string("no commit can be read")) +
+                lostText({}, 0);
+        } else if (!out.completed) {
+            out.note = !last
+                ? std::string("incomplete: no trial was committed")
+                : "incomplete: ends after frame " + lastFrame + " (last commit, " + std::to_string(c.id) + " in all)";
+        }
+    }
+
     // What damage cost, as far as the file still tells: the commits the commits table lists
     // past the last one kept, and those the -wal holds past its damage.
     std::string lostText(const std::vector<Commit>& commits, std::size_t kept) const {
@@ -523,5 +634,7 @@ private:
 SessionData readSession(const std::string& path) { return Reader(path).read(); }
 
 SessionHeader readSessionHeader(const std::string& path) { return Reader(path).header(); }
+
+SessionOutline readSessionOutline(const std::string& path) { return Reader(path).outline(); }
 
 }  // namespace warplab::session

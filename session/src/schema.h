@@ -165,4 +165,15 @@ inline std::vector<std::pair<const char*, std::string>> headerEntries(const Sess
     return entries;
 }
 
+// Header entries outside header_checksum, stored with the header when set: each was added
+// without a new format version, because a reader that does not know a meta key passes over
+// it, so every earlier reader still reads these files. The single list of them: the writer
+// stores these, the reader reads the same keys.
+inline constexpr const char* kPhotonMarkerKey = "photon_marker";
+inline std::vector<std::pair<const char*, std::string>> headerExtras(const SessionHeader& h) {
+    std::vector<std::pair<const char*, std::string>> entries;
+    if (!h.photonMarker.empty()) entries.push_back({kPhotonMarkerKey, h.photonMarker});
+    return entries;
+}
+
 }  // namespace warplab::session::detail

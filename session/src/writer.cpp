@@ -175,6 +175,7 @@ struct SessionWriter::Impl {
         c.prepareInserts();
         for (const auto& [key, value] : headerEntries(header)) c.putMeta(key, value);
         c.putMeta("header_checksum", numberText(static_cast<std::uint64_t>(headerChecksum(header))));
+        for (const auto& [key, value] : headerExtras(header)) c.putMeta(key, value);
         written.forEach([&](const CommitRows& commit) { c.writeCommit(commit); });
         for (const CommitRows& commit : held) c.writeCommit(commit);
         std::map<std::string, std::string> flags = writtenFlags;

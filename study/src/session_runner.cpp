@@ -95,6 +95,7 @@ session::SessionHeader sessionHeader(const game::Study& study, const std::string
     header.participant = participant;
     header.appVersion = WARPLAB_VERSION;
     header.glRenderer = "none (headless simulation, nothing rendered)";
+    header.photonMarker = protocol::nameOf(protocol::PhotonMarker::Off);  // no window draws one
     header.refreshHz = study.refreshHz();
     header.displayWidth = display.width;
     header.displayHeight = display.height;

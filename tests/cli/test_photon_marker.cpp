@@ -3,6 +3,7 @@
 // the mode's schedule says (the README's latency table), black after; and the frames table
 // marking that frame. Runs with --every-frame, so the scripted frames are the frames shown.
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <set>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <sqlite3.h>
 
 #include "cli/cli_support.h"
 #include "image/image.h"
@@ -61,6 +63,24 @@ std::map<std::int64_t, std::int64_t> litFrames(const std::string& session) {
     return lit;
 }
 
+// The session's replay re-rendered: the marker in the session's corner, white exactly on the
+// frames its window lit. The header names the corner the window drew.
+void expectReplayDrawsTheMarker(const std::string& dir, const std::string& corner, bool left, bool top,
+                                const std::map<int, Shade>& shades) {
+    const std::string session = sessionIn(dir);
+    EXPECT_EQ(warplab::session::readSessionHeader(session).photonMarker, corner);
+    const std::string frames = dir + "/replayed";
+    const auto replay =
+        runCommand(std::string(WARPLAB_BINARY) + " replay " + session + " --render " + frames + " --frames " +
+                   std::to_string(shades.begin()->first) + ":" + std::to_string(shades.rbegin()->first));
+    ASSERT_EQ(replay.status, 3) << replay.output;  // the script ended the session: incomplete
+    for (const auto& [frame, shade] : shades) {
+        char name[32];
+        std::snprintf(name, sizeof name, "/frame_%07d.png", frame);
+        EXPECT_EQ(markerIn(frames + name, left, top), shade) << "replayed frame " << frame;
+    }
+}
+
 // lag50 in the click game at 60 Hz: a press at frame 20 is shown 3 frames later (50 ms, the
 // README's least view latency at 60 Hz, since lag modes render every frame there). The marker
 // comes from the protocol (format 5).
@@ -81,6 +101,8 @@ TEST(PhotonMarker, LightsWhereLag50ShowsThePress) {
          std::map<int, Shade>{{20, Shade::Black}, {22, Shade::Black}, {23, Shade::White}, {24, Shade::Black}})
         EXPECT_EQ(markerIn(dir + "/frame_" + std::to_string(frame) + ".png", false, false), shade) << "frame " << frame;
     EXPECT_EQ(litFrames(sessionIn(dir)), (std::map<std::int64_t, std::int64_t>{{23, 20}}));
+    expectReplayDrawsTheMarker(dir, "bottom_right", false, false,
+                               {{22, Shade::Black}, {23, Shade::White}, {24, Shade::Black}});
     const auto replay = runCommand(std::string(WARPLAB_BINARY) + " replay " + sessionIn(dir));
     EXPECT_TRUE(warplab::testing::contains(replay.output, "outcomes reproduced")) << replay.output;
 }
@@ -100,6 +122,9 @@ TEST(PhotonMarker, LightsWhereWarpShowsThePress) {
     for (const auto& [frame, shade] : std::map<int, Shade>{{19, Shade::Black}, {20, Shade::White}, {21, Shade::Black}})
         EXPECT_EQ(markerIn(dir + "/frame_" + std::to_string(frame) + ".png", true, true), shade) << "frame " << frame;
     EXPECT_EQ(litFrames(sessionIn(dir)), (std::map<std::int64_t, std::int64_t>{{20, 20}}));
+    // The protocol has no marker: only the header knows the command line's.
+    expectReplayDrawsTheMarker(dir, "top_left", true, true,
+                               {{19, Shade::Black}, {20, Shade::White}, {21, Shade::Black}});
 }
 
 TEST(PhotonMarker, ABadCornerIsRefusedAndTheHeadlessRunHasNone) {
@@ -116,6 +141,42 @@ TEST(PhotonMarker, ABadCornerIsRefusedAndTheHeadlessRunHasNone) {
     EXPECT_EQ(headless.status, 2) << headless.output;
     EXPECT_TRUE(warplab::testing::contains(headless.output, "option --photon-marker only applies in the window"))
         << headless.output;
+}
+
+// A headless session drew nothing, so its header says off, and its replay draws no marker even
+// where the protocol has one; the corner the header names is what replay draws. One it does
+// not know ends replay --render in one sentence naming the file and the key, exit status 1.
+TEST(PhotonMarker, AHeadlessSessionSaysOffAndReplayDrawsWhatTheHeaderSays) {
+    const std::string dir = warplab::testing::scratch("photon-marker", "headless");
+    std::ofstream(dir + "/marked.json") << R"({"format_version":5,"name":"click-marked","game":"click",
+ "display":{"photon_marker":"top_left"},
+ "matches":{"match_s":0.5,"modes":["conv60"],"rounds":[{"name":"scored","scored":true,"matches_per_mode":1,
+   "instructions":""}]}})";
+    const auto run = runCommand(std::string(WARPLAB_BINARY) + " run --headless --seed 2 --protocol " + dir +
+                                "/marked.json --participant H --out " + dir + " --width 160 --height 90");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string session = sessionIn(dir);
+    EXPECT_EQ(warplab::session::readSessionHeader(session).photonMarker, "off");
+    const auto replayed = [&](const std::string& stored, const std::string& out) {
+        sqlite3* db = nullptr;
+        EXPECT_EQ(sqlite3_open(session.c_str(), &db), SQLITE_OK);
+        const std::string sql = "UPDATE meta SET value = '" + stored + "' WHERE key = 'photon_marker'";
+        EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+        sqlite3_close(db);
+        return runCommand(std::string(WARPLAB_BINARY) + " replay " + session + " --render " + dir + "/" + out +
+                          " --frames 5:5");
+    };
+    auto replay = replayed("off", "off");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_NE(markerIn(dir + "/off/frame_0000005.png", true, true), Shade::Black);
+    replay = replayed("top_left", "top-left");
+    ASSERT_EQ(replay.status, 0) << replay.output;
+    EXPECT_EQ(markerIn(dir + "/top-left/frame_0000005.png", true, true), Shade::Black);
+
+    replay = replayed("centre", "centre");
+    EXPECT_EQ(replay.status, 1) << replay.output;
+    EXPECT_TRUE(warplab::testing::contains(replay.output, "session file " + session + " has photon_marker 'centre'"))
+        << replay.output;
 }
 
 }  // namespace

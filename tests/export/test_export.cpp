@@ -29,6 +29,7 @@
 #include "protocol/click_protocol.h"
 #include "protocol/shooter_protocol.h"
 #include "export/export.h"
+#include "plan/study_plan.h"
 #include "condition/schedule.h"
 #include "study/session_runner.h"
 #include "session/session_store.h"
@@ -857,6 +858,39 @@ TEST(Export, AMissingOrEmptyResultsFolderIsNamed) {
         EXPECT_NE(std::string(e.what()).find("holds no session files"), std::string::npos) << e.what();
     }
     EXPECT_TRUE(fs::is_empty(out)) << "nothing is written when there is nothing to export";
+}
+
+// `export DIR` of a plan's folder (its sessions in DIR/results) finds the plan in DIR itself,
+// not in DIR's parent, and writes participants.csv as `export DIR/results` does.
+TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
+    const std::string dir = scratch("plan-folder/study");
+    const plan::StudyPlan made =
+        plan::makePlan(dir, {std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"}, 2, {"A", "B"}, 3);
+    plan::writePlan(dir, made);
+    fs::create_directories(dir + "/results");
+    study::HeadlessRun run;
+    run.protocolPath = dir + "/" + made.protocols.front().file;
+    run.protocolText = plan::participantProtocolJson(dir, made, made.participants.front(), 0);
+    run.planId = made.id;
+    run.participant = "A";
+    run.resultsDir = dir + "/results";
+    run.player = "bot:1";
+    run.seed = made.participants.front().seed;
+    std::ostringstream quiet;
+    study::runHeadless(run, quiet);
+
+    for (const std::string& exported : {dir, dir + "/results"}) {
+        const std::string out = scratch(exported == dir ? "plan-folder/out-of-plan" : "plan-folder/out-of-results");
+        std::string log;
+        exportQuietly(exported, out, {}, &log);
+        EXPECT_EQ(log.find("there is no"), std::string::npos) << exported << ": " << log;
+        ASSERT_TRUE(fs::exists(out + "/participants.csv")) << exported << ": " << log;
+        const auto rows = readCsv(out + "/participants.csv");
+        ASSERT_EQ(rows.size(), 2u) << exported;
+        EXPECT_EQ(rows[0].at("participant"), "A");
+        EXPECT_EQ(rows[0].at("status"), "shooter-quick: done") << exported;
+        EXPECT_EQ(rows[1].at("status"), "shooter-quick: not started") << exported;
+    }
 }
 
 // ============================ the documented columns ============================

@@ -54,6 +54,8 @@ struct SessionFacts {
 };
 // The facts of a session read whole, with its stored protocol's study.
 SessionFacts factsOf(const std::string& path, const session::SessionData& data, const game::Study& study);
+// The same from its outline (session::readSessionOutline): what studyStatus reads.
+SessionFacts factsOf(const std::string& path, const session::SessionOutline& outline, const game::Study& study);
 
 // Where the plan's participants stand, from the given sessions (those whose plan_id is not the
 // plan's are passed over): by participant and by the stored protocol's name; a session that a
@@ -63,7 +65,10 @@ std::vector<ParticipantStatus> studyStatus(const StudyPlan& plan, std::vector<Se
 // Reads every session of the plan (header plan_id = the plan's id) in its results folder: by
 // participant and by the stored protocol's name. Unreadable files are not the plan's and are
 // skipped; so is a session that a resumed session carries on (it is part of that one).
-// Participants in plan order.
+// Participants in plan order. Each session is read as far as its outline (its header, last
+// commit and events), so the time taken does not grow with the sessions' lengths; damage
+// within a session's input or frame rows shows where the session is read whole (replay,
+// export, run --resume).
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan);
 
 // Index into participant.protocols of the first one not done (flagged counts as done: the

@@ -18,6 +18,8 @@ namespace warplab::present {
 // The HUD of a shown frame: reticle or cursor, banner, phase text, question screen. Display
 // pixels are scaled to the frame's by toFrameX/Y.
 renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, double toFrameY);
+// The HUD's photodiode marker in `corner`, black; none when it is off.
+std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner);
 
 // Makes each displayed frame the way its mode makes it (its schedule's `made`), from the
 // conventional renders it keeps: a render copied (hold120), or the mode's method for warped and

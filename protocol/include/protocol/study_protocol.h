@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -68,6 +69,13 @@ const char* nameOf(E value) {
     for (const auto& entry : EnumNames<E>::list)
         if (entry.value == value) return entry.name;
     return "?";  // not reached for a value of the enum
+}
+// The value spelt `name`, exactly; nullopt for a name that is none of them.
+template <class E>
+std::optional<E> valueNamed(const std::string& name) {
+    for (const auto& entry : EnumNames<E>::list)
+        if (name == entry.name) return entry.value;
+    return std::nullopt;
 }
 
 // How a session's frames are rendered (the protocol's display.guard_band,

@@ -26,7 +26,11 @@ std::vector<std::string> loadFunctions(ProcAddressLoader loader);
 
 // Whether the current context runs compute shaders: OpenGL 4.3 or later, with every entry point
 // of functions_compute.inc loaded. Otherwise `why` (when given) says what it is instead.
+// The version is the context's, or WARPLAB_GL_VERSION's where that is lower: what a machine
+// whose GL is that old would show (the README, "GL backends"); a value that is no version
+// such as 4.1 throws std::runtime_error naming it.
 bool hasCompute(std::string* why = nullptr);
+inline constexpr const char* kGlVersionCapVariable = "WARPLAB_GL_VERSION";
 
 }  // namespace warplab::gl
 

@@ -72,6 +72,13 @@ struct SessionHeader {
     // drawn from its seed: participants/population.h); "" for a person, a bot or a replay, and
     // in files older than format version 6.
     std::string playerModel;
+    // The photodiode marker the session's window drew (docs/live-sessions.md): "off" or its
+    // corner ("top_left" ...), as --photon-marker or else the protocol's display.photon_marker
+    // chose it; "off" for a headless session (no window). "" in files written before it was
+    // stored, whose window drew the protocol's unless --photon-marker said otherwise. Stored as
+    // meta `photon_marker` outside header_checksum, so that readers before it read the file
+    // as they always did (they pass over a meta key they do not know); "" stores nothing.
+    std::string photonMarker;
     int formatVersion = kSessionFormatVersion;  // as read; the writer writes only this one
 };
 
@@ -220,6 +227,26 @@ struct SessionData {
     std::string note;  // "" when complete; else why not and where it ends
 };
 
+// What a study's status needs of a session (plan/status.h), read from its header, its last
+// commit and its events without reading its input and frame rows, which hold nearly all of a
+// long session's bytes: readSessionOutline's cost does not grow with the session's length.
+// For a session that is not damaged, every field is what readSession says. Damage is seen as
+// far as the last commit shows it: its rows missing or rows after it (a file cut short, a
+// -wal that fails its checksum or is another session's), an unreadable commits or events
+// table, an event of the wrong type. A row altered in place, its commit's checksum failing,
+// only readSession finds: it checks every commit (replay, export and resume read so).
+struct SessionOutline {
+    SessionHeader header;
+    std::vector<EventRecord> events;  // those of the last commit and the ones before, unchecked
+    bool completed = false;  // finish() was committed and no damage was seen
+    bool damaged = false;
+    std::map<std::string, std::string> flags;  // SessionWriter::flag()s, by name
+    std::map<std::string, std::string> summaries;  // SessionWriter::summarize()s, by name
+    std::string note;  // "" when complete; else why not and where it ends
+    // As the last commit counts them: the commits, and the input and frame rows up to it.
+    std::int64_t commits = 0, inputRows = 0, frameRows = 0;
+};
+
 // Now, as the store writes its times: ISO 8601 UTC with milliseconds, e.g. 2024-05-01T12:34:56.789Z.
 std::string utcNow();
 
@@ -232,5 +259,8 @@ SessionData readSession(const std::string& path);
 // Only the header (checked against its checksum), without reading the records: for telling
 // which sessions a folder holds. Throws SessionError as readSession does for the header.
 SessionHeader readSessionHeader(const std::string& path);
+// The header, the last commit and the events (SessionOutline): how a session ended and how far
+// it got, for telling where a study stands. Throws SessionError as readSession does.
+SessionOutline readSessionOutline(const std::string& path);
 
 }  // namespace warplab::session
