@@ -419,6 +419,15 @@ private:
     void stop(const char* table, const std::string& why) {
         if (!firstStop_) firstStop_ = Stop{std::string(table) + " table", why};
     }
+    // Committed data in the -wal that SQLite cannot read is damage, unless something stopped
+    // the read first.
+    void stopAtWalLoss() {
+        if (walLoss_ && !firstStop_)
+            firstStop_ = Stop{"write-ahead log",
+                              walLoss_->commits == 0
+                                  ? "its header fails its checksum"
+                                  : "the frame at byte " + std::to_string(walLoss_->byte) + " fails its checksum"};
+    }
 
     static bool column(sqlite3_stmt* s, int i, double& out) { return real(s, i, out); }
     static bool column(sqlite3_stmt* s, int i, std::string& out) { return text(s, i, out); }
@@ -513,11 +522,7 @@ private:
         data.events = toRecords(std::move(events));
 
         const std::string lastFrame = last.lastFrame ? std::to_string(*last.lastFrame) : std::string("(none)");
-        if (walLoss_ && !firstStop_)
-            firstStop_ = Stop{"write-ahead log",
-                              walLoss_->commits == 0
-                                  ? "its header fails its checksum"
-                                  : "the frame at byte " + std::to_string(walLoss_->byte) + " fails its checksum"};
+        stopAtWalLoss();
         if (firstStop_) {
             data.completed = false;
             data.damaged = true;
@@ -589,11 +594,7 @@ private:
         out.frameRows = c.frameRows;
 
         const std::string lastFrame = c.lastFrame ? std::to_string(*c.lastFrame) : std::string("(none)");
-        if (walLoss_ && !firstStop_)
-            firstStop_ = Stop{"write-ahead log",
-                              walLoss_->commits == 0
-                                  ? "its header fails its checksum"
-                                  : "the frame at byte " + std::to_string(walLoss_->byte) + " fails its checksum"};
+        stopAtWalLoss();
         if (firstStop_) {
             out.completed = false;
             out.damaged = true;
