@@ -12,7 +12,8 @@ namespace warplab::live {
 class InputScript {
 public:
     InputScript() = default;  // an empty script: nothing is injected
-    // Reads the script; throws std::runtime_error naming the file and the line of a bad action.
+    // Reads the script (strict/file.h: a regular file, bounded); throws strict::Error, a
+    // std::runtime_error, naming the file, and the line of a bad action or number.
     explicit InputScript(const std::string& path);
 
     // Queues what the script holds for `when` (a frame number, "start" or "end") on the window.

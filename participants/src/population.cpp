@@ -2,12 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "game/random.h"
+#include "strict/json.h"
 
 namespace warplab::participants {
 namespace {
@@ -19,13 +18,6 @@ std::uint64_t traitSeed(std::uint64_t seed, const char* name) {
     std::uint64_t h = 1469598103934665603ULL;  // FNV-1a
     for (const char* c = name; *c != '\0'; ++c) h = (h ^ static_cast<unsigned char>(*c)) * 1099511628211ULL;
     return game::mix(game::mix(seed ^ 0x9E0B1A7E5ULL) ^ h);
-}
-
-std::string numberText(double v) {
-    std::ostringstream out;
-    out.precision(6);
-    out << v;
-    return out.str();
 }
 
 }  // namespace
@@ -57,50 +49,51 @@ Population uniformPopulation() {
     return p;
 }
 
-Population parsePopulation(const std::string& text, const std::string& source) {
-    const auto fail = [&](const std::string& what) -> PopulationError {
-        return PopulationError("population file '" + source + "': " + what);
-    };
-    nlohmann::json j;
-    try {
-        j = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::parse_error& e) {
-        throw fail(std::string("is not JSON (") + e.what() + ")");
-    }
-    if (!j.is_object()) throw fail("is not a JSON object");
-    if (!j.contains("traits") || !j["traits"].is_object()) throw fail("has no 'traits' object");
-    const auto& traits = j["traits"];
-    for (const auto& item : traits.items()) {
-        const bool known = std::any_of(traitSpecs().begin(), traitSpecs().end(),
-                                       [&](const TraitSpec& s) { return item.key() == s.name; });
-        if (!known) throw fail("traits." + item.key() + " is not a trait of the model");
-    }
+namespace {
+
+[[noreturn]] void raisePopulationError(const std::string& sentence) { throw PopulationError(sentence); }
+
+// The shipped file is under 2 KB; a population is a dozen traits and a paragraph.
+constexpr std::size_t kMaxPopulationBytes = 64 << 10;
+constexpr double kMaxSpread = 10;
+
+strict::Source populationSource(const std::string& path) {
+    return {"population file", path, kMaxPopulationBytes, raisePopulationError};
+}
+
+Population fromJson(const strict::Reader& r, const strict::Json& document) {
+    r.requireKnownKeys(document, "", {"description", "traits"});
     Population p;
-    if (j.contains("description") && j["description"].is_string()) p.description = j["description"];
+    r.paragraph(&document, "", "description", p.description);
+    const strict::Json& traits = r.objectAt(r.required(document, "", "traits"), "traits");
+    std::vector<const char*> names;
+    for (const auto& spec : traitSpecs()) names.push_back(spec.name);
+    r.requireKnownKeys(traits, "traits", names);
     for (const auto& spec : traitSpecs()) {
-        const std::string field = std::string("traits.") + spec.name;
-        if (!traits.contains(spec.name)) throw fail(field + " is missing (" + spec.what + ")");
-        const auto& t = traits[spec.name];
-        if (!t.is_object() || !t.contains("median") || !t["median"].is_number() || !t.contains("spread") ||
-            !t["spread"].is_number())
-            throw fail(field + " needs a number 'median' and a number 'spread'");
-        TraitSpread s{t["median"].get<double>(), t["spread"].get<double>()};
-        if (!(s.median >= spec.min && s.median <= spec.max) || (spec.logNormal && s.median <= 0.0))
-            throw fail(field + ".median is " + numberText(s.median) + ", outside " + numberText(spec.min) + ".." +
-                       numberText(spec.max));
-        if (!(s.spread >= 0.0 && s.spread <= 10.0))
-            throw fail(field + ".spread is " + numberText(s.spread) + ", not between 0 and 10");
-        p.traits.push_back(s);
+        const std::string field = strict::joinPath("traits", spec.name);
+        if (!traits.contains(spec.name)) r.fail(field, std::string("is required but missing (") + spec.what + ")");
+        const strict::Json& t = r.objectAt(traits.at(spec.name), field);
+        r.requireKnownKeys(t, field, {"median", "spread"});
+        // A log-normal trait's median scales a factor: it must be above 0 even where the
+        // trait's own range starts at 0.
+        const strict::NumberRange median{spec.min, spec.logNormal && spec.min <= 0.0, spec.max, false};
+        p.traits.push_back(
+            {r.numberAt(r.required(t, field, "median"), field + ".median", median),
+             r.numberAt(r.required(t, field, "spread"), field + ".spread", {0, false, kMaxSpread, false})});
     }
     return p;
 }
 
+}  // namespace
+
+Population parsePopulation(const std::string& text, const std::string& source) {
+    const strict::Reader r(populationSource(source));
+    return fromJson(r, r.parseObject(text));
+}
+
 Population readPopulation(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw PopulationError("cannot read the population file '" + path + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parsePopulation(text.str(), path);
+    const strict::Reader r(populationSource(path));
+    return fromJson(r, r.readObject());
 }
 
 std::string populationJson(const Population& population) {

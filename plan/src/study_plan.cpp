@@ -2,19 +2,16 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <cstdint>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -22,6 +19,8 @@
 #include "physics/splitmix.h"
 #include "plan/latin_square.h"
 #include "protocol/study_protocol.h"
+#include "strict/file.h"
+#include "strict/json.h"
 
 namespace warplab::plan {
 namespace {
@@ -52,7 +51,8 @@ const CounterbalancedList* counterbalancedList(const std::string& game) {
 
 // Plan files are small: 10000 participants take about 3 MB.
 constexpr std::size_t kMaxPlanBytes = 64u << 20;
-constexpr std::size_t kLineLimit = 200;  // bytes in a participant id, as in a protocol's names
+using strict::formatNumber;
+using strict::kLineLimit;  // bytes in a participant id, as in a protocol's names
 // A mouse no one uses and a turn no hand makes; tiny positive values would turn into an
 // infinite turn per count, so the lower bounds are real rather than "above 0".
 constexpr double kMinCmPer360 = 0.1, kMaxCmPer360 = 10000;
@@ -60,13 +60,11 @@ constexpr double kMinMouseDpi = 1, kMaxMouseDpi = 100000;
 
 std::string studyJsonPath(const std::string& planDir) { return (fs::path(planDir) / "study.json").string(); }
 
-std::string readBytes(const fs::path& path, bool& ok) {
-    std::ifstream in(path, std::ios::binary);
-    ok = static_cast<bool>(in) && !fs::is_directory(path);
-    if (!ok) return {};
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    ok = !in.bad();
-    return text;
+[[noreturn]] void raisePlanError(const std::string& sentence) { throw PlanError(sentence); }
+
+// study.json of planDir, for the strict reader: every message starts with its path.
+strict::Source planSource(const std::string& planDir) {
+    return {"study plan", studyJsonPath(planDir), kMaxPlanBytes, raisePlanError};
 }
 
 std::string hex64(std::uint64_t v) {
@@ -91,17 +89,6 @@ bool isLine(const std::string& text) {
         std::none_of(text.begin(), text.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
 }
 
-// Shortest text that reads back as the same double; whole numbers without a decimal point.
-std::string formatNumber(double v) {
-    if (v == std::floor(v) && std::fabs(v) < 1e15) return std::to_string(static_cast<long long>(v));
-    char text[32];
-    for (int precision = 1; precision <= 17; ++precision) {
-        std::snprintf(text, sizeof text, "%.*g", precision, v);
-        if (std::strtod(text, nullptr) == v) break;
-    }
-    return text;
-}
-
 std::string jsonString(const std::string& text) {
     return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
 }
@@ -117,222 +104,93 @@ std::string listText(const std::vector<int>& items) {
     return listText(items, [](int v) { return std::to_string(v); });
 }
 
-// The file name and, for a participant, the row, at the start of every message.
-class PlanFile {
-public:
-    explicit PlanFile(std::string path) : path_(std::move(path)) {}
-    [[noreturn]] void fail(const std::string& where, const std::string& reason) const {
-        throw PlanError("study plan '" + path_ + "': " + where + " " + reason);
-    }
-    const std::string& path() const { return path_; }
-
-private:
-    std::string path_;
-};
-
 std::string rowName(std::size_t index, const std::string& id) {
     std::string where = "participants[" + std::to_string(index) + "]";
     if (isLine(id)) where += " (" + jsonString(id) + ")";
     return where;
 }
 
-// nlohmann keeps the last of two equal keys without a word; a plan edited by hand with a key
-// written twice is as ambiguous as a misspelt one.
-class DuplicateKeyFinder {
-public:
-    bool operator()(int depth, Json::parse_event_t event, Json& parsed) {
-        if (event == Json::parse_event_t::object_start) {
-            keys_.resize(static_cast<std::size_t>(depth) + 1);
-            keys_[depth].clear();
-        }
-        if (event == Json::parse_event_t::key && !keys_.empty()) {
-            const auto key = parsed.get<std::string>();
-            if (!keys_[depth - 1].insert(key).second && duplicate_.empty()) duplicate_ = key;
-        }
-        return true;
-    }
-    const std::string& duplicate() const { return duplicate_; }
-
-private:
-    std::vector<std::set<std::string>> keys_;
-    std::string duplicate_;
-};
-
 // ----------------------------------------------------------------------------- reading
 
-class JsonReader {
-public:
-    explicit JsonReader(const PlanFile& file) : file_(file) {}
-
-    const Json& field(const Json& object, const std::string& path, const char* key) const {
-        const auto it = object.find(key);
-        if (it == object.end()) file_.fail(join(path, key), "is missing");
-        return *it;
-    }
-    void knownKeys(const Json& object, const std::string& path, const std::vector<const char*>& known) const {
-        for (const auto& item : object.items())
-            if (std::find_if(known.begin(), known.end(), [&](const char* k) { return item.key() == k; }) ==
-                known.end()) {
-                std::string list;
-                for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-                file_.fail(join(path, item.key()),
-                           "is not a known field (" + (path.empty() ? std::string("the plan") : path) + " may have " +
-                               list + ")");
-            }
-    }
-    const Json& object(const Json& value, const std::string& path) const {
-        if (!value.is_object()) file_.fail(path, "must be an object, got " + describe(value));
-        return value;
-    }
-    const Json& array(const Json& value, const std::string& path) const {
-        if (!value.is_array()) file_.fail(path, "must be an array, got " + describe(value));
-        return value;
-    }
-    std::string string(const Json& value, const std::string& path) const {
-        if (!value.is_string()) file_.fail(path, "must be a string, got " + describe(value));
-        return value.get<std::string>();
-    }
-    bool boolean(const Json& value, const std::string& path) const {
-        if (!value.is_boolean()) file_.fail(path, "must be true or false, got " + describe(value));
-        return value.get<bool>();
-    }
-    double number(const Json& value, const std::string& path) const {
-        if (!value.is_number()) file_.fail(path, "must be a number, got " + describe(value));
-        return value.get<double>();
-    }
-    int integer(const Json& value, const std::string& path) const {
-        if (!value.is_number_integer() || value.get<std::int64_t>() < -1000000000 ||
-            value.get<std::int64_t>() > 1000000000)
-            file_.fail(path, "must be an integer, got " + describe(value));
-        return static_cast<int>(value.get<std::int64_t>());
-    }
-    std::uint64_t seed(const Json& value, const std::string& path, std::uint64_t low, std::uint64_t high) const {
-        if (!value.is_number_unsigned() || value.get<std::uint64_t>() < low || value.get<std::uint64_t>() > high)
-            file_.fail(path,
-                       "must be an integer between " + std::to_string(low) + " and " + std::to_string(high) + ", got " +
-                           describe(value));
-        return value.get<std::uint64_t>();
-    }
-    std::vector<std::string> strings(const Json& value, const std::string& path) const {
-        std::vector<std::string> out;
-        for (std::size_t i = 0; i < array(value, path).size(); ++i)
-            out.push_back(string(value[i], path + "[" + std::to_string(i) + "]"));
-        return out;
-    }
-
-    // A participant's row is named by its id too, `participants[3] ("P04")`, and its fields
-    // follow after a space: `participants[3] ("P04") seed`.
-    static std::string join(const std::string& path, const std::string& key) {
-        if (path.empty()) return key;
-        return path + (path.back() == ')' ? " " : ".") + key;
-    }
-    static std::string describe(const Json& value) {
-        std::string text = value.dump(-1, ' ', true, Json::error_handler_t::replace);
-        if (text.size() > 60) text = text.substr(0, 57) + "...";
-        const char* kind = value.is_string() ? "string "
-            : value.is_boolean()             ? "boolean "
-            : value.is_null()                ? ""
-            : value.is_number()              ? "number "
-            : value.is_array()               ? "array "
-                                             : "object ";
-        return kind + text;
-    }
-
-private:
-    const PlanFile& file_;
-};
-
-Json parseDocument(const PlanFile& file, const std::string& text) {
-    if (text.size() > kMaxPlanBytes)
-        file.fail("is",
-                  std::to_string(text.size()) + " bytes, more than a study plan may be (" +
-                      std::to_string(kMaxPlanBytes) + ")");
-    DuplicateKeyFinder finder;
-    Json document;
-    try {
-        document = Json::parse(text, [&finder](int depth, Json::parse_event_t event, Json& parsed) {
-            return finder(depth, event, parsed);
-        });
-    } catch (const Json::exception& e) {
-        std::string reason = e.what();
-        if (const auto close = reason.find("] "); close != std::string::npos) reason.erase(0, close + 2);
-        if (reason.rfind("parse error ", 0) == 0) reason.erase(0, 12);
-        throw PlanError("study plan '" + file.path() + "': malformed JSON " + reason);
-    }
-    if (!finder.duplicate().empty())
-        throw PlanError("study plan '" + file.path() + "': the key " + jsonString(finder.duplicate()) +
-                        " is written twice in one object");
-    if (!document.is_object())
-        throw PlanError("study plan '" + file.path() + "': must be a JSON object, got " +
-                        JsonReader::describe(document));
-    return document;
-}
-
-ParticipantSettings readSettings(const JsonReader& r, const Json& value, const std::string& path) {
+ParticipantSettings readSettings(const strict::Reader& r, const Json& row, const std::string& path) {
     ParticipantSettings settings;
-    r.object(value, path);
-    r.knownKeys(value, path, {"cm_per_360", "mouse_dpi", "invert_y"});
-    if (value.contains("cm_per_360")) settings.cmPer360 = r.number(value["cm_per_360"], path + ".cm_per_360");
-    if (value.contains("mouse_dpi")) settings.mouseDpi = r.number(value["mouse_dpi"], path + ".mouse_dpi");
-    if (value.contains("invert_y")) settings.invertY = r.boolean(value["invert_y"], path + ".invert_y");
+    const Json* value = r.object(row, path, "settings");
+    if (!value) return settings;
+    const std::string where = strict::joinPath(path, "settings");
+    r.requireKnownKeys(*value, where, {"cm_per_360", "mouse_dpi", "invert_y"});
+    if (value->contains("cm_per_360")) {
+        double cm = 0;
+        r.number(value, where, "cm_per_360", {kMinCmPer360, false, kMaxCmPer360, false}, cm);
+        settings.cmPer360 = cm;
+    }
+    r.number(value, where, "mouse_dpi", {kMinMouseDpi, false, kMaxMouseDpi, false}, settings.mouseDpi);
+    r.boolean(value, where, "invert_y", settings.invertY);
     return settings;
 }
 
-// study.json into the struct: its keys and their types. What the values must be is validate's.
-StudyPlan fromJson(const PlanFile& file, const Json& document) {
-    const JsonReader r(file);
+std::vector<std::string> readStrings(const strict::Reader& r, const Json& value, const std::string& where,
+                                     const char* of) {
+    std::vector<std::string> out;
+    const Json& list = r.arrayAt(value, where, of, true);
+    for (std::size_t i = 0; i < list.size(); ++i) out.push_back(r.stringAt(list[i], strict::elementPath(where, i)));
+    return out;
+}
+
+ProtocolEntry readProtocolEntry(const strict::Reader& r, const Json& value, const std::string& path) {
+    const Json& entry = r.objectAt(value, path);
+    r.requireKnownKeys(entry, path, {"file", "name", "game", "hash", "conditions", "blocked"});
+    ProtocolEntry out;
+    out.file = r.stringAt(r.required(entry, path, "file"), path + ".file");
+    out.name = r.stringAt(r.required(entry, path, "name"), path + ".name");
+    out.game = r.stringAt(r.required(entry, path, "game"), path + ".game");
+    out.hash = r.stringAt(r.required(entry, path, "hash"), path + ".hash");
+    out.conditions = readStrings(r, r.required(entry, path, "conditions"), path + ".conditions", "condition names");
+    out.blocked = r.booleanAt(r.required(entry, path, "blocked"), path + ".blocked");
+    return out;
+}
+
+ParticipantPlan readParticipant(const strict::Reader& r, const Json& value, std::size_t index) {
+    const Json& row = r.objectAt(value, strict::elementPath("participants", index));
+    ParticipantPlan out;
+    // The id first, so every later message can name the row by it.
+    const auto id = row.find("id");
+    if (id != row.end() && id->is_string()) out.id = id->get<std::string>();
+    const std::string path = rowName(index, out.id);
+    r.requireKnownKeys(row, path, {"id", "seed", "protocol_order", "condition_order", "settings"});
+    out.id = r.stringAt(r.required(row, path, "id"), path + " id");
+    out.seed = r.unsignedAt(r.required(row, path, "seed"), path + " seed", 1, kMaxParticipantSeed);
+    const std::string orderPath = path + " protocol_order";
+    const Json& order = r.arrayAt(r.required(row, path, "protocol_order"), orderPath, "protocol indices", true);
+    for (std::size_t k = 0; k < order.size(); ++k)
+        out.protocolOrder.push_back(static_cast<int>(
+            r.integerAt(order[k], strict::elementPath(orderPath, k), 0, std::numeric_limits<int>::max())));
+    const std::string conditionsPath = path + " condition_order";
+    const Json& conditions =
+        r.arrayAt(r.required(row, path, "condition_order"), conditionsPath, "condition orders", true);
+    for (std::size_t p = 0; p < conditions.size(); ++p)
+        out.conditionOrder.push_back(
+            readStrings(r, conditions[p], strict::elementPath(conditionsPath, p), "condition names"));
+    out.settings = readSettings(r, row, path);
+    return out;
+}
+
+// study.json into the struct: its keys and their types. What the values must be together is
+// validate's.
+StudyPlan fromJson(const strict::Reader& r, const Json& document) {
     StudyPlan plan;
     // The version first: a newer plan may well have keys this build does not know.
-    plan.formatVersion = r.integer(r.field(document, "", "format_version"), "format_version");
-    if (plan.formatVersion > kPlanFormatVersion)
-        file.fail("format_version",
-                  std::to_string(plan.formatVersion) + " is newer than this warplab supports (" +
-                      std::to_string(kPlanFormatVersion) + ")");
-    if (plan.formatVersion < 1)
-        file.fail("format_version",
-                  "must be between 1 and " + std::to_string(kPlanFormatVersion) + ", got " +
-                      std::to_string(plan.formatVersion));
-    r.knownKeys(document, "", {"format_version", "id", "created_at", "seed", "protocols", "participants"});
-    plan.id = r.string(r.field(document, "", "id"), "id");
-    plan.createdAt = r.string(r.field(document, "", "created_at"), "created_at");
-    plan.seed = r.seed(r.field(document, "", "seed"), "seed", 0, UINT64_MAX);
-
-    const Json& protocols = r.array(r.field(document, "", "protocols"), "protocols");
-    for (std::size_t p = 0; p < protocols.size(); ++p) {
-        const std::string path = "protocols[" + std::to_string(p) + "]";
-        const Json& entry = r.object(protocols[p], path);
-        r.knownKeys(entry, path, {"file", "name", "game", "hash", "conditions", "blocked"});
-        ProtocolEntry out;
-        out.file = r.string(r.field(entry, path, "file"), path + ".file");
-        out.name = r.string(r.field(entry, path, "name"), path + ".name");
-        out.game = r.string(r.field(entry, path, "game"), path + ".game");
-        out.hash = r.string(r.field(entry, path, "hash"), path + ".hash");
-        out.conditions = r.strings(r.field(entry, path, "conditions"), path + ".conditions");
-        out.blocked = r.boolean(r.field(entry, path, "blocked"), path + ".blocked");
-        plan.protocols.push_back(std::move(out));
-    }
-
-    const Json& participants = r.array(r.field(document, "", "participants"), "participants");
-    for (std::size_t i = 0; i < participants.size(); ++i) {
-        const Json& row = r.object(participants[i], "participants[" + std::to_string(i) + "]");
-        ParticipantPlan out;
-        // The id first, so every later message can name the row by it.
-        const auto id = row.find("id");
-        if (id != row.end() && id->is_string()) out.id = id->get<std::string>();
-        const std::string path = rowName(i, out.id);
-        r.knownKeys(row, path, {"id", "seed", "protocol_order", "condition_order", "settings"});
-        out.id = r.string(r.field(row, path, "id"), path + " id");
-        out.seed = r.seed(r.field(row, path, "seed"), path + " seed", 1, kMaxParticipantSeed);
-        const Json& order = r.array(r.field(row, path, "protocol_order"), path + " protocol_order");
-        for (std::size_t k = 0; k < order.size(); ++k)
-            out.protocolOrder.push_back(r.integer(order[k], path + " protocol_order[" + std::to_string(k) + "]"));
-        const Json& conditions = r.array(r.field(row, path, "condition_order"), path + " condition_order");
-        for (std::size_t p = 0; p < conditions.size(); ++p)
-            out.conditionOrder.push_back(
-                r.strings(conditions[p], path + " condition_order[" + std::to_string(p) + "]"));
-        if (row.contains("settings")) out.settings = readSettings(r, row["settings"], path + " settings");
-        plan.participants.push_back(std::move(out));
-    }
+    plan.formatVersion = r.formatVersion(document, kPlanFormatVersion);
+    r.requireKnownKeys(document, "", {"format_version", "id", "created_at", "seed", "protocols", "participants"});
+    plan.id = r.stringAt(r.required(document, "", "id"), "id");
+    plan.createdAt = r.stringAt(r.required(document, "", "created_at"), "created_at");
+    plan.seed = r.unsignedAt(r.required(document, "", "seed"), "seed", 0, UINT64_MAX);
+    const Json& protocols = r.arrayAt(r.required(document, "", "protocols"), "protocols", "protocol entries", true);
+    for (std::size_t p = 0; p < protocols.size(); ++p)
+        plan.protocols.push_back(readProtocolEntry(r, protocols[p], strict::elementPath("protocols", p)));
+    const Json& participants =
+        r.arrayAt(r.required(document, "", "participants"), "participants", "participant rows", true);
+    for (std::size_t i = 0; i < participants.size(); ++i)
+        plan.participants.push_back(readParticipant(r, participants[i], i));
     return plan;
 }
 
@@ -370,7 +228,7 @@ ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceN
 
 // The protocol copy's path inside the plan folder; a file field that would leave the folder is
 // refused, so a plan cannot point a session at any file on the machine.
-fs::path protocolPath(const PlanFile& file, const std::string& planDir, const ProtocolEntry& entry,
+fs::path protocolPath(const strict::Source& file, const std::string& planDir, const ProtocolEntry& entry,
                       const std::string& where) {
     const fs::path relative(entry.file);
     if (entry.file.empty() || relative.is_absolute() || relative.has_root_name() ||
@@ -381,12 +239,13 @@ fs::path protocolPath(const PlanFile& file, const std::string& planDir, const Pr
 }
 
 // The copy's bytes, checked against the plan's hash.
-std::string protocolText(const PlanFile& file, const std::string& planDir, const ProtocolEntry& entry,
+std::string protocolText(const strict::Source& file, const std::string& planDir, const ProtocolEntry& entry,
                          const std::string& where) {
     const fs::path path = protocolPath(file, planDir, entry, where);
-    bool ok = false;
-    const std::string text = readBytes(path, ok);
-    if (!ok) file.fail(where, jsonString(entry.file) + ": no such file in the plan folder (" + path.string() + ")");
+    const strict::FileText copy = strict::readRegularFile(path.string(), protocol::kMaxProtocolBytes, "protocol");
+    if (!copy.problem.empty())
+        file.fail(where, jsonString(entry.file) + ": " + copy.problem + " (" + path.string() + ")");
+    const std::string& text = copy.text;
     if (fnv1a64(text) != entry.hash)
         file.fail(where,
                   jsonString(entry.file) + " has changed since the plan was made (its hash is " + fnv1a64(text) +
@@ -396,7 +255,7 @@ std::string protocolText(const PlanFile& file, const std::string& planDir, const
 
 // ----------------------------------------------------------------------------- checks
 
-void requirePermutation(const PlanFile& file, const std::string& where, const std::vector<std::string>& order,
+void requirePermutation(const strict::Source& file, const std::string& where, const std::vector<std::string>& order,
                         const std::vector<std::string>& conditions, const std::string& of) {
     std::set<std::string> seen;
     for (std::size_t k = 0; k < order.size(); ++k) {
@@ -414,7 +273,7 @@ void requirePermutation(const PlanFile& file, const std::string& where, const st
                       " conditions of " + of + " (" + listText(conditions) + ")");
 }
 
-void requireSettings(const PlanFile& file, const std::string& where, const ParticipantSettings& s) {
+void requireSettings(const strict::Source& file, const std::string& where, const ParticipantSettings& s) {
     auto range = [&](const char* key, double v, double low, double high) {
         if (!(v >= low && v <= high))
             file.fail(where + " settings." + key,
@@ -426,7 +285,7 @@ void requireSettings(const PlanFile& file, const std::string& where, const Parti
 }
 
 // Everything a plan must be, against itself and the protocol copies in planDir.
-void validate(const PlanFile& file, const std::string& planDir, const StudyPlan& plan) {
+void validate(const strict::Source& file, const std::string& planDir, const StudyPlan& plan) {
     if (!isLowerHex(plan.id, 32)) file.fail("id", "must be 32 lower-case hex digits, got " + jsonString(plan.id));
     if (!isLine(plan.createdAt)) file.fail("created_at", "must be one line of text, got " + jsonString(plan.createdAt));
     if (plan.protocols.empty()) file.fail("protocols", "is empty: a plan runs at least one protocol");
@@ -676,7 +535,6 @@ StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& p
         plan.participants.push_back(std::move(row));
     }
     // Ids are checked as readPlan checks them, before anything is written.
-    const PlanFile planFile(studyJsonPath(planDir));
     for (std::size_t i = 0; i < plan.participants.size(); ++i) {
         const std::string& id = plan.participants[i].id;
         if (!isLine(id))
@@ -698,23 +556,20 @@ StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& p
 }
 
 void writePlan(const std::string& planDir, const StudyPlan& plan) {
-    const PlanFile file(studyJsonPath(planDir));
+    const strict::Source file = planSource(planDir);
     validate(file, planDir, plan);
-    const fs::path target = file.path();
+    const fs::path target = file.path;
     const fs::path partial = fs::path(planDir) / ".study.json.partial";
     writeWhole(partial, planText(plan), "study plan");
     std::error_code error;
     fs::rename(partial, target, error);
-    if (error) throw PlanError("study plan '" + file.path() + "' could not be written: " + error.message());
+    if (error) throw PlanError("study plan '" + file.path + "' could not be written: " + error.message());
 }
 
 StudyPlan readPlan(const std::string& planDir) {
-    const PlanFile file(studyJsonPath(planDir));
-    bool ok = false;
-    const std::string text = readBytes(file.path(), ok);
-    if (!ok) throw PlanError("study plan '" + file.path() + "': no such file");
-    StudyPlan plan = fromJson(file, parseDocument(file, text));
-    validate(file, planDir, plan);
+    const strict::Reader reader(planSource(planDir));
+    StudyPlan plan = fromJson(reader, reader.readObject());
+    validate(reader.source(), planDir, plan);
     return plan;
 }
 
@@ -726,7 +581,7 @@ const ParticipantPlan* findParticipant(const StudyPlan& plan, const std::string&
 
 std::string participantProtocolJson(const std::string& planDir, const StudyPlan& plan,
                                     const ParticipantPlan& participant, int protocolIndex) {
-    const PlanFile file(studyJsonPath(planDir));
+    const strict::Source file = planSource(planDir);
     if (protocolIndex < 0 || static_cast<std::size_t>(protocolIndex) >= plan.protocols.size() ||
         static_cast<std::size_t>(protocolIndex) >= participant.conditionOrder.size())
         file.fail(

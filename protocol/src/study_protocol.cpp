@@ -1,34 +1,12 @@
 #include "protocol/study_protocol.h"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <system_error>
 
 #include "json_fields.h"
 
 namespace warplab::protocol {
 
-std::string readProtocolFile(const std::string& path) {
-    const std::string prefix = "protocol '" + path + "': ";
-    std::error_code error;
-    const auto status = std::filesystem::status(path, error);
-    if (!std::filesystem::exists(status)) throw ProtocolError(prefix + "no such file");
-    if (std::filesystem::is_directory(status)) throw ProtocolError(prefix + "is a directory, not a file");
-    // A pipe or a device would block or never end.
-    if (!std::filesystem::is_regular_file(status)) throw ProtocolError(prefix + "is not a regular file");
-    const auto size = std::filesystem::file_size(path, error);
-    if (!error && size > detail::kMaxProtocolBytes)
-        throw ProtocolError(prefix + "is " + std::to_string(size) + " bytes, more than a protocol may be (" +
-                            std::to_string(detail::kMaxProtocolBytes) + ")");
-    std::ifstream file(path, std::ios::binary);
-    if (!file) throw ProtocolError(prefix + "cannot be opened for reading");
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) throw ProtocolError(prefix + "cannot be read");
-    return text.str();
-}
+std::string readProtocolFile(const std::string& path) { return strict::readFile(detail::protocolSource(path)); }
 
 std::string protocolGame(const std::string& jsonText, const std::string& sourceName) {
     const detail::Reader r(sourceName);

@@ -981,7 +981,7 @@ TEST(CliSession, HostileProtocolFilesAreRefusedAtOnceByName) {
     const std::pair<std::string, std::string> cases[] = {
         {deep, "nested deeper than 32 levels at line 1"},
         {wide, "more than a protocol may be"},
-        {pipe, "is not a regular file"},
+        {pipe, "is a FIFO (a named pipe), not a regular file"},
         {nul, "has a NUL byte at line 49"},
     };
     for (const auto& [file, why] : cases) {

@@ -125,7 +125,7 @@ TEST(CliDemo, BadInputIsRefusedWithASentenceAndAFailedSessionNamesItsLog) {
     // A population that is no file is refused before any session starts; the bot has none.
     const auto population = warplab("demo --out " + out + " --protocols shooter-quick --population " + out + "/none");
     EXPECT_EQ(population.status, 1) << population.output;
-    EXPECT_TRUE(contains(population.output, "cannot read the population file '" + out + "/none'")) << population.output;
+    EXPECT_TRUE(contains(population.output, "population file '" + out + "/none': no such file")) << population.output;
     const auto bot = warplab("demo --out " + out + " --player bot --population " + out + "/none");
     EXPECT_EQ(bot.status, 2) << bot.output;
     EXPECT_TRUE(contains(bot.output, "--population only applies with --player sim")) << bot.output;

@@ -93,7 +93,9 @@ TEST(CliSimulatedParticipant, WrongUsesAreRefusedWithASentence) {
     const auto population = warplab("run --seed 1 --protocol " + protocol("shooter-quick") +
                                     " --participant S1 --out " + dir + " --headless --player sim --population " + bad);
     EXPECT_EQ(population.status, 1);
-    EXPECT_TRUE(contains(population.output, "population file '" + bad + "': traits.reaction_s.median is 7, outside"))
+    EXPECT_TRUE(
+        contains(population.output,
+                 "population file '" + bad + "': traits.reaction_s.median must be a number between 0.1 and 0.5, got 7"))
         << population.output;
     const auto forBot = warplab("run --seed 1 --protocol " + protocol("shooter-quick") + " --participant S1 --out " +
                                 dir + " --headless --player bot --population " + bad);

@@ -1,6 +1,7 @@
 // The population simulated participants are drawn from (participants/population.h): draws
 // reproducible from the seed and different across participants, the file refused in one
 // sentence naming the field, and ratings that differ from one participant to the next.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -107,28 +108,97 @@ TEST(Population, ABadFileIsRefusedNamingTheFileAndTheField) {
         EXPECT_NE(at, std::string::npos) << from;
         return text.replace(at, from.size(), to);
     };
-    EXPECT_NE(refusal("{").find("population file 'pop.json': is not JSON"), std::string::npos);
-    EXPECT_EQ(refusal("{}"), "population file 'pop.json': has no 'traits' object");
-    EXPECT_EQ(refusal(replaced("\"reaction_s\"", "\"reaction_time\"")),
-              "population file 'pop.json': traits.reaction_time is not a trait of the model");
-    EXPECT_NE(refusal(replaced("\"pursuit_gain\": {\n      \"median\"", "\"pursuit_gain\": {\n      \"mean\""))
-                  .find("traits.pursuit_gain needs a number 'median'"),
+    EXPECT_NE(refusal("{").find("population file 'pop.json': malformed JSON at line 1, column 2"), std::string::npos);
+    EXPECT_EQ(refusal("{}"), "population file 'pop.json': traits is required but missing");
+    EXPECT_NE(refusal(replaced("\"reaction_s\"", "\"reaction_time\""))
+                  .find("population file 'pop.json': traits.reaction_time is not a known field (traits may have "
+                        "reaction_s, pursuit_gain,"),
               std::string::npos);
+    EXPECT_EQ(refusal(replaced("\"pursuit_gain\": {\n      \"median\"", "\"pursuit_gain\": {\n      \"mean\"")),
+              "population file 'pop.json': traits.pursuit_gain.mean is not a known field (traits.pursuit_gain may "
+              "have median, spread)");
     EXPECT_NE(
         refusal(replaced("\"delay_adaptation\": {\n      \"median\": ", "\"delay_adaptation\": {\n      \"median\": 7"))
-            .find("traits.delay_adaptation.median is 7"),
+            .find("traits.delay_adaptation.median must be a number between 0 and 1, got 7"),
         std::string::npos);
     EXPECT_NE(refusal(replaced("\"rating_noise\": {\n      \"median\": ", "\"rating_noise\": {\n      \"median\": -"))
                   .find("traits.rating_noise.median"),
               std::string::npos);
-    EXPECT_NE(refusal(replaced("\"spread\": ", "\"spread\": -")).find(".spread is -"), std::string::npos);
+    EXPECT_NE(
+        refusal(replaced("\"spread\": ", "\"spread\": -")).find(".spread must be a number between 0 and 10, got -"),
+        std::string::npos);
     // Every trait must be there: a missing one is named with what it is.
     std::string missing = good;
     const auto at = missing.find("\"motor_noise\"");
     missing.erase(at, missing.find('}', at) + 2 - at);
-    EXPECT_NE(refusal(missing).find("traits.motor_noise is missing (hand velocity noise"), std::string::npos)
+    EXPECT_NE(refusal(missing).find("traits.motor_noise is required but missing (hand velocity noise"),
+              std::string::npos)
         << refusal(missing);
     EXPECT_THROW(participants::readPopulation("/nonexistent/population.json"), participants::PopulationError);
+}
+
+// What the population reader accepted without a word before it was the strict reader's: each
+// is refused in one sentence naming the file and the field (or line).
+TEST(Population, EveryKeyTypeAndByteOfTheFileIsChecked) {
+    const std::string good = participants::populationJson(shipped());
+    const auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string text = good;
+        const auto at = text.find(from);
+        EXPECT_NE(at, std::string::npos) << from;
+        return text.replace(at, from.size(), to);
+    };
+    const std::string firstTrait = "\"reaction_s\": {\n      \"median\": 0.2,\n      \"spread\": 0.12\n    }";
+    const auto inFirstTrait = [&](const std::string& lines) {
+        return replaced("\"median\": 0.2,\n", "\"median\": 0.2,\n      " + lines + "\n");
+    };
+    const std::size_t start = good.find("\"description\": ") + 15, end = good.find(",\n", start);
+    const std::string afterLastLine = std::to_string(std::count(good.begin(), good.end(), '\n') + 1);
+    const auto described = [&](const std::string& value) {
+        return std::string(good).replace(start, end - start, value);
+    };
+    const struct {
+        const char* what;
+        std::string text;
+        std::string says;
+    } cases[] = {
+        {"an unknown key", replaced("\"traits\": {", "\"colour\": \"red\",\n  \"traits\": {"),
+         "colour is not a known field (the top level may have description, traits)"},
+        {"a misspelt description", replaced("\"description\":", "\"descripton\":"), "descripton is not a known field"},
+        {"a misspelt section beside the real one", replaced("\"traits\": {", "\"trait\": {},\n  \"traits\": {"),
+         "trait is not a known field"},
+        {"an unknown key in a trait", inFirstTrait("\"mean\": 0.3,"),
+         "traits.reaction_s.mean is not a known field (traits.reaction_s may have median, spread)"},
+        {"a misspelt key in a trait", inFirstTrait("\"sprad\": 0.1,"), "traits.reaction_s.sprad is not a known field"},
+        {"a median written twice", inFirstTrait("\"median\": 0.3,"), "traits.reaction_s.median appears more than once"},
+        {"a spread written twice", inFirstTrait("\"spread\": 0.3,"), "traits.reaction_s.spread appears more than once"},
+        {"a trait written twice", replaced(firstTrait, firstTrait + ",\n    " + firstTrait),
+         "traits.reaction_s appears more than once"},
+        {"the description written twice", replaced("\"traits\": {", "\"description\": \"again\",\n  \"traits\": {"),
+         "description appears more than once"},
+        {"the traits written twice", replaced("\"description\":", "\"traits\": {},\n  \"description\":"),
+         "traits appears more than once"},
+        {"a number as the description", described("5"), "description must be a text of at most 1000 bytes"},
+        {"null as the description", described("null"), "description must be a text of at most 1000 bytes"},
+        {"an array as the description", described("[\"a\"]"), "description must be a text of at most 1000 bytes"},
+        {"an object as the description", described("{}"), "description must be a text of at most 1000 bytes"},
+        {"true as the description", described("true"), "description must be a text of at most 1000 bytes"},
+        {"a control character in the description", described("\"bell \\u0007\""),
+         "description must be a text of at most 1000 bytes without control characters"},
+        {"a description over 1000 bytes", described("\"" + std::string(1001, 'x') + "\""),
+         "description must be a text of at most 1000 bytes"},
+        {"a trailing NUL", good + std::string(1, '\0'), "has a NUL byte at line " + afterLastLine},
+        {"a NUL and a second document", good + std::string(1, '\0') + "{\"traits\": 1}",
+         "has a NUL byte at line " + afterLastLine},
+        {"a number beyond a double", replaced("\"median\": 0.2", "\"median\": 1e999"),
+         "unreadable JSON at line 5, number overflow parsing '1e999' (beyond what a double holds)"},
+    };
+    ASSERT_EQ(refusal(good), "(accepted)");
+    for (const auto& c : cases) {
+        const std::string message = refusal(c.text);
+        EXPECT_EQ(message.rfind("population file 'pop.json': ", 0), 0u) << c.what << ": " << message;
+        EXPECT_NE(message.find(c.says), std::string::npos) << c.what << ": " << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << c.what << ": " << message;
+    }
 }
 
 // Ratings: the same match felt alike, rated differently by different participants (their

@@ -264,19 +264,19 @@ TEST(StudyPlan, ReadRefusesUnknownAndMissingKeys) {
         d["participants"][2].erase("colour");
         d["participants"][1].erase("seed");
     });
-    expectRefusal(dir, {"participants[1] (\"P02\") seed is missing"});
+    expectRefusal(dir, {"participants[1] (\"P02\") seed is required but missing"});
     edit(dir, [](Json& d) {
         d["participants"][1]["seed"] = 7;
         d["protocols"][1].erase("hash");
     });
-    expectRefusal(dir, {"protocols[1].hash is missing"});
+    expectRefusal(dir, {"protocols[1].hash is required but missing"});
     edit(dir, [](Json& d) { d["protocols"][1]["hash"] = 12; });
-    expectRefusal(dir, {"protocols[1].hash must be a string, got number 12"});
+    expectRefusal(dir, {"protocols[1].hash must be a string, got 12"});
     edit(dir, [](Json& d) {
         d.erase("protocols");
         d["participants"][0]["settings"]["dpi"] = 400;
     });
-    expectRefusal(dir, {"protocols is missing"});
+    expectRefusal(dir, {"protocols is required but missing"});
 }
 
 TEST(StudyPlan, ReadRefusesANewerFormatBeforeItsKeys) {
@@ -294,7 +294,7 @@ TEST(StudyPlan, ReadRefusesAKeyWrittenTwice) {
     std::string text = readText(path);
     text.replace(text.find("\"seed\": 42,"), 11, "\"seed\": 42, \"seed\": 43,");
     writeText(path, text);
-    expectRefusal(dir, {"\"seed\" is written twice"});
+    expectRefusal(dir, {"seed appears more than once"});
 }
 
 TEST(StudyPlan, ReadRefusesRepeatedIdsAndSeeds) {
@@ -307,11 +307,10 @@ TEST(StudyPlan, ReadRefusesRepeatedIdsAndSeeds) {
     });
     expectRefusal(dir, {"participants[4] (\"P05\") seed", "is also the seed of participants[1] (\"P02\")"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = 0; });
-    expectRefusal(dir,
-                  {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number 0"});
+    expectRefusal(dir, {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got 0"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = std::uint64_t{1} << 53; });
     expectRefusal(dir,
-                  {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got number "
+                  {"participants[4] (\"P05\") seed must be an integer between 1 and 9007199254740991, got "
                    "9007199254740992"});
     edit(dir, [](Json& d) { d["participants"][4]["seed"] = -5; });
     expectRefusal(dir, {"participants[4] (\"P05\") seed must be an integer"});
@@ -375,10 +374,31 @@ TEST(StudyPlan, ReadRefusesMouseSettingsNoOneHas) {
     });
     expectRefusal(dir, {"participants[5] (\"P06\") settings.mouse_dpi must be a number between", "got 0"});
     edit(dir, [](Json& d) { d["participants"][5]["settings"]["mouse_dpi"] = "800"; });
-    expectRefusal(dir, {"participants[5] (\"P06\") settings.mouse_dpi must be a number, got string \"800\""});
+    expectRefusal(
+        dir,
+        {"participants[5] (\"P06\") settings.mouse_dpi must be a number between 1 and 100000, got string \"800\""});
     edit(dir, [](Json& d) { d["participants"][5]["settings"] = Json::object(); });
     EXPECT_EQ(refusal(dir), "");  // unset means the defaults
     EXPECT_EQ(readPlan(dir).participants[5].settings.mouseDpi, 800);
+}
+
+// What the plan's own JSON reader took before the strict reader read plans: bytes after the
+// document, and a number beyond a double named without its line.
+TEST(StudyPlan, ReadRefusesBytesAfterTheJsonAndNamesTheLineOfANumberBeyondADouble) {
+    const std::string dir = writtenPlan("strict");
+    const fs::path path = fs::path(dir) / "study.json";
+    const std::string text = readText(path);
+    const auto lines = std::count(text.begin(), text.end(), '\n');
+    writeText(path, text + std::string(1, '\0') + "garbage");
+    expectRefusal(dir, {"has a NUL byte at line " + std::to_string(lines + 1)});
+    writeText(path, text + std::string(1, '\0'));
+    expectRefusal(dir, {"has a NUL byte at line " + std::to_string(lines + 1)});
+    std::string huge = text;
+    huge.replace(huge.find("\"seed\": 42"), 10, "\"seed\": 1e999");
+    writeText(path, huge);
+    expectRefusal(dir, {"unreadable JSON at line 5, number overflow parsing '1e999'"});
+    writeText(path, text);
+    EXPECT_EQ(refusal(dir), "");
 }
 
 TEST(StudyPlan, ReadRefusesAMissingPlan) {

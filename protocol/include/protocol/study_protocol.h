@@ -4,6 +4,7 @@
 // files.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -103,8 +104,12 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// The whole file as text. A missing file, a folder or an unreadable file is a ProtocolError
-// naming the path.
+// What a protocol file may be: bounded, so that no file can make reading or parsing slow. A
+// real protocol is a few kilobytes.
+inline constexpr std::size_t kMaxProtocolBytes = 1 << 20;
+
+// The whole file as text (strict/file.h). A missing file, a folder, a FIFO, a device, a file
+// over kMaxProtocolBytes or an unreadable file is a ProtocolError naming the path.
 std::string readProtocolFile(const std::string& path);
 
 // The value of the top-level "game" field, which says which parser reads the rest ("shooter",
