@@ -65,6 +65,11 @@ Stmt DiskCheck::prepare(const std::string& sql) {
     return Stmt(raw);
 }
 
+Stmt& DiskCheck::statement(Stmt& s, const std::string& sql) {
+    if (!s) s = prepare(sql);
+    return s;
+}
+
 void DiskCheck::unreadable() {
     if (!seen_.empty()) return;
     seen_ = std::string("it cannot be read (") + (db_ ? sqlite3_errmsg(db_.get()) : "out of memory") + ")";
@@ -118,9 +123,11 @@ void DiskCheck::metaExactly(const std::map<std::string, std::string>& entries) {
 
 void DiskCheck::commit(std::int64_t id, const CommitRows& c) {
     if (!seen_.empty()) return;
-    Stmt s = prepare(
+    Stmt& s = statement(
+        commitRow_,
         "SELECT input_rows, frame_rows, event_rows, last_frame, last_event_id, checksum FROM commits WHERE id = ?");
     if (!s) return;
+    sqlite3_reset(s.get());
     bindArg(s.get(), 1, id);
     const int rc = sqlite3_step(s.get());
     if (rc == SQLITE_DONE) {
@@ -138,20 +145,22 @@ void DiskCheck::commit(std::int64_t id, const CommitRows& c) {
         seen_ = "its record of commit " + std::to_string(id) + " is not the one written";
         return;
     }
-    s.reset();
-    if (!c.inputs.empty()) rows(inputTable(), id, c.inputs, c.inputs.front().frame, c.inputs.back().frame);
-    if (!c.frames.empty()) rows(frameTable(), id, c.frames, c.frames.front().frame, c.frames.back().frame);
+    sqlite3_reset(s.get());
+    if (!c.inputs.empty()) rows(inputRows_, inputTable(), id, c.inputs, c.inputs.front().frame, c.inputs.back().frame);
+    if (!c.frames.empty()) rows(frameRows_, frameTable(), id, c.frames, c.frames.front().frame, c.frames.back().frame);
     const auto events = static_cast<std::int64_t>(c.events.size());
-    if (events > 0) rows(eventTable(), id, c.events, c.eventRows - events + 1, c.eventRows);
+    if (events > 0) rows(eventRows_, eventTable(), id, c.events, c.eventRows - events + 1, c.eventRows);
 }
 
 template <typename R>
-void DiskCheck::rows(const Table<R>& table, std::int64_t commitId, const std::vector<R>& written, std::int64_t firstKey,
-                     std::int64_t lastKey) {
+void DiskCheck::rows(Stmt& s, const Table<R>& table, std::int64_t commitId, const std::vector<R>& written,
+                     std::int64_t firstKey, std::int64_t lastKey) {
     if (!seen_.empty()) return;
-    Stmt s = prepare("SELECT " + table.columns() + " FROM " + table.name + " WHERE " + table.key() +
-                     " BETWEEN ? AND ? ORDER BY " + table.key());
+    statement(s,
+              "SELECT " + table.columns() + " FROM " + table.name + " WHERE " + table.key() +
+                  " BETWEEN ? AND ? ORDER BY " + table.key());
     if (!s) return;
+    sqlite3_reset(s.get());
     bindArg(s.get(), 1, firstKey);
     bindArg(s.get(), 2, lastKey);
     Checksum stored, expected;

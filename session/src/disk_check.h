@@ -47,13 +47,15 @@ public:
 
 private:
     Stmt prepare(const std::string& sql);
+    Stmt& statement(Stmt& s, const std::string& sql);  // prepared once, on first use
     void unreadable();
     std::optional<std::int64_t> single(const std::string& sql);
     template <typename R>
-    void rows(const Table<R>& table, std::int64_t commitId, const std::vector<R>& written, std::int64_t firstKey,
-              std::int64_t lastKey);
+    void rows(Stmt& s, const Table<R>& table, std::int64_t commitId, const std::vector<R>& written,
+              std::int64_t firstKey, std::int64_t lastKey);
 
     Db db_;
+    Stmt commitRow_, inputRows_, frameRows_, eventRows_;
     std::string seen_;
 };
 
