@@ -7,13 +7,12 @@
 #include "checksum.h"
 #include "connection.h"
 #include "disk_check.h"
+#include "file_stamp.h"
 #include "naming.h"
 #include "schema.h"
 #include "sqlite_handles.h"
 
-#include <fcntl.h>
 #include <sqlite3.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cctype>
@@ -63,47 +62,6 @@ std::int64_t headerChecksum(const SessionHeader& h) {
         checksum.text(value);
     }
     return static_cast<std::int64_t>(checksum.value());
-}
-
-// What a name means now, as far as telling our own writes from another program's goes: which
-// file (device and inode), how long, when last written, and (for the session file) its
-// 100-byte SQLite header. Nothing when the name is gone.
-struct FileStamp {
-    dev_t device = 0;
-    ino_t inode = 0;
-    off_t size = 0;
-    std::int64_t modifiedNs = 0;
-    std::string head;
-
-    bool sameFile(const FileStamp& o) const { return device == o.device && inode == o.inode; }
-    bool operator==(const FileStamp& o) const {
-        return sameFile(o) && size == o.size && modifiedNs == o.modifiedNs && head == o.head;
-    }
-};
-
-std::optional<FileStamp> stampOf(const std::string& path, bool withHead) {
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-    FileStamp s{st.st_dev, st.st_ino, st.st_size,
-                static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec, ""};
-    if (withHead) {
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd >= 0) {
-            char head[100];
-            const ssize_t n = ::pread(fd, head, sizeof head, 0);
-            if (n > 0) s.head.assign(head, static_cast<std::size_t>(n));
-            ::close(fd);
-        }
-    }
-    return s;
-}
-
-// Makes a rename or link in `dir` durable.
-void syncFolder(const std::string& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return;
-    ::fsync(fd);
-    ::close(fd);
 }
 
 }  // namespace
@@ -361,11 +319,8 @@ struct SessionWriter::Impl {
             rescue("file_replaced", "the session file " + name + " was deleted or replaced by another program", false);
         else if (!(*file == *fileStamp))
             rescue("file_overwritten",
-                   "the session file " + name + " was overwritten in place by another program (seen: its " +
-                       (file->size != fileStamp->size ? "size went from " + std::to_string(fileStamp->size) + " to " +
-                                std::to_string(file->size) + " bytes"
-                                                      : std::string("bytes changed")) +
-                       ")",
+                   "the session file " + name +
+                       " was overwritten in place by another program (seen: " + file->changeFrom(*fileStamp) + ")",
                    false);
         else
             rescue("wal_replaced", "the log " + name + "-wal was deleted, replaced or changed by another program",
