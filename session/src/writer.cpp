@@ -271,13 +271,15 @@ struct SessionWriter::Impl {
     // every commit is saved again, beside the file; if even that cannot be written, the
     // write's own error ends the session.
     void rescueAfterError(const std::string& error) {
-        if (checkUntouched(true)) return;
+        // Only the file: a failed transaction may have left frames of its own in the -wal.
+        if (checkUntouched(false)) return;
+        const std::string failure = live.failure;
         DiskCheck check(live.path, false);
         check.metaEntry("header_checksum", headerChecksumText());
         check.lastCommit(static_cast<std::int64_t>(written.commits()));
-        if (!check.seen().empty()) return notAsWritten(check.seen() + "; writing to it failed: " + error, true);
+        if (!check.seen().empty()) return notAsWritten(check.seen() + "; writing failed: " + failure, true);
         try {
-            rescue("write_failed", "writing the session file " + live.path + " failed (" + error + ")", false, true);
+            rescue("write_failed", "writing the session file " + live.path + " failed (" + failure + ")", false, true);
         } catch (const SessionError&) {
             throw SessionError(error);
         }

@@ -6,9 +6,11 @@
 
 #include <fcntl.h>
 #include <sqlite3.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <ctime>
 #include <filesystem>
 #include <functional>
@@ -129,6 +131,43 @@ TEST(SessionReadBack, AFinishFindsAnOverwriteTheStampsCannotSeeAndSavesEveryComm
 
 TEST(SessionReadBack, ACloseFindsAnOverwriteTheStampsCannotSeeAndSavesEveryCommitBesideIt) {
     expectEveryTrialBesideIt([](SessionWriter& w) { w.close(); }, false);
+}
+
+// A write that fails for want of room (a file-size limit stands in for a full disk): the
+// writer tries to save every commit beside the file, which cannot be written either, so the
+// session ends with the write's own sentence naming the file, and nothing half-written
+// beside it.
+TEST(SessionReadBack, AWriteWithNoRoomForARescueEndsWithTheWritesOwnSentence) {
+    TempDir dir;
+    SessionWriter w = SessionWriter::create(dir.str(), header());
+    const std::string name = w.path();
+    writeTrials(w);
+    rlimit before{};
+    ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &before), 0);
+    const auto previous = std::signal(SIGXFSZ, SIG_IGN);  // EFBIG instead of the signal
+    rlimit small = before;
+    small.rlim_cur = static_cast<rlim_t>(fs::file_size(name));
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+    for (std::int64_t frame = kTrials * kFramesPerTrial; frame < 40 * kFramesPerTrial; ++frame) {
+        InputRecord in;
+        in.frame = frame;
+        in.text = std::string(200, 'x');
+        w.addInput(in);
+    }
+    std::string said;
+    try {
+        w.commit();
+    } catch (const SessionError& e) {
+        said = e.what();
+    }
+    ::setrlimit(RLIMIT_FSIZE, &before);
+    std::signal(SIGXFSZ, previous);
+    EXPECT_EQ(said.rfind("Cannot write session file " + name + " (", 0), 0u) << said;
+    EXPECT_EQ(w.path(), name);
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir.path())) files.push_back(entry.path().filename().string());
+    for (const std::string& file : files) EXPECT_EQ(file.find("rescu"), std::string::npos) << file;
+    EXPECT_EQ(readSession(name).events.size(), static_cast<std::size_t>(kTrials));
 }
 
 // What the writer did not touch passes: a session read back whole ends quietly at its name.
