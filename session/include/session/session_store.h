@@ -200,7 +200,7 @@ public:
     // (session/pacing.h). Like a flag, not part of any checksum, and it changes no outcome.
     void summarize(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
-    // the file, leaving one self-contained file. Waits for the write lock like flush(). A
+    // the file, leaving one self-contained file. Waits for the write lock like close(). A
     // reader in a transaction (export, replay, a DB browser, a sqlite3 script) keeps the
     // commits made since it began out of the file; finish waits for it up to foldWaitS,
     // calling waiting(seconds, WaitingFor::Readers), and then writes the whole session again
