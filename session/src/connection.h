@@ -32,8 +32,13 @@ struct Connection {
     Stmt insertInput, insertFrame, insertEvent, insertCommit, insertMeta;
     bool writing = false;  // inside a write of held commits: a busy lock is LockBusy, not a failure
 
+    // The last failure, as "<what>: <SQLite's message>", for the writer to say what it saw.
+    mutable std::string failure;
+
     [[noreturn]] void fail(const std::string& what) const {
-        throw SessionError("Cannot write session file " + path + " (" + what + "): " + sqlite3_errmsg(db.get()) + ".");
+        const std::string message = sqlite3_errmsg(db.get());
+        failure = what + ": " + message;
+        throw SessionError("Cannot write session file " + path + " (" + what + "): " + message + ".");
     }
     void check(int rc, const char* what) const {
         if (writing && isBusy(rc)) throw LockBusy{};

@@ -188,24 +188,6 @@ private:
     }
     std::string errmsg() const { return sqlite3_errmsg(db_.get()); }
 
-    // file:/abs/path?immutable=1, every byte outside [A-Za-z0-9/._~-] percent-encoded.
-    static std::string immutableUri(const std::string& path) {
-        const std::string absolute = fs::absolute(path).lexically_normal().string();
-        std::string uri = "file:";
-        for (const char c : absolute) {
-            const auto b = static_cast<unsigned char>(c);
-            if (std::isalnum(b) || std::strchr("/._~-", c) != nullptr) {
-                uri += c;
-            } else {
-                static const char* hex = "0123456789ABCDEF";
-                uri += '%';
-                uri += hex[b >> 4];
-                uri += hex[b & 15];
-            }
-        }
-        return uri + "?immutable=1";
-    }
-
     void checkRegularFile() const {
         std::error_code ec;
         const auto status = fs::status(path_, ec);

@@ -4,7 +4,10 @@
 
 #include <sqlite3.h>
 
+#include <cctype>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +47,26 @@ inline void bindOptional(sqlite3_stmt* s, int i, const std::optional<std::int64_
 inline std::string columnText(sqlite3_stmt* s, int i) {
     const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(s, i));
     return text ? std::string(text, static_cast<std::size_t>(sqlite3_column_bytes(s, i))) : std::string();
+}
+
+// file:/abs/path?immutable=1, every byte outside [A-Za-z0-9/._~-] percent-encoded: opened so,
+// SQLite reads the file's own bytes as they are, takes no lock, and neither looks for nor
+// creates a -wal or -shm beside it.
+inline std::string immutableUri(const std::string& path) {
+    const std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
+    std::string uri = "file:";
+    for (const char c : absolute) {
+        const auto b = static_cast<unsigned char>(c);
+        if (std::isalnum(b) || std::strchr("/._~-", c) != nullptr) {
+            uri += c;
+        } else {
+            static const char* hex = "0123456789ABCDEF";
+            uri += '%';
+            uri += hex[b >> 4];
+            uri += hex[b & 15];
+        }
+    }
+    return uri + "?immutable=1";
 }
 
 }  // namespace warplab::session::detail

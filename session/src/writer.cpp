@@ -6,15 +6,16 @@
 #include "archive.h"
 #include "checksum.h"
 #include "connection.h"
+#include "disk_check.h"
+#include "file_stamp.h"
 #include "naming.h"
 #include "schema.h"
 #include "sqlite_handles.h"
 
-#include <fcntl.h>
 #include <sqlite3.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -63,53 +64,16 @@ std::int64_t headerChecksum(const SessionHeader& h) {
     return static_cast<std::int64_t>(checksum.value());
 }
 
-// What a name means now, as far as telling our own writes from another program's goes: which
-// file (device and inode), how long, when last written, and (for the session file) its
-// 100-byte SQLite header. Nothing when the name is gone.
-struct FileStamp {
-    dev_t device = 0;
-    ino_t inode = 0;
-    off_t size = 0;
-    std::int64_t modifiedNs = 0;
-    std::string head;
-
-    bool sameFile(const FileStamp& o) const { return device == o.device && inode == o.inode; }
-    bool operator==(const FileStamp& o) const {
-        return sameFile(o) && size == o.size && modifiedNs == o.modifiedNs && head == o.head;
-    }
-};
-
-std::optional<FileStamp> stampOf(const std::string& path, bool withHead) {
-    struct stat st {};
-    if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-    FileStamp s{st.st_dev, st.st_ino, st.st_size,
-                static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec, ""};
-    if (withHead) {
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd >= 0) {
-            char head[100];
-            const ssize_t n = ::pread(fd, head, sizeof head, 0);
-            if (n > 0) s.head.assign(head, static_cast<std::size_t>(n));
-            ::close(fd);
-        }
-    }
-    return s;
-}
-
-// Makes a rename or link in `dir` durable.
-void syncFolder(const std::string& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return;
-    ::fsync(fd);
-    ::close(fd);
-}
-
 }  // namespace
 
 struct SessionWriter::Impl {
     using Clock = std::chrono::steady_clock;
 
     std::string resultsDir, stem;  // where the session lives and its name without "-N" and extension
+    std::string name;  // the path the session was created under, which the run announced
+    // What took the session away from `name` (a rescue that saved it beside another
+    // program's file there), in words; "" while the session is under its name.
+    std::string movedAway;
     SessionHeader header;  // as written: the session id and start time filled in
     Connection live;  // to the session file at its name (live.path)
     bool finished = false;
@@ -136,11 +100,13 @@ struct SessionWriter::Impl {
     // What is in the file: every commit, flag and the completion written, to write the
     // session again whole when the file cannot be trusted (rescue()).
     Archive written;
+    CommitRows lastWritten;  // the newest commit in `written`, checked on disk after each write
     std::map<std::string, std::string> writtenFlags;
     std::string completedAt;
 
-    // The session file and its -wal as this writer last left them (checkUntouched()).
-    std::optional<FileStamp> fileStamp, walStamp;
+    // The session file and its -wal as this writer last left them (checkUntouched()), and the
+    // file it opened (device and inode), whatever has been done to it since.
+    std::optional<FileStamp> fileStamp, walStamp, ownFile;
     std::vector<std::string> notices;
 
     ~Impl() {
@@ -173,15 +139,11 @@ struct SessionWriter::Impl {
         c.exec(frameTable().createSql().c_str(), "creating the tables");
         c.exec(eventTable().createSql().c_str(), "creating the tables");
         c.prepareInserts();
-        for (const auto& [key, value] : headerEntries(header)) c.putMeta(key, value);
-        c.putMeta("header_checksum", numberText(static_cast<std::uint64_t>(headerChecksum(header))));
-        for (const auto& [key, value] : headerExtras(header)) c.putMeta(key, value);
         written.forEach([&](const CommitRows& commit) { c.writeCommit(commit); });
         for (const CommitRows& commit : held) c.writeCommit(commit);
-        std::map<std::string, std::string> flags = writtenFlags;
-        for (const auto& [name, text] : heldFlags) flags[name] = text;
-        for (const auto& [key, text] : flags) c.putMeta(key, text);
-        if (!completedAt.empty()) c.putMeta("completed_at", completedAt);
+        std::map<std::string, std::string> meta = metaWritten();
+        for (const auto& [key, text] : heldFlags) meta[key] = text;
+        for (const auto& [key, text] : meta) c.putMeta(key, text);
         c.exec("COMMIT", "writing the file");
         // WAL mode is kept in the file: switching here, while nobody else can see the file,
         // means another program's lock on the named file can never stop the switch.
@@ -189,9 +151,22 @@ struct SessionWriter::Impl {
         c.close();  // the file is whole and fsynced
     }
 
+    // The meta table as written: the header, its checksum, the header's extras, the flags and
+    // summaries, and the completion once it is written.
+    std::map<std::string, std::string> metaWritten() const {
+        std::map<std::string, std::string> meta(writtenFlags);
+        for (const auto& [key, value] : headerEntries(header)) meta[key] = value;
+        meta["header_checksum"] = headerChecksumText();
+        for (const auto& [key, value] : headerExtras(header)) meta[key] = value;
+        if (!completedAt.empty()) meta["completed_at"] = completedAt;
+        return meta;
+    }
+    std::string headerChecksumText() const { return numberText(static_cast<std::uint64_t>(headerChecksum(header))); }
+
     // Everything held is now in the file (buildFile() or writeHeld() wrote it).
     void heldAreWritten(const std::string& completionTime) {
         for (CommitRows& commit : held) written.append(commit);
+        if (!held.empty()) lastWritten = std::move(held.back());
         held.clear();
         for (auto& [name, text] : heldFlags) writtenFlags[name] = std::move(text);
         heldFlags.clear();
@@ -205,7 +180,7 @@ struct SessionWriter::Impl {
     void openForWriting() {
         live.open(SQLITE_OPEN_READWRITE, "opening");
         // No busy wait inside SQLite: a foreign write lock must not stall a live frame. The
-        // writer holds its commits and retries instead (commit(), flush()).
+        // writer holds its commits and retries instead (commit(), close(), finish()).
         sqlite3_busy_timeout(live.db.get(), 0);
         // WAL: a commit appends to the log, so a kill mid-commit leaves the previous commit
         // intact, and analysts can read a running session. FULL: each commit is fsynced, so
@@ -220,6 +195,7 @@ struct SessionWriter::Impl {
         live.exec("PRAGMA synchronous=FULL", "setting synchronous");
         live.prepareInserts();
         stampFiles();
+        ownFile = fileStamp;
     }
 
     // Makes the rows added since the last commit one commit, held until it is written.
@@ -247,7 +223,7 @@ struct SessionWriter::Impl {
     // write lock; any other failure throws SessionError and keeps everything held.
     bool writeHeld() {
         if (held.empty() && heldFlags.empty() && !completing) return true;
-        if (checkUntouched()) return true;  // rescue() wrote everything held
+        if (checkUntouched(true)) return true;  // rescue() wrote everything held
         const std::string completionTime = completing ? utcNow() : completedAt;
         live.writing = true;
         try {
@@ -266,16 +242,61 @@ struct SessionWriter::Impl {
                 throw;
             } catch (const LockBusy&) {
                 return false;
+            } catch (const SessionError& e) {
+                rescueAfterError(e.what());
+                return true;
             }
         }
         live.writing = false;
         heldAreWritten(completionTime);
+        // A commit only appends to the -wal: the file changed meanwhile was changed by another
+        // program, and the checkpoint must not write into what it put there.
+        if (checkUntouched(false)) return true;
         // Fold the log into the main file at once (PASSIVE: never waits for a reader). The
         // -wal then holds no commit the file lacks, so a -wal deleted or damaged later loses
         // nothing written before.
-        sqlite3_wal_checkpoint_v2(live.db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
+        const bool folded = fold() == Fold::Done;
         stampFiles();
+        // What happened to the file during the fsyncs is stamped afresh above: read it back.
+        DiskCheck check(live.path, folded);
+        check.metaEntry("header_checksum", headerChecksumText());
+        const auto commits = static_cast<std::int64_t>(written.commits());
+        check.lastCommit(commits);
+        if (commits > 0) check.commit(commits, lastWritten);
+        if (!check.seen().empty()) notAsWritten(check.seen(), true);
         return true;
+    }
+
+    // A write failed with an error other than another program's lock. What the file holds
+    // decides what it was: another program's doing, or the disk's (full, failing). Either way
+    // every commit is saved again, beside the file; if even that cannot be written, the
+    // write's own error ends the session.
+    void rescueAfterError(const std::string& error) {
+        // Only the file: a failed transaction may have left frames of its own in the -wal.
+        if (checkUntouched(false)) return;
+        const std::string failure = live.failure;
+        DiskCheck check(live.path, false);
+        check.metaEntry("header_checksum", headerChecksumText());
+        check.lastCommit(static_cast<std::int64_t>(written.commits()));
+        if (!check.seen().empty()) return notAsWritten(check.seen() + "; writing failed: " + failure, true);
+        try {
+            rescue("write_failed", "writing the session file " + live.path + " failed (" + failure + ")", false, true);
+        } catch (const SessionError&) {
+            throw SessionError(error);
+        }
+    }
+
+    // The file at the name no longer holds what this writer wrote (DiskCheck saw `seen`).
+    void notAsWritten(const std::string& seen, bool goOn) {
+        const auto file = stampOf(live.path, true);
+        if (!file || !ownFile || !file->sameFile(*ownFile))
+            rescue("file_replaced", "the session file " + live.path + " was deleted or replaced by another program",
+                   false, goOn);
+        else
+            rescue(
+                "file_overwritten",
+                "the session file " + live.path + " was overwritten in place by another program (seen: " + seen + ")",
+                false, goOn);
     }
 
     void stampFiles() {
@@ -289,19 +310,20 @@ struct SessionWriter::Impl {
     // and everything would be lost at the next kill (or at once: "database disk image is
     // malformed"). Only this writer changes the two files, so before each write they must be
     // as it left them; if not, the session is written again whole (rescue()), the supervisor
-    // told and the session flagged. True when it was.
-    bool checkUntouched() {
+    // told and the session flagged. True when it was. `walToo`: the -wal too (not right after
+    // a commit, which changed it).
+    bool checkUntouched(bool walToo) {
         const auto file = stampOf(live.path, true);
         const auto wal = stampOf(live.path + "-wal", false);
-        if (file && fileStamp && *file == *fileStamp && (!walStamp || (wal && *wal == *walStamp))) return false;
+        if (file && fileStamp && *file == *fileStamp && (!walToo || !walStamp || (wal && *wal == *walStamp)))
+            return false;
         const std::string name = live.path;
         if (!file || !fileStamp || !file->sameFile(*fileStamp))
             rescue("file_replaced", "the session file " + name + " was deleted or replaced by another program", false);
         else if (!(*file == *fileStamp))
             rescue("file_overwritten",
                    "the session file " + name +
-                       " was overwritten in place by another program (an old copy put back, another file copied "
-                       "over it, or cut short)",
+                       " was overwritten in place by another program (seen: " + file->changeFrom(*fileStamp) + ")",
                    false);
         else
             rescue("wal_replaced", "the log " + name + "-wal was deleted, replaced or changed by another program",
@@ -310,15 +332,15 @@ struct SessionWriter::Impl {
     }
 
     // Writes the whole session again from what this writer wrote and holds, and goes on
-    // there. `replaceName`: the name still holds this session's own file (only its -wal was
-    // touched), which the new file replaces; otherwise the new file takes the name if that is
-    // free, else goes beside it as <name>-rescued.warplab-session, leaving what another
-    // program put there alone.
-    void rescue(const std::string& flagName, const std::string& what, bool replaceName) {
+    // there (`goOn`; otherwise it is written as a finished session is, one file). `replaceName`:
+    // the name still holds this session's own file (only its -wal was touched), which the new
+    // file replaces; otherwise the new file takes the name if that is free, else goes beside
+    // it as <name>-rescued.warplab-session, leaving what another program put there alone.
+    void rescue(const std::string& flagName, const std::string& what, bool replaceName, bool goOn = true) {
         // Our -wal and -shm must not stay beside whatever the name now holds: SQLite would
         // take them for its own. Closed without a checkpoint, which would write our log into
         // that file.
-        sqlite3_db_config(live.db.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
+        if (live.db) sqlite3_db_config(live.db.get(), SQLITE_DBCONFIG_NO_CKPT_ON_CLOSE, 1, nullptr);
         live.close();
         // Beside our own file anything there is ours or must go; beside another program's
         // file only what is still ours goes.
@@ -338,7 +360,7 @@ struct SessionWriter::Impl {
         if (completing) completedAt = utcNow();
         const std::string temp = hiddenPath(kRescuing);
         try {
-            buildFile(temp, true);
+            buildFile(temp, goOn);
             if (replaceName ? ::rename(temp.c_str(), target.c_str()) != 0 : ::link(temp.c_str(), target.c_str()) != 0)
                 throw SessionError("Cannot save the session again as " + target + " (" + what +
                                    "): " + std::strerror(errno) + ".");
@@ -349,8 +371,9 @@ struct SessionWriter::Impl {
         }
         removeSessionFiles(temp);
         heldAreWritten(completedAt);
+        if (target != name && movedAway.empty()) movedAway = what;
         live.path = target;
-        openForWriting();
+        if (goOn) openForWriting();
         notices.push_back(text);
     }
 
@@ -373,7 +396,8 @@ struct SessionWriter::Impl {
 
     void checkOpen(const char* caller) const {
         if (finished)
-            throw std::logic_error(std::string("SessionWriter::") + caller + ": the session is already finished.");
+            throw std::logic_error(std::string("SessionWriter::") + caller +
+                                   ": the session is already finished or closed.");
     }
 
     // Retries writeHeld() until it gets the lock, telling `waiting` about once a second.
@@ -389,14 +413,38 @@ struct SessionWriter::Impl {
         }
     }
 
-    // Whether every frame of the -wal is now in the file: a checkpoint copies what no
-    // reader's snapshot still needs from the file; a reader in a transaction since before the
-    // last commits holds those back.
-    bool foldedIntoFile() {
+    // Copies the -wal's frames into the file. Done: every frame of the log is in it.
+    // HeldByReader: SQLite copied, without an error, only what no reader's snapshot still
+    // needs: a program reading in a transaction since before the last commits holds those
+    // back (or is checkpointing itself: busy). Failed: SQLite could not copy them (the file
+    // is no longer what it wrote, or the disk failed), which no reader is to blame for.
+    enum class Fold { Done, HeldByReader, Failed };
+    Fold fold() {
         int logFrames = -1, copied = -1;
         const int rc =
             sqlite3_wal_checkpoint_v2(live.db.get(), nullptr, SQLITE_CHECKPOINT_PASSIVE, &logFrames, &copied);
-        return rc == SQLITE_OK && copied == logFrames;
+        if (rc == SQLITE_OK) return copied == logFrames ? Fold::Done : Fold::HeldByReader;
+        return isBusy(rc) ? Fold::HeldByReader : Fold::Failed;
+    }
+
+    // The session's end (finish() or close()): the whole file read back and compared with
+    // every commit, flag and the completion this writer wrote. Whatever differs, every commit
+    // is saved again beside it. And the run must not end as if all were well when its session
+    // is no longer under the name it announced: throws SessionError saying what happened and
+    // where the whole session is.
+    void verifyAtClose() {
+        std::error_code ec;
+        DiskCheck check(live.path, !fs::exists(live.path + "-wal", ec));
+        check.metaExactly(metaWritten());
+        check.lastCommit(static_cast<std::int64_t>(written.commits()));
+        std::int64_t id = 0;
+        written.forEach([&](const CommitRows& c) { check.commit(++id, c); });
+        check.rowCounts(inputRows, frameRows, eventRows);
+        if (!check.seen().empty()) notAsWritten(check.seen(), false);
+        if (movedAway.empty()) return;
+        std::string sentence = movedAway + "; the whole session is saved in " + live.path + ".";
+        sentence[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(sentence[0])));
+        throw SessionError(sentence);
     }
 
     // finish() when a reader holds the last commits in the -wal: the whole session, written
@@ -488,7 +536,7 @@ SessionWriter SessionWriter::create(const std::string& resultsDir, const Session
             const std::string candidate = (fs::path(resultsDir) / name).string();
             if (anyExists(candidate)) continue;
             if (::link(temp.c_str(), candidate.c_str()) == 0) {
-                impl->live.path = candidate;
+                impl->live.path = impl->name = candidate;
                 break;
             }
             if (errno != EEXIST || n >= 10000)
@@ -548,8 +596,6 @@ double SessionWriter::heldForSeconds() const {
     return w.heldSince ? std::chrono::duration<double>(Impl::Clock::now() - *w.heldSince).count() : 0.0;
 }
 
-void SessionWriter::flush(const WaitCallback& waiting) { impl("flush").waitForWrite(waiting); }
-
 std::vector<std::string> SessionWriter::takeNotices() { return std::exchange(impl("takeNotices").notices, {}); }
 
 void SessionWriter::flag(const std::string& name, const std::string& text) {
@@ -575,12 +621,13 @@ void SessionWriter::finish(const WaitCallback& waiting, double foldWaitS) {
     // read from read-only media: every commit folded into it before the run says it is done.
     // A reader's transaction holds the fold back; after foldWaitS the session is written
     // again whole instead.
+    // A fold that fails is not a reader's doing: the check below finds what it was.
     const auto start = Impl::Clock::now();
     auto nextCall = start + std::chrono::seconds(1);
-    while (!w.foldedIntoFile()) {
+    while (w.live.db && w.fold() == Impl::Fold::HeldByReader) {
         if (std::chrono::duration<double>(Impl::Clock::now() - start).count() >= foldWaitS) {
             w.replaceWithWholeFile();
-            return;
+            break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
         if (waiting && Impl::Clock::now() >= nextCall) {
@@ -590,7 +637,17 @@ void SessionWriter::finish(const WaitCallback& waiting, double foldWaitS) {
     }
     // The -wal, now redundant, goes where no other program has the file open (a reader that
     // does keeps WAL mode, which is just as valid: the file alone is whole).
-    sqlite3_exec(w.live.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
+    if (w.live.db) sqlite3_exec(w.live.db.get(), "PRAGMA journal_mode=DELETE", nullptr, nullptr, nullptr);
+    w.verifyAtClose();
+}
+
+void SessionWriter::close(const WaitCallback& waiting) {
+    Impl& w = impl("close");
+    w.checkOpen("close");
+    w.commitAdded();
+    w.waitForWrite(waiting);
+    w.finished = true;
+    w.verifyAtClose();
 }
 
 }  // namespace warplab::session

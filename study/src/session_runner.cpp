@@ -154,8 +154,7 @@ void SessionCommits::end(bool completed, const std::function<void(const std::str
     if (completed) {
         writer_.finish(waiting);
     } else {
-        writer_.commit();
-        writer_.flush(waiting);
+        writer_.close(waiting);
     }
     tell();
 }

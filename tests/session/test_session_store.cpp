@@ -1013,6 +1013,19 @@ TEST(SessionStore, AReplacedSessionFileIsSavedAgainAndTheSessionGoesOn) {
     EXPECT_TRUE(w.takeNotices().empty());  // each notice is given once
 }
 
+// The end of a session that another program took away from its name: finish() has saved every
+// commit beside it and says so, and where, in one sentence, so the run cannot end as if all
+// were well.
+void expectFinishSaysWhereTheSessionIs(SessionWriter& w) {
+    try {
+        w.finish();
+        ADD_FAILURE() << "finish() did not say that the session is no longer under its name";
+    } catch (const SessionError& e) {
+        EXPECT_NE(std::string(e.what()).find("; the whole session is saved in " + w.path() + "."), std::string::npos)
+            << e.what();
+    }
+}
+
 // Another file put in the session's place: the writer leaves it alone and saves the session
 // beside it.
 TEST(SessionStore, AFileInTheSessionsPlaceIsLeftAloneAndTheSessionSavedBesideIt) {
@@ -1027,7 +1040,7 @@ TEST(SessionStore, AFileInTheSessionsPlaceIsLeftAloneAndTheSessionSavedBesideIt)
     ASSERT_TRUE(w.commit());
     ASSERT_EQ(w.takeNotices().size(), 1u);
     EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
-    w.finish();
+    expectFinishSaysWhereTheSessionIs(w);
     EXPECT_EQ(expectWholeTrials(readSession(w.path())), 2);
     std::ifstream in(path);
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "someone else's file");
@@ -1088,7 +1101,7 @@ TEST(SessionStore, AFileOverwrittenInPlaceIsNoticedAndEveryCommitSavedBesideIt) 
         EXPECT_NE(notices[0].find("overwritten in place"), std::string::npos) << notices[0];
         EXPECT_NE(w.path().find("-rescued"), std::string::npos) << w.path();
         writeTrial(w, 5);
-        w.finish();
+        expectFinishSaysWhereTheSessionIs(w);
         const SessionData data = readSession(w.path());
         EXPECT_EQ(expectWholeTrials(data), 6);
         EXPECT_TRUE(data.completed) << data.note;

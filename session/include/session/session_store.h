@@ -167,20 +167,32 @@ public:
     // Never waits, so a live session keeps its frame rate: while another program holds the
     // file's write lock (a DB browser, `sqlite3` without -readonly, a script's BEGIN
     // IMMEDIATE), it returns false and the commit is held in memory, in order, to be written
-    // by the next commit() or flush() that gets the lock. heldCommits() says how many wait;
-    // a kill meanwhile loses them, so the supervisor must be told.
-    // Other write failures (disk full ...) throw SessionError; the commit stays held.
+    // by the next commit(), close() or finish() that gets the lock. heldCommits() says how
+    // many wait; a kill meanwhile loses them, so the supervisor must be told.
+    // After writing, the file is read back (the header's checksum, the last commit and its
+    // rows): another program may have emptied, cut, copied over or put back an old copy of it
+    // while the commit was fsynced, which no stamp taken afterwards can tell from the writer's
+    // own doing. Anything that differs, and any other write failure, saves every commit again
+    // beside the file and goes on there (takeNotices() says so). Only when even that cannot be
+    // written (disk full ...) does it throw SessionError; the commit stays held.
     bool commit();
     std::size_t heldCommits() const;
     double heldForSeconds() const;  // since the oldest held commit; 0 when none is held
-    // Waits as long as it takes until every held commit is written, calling
-    // waiting(seconds waited, WaitingFor::WriteLock) about once a second meanwhile.
+    // What close() and finish() call about once a second while they wait.
     enum class WaitingFor {
         WriteLock,  // another program holds the write lock: nothing can be written
         Readers,  // finish(): a reader's open transaction keeps the last commits in the -wal
     };
     using WaitCallback = std::function<void(double secondsWaited, WaitingFor what)>;
-    void flush(const WaitCallback& waiting = {});
+    // The end of a session that did not run to its end: commit(), then wait as long as it
+    // takes until every held commit is written (calling waiting(seconds, WaitingFor::WriteLock)
+    // about once a second), then read the whole file back and compare it with every commit,
+    // flag and summary written. If it differs, every commit is saved again beside it. Throws
+    // SessionError, in one sentence saying what happened and where the whole session is, when
+    // the session is no longer under the name it was created with (path() says where it is):
+    // whatever the run did, its file was overwritten or taken, so it must not end as if all
+    // were well. Adding or committing afterwards is a std::logic_error.
+    void close(const WaitCallback& waiting = {});
     // What the supervisor must hear at once, each returned once: the session file or its
     // -wal deleted, replaced or overwritten in place by another program while it was written
     // (the writer then writes every commit again under the name, or beside it, and flags the
@@ -195,13 +207,15 @@ public:
     // (session/pacing.h). Like a flag, not part of any checksum, and it changes no outcome.
     void summarize(const std::string& name, const std::string& text);
     // commit(), mark the session complete (meta key "completed_at") and fold the WAL into
-    // the file, leaving one self-contained file. Waits for the write lock like flush(). A
+    // the file, leaving one self-contained file. Waits for the write lock like close(). A
     // reader in a transaction (export, replay, a DB browser, a sqlite3 script) keeps the
     // commits made since it began out of the file; finish waits for it up to foldWaitS,
     // calling waiting(seconds, WaitingFor::Readers), and then writes the whole session again
     // into a new file that takes the name (the reader keeps the one it has open). Either way
     // the file alone is the whole session when finish returns. The -wal is removed where no
-    // other program has the file open. Adding or committing afterwards is a std::logic_error.
+    // other program has the file open. Then the whole file is read back and checked, and
+    // SessionError thrown, as close() does. Adding or committing afterwards is a
+    // std::logic_error.
     static constexpr double kFoldWaitS = 2.0;
     void finish(const WaitCallback& waiting = {}, double foldWaitS = kFoldWaitS);
 
