@@ -27,6 +27,13 @@ namespace {
 // h_w's cap: the history never outweighs this many frames' spatial estimates, so that a change
 // the gradient misses still fades in within a few frames.
 constexpr float kMaxHistoryWeight = 16.0f;
+// How near a texel centre (pixels) a pixel's reprojection must land for the pixel to count as
+// still: its history texel read as it is and its own lattice samples kept exact
+// (shaders/stu.frag). Above the rounding of a still camera's reprojection (every pixel of a
+// still 1080p frame lands within it; 3.6 % miss 1e-4 px), far below any resampling's blur: a
+// pixel drifting at the tolerance moves 0.008 px over a lattice cycle of 8 frames before its
+// own sample is shaded again.
+constexpr float kStillTolerance = 0.001f;
 
 // The order the lattice's phases are shaded in: each next phase far from the last, so that a
 // frame's samples and the previous frame's interleave (Herzog et al.'s Figure 2 for 2 x 2).
@@ -108,7 +115,7 @@ private:
     struct Slot {
         GBuffer geometry;
         gl::Texture history;  // GL_RGBA32F: rgb h_r, a h_w
-        gl::Texture gradients;  // GL_RGBA32F: the last three relative temporal gradients
+        gl::Texture gradients;  // GL_RGBA32F: the last three relative temporal gradients, own flag
     };
 
     ConventionalRenderer& conventional() {
@@ -157,10 +164,12 @@ private:
         bindTexture(program_, "uPreviousDepth", 8, previous.depth);
         bindTexture(program_, "uPreviousIds", 9, previous.ids);
         auto u = [&](const char* name) { return gl::uniform(program_, name); };
-        const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(history_.viewProjection())));
-        glUniformMatrix4fv(u("uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+        const glm::dmat4 inverse = glm::inverse(glm::dmat4(history_.viewProjection()));
+        const glm::mat4 reprojection = glm::mat4(glm::dmat4(history_.previousViewProjection()) * inverse);
+        glUniformMatrix4fv(u("uInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(glm::mat4(inverse)));
         glUniformMatrix4fv(u("uPreviousViewProjection"), 1, GL_FALSE,
                            glm::value_ptr(history_.previousViewProjection()));
+        glUniformMatrix4fv(u("uReprojection"), 1, GL_FALSE, glm::value_ptr(reprojection));
         glUniform2i(u("uStep"), step_.x, step_.y);
         const glm::ivec2 phase = phases_[static_cast<std::size_t>(history_.frameIndex()) % phases_.size()];
         glUniform2i(u("uPhase"), phase.x, phase.y);
@@ -170,6 +179,7 @@ private:
         glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
         glUniform1f(u("uMaxHistoryWeight"), kMaxHistoryWeight);
         glUniform1f(u("uDepthTolerance"), FrameHistory::kSameSurfaceDepth);
+        glUniform1f(u("uStillTolerance"), kStillTolerance);
         pass_.draw();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
         for (GLenum a : five) glFramebufferTexture2D(GL_FRAMEBUFFER, a, GL_TEXTURE_2D, 0, 0);
