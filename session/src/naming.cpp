@@ -109,6 +109,18 @@ void removeAbandonedCreations(const std::string& resultsDir) {
 
 namespace warplab::session {
 
+std::string playerKind(const std::string& player) {
+    const auto named = [&](const char* name) {
+        const std::string n = name;
+        return player == n || player.rfind(n + ":", 0) == 0 || player.rfind(n + " (", 0) == 0;
+    };
+    if (named("human")) return "human";
+    if (named("bot")) return "bot";
+    if (named("sim")) return "simulated";
+    if (named("replay")) return "replay";
+    return "";
+}
+
 std::string utcNow() {
     using namespace std::chrono;
     const auto now = system_clock::now();

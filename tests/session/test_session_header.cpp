@@ -71,3 +71,16 @@ TEST(SessionHeader, ThePhotonMarkerIsStoredBesideTheChecksummedHeader) {
 
 }  // namespace
 }  // namespace warplab::session
+
+TEST(SessionHeader, PlayerKindNamesWhoPlayedFromThePlayerField) {
+    EXPECT_EQ(warplab::session::playerKind("human (cm_per_360=0, dpi=800, invert_y=0)"), "human");
+    EXPECT_EQ(warplab::session::playerKind("human"), "human");
+    EXPECT_EQ(warplab::session::playerKind("bot:5"), "bot");
+    EXPECT_EQ(warplab::session::playerKind("bot"), "bot");
+    EXPECT_EQ(warplab::session::playerKind("sim:12"), "simulated");
+    EXPECT_EQ(warplab::session::playerKind("replay:/data/P01.warplab-session"), "replay");
+    // A name that only starts like one is none of them.
+    EXPECT_EQ(warplab::session::playerKind("botany:1"), "");
+    EXPECT_EQ(warplab::session::playerKind("simon"), "");
+    EXPECT_EQ(warplab::session::playerKind(""), "");
+}

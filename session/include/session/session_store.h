@@ -261,6 +261,13 @@ struct SessionOutline {
     std::int64_t commits = 0, inputRows = 0, frameRows = 0;
 };
 
+// Who played a session, from its header's `player`: "human" (a person in a window), "bot",
+// "simulated" (a simulated participant, `sim:SEED`) or "replay" (another session's input).
+// The one place the kinds are named: export's per-trial and per-participant files, study
+// status and the report all say it so, and the analysis keeps people apart from the rest.
+// "" for a `player` none of these (a file written by a later warplab).
+std::string playerKind(const std::string& player);
+
 // Now, as the store writes its times: ISO 8601 UTC with milliseconds, e.g. 2024-05-01T12:34:56.789Z.
 std::string utcNow();
 
