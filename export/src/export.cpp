@@ -369,122 +369,121 @@ private:
 }  // namespace
 
 std::vector<CsvColumns> exportColumns() {
-    return {
-        std::vector<std::string> matches = headerOf(matchColumns());
-        const std::size_t ratingsAt = matches.size();
-        for (const std::string& name : headerOf(matchTrailingColumns())) matches.push_back(name);
-        return {{"sessions.csv", headerOf(sessionColumns()), "", 0},
-                {"shots.csv", headerOf(shotColumns()), "", 0},
-                {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
-                {"matches.csv", matches, kRatingColumn, ratingsAt},
-                {"ratings.csv", headerOf(ratingColumns()), "", 0},
-                {"answers.csv", headerOf(answerColumns()), "", 0},
-                {"conditions.csv", headerOf(conditionColumns()), "", 0},
-                {"pacing.csv", headerOf(pacingColumns()), "", 0},
-                {"games.csv", headerOf(gameColumns()), "", 0},
-                {"participants.csv", headerOf(participantColumns()), "", 0},
-                {"orders.csv", headerOf(orderColumns()), "", 0}};
+    std::vector<std::string> matches = headerOf(matchColumns());
+    const std::size_t ratingsAt = matches.size();
+    for (const std::string& name : headerOf(matchTrailingColumns())) matches.push_back(name);
+    return {{"sessions.csv", headerOf(sessionColumns()), "", 0},
+            {"shots.csv", headerOf(shotColumns()), "", 0},
+            {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
+            {"matches.csv", matches, kRatingColumn, ratingsAt},
+            {"ratings.csv", headerOf(ratingColumns()), "", 0},
+            {"answers.csv", headerOf(answerColumns()), "", 0},
+            {"conditions.csv", headerOf(conditionColumns()), "", 0},
+            {"pacing.csv", headerOf(pacingColumns()), "", 0},
+            {"games.csv", headerOf(gameColumns()), "", 0},
+            {"participants.csv", headerOf(participantColumns()), "", 0},
+            {"orders.csv", headerOf(orderColumns()), "", 0}};
+}
+
+ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
+                            std::ostream& log) {
+    std::error_code ec;
+    if (!fs::is_directory(resultsDir, ec))
+        throw std::runtime_error("results folder '" + resultsDir + "' " +
+                                 (fs::exists(resultsDir, ec) ? "is not a folder." : "does not exist."));
+    const std::vector<fs::path> files = sessionFiles(resultsDir, log);
+    if (files.empty())
+        throw std::runtime_error("results folder '" + resultsDir + "' holds no session files (*" + kSessionSuffix +
+                                 "), nothing to export.");
+    fs::create_directories(outDir, ec);
+    if (ec || !fs::is_directory(outDir, ec)) {
+        // The reason a read-only mount or a file in the way gives, not just that it failed.
+        const std::string why = ec ? ec.message() : "a file of that name is in the way";
+        throw std::runtime_error("cannot create the output folder '" + outDir + "': " + why + ".");
     }
 
-    ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
-                                std::ostream& log) {
-        std::error_code ec;
-        if (!fs::is_directory(resultsDir, ec))
-            throw std::runtime_error("results folder '" + resultsDir + "' " +
-                                     (fs::exists(resultsDir, ec) ? "is not a folder." : "does not exist."));
-        const std::vector<fs::path> files = sessionFiles(resultsDir, log);
-        if (files.empty())
-            throw std::runtime_error("results folder '" + resultsDir + "' holds no session files (*" + kSessionSuffix +
-                                     "), nothing to export.");
-        fs::create_directories(outDir, ec);
-        if (ec || !fs::is_directory(outDir, ec)) {
-            // The reason a read-only mount or a file in the way gives, not just that it failed.
-            const std::string why = ec ? ec.message() : "a file of that name is in the way";
-            throw std::runtime_error("cannot create the output folder '" + outDir + "': " + why + ".");
-        }
+    // The study plan participants.csv lists: --study's, read first so that a bad one ends the
+    // export before it writes anything.
+    std::optional<plan::StudyPlan> studyPlan;
+    std::string planDir = options.studyDir;
+    if (!planDir.empty()) studyPlan = plan::readPlan(planDir);
 
-        // The study plan participants.csv lists: --study's, read first so that a bad one ends the
-        // export before it writes anything.
-        std::optional<plan::StudyPlan> studyPlan;
-        std::string planDir = options.studyDir;
-        if (!planDir.empty()) studyPlan = plan::readPlan(planDir);
-
-        ExportSummary summary;
-        Exporter exporter(outDir, options, carriedOn(files, resultsDir));
-        for (std::size_t i = 0; i < files.size(); ++i) {
-            const std::string name = fs::relative(files[i], resultsDir, ec).generic_string();
-            const ExportedSession s = exporter.add(files[i], ec ? files[i].string() : name);
-            log << "export: [" << i + 1 << "/" << files.size() << "] " << s.file << ": "
-                << (s.included ? "included" : (s.status == "damaged" ? "skipped" : "excluded"));
-            if (s.status != "ok") log << " (" << s.status << ": " << s.why << ")";
-            log << "\n";
-            summary.sessions.push_back(s);
-        }
-        summary.written = exporter.close(outDir);
-        for (const auto& warning : exporter.warnings()) log << "export: warning: " << warning << "\n";
-        // Else the plan beside the results folder, when the sessions were run from one.
-        if (!studyPlan && !exporter.planIds().empty()) {
-            planDir = planFolderOf(resultsDir).string();
-            const std::string planFile = (fs::path(planDir) / "study.json").string();
-            if (!fs::exists(planFile, ec)) {
-                log << "export: warning: the sessions were run from a study plan, but there is no '" << planFile
-                    << "'; participants.csv is not written (--study DIR names the plan's folder)\n";
-            } else {
-                try {
-                    studyPlan = plan::readPlan(planDir);
-                } catch (const plan::PlanError& e) {
-                    log << "export: warning: participants.csv is not written: " << e.what() << "\n";
-                }
+    ExportSummary summary;
+    Exporter exporter(outDir, options, carriedOn(files, resultsDir));
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const std::string name = fs::relative(files[i], resultsDir, ec).generic_string();
+        const ExportedSession s = exporter.add(files[i], ec ? files[i].string() : name);
+        log << "export: [" << i + 1 << "/" << files.size() << "] " << s.file << ": "
+            << (s.included ? "included" : (s.status == "damaged" ? "skipped" : "excluded"));
+        if (s.status != "ok") log << " (" << s.status << ": " << s.why << ")";
+        log << "\n";
+        summary.sessions.push_back(s);
+    }
+    summary.written = exporter.close(outDir);
+    for (const auto& warning : exporter.warnings()) log << "export: warning: " << warning << "\n";
+    // Else the plan beside the results folder, when the sessions were run from one.
+    if (!studyPlan && !exporter.planIds().empty()) {
+        planDir = planFolderOf(resultsDir).string();
+        const std::string planFile = (fs::path(planDir) / "study.json").string();
+        if (!fs::exists(planFile, ec)) {
+            log << "export: warning: the sessions were run from a study plan, but there is no '" << planFile
+                << "'; participants.csv is not written (--study DIR names the plan's folder)\n";
+        } else {
+            try {
+                studyPlan = plan::readPlan(planDir);
+            } catch (const plan::PlanError& e) {
+                log << "export: warning: participants.csv is not written: " << e.what() << "\n";
             }
         }
-        if (studyPlan) {
-            for (const auto& [id, count] : exporter.planIds())
-                if (id != studyPlan->id)
-                    log << "export: warning: " << count << (count == 1 ? " session was" : " sessions were")
-                        << " run from another study plan (plan_id " << id << ") than '"
-                        << (fs::path(planDir) / "study.json").string() << "' (id " << studyPlan->id
-                        << "); participants.csv does not count them\n";
-            for (std::string& path : writeParticipants(outDir, *studyPlan, exporter.planSessions()))
-                summary.written.push_back(std::move(path));
-        }
-
-        std::map<std::string, int> byStatus;
-        int included = 0;
-        for (const auto& s : summary.sessions) {
-            ++byStatus[s.status];
-            included += s.included;
-        }
-        log << "export: " << files.size() << " session files, " << included << " included";
-        for (const auto& [status, count] : byStatus)
-            if (status != "ok") log << ", " << count << " " << status;
-        log << "\n";
-        if (!options.includeIncomplete && byStatus.count("incomplete") != 0)
-            log << "export: incomplete sessions are left out; --include-incomplete keeps their completed trials\n";
-        if (!options.includeFlagged && byStatus.count("flagged") != 0)
-            log << "export: flagged sessions are left out; --include-flagged keeps them\n";
-        return summary;
+    }
+    if (studyPlan) {
+        for (const auto& [id, count] : exporter.planIds())
+            if (id != studyPlan->id)
+                log << "export: warning: " << count << (count == 1 ? " session was" : " sessions were")
+                    << " run from another study plan (plan_id " << id << ") than '"
+                    << (fs::path(planDir) / "study.json").string() << "' (id " << studyPlan->id
+                    << "); participants.csv does not count them\n";
+        for (std::string& path : writeParticipants(outDir, *studyPlan, exporter.planSessions()))
+            summary.written.push_back(std::move(path));
     }
 
-    std::vector<ConditionListing> conditionsOf(const game::Study& study) {
-        const std::vector<std::string> analysed = study.analysedModes();
-        std::vector<ConditionListing> rows;
-        for (const std::string& name : study.modes()) {
-            const bool seen = std::any_of(rows.begin(), rows.end(),
-                                          [&](const ConditionListing& r) { return r.summary.condition.name == name; });
-            if (seen) continue;
-            rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
-                            std::find(analysed.begin(), analysed.end(), name) != analysed.end()});
-        }
-        return rows;
+    std::map<std::string, int> byStatus;
+    int included = 0;
+    for (const auto& s : summary.sessions) {
+        ++byStatus[s.status];
+        included += s.included;
     }
+    log << "export: " << files.size() << " session files, " << included << " included";
+    for (const auto& [status, count] : byStatus)
+        if (status != "ok") log << ", " << count << " " << status;
+    log << "\n";
+    if (!options.includeIncomplete && byStatus.count("incomplete") != 0)
+        log << "export: incomplete sessions are left out; --include-incomplete keeps their completed trials\n";
+    if (!options.includeFlagged && byStatus.count("flagged") != 0)
+        log << "export: flagged sessions are left out; --include-flagged keeps them\n";
+    return summary;
+}
 
-    void writeConditionTable(std::ostream & out, const std::vector<ConditionListing>& rows) {
-        CsvFile table(out, headerOf(conditionColumns()));
-        for (const ConditionListing& row : rows) {
-            writeCells(table, conditionColumns(), row);
-            table.endRow();
-        }
-        table.close();
+std::vector<ConditionListing> conditionsOf(const game::Study& study) {
+    const std::vector<std::string> analysed = study.analysedModes();
+    std::vector<ConditionListing> rows;
+    for (const std::string& name : study.modes()) {
+        const bool seen = std::any_of(rows.begin(), rows.end(),
+                                      [&](const ConditionListing& r) { return r.summary.condition.name == name; });
+        if (seen) continue;
+        rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
+                        std::find(analysed.begin(), analysed.end(), name) != analysed.end()});
     }
+    return rows;
+}
+
+void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows) {
+    CsvFile table(out, headerOf(conditionColumns()));
+    for (const ConditionListing& row : rows) {
+        writeCells(table, conditionColumns(), row);
+        table.endRow();
+    }
+    table.close();
+}
 
 }  // namespace warplab::exporter
