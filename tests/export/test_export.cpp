@@ -279,7 +279,8 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
 
     // hitrates.csv: exactly the expected rows, rates exactly hits/shots.
     EXPECT_EQ(headerOf(out + "/hitrates.csv"),
-              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate"}));
+              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate",
+                                        "player_kind"}));
     const auto hitrates = readCsv(out + "/hitrates.csv");
     ASSERT_EQ(hitrates.size(), expected.size());
     int clickRows = 0;
@@ -322,7 +323,10 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     // matches.csv and ratings.csv: the scored round's matches, four ratings each.
     const auto matches = readCsv(out + "/matches.csv");
     EXPECT_EQ(static_cast<int>(matches.size()), scoredMatches);
-    EXPECT_EQ(headerOf(out + "/matches.csv").back(), "rating_4");
+    // The ratings last but for the columns added after them (export.cpp: matchTrailingColumns).
+    const auto matchHeader = headerOf(out + "/matches.csv");
+    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 3, matchHeader.end()),
+              (std::vector<std::string>{"rating_4", "player_kind", "condition_position"}));
     for (const auto& m : matches) {
         EXPECT_EQ(std::stoi(m.at("clicks")),
                   std::stoi(m.at("green_hits")) + std::stoi(m.at("red_hits")) + std::stoi(m.at("misses")));
@@ -1023,9 +1027,10 @@ TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
 }
 
 TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
+    // The folder first: scratch() empties what it names, so the results inside come after.
+    const std::string inTheWay = scratch("no-out") + "/a-file";
     const std::string results = scratch("no-out/results");
     headless("shooter-quick.json", "P01", results, 1);
-    const std::string inTheWay = scratch("no-out") + "/a-file";
     std::ofstream(inTheWay) << "not a folder\n";
     try {
         exportQuietly(results, inTheWay + "/out");
