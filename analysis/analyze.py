@@ -36,7 +36,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from warplab_analysis import inputs, report, stats  # noqa: E402
+from warplab_analysis import inputs, players, questions, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -179,8 +179,41 @@ def analyse_click(loaded, statements, requested_reference, table, game):
     return click
 
 
-def analyse(export_dir, reference_mode, rating_scale=None):
-    """rating_scale: (low, high) for every statement, overriding the scales ratings.csv records."""
+def analyse_part(export_dir, data, who, reference_mode, table):
+    """The statistics of the participants `who` (None: everyone): {games, sign_tests, click,
+    answers}. A game that has fewer than two of them has no paired tests: a note says so."""
+    games, described, matches, statements, answers = data
+    part = {"games": {}, "sign_tests": [], "click": None, "group_notes": [],
+            "answers": [a for a in answers or [] if who is None or a["participant"] in who]}
+    for game in order_games(games, described):
+        chosen = {p: row for p, row in games[game].items() if who is None or p in who}
+        if not chosen:
+            continue
+        if len(chosen) < 2:
+            part["group_notes"].append(f"{title_of(game)}: a single participant ({next(iter(chosen))}) here, so no "
+                                       "paired tests.")
+            continue
+        wording = described.get(game, {"hits_are": "hits", "shots_are": "shots"})
+        summary, tests = analyse_game(game, chosen, table, wording)
+        part["games"][game] = summary
+        part["sign_tests"] += tests
+    if matches is not None and matches[2]:  # header-only when no session played matches: no matches section then
+        chosen = [m for m in matches[0] if who is None or m["participant"] in who]
+        if chosen or who is None:
+            of_session = inputs.session_games(export_dir)
+            match_games = {of_session[s] for s in matches[3] if s in of_session}
+            game = match_games.pop() if len(match_games) == 1 else None
+            part["click"] = analyse_click((chosen,) + tuple(matches[1:]), statements, reference_mode, table, game)
+    return part
+
+
+def title_of(game):
+    return game[:1].upper() + game[1:]
+
+
+def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
+    """rating_scale: (low, high) for every statement, overriding the scales ratings.csv records;
+    pool_players: analyse people and scripted players together (players.py)."""
     if not os.path.exists(export_dir):
         raise BadInput(f"{export_dir}: no such directory (expected the folder `warplab export` wrote).")
     if not os.path.isdir(export_dir):
@@ -208,24 +241,39 @@ def analyse(export_dir, reference_mode, rating_scale=None):
     else:
         results["inputs"][inputs.CONDITIONS] = {"rows": len(records), "conditions": len(table.rows)}
     results["notes"] += table_notes
-    for game in order_games(games, described):
-        wording = described.get(game, {"hits_are": "hits", "shots_are": "shots"})
-        summary, tests = analyse_game(game, games[game], table, wording)
-        results["games"][game] = summary
-        results["sign_tests"] += tests
     if matches is not None:
         results["inputs"][inputs.MATCHES] = {"rows": matches[2], "scored_rows": len(matches[0])}
-        if matches[2]:  # header-only when no session played matches: no matches section then
-            of_session = inputs.session_games(export_dir)
-            match_games = {of_session[s] for s in matches[3] if s in of_session}
-            game = match_games.pop() if len(match_games) == 1 else None
-            results["click"] = analyse_click(matches, statements, reference_mode, table, game)
+    answers = inputs.load_answers(export_dir)
+    if answers is not None:
+        results["inputs"][inputs.ANSWERS] = {"answers": len(answers)}
+    kinds = inputs.load_player_kinds(export_dir)
+    everyone = sorted({p for g in games.values() for p in g} | set(kinds or {}), key=natural_key)
+    split = players.groups(kinds, everyone, natural_key)
+    results["players"] = {"sentence": players.sentence(kinds, everyone, natural_key), "pooled": pool_players,
+                          "kinds": None if kinds is None else {p: players.kind_of(kinds.get(p, set()))
+                                                               for p in everyone},
+                          "groups": split, "analysed": None}
+    if kinds is None:
+        results["notes"].append(players.UNKNOWN_NOTE)
+    parts = {"all": None} if kinds is None or pool_players or len(split) <= 1 else split
+    data = (games, described, matches, statements, answers)
+    for k, (group, who) in enumerate(parts.items()):
+        part = analyse_part(export_dir, data, None if who is None else set(who), reference_mode, table)
+        if k == 0:
+            results["players"]["analysed"] = None if who is None else group
+            results.update(part)
+        else:
+            results.setdefault("player_groups", []).append(dict(part, group=group, participants=who))
     if statements is not None:
         results["inputs"][inputs.RATINGS] = {"statements": len(statements[0])}
-    all_modes = {m for g in results["games"].values() for m in g["modes"]}
-    if results["click"]:
-        all_modes |= set(results["click"]["modes"])
+    all_modes = set()
+    for part in [results] + results.get("player_groups", []):
+        all_modes |= {m for g in part["games"].values() for m in g["modes"]}
+        if part["click"]:
+            all_modes |= set(part["click"]["modes"])
     results["mode_order"] = table.order(all_modes)
+    for part in [results] + results.get("player_groups", []):
+        part["questions"] = questions.summarise(part.pop("answers"), results["mode_order"], natural_key)
     unlisted = [m for m in results["mode_order"] if not table.known(m)]
     if source is not None and unlisted:
         results["notes"].append(f"{source} does not list {', '.join(unlisted)}: they follow the others by name, and "
@@ -239,11 +287,22 @@ def draw_figures(results, out_dir):
     written, taken = [], set()
     table = ConditionTable(results["conditions"])
     palette = table.all_conditions()
+    for part in [results] + results.get("player_groups", []):
+        # A second group's figures are named after it: "scripted_shooter_hit_rates.png".
+        prefix = f"{part['group']}_" if "group" in part else ""
+        written += draw_part(figures, part, out_dir, taken, table, palette, prefix, results["conditions_file"])
+    results["figures"] = written
+    return [os.path.join(out_dir, name) for name in written]
+
+
+def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_file):
+    """The figures of one group's statistics (analyse_part); the file names written."""
+    written = []
     tests_by_game = {}
-    for test in results["sign_tests"]:
+    for test in part["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
-    for game, summary in results["games"].items():
-        stem = file_stem(game, taken)
+    for game, summary in part["games"].items():
+        stem = file_stem(prefix + game, taken)
         name = f"{stem}_hit_rates.png"
         labels = {m: legend_label(m, table.latency(m, game)) for m in summary["modes"]}
         figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
@@ -265,17 +324,16 @@ def draw_figures(results, out_dir):
             written.append(name)
         elif len(summary["modes"]) > 1:
             upconverting = [m for m in palette if table.upconverts(m)]
-            lists_none = f"{results['conditions_file'] or inputs.MODES} lists none"
+            lists_none = f"{conditions_file or inputs.MODES} lists none"
             summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or lists_none}): "
                                     "no histograms of differences.")
-    click = results["click"]
+    click = part["click"]
     if click and click["modes"]:
-        name = file_stem("click_measures", taken) + ".png"
+        name = file_stem(prefix + "click_measures", taken) + ".png"
         figures.click_figure(os.path.join(out_dir, name), click, palette)
         click["figure"] = name
         written.append(name)
-    results["figures"] = written
-    return [os.path.join(out_dir, name) for name in written]
+    return written
 
 
 def legend_label(mode, latency):
@@ -323,9 +381,12 @@ def main(argv=None):
                              "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
                              "from before ratings.csv had them, 1:7, the protocol's default); a rating outside the "
                              "scale is refused")
+    parser.add_argument("--pool-players", action="store_true",
+                        help="analyse people and scripted players (bots, simulated participants) together; by "
+                             "default each kind is analysed on its own, people first")
     args = parser.parse_args(argv)
     try:
-        results = analyse(args.export_dir, args.reference_mode, args.rating_scale)
+        results = analyse(args.export_dir, args.reference_mode, args.rating_scale, args.pool_players)
     except BadInput as e:
         print(f"analyze: {e}", file=sys.stderr)
         return 1

@@ -13,18 +13,6 @@
 namespace warplab::app {
 namespace {
 
-// The conditions `study` names, each once, in the order its fields first name them.
-std::vector<exporter::ConditionListing> listingsOf(const game::Study& study) {
-    std::vector<exporter::ConditionListing> rows;
-    for (const std::string& name : study.modes()) {
-        const bool seen = std::any_of(rows.begin(), rows.end(), [&](const exporter::ConditionListing& r) {
-            return r.summary.condition.name == name;
-        });
-        if (!seen) rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz())});
-    }
-    return rows;
-}
-
 // "0 – 66.7 ms (0 – 8 frames)"
 std::string range(const condition::ModeSchedule::Range& r, double refreshHz) {
     char text[96];
@@ -36,7 +24,7 @@ std::string range(const condition::ModeSchedule::Range& r, double refreshHz) {
 int runConditions(const ParsedArgs& args) {
     if (args.positional().size() != 1) throw UsageError("conditions needs one PROTOCOL file");
     const auto study = game::loadStudy(args.positional().front());
-    const auto rows = listingsOf(*study);
+    const auto rows = exporter::conditionsOf(*study);
     if (args.flag("csv")) {
         exporter::writeConditionTable(std::cout, rows);
         return 0;
@@ -54,6 +42,7 @@ int runConditions(const ParsedArgs& args) {
                     condition::number(c.renderHz).c_str(), static_cast<long long>(r.summary.lagFrames), fill.c_str(),
                     condition::lateWarpName(c.lateWarp), range(r.summary.viewS, r.summary.refreshHz).c_str(),
                     range(r.summary.sceneS, r.summary.refreshHz).c_str());
+        if (!r.analysed) std::printf("    training only: the part the study analyses (the test) does not run it\n");
         if (!c.description.empty()) std::printf("    %s\n", c.description.c_str());
     }
     return 0;

@@ -23,7 +23,7 @@ DATA = Path(__file__).resolve().parent / "data"
 sys.path.insert(0, str(ANALYSIS))
 
 import analyze  # noqa: E402
-from warplab_analysis import papers, stats  # noqa: E402
+from warplab_analysis import papers, players, stats  # noqa: E402
 
 HITRATES_HEADER = "participant,game,mode,shots,hits,timeouts,hit_rate"
 
@@ -446,7 +446,8 @@ def test_without_modes_csv_modes_are_in_id_order_with_a_note(tmp_path):
 BEFORE = DATA / "modes_csv_reports"
 # report.json's keys that the analysis has added since the pinned reports were written: the
 # condition table's rows (here modes.csv's, mapped) and which file they come from.
-ADDED_KEYS = {"conditions", "conditions_file"}
+# Added since, each said once: who played (unknown in these exports: a note), the questions.
+ADDED_KEYS = {"conditions", "conditions_file", "players", "questions", "group_notes"}
 
 
 def modes_csv_exports(base):
@@ -500,8 +501,11 @@ def test_modes_csv_export_reports_as_before(tmp_path, name):
     assert [r["condition"] for r in report["conditions"]] == [m["mode"] for m in expected["modes"]]
     if report["sessions"]:
         assert report["sessions"].pop("players") == {"human": 5}  # added since: who played, by kind
+    report["notes"].remove(players.UNKNOWN_NOTE)
+    assert report["players"]["kinds"] is None and report["questions"] == [] and report["group_notes"] == []
     assert_same({k: report[k] for k in expected}, expected, "report")
     md = (tmp_path / "out" / "report.md").read_text(encoding="utf-8").replace(str(export), "EXPORT")
+    md = md.replace(players.UNKNOWN_NOTE + "\n\n", "")
     assert without_conditions_section(md) == (BEFORE / f"{name}.md").read_text(encoding="utf-8")
 
 

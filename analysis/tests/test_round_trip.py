@@ -131,7 +131,7 @@ def check_conditions_csv(export, report, data):
         header = next(csv.reader(f))
     assert header == ["condition", "render_hz", "lag_frames", "fill", "late_warp", "view_latency_min_ms",
                       "view_latency_max_ms", "scene_latency_min_ms", "scene_latency_max_ms", "fill_hz", "refresh_hz",
-                      "game", "description"]
+                      "game", "description", "used_in"]
     names = list(dict.fromkeys(r["condition"] for r in rows))
     assert data["conditions_file"] == "conditions.csv"
     assert [m["mode"] for m in data["modes"]] == names

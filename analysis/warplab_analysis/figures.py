@@ -1,6 +1,7 @@
 """The report's figures (PNG, matplotlib's Agg backend, so no display is needed).
 
-- hit rate per participant, one series per mode (seed 004 Figure 32); beyond
+- hit rate per participant, one marker per mode, not joined (participants are categories; seed 004
+  Figure 32); beyond
   PER_PARTICIPANT_LIMIT participants, one box of the participants' hit rates per mode instead;
 - histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
@@ -47,8 +48,9 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     dodge = min(0.25, 0.6 / max(1, len(modes)))
     for k, mode in enumerate(modes):
         y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
-        ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="-", linewidth=0.8, markersize=5,
-                color=colour(mode, palette), label=labels.get(mode, mode))
+        # Points only: participants are categories, not a series, so no line joins one to the next.
+        ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="none",
+                markersize=6, color=colour(mode, palette), label=labels.get(mode, mode))
     ax.set_xticks(x)
     ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
     ax.set_xlim(-0.5, len(participants) - 0.5)

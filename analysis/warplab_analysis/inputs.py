@@ -512,3 +512,58 @@ def load_games(export_dir):
         games[text(table, record, "game")] = {"hits_are": text(table, record, "hits_are"),
                                               "shots_are": text(table, record, "shots_are")}
     return games
+
+
+ANSWERS = "answers.csv"
+ANSWERS_REQUIRED = ["participant", "kind", "question_index", "prompt", "mode", "value", "text"]
+ANSWER_KINDS = ("likert", "choice", "text")
+# player_kind, as export writes it (session::playerKind): who played a session.
+PEOPLE = "human"
+SCRIPTED = ("bot", "simulated")
+
+
+def load_player_kinds(export_dir):
+    """None for an export without hitrates.csv's player_kind column (from before it); else
+    {participant: the set of kinds of their sessions} over hitrates.csv's rows (a cell may list
+    several, `;`-separated, for an id that named a person in one session and a bot in another)."""
+    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED)
+    if "player_kind" not in table.header:
+        return None
+    kinds = {}
+    for record in table.records:
+        cell = record["player_kind"]
+        kinds.setdefault(record["participant"], set()).update(k for k in cell.split(";") if k)
+    return kinds
+
+
+def load_answers(export_dir):
+    """None without answers.csv; else its answers of the scored blocks in file order, each a dict:
+    participant, kind, question (index), question_id, prompt, mode, value (None for text),
+    text, block (block_index or None), player_kind (None in an export from before it)."""
+    path = os.path.join(export_dir, ANSWERS)
+    if not os.path.exists(path):
+        return None
+    table = read_table(path, ANSWERS_REQUIRED)
+    answers = []
+    for record in table.records:
+        if "scored_phase" in table.header and not boolean(table, record, "scored_phase"):
+            continue
+        kind = text(table, record, "kind")
+        if kind not in ANSWER_KINDS:
+            raise BadInput(f"{path}: line {record['_line']}, column 'kind' is not likert, choice or text: {kind!r}.")
+        value = None
+        if kind != "text":
+            value = number(table, record, "value")
+            if not float(value).is_integer():
+                raise BadInput(f"{path}: line {record['_line']}, column 'value' is not a whole number: "
+                               f"{record['value']!r}.")
+            value = int(value)
+        block = None
+        if "block_index" in table.header and record["block_index"].strip() != "":
+            block = whole(table, record, "block_index")
+        answers.append({"participant": text(table, record, "participant"), "kind": kind,
+                        "question": number(table, record, "question_index", integer=True),
+                        "question_id": record.get("question_id", ""), "prompt": record["prompt"],
+                        "mode": record["mode"], "value": value, "text": record["text"], "block": block,
+                        "player_kind": record.get("player_kind")})
+    return answers

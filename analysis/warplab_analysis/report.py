@@ -13,7 +13,7 @@ Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.js
 import math
 import statistics
 
-from . import papers, planning
+from . import papers, planning, players
 
 NOTHING = "–"
 
@@ -269,6 +269,7 @@ def render(results):
     files = ", ".join(name + " (" + ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in info.items()) + ")"
                       for name, info in results["inputs"].items())
     out.append(f"From `{results['export_dir']}`: {files}.\n")
+    players_lines(out, results)
     sessions = results["sessions"]
     if sessions:
         by_game = sessions.get("by_game", {})
@@ -281,18 +282,53 @@ def render(results):
     for note in results["notes"]:
         out.append(f"{note}\n")
     conditions_section(out, results)
+    game_sections(out, results, results)
+    questions_section(out, results["questions"])
+    for part in results.get("player_groups", []):
+        label = players.GROUP_LABELS[part["group"]]
+        out.append(f"# {cell(label[:1].upper() + label[1:])}, on their own: {cell(', '.join(part['participants']))}\n")
+        out.append("The same analysis of these participants alone: none of them is in the statistics above, nor any "
+                   "of those above in these.\n")
+        game_sections(out, results, part)
+        questions_section(out, part["questions"])
+    return "\n".join(out)
+
+
+def players_lines(out, results):
+    """Who played, and whose statistics follow: the report's first words after its sources."""
+    who = results["players"]
+    if who["sentence"]:
+        out.append(f"**{cell(who['sentence'])}**\n")
+    groups = who["groups"]
+    if who["kinds"] is None or len(groups) <= 1:
+        return
+    if who["pooled"]:
+        out.append("People and scripted players are **pooled** (--pool-players): every statistic below counts them "
+                   "together.\n")
+        return
+    analysed = who["analysed"]
+    others = [players.GROUP_LABELS[g] for g in groups if g != analysed]
+    out.append(f"The statistics below are of the **{cell(players.GROUP_LABELS[analysed])} only** "
+               f"({cell(', '.join(groups[analysed]))}); the {cell(' and the '.join(others))} follow, each on their "
+               "own, at the end (--pool-players analyses everyone together).\n")
+
+
+def game_sections(out, results, part):
+    """One group's hit-rate and match sections (analyze.analyse_part)."""
+    for note in part.get("group_notes", []):
+        out.append(f"{note}\n")
     tests_by_game = {}
-    for test in results["sign_tests"]:
+    for test in part["sign_tests"]:
         tests_by_game.setdefault(test["game"], []).append(test)
     # The matches' sections go with the game whose sessions played them; when sessions.csv does not
     # say which game that is, they stand on their own after the games.
-    click = results["click"]
+    click = part["click"]
     match_game = click["game"] if click is not None else None
-    games = list(results["games"])
+    games = list(part["games"])
     if click is not None and match_game not in games:
         games.append(match_game)
     for game in games:
-        summary = results["games"].get(game)
+        summary = part["games"].get(game)
         if click is not None and game == match_game:
             heading = f"{title(game)} game" if game else "Matches"
             out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
@@ -307,7 +343,38 @@ def render(results):
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
             if shares(summary["modes"], papers.THESIS_MODES, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
-    return "\n".join(out)
+
+
+def mode_name(mode):
+    return "(the whole test: its conditions interleaved)" if mode == "" else cell(mode)
+
+
+def questions_section(out, summaries):
+    """Every question asked after blocks (answers.csv), per condition (questions.summarise)."""
+    if not summaries:
+        return
+    out.append("## Questions after blocks (answers.csv)\n")
+    out.append("Per question and condition, over every answer given in the scored blocks (a participant who "
+               "answered twice in a condition counts twice). Likert: n, median, the 25 % and 75 % quantiles and their "
+               "difference, the IQR, by R's default quantiles (type 7); choice: how many chose each option; text: "
+               "every answer, by participant and block (block_index, 0-based).\n")
+    for q in summaries:
+        name = f"{q['question_id']}: " if q["question_id"] else ""
+        out.append(f"### Question {q['question'] + 1} ({q['kind']}): {cell(name + q['prompt'])}\n")
+        if q["kind"] == "likert":
+            rows = [[mode_name(m), str(e["n"]), fmt(e["median"], "g"), fmt(e["q25"], "g"), fmt(e["q75"], "g"),
+                     fmt(e["iqr"], "g")] for m, e in q["by_mode"].items()]
+            out.append(table(["condition", "n", "median", "25 %", "75 %", "IQR"], rows))
+        elif q["kind"] == "choice":
+            rows = [[mode_name(m), str(e["n"]), "; ".join(f"{c['option']}. {cell(c['text'])}: {c['count']}"
+                                                           for c in e["counts"])]
+                    for m, e in q["by_mode"].items()]
+            out.append(table(["condition", "n", "chosen (option: times)"], rows))
+        else:
+            rows = [[mode_name(m), cell(a["participant"]), NOTHING if a["block"] is None else str(a["block"]),
+                     cell(a["text"]) if a["text"] else NOTHING]
+                    for m, e in q["by_mode"].items() for a in e["answers"]]
+            out.append(table(["condition", "participant", "block", "answer"], rows))
 
 
 def mean_sd(values):

@@ -187,14 +187,15 @@ public:
 
         const game::SessionResults results = study->results(data.events);
         measures_.emplace(study->game(), results.measure);
+        const std::string kind = session::playerKind(h.player);
         // What participants.csv needs of a plan's session, so it is not read a second time.
         if (!h.planId.empty()) planSessions_.push_back(plan::factsOf(path.string(), data, *study));
         addConditions(*study, name);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
         const SkippedFrames skipped(data, study->refreshHz());
-        writePacing(h.participant, name, data);
-        if (out.included) write(h.participant, name, study->game(), results, skipped);
+        writePacing(h.participant, name, data, kind);
+        if (out.included) write({h.participant, name, study->game(), kind, positionsOf(results)}, results, skipped);
         return out;
     }
 
@@ -207,17 +208,21 @@ public:
 
     // The conditions `study` runs, new ones (by game, name and refresh) in order of first use.
     // One name meaning two things in one export is said, since the analysis keys on names.
+    // A condition one session runs only in training and another in its test is used in a test.
     void addConditions(const game::Study& study, const std::string& session) {
-        for (const std::string& name : study.modes()) {
-            const condition::Condition& c = study.conditions().at(name);
+        for (const ConditionListing& listing : conditionsOf(study)) {
+            const condition::Condition& c = listing.summary.condition;
             const auto same = std::find_if(conditions_.begin(), conditions_.end(), [&](const ConditionListing& r) {
-                return r.game == study.game() && r.summary.condition.name == name &&
-                    r.summary.refreshHz == study.refreshHz();
+                return r.game == listing.game && r.summary.condition.name == c.name &&
+                    r.summary.refreshHz == listing.summary.refreshHz;
             });
             if (same == conditions_.end()) {
-                conditions_.push_back({study.game(), condition::summarize(c, study.refreshHz())});
-            } else if (!same->summary.condition.sameParts(c)) {
-                warnings_.push_back(session + " defines condition " + name +
+                conditions_.push_back(listing);
+                continue;
+            }
+            same->analysed = same->analysed || listing.analysed;
+            if (!same->summary.condition.sameParts(c)) {
+                warnings_.push_back(session + " defines condition " + c.name +
                                     " with other parts than an earlier session: conditions.csv lists the first");
             }
         }
@@ -227,13 +232,16 @@ public:
         CsvFile hitrates(file(outDir, "hitrates.csv"), headerOf(hitRateColumns()));
         for (const auto& [key, t] : tallies_) {
             const auto& [participant, gameName, mode] = key;
+            std::string kinds;
+            for (const std::string& kind : kinds_[participant]) kinds += (kinds.empty() ? "" : ";") + kind;
             writeCells(hitrates, hitRateColumns(),
-                       HitRateRow{participant, gameName, mode, t, timeoutGames_.count(gameName) != 0});
+                       HitRateRow{participant, gameName, mode, t, timeoutGames_.count(gameName) != 0, kinds});
             hitrates.endRow();
         }
         // One rating column per statement of the longest list seen (rating_1 is statement 0).
         std::vector<std::string> header = headerOf(matchColumns());
         for (int k = 1; k <= ratingColumns_; ++k) header.push_back(kRatingColumn + std::to_string(k));
+        for (const std::string& name : headerOf(matchTrailingColumns())) header.push_back(name);
         CsvFile matches(file(outDir, "matches.csv"), header);
         for (const MatchRow& row : matches_) {
             const game::MatchResult& m = row.match;
@@ -246,6 +254,7 @@ public:
                 else
                     matches.integer(r->value);
             }
+            writeCells(matches, matchTrailingColumns(), row);
             matches.endRow();
         }
         // Every condition a readable session's protocol runs, once per game and refresh.
@@ -276,24 +285,41 @@ private:
 
     // The session's pacing per mode: as its live run stored it, else (a headless session, an
     // older or interrupted one) from its frames table.
-    void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data) {
+    void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data,
+                     const std::string& kind) {
         std::vector<session::ModePacing> pacing;
         const auto stored = data.summaries.find("pacing");
         if (stored == data.summaries.end() || !session::parsePacing(stored->second, pacing))
             pacing = session::summarizePacing(data.frames, data.header.refreshHz);
         for (const session::ModePacing& p : pacing) {
-            writeCells(pacing_, pacingColumns(), PacingRow{participant, session, p});
+            writeCells(pacing_, pacingColumns(), PacingRow{participant, session, p, kind});
             pacing_.endRow();
         }
     }
 
-    void write(const std::string& participant, const std::string& session, const std::string& gameName,
-               const game::SessionResults& results, const SkippedFrames& skipped) {
+    // Each condition's place in the order the session's scored phase first presents it: its
+    // first scored shot or match (a match without a click still ran its condition).
+    static Positions positionsOf(const game::SessionResults& results) {
+        std::vector<std::pair<double, std::string>> firsts;
+        for (const auto& s : results.shots)
+            if (s.scoredPhase) firsts.emplace_back(s.time, s.mode);
+        for (const auto& m : results.matches)
+            if (m.scoredPhase) firsts.emplace_back(m.endTime - m.durationS, m.mode);
+        std::stable_sort(firsts.begin(), firsts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        Positions positions;
+        for (const auto& [time, mode] : firsts)
+            positions.emplace(mode, static_cast<std::int64_t>(positions.size()) + 1);
+        return positions;
+    }
+
+    void write(const Origin& from, const game::SessionResults& results, const SkippedFrames& skipped) {
+        const std::string& participant = from.participant;
+        const std::string& gameName = from.game;
+        kinds_[participant].insert(from.playerKind);
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            writeCells(shots_, shotColumns(),
-                       ShotRow{{participant, session, gameName}, s, skipped.between(s.spawnTime, s.time)});
+            writeCells(shots_, shotColumns(), ShotRow{from, s, skipped.between(s.spawnTime, s.time)});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
             Tally& t = tallies_[{participant, gameName, s.mode}];
@@ -308,15 +334,16 @@ private:
             if (!m.scoredPhase && !options_.allPhases) continue;
             for (const auto& r : m.ratings) {
                 ratingColumns_ = std::max(ratingColumns_, r.statementIndex + 1);
-                writeCells(ratings_, ratingColumns(), RatingRow{{participant, session, gameName}, m, r});
+                writeCells(ratings_, ratingColumns(), RatingRow{from, m, r});
                 ratings_.endRow();
             }
             // A match event is logged at its last frame.
-            matches_.push_back({participant, session, m, skipped.between(m.endTime - m.durationS, m.endTime)});
+            matches_.push_back({participant, from.session, m, skipped.between(m.endTime - m.durationS, m.endTime),
+                                from.playerKind, positionOf(from.positions, m.mode, m.scoredPhase)});
         }
         for (const auto& a : results.answers) {
             if (!a.scoredPhase && !options_.allPhases) continue;
-            writeCells(answers_, answerColumns(), AnswerRow{{participant, session, gameName}, a});
+            writeCells(answers_, answerColumns(), AnswerRow{from, a});
             answers_.endRow();
         }
     }
@@ -326,6 +353,7 @@ private:
     CsvFile sessions_, shots_, ratings_, answers_, pacing_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
+    std::map<std::string, std::set<std::string>> kinds_;  // participant -> the kinds of their included sessions
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
     std::vector<MatchRow> matches_;
     int ratingColumns_ = 0;
@@ -341,12 +369,20 @@ private:
 }  // namespace
 
 std::vector<CsvColumns> exportColumns() {
-    return {
-        {"sessions.csv", headerOf(sessionColumns()), ""},     {"shots.csv", headerOf(shotColumns()), ""},
-        {"hitrates.csv", headerOf(hitRateColumns()), ""},     {"matches.csv", headerOf(matchColumns()), kRatingColumn},
-        {"ratings.csv", headerOf(ratingColumns()), ""},       {"answers.csv", headerOf(answerColumns()), ""},
-        {"conditions.csv", headerOf(conditionColumns()), ""}, {"pacing.csv", headerOf(pacingColumns()), ""},
-        {"games.csv", headerOf(gameColumns()), ""},           {"participants.csv", headerOf(participantColumns()), ""}};
+    std::vector<std::string> matches = headerOf(matchColumns());
+    const std::size_t ratingsAt = matches.size();
+    for (const std::string& name : headerOf(matchTrailingColumns())) matches.push_back(name);
+    return {{"sessions.csv", headerOf(sessionColumns()), "", 0},
+            {"shots.csv", headerOf(shotColumns()), "", 0},
+            {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
+            {"matches.csv", matches, kRatingColumn, ratingsAt},
+            {"ratings.csv", headerOf(ratingColumns()), "", 0},
+            {"answers.csv", headerOf(answerColumns()), "", 0},
+            {"conditions.csv", headerOf(conditionColumns()), "", 0},
+            {"pacing.csv", headerOf(pacingColumns()), "", 0},
+            {"games.csv", headerOf(gameColumns()), "", 0},
+            {"participants.csv", headerOf(participantColumns()), "", 0},
+            {"orders.csv", headerOf(orderColumns()), "", 0}};
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
@@ -360,7 +396,11 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
         throw std::runtime_error("results folder '" + resultsDir + "' holds no session files (*" + kSessionSuffix +
                                  "), nothing to export.");
     fs::create_directories(outDir, ec);
-    if (!fs::is_directory(outDir, ec)) throw std::runtime_error("cannot create the output folder '" + outDir + "'.");
+    if (ec || !fs::is_directory(outDir, ec)) {
+        // The reason a read-only mount or a file in the way gives, not just that it failed.
+        const std::string why = ec ? ec.message() : "a file of that name is in the way";
+        throw std::runtime_error("cannot create the output folder '" + outDir + "': " + why + ".");
+    }
 
     // The study plan participants.csv lists: --study's, read first so that a bad one ends the
     // export before it writes anything.
@@ -403,7 +443,8 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
                     << " run from another study plan (plan_id " << id << ") than '"
                     << (fs::path(planDir) / "study.json").string() << "' (id " << studyPlan->id
                     << "); participants.csv does not count them\n";
-        summary.written.push_back(writeParticipants(outDir, *studyPlan, exporter.planSessions()));
+        for (std::string& path : writeParticipants(outDir, *studyPlan, exporter.planSessions()))
+            summary.written.push_back(std::move(path));
     }
 
     std::map<std::string, int> byStatus;
@@ -421,6 +462,19 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
     if (!options.includeFlagged && byStatus.count("flagged") != 0)
         log << "export: flagged sessions are left out; --include-flagged keeps them\n";
     return summary;
+}
+
+std::vector<ConditionListing> conditionsOf(const game::Study& study) {
+    const std::vector<std::string> analysed = study.analysedModes();
+    std::vector<ConditionListing> rows;
+    for (const std::string& name : study.modes()) {
+        const bool seen = std::any_of(rows.begin(), rows.end(),
+                                      [&](const ConditionListing& r) { return r.summary.condition.name == name; });
+        if (seen) continue;
+        rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
+                        std::find(analysed.begin(), analysed.end(), name) != analysed.end()});
+    }
+    return rows;
 }
 
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows) {

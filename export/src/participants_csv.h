@@ -16,13 +16,26 @@ struct ParticipantRow {
     const plan::StudyPlan& plan;
     const plan::ParticipantPlan& participant;
     const plan::ParticipantStatus& status;
+    const std::string& playerKinds;  // of their sessions the export read, ;-separated
+};
+
+// One place in one of a participant's orders: a row of orders.csv, the plan's orders as R reads
+// them without splitting strings.
+struct OrderRow {
+    const std::string& participant;
+    int protocolPosition;  // 1-based, in the order they play the protocols
+    const std::string& protocol;
+    int position;  // 1-based, in that protocol's counterbalanced order
+    const std::string& condition;
 };
 
 const std::vector<Column<ParticipantRow>>& participantColumns();
+const std::vector<Column<OrderRow>>& orderColumns();
 
-// participants.csv in outDir: one row per planned participant, in plan order; its path.
-// Their status from the sessions the export read (those of other plans are passed over).
-std::string writeParticipants(const std::string& outDir, const plan::StudyPlan& studyPlan,
-                              const std::vector<plan::SessionFacts>& sessions);
+// participants.csv and orders.csv in outDir: one row per planned participant, in plan order,
+// and one per place in each of their condition orders; their paths. Their status and player
+// kinds from the sessions the export read (those of other plans are passed over).
+std::vector<std::string> writeParticipants(const std::string& outDir, const plan::StudyPlan& studyPlan,
+                                           const std::vector<plan::SessionFacts>& sessions);
 
 }  // namespace warplab::exporter

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <stdexcept>
 
 namespace warplab::exporter {
 namespace {
@@ -24,7 +25,38 @@ std::function<void(CsvFile&, const SessionRow&)> whenRead(F cell) {
     };
 }
 
+// A human session's cm_per_360 as it played: its player says "human (cm_per_360=C, dpi=D, ...)",
+// where C = 0 (as live runs before they wrote the value used did) means the protocol's own turn
+// per count, which at the mouse's D counts per inch is a full turn in 2 pi / (turn per count) / D
+// inches. None for other players, and for a protocol whose mouse turns nothing.
+std::optional<double> cmPer360Used(const SessionRow& r) {
+    const std::string& player = r.data->header.player;
+    if (session::playerKind(player) != "human") return std::nullopt;
+    const auto field = [&](const std::string& name) -> std::optional<double> {
+        const std::size_t at = player.find(name + "=");
+        if (at == std::string::npos) return std::nullopt;
+        try {
+            return std::stod(player.substr(at + name.size() + 1));
+        } catch (const std::exception&) {
+            return std::nullopt;
+        }
+    };
+    const std::optional<double> cm = field("cm_per_360"), dpi = field("dpi");
+    if (cm && *cm > 0.0) return cm;
+    const double radiansPerCount = r.study->mouseRadiansPerCount();
+    if (!dpi || !(*dpi > 0.0) || !(radiansPerCount > 0.0)) return std::nullopt;
+    constexpr double kTwoPi = 6.283185307179586476925;
+    return kTwoPi / radiansPerCount / *dpi * 2.54;
+}
+
 }  // namespace
+
+std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& mode, bool scoredPhase) {
+    if (!scoredPhase) return std::nullopt;
+    const auto found = positions.find(mode);
+    if (found == positions.end()) return std::nullopt;
+    return found->second;
+}
 
 std::string joined(const std::map<std::string, std::string>& flags) {
     std::string out;
@@ -67,6 +99,14 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
              }));
          })},
         {"note", [](F& f, const R& r) { f.text(r.outcome.why); }},
+        {"player_kind", whenRead([](F& f, const R& r) { f.text(session::playerKind(r.data->header.player)); })},
+        {"cm_per_360", whenRead([](F& f, const R& r) {
+             const std::optional<double> cm = cmPer360Used(r);
+             if (cm)
+                 f.number(*cm);
+             else
+                 f.empty();
+         })},
     };
     return columns;
 }
@@ -94,6 +134,9 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
         {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
         {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
+        {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
+        {"condition_position",
+         [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.shot.mode, r.shot.scoredPhase)); }},
     };
     return columns;
 }
@@ -114,6 +157,9 @@ const std::vector<Column<RatingRow>>& ratingColumns() {
         {"answered_with", [](F& f, const R& r) { f.text(r.rating.answeredWith); }},
         {"scale_min", [](F& f, const R& r) { f.integer(r.rating.scaleMin); }},
         {"scale_max", [](F& f, const R& r) { f.integer(r.rating.scaleMax); }},
+        {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
+        {"condition_position",
+         [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.match.mode, r.match.scoredPhase)); }},
     };
     return columns;
 }
@@ -160,6 +206,12 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
          }},
         {"time_s", [](F& f, const R& r) { f.number(r.answer.time); }},
         {"answer_s", [](F& f, const R& r) { f.number(r.answer.answerS); }},
+        {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
+        // None for a block of mixed conditions (mode "").
+        {"condition_position",
+         [](F& f, const R& r) {
+             optionalInteger(f, positionOf(r.from.positions, r.answer.mode, r.answer.scoredPhase));
+         }},
     };
     return columns;
 }
@@ -179,6 +231,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
         {"max_ms", [](F& f, const R& r) { f.number(r.pacing.maxMs); }},
         {"budget_ms", [](F& f, const R& r) { f.number(r.pacing.budgetMs); }},
         {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
+        {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
     };
     return columns;
 }
@@ -208,6 +261,7 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
              else
                  f.number(static_cast<double>(r.tally.hits) / static_cast<double>(r.tally.shots));
          }},
+        {"player_kind", [](F& f, const R& r) { f.text(r.playerKinds); }},
     };
     return columns;
 }
@@ -229,6 +283,17 @@ const std::vector<Column<MatchRow>>& matchColumns() {
         {"clicks", [](F& f, const R& r) { f.integer(r.match.clicks); }},
         {"duration_s", [](F& f, const R& r) { f.number(r.match.durationS); }},
         {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
+    };
+    return columns;
+}
+
+// After the rating_k columns, so that the columns before them keep their places.
+const std::vector<Column<MatchRow>>& matchTrailingColumns() {
+    using F = CsvFile;
+    using R = MatchRow;
+    static const std::vector<Column<R>> columns = {
+        {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
+        {"condition_position", [](F& f, const R& r) { optionalInteger(f, r.position); }},
     };
     return columns;
 }
@@ -260,6 +325,7 @@ const std::vector<Column<ConditionListing>>& conditionColumns() {
         {"refresh_hz", [](F& f, const R& r) { f.number(r.summary.refreshHz); }},
         {"game", [](F& f, const R& r) { f.text(r.game); }},
         {"description", [](F& f, const R& r) { f.text(r.summary.condition.description); }},
+        {"used_in", [](F& f, const R& r) { f.text(r.analysed ? "test" : "training"); }},
     };
     return columns;
 }

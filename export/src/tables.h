@@ -32,11 +32,17 @@ struct SessionRow {
     const game::SessionResults* results = nullptr;
 };
 
+// Each condition's place in the order a session's scored phase first presented it, 1-based:
+// condition_position in shots.csv, matches.csv, ratings.csv and answers.csv (docs/export.md).
+using Positions = std::map<std::string, std::int64_t>;
+
 // Who and where a shot, match or rating comes from.
 struct Origin {
     const std::string& participant;
     const std::string& session;
     const std::string& game;
+    const std::string& playerKind;  // session::playerKind of the session's player
+    const Positions& positions;
 };
 
 struct ShotRow {
@@ -60,6 +66,7 @@ struct PacingRow {
     const std::string& participant;
     const std::string& session;
     const session::ModePacing& pacing;
+    const std::string& playerKind;
 };
 
 struct HitRateRow {
@@ -68,6 +75,9 @@ struct HitRateRow {
     const std::string& mode;
     const Tally& tally;
     bool canTimeOut;
+    // The kinds of the sessions counted, ;-separated: one participant id can name a person in
+    // one session and a bot in another.
+    const std::string& playerKinds;
 };
 
 struct MatchRow {
@@ -75,10 +85,12 @@ struct MatchRow {
     std::string session;
     game::MatchResult match;
     std::optional<std::int64_t> skipped;  // display frames skipped during the match
+    std::string playerKind;
+    std::optional<std::int64_t> position;  // condition_position; none outside the scored phase
 };
 
 // matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
-// longest list seen.
+// longest list seen, then the trailing ones.
 constexpr const char* kRatingColumn = "rating_";
 
 struct GameRow {
@@ -89,6 +101,9 @@ struct GameRow {
 // The flag names of a session, ;-separated, as sessions.csv lists them.
 std::string joined(const std::map<std::string, std::string>& flags);
 
+// A condition's place in `positions`, for a row of the scored phase; none otherwise.
+std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& mode, bool scoredPhase);
+
 // Each CSV file's columns (docs/export.md lists them; a test checks it against these).
 const std::vector<Column<SessionRow>>& sessionColumns();
 const std::vector<Column<ShotRow>>& shotColumns();
@@ -96,7 +111,8 @@ const std::vector<Column<RatingRow>>& ratingColumns();
 const std::vector<Column<AnswerRow>>& answerColumns();
 const std::vector<Column<PacingRow>>& pacingColumns();
 const std::vector<Column<HitRateRow>>& hitRateColumns();
-const std::vector<Column<MatchRow>>& matchColumns();
+const std::vector<Column<MatchRow>>& matchColumns();  // before the rating_k columns
+const std::vector<Column<MatchRow>>& matchTrailingColumns();  // after them
 const std::vector<Column<ConditionListing>>& conditionColumns();
 const std::vector<Column<GameRow>>& gameColumns();
 

@@ -51,6 +51,7 @@ public:
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
+    std::vector<std::string> analysedModes() const override { return protocol_.conditions; }
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         out.canTimeOut = true;

@@ -402,7 +402,7 @@ TEST(CliConditions, PrintsEachConditionsPartsAndLatency) {
     ASSERT_EQ(csv.status, 0) << csv.output;
     EXPECT_EQ(csv.output.substr(0, csv.output.find('\n')),
               "condition,render_hz,lag_frames,fill,late_warp,view_latency_min_ms,view_latency_max_ms,"
-              "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description");
+              "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description,used_in");
     EXPECT_TRUE(contains(csv.output,
                          "\nlag60x5-rotation,60,10,hold,rotation,0,8.333333333333334,83.33333333333333,"
                          "100,,120,shooter,"))

@@ -164,7 +164,9 @@ TEST(CliStudy, TheExportListsEveryPlannedParticipantWithTheirSeedOrdersAndStatus
             fs::copy_file(entry.path(), dir + "/results/zz-other-" + entry.path().filename().string());
 
     // The words and values the plan gives, per participant.
-    const auto expectedRow = [&](const nlohmann::json& p, const std::vector<std::string>& states) {
+    // kind: who played their sessions, "" before any was exported.
+    const auto expectedRow = [&](const nlohmann::json& p, const std::vector<std::string>& states,
+                                 const std::string& kind) {
         std::string order, conditions, status;
         for (std::size_t k = 0; k < p["protocol_order"].size(); ++k) {
             const int index = p["protocol_order"][k];
@@ -181,13 +183,13 @@ TEST(CliStudy, TheExportListsEveryPlannedParticipantWithTheirSeedOrdersAndStatus
         const std::string dpi = settings.contains("mouse_dpi") ? settings["mouse_dpi"].dump() : "800";
         const std::string invert = settings.value("invert_y", false) ? "true" : "false";
         return p["id"].get<std::string>() + "," + std::to_string(p["seed"].get<std::uint64_t>()) + "," + order + "," +
-            conditions + "," + cm + "," + dpi + "," + invert + "," + status;
+            conditions + "," + cm + "," + dpi + "," + invert + "," + status + "," + kind;
     };
     const std::string expected =
-        "participant,seed,protocol_order,condition_orders,cm_per_360,mouse_dpi,invert_y,status\n" +
-        expectedRow(plan["participants"][0], {"done", "done"}) + "\n" +
-        expectedRow(plan["participants"][1], {"done", "not started"}) + "\n" +
-        expectedRow(plan["participants"][2], {"not started", "not started"}) + "\n";
+        "participant,seed,protocol_order,condition_orders,cm_per_360,mouse_dpi,invert_y,status,player_kind\n" +
+        expectedRow(plan["participants"][0], {"done", "done"}, "bot") + "\n" +
+        expectedRow(plan["participants"][1], {"done", "not started"}, "bot") + "\n" +
+        expectedRow(plan["participants"][2], {"not started", "not started"}, "") + "\n";
 
     // A lock file a killed run left behind is neither a session nor in the way.
     std::ofstream(dir + "/results/.warplab-lock") << R"({"pid":1,"participant":"P03"})";

@@ -128,6 +128,23 @@ exporter::ExportSummary exportQuietly(const std::string& results, const std::str
     return summary;
 }
 
+// A session of `source` as another player played it: the same record under a new session id, so
+// that it is a session of its own rather than a copy.
+std::string replayedAs(const std::string& source, const std::string& dir, const std::string& participant,
+                       const std::string& player) {
+    session::SessionData data = session::readSession(source);
+    data.header.participant = participant;
+    data.header.player = player;
+    data.header.sessionId = data.header.sessionId.substr(0, data.header.sessionId.size() - 1) +
+        (data.header.sessionId.back() == '0' ? "1" : "0");
+    session::SessionWriter w = session::SessionWriter::create(dir, data.header);
+    for (const auto& r : data.inputs) w.addInput(r);
+    for (const auto& r : data.frames) w.addFrame(r);
+    for (const auto& e : data.events) w.addEvent(e);
+    w.finish();
+    return w.path();
+}
+
 // ---- the expected numbers, straight from the stored events ----
 
 struct Counts {
@@ -262,7 +279,8 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
 
     // hitrates.csv: exactly the expected rows, rates exactly hits/shots.
     EXPECT_EQ(headerOf(out + "/hitrates.csv"),
-              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate"}));
+              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate",
+                                        "player_kind"}));
     const auto hitrates = readCsv(out + "/hitrates.csv");
     ASSERT_EQ(hitrates.size(), expected.size());
     int clickRows = 0;
@@ -305,7 +323,10 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     // matches.csv and ratings.csv: the scored round's matches, four ratings each.
     const auto matches = readCsv(out + "/matches.csv");
     EXPECT_EQ(static_cast<int>(matches.size()), scoredMatches);
-    EXPECT_EQ(headerOf(out + "/matches.csv").back(), "rating_4");
+    // The ratings last but for the columns added after them (export.cpp: matchTrailingColumns).
+    const auto matchHeader = headerOf(out + "/matches.csv");
+    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 3, matchHeader.end()),
+              (std::vector<std::string>{"rating_4", "player_kind", "condition_position"}));
     for (const auto& m : matches) {
         EXPECT_EQ(std::stoi(m.at("clicks")),
                   std::stoi(m.at("green_hits")) + std::stoi(m.at("red_hits")) + std::stoi(m.at("misses")));
@@ -949,9 +970,81 @@ DocumentedColumns documentedColumns(const std::string& file) {
 
 // The page analysts read is the contract: each CSV's documented columns are exactly the
 // columns its table writes, in the same order.
+// Who played every row (a person, a bot), and where each condition came in the participant's order,
+// so that a model can keep people apart and fit order effects without deriving them from `trial`.
+TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
+    const std::string source = scratch("kinds/source"), results = scratch("kinds/results");
+    auto protocol = nlohmann::json::parse(slurp(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"));
+    protocol["test"]["conditions"] = {"warp15to120", "conv120"};  // conv15: training's low mode only
+    protocol["test"]["interleave"] = false;
+    const std::string file = source + "/blocked.json";
+    std::ofstream(file) << protocol.dump(2);
+    study::HeadlessRun run;
+    run.protocolPath = file;
+    run.participant = "P02";
+    run.resultsDir = results;
+    run.player = "bot:4";
+    run.seed = 4;
+    std::ostringstream quiet;
+    const std::string bot = study::runHeadless(run, quiet);
+    replayedAs(bot, results, "P01", "human (cm_per_360=0, dpi=800, invert_y=0)");
+
+    const std::string out = scratch("kinds/out");
+    exporter::ExportOptions all;
+    all.allPhases = true;
+    exportQuietly(results, out, all);
+    const std::map<std::string, std::string> kindOf{{"P01", "human"}, {"P02", "bot"}};
+    int test = 0, training = 0;
+    for (const auto& r : readCsv(out + "/shots.csv")) {
+        EXPECT_EQ(r.at("player_kind"), kindOf.at(r.at("participant")));
+        if (r.at("scored_phase") == "true") {
+            // Blocked: the protocol's order, which a plan's condition_order writes into it.
+            EXPECT_EQ(r.at("condition_position"), r.at("mode") == "warp15to120" ? "1" : "2") << r.at("trial");
+            ++test;
+        } else {
+            EXPECT_EQ(r.at("condition_position"), "") << r.at("phase");
+            ++training;
+        }
+    }
+    EXPECT_GT(test, 0);
+    EXPECT_GT(training, 0);
+    for (const char* name : {"/hitrates.csv", "/pacing.csv", "/sessions.csv"})
+        for (const auto& r : readCsv(out + name))
+            EXPECT_EQ(r.at("player_kind"), kindOf.at(r.at("participant"))) << name;
+    // The human's turn as it played: cm_per_360=0 is the protocol's own 0.0022 rad per count at
+    // 800 counts per inch, 2 pi / 0.0022 / 800 inches.
+    for (const auto& r : readCsv(out + "/sessions.csv")) {
+        if (r.at("participant") == "P01")
+            EXPECT_NEAR(std::stod(r.at("cm_per_360")), 2 * M_PI / 0.0022 / 800 * 2.54, 1e-9);
+        else
+            EXPECT_EQ(r.at("cm_per_360"), "");
+    }
+    std::map<std::string, std::string> usedIn;
+    for (const auto& r : readCsv(out + "/conditions.csv")) usedIn[r.at("condition")] = r.at("used_in");
+    EXPECT_EQ(
+        usedIn,
+        (std::map<std::string, std::string>{{"conv120", "test"}, {"conv15", "training"}, {"warp15to120", "test"}}));
+}
+
+TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
+    // The folder first: scratch() empties what it names, so the results inside come after.
+    const std::string inTheWay = scratch("no-out") + "/a-file";
+    const std::string results = scratch("no-out/results");
+    headless("shooter-quick.json", "P01", results, 1);
+    std::ofstream(inTheWay) << "not a folder\n";
+    try {
+        exportQuietly(results, inTheWay + "/out");
+        FAIL() << "exported under a file";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot create the output folder '" + inTheWay + "/out': Not a directory"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(ExportColumns, MatchDocsExportMd) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 10u);
+    ASSERT_EQ(written.size(), 11u);
     for (const exporter::CsvColumns& csv : written) {
         SCOPED_TRACE("docs/export.md, " + csv.file);
         const DocumentedColumns documented = documentedColumns(csv.file);

@@ -8,6 +8,10 @@
 
 #include "condition/schedule.h"
 
+namespace warplab::game {
+class Study;
+}
+
 namespace warplab::exporter {
 
 struct ExportOptions {
@@ -36,8 +40,10 @@ struct ExportSummary {
 struct CsvColumns {
     std::string file;  // "shots.csv"
     std::vector<std::string> columns;  // the fixed ones
-    // Non-empty: then one column per item, named this plus 1, 2, ... (matches.csv's rating_k).
+    // Non-empty: then one column per item, named this plus 1, 2, ... (matches.csv's rating_k),
+    // written before columns[numberedAt] (at the end where numberedAt is columns.size()).
     std::string numbered;
+    std::size_t numberedAt = 0;
 };
 std::vector<CsvColumns> exportColumns();
 
@@ -46,13 +52,18 @@ std::vector<CsvColumns> exportColumns();
 struct ConditionListing {
     std::string game;
     condition::ConditionSummary summary;
+    // The part the study analyses runs it (used_in "test"); false: only practice or training
+    // does (used_in "training"), so no analysed row has it.
+    bool analysed = true;
 };
+// The conditions `study` runs, each once, in the order its fields first name them.
+std::vector<ConditionListing> conditionsOf(const game::Study& study);
 // The rows as CSV, with conditions.csv's header, to `out`.
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows);
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
 // sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, games.csv and pacing.csv into outDir (created
-// when missing), and participants.csv when there is a study plan (options.studyDir, or the
+// when missing), and participants.csv and orders.csv when there is a study plan (options.studyDir, or the
 // results folder's parent once a session carries a plan_id); a study.json that does not read
 // is a plan::PlanError with options.studyDir and a warning on `log` without it. Progress and one line per excluded or damaged session go to `log`.
 // Throws std::runtime_error naming the folder when resultsDir is not a readable folder or

@@ -230,6 +230,9 @@ public:
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
     // Modes this protocol uses.
     virtual std::vector<std::string> modes() const = 0;
+    // Those of them the part the study analyses runs (the shooter's test, the click game's
+    // matches), in the protocol's order; the others serve only practice or training.
+    virtual std::vector<std::string> analysedModes() const { return modes(); }
     // The conditions it can name: the presets and those the protocol defines.
     virtual const condition::ConditionTable& conditions() const = 0;
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it
