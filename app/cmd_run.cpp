@@ -37,7 +37,7 @@ StudyPick pickFromPlan(const ParsedArgs& args) {
         std::vector<std::string> ids;
         for (const auto& p : pick.plan.participants) ids.push_back(p.id);
         throw plan::PlanError("study plan '" + planFile + "' has no participant " + quotedForMessage(id) +
-                              " (it plans " + firstFew(ids) + "; warplab study add adds one)");
+                              " (it plans " + firstFew(ids) + "); warplab study add adds participants");
     }
     pick.participant = static_cast<std::size_t>(participant - pick.plan.participants.data());
     plan::ParticipantStatus status;
@@ -145,10 +145,10 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
     try {
         return session::ResultsFolderLock(run.resultsDir, participant, protocol);
     } catch (const session::ResultsFolderBusy& e) {
-        throw std::runtime_error(
-            e.what() +
-            std::string(args.has("study") ? "; wait for it to end, or run on another rig (--rig NAME)."
-                                          : "; wait for it to end, or use another --out."));
+        throw std::runtime_error(e.what() +
+                                 std::string(args.has("study")
+                                                 ? "; wait for it to end, or run on another rig (--rig NAME)."
+                                                 : "; wait for it to end, or use another --out."));
     }
 }
 
@@ -197,7 +197,8 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
                 throw UsageError(std::string("option --") + option + " comes from the session with --resume");
     if (args.has("study")) return;  // the rest from the plan: readStudyOptions
     if (args.flag("again")) throw UsageError("option --again only applies with --study");
-    if (args.has("rig")) throw UsageError("option --rig only applies with --study; without a plan, --out names the folder");
+    if (args.has("rig"))
+        throw UsageError("option --rig only applies with --study; without a plan, --out names the folder");
     if (args.has("resume")) {
         // The interrupted session says what it ran; its folder takes the new session.
         for (const char* option : {"protocol", "participant", "seed"})

@@ -89,8 +89,9 @@ void printSummary(const std::vector<plan::ParticipantStatus>& status) {
 }
 
 void writeStatusCsv(const plan::StudyPlan& studyPlan, const std::vector<plan::ParticipantStatus>& status) {
-    exporter::CsvFile csv(std::cout, {"participant", "position", "protocol", "status", "sessions", "done", "planned",
-                                      "unit", "detail", "player_kind", "complete_rigs"});
+    exporter::CsvFile csv(std::cout,
+                          {"participant", "position", "protocol", "status", "sessions", "done", "planned", "unit",
+                           "detail", "player_kind", "complete_rigs"});
     for (const auto& p : status)
         for (std::size_t i = 0; i < p.protocols.size(); ++i) {
             const plan::ProtocolStatus& s = p.protocols[i];
@@ -165,9 +166,8 @@ int runAdd(const ParsedArgs& args, const std::string& dir) {
     const plan::StudyPlan before = plan::readPlan(dir);
     const plan::StudyPlan grown = plan::extendPlan(dir, before, count, ids);
     plan::writePlan(dir, grown);
-    std::cout << "study plan " << grown.id << ": " << count << " participant" << (count == 1 ? "" : "s")
-              << " added, " << grown.participants.size() << " in all, written to "
-              << (fs::path(dir) / "study.json").string() << "\n";
+    std::cout << "study plan " << grown.id << ": " << count << " participant" << (count == 1 ? "" : "s") << " added, "
+              << grown.participants.size() << " in all, written to " << (fs::path(dir) / "study.json").string() << "\n";
     for (std::size_t i = before.participants.size(); i < grown.participants.size(); ++i) {
         const plan::ParticipantPlan& p = grown.participants[i];
         std::cout << "  " << p.id << "  seed " << p.seed << "  " << orderText(grown, p) << "\n";
@@ -234,24 +234,27 @@ int runStudy(const ParsedArgs& args) {
 
 // The command's options, beside the code that reads them.
 Command studyCommand() {
-    return {{"study",
-             "Prepare a study once for all its participants, and see where it stands. init writes\n"
-             "DIR/study.json: per participant an id, a distinct session seed, the order of the\n"
-             "protocols and of each protocol's conditions (balanced Latin squares), and mouse\n"
-             "settings to edit; then each participant plays with `warplab run --study DIR\n"
-             "--participant ID`, into DIR/results. status says per participant and protocol what\n"
-             "the sessions hold, and who is next (docs/study-plan.md).",
-             "warplab study init DIR --protocol FILE[,FILE...] --participants N [--ids P01,...] [--seed S]\n"
-             "       warplab study status DIR [--csv]",
-             {
-                 {"protocol", "FILE[,FILE...]", "init: the study's protocol files, copied into DIR/protocols/", ""},
-                 {"participants", "N", "init: how many participants", "as many as --ids names"},
-                 {"ids", "ID[,ID...]", "init: the participants' ids", "P01, P02, ..."},
-                 {"seed", "S", "init: the seed the participants' session seeds are drawn from", "1"},
-                 {"csv", "", "status: one CSV row per participant and protocol", ""},
-             },
-             true},
-            &runStudy};
+    return {
+        {"study",
+         "Prepare a study once for all its participants, and see where it stands. init writes\n"
+         "DIR/study.json: per participant an id, a distinct session seed, the order of the\n"
+         "protocols and of each protocol's conditions (balanced Latin squares), and mouse\n"
+         "settings to edit; then each participant plays with `warplab run --study DIR\n"
+         "--participant ID`, into DIR/results. status says per participant and protocol what\n"
+         "the sessions hold (in every rig's folder), who played, who is running, and who is next;\n"
+         "add grows the plan by the rows a plan made at the larger size would have (docs/study-plan.md).",
+         "warplab study init DIR --protocol FILE[,FILE...] --participants N [--ids P01,...] [--seed S]\n"
+         "       warplab study add DIR --participants N [--ids ID,...]\n"
+         "       warplab study status DIR [--csv]",
+         {
+             {"protocol", "FILE[,FILE...]", "init: the study's protocol files, copied into DIR/protocols/", ""},
+             {"participants", "N", "init, add: how many participants (add: how many more)", "as many as --ids names"},
+             {"ids", "ID[,ID...]", "init, add: the participants' ids", "P01, P02, ... (add: the next numbers)"},
+             {"seed", "S", "init: the seed the participants' session seeds are drawn from", "1"},
+             {"csv", "", "status: one CSV row per participant and protocol", ""},
+         },
+         true},
+        &runStudy};
 }
 
 }  // namespace warplab::app

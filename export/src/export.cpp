@@ -212,7 +212,8 @@ public:
         for (const auto& [key, folders] : completeIn_) {
             if (folders.size() < 2) continue;
             std::string where;
-            for (const std::string& folder : folders) where += (where.empty() ? "" : ", ") + (folder.empty() ? "." : folder);
+            for (const std::string& folder : folders)
+                where += (where.empty() ? "" : ", ") + (folder.empty() ? "." : folder);
             out.push_back("participant " + std::get<1>(key) + " has complete sessions of " + std::get<2>(key) + " in " +
                           std::to_string(folders.size()) + " folders (" + where +
                           "), all included: played on two rigs; move the one played by mistake out of the results "

@@ -100,7 +100,7 @@ void readRigSessions(const std::string& results, const std::string& rig, const S
 }  // namespace
 
 SessionFacts factsOf(const std::string& path, const session::SessionData& data, const game::Study& study) {
-    return {path, data.header, data.completed, data.damaged, data.flags, data.note, study.progress(data.events)};
+    return {path, data.header, data.completed, data.damaged, data.flags, data.note, study.progress(data.events), ""};
 }
 
 SessionFacts factsOf(const std::string& path, const session::SessionOutline& outline, const game::Study& study) {
@@ -110,7 +110,8 @@ SessionFacts factsOf(const std::string& path, const session::SessionOutline& out
             outline.damaged,
             outline.flags,
             outline.note,
-            study.progress(outline.events)};
+            study.progress(outline.events),
+            ""};
 }
 
 std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const StudyPlan& plan) {
@@ -124,7 +125,6 @@ std::vector<ParticipantStatus> studyStatus(const std::string& planDir, const Stu
     }
     return studyStatus(plan, std::move(sessions), running);
 }
-
 
 std::vector<ParticipantStatus> studyStatus(const StudyPlan& plan, std::vector<SessionFacts> sessions,
                                            const std::vector<RunningSession>& running) {

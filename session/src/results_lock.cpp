@@ -89,7 +89,7 @@ std::optional<LockHolder> readLockHolder(const std::string& resultsDir) {
 }
 
 bool holderMayRun(const LockHolder& holder) {
-    if (holder.host != hostName()) return true;
+    if (!holder.host.empty() && holder.host != hostName()) return true;
     // EPERM: alive, another user's.
     return holder.pid > 0 && (::kill(static_cast<pid_t>(holder.pid), 0) == 0 || errno == EPERM);
 }

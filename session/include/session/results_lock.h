@@ -41,9 +41,9 @@ private:
 // no lock file or it names no holder.
 std::optional<LockHolder> readLockHolder(const std::string& resultsDir);
 
-// Whether the holder's run may still be going: on this host, whether its pid is alive (the
-// kernel frees the lock of a run that died, but its file stays); on another host, which this
-// one cannot see into, true, as the file says.
+// Whether the holder's run may still be going: on this host (or a file naming none), whether
+// its pid is alive (the kernel frees the lock of a run that died, but its file stays); on
+// another host, which this one cannot see into, true, as the file says.
 bool holderMayRun(const LockHolder& holder);
 
 // "pid 4242 on booth-a, since 2024-05-01T09:30:00.000Z": who holds a lock, for a sentence.
