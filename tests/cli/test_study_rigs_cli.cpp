@@ -213,14 +213,14 @@ TEST(CliStudyRigs, StudyAddTwiceGivesThePlanMadeAtThatSize) {
     const std::string protocols = protocolFile("shooter-quick.json") + "," + protocolFile("click-quick.json");
     ASSERT_EQ(warplab("study init " + base + "/once --protocol " + protocols + " --participants 9 --seed 21").status,
               0);
-    ASSERT_EQ(warplab("study init " + base + "/grown --protocol " + protocols + " --participants 4 --seed 21").status,
+    ASSERT_EQ(warplab("study init " + base + "/grown --protocol " + protocols + " --participants 3 --seed 21").status,
               0);
     const nlohmann::json first = planOf(base + "/grown");
     const auto added = warplab("study add " + base + "/grown --participants 2");
     ASSERT_EQ(added.status, 0) << added.output;
-    EXPECT_TRUE(contains(added.output, "next: warplab run --study " + base + "/grown --participant P05"))
+    EXPECT_TRUE(contains(added.output, "next: warplab run --study " + base + "/grown --participant P04"))
         << added.output;
-    ASSERT_EQ(warplab("study add " + base + "/grown --participants 3").status, 0);
+    ASSERT_EQ(warplab("study add " + base + "/grown --participants 4").status, 0);
     const nlohmann::json once = planOf(base + "/once"), grown = planOf(base + "/grown");
     EXPECT_EQ(grown["participants"], once["participants"]);
     EXPECT_EQ(grown["id"], first["id"]) << "the plan is the same plan, grown";
