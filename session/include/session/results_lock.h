@@ -9,8 +9,8 @@
 
 namespace warplab::session {
 
-// The lock file's name inside the results folder. Export, replay and study status read only
-// session files, so they pass over it.
+// The lock file's name inside the results folder. Export and replay read only session files,
+// so they pass over it; study status reads it (readLockHolder) to tell a running session.
 inline constexpr const char* kLockFileName = ".warplab-lock";
 
 // Who holds a results folder, as its lock file says.
