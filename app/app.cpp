@@ -1,5 +1,6 @@
 #include "app.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -28,9 +29,12 @@ std::string overview() {
         "warplab " WARPLAB_VERSION
         " -- user studies of frame-rate upconversion and latency in interactive 3D\n\n"
         "usage: warplab <command> [options]    (warplab <command> --help for its options)\n\ncommands:\n";
+    // The summaries line up two spaces after the longest name, so that none runs into its name.
+    std::size_t width = 0;
+    for (const auto& c : commands()) width = std::max(width, c.spec.name.size());
     for (const auto& c : commands()) {
         std::string name = "  " + c.spec.name;
-        name.resize(12, ' ');
+        name.resize(width + 4, ' ');
         text += name + c.spec.summary.substr(0, c.spec.summary.find('\n')) + "\n";
     }
     return text;

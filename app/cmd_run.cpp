@@ -20,6 +20,63 @@
 
 namespace warplab::app {
 
+StudyPick pickFromPlan(const ParsedArgs& args) {
+    StudyPick pick;
+    pick.dir = args.string("study");
+    if (args.has("rig")) {
+        pick.rig = args.string("rig");
+        if (const std::string problem = plan::rigNameProblem(pick.rig); !problem.empty())
+            throw UsageError("option --rig " + problem);
+    }
+    if (!args.has("participant")) throw UsageError("option --participant is required");
+    const std::string id = args.string("participant");
+    pick.plan = plan::readPlan(pick.dir);
+    const std::string planFile = (std::filesystem::path(pick.dir) / "study.json").string();
+    const plan::ParticipantPlan* participant = plan::findParticipant(pick.plan, id);
+    if (!participant) {
+        std::vector<std::string> ids;
+        for (const auto& p : pick.plan.participants) ids.push_back(p.id);
+        throw plan::PlanError("study plan '" + planFile + "' has no participant " + quotedForMessage(id) +
+                              " (it plans " + firstFew(ids) + "); warplab study add adds participants");
+    }
+    pick.participant = static_cast<std::size_t>(participant - pick.plan.participants.data());
+    plan::ParticipantStatus status;
+    for (auto& s : plan::studyStatus(pick.dir, pick.plan))
+        if (s.id == participant->id) status = std::move(s);
+    int position = plan::nextProtocol(status);
+    if (args.has("protocol")) {
+        const std::string wanted = args.string("protocol");
+        position = -1;
+        for (std::size_t i = 0; i < status.protocols.size(); ++i) {
+            const plan::ProtocolEntry& e =
+                pick.plan.protocols[static_cast<std::size_t>(status.protocols[i].protocolIndex)];
+            if (e.name == wanted || e.file == wanted || std::filesystem::path(e.file).filename() == wanted)
+                position = static_cast<int>(i);
+        }
+        if (position < 0) throw plan::PlanError("study plan '" + planFile + "' has no protocol '" + wanted + "'");
+    } else if (position < 0) {
+        throw plan::PlanError("participant " + participant->id + " of study plan '" + planFile +
+                              "' has done every protocol; to run one again, name it with --protocol and add --again");
+    }
+    pick.chosen = status.protocols[static_cast<std::size_t>(position)];
+    const plan::ProtocolEntry& entry = pick.plan.protocols[static_cast<std::size_t>(pick.chosen.protocolIndex)];
+    // Rigs lock only their own folders: one participant on two rigs at once is caught here.
+    if (pick.chosen.running)
+        throw plan::PlanError("participant " + participant->id + " of study plan '" + planFile + "' is playing " +
+                              entry.name + " now (" + session::holderText(*pick.chosen.running) + ", " +
+                              plan::rigText(pick.chosen.runningRig) + "); wait for it to end");
+    pick.protocolPath = (std::filesystem::path(pick.dir) / entry.file).string();
+    pick.protocolText = plan::participantProtocolJson(pick.dir, pick.plan, *participant, pick.chosen.protocolIndex);
+    pick.resultsDir = plan::resultsFolder(pick.dir, pick.rig);
+    if (!pick.rig.empty()) {
+        // A rig's folder is made on its first use; the plan's results folder must be there.
+        std::error_code error;
+        if (std::filesystem::is_directory(plan::resultsFolder(pick.dir), error))
+            std::filesystem::create_directory(pick.resultsDir, error);
+    }
+    return pick;
+}
+
 namespace {
 
 // What every run names, windowed or headless.
@@ -44,59 +101,32 @@ plan::ParticipantSettings readStudyOptions(const ParsedArgs& args, Run& run) {
     for (const char* option : {"seed", "out"})
         if (args.has(option))
             throw UsageError(std::string("option --") + option + " comes from the study plan with --study");
-    if (!args.has("participant")) throw UsageError("option --participant is required");
-    run.participant = args.string("participant");
-    checkParticipant(run.participant);  // no plan holds an id this refuses
-    const std::string dir = args.string("study");
-    const plan::StudyPlan studyPlan = plan::readPlan(dir);
-    const std::string planFile = (std::filesystem::path(dir) / "study.json").string();
-    const plan::ParticipantPlan* participant = plan::findParticipant(studyPlan, run.participant);
-    if (!participant) {
-        std::vector<std::string> ids;
-        for (const auto& p : studyPlan.participants) ids.push_back(p.id);
-        throw plan::PlanError("study plan '" + planFile + "' has no participant " + quotedForMessage(run.participant) +
-                              " (it plans " + firstFew(ids) + ")");
-    }
-    plan::ParticipantStatus status;
-    for (auto& s : plan::studyStatus(dir, studyPlan))
-        if (s.id == participant->id) status = std::move(s);
-    int position = plan::nextProtocol(status);
-    if (args.has("protocol")) {
-        const std::string wanted = args.string("protocol");
-        position = -1;
-        for (std::size_t i = 0; i < status.protocols.size(); ++i) {
-            const plan::ProtocolEntry& e =
-                studyPlan.protocols[static_cast<std::size_t>(status.protocols[i].protocolIndex)];
-            if (e.name == wanted || e.file == wanted || std::filesystem::path(e.file).filename() == wanted)
-                position = static_cast<int>(i);
-        }
-        if (position < 0) throw plan::PlanError("study plan '" + planFile + "' has no protocol '" + wanted + "'");
-    } else if (position < 0) {
-        throw plan::PlanError("participant " + participant->id + " of study plan '" + planFile +
-                              "' has done every protocol; to run one again, name it with --protocol and add --again");
-    }
-    const plan::ProtocolStatus& chosen = status.protocols[static_cast<std::size_t>(position)];
-    const plan::ProtocolEntry& entry = studyPlan.protocols[static_cast<std::size_t>(chosen.protocolIndex)];
+    if (args.has("participant")) checkParticipant(args.string("participant"));  // no plan holds an id this refuses
+    const StudyPick pick = pickFromPlan(args);
+    const plan::ParticipantPlan& participant = pick.plan.participants[pick.participant];
+    const plan::ProtocolStatus& chosen = pick.chosen;
+    const plan::ProtocolEntry& entry = pick.plan.protocols[static_cast<std::size_t>(chosen.protocolIndex)];
+    const std::string results = plan::resultsFolder(pick.dir) + (pick.rig.empty() ? "" : " (every rig's)");
+    run.participant = participant.id;
     if (args.has("resume")) {
         if (!args.string("resume").empty())
             throw UsageError("option --resume takes no SESSION with --study: the plan's results say which one");
         if (chosen.resumable.empty())
-            throw plan::PlanError("participant " + participant->id + " has no incomplete session of " + entry.name +
-                                  " to resume in " + plan::resultsFolder(dir) + " (" + plan::stateName(chosen.state) +
-                                  ")");
+            throw plan::PlanError("participant " + participant.id + " has no incomplete session of " + entry.name +
+                                  " to resume in " + results + " (" + plan::stateName(chosen.state) + ")");
         run.resumeFrom = chosen.resumable;
     }
     if ((chosen.state == plan::SessionState::Done || chosen.state == plan::SessionState::Flagged) &&
         !args.flag("again"))
-        throw plan::PlanError("participant " + participant->id + " already has a complete session of " + entry.name +
-                              " (" + chosen.detail + " in " + plan::resultsFolder(dir) +
+        throw plan::PlanError("participant " + participant.id + " already has a complete session of " + entry.name +
+                              " (" + chosen.detail + " in " + plan::resultsFolder(pick.dir) +
                               "); add --again to record another");
-    run.protocolPath = (std::filesystem::path(dir) / entry.file).string();
-    run.protocolText = plan::participantProtocolJson(dir, studyPlan, *participant, chosen.protocolIndex);
-    run.planId = studyPlan.id;
-    run.resultsDir = plan::resultsFolder(dir);
-    run.seed = participant->seed;
-    return participant->settings;
+    run.protocolPath = pick.protocolPath;
+    run.protocolText = pick.protocolText;
+    run.planId = pick.plan.id;
+    run.resultsDir = pick.resultsDir;
+    run.seed = participant.seed;
+    return participant.settings;
 }
 
 // The results folder's lock, held for the whole session (docs/live-sessions.md): a second run
@@ -115,9 +145,10 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
     try {
         return session::ResultsFolderLock(run.resultsDir, participant, protocol);
     } catch (const session::ResultsFolderBusy& e) {
-        throw std::runtime_error(
-            e.what() +
-            std::string(args.has("study") ? "; wait for it to end." : "; wait for it to end, or use another --out."));
+        throw std::runtime_error(e.what() +
+                                 std::string(args.has("study")
+                                                 ? "; wait for it to end, or run on another rig (--rig NAME)."
+                                                 : "; wait for it to end, or use another --out."));
     }
 }
 
@@ -166,6 +197,8 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
                 throw UsageError(std::string("option --") + option + " comes from the session with --resume");
     if (args.has("study")) return;  // the rest from the plan: readStudyOptions
     if (args.flag("again")) throw UsageError("option --again only applies with --study");
+    if (args.has("rig"))
+        throw UsageError("option --rig only applies with --study; without a plan, --out names the folder");
     if (args.has("resume")) {
         // The interrupted session says what it ran; its folder takes the new session.
         for (const char* option : {"protocol", "participant", "seed"})
@@ -376,7 +409,7 @@ Command runCommand() {
          "results folder (one file per session) as it runs, then prints its path. In the window:\n"
          "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
          "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]\n"
-         "       warplab run --study DIR --participant ID [--resume] [...]\n"
+         "       warplab run --study DIR --participant ID [--rig NAME] [--resume] [...]\n"
          "       warplab run --resume SESSION [...]",
          {
              {"protocol", "FILE",
@@ -388,6 +421,10 @@ Command runCommand() {
               "(DIR/results) come from it",
               ""},
              {"again", "", "with --study: record another session of a protocol the participant has completed", ""},
+             {"rig", "NAME",
+              "with --study: this rig's (booth's, machine's) own results folder, DIR/results/NAME, so that rigs run "
+              "the plan at once (docs/study-plan.md, \"Several rigs\")",
+              "DIR/results"},
              {"resume", "[SESSION]",
               "carry on an interrupted session: its recorded input is played again and checked up to its last "
               "completed trial or match, and a new session goes on from there (protocol, seed, participant from "

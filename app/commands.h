@@ -6,6 +6,8 @@
 
 #include "cli.h"
 #include "participants/population.h"
+#include "plan/status.h"
+#include "plan/study_plan.h"
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 
@@ -45,5 +47,19 @@ std::string outputFolder(const ParsedArgs& args, const std::string& option, cons
 // The simulated participants' population: --population FILE, else assets/population.json.
 OptionSpec populationOption();
 participants::Population populationFrom(const ParsedArgs& args, const renderer::DataPaths& paths);
+
+// What --study DIR --participant ID [--protocol NAME] [--rig NAME] picks from a plan, for run and
+// check (cmd_run.cpp): the participant's next protocol not yet done (or the one --protocol
+// names), with their condition order, and the rig's results folder (made on its first use).
+// Refused in one sentence naming study.json for a participant the plan does not list, one who
+// has done every protocol, or one who is playing the protocol on any rig now.
+struct StudyPick {
+    std::string dir, rig;
+    plan::StudyPlan plan;
+    std::size_t participant = 0;  // into plan.participants
+    plan::ProtocolStatus chosen;
+    std::string protocolPath, protocolText, resultsDir;
+};
+StudyPick pickFromPlan(const ParsedArgs& args);
 
 }  // namespace warplab::app

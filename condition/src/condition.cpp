@@ -206,7 +206,7 @@ std::int64_t lagFramesAt(const Condition& c, double refreshHz) {
     if (std::abs(frames - static_cast<double>(whole)) > 1e-9) {
         const auto below = static_cast<std::int64_t>(std::floor(frames));
         auto ms = [&](std::int64_t n) { return number(static_cast<double>(n) * 1000.0 / refreshHz); };
-        throw std::invalid_argument("condition " + c.name + ": a lag of " + number(c.lagMs) + " ms is " +
+        throw std::invalid_argument("condition " + c.name + ": lag_ms is " + number(c.lagMs) + " ms, which is " +
                                     number(frames) + " frames at " + number(refreshHz) +
                                     " Hz, not a whole number; the nearest that are: " + ms(below) + " ms (" +
                                     std::to_string(below) + " frames) and " + ms(below + 1) + " ms (" +
@@ -244,10 +244,13 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
     try {
         lag = lagFramesAt(c, refreshHz);
     } catch (const std::invalid_argument& e) {
+        // The part is named once, by the caller's path: "lag_ms is 60 ms, which is ...", as
+        // every other part's reason reads after its path.
         std::string reason = e.what();
-        const std::string prefix = "condition " + c.name + ": ";
-        if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
-        return Problem{c.lagFrames ? "lag_frames" : "lag_ms", reason};
+        const std::string part = c.lagFrames ? "lag_frames" : "lag_ms";
+        for (const std::string& prefix : {"condition " + c.name + ": ", part + " "})
+            if (reason.rfind(prefix, 0) == 0) reason.erase(0, prefix.size());
+        return Problem{part, reason};
     }
     const std::optional<Fill> fill = fillNamed(c.fill);
     if (!fill) {

@@ -103,12 +103,15 @@ CarriedOn carriedOn(const std::vector<fs::path>& files, const fs::path& resultsD
 }
 
 // The plan folder of the folder exported: DIR itself when it holds the plan (export DIR, whose
-// sessions are in DIR/results), else DIR for DIR/results (as `study init` makes them).
+// sessions are in DIR/results and its rigs' DIR/results/RIG), else DIR for DIR/results (as
+// `study init` makes them) or for one rig's DIR/results/RIG.
 fs::path planFolderOf(const std::string& resultsDir) {
     fs::path dir = fs::absolute(resultsDir).lexically_normal();
     if (dir.filename().empty()) dir = dir.parent_path();
     std::error_code ec;
     if (fs::exists(dir / "study.json", ec)) return dir;
+    const fs::path above = dir.parent_path().parent_path();
+    if (dir.parent_path().filename() == "results" && fs::exists(above / "study.json", ec)) return above;
     return dir.parent_path();
 }
 
@@ -190,6 +193,10 @@ public:
         const std::string kind = session::playerKind(h.player);
         // What participants.csv needs of a plan's session, so it is not read a second time.
         if (!h.planId.empty()) planSessions_.push_back(plan::factsOf(path.string(), data, *study));
+        // Rigs lock only their own folders: a participant who played a protocol on two of them
+        // (or in two folders copied together) is said, not silently counted twice.
+        if (!h.planId.empty() && out.included)
+            completeIn_[{h.planId, h.participant, study->name()}].insert(fs::path(name).parent_path().generic_string());
         addConditions(*study, name);
         writeCells(sessions_, sessionColumns(), SessionRow{name, out, &data, study.get(), &results});
         sessions_.endRow();
@@ -199,8 +206,22 @@ public:
         return out;
     }
 
-    // Said once every session has been read: copies of one session both included.
-    const std::vector<std::string>& warnings() const { return warnings_; }
+    // Said once every session has been read: copies of one session both included, a
+    // participant's protocol included from two folders (rigs).
+    std::vector<std::string> warnings() const {
+        std::vector<std::string> out = warnings_;
+        for (const auto& [key, folders] : completeIn_) {
+            if (folders.size() < 2) continue;
+            std::string where;
+            for (const std::string& folder : folders)
+                where += (where.empty() ? "" : ", ") + (folder.empty() ? "." : folder);
+            out.push_back("participant " + std::get<1>(key) + " has complete sessions of " + std::get<2>(key) + " in " +
+                          std::to_string(folders.size()) + " folders (" + where +
+                          "), all included: played on two rigs; move the one played by mistake out of the results "
+                          "folder");
+        }
+        return out;
+    }
     // The study plans the readable sessions were run from: plan id, how many sessions.
     const std::map<std::string, int>& planIds() const { return planIds_; }
     // The readable sessions run from a plan, as the plan's status reads them.
@@ -364,6 +385,8 @@ private:
     std::vector<ConditionListing> conditions_;
     std::map<std::string, int> planIds_;
     std::vector<plan::SessionFacts> planSessions_;
+    // (plan id, participant, protocol name) -> the folders of its included sessions
+    std::map<std::tuple<std::string, std::string, std::string>, std::set<std::string>> completeIn_;
 };
 
 }  // namespace

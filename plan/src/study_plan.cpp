@@ -462,6 +462,64 @@ std::string defaultId(int index, int count) {
     return "P" + std::string(static_cast<std::size_t>(std::max(width, 2)) - number.size(), '0') + number;
 }
 
+// Rows from.size() .. from.size() + count - 1 of the plan, as makePlan makes them: the seeds
+// continue the plan's stream and the orders the squares' rows, so that a plan made for N + M
+// participants and one made for N and then grown by M are the same.
+void appendParticipants(StudyPlan& plan, int count, const std::vector<std::string>& ids, const std::string& prefix) {
+    const std::size_t first = plan.participants.size(), total = first + static_cast<std::size_t>(count);
+    if (total > static_cast<std::size_t>(kMaxParticipants))
+        throw PlanError(prefix + "the number of participants must be at most " + std::to_string(kMaxParticipants) +
+                        ", and " + std::to_string(first) + " + " + std::to_string(count) + " is " +
+                        std::to_string(total));
+    // Seeds: the top 53 bits of a splitmix64 stream from the plan's seed (kMaxParticipantSeed),
+    // skipping 0 and any repeat. The rows there are draw theirs again, to reach the stream's
+    // place; a seed edited into a row is skipped too.
+    std::uint64_t state = plan.seed;
+    std::set<std::uint64_t> seeds;
+    for (const ParticipantPlan& row : plan.participants) seeds.insert(row.seed);
+    std::set<std::uint64_t> drawn;
+    const auto draw = [&] {
+        std::uint64_t seed = 0;
+        do seed = physics::splitmix64(state) >> 11;
+        while (seed == 0 || !drawn.insert(seed).second);
+        return seed;
+    };
+    for (std::size_t i = 0; i < first; ++i) draw();
+    const auto protocolSquare = balancedLatinSquare(static_cast<int>(plan.protocols.size()));
+    std::vector<std::vector<std::vector<int>>> conditionSquares;
+    for (const ProtocolEntry& entry : plan.protocols)
+        conditionSquares.push_back(balancedLatinSquare(static_cast<int>(entry.conditions.size())));
+    for (std::size_t i = first; i < total; ++i) {
+        ParticipantPlan row;
+        row.id = ids.empty() ? defaultId(static_cast<int>(i), static_cast<int>(total)) : ids[i - first];
+        do row.seed = draw();
+        while (!seeds.insert(row.seed).second);
+        row.protocolOrder = protocolSquare[i % protocolSquare.size()];
+        // Protocol p takes row i + p of its square: with two protocols of the same length the
+        // participant's two condition orders then differ, rather than repeat each other.
+        for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
+            const auto& square = conditionSquares[p];
+            std::vector<std::string> order;
+            for (const int c : square[(i + p) % square.size()])
+                order.push_back(plan.protocols[p].conditions[static_cast<std::size_t>(c)]);
+            row.conditionOrder.push_back(std::move(order));
+        }
+        plan.participants.push_back(std::move(row));
+    }
+    // Ids are checked as readPlan checks them, before anything is written.
+    for (std::size_t i = first; i < plan.participants.size(); ++i) {
+        const std::string& id = plan.participants[i].id;
+        if (!isLine(id))
+            throw PlanError(prefix + "participant id " + std::to_string(i + 1) + " must be 1 to " +
+                            std::to_string(kLineLimit) + " bytes on one line, got " + jsonString(id));
+        for (std::size_t j = 0; j < i; ++j)
+            if (plan.participants[j].id == id)
+                throw PlanError(prefix + "participant id " + jsonString(id) +
+                                (j < first ? " is already in the plan" : " is given twice") +
+                                (ids.empty() ? "; name the new participants with --ids" : ""));
+    }
+}
+
 }  // namespace
 
 StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& protocolPaths, int participants,
@@ -509,42 +567,7 @@ StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& p
         texts.push_back(std::move(text));
     }
 
-    // Seeds: the top 53 bits of a splitmix64 stream from the plan's seed (kMaxParticipantSeed),
-    // skipping 0 and any repeat.
-    std::uint64_t state = seed;
-    std::set<std::uint64_t> seeds;
-    const auto protocolSquare = balancedLatinSquare(static_cast<int>(plan.protocols.size()));
-    std::vector<std::vector<std::vector<int>>> conditionSquares;
-    for (const ProtocolEntry& entry : plan.protocols)
-        conditionSquares.push_back(balancedLatinSquare(static_cast<int>(entry.conditions.size())));
-    for (int i = 0; i < participants; ++i) {
-        ParticipantPlan row;
-        row.id = ids.empty() ? defaultId(i, participants) : ids[i];
-        do row.seed = physics::splitmix64(state) >> 11;
-        while (row.seed == 0 || !seeds.insert(row.seed).second);
-        row.protocolOrder = protocolSquare[static_cast<std::size_t>(i) % protocolSquare.size()];
-        // Protocol p takes row i + p of its square: with two protocols of the same length the
-        // participant's two condition orders then differ, rather than repeat each other.
-        for (std::size_t p = 0; p < plan.protocols.size(); ++p) {
-            const auto& square = conditionSquares[p];
-            std::vector<std::string> order;
-            for (const int c : square[(static_cast<std::size_t>(i) + p) % square.size()])
-                order.push_back(plan.protocols[p].conditions[static_cast<std::size_t>(c)]);
-            row.conditionOrder.push_back(std::move(order));
-        }
-        plan.participants.push_back(std::move(row));
-    }
-    // Ids are checked as readPlan checks them, before anything is written.
-    for (std::size_t i = 0; i < plan.participants.size(); ++i) {
-        const std::string& id = plan.participants[i].id;
-        if (!isLine(id))
-            throw PlanError(prefix + "participant id " + std::to_string(i + 1) + " must be 1 to " +
-                            std::to_string(kLineLimit) + " bytes on one line, got " + jsonString(id));
-        for (std::size_t j = 0; j < i; ++j)
-            if (plan.participants[j].id == id)
-                throw PlanError(prefix + "participant id " + jsonString(id) + " is given twice");
-    }
-
+    appendParticipants(plan, participants, ids, prefix);
     std::error_code error;
     fs::create_directories(fs::path(planDir) / "protocols", error);
     if (error)
@@ -571,6 +594,20 @@ StudyPlan readPlan(const std::string& planDir) {
     StudyPlan plan = fromJson(reader, reader.readObject());
     validate(reader.source(), planDir, plan);
     return plan;
+}
+
+StudyPlan extendPlan(const std::string& planDir, const StudyPlan& plan, int participants,
+                     const std::vector<std::string>& ids) {
+    const std::string prefix = "study plan '" + studyJsonPath(planDir) + "': ";
+    if (participants < 1 || participants > kMaxParticipants)
+        throw PlanError(prefix + "the number of participants to add must be between 1 and " +
+                        std::to_string(kMaxParticipants) + ", got " + std::to_string(participants));
+    if (!ids.empty() && ids.size() != static_cast<std::size_t>(participants))
+        throw PlanError(prefix + std::to_string(ids.size()) + " participant ids given for " +
+                        std::to_string(participants) + " participants");
+    StudyPlan grown = plan;
+    appendParticipants(grown, participants, ids, prefix);
+    return grown;
 }
 
 const ParticipantPlan* findParticipant(const StudyPlan& plan, const std::string& id) {

@@ -1,6 +1,7 @@
 #include "session/results_lock.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -29,7 +30,7 @@ std::string hostName() {
     return name;
 }
 
-std::string holderText(const LockHolder& h) {
+std::string holderJson(const LockHolder& h) {
     return nlohmann::json{{"pid", h.pid},
                           {"host", h.host},
                           {"participant", h.participant},
@@ -75,6 +76,28 @@ std::string busyText(const std::string& folder, const LockHolder& h, bool known)
 }
 
 }  // namespace
+
+std::optional<LockHolder> readLockHolder(const std::string& resultsDir) {
+    const std::string path = (fs::path(resultsDir) / kLockFileName).string();
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+    if (fd < 0) return std::nullopt;
+    struct stat info {};
+    LockHolder holder;
+    const bool known = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) && readHolder(fd, holder) && holder.pid > 0;
+    ::close(fd);
+    return known ? std::optional<LockHolder>(holder) : std::nullopt;
+}
+
+bool holderMayRun(const LockHolder& holder) {
+    if (!holder.host.empty() && holder.host != hostName()) return true;
+    // EPERM: alive, another user's.
+    return holder.pid > 0 && (::kill(static_cast<pid_t>(holder.pid), 0) == 0 || errno == EPERM);
+}
+
+std::string holderText(const LockHolder& holder) {
+    return "pid " + std::to_string(holder.pid) + (holder.host.empty() ? "" : " on " + holder.host) + ", since " +
+        holder.since;
+}
 
 ResultsFolderBusy::ResultsFolderBusy(const std::string& folder, const LockHolder& holder, bool holderKnown)
     : SessionError(busyText(folder, holder, holderKnown)), holder_(holder) {}
@@ -125,7 +148,7 @@ ResultsFolderLock::ResultsFolderLock(const std::string& resultsDir, const std::s
     me.participant = participant;
     me.protocol = protocol;
     me.since = utcNow();
-    const std::string text = holderText(me);
+    const std::string text = holderJson(me);
     // A stale holder's text goes first; a failure to write only leaves the holder unnamed.
     if (::ftruncate(fd_, 0) == 0) {
         const ssize_t written = ::pwrite(fd_, text.data(), text.size(), 0);

@@ -88,6 +88,14 @@ TEST(Cli, HelpForEveryCommand) {
     EXPECT_EQ(warplab("--help").status, 0);
 }
 
+// The overview lists each command with its summary after a gap, never run into its name
+// ("conditionsPrint the conditions ...").
+TEST(Cli, HelpKeepsEveryCommandApartFromItsSummary) {
+    const auto r = warplab("--help");
+    for (const std::string c : {"conditions", "run", "replay", "export", "study", "check"})
+        EXPECT_TRUE(contains(r.output, "\n  " + c + "  ")) << c << ": " << r.output;
+}
+
 TEST(Cli, InfoReportsACoreContextOfAtLeast41) {
     for (const std::string backend : {"osmesa", "egl"}) {
         const auto r = warplab("info --gl " + backend);

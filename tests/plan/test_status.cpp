@@ -107,5 +107,52 @@ TEST(StudyStatus, ReadsEachSessionsOutlineAndSaysWhatTheWholeSessionsSay) {
                 static_cast<unsigned long long>(sessionBytes));
 }
 
+// Who played, who is in the analysis, who is running: from the sessions' facts alone. Copies of
+// one session in two rigs' folders count once; a second complete session on another rig is
+// named by its rig.
+TEST(StudyStatus, TellsPlayersFlagsRigsAndRunningSessions) {
+    const std::string dir = scratch("kinds");
+    const StudyPlan plan =
+        makePlan(dir, {std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"}, 4, {"A", "B", "C", "D"}, 7);
+    const auto fact = [&](const std::string& participant, const std::string& player, const std::string& id,
+                          const std::string& rig) {
+        SessionFacts f;
+        f.path = dir + "/results/" + (rig.empty() ? "" : rig + "/") + participant + "-" + id + ".warplab-session";
+        f.header.participant = participant;
+        f.header.player = player;
+        f.header.sessionId = id;
+        f.header.planId = plan.id;
+        f.header.protocolJson = R"({"name": "shooter-quick"})";
+        f.completed = true;
+        f.rig = rig;
+        return f;
+    };
+    std::vector<SessionFacts> facts = {fact("A", "bot:2", "a1", "booth-a"), fact("A", "bot:2", "a1", "booth-b"),
+                                       fact("B", "human", "b1", ""), fact("B", "human", "b2", "booth-b"),
+                                       fact("C", "bot:3", "c1", "")};
+    facts.back().flags["missed_frames"] = "3 % of frames late";
+    session::LockHolder holder;
+    holder.pid = 4242;
+    holder.host = "booth-a";
+    holder.participant = "D";
+    holder.protocol = "shooter-quick";
+    holder.since = "2024-05-01T09:30:00.000Z";
+    const auto status = studyStatus(plan, facts, {{"booth-a", holder}});
+    ASSERT_EQ(status.size(), 4u);
+    EXPECT_EQ(participantKind(status[0]), "bot");
+    EXPECT_EQ(status[0].protocols[0].sessions, 1) << "a copy of one session is one session";
+    EXPECT_EQ(participantKind(status[1]), "human");
+    EXPECT_EQ(status[1].protocols[0].completeRigs, (std::vector<std::string>{"", "booth-b"}));
+    EXPECT_TRUE(inAnalysis(status[0]));
+    EXPECT_TRUE(inAnalysis(status[1]));
+    EXPECT_EQ(status[2].protocols[0].state, SessionState::Flagged);
+    EXPECT_FALSE(inAnalysis(status[2])) << "export leaves flagged sessions out by default";
+    ASSERT_TRUE(status[3].protocols[0].running);
+    EXPECT_EQ(stateLine(status[3].protocols[0]),
+              "running (pid 4242 on booth-a, since 2024-05-01T09:30:00.000Z; rig booth-a)");
+    EXPECT_EQ(participantKind(status[3]), "");
+    EXPECT_EQ(nextParticipant(status), nullptr) << "D is running and the others are done";
+}
+
 }  // namespace
 }  // namespace warplab::plan

@@ -164,6 +164,38 @@ TEST(StudyPlan, IsAFunctionOfItsArgumentsButForIdAndTime) {
     for (std::size_t i = 0; i < 6; ++i) EXPECT_NE(a.participants[i].seed, c.participants[i].seed);
 }
 
+// A plan grows by the rows a plan made at the larger size has there: the same ids, seeds and
+// orders, in two steps or in one; the rows it had are kept as they were.
+TEST(StudyPlan, GrownIsTheSameAsMadeAtThatSize) {
+    const StudyPlan once = makePlan(scratch("grown-once"), {kShooter, kClick}, 11, {}, 42);
+    const StudyPlan start = makePlan(scratch("grown"), {kShooter, kClick}, 4, {}, 42);
+    const StudyPlan grown = extendPlan(scratch("grown"), extendPlan(scratch("grown"), start, 3, {}), 4, {});
+    ASSERT_EQ(grown.participants.size(), once.participants.size());
+    for (std::size_t i = 0; i < once.participants.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(grown.participants[i].id, once.participants[i].id);
+        EXPECT_EQ(grown.participants[i].seed, once.participants[i].seed);
+        EXPECT_EQ(grown.participants[i].protocolOrder, once.participants[i].protocolOrder);
+        EXPECT_EQ(grown.participants[i].conditionOrder, once.participants[i].conditionOrder);
+    }
+    EXPECT_EQ(grown.id, start.id);
+    // A row edited by hand keeps its seed, and no new row takes it.
+    StudyPlan edited = start;
+    edited.participants[0].seed = once.participants[4].seed;
+    const StudyPlan around = extendPlan(scratch("grown"), edited, 1, {"X"});
+    EXPECT_EQ(around.participants[0].seed, once.participants[4].seed);
+    EXPECT_NE(around.participants[4].seed, once.participants[4].seed);
+    EXPECT_EQ(around.participants[4].id, "X");
+    // An id the plan has is refused, naming it.
+    try {
+        extendPlan(scratch("grown"), start, 1, {"P02"});
+        ADD_FAILURE() << "P02 is in the plan already";
+    } catch (const PlanError& e) {
+        EXPECT_NE(std::string(e.what()).find("participant id \"P02\" is already in the plan"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(StudyPlan, NamesParticipantsAsGivenOrZeroPadded) {
     EXPECT_EQ(makePlan(scratch("ids-12"), {kShooter}, 12, {}, 1).participants[11].id, "P12");
     EXPECT_EQ(makePlan(scratch("ids-12b"), {kShooter}, 12, {}, 1).participants[0].id, "P01");

@@ -130,8 +130,9 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
     Json document = kim();
     document["conditions"]["lag60x5-depth"]["lag_ms"] = 60;
     EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': conditions.lag60x5-depth.lag_ms a lag of 60 ms is 7.2 frames at 120 Hz, not a whole "
-              "number; the nearest that are: 58.3333 ms (7 frames) and 66.6667 ms (8 frames), or give lag_frames");
+              "protocol 'p.json': conditions.lag60x5-depth.lag_ms is 60 ms, which is 7.2 frames at 120 Hz, not a "
+              "whole number; the nearest that are: 58.3333 ms (7 frames) and 66.6667 ms (8 frames), or give "
+              "lag_frames");
     // render_hz has no default.
     document = kim();
     document["conditions"]["lag60x5"].erase("render_hz");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -913,6 +914,28 @@ TEST(ProtocolRendering, MaxLateShareIsAShareFromFormat6) {
     EXPECT_EQ(
         errorOf(document),
         "protocol 'p.json': display.max_late_share is new in format_version 6, but this file is format_version 5");
+}
+
+}  // namespace
+}  // namespace warplab::protocol
+
+namespace warplab::protocol {
+namespace {
+
+// docs/protocol.md's shooter layout is a protocol a lab can copy: it loads, in the newest format,
+// and shows the questions after a block that a lab adds first.
+TEST(ProtocolDocs, TheShooterLayoutExampleLoadsWithItsQuestions) {
+    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/protocol.md");
+    const std::string text((std::istreambuf_iterator<char>(doc)), std::istreambuf_iterator<char>());
+    const std::size_t heading = text.find("\n## Layout\n");
+    ASSERT_NE(heading, std::string::npos);
+    const std::size_t open = text.find("```json\n", heading), close = text.find("\n```", open);
+    ASSERT_NE(close, std::string::npos);
+    const std::string example = text.substr(open + 8, close - open - 8);
+    const ShooterProtocol p = parseShooterProtocol(example, "docs/protocol.md");
+    EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
+    EXPECT_EQ(p.questions.size(), 2u);
+    EXPECT_FALSE(p.interleaveConditions);
 }
 
 }  // namespace

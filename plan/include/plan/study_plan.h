@@ -76,6 +76,15 @@ struct StudyPlan {
 StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& protocolPaths, int participants,
                    const std::vector<std::string>& ids, std::uint64_t seed);
 
+// The plan grown by `participants` rows at its end, the rows a plan made for all of them at
+// once would have had there: the next seeds of the plan's stream (passing over any seed a row
+// already has) and the next rows of its squares. Rows already there are kept as they are, and
+// so is everything else. `ids` names the new participants; empty means the next default ids,
+// P<row number> zero-padded to the new total's width (as makePlan numbers them); an id the
+// plan already has is refused. Nothing is written: writePlan does that.
+StudyPlan extendPlan(const std::string& planDir, const StudyPlan& plan, int participants,
+                     const std::vector<std::string>& ids);
+
 // planDir/study.json, written whole beside it and renamed into place, so a reader never sees
 // half a plan.
 void writePlan(const std::string& planDir, const StudyPlan& plan);

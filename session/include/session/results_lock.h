@@ -2,14 +2,15 @@
 // session (docs/session-format.md, "The lock file"). No GL.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "session/session_store.h"
 
 namespace warplab::session {
 
-// The lock file's name inside the results folder. Export, replay and study status read only
-// session files, so they pass over it.
+// The lock file's name inside the results folder. Export and replay read only session files,
+// so they pass over it; study status reads it (readLockHolder) to tell a running session.
 inline constexpr const char* kLockFileName = ".warplab-lock";
 
 // Who holds a results folder, as its lock file says.
@@ -35,6 +36,19 @@ private:
 // (kill -9 and power cuts included), so a file left behind by one that died blocks no one.
 // The file is removed on release. Move-only; inherited across fork() (the children of one
 // run share its lock) but not across exec.
+// The holder a results folder's lock file names, read without taking the lock (a reader must
+// never make a run starting at that instant find the folder busy); nullopt when the folder has
+// no lock file or it names no holder.
+std::optional<LockHolder> readLockHolder(const std::string& resultsDir);
+
+// Whether the holder's run may still be going: on this host (or a file naming none), whether
+// its pid is alive (the kernel frees the lock of a run that died, but its file stays); on
+// another host, which this one cannot see into, true, as the file says.
+bool holderMayRun(const LockHolder& holder);
+
+// "pid 4242 on booth-a, since 2024-05-01T09:30:00.000Z": who holds a lock, for a sentence.
+std::string holderText(const LockHolder& holder);
+
 class ResultsFolderLock {
 public:
     // Takes the lock or throws, creating nothing but the lock file: ResultsFolderBusy when
