@@ -220,6 +220,48 @@ TEST(CliResume, AVersion4SessionResumesIntoAVersion5One) {
     EXPECT_TRUE(contains(replay.output, "4/4 outcomes reproduced")) << replay.output;
 }
 
+// A session stopped before its test says what it keeps as the plan counts it: no test trial,
+// and the training's shots apart. It said "3 scored outcome(s) ... kept" of a session that had
+// done none of its 3 test trials.
+TEST(CliResume, ASessionStoppedInTrainingSaysItKeepsNoTestTrial) {
+    const std::string dir = scratch("in-training");
+    ASSERT_EQ(warplab("run --protocol " + warplab::testing::tinyProtocol(dir) + " --participant T --out " + dir +
+                      " --headless --player bot:3 --seed 4")
+                  .status,
+              0);
+    const std::string session = sessionsIn(dir).at(0);
+    // Cut back to its last commit before the test's first event, as a kill there leaves it.
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(session.c_str(), &db), SQLITE_OK);
+    const char* cutBack =
+        "CREATE TEMP TABLE kept AS SELECT MAX(id) AS id FROM commits"
+        "  WHERE event_rows < (SELECT MIN(id) FROM events WHERE phase = 'test');"
+        "DELETE FROM meta WHERE key = 'completed_at';"
+        "DELETE FROM input WHERE frame > (SELECT last_frame FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM frames WHERE frame > (SELECT last_frame FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM events WHERE id > (SELECT event_rows FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM commits WHERE id > (SELECT id FROM kept);";
+    const int rc = sqlite3_exec(db, cutBack, nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+    ASSERT_EQ(rc, SQLITE_OK);
+    const SessionData cut = readSession(session);
+    ASSERT_FALSE(cut.completed);
+    ASSERT_FALSE(cut.damaged) << cut.note;
+    std::size_t outcomes = 0, ofTraining = 0;
+    for (const auto& e : cut.events) {
+        const bool outcome = e.type == "shot" || e.type == "timeout";
+        outcomes += outcome;
+        ofTraining += outcome && e.phase == "training";
+    }
+    ASSERT_GT(ofTraining, 0u) << "the cut keeps some of training";
+
+    const auto resumed = warplab("run --resume " + session + " --headless --player bot:3");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_TRUE(contains(resumed.output, ": 0 of 3 test trials kept (" + std::to_string(outcomes) +
+                                             " scored outcome(s) in all, those of practice and training included)"))
+        << resumed.output;
+}
+
 // What cannot be resumed is refused with one sentence naming the file (exit 1), and nothing
 // is written; options that the session itself answers are a usage error (exit 2).
 TEST(CliResume, RefusesWhatCannotBeResumedAndWritesNothing) {

@@ -29,7 +29,8 @@ struct ResumePoint {
     // its last completed trial or match, with the frame and event rows of those frames.
     std::size_t keptInputs = 0, keptFrames = 0, keptEvents = 0;
     std::int64_t resumeFrame = 0;  // the first frame played after resuming
-    std::size_t keptOutcomes = 0;  // scored outcomes (shots and timeouts, clicks) kept
+    std::size_t keptOutcomes = 0;  // scored outcomes (shots and timeouts, clicks) kept, of every phase
+    game::Progress kept;  // what of the protocol's plan is kept, as a supervisor counts it (test trials, matches)
     std::size_t droppedOutcomes = 0;  // ... recorded after the last commit point, to be played again
 };
 
