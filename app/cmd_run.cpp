@@ -342,7 +342,7 @@ int runReplay(const ParsedArgs& args) {
             ? static_cast<int>(args.integer("height", 0, scene::kMinDisplaySize, scene::kMaxImageSize))
             : 0;
         const present::ReplayRenderResult rendered = present::renderReplay(
-            request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+            request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout, std::cerr);
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";

@@ -384,6 +384,13 @@ TEST(CliSession, TheLateWarpProtocolRunsReplaysAndScoresWhatTheWarpedFrameShows)
         const auto rendered = warplab("replay " + session + " --render " + framesDir + " --width 320 --height 180 " +
                                       "--frames " + std::to_string(shot - 12) + ":" + std::to_string(shot));
         ASSERT_EQ(rendered.status, 0) << rendered.output;
+        // The frames before the range are re-simulated, not drawn, and it says so (on stderr):
+        // a late range of a long session printed nothing for minutes.
+        EXPECT_TRUE(contains(rendered.output,
+                             "replay --render: re-simulating frames 0 to " + std::to_string(shot - 13) +
+                                 " without drawing them, then drawing " + std::to_string(shot - 12) + " to " +
+                                 std::to_string(shot) + "\n"))
+            << rendered.output;
         const CrossCheck check = crossCheckIn(rendered.output);
         EXPECT_EQ(check.disagreed, 0) << rendered.output;
         frames += check.frames;

@@ -73,6 +73,32 @@ TEST(QuestionText, TypedTextIsEditedAsAParticipantExpects) {
     EXPECT_EQ(editedAnswer("", "a\tb\rc\x7F", 200), "abc");
 }
 
+// Each screen says how it is answered, as step() takes answers: a scale's digit keys only for
+// its values that have one. The Likert screen said nothing.
+TEST(QuestionText, EachScreenSaysHowItIsAnswered) {
+    const std::vector<Question> questions{likert("seven", 1, 7), likert("eleven", 0, 10), likert("far", 10, 20),
+                                          choice("which", {"a", "b"}), text("comment")};
+    Questionnaire list(questions, 120.0, kDisplay, false);
+    list.open(0);
+    const std::vector<std::string> said{"Click a box, or press 1\u20137, to answer",
+                                        "Click a box, or press 1\u20139 for those values, to answer",
+                                        "Click a box to answer", "Click an option, or press its number, to answer",
+                                        "Type your answer, then press Enter"};
+    for (std::size_t i = 0; i < questions.size(); ++i) {
+        QuestionPrompt shown = list.prompt({0.0, 0.0});
+        EXPECT_EQ(shown.hint, said[i]) << questions[i].id;
+        // Answer it (past the settle time) to reach the next one.
+        const std::uint32_t keys = questions[i].kind == QuestionKind::Text ? kKeyEnter : digitKey(1);
+        const auto frame = static_cast<std::int64_t>(2 * 120 * (i + 1));
+        if (questions[i].kind == QuestionKind::Likert && questions[i].min > 9) {
+            shown.highlighted = 0;
+            ASSERT_TRUE(list.step(frame, shown, 0, true, ""));
+        } else {
+            ASSERT_TRUE(list.step(frame, shown, keys, false, "")) << questions[i].id;
+        }
+    }
+}
+
 TEST(QuestionText, AnAnswerIsAlwaysValidUtf8WithinItsLength) {
     // Bytes no character is made of: a lone continuation byte, a cut-off sequence, an overlong
     // form, a surrogate, 0xFF.

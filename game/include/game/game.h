@@ -70,6 +70,7 @@ struct QuestionPrompt {
     std::vector<glm::dvec4> boxes;
     int highlighted = -1;  // the box under the cursor, -1 for none
     std::string typed;  // text: the answer so far
+    std::string hint;  // how to answer it, in the participant's words: what the keys and clicks do
 };
 
 // What one displayed frame shows, for the renderer, the HUD and a player looking at it.
