@@ -109,6 +109,7 @@ private:
     Phase phase_ = Phase::Acclimation;
     std::int64_t phaseStartFrame_ = 0;  // its time runs from here (from the end of its instructions)
     bool reading_ = false;  // the phase's instructions are on screen
+    bool recentre_ = false;  // the next frame's view starts from the resting one (a phase begins)
     std::string mode_;
     std::optional<condition::ModeSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;

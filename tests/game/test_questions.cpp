@@ -416,6 +416,65 @@ TEST(ShooterQuestions, OnTheQuestionScreensTheMouseMovesACursorNotTheView) {
     EXPECT_EQ(events[0].phase, "test");
 }
 
+// The first frame of the first question screen of a test with one Likert question, format
+// `version`.
+ShownFrame firstLikertScreen(int version) {
+    auto p = shooterWith({likert("fun", 1, 7)}, /*interleave=*/true);
+    p.formatVersion = version;
+    ShooterGame game(p, 2, DisplaySize{});
+    ShooterBot bot(4, p);
+    FrameInput input;
+    ShownFrame shown;
+    while (!game.finished()) {
+        shown = game.step(input);
+        if (shown.question) break;
+        input = bot.next(shown);
+    }
+    return shown;
+}
+
+// From format 7 the Likert screen opens with no box under the cursor, so none is lit as if
+// chosen (at the middle the cursor lay on the middle box); a format 5 or 6 file keeps the
+// cursor where its sessions had it, so that they replay.
+TEST(ShooterQuestions, TheLikertScreenOpensWithNoBoxUnderTheCursor) {
+    const ShownFrame now = firstLikertScreen(protocol::kShooterRecentresSince);
+    ASSERT_TRUE(now.question.has_value());
+    EXPECT_EQ(now.question->highlighted, -1);
+    for (const auto& box : now.question->boxes) EXPECT_LT(now.cursor.y, box.y) << "the cursor is above the row";
+    EXPECT_EQ(now.question->hint, "Click a box, or press 1\u20137, to answer");
+    const ShownFrame before = firstLikertScreen(protocol::kShooterRecentresSince - 1);
+    ASSERT_TRUE(before.question.has_value());
+    EXPECT_EQ(before.question->highlighted, 3) << "format 6 sessions replay with the cursor where it was";
+}
+
+// Where training and the test begin the view is the resting one again (targets spawn in it),
+// whatever the participant looked at before; in the game, so replay sees it. Format 6 files
+// keep the view as it was.
+TEST(ShooterPhases, TheViewIsRecentredWhereTrainingAndTheTestBegin) {
+    for (const int version : {protocol::kShooterRecentresSince, protocol::kShooterRecentresSince - 1}) {
+        auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+        p.formatVersion = version;
+        p.acclimationS = 0.5;
+        p.supervisorStartsTest = false;
+        ShooterGame game(p, 2, DisplaySize{});
+        const float restingYaw = game.step({}).camera.yaw;
+        // Look aside and up through the acclimation, then keep still: 20 frames into the
+        // training (its instructions screen, or its first trial) the view is the phase's.
+        std::int64_t trainingFrom = -1;
+        ShownFrame shown;
+        for (int i = 0; i < 400 && (trainingFrom < 0 || shown.frame < trainingFrom + 20); ++i) {
+            shown = game.step(i < 30 ? FrameInput{40.0, -20.0, 0, 0} : FrameInput{});
+            for (const auto& e : game.takeEvents())
+                if (e.type == "phase" && e.phase == "training") trainingFrom = e.frame;
+        }
+        ASSERT_GE(trainingFrom, 30) << "version " << version;
+        if (version >= protocol::kShooterRecentresSince)
+            EXPECT_EQ(shown.camera.yaw, restingYaw) << "the training begins facing the targets";
+        else
+            EXPECT_NE(shown.camera.yaw, restingYaw) << "a format 6 session keeps the view it had";
+    }
+}
+
 TEST(ShooterQuestions, NoneByDefault) {
     const auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
     EXPECT_TRUE(p.questions.empty());
