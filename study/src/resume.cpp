@@ -38,7 +38,8 @@ ResumePoint findResumePoint(const std::string& sessionPath) {
     for (const auto& frame : data.frames) point.keptFrames += frame.frame < point.resumeFrame;
     for (std::size_t i = 0; i < data.events.size(); ++i)
         (i < point.keptEvents ? point.keptOutcomes : point.droppedOutcomes) += game->isOutcome(data.events[i]);
-    point.kept = study->progress({data.events.begin(), data.events.begin() + static_cast<std::ptrdiff_t>(point.keptEvents)});
+    point.kept = study->progress(std::vector<session::EventRecord>(
+        data.events.begin(), data.events.begin() + static_cast<std::ptrdiff_t>(point.keptEvents)));
     return point;
 }
 
