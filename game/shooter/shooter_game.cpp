@@ -168,8 +168,8 @@ void ShooterGame::beginPhase(Phase phase) {
     commitPoint_ = true;
     // Targets spawn in the resting view; a participant who ended acclimation or training looking
     // at the ceiling would begin the next phase facing away from them. From format 7 the view
-    // is the resting one again from the phase's next frame: a rule of the game, so that replay
-    // (and a resumed session, which replays up to its resume point) sees it as the window did.
+    // is the resting one again from the phase's next frame (and from a resumed session's
+    // first, resumeHere): a rule of the game, so that replay sees it as the window did.
     recentre_ = protocol_.formatVersion >= protocol::kShooterRecentresSince &&
         (phase == Phase::Training || phase == Phase::Test);
     session::EventRecord event;
@@ -210,6 +210,8 @@ void ShooterGame::beginPhase(Phase phase) {
         case Phase::Done: return;
     }
 }
+
+void ShooterGame::resumeHere() { recentre_ = protocol_.formatVersion >= protocol::kShooterRecentresSince; }
 
 void ShooterGame::openPhase(const std::string& instructions) {
     if (instructions.empty() || freePlay_) return scheduleNextTrial();

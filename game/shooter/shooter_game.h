@@ -45,6 +45,8 @@ public:
     std::string phase() const override { return phaseName(phase_); }
     std::vector<session::EventRecord> takeEvents() override;
     bool atCommitPoint() const override { return commitPoint_; }
+    // From format 7 a participant who sat down again faces the targets, as at a phase's start.
+    void resumeHere() override;
     session::FrameRecord frameRecord(const ShownFrame& shown) const override;
     bool isOutcome(const session::EventRecord& event) const override;
     PointerProbe probePointer(const ShownFrame& shown) const override;

@@ -169,6 +169,7 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
             progress << "replay --render: " << (in.frame < request.firstFrame ? "re-simulating" : "drawing")
                      << " frame " << in.frame << " of " << lastFrame << "\n";
         }
+        if (game::resumedBefore(data.header, in.frame)) game->resumeHere();
         const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game->takeEvents();
         maker.keepSource(shown);

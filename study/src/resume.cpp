@@ -77,10 +77,12 @@ void replayKeptFrames(const ResumePoint& point, game::Game& game,
                       const std::function<void(const game::ShownFrame&)>& seen) {
     for (std::size_t i = 0; i < point.keptInputs; ++i) {
         const session::InputRecord& in = point.stored.inputs[i];
+        if (game::resumedBefore(point.stored.header, in.frame)) game.resumeHere();  // an earlier resume of it
         const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game.takeEvents();  // the stored ones, checked equal by findResumePoint, are in keptRows
         if (seen) seen(shown);
     }
+    game.resumeHere();  // the next frame is the resumed session's first (its header's resumed.frame)
 }
 
 std::string resumeSummary(const ResumePoint& point) {

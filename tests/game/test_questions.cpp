@@ -475,6 +475,25 @@ TEST(ShooterPhases, TheViewIsRecentredWhereTrainingAndTheTestBegin) {
     }
 }
 
+// A session resumed goes on facing the targets (format 7): the view is the resting one from the
+// first frame after the resume point, whatever the participant looked at before it.
+TEST(ShooterPhases, AResumedSessionGoesOnFacingTheTargets) {
+    for (const int version : {protocol::kShooterRecentresSince, protocol::kShooterRecentresSince - 1}) {
+        auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+        p.formatVersion = version;
+        ShooterGame game(p, 2, DisplaySize{});
+        const float restingYaw = game.step({}).camera.yaw;
+        for (int i = 0; i < 30; ++i) game.step({40.0, -20.0, 0, 0});
+        game.resumeHere();
+        ShownFrame shown;
+        for (int i = 0; i < 20; ++i) shown = game.step({});  // past any frame rendered before it
+        if (version >= protocol::kShooterRecentresSince)
+            EXPECT_EQ(shown.camera.yaw, restingYaw);
+        else
+            EXPECT_NE(shown.camera.yaw, restingYaw) << "a format 6 session goes on as it was";
+    }
+}
+
 TEST(ShooterQuestions, NoneByDefault) {
     const auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
     EXPECT_TRUE(p.questions.empty());

@@ -51,7 +51,8 @@ session::SessionWriter::FirstCommit keptRows(const ResumePoint& point);
 
 // Steps `game` (new, from the stored protocol and seed) through the kept frames, calling
 // seen(shown) after each, so that a player or a frame maker learns what was on screen. The
-// game then stands where the interrupted session's last completed trial or match left it.
+// game then stands where the interrupted session's last completed trial or match left it, told
+// that play goes on from here (Game::resumeHere), as each replay of the resumed file tells it.
 void replayKeptFrames(const ResumePoint& point, game::Game& game,
                       const std::function<void(const game::ShownFrame&)>& seen);
 
