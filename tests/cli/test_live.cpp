@@ -129,8 +129,9 @@ TEST(LiveSession, TheSupervisorCanEndASessionAndKeepsWhatWasRecorded) {
     // Not 0, which a complete session exits with: a script chaining runs must not go on as if
     // it were one. 3 is what replay says of the file: incomplete.
     ASSERT_EQ(r.status, 3) << r.output;
-    EXPECT_TRUE(contains(r.output, "ended by the supervisor at frame 79; everything recorded is kept "
-                                   "(warplab run --resume carries it on)"))
+    EXPECT_TRUE(contains(r.output,
+                         "ended by the supervisor at frame 79; everything recorded is kept "
+                         "(warplab run --resume carries it on)"))
         << r.output;
     const auto data = warplab::session::readSession(sessionIn(dir));
     EXPECT_FALSE(data.completed);
