@@ -28,6 +28,7 @@ struct HudRenderer::Impl {
     gl::VertexArray vao = gl::VertexArray::create();
     TTF_Font* font = nullptr;
     int fontPixels = 0;
+    int frameHeight = 0;  // of the frame being drawn over
     // The least font size text is drawn at, pixels: a line a participant can read at 320 x 180.
     static constexpr float kMinTextPixels = 9.0f;
     // The strings shown, uploaded once: a study's few fixed ones, and each state of an answer
@@ -146,8 +147,11 @@ struct HudRenderer::Impl {
 
     // `scale` of the font's size, or more where that would draw text under kMinTextPixels:
     // text scales with the frame, and on a small one (320 x 180) a fraction of it is a smudge.
+    // Frames smaller still (a test's 160 x 90) keep a twentieth of their height, so that a
+    // screen's lines still fit in it.
     float readable(float scale) const {
-        return std::max(scale, std::min(1.0f, kMinTextPixels / static_cast<float>(std::max(1, fontPixels))));
+        const float least = std::min(kMinTextPixels, static_cast<float>(frameHeight) / 20.0f);
+        return std::max(scale, std::min(1.0f, least / static_cast<float>(std::max(1, fontPixels))));
     }
 
     // `s` wrapped to `widthPixels` at `scale` and drawn line under line, the first line's top at
@@ -260,6 +264,7 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     auto& m = *impl_;
     auto& g = target.impl();
     const int w = g.width, h = g.height;
+    m.frameHeight = h;
     // Text scales with the frame: 1/12 of the height for the banner, 1/28 for the status line.
     const int bannerPixels = std::max(8, h / 12);
     if (m.font == nullptr || m.fontPixels != bannerPixels) {
