@@ -152,21 +152,27 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
     }
 }
 
-// Room on disk for a live session, checked with its folder before the window opens: a disk
-// that fills mid-session ends it at a commit, with the participant seated.
-void requireRoom(const ParsedArgs& args, const live::LiveRun& run) {
+// Room on disk for a session, checked with its folder before the window opens or the first
+// headless frame: a disk that fills mid-session ends a live one at a commit, with the
+// participant seated, and leaves a headless one's file damaged.
+template <typename Run>
+void requireRoom(const ParsedArgs& args, const Run& run, const game::DisplaySize& display) {
     const auto study = run.resumeFrom.empty()
         ? study::loadRunStudy(run.protocolPath, run.protocolText)
         : study::loadRunStudy(run.resumeFrom, session::readSessionHeader(run.resumeFrom).protocolJson);
     try {
-        study::requireDiskSpace(run.resultsDir, study::estimateSessionSize(*study, {run.width, run.height}),
-                                study->name());
+        study::requireDiskSpace(run.resultsDir, study::estimateSessionSize(*study, display), study->name());
     } catch (const std::runtime_error& e) {
         throw std::runtime_error(
             e.what() +
             std::string(args.has("study") ? "; free some space there." : "; free some space, or use another --out."));
     }
 }
+
+// `run`'s exit status for a session the supervisor ended before its end (README "Exit codes"):
+// replay's "incomplete", since that is what replay says of its file; 0 is kept for a session
+// that played to its end, so that a script does not go on to the next step as if it had.
+constexpr int kRunEndedEarly = study::kReplayIncomplete;
 
 constexpr long long kMaxSeed = 1LL << 62;
 
@@ -289,11 +295,11 @@ int runWindowed(const ParsedArgs& args) {
         return 0;
     }
     const auto lock = lockResults(args, run);
-    requireRoom(args, run);
+    requireRoom(args, run, {run.width, run.height});
     tellDrawnSeed(args, run.seed);
-    const std::string path = live::runLive(run, dataPathsFrom(args), std::cerr);
-    if (!path.empty()) std::cout << path << "\n";
-    return 0;
+    const live::LiveEnd end = live::runLive(run, dataPathsFrom(args), std::cerr);
+    if (!end.session.empty()) std::cout << end.session << "\n";
+    return end.endedBySupervisor ? kRunEndedEarly : 0;
 }
 
 }  // namespace
@@ -336,6 +342,7 @@ int runRun(const ParsedArgs& args) {
         dataPathsFrom(args);
     }
     const auto lock = lockResults(args, run);
+    requireRoom(args, run, {run.displayWidth, run.displayHeight});
     tellDrawnSeed(args, run.seed);
     const std::string path = study::runHeadless(run, std::cerr);
     std::cout << path << "\n";
@@ -368,7 +375,7 @@ int runReplay(const ParsedArgs& args) {
             ? static_cast<int>(args.integer("height", 0, scene::kMinDisplaySize, scene::kMaxImageSize))
             : 0;
         const present::ReplayRenderResult rendered = present::renderReplay(
-            request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout);
+            request, dataPathsFrom(args), backendFrom(args, renderer::GlBackend::OSMesa), std::cout, std::cerr);
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
@@ -407,7 +414,8 @@ Command runCommand() {
          "Run a study session: in a window with the participant's mouse (the default), or\n"
          "headlessly with a simulated or recorded player. Writes the session store into the\n"
          "results folder (one file per session) as it runs, then prints its path. In the window:\n"
-         "Enter starts, Esc pauses (then Enter resumes, Q ends, keeping what was recorded).",
+         "Enter starts, Esc pauses (then Enter resumes, Q ends early, keeping what was recorded:\n"
+         "exit status 3, as replay's for an incomplete session; --resume carries it on).",
          "warplab run --protocol P --participant ID --out RESULTS [--fullscreen] [--headless --player bot|sim[:SEED]]\n"
          "       warplab run --study DIR --participant ID [--rig NAME] [--resume] [...]\n"
          "       warplab run --resume SESSION [...]",

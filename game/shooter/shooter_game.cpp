@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -165,6 +166,12 @@ void ShooterGame::beginPhase(Phase phase) {
     phaseStartFrame_ = frame_;
     trialsInPhase_ = 0;
     commitPoint_ = true;
+    // Targets spawn in the resting view; a participant who ended acclimation or training looking
+    // at the ceiling would begin the next phase facing away from them. From format 7 the view
+    // is the resting one again from the phase's next frame (and from a resumed session's
+    // first, resumeHere): a rule of the game, so that replay sees it as the window did.
+    recentre_ = protocol_.formatVersion >= protocol::kShooterRecentresSince &&
+        (phase == Phase::Training || phase == Phase::Test);
     session::EventRecord event;
     event.type = "phase";
     event.eventTime = now();
@@ -203,6 +210,8 @@ void ShooterGame::beginPhase(Phase phase) {
         case Phase::Done: return;
     }
 }
+
+void ShooterGame::resumeHere() { recentre_ = protocol_.formatVersion >= protocol::kShooterRecentresSince; }
 
 void ShooterGame::openPhase(const std::string& instructions) {
     if (instructions.empty() || freePlay_) return scheduleNextTrial();
@@ -410,12 +419,21 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
         pauseUntil_ = -1;
         frozenFrame_.reset();
         banner_.clear();
-        questionCursor_ = {display_.width * 0.5, display_.height * 0.5};
+        // At the middle the cursor lay on the Likert row's middle box, lit as if chosen: from
+        // format 7 it starts above every answer's box (they lie in the lower half), under the
+        // status line.
+        questionCursor_ = {
+            display_.width * 0.5,
+            display_.height * (protocol_.formatVersion >= protocol::kShooterRecentresSince ? 0.25 : 0.5)};
         questions_.open(frame_ - 1);
     }
     if (asking_) return questionFrame(input);
     const double refresh = protocol_.refreshHz;
     const double sensitivity = protocol_.mouseRadiansPerCount;
+    if (std::exchange(recentre_, false)) {
+        camera_.yaw = restingCamera_.yaw;
+        camera_.pitch = restingCamera_.pitch;
+    }
     camera_.yaw = static_cast<float>(camera_.yaw + input.mouseDx * sensitivity);
     camera_.pitch = static_cast<float>(std::clamp(camera_.pitch - input.mouseDy * sensitivity, -kMaxPitch, kMaxPitch));
     cameraHistory_.record(frame_, camera_);

@@ -45,6 +45,8 @@ public:
     std::string phase() const override { return phaseName(phase_); }
     std::vector<session::EventRecord> takeEvents() override;
     bool atCommitPoint() const override { return commitPoint_; }
+    // From format 7 a participant who sat down again faces the targets, as at a phase's start.
+    void resumeHere() override;
     session::FrameRecord frameRecord(const ShownFrame& shown) const override;
     bool isOutcome(const session::EventRecord& event) const override;
     PointerProbe probePointer(const ShownFrame& shown) const override;
@@ -109,6 +111,7 @@ private:
     Phase phase_ = Phase::Acclimation;
     std::int64_t phaseStartFrame_ = 0;  // its time runs from here (from the end of its instructions)
     bool reading_ = false;  // the phase's instructions are on screen
+    bool recentre_ = false;  // the next frame's view starts from the resting one (a phase begins)
     std::string mode_;
     std::optional<condition::ModeSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "event_detail.h"
 
@@ -35,6 +36,29 @@ bool wellFormed(const std::string& text, std::size_t at, std::size_t length) {
 
 bool inside(glm::dvec2 p, const glm::dvec4& box) {
     return p.x >= box.x && p.x < box.x + box.z && p.y >= box.y && p.y < box.y + box.w;
+}
+
+// The keys that answer a Likert question: the digits of its values from 1 to 9 (step() reads
+// them). Empty when none of its values is a digit key.
+std::pair<int, int> likertKeys(const protocol::Question& q) { return {std::max(1, q.min), std::min(9, q.max)}; }
+
+// What answers a question, said under it: what step() takes, in the participant's words.
+std::string answerHint(const protocol::Question& q) {
+    switch (q.kind) {
+        case QuestionKind::Likert: {
+            const auto [low, high] = likertKeys(q);
+            if (low > high) return "Click a box to answer";
+            if (low == q.min && high == q.max)
+                return "Click a box, or press " + std::to_string(low) + "\u2013" + std::to_string(high) + ", to answer";
+            return "Click a box, or press " + std::to_string(low) + "\u2013" + std::to_string(high) +
+                " for those values, to answer";
+        }
+        case QuestionKind::Choice:
+            return q.options.size() <= 9 ? "Click an option, or press its number, to answer"
+                                         : "Click an option, or press the number of one of the first nine, to answer";
+        case QuestionKind::Text: return "Type your answer, then press Enter";
+    }
+    return "";
 }
 
 }  // namespace
@@ -151,6 +175,7 @@ QuestionPrompt Questionnaire::prompt(glm::dvec2 cursor) const {
             r.typed = typed_;
             break;
     }
+    r.hint = answerHint(q);
     if (q.kind != QuestionKind::Text)
         for (std::size_t i = 0; i < r.boxes.size(); ++i)
             if (inside(cursor, r.boxes[i])) r.highlighted = static_cast<int>(i);
@@ -169,7 +194,8 @@ std::optional<Answer> Questionnaire::step(std::int64_t frame, QuestionPrompt& sh
     switch (q.kind) {
         case QuestionKind::Likert: {
             int keyed = 0;
-            for (int v = std::max(1, q.min); v <= std::min(9, q.max); ++v)
+            const auto [low, high] = likertKeys(q);
+            for (int v = low; v <= high; ++v)
                 if (pressedKeys & digitKey(v)) keyed = v;
             if (keyed != 0)
                 a.value = keyed;

@@ -177,7 +177,7 @@ LiveRun carryingOn(const LiveRun& given, const study::ResumePoint& resume) {
 
 }  // namespace
 
-std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ostream& progress) {
+LiveEnd runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ostream& progress) {
     std::optional<study::ResumePoint> resume;
     if (!given.resumeFrom.empty()) resume = study::findResumePoint(given.resumeFrom);
     const LiveRun run = resume ? carryingOn(given, *resume) : given;
@@ -207,7 +207,7 @@ std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std:
         const std::string text = who + ". Press Enter to start, S to hear the feedback sounds, Esc to leave.";
         std::string pending;
         for (char c; (c = loop.waitFor("warplab", text, "\rs\x1b", pending, &pending)) != '\r';) {
-            if (c != 's') return "";
+            if (c != 's') return {"", true};
             loop.playSoundCheck(progress);
         }
     }
@@ -234,8 +234,9 @@ std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std:
     loop.captureMouse(false);
     policy.finish(loop, progress);
     if (end.aborted) {
-        progress << "session ended by the supervisor at frame " << end.lastFrame << "; everything recorded is kept\n";
-        return writer.path();
+        progress << "session ended by the supervisor at frame " << end.lastFrame
+                 << "; everything recorded is kept (warplab run --resume carries it on)\n";
+        return {writer.path(), true};
     }
     if (run.screenshotStartScreen) {
         loop.showScreen("Thank you", "The experiment has ended.");
@@ -243,7 +244,7 @@ std::string runLive(const LiveRun& given, const renderer::DataPaths& paths, std:
     }
     loop.inject("end");
     if (loop.human()) loop.waitFor("Thank you", "The experiment has ended. Press Enter or Esc to close.", "\r\x1b");
-    return writer.path();
+    return {writer.path(), false};
 }
 
 }  // namespace warplab::live

@@ -2,6 +2,10 @@
 
 #include <SDL.h>
 
+#if defined(__linux__)
+#include <dlfcn.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 
@@ -19,6 +23,26 @@ void tone(std::vector<float>& out, double f0, double f1, double seconds, double 
         const double envelope = std::min({1.0, static_cast<double>(i) / fade, static_cast<double>(n - i) / fade});
         out.push_back(static_cast<float>(gain * envelope * std::sin(phase)));
     }
+}
+
+#if defined(__linux__)
+void ignoreAlsaError(const char*, int, const char*, int, const char*, ...) {}
+#endif
+
+// ALSA's library prints each error of its configuration on stderr ("ALSA lib confmisc.c:855:
+// (parse_card) cannot find card '0'": eight lines on a machine without a sound card) before SDL
+// gives up with one error of its own, which the run says once, as a note. ALSA's documented
+// way to route them is snd_lib_error_set_handler; SDL loads libasound at run time, so it is
+// set on the same library, loaded the same way: nothing to link, nothing done where there is
+// no ALSA. Errors that reach SDL still reach the note.
+void quietAlsaErrors() {
+#if defined(__linux__)
+    static void* const alsa = dlopen("libasound.so.2", RTLD_NOW | RTLD_GLOBAL);  // kept loaded: it holds the handler
+    if (alsa == nullptr) return;
+    using Handler = void (*)(const char*, int, const char*, int, const char*, ...);
+    using SetHandler = int (*)(Handler);
+    if (const auto set = reinterpret_cast<SetHandler>(dlsym(alsa, "snd_lib_error_set_handler"))) set(&ignoreAlsaError);
+#endif
 }
 
 }  // namespace
@@ -44,6 +68,7 @@ const std::vector<std::string>& FeedbackSounds::names() {
 }
 
 FeedbackSounds::FeedbackSounds() {
+    quietAlsaErrors();
     if (SDL_InitSubSystem(SDL_INIT_AUDIO) != 0) {
         why_ = std::string("no audio: ") + SDL_GetError();
         return;

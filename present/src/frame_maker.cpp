@@ -34,6 +34,7 @@ renderer::HudQuestion hudQuestionFor(const game::QuestionPrompt& q, double toFra
         r.maxLabel = q.maxLabel;
     }
     r.typed = q.typed;
+    r.hint = q.hint;
     return r;
 }
 

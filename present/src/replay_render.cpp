@@ -1,6 +1,7 @@
 #include "present/replay_render.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -122,7 +123,7 @@ private:
 }  // namespace
 
 ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
-                                renderer::GlBackend backend, std::ostream& out) {
+                                renderer::GlBackend backend, std::ostream& out, std::ostream& progress) {
     const session::SessionData data = session::readSession(request.sessionPath);
     // Before any work: a range past the end would re-simulate the whole session to write nothing.
     const std::int64_t lastRecorded = data.inputs.empty() ? -1 : data.inputs.back().frame;
@@ -154,8 +155,21 @@ ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::Dat
     for (const auto& f : data.frames)
         if (f.kind == session::kSkippedFrameKind) skipped.insert(f.frame);
 
+    const std::int64_t lastFrame = std::min(request.lastFrame, lastRecorded);
+    if (request.firstFrame > 0)
+        progress << "replay --render: re-simulating frames 0 to " << request.firstFrame - 1
+                 << " without drawing them, then drawing " << request.firstFrame << " to " << lastFrame << "\n";
+    using Clock = std::chrono::steady_clock;
+    const auto every = std::chrono::duration<double>(request.progressEveryS);
+    auto said = Clock::now();
     for (const auto& in : data.inputs) {
         if (in.frame > request.lastFrame) break;
+        if (Clock::now() - said >= every) {
+            said = Clock::now();
+            progress << "replay --render: " << (in.frame < request.firstFrame ? "re-simulating" : "drawing")
+                     << " frame " << in.frame << " of " << lastFrame << "\n";
+        }
+        if (game::resumedBefore(data.header, in.frame)) game->resumeHere();
         const game::ShownFrame shown = game->step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game->takeEvents();
         maker.keepSource(shown);

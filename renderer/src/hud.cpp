@@ -28,6 +28,9 @@ struct HudRenderer::Impl {
     gl::VertexArray vao = gl::VertexArray::create();
     TTF_Font* font = nullptr;
     int fontPixels = 0;
+    int frameHeight = 0;  // of the frame being drawn over
+    // The least font size text is drawn at, pixels: a line a participant can read at 320 x 180.
+    static constexpr float kMinTextPixels = 9.0f;
     // The strings shown, uploaded once: a study's few fixed ones, and each state of an answer
     // being typed, which is why the cache is bounded.
     std::map<std::string, TextTexture> cache;
@@ -142,6 +145,30 @@ struct HudRenderer::Impl {
         return lines;
     }
 
+    // `scale` of the font's size, or more where that would draw text under kMinTextPixels:
+    // text scales with the frame, and on a small one (320 x 180) a fraction of it is a smudge.
+    // Frames smaller still (a test's 160 x 90) keep a twentieth of their height, so that a
+    // screen's lines still fit in it.
+    float readable(float scale) const {
+        const float least = std::min(kMinTextPixels, static_cast<float>(frameHeight) / 20.0f);
+        return std::max(scale, std::min(1.0f, least / static_cast<float>(std::max(1, fontPixels))));
+    }
+
+    // `s` wrapped to `widthPixels` at `scale` and drawn line under line, the first line's top at
+    // `top` (GL pixels, y up), each line placed by `align` (-1 left from x, 0 centred on x, 1
+    // right to x). Returns the bottom of the last line.
+    float lines(const std::string& s, float x, float top, float widthPixels, float scale, int align,
+                const float colour[4]) {
+        const float lineHeight = static_cast<float>(TTF_FontHeight(font)) * scale;
+        float bottom = top;
+        for (const std::string& line : wrapped(s, widthPixels, scale)) {
+            bottom -= lineHeight;
+            const float width = widthAt(line, scale);
+            textAt(line, align < 0 ? x : align > 0 ? x - width : x - width / 2, bottom, scale, colour);
+        }
+        return bottom;
+    }
+
     void rect(float x, float y, float w, float h, const float colour[4]) {
         glUniform4f(gl::uniform(program, "uRect"), x, y, w, h);
         glUniform4f(gl::uniform(program, "uColour"), colour[0], colour[1], colour[2], colour[3]);
@@ -154,22 +181,24 @@ void HudRenderer::Impl::question(const HudQuestion& q, int w, int h) {
     const float light[4] = {1.0f, 1.0f, 1.0f, 0.9f};
     const float fill[4] = {0.25f, 0.27f, 0.33f, 1.0f}, lit[4] = {0.35f, 0.55f, 0.85f, 1.0f};
     const float lineHeight = static_cast<float>(TTF_FontHeight(font));  // pixels at scale 1
-    auto centred = [&](const std::string& s, float centreX, float bottom, float scale, const float colour[4]) {
-        // Drawn smaller when wider than the frame, so that all of it shows.
-        scale = std::min(scale, 0.98f * static_cast<float>(w) / std::max(1.0f, widthAt(s, 1.0f)));
-        textAt(s, centreX - widthAt(s, scale) / 2, bottom, scale, colour);
-    };
 
-    // The prompt above the boxes: where the rating screen always had it, or higher when the
-    // game's boxes reach above that (a list of options), clear of the status line.
+    // The prompt above the boxes: where the rating screen always had it (its last line), or
+    // higher when the game's boxes reach above that (a list of options), clear of the status
+    // line. A prompt wider than the frame wraps rather than shrinks.
     float top = 0.0f;  // the boxes' top edge, GL pixels (y up)
     for (const glm::vec4& b : q.boxes) top = std::max(top, h - b.y);
-    if (!q.prompt.empty())
-        centred(q.prompt, w * 0.5f, std::min(std::max(h * 0.62f, top + h * 0.08f), h * 0.84f), 0.55f, white);
+    if (!q.prompt.empty()) {
+        const float scale = readable(0.55f), room = 0.94f * static_cast<float>(w);
+        const float bottom = std::min(std::max(h * 0.62f, top + h * 0.08f), h * 0.84f);
+        const auto rows = static_cast<float>(wrapped(q.prompt, room, scale).size());
+        lines(q.prompt, w * 0.5f, bottom + rows * lineHeight * scale, room, scale, 0, white);
+    }
 
+    float below = static_cast<float>(h);  // the lowest edge drawn under the boxes so far
     for (std::size_t i = 0; i < q.boxes.size(); ++i) {
         const glm::vec4 b = q.boxes[i];
         const float x = b.x, y = h - b.y - b.w, bw = b.z, bh = b.w;  // frame pixels are y-down; GL is y-up
+        below = std::min(below, y - 2);
         rect(x - 2, y - 2, bw + 4, bh + 4, light);
         rect(x, y, bw, bh, static_cast<int>(i) == q.highlighted ? lit : fill);
         const std::string label = i < q.boxLabels.size() ? q.boxLabels[i] : std::string();
@@ -195,18 +224,24 @@ void HudRenderer::Impl::question(const HudQuestion& q, int w, int h) {
                 const float drawn =
                     textAt(tailThatFits(q.typed, bw - 2 * pad - 2 * caretW, scale), x + pad, bottom, scale, white);
                 rect(x + pad + drawn + caretW * 0.5f, bottom + textH * 0.1f, caretW, textH * 0.8f, white);
-                if (!q.hint.empty()) centred(q.hint, x + bw * 0.5f, y - h * 0.06f, 0.3f, grey);
                 break;
             }
         }
     }
+    const float gap = h * 0.02f, small = readable(0.4f);
     if (q.kind == HudQuestion::Kind::Likert && !q.boxes.empty()) {
+        // Under the ends of the row, flush with its outer edges so that neither leaves the
+        // frame, each wrapped to its half of the row (a long label on a small display).
         const glm::vec4 first = q.boxes.front(), last = q.boxes.back();
-        if (!q.minLabel.empty())
-            centred(q.minLabel, first.x + first.z * 0.5f, h - first.y - first.w - h * 0.06f, 0.3f, grey);
-        if (!q.maxLabel.empty())
-            centred(q.maxLabel, last.x + last.z * 0.5f, h - last.y - last.w - h * 0.06f, 0.3f, grey);
+        const float left = first.x, right = last.x + last.z, half = std::max(right - left, w * 0.5f) * 0.48f;
+        const float labelsTop = below - gap;
+        float bottom = labelsTop;
+        if (!q.minLabel.empty()) bottom = std::min(bottom, lines(q.minLabel, left, labelsTop, half, small, -1, grey));
+        if (!q.maxLabel.empty()) bottom = std::min(bottom, lines(q.maxLabel, right, labelsTop, half, small, 1, grey));
+        below = bottom;
     }
+    // How to answer, under everything else.
+    if (!q.hint.empty()) lines(q.hint, w * 0.5f, below - gap, 0.94f * static_cast<float>(w), small, 0, grey);
 }
 
 int HudPhotonMarker::sidePixels(int frameWidth, int frameHeight) {
@@ -229,6 +264,7 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     auto& m = *impl_;
     auto& g = target.impl();
     const int w = g.width, h = g.height;
+    m.frameHeight = h;
     // Text scales with the frame: 1/12 of the height for the banner, 1/28 for the status line.
     const int bannerPixels = std::max(8, h / 12);
     if (m.font == nullptr || m.fontPixels != bannerPixels) {
@@ -265,11 +301,7 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
         m.rect(cx - arm, cy - thick / 2, 2 * arm, thick, light);
         m.rect(cx - thick / 2, cy - arm, thick, 2 * arm, light);
     }
-    auto drawText = [&](const std::string& s, float centreX, float baselineY, float scale, const float colour[4],
-                        bool fitWidth = false) {
-        // A status line wider than the frame (a long refusal on a small window) is drawn
-        // smaller, so that all of it shows rather than its middle.
-        if (fitWidth) scale = std::min(scale, 0.98f * static_cast<float>(w) / std::max(1.0f, m.widthAt(s, 1.0f)));
+    auto drawText = [&](const std::string& s, float centreX, float baselineY, float scale, const float colour[4]) {
         m.textAt(s, centreX - m.widthAt(s, scale) / 2, baselineY, scale, colour);
     };
     if (content.question) m.question(*content.question, w, h);
@@ -300,7 +332,12 @@ void HudRenderer::draw(const HudContent& content, GBuffer& target) {
     }
     if (!content.status.empty()) {
         const float grey[4] = {0.9f, 0.9f, 0.9f, 0.85f};
-        drawText(content.status, w * 0.5f, h * 0.93f, 0.4f, grey, true);
+        // A status line wider than the frame (the start screen's, a refusal, on a small
+        // window) wraps downwards from where one line sits, so that all of it shows, readable.
+        const float scale = m.readable(0.4f);
+        const float top = h * 0.93f + static_cast<float>(TTF_FontHeight(m.font)) * scale;
+        m.lines(content.status, w * 0.5f, std::min(top, static_cast<float>(h)), 0.96f * static_cast<float>(w), scale, 0,
+                grey);
     }
 
     if (content.photonMarker) {

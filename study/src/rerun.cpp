@@ -29,6 +29,7 @@ Rerun rerun(const session::SessionData& data, game::Game& game,
     std::size_t eventIndex = 0;
     for (std::size_t i = 0; i < data.inputs.size(); ++i) {
         const session::InputRecord& in = data.inputs[i];
+        if (game::resumedBefore(data.header, in.frame)) game.resumeHere();
         const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         for (const auto& replayed : game.takeEvents()) {
             if (eventIndex >= data.events.size()) {

@@ -38,6 +38,8 @@ ResumePoint findResumePoint(const std::string& sessionPath) {
     for (const auto& frame : data.frames) point.keptFrames += frame.frame < point.resumeFrame;
     for (std::size_t i = 0; i < data.events.size(); ++i)
         (i < point.keptEvents ? point.keptOutcomes : point.droppedOutcomes) += game->isOutcome(data.events[i]);
+    point.kept = study->progress(std::vector<session::EventRecord>(
+        data.events.begin(), data.events.begin() + static_cast<std::ptrdiff_t>(point.keptEvents)));
     return point;
 }
 
@@ -75,16 +77,22 @@ void replayKeptFrames(const ResumePoint& point, game::Game& game,
                       const std::function<void(const game::ShownFrame&)>& seen) {
     for (std::size_t i = 0; i < point.keptInputs; ++i) {
         const session::InputRecord& in = point.stored.inputs[i];
+        if (game::resumedBefore(point.stored.header, in.frame)) game.resumeHere();  // an earlier resume of it
         const game::ShownFrame shown = game.step({in.mouseDx, in.mouseDy, in.buttons, in.keys, in.text});
         game.takeEvents();  // the stored ones, checked equal by findResumePoint, are in keptRows
         if (seen) seen(shown);
     }
+    game.resumeHere();  // the next frame is the resumed session's first (its header's resumed.frame)
 }
 
 std::string resumeSummary(const ResumePoint& point) {
     std::ostringstream text;
-    text << "resuming " << point.path << " at frame " << point.resumeFrame << ": " << point.keptOutcomes
-         << " scored outcome(s) of its completed trials or matches kept";
+    // Counted as the plan counts (test trials, matches); a shot of training is an outcome kept
+    // but no test trial, and said apart, so "0 of 20 test trials" is not "3 kept".
+    text << "resuming " << point.path << " at frame " << point.resumeFrame << ": " << point.kept.done;
+    if (point.kept.planned > 0) text << " of " << point.kept.planned;
+    text << " " << point.kept.unit << " kept (" << point.keptOutcomes
+         << " scored outcome(s) in all, those of practice and training included)";
     if (point.droppedOutcomes > 0)
         text << ", " << point.droppedOutcomes << " of the trial or match it was in the middle of played again";
     if (point.keptInputs < point.stored.inputs.size())

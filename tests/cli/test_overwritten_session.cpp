@@ -81,14 +81,16 @@ struct Run {
     std::string output() const { return bytesOf(log); }
 };
 
-// A clean run: the whole session to compare with, and how long a run takes here.
+// A clean run: the whole session to compare with, and how long a run writes it here (from when
+// its file appears: before, the run checks the folder's room).
 struct Reference {
     SessionData data;
     double seconds = 0;
 };
 Reference cleanRun(const std::string& dir) {
-    const auto start = Clock::now();
     Run run(dir);
+    EXPECT_FALSE(run.session().empty()) << run.output();
+    const auto start = Clock::now();
     const int status = run.wait();
     Reference ref;
     ref.seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -128,4 +128,26 @@ TEST(Refusals, AnUnknownParticipantIsNamedOnOneShortLine) {
     EXPECT_LT(many.output.size(), 300u) << many.output;
 }
 
+// A headless run into a folder without room for its session is refused before its first
+// frame, as a window run is: with what is free, what the session needs and what to do, and no
+// file. It used to fail partway ("database or disk is full"), leaving a damaged file. The full
+// disk is a real one: a 256 kB tmpfs, mounted in a mount namespace of the test's own, which
+// needs root (or a user namespace); without one the test says so and skips.
+TEST(Refusals, AHeadlessRunWithoutRoomForItsSessionIsRefusedBeforeItStarts) {
+    const std::string dir = scratch("no-room");
+    const std::string mount = "mount -t tmpfs -o size=256k tmpfs " + dir;
+    if (warplab::testing::runCommand("unshare -m sh -c '" + mount + "'").status != 0)
+        GTEST_SKIP() << "no mount namespace to make a small disk in (needs root)";
+    const std::string run = std::string(WARPLAB_BINARY) + " run --headless --protocol " +
+        protocolFile("shooter-quick.json") + " --participant D --seed 1 --out " + dir;
+    // What the run printed, then what the small disk held after it.
+    const Result r = warplab::testing::runCommand("unshare -m sh -c '" + mount + " && " + run +
+                                                  "; echo \"exit $?\"; ls " + dir + "'");
+    EXPECT_TRUE(contains(r.output, "warplab run: Results folder '" + dir + "' has ")) << r.output;
+    EXPECT_TRUE(contains(r.output, " kB free but a session of shooter-quick needs ")) << r.output;
+    EXPECT_TRUE(contains(r.output, "; free some space, or use another --out.\nexit 1\n")) << r.output;
+    EXPECT_FALSE(contains(r.output, ".warplab-session")) << "a session file was begun:\n" << r.output;
+    EXPECT_EQ(r.lines(), 2) << r.output;
+}
+
 }  // namespace

@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -218,6 +219,82 @@ TEST(CliResume, AVersion4SessionResumesIntoAVersion5One) {
     const auto replay = warplab("replay " + result);
     EXPECT_EQ(replay.status, 0) << replay.output;
     EXPECT_TRUE(contains(replay.output, "4/4 outcomes reproduced")) << replay.output;
+}
+
+// Cuts `session` back to its last commit before the test's first event, as a kill there leaves
+// it. SQLITE_OK when done.
+int cutBackBeforeTheTest(const std::string& session) {
+    sqlite3* db = nullptr;
+    if (sqlite3_open(session.c_str(), &db) != SQLITE_OK) return SQLITE_CANTOPEN;
+    const char* cutBack =
+        "CREATE TEMP TABLE kept AS SELECT MAX(id) AS id FROM commits"
+        "  WHERE event_rows < (SELECT MIN(id) FROM events WHERE phase = 'test');"
+        "DELETE FROM meta WHERE key = 'completed_at';"
+        "DELETE FROM input WHERE frame > (SELECT last_frame FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM frames WHERE frame > (SELECT last_frame FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM events WHERE id > (SELECT event_rows FROM commits WHERE id = (SELECT id FROM kept));"
+        "DELETE FROM commits WHERE id > (SELECT id FROM kept);";
+    const int rc = sqlite3_exec(db, cutBack, nullptr, nullptr, nullptr);
+    sqlite3_close(db);
+    return rc;
+}
+
+// A session stopped before its test says what it keeps as the plan counts it: no test trial,
+// and the training's shots apart. It said "3 scored outcome(s) ... kept" of a session that had
+// done none of its 3 test trials.
+TEST(CliResume, ASessionStoppedInTrainingSaysItKeepsNoTestTrial) {
+    const std::string dir = scratch("in-training");
+    ASSERT_EQ(warplab("run --protocol " + warplab::testing::tinyProtocol(dir) + " --participant T --out " + dir +
+                      " --headless --player bot:3 --seed 4")
+                  .status,
+              0);
+    const std::string session = sessionsIn(dir).at(0);
+    ASSERT_EQ(cutBackBeforeTheTest(session), SQLITE_OK);
+    const SessionData cut = readSession(session);
+    ASSERT_FALSE(cut.completed);
+    ASSERT_FALSE(cut.damaged) << cut.note;
+    std::size_t outcomes = 0, ofTraining = 0;
+    for (const auto& e : cut.events) {
+        const bool outcome = e.type == "shot" || e.type == "timeout";
+        outcomes += outcome;
+        ofTraining += outcome && e.phase == "training";
+    }
+    ASSERT_GT(ofTraining, 0u) << "the cut keeps some of training";
+
+    const auto resumed = warplab("run --resume " + session + " --headless --player bot:3");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_TRUE(contains(resumed.output,
+                         ": 0 of 3 test trials kept (" + std::to_string(outcomes) +
+                             " scored outcome(s) in all, those of practice and training included)"))
+        << resumed.output;
+}
+
+// A shooter protocol of format 7 re-centres the view where a resumed session goes on: a rule of
+// the game, so the resumed file replays exactly, every outcome, and a resume of it again too.
+TEST(CliResume, AFormat7SessionResumedFacingTheTargetsReplaysExactly) {
+    const std::string dir = scratch("format-7");
+    std::ofstream(dir + "/tiny7.json") << R"({"format_version":7,"name":"shooter-tiny7","game":"shooter",
+ "display":{"refresh_mismatch":"warn"},
+ "acclimation":{"duration_s":1.0,"level":0,"mode":"conv120","instructions":""},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5,"instructions":""},
+ "test":{"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25,"supervisor_starts":false,"instructions":""}})";
+    ASSERT_EQ(warplab("run --protocol " + dir + "/tiny7.json --participant S --out " + dir +
+                      " --headless --player bot:3 --seed 4")
+                  .status,
+              0);
+    const std::string session = sessionsIn(dir).at(0);
+    ASSERT_EQ(cutBackBeforeTheTest(session), SQLITE_OK);
+    const auto resumed = warplab("run --resume " + session + " --headless --player bot:3");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    const std::vector<std::string> files = sessionsIn(dir);
+    ASSERT_EQ(files.size(), 2u);
+    const std::string result = files[0] == session ? files[1] : files[0];
+    const SessionData data = readSession(result);
+    EXPECT_TRUE(data.completed);
+    ASSERT_EQ(data.header.resumed.size(), 1u);
+    const auto replay = warplab("replay " + result);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "outcomes reproduced (")) << replay.output;
 }
 
 // What cannot be resumed is refused with one sentence naming the file (exit 1), and nothing

@@ -73,6 +73,32 @@ TEST(QuestionText, TypedTextIsEditedAsAParticipantExpects) {
     EXPECT_EQ(editedAnswer("", "a\tb\rc\x7F", 200), "abc");
 }
 
+// Each screen says how it is answered, as step() takes answers: a scale's digit keys only for
+// its values that have one. The Likert screen said nothing.
+TEST(QuestionText, EachScreenSaysHowItIsAnswered) {
+    const std::vector<Question> questions{likert("seven", 1, 7), likert("eleven", 0, 10), likert("far", 10, 20),
+                                          choice("which", {"a", "b"}), text("comment")};
+    Questionnaire list(questions, 120.0, kDisplay, false);
+    list.open(0);
+    const std::vector<std::string> said{"Click a box, or press 1\u20137, to answer",
+                                        "Click a box, or press 1\u20139 for those values, to answer",
+                                        "Click a box to answer", "Click an option, or press its number, to answer",
+                                        "Type your answer, then press Enter"};
+    for (std::size_t i = 0; i < questions.size(); ++i) {
+        QuestionPrompt shown = list.prompt({0.0, 0.0});
+        EXPECT_EQ(shown.hint, said[i]) << questions[i].id;
+        // Answer it (past the settle time) to reach the next one.
+        const std::uint32_t keys = questions[i].kind == QuestionKind::Text ? kKeyEnter : digitKey(1);
+        const auto frame = static_cast<std::int64_t>(2 * 120 * (i + 1));
+        if (questions[i].kind == QuestionKind::Likert && questions[i].min > 9) {
+            shown.highlighted = 0;
+            ASSERT_TRUE(list.step(frame, shown, 0, true, ""));
+        } else {
+            ASSERT_TRUE(list.step(frame, shown, keys, false, "")) << questions[i].id;
+        }
+    }
+}
+
 TEST(QuestionText, AnAnswerIsAlwaysValidUtf8WithinItsLength) {
     // Bytes no character is made of: a lone continuation byte, a cut-off sequence, an overlong
     // form, a surrogate, 0xFF.
@@ -388,6 +414,84 @@ TEST(ShooterQuestions, OnTheQuestionScreensTheMouseMovesACursorNotTheView) {
     EXPECT_EQ(events[0].type, "answer");
     EXPECT_EQ(detail(events[0])["text"], "a");
     EXPECT_EQ(events[0].phase, "test");
+}
+
+// The first frame of the first question screen of a test with one Likert question, format
+// `version`.
+ShownFrame firstLikertScreen(int version) {
+    auto p = shooterWith({likert("fun", 1, 7)}, /*interleave=*/true);
+    p.formatVersion = version;
+    ShooterGame game(p, 2, DisplaySize{});
+    ShooterBot bot(4, p);
+    FrameInput input;
+    ShownFrame shown;
+    while (!game.finished()) {
+        shown = game.step(input);
+        if (shown.question) break;
+        input = bot.next(shown);
+    }
+    return shown;
+}
+
+// From format 7 the Likert screen opens with no box under the cursor, so none is lit as if
+// chosen (at the middle the cursor lay on the middle box); a format 5 or 6 file keeps the
+// cursor where its sessions had it, so that they replay.
+TEST(ShooterQuestions, TheLikertScreenOpensWithNoBoxUnderTheCursor) {
+    const ShownFrame now = firstLikertScreen(protocol::kShooterRecentresSince);
+    ASSERT_TRUE(now.question.has_value());
+    EXPECT_EQ(now.question->highlighted, -1);
+    for (const auto& box : now.question->boxes) EXPECT_LT(now.cursor.y, box.y) << "the cursor is above the row";
+    EXPECT_EQ(now.question->hint, "Click a box, or press 1\u20137, to answer");
+    const ShownFrame before = firstLikertScreen(protocol::kShooterRecentresSince - 1);
+    ASSERT_TRUE(before.question.has_value());
+    EXPECT_EQ(before.question->highlighted, 3) << "format 6 sessions replay with the cursor where it was";
+}
+
+// Where training and the test begin the view is the resting one again (targets spawn in it),
+// whatever the participant looked at before; in the game, so replay sees it. Format 6 files
+// keep the view as it was.
+TEST(ShooterPhases, TheViewIsRecentredWhereTrainingAndTheTestBegin) {
+    for (const int version : {protocol::kShooterRecentresSince, protocol::kShooterRecentresSince - 1}) {
+        auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+        p.formatVersion = version;
+        p.acclimationS = 0.5;
+        p.supervisorStartsTest = false;
+        ShooterGame game(p, 2, DisplaySize{});
+        const float restingYaw = game.step({}).camera.yaw;
+        // Look aside and up through the acclimation, then keep still: 20 frames into the
+        // training (its instructions screen, or its first trial) the view is the phase's.
+        std::int64_t trainingFrom = -1;
+        ShownFrame shown;
+        for (int i = 0; i < 400 && (trainingFrom < 0 || shown.frame < trainingFrom + 20); ++i) {
+            shown = game.step(i < 30 ? FrameInput{40.0, -20.0, 0, 0} : FrameInput{});
+            for (const auto& e : game.takeEvents())
+                if (e.type == "phase" && e.phase == "training") trainingFrom = e.frame;
+        }
+        ASSERT_GE(trainingFrom, 30) << "version " << version;
+        if (version >= protocol::kShooterRecentresSince)
+            EXPECT_EQ(shown.camera.yaw, restingYaw) << "the training begins facing the targets";
+        else
+            EXPECT_NE(shown.camera.yaw, restingYaw) << "a format 6 session keeps the view it had";
+    }
+}
+
+// A session resumed goes on facing the targets (format 7): the view is the resting one from the
+// first frame after the resume point, whatever the participant looked at before it.
+TEST(ShooterPhases, AResumedSessionGoesOnFacingTheTargets) {
+    for (const int version : {protocol::kShooterRecentresSince, protocol::kShooterRecentresSince - 1}) {
+        auto p = protocol::loadShooterProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
+        p.formatVersion = version;
+        ShooterGame game(p, 2, DisplaySize{});
+        const float restingYaw = game.step({}).camera.yaw;
+        for (int i = 0; i < 30; ++i) game.step({40.0, -20.0, 0, 0});
+        game.resumeHere();
+        ShownFrame shown;
+        for (int i = 0; i < 20; ++i) shown = game.step({});  // past any frame rendered before it
+        if (version >= protocol::kShooterRecentresSince)
+            EXPECT_EQ(shown.camera.yaw, restingYaw);
+        else
+            EXPECT_NE(shown.camera.yaw, restingYaw) << "a format 6 session goes on as it was";
+    }
 }
 
 TEST(ShooterQuestions, NoneByDefault) {

@@ -3,6 +3,7 @@
 // pointer's id cross-check reads them).
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -191,6 +192,7 @@ renderer::HudQuestion textQuestion(const std::string& typed) {
     q.prompt = "How did the motion look?";
     q.boxes = {{40.0f, 84.0f, 240.0f, 24.0f}};
     q.typed = typed;
+    q.hint = "Type your answer, then press Enter";
     return q;
 }
 
@@ -219,6 +221,78 @@ TEST(Hud, LongTypedTextShowsItsEndInsideTheField) {
     // Its end, not its start: dots, then heavy letters; the field shows letters across.
     const image::ImageRGBA8 ink = drawn(questionScreen(textQuestion(std::string(300, '.') + std::string(40, 'M'))));
     EXPECT_GT(brightIn(ink, 60, 88, 260, 104), 400) << "the start of the answer is shown, not its end";
+}
+
+// The rows [y0, y1) (y down) that hold ink as bright as text in the columns [x0, x1): runs of
+// such rows, each one line of text, as (first row, rows).
+std::vector<std::pair<int, int>> textRowsIn(const image::ImageRGBA8& image, int x0, int y0, int x1, int y1) {
+    std::vector<std::pair<int, int>> runs;
+    for (int y = y0; y < y1; ++y) {
+        if (brightIn(image, x0, y, x1, y + 1) == 0) continue;
+        if (!runs.empty() && runs.back().first + runs.back().second == y)
+            ++runs.back().second;
+        else
+            runs.emplace_back(y, 1);
+    }
+    return runs;
+}
+
+// A Likert screen as the games lay one out at 320 x 180 (seven boxes of 18 px across the
+// middle): no box lit when none is under the cursor, the end labels at a readable size under
+// the row's outer edges, and a line under everything saying how to answer.
+TEST(Hud, ALikertScreenAt320x180SaysHowToAnswerInReadableText) {
+    renderer::HudQuestion q;
+    q.prompt = "The motion looked smooth";
+    for (int i = 0; i < 7; ++i) {
+        q.boxes.emplace_back(70.0f + i * 27.0f, 90.0f, 18.0f, 18.0f);
+        q.boxLabels.push_back(std::to_string(i + 1));
+    }
+    q.minLabel = "strongly disagree";
+    q.maxLabel = "strongly agree";
+    q.hint = "Click a box, or press 1\u20137, to answer";
+    renderer::HudContent content;
+    content.backdrop = true;
+    content.reticle = false;
+    content.question = q;
+    const image::ImageRGBA8 image = drawn(content);
+    const std::vector<int> fill{64, 69, 84};
+    for (int i = 0; i < 7; ++i) EXPECT_EQ(fillAt(image, 70 + i * 27 + 16, 92), fill) << "box " << i << " is lit";
+    // Under the row (y 90..108): the labels' line, then the hint's, apart.
+    const auto rows = textRowsIn(image, 0, 110, kW, kH);
+    ASSERT_GE(rows.size(), 2u) << "labels and a hint under the boxes";
+    // The bright ink of a 9 px DejaVu line with ascenders and descenders ("strongly") spans 6
+    // rows or more; the labels at 0.3 of the 15 px font (4.5 px) spanned 4 at most.
+    EXPECT_GE(rows[0].second, 6) << "end labels " << rows[0].second << " px tall";
+    EXPECT_GE(rows[1].second, 6) << "hint " << rows[1].second << " px tall";
+    // The min label starts at the first box's left edge, the max label ends at the last box's
+    // right edge; nothing of them outside the row's span, none left off the frame.
+    EXPECT_GT(brightIn(image, 70, rows[0].first, 110, rows[0].first + rows[0].second), 10);
+    EXPECT_GT(brightIn(image, 210, rows[0].first, 250, rows[0].first + rows[0].second), 10);
+    EXPECT_EQ(brightIn(image, 0, rows[0].first, 68, rows[0].first + rows[0].second), 0);
+    EXPECT_EQ(brightIn(image, 252, rows[0].first, kW, rows[0].first + rows[0].second), 0);
+}
+
+// A line longer than the frame is wide (the start screen's, at 320 x 180) wraps onto a second
+// line at the size a short one has, rather than shrinking to a few pixels on one; a prompt too.
+TEST(Hud, ALongLineWrapsToTheFrameRatherThanShrinking) {
+    renderer::HudContent content;
+    content.backdrop = true;
+    content.reticle = false;
+    content.status =
+        "Participant P01, protocol shooter-lab, resumed after its last completed trial or match. Press Enter to "
+        "start, S to hear the feedback sounds, Esc to leave.";
+    renderer::HudQuestion q;
+    q.prompt = "How much did the delay between your hand and the view bother you during this block?";
+    q.boxes = {{40.0f, 140.0f, 240.0f, 24.0f}};
+    q.kind = renderer::HudQuestion::Kind::Text;
+    content.question = q;
+    const image::ImageRGBA8 image = drawn(content);
+    const auto status = textRowsIn(image, 0, 0, kW, 40);
+    ASSERT_GE(status.size(), 2u) << "the start line on one line";
+    for (const auto& [first, height] : status) EXPECT_GE(height, 6) << "a line at row " << first;
+    const auto prompt = textRowsIn(image, 0, 40, kW, 136);
+    ASSERT_GE(prompt.size(), 2u) << "the prompt on one line";
+    for (const auto& [first, height] : prompt) EXPECT_GE(height, 6) << "a prompt line at row " << first;
 }
 
 TEST(Hud, MissingFontIsNamed) {

@@ -42,13 +42,14 @@ TEST(HudFor, TextCarriesWhatWasTypedIntoItsField) {
     q.prompt = "Anything else?";
     q.boxes = {{200.0, 500.0, 1520.0, 80.0}};
     q.typed = "smooth, but laggy \xE2\x80\x94 ok";
+    q.hint = "Type your answer, then press Enter";
     const auto hud = hudFor(asking(q), 1.0, 1.0);
     ASSERT_TRUE(hud.question);
     EXPECT_EQ(hud.question->kind, renderer::HudQuestion::Kind::Text);
     EXPECT_EQ(hud.question->typed, q.typed);
     ASSERT_EQ(hud.question->boxes.size(), 1u);
     EXPECT_TRUE(hud.question->boxLabels.empty());
-    EXPECT_FALSE(hud.question->hint.empty()) << "a text field says how to end the answer";
+    EXPECT_EQ(hud.question->hint, q.hint) << "the game's words on how to answer reach the screen";
 }
 
 TEST(HudFor, LikertShowsItsLabelsOrElseItsValues) {

@@ -306,12 +306,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 7;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 7 is newer than this warplab supports (6)");
+    document["format_version"] = 8;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 8 is newer than this warplab supports (7)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 7 is newer than this warplab supports (6)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 8 is newer than this warplab supports (7)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -633,10 +633,10 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion6WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion7WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 6);
+    EXPECT_EQ(kShooterFormatVersion, 7);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);

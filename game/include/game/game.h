@@ -70,6 +70,7 @@ struct QuestionPrompt {
     std::vector<glm::dvec4> boxes;
     int highlighted = -1;  // the box under the cursor, -1 for none
     std::string typed;  // text: the answer so far
+    std::string hint;  // how to answer it, in the participant's words: what the keys and clicks do
 };
 
 // What one displayed frame shows, for the renderer, the HUD and a player looking at it.
@@ -130,6 +131,11 @@ public:
     virtual std::vector<session::EventRecord> takeEvents() = 0;
     // True when the last step completed a trial, match or phase: the session store commits.
     virtual bool atCommitPoint() const = 0;
+    // The session goes on here after an interruption (run --resume): called before the step of
+    // the first frame played after it, by the resumed run and by every replay of its file
+    // (resumedBefore), so that what a game resets for a participant who sat down again (the
+    // shooter's view, from its format 7) is played the same each time.
+    virtual void resumeHere() {}
     virtual session::FrameRecord frameRecord(const ShownFrame& shown) const = 0;
     // Events that are scored outcomes ("N/N outcomes reproduced").
     virtual bool isOutcome(const session::EventRecord& event) const = 0;
@@ -214,6 +220,14 @@ struct Progress {
     std::string unit;  // plural noun: "test trials", "matches"
     std::size_t done = 0, planned = 0;  // planned 0: the protocol plans no number of them
 };
+
+// Whether the session of `header` went on after an interruption at display frame `frame` (its
+// `resumed` list): a replay calls Game::resumeHere() before stepping that frame.
+inline bool resumedBefore(const session::SessionHeader& header, std::int64_t frame) {
+    for (const session::Resumption& r : header.resumed)
+        if (r.frame == frame) return true;
+    return false;
+}
 
 // A protocol file parsed and bound to its game.
 class Study {

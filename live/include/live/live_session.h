@@ -61,10 +61,17 @@ struct LiveRun {
     int freePlayLevel = 0;
 };
 
-// Runs the session; returns the session file's path ("" if the supervisor left at the start
-// screen). Throws for bad input (protocol, results folder, refresh mismatch) before anything
-// is written.
-std::string runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
+// How a live session ended: its file ("" if the supervisor left at the start screen), and
+// whether the supervisor ended it before its end (Esc then Q, the window's close then Q, Esc
+// on the start screen), which `run` tells a script by its exit status.
+struct LiveEnd {
+    std::string session;
+    bool endedBySupervisor = false;
+};
+
+// Runs the session. Throws for bad input (protocol, results folder, refresh mismatch) before
+// anything is written.
+LiveEnd runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 
 // Free play for pilots and demonstrations: the protocol's game, endless and unrecorded; keys
 // 1-9 switch live to the nine presets (condition::presets()), ] and [ (PageDown and PageUp)

@@ -17,6 +17,7 @@ struct ReplayRender {
     std::int64_t firstFrame = 0;
     std::int64_t lastFrame = 599;  // inclusive
     int width = 0, height = 0;  // 0: the session's display size
+    double progressEveryS = 5.0;  // how often to say how far it got, seconds of wall time
 };
 
 struct ReplayRenderResult {
@@ -35,8 +36,11 @@ struct ReplayRenderResult {
 // the photodiode marker included where the session's window drew one (white on the frames it lit).
 // On frames whose image is an exact render (rendered or held), the object id read back under
 // the reticle or cursor is checked against the game's analytic account of that frame, and on
-// frames with a logged shot or click, against the logged displayed outcome. Prints the tally.
+// frames with a logged shot or click, against the logged displayed outcome. Prints the tally on
+// `out`, and on `progress` how far it got: the frames before the range are re-simulated without
+// drawing them (a late range of a long session takes a while), said once, then every
+// `progressEveryS` seconds of wall time while it works.
 ReplayRenderResult renderReplay(const ReplayRender& request, const renderer::DataPaths& paths,
-                                renderer::GlBackend backend, std::ostream& out);
+                                renderer::GlBackend backend, std::ostream& out, std::ostream& progress);
 
 }  // namespace warplab::present

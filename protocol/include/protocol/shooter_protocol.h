@@ -17,12 +17,14 @@ namespace warplab::protocol {
 // and training rules (docs/protocol.md, "Format versions"); version 1 files are still read and
 // replay under the rules they were recorded with. 3 added the protocol's own "conditions", 4
 // each phase's "instructions" screen, 5 the questions after each block of the test, 6
-// display.photon_marker.
-inline constexpr int kShooterFormatVersion = 6;
+// display.photon_marker, 7 the view re-centred where training and the test begin and the
+// question screens' cursor starting clear of every answer.
+inline constexpr int kShooterFormatVersion = 7;
 inline constexpr int kShooterConditionsSince = 3;
 inline constexpr int kShooterInstructionsSince = 4;
 inline constexpr int kShooterQuestionsSince = 5;  // test.questions
 inline constexpr int kShooterPhotonMarkerSince = 6;  // display.photon_marker
+inline constexpr int kShooterRecentresSince = 7;  // a rule of the game: older files replay without it
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;

@@ -22,7 +22,7 @@ namespace warplab::renderer {
 // into them.
 struct HudQuestion {
     enum class Kind : std::uint8_t {
-        Likert,  // a row of boxes, each labelled with its value, the end labels under its ends
+        Likert,  // a row of boxes, each labelled with its value, the end labels under its outer edges
         Choice,  // a list of wide boxes, each its number and its option, left-aligned
         Text,  // one box, the field: what was typed so far and a caret, the hint under it
     };
@@ -33,7 +33,7 @@ struct HudQuestion {
     int highlighted = -1;  // the box under the cursor
     std::string minLabel, maxLabel;  // Likert: under the first and the last box
     std::string typed;  // text: the answer so far (UTF-8); its end shows when it is wider than the field
-    std::string hint = "Type your answer, then press Enter";  // text: under the field; "" = none
+    std::string hint;  // how to answer, under everything else (the game's words); "" = none
 };
 
 // A square for a photodiode, flush in a corner of the frame: black, or white on the frame that

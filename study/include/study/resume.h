@@ -29,7 +29,8 @@ struct ResumePoint {
     // its last completed trial or match, with the frame and event rows of those frames.
     std::size_t keptInputs = 0, keptFrames = 0, keptEvents = 0;
     std::int64_t resumeFrame = 0;  // the first frame played after resuming
-    std::size_t keptOutcomes = 0;  // scored outcomes (shots and timeouts, clicks) kept
+    std::size_t keptOutcomes = 0;  // scored outcomes (shots and timeouts, clicks) kept, of every phase
+    game::Progress kept;  // what of the protocol's plan is kept, as a supervisor counts it (test trials, matches)
     std::size_t droppedOutcomes = 0;  // ... recorded after the last commit point, to be played again
 };
 
@@ -50,7 +51,8 @@ session::SessionWriter::FirstCommit keptRows(const ResumePoint& point);
 
 // Steps `game` (new, from the stored protocol and seed) through the kept frames, calling
 // seen(shown) after each, so that a player or a frame maker learns what was on screen. The
-// game then stands where the interrupted session's last completed trial or match left it.
+// game then stands where the interrupted session's last completed trial or match left it, told
+// that play goes on from here (Game::resumeHere), as each replay of the resumed file tells it.
 void replayKeptFrames(const ResumePoint& point, game::Game& game,
                       const std::function<void(const game::ShownFrame&)>& seen);
 
