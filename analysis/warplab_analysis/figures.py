@@ -59,7 +59,9 @@ def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palett
     ax.set_ylabel(f"hit rate ({measure})")
     ax.set_title(f"{game}: hit rate per participant and mode")
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
-    ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="best", framealpha=0.9)
+    # Beside the axes, not over them: with points only, any corner may hold a participant's rate.
+    ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+              framealpha=0.9)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
