@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "condition/condition.h"
+#include "condition/pacing.h"
 
 namespace warplab::condition {
 
@@ -46,8 +47,10 @@ struct ScheduledFrame {
 class ModeSchedule {
 public:
     // Throws std::invalid_argument with condition::problem's reason when the condition cannot
-    // run at this refresh (a 15 Hz render on a 100 Hz display would judder unevenly).
-    ModeSchedule(const Condition& condition, double refreshHz);
+    // run at this refresh (a render rate above it, a lag that is not whole frames). A jittered
+    // or hitching condition draws its render intervals from pacingSeed: the same seed, the
+    // same cadence (games derive it from the session's seed and where the schedule starts).
+    ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed = 0);
 
     const Condition& mode() const { return mode_; }
     double refreshHz() const { return refreshHz_; }
@@ -67,7 +70,7 @@ public:
     Range viewLatencyRange() const;
     Range sceneLatencyRange() const;
     std::int64_t lagFrames() const { return lagFrames_; }
-    std::int64_t renderPeriod() const { return renderPeriod_; }
+    const RenderCadence& cadence() const { return cadence_; }
 
 private:
     template <typename Depicted>
@@ -76,10 +79,17 @@ private:
     Range latencyRange(Depicted depicted) const;
     // The frame the fill makes at production frame j, before the queue and any late warp.
     ScheduledFrame produced(std::int64_t j) const;
+    // A bidirectional fill at production frame j: the render interval it plays and the
+    // instant (display frame) it depicts.
+    struct Between {
+        std::int64_t from = 0, to = 0, depicted = 0;
+    };
+    Between between(std::int64_t j) const;
+    static const Condition& checked(const Condition& condition, double refreshHz);
     Condition mode_;
     double refreshHz_;
+    RenderCadence cadence_;
     Fill fill_;
-    std::int64_t renderPeriod_;  // display frames between conventional renders
     std::int64_t lagFrames_;  // display frames a rendered frame waits in the queue
     std::int64_t fillPeriod_;  // display frames between the frames the fill makes
 };
