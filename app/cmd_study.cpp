@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "commands.h"
 #include "export/csv.h"
@@ -118,14 +121,10 @@ void writeStatusCsv(const plan::StudyPlan& studyPlan, const std::vector<plan::Pa
     csv.close();
 }
 
-int runInit(const ParsedArgs& args, const std::string& dir) {
-    if (!args.has("protocol")) throw UsageError("study init needs --protocol FILE[,FILE...]");
-    if (!args.has("participants") && !args.has("ids")) throw UsageError("study init needs --participants N or --ids");
-    for (const char* option : {"csv"})
-        if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies to study status");
-    const auto protocols =
-        commaSeparated(args.string("protocol"), "option --protocol needs protocol files separated by commas");
-    const auto ids = args.has("ids")
+// --participants N and --ids A,B,...: how many participants, and their ids (empty: the default
+// ones). Either may be given alone; both must agree.
+std::pair<int, std::vector<std::string>> participantsAsked(const ParsedArgs& args) {
+    auto ids = args.has("ids")
         ? commaSeparated(args.string("ids"), "option --ids needs participant ids separated by commas")
         : std::vector<std::string>{};
     const int count =
@@ -133,6 +132,17 @@ int runInit(const ParsedArgs& args, const std::string& dir) {
     if (!ids.empty() && static_cast<int>(ids.size()) != count)
         throw UsageError("option --ids names " + std::to_string(ids.size()) + " participants but --participants says " +
                          std::to_string(count));
+    return {count, std::move(ids)};
+}
+
+int runInit(const ParsedArgs& args, const std::string& dir) {
+    if (!args.has("protocol")) throw UsageError("study init needs --protocol FILE[,FILE...]");
+    if (!args.has("participants") && !args.has("ids")) throw UsageError("study init needs --participants N or --ids");
+    for (const char* option : {"csv"})
+        if (args.has(option)) throw UsageError(std::string("option --") + option + " only applies to study status");
+    const auto protocols =
+        commaSeparated(args.string("protocol"), "option --protocol needs protocol files separated by commas");
+    const auto [count, ids] = participantsAsked(args);
     const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 62));
     fs::create_directories(dir);
     const plan::StudyPlan made = plan::makePlan(dir, protocols, count, ids, seed);
@@ -155,14 +165,7 @@ int runAdd(const ParsedArgs& args, const std::string& dir) {
             throw UsageError(std::string("option --") + option +
                              (std::string(option) == "csv" ? " only applies to study status"
                                                            : " only applies to study init: a plan keeps its own"));
-    const auto ids = args.has("ids")
-        ? commaSeparated(args.string("ids"), "option --ids needs participant ids separated by commas")
-        : std::vector<std::string>{};
-    const int count =
-        static_cast<int>(args.integer("participants", static_cast<long long>(ids.size()), 1, plan::kMaxParticipants));
-    if (!ids.empty() && static_cast<int>(ids.size()) != count)
-        throw UsageError("option --ids names " + std::to_string(ids.size()) + " participants but --participants says " +
-                         std::to_string(count));
+    const auto [count, ids] = participantsAsked(args);
     const plan::StudyPlan before = plan::readPlan(dir);
     const plan::StudyPlan grown = plan::extendPlan(dir, before, count, ids);
     plan::writePlan(dir, grown);

@@ -85,7 +85,7 @@ TEST(CliStudyRigs, TwoRigsRunOnePlanAtOnceAndExportReadsBoth) {
     ASSERT_EQ(exported.status, 0) << exported.output;
     EXPECT_TRUE(contains(exported.output, "2 session files, 2 included")) << exported.output;
     const std::string participants = read(base + "/export/participants.csv");
-    EXPECT_TRUE(contains(participants, "shooter-quick: done\n")) << participants;
+    EXPECT_TRUE(contains(participants, "shooter-quick: done,bot\n")) << participants;
     EXPECT_FALSE(contains(participants, "not started")) << participants;
 
     // One rig's folder copied into the other's: one session, counted once.
