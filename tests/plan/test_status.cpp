@@ -16,6 +16,7 @@
 #include "game/registry.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
+#include "session/raw_access.h"
 #include "session/session_store.h"
 #include "study/session_runner.h"
 
@@ -23,23 +24,13 @@ namespace warplab::plan {
 namespace {
 
 namespace fs = std::filesystem;
+using session::testing::bytesRead;
 
 std::string scratch(const std::string& name) {
     const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "plan-status" / name;
     fs::remove_all(dir);
     fs::create_directories(dir.parent_path());
     return dir.string();
-}
-
-// Bytes this process has read through read(2) and pread(2) (SQLite's unix VFS reads so).
-std::uint64_t bytesRead() {
-    std::ifstream io("/proc/self/io");
-    std::string key;
-    std::uint64_t value = 0;
-    while (io >> key >> value)
-        if (key == "rchar:") return value;
-    ADD_FAILURE() << "/proc/self/io has no rchar";
-    return 0;
 }
 
 std::string runParticipant(const std::string& dir, const StudyPlan& plan, int participant) {

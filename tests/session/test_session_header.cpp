@@ -8,11 +8,13 @@
 #include <string>
 
 #include "session/session_store.h"
+#include "raw_access.h"
 #include "temp_dir.h"
 
 namespace warplab::session {
 namespace {
 
+using testing::execSql;
 using testing::TempDir;
 
 int metaRows(const std::string& path, const std::string& key) {
@@ -26,13 +28,6 @@ int metaRows(const std::string& path, const std::string& key) {
     sqlite3_finalize(s);
     sqlite3_close(db);
     return rows;
-}
-
-void execSql(const std::string& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr), SQLITE_OK) << sqlite3_errmsg(db);
-    sqlite3_close(db);
 }
 
 std::string finishedSession(const std::string& dir, const std::string& photonMarker) {

@@ -15,12 +15,15 @@
 
 #include "session/records.h"
 #include "session/session_store.h"
+#include "raw_access.h"
 #include "temp_dir.h"
 
 namespace warplab::session {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::bytesRead;
+using testing::execSql;
 using testing::TempDir;
 
 constexpr int kFramesPerTrial = 48;
@@ -78,17 +81,6 @@ std::string writeSession(const std::string& dir, int trials, bool finish) {
     w.summarize("pacing", "[]");
     if (finish) w.finish();
     return w.path();
-}
-
-void execSql(const std::string& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    char* error = nullptr;
-    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-    const std::string message = error ? error : "";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ASSERT_EQ(rc, SQLITE_OK) << message;
 }
 
 std::string copyOf(const std::string& path, const std::string& to, bool withWal) {
@@ -223,17 +215,6 @@ TEST(SessionOutline, LeavesARowChangedInPlaceToTheWholeRead) {
     const SessionOutline outline = readSessionOutline(path);
     EXPECT_TRUE(outline.completed) << outline.note;
     EXPECT_FALSE(outline.damaged);
-}
-
-// Bytes this process has read through read(2) and pread(2) (SQLite's unix VFS reads so).
-std::uint64_t bytesRead() {
-    std::ifstream io("/proc/self/io");
-    std::string key;
-    std::uint64_t value = 0;
-    while (io >> key >> value)
-        if (key == "rchar:") return value;
-    ADD_FAILURE() << "/proc/self/io has no rchar";
-    return 0;
 }
 
 // The point of the outline: a long session's input and frame rows are not read. A session of

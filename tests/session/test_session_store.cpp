@@ -36,6 +36,7 @@
 
 #include "session/records.h"
 #include "session/session_store.h"
+#include "raw_access.h"
 #include "temp_dir.h"
 
 namespace warplab::session {
@@ -44,6 +45,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh folder per test, removed afterwards.
+using testing::execSql;
 using testing::TempDir;
 
 std::vector<fs::path> filesIn(const fs::path& dir) {
@@ -218,17 +220,6 @@ int expectWholeTrials(const SessionData& data) {
 }
 
 // ---- raw SQLite access, to tamper with files the way the outside world might ----
-
-void execSql(const std::string& path, const std::string& sql) {
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open(path.c_str(), &db), SQLITE_OK);
-    char* error = nullptr;
-    const int rc = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error);
-    const std::string message = error ? error : "";
-    sqlite3_free(error);
-    sqlite3_close(db);
-    ASSERT_EQ(rc, SQLITE_OK) << message;
-}
 
 // Copies a session to dst as if the disk had lost the rest: the main file cut to mainBytes
 // (kWhole: all of it) and the WAL cut to walBytes (kWhole: all of it; kNoWal: not copied, as
