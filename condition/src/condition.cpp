@@ -83,6 +83,13 @@ std::optional<Problem> pacingProblem(const Condition& c) {
         "the mean render interval (" + number(meanMs) + " ms at render_hz " + number(c.renderHz) + ")";
     const Jitter& j = c.jitter;
     auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (c.frameTimes) {
+        if (c.frameTimes->recordedMs.empty()) return Problem{"frame_times", "holds no frame times"};
+        if (j.shape != JitterShape::None)
+            return Problem{"frame_time_jitter",
+                           "is for a steady render_hz; with frame_times the trace gives every render interval "
+                           "(leave frame_time_jitter out)"};
+    }
     switch (j.shape) {
         case JitterShape::None: break;
         case JitterShape::Normal:
@@ -208,7 +215,8 @@ std::string Condition::sourceMethod() const {
 
 bool Condition::sameParts(const Condition& o) const {
     return renderHz == o.renderHz && lagFrames == o.lagFrames && lagMs == o.lagMs && fill == o.fill &&
-        fillHz == o.fillHz && lateWarp == o.lateWarp && jitter == o.jitter && hitches == o.hitches;
+        fillHz == o.fillHz && lateWarp == o.lateWarp && jitter == o.jitter && hitches == o.hitches &&
+        (frameTimes && o.frameTimes ? *frameTimes == *o.frameTimes : frameTimes == o.frameTimes);
 }
 
 const std::vector<JitterShape>& jitterShapes() {
@@ -304,6 +312,12 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
         if (near >= 1 && std::abs(refreshHz / c.renderHz - static_cast<double>(near)) < 1e-6)
             return uneven("render_hz", c.renderHz);
     }
+    if (c.renderHz > refreshHz && c.frameTimes)
+        return Problem{c.frameTimes->meanHz ? "frame_times.mean_hz" : "frame_times",
+                       "plays at " + number(c.renderHz) + " frames a second, above the refresh (" + refresh +
+                           "): a display shows at most one new render per refresh; give frame_times.mean_hz up "
+                           "to " +
+                           refresh + " to play it slower"};
     if (c.renderHz > refreshHz)
         return Problem{"render_hz",
                        "is " + exactNumber(c.renderHz) + " Hz, above the refresh (" + refresh +
@@ -360,7 +374,7 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
     if (lookBack > kMaxLookBackFrames) {
         const char* part = c.lagFrames ? "lag_frames" : "lag_ms";
         if (!c.steadyPacing() && lag < kMaxLookBackFrames / 2)
-            part = c.hitches.ms > 0.0 ? "hitches.ms" : "frame_time_jitter";
+            part = c.hitches.ms > 0.0 ? "hitches.ms" : (c.frameTimes ? "frame_times" : "frame_time_jitter");
         return Problem{part,
                        "looks back " + std::to_string(lookBack) + " display frames (the lag plus two of the longest " +
                            "render intervals), more than the " + std::to_string(kMaxLookBackFrames) + " a game keeps"};

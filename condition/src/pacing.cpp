@@ -28,7 +28,7 @@ double meanIntervalS(const Condition& c) { return 1.0 / c.renderHz; }
 }  // namespace
 
 double longestRenderIntervalS(const Condition& c) {
-    double longest = meanIntervalS(c);
+    double longest = c.frameTimes ? c.frameTimes->longestPlayedMs() / 1000.0 : meanIntervalS(c);
     switch (c.jitter.shape) {
         case JitterShape::None: break;
         case JitterShape::Normal: longest += kNormalCutSd * c.jitter.sdMs / 1000.0; break;
@@ -49,6 +49,8 @@ struct RenderCadence::Drawn {
     std::vector<std::int64_t> frames{0};  // the display frame that first shows each render
     double time = 0.0;  // of the latest render drawn, seconds
     double nextHitchS = 0.0;
+    std::size_t traceFrame = 0;  // the next of a trace's frames to play
+    double traceScale = 1.0;
 
     Drawn(const Condition& c, double refresh, std::uint64_t seed)
         : condition(c),
@@ -56,6 +58,10 @@ struct RenderCadence::Drawn {
           jitterState(seed ^ 0x6A17735EED5EEDULL),
           hitchState(seed ^ 0x417C4E55EED5EEDULL) {
         nextHitchS = condition.hitches.everyS > 0.0 ? condition.hitches.everyS : exponential();
+        if (condition.frameTimes) {
+            traceFrame = condition.frameTimes->firstFrame();
+            traceScale = condition.frameTimes->scale();
+        }
     }
 
     double uniform(std::uint64_t& state) {  // (0, 1): never 0, so log() stays finite
@@ -71,6 +77,12 @@ struct RenderCadence::Drawn {
     }
 
     double interval() {
+        if (const FrameTrace* trace = condition.frameTimes.get()) {
+            // Looped: the frame after the last is the first.
+            const double ms = trace->recordedMs[traceFrame] * traceScale;
+            traceFrame = (traceFrame + 1) % trace->recordedMs.size();
+            return ms / 1000.0;
+        }
         const double mean = meanIntervalS(condition), sd = condition.jitter.sdMs / 1000.0;
         switch (condition.jitter.shape) {
             case JitterShape::None: return mean;

@@ -92,8 +92,9 @@ bool conditionNameChar(char c) {
         c == '.' || c == '+';
 }
 constexpr int kMaxDefinedConditions = 64;
-const std::vector<const char*> kConditionKeys{"description", "render_hz", "lag_frames",        "lag_ms", "fill",
-                                              "fill_hz",     "late_warp", "frame_time_jitter", "hitches"};
+const std::vector<const char*> kConditionKeys{"description", "render_hz",  "lag_frames", "lag_ms",
+                                              "fill",        "fill_hz",    "late_warp",  "frame_time_jitter",
+                                              "hitches",     "frame_times"};
 
 // The parts in words, for a message about a preset.
 std::string partsText(const condition::Condition& c) {
@@ -114,7 +115,7 @@ constexpr strict::NumberRange kPacingMs{0, true, 10000, false};
 
 void Reader::pacing(const Json& value, const std::string& path, int formatVersion, int since,
                     condition::Condition& c) const {
-    for (const char* key : {"frame_time_jitter", "hitches"})
+    for (const char* key : {"frame_time_jitter", "hitches", "frame_times"})
         if (value.contains(key) && formatVersion < since)
             fail(joinPath(path, key),
                  "is new in format_version " + std::to_string(since) + ", but this file is format_version " +
@@ -149,6 +150,7 @@ void Reader::pacing(const Json& value, const std::string& path, int formatVersio
         number(hitches, where, "every_s", {0, true, 3600, false}, c.hitches.everyS);
         number(hitches, where, "rate_per_s", {0, true, 1000, false}, c.hitches.ratePerS);
     }
+    if (value.contains("frame_times")) frameTimes(value, path, c);
 }
 
 namespace {
@@ -196,7 +198,7 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         if (!value.is_object())
             fail(path,
                  "must be an object of the condition's parts (render_hz, lag_frames or lag_ms, fill, fill_hz, "
-                 "late_warp, frame_time_jitter, hitches, description), got " +
+                 "late_warp, frame_time_jitter, hitches, frame_times, description), got " +
                      describe(value));
         requireKnownKeys(value, path, kConditionKeys);
         condition::Condition c;
@@ -204,7 +206,11 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         // "" is the default written out (writeConditions leaves it out).
         if (value.contains("description"))
             c.description = line(value["description"], joinPath(path, "description"), /*allowEmpty=*/true);
-        if (!value.contains("render_hz"))
+        // A trace's render rate is its own (frame_times.mean_hz rescales it).
+        if (value.contains("frame_times") && value.contains("render_hz"))
+            fail(joinPath(path, "render_hz"),
+                 "is given by frame_times (the trace's mean rate, or frame_times.mean_hz); leave render_hz out");
+        if (!value.contains("render_hz") && !value.contains("frame_times"))
             fail(joinPath(path, "render_hz"), "is required: conventional renders per second");
         number(&value, path, "render_hz", {0, true, kRefreshLimitHz, false}, c.renderHz);
         if (value.contains("lag_frames") && value.contains("lag_ms"))
@@ -260,7 +266,7 @@ void writeConditions(Json& document, const std::vector<condition::Condition>& de
     for (const auto& c : defined) {
         Json& o = all[c.name];
         if (!c.description.empty()) o["description"] = c.description;
-        o["render_hz"] = c.renderHz;
+        if (!c.frameTimes) o["render_hz"] = c.renderHz;
         if (c.lagFrames)
             o["lag_frames"] = *c.lagFrames;
         else
@@ -269,6 +275,7 @@ void writeConditions(Json& document, const std::vector<condition::Condition>& de
         if (c.fillHz) o["fill_hz"] = *c.fillHz;
         o["late_warp"] = condition::lateWarpName(c.lateWarp);
         writePacing(o, c);
+        writeFrameTimes(o, c);
     }
 }
 

@@ -101,9 +101,14 @@ private:
     // A definition's frame_time_jitter and hitches, at `path`.
     void pacing(const Json& value, const std::string& path, int formatVersion, int since,
                 condition::Condition& c) const;
+    // A definition's frame_times, at `path`: sets its trace and render rate (frame_times_json.cpp).
+    void frameTimes(const Json& value, const std::string& path, condition::Condition& c) const;
     condition::ConditionTable conditions_;
     mutable std::set<std::string> used_;  // the conditions requireMode was asked about
 };
+
+// A condition's "frame_times" as a stored copy keeps it: the frame times inline.
+void writeFrameTimes(Json& object, const condition::Condition& c);
 
 // The "conditions" object as a canonical protocol writes it; nothing when there are none.
 void writeConditions(Json& document, const std::vector<condition::Condition>& defined);

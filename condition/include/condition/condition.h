@@ -7,9 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "condition/frame_trace.h"
 
 namespace warplab::condition {
 
@@ -99,12 +102,13 @@ struct Condition {
     LateWarp lateWarp = LateWarp::None;
     Jitter jitter;  // frame_time_jitter
     Hitches hitches;
+    // A real game's frame times (frame_times), played as the render intervals; renderHz is then
+    // the rate they play at. Shared: a trace is read once, and copies of a condition are many.
+    std::shared_ptr<const FrameTrace> frameTimes;
 
-    Fill fillKind() const;
-    // Whether render intervals are all 1 / render_hz: no jitter, no hitches.
-    bool steadyPacing() const {
-        return jitter.shape == JitterShape::None && hitches.ms == 0.0;
-    }  // of `fill`, which parsing has checked
+    Fill fillKind() const;  // of `fill`, which parsing has checked
+    // Whether render intervals are all 1 / render_hz: no jitter, no hitches, no trace.
+    bool steadyPacing() const { return jitter.shape == JitterShape::None && hitches.ms == 0.0 && !frameTimes; }
     // Whether the world a frame shows is the source's moved on by velocities (warp fill, depth
     // late warp), as opposed to the world as sampled or blended.
     bool movesWorld() const { return fillKind() == Fill::Warp || lateWarp == LateWarp::Depth; }
