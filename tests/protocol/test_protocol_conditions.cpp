@@ -103,7 +103,7 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
          "per refresh; allowed: up to 120 Hz"},
         {"/conditions/lag60x5/speed", 1,
          "conditions.lag60x5.speed is not a known field (conditions.lag60x5 may have description, render_hz, "
-         "lag_frames, lag_ms, fill, fill_hz, late_warp, frame_time_jitter, hitches)"},
+         "lag_frames, lag_ms, fill, fill_hz, late_warp, frame_time_jitter, hitches, frame_times)"},
         {"/conditions/lag60x5-depth/fill", "bireproj",
          "conditions.lag60x5-depth.late_warp must be \"none\" with fill \"bireproj\": a late warp re-projects one "
          "frame, and bireproj shows two (allowed with it: none)"},
