@@ -291,6 +291,12 @@ def draw_figures(results, out_dir):
         # A second group's figures are named after it: "scripted_shooter_hit_rates.png".
         prefix = f"{part['group']}_" if "group" in part else ""
         written += draw_part(figures, part, out_dir, taken, table, palette, prefix, results["conditions_file"])
+    # Read here, not kept in results: report.json is the statistics, not every frame time.
+    frame_times = inputs.load_frame_times(results["export_dir"])
+    if frame_times:
+        name = file_stem("frame_times", taken) + ".png"
+        figures.frame_times_figure(os.path.join(out_dir, name), frame_times, palette)
+        written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
 

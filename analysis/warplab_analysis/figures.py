@@ -6,7 +6,9 @@
 - histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
-  of seed 000 Table 2).
+  of seed 000 Table 2);
+- each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
+  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale.
 Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
 table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
@@ -161,3 +163,26 @@ def click_figure(path, click, palette):
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+def frame_times_figure(path, series, palette):
+    """series: {(game, condition, refresh_hz): ([time_s], [frame_time_ms])}. One panel per condition,
+    stacked, sharing both axes, so a hitch or an uneven cadence stands out against a steady one."""
+    keys = list(series)
+    fig, axes = plt.subplots(len(keys), 1, figsize=(9.0, 1.5 * len(keys) + 1.0), dpi=110, squeeze=False,
+                             sharex=True, sharey=True)
+    for ax, key in zip(axes.flat, keys):
+        game, condition, refresh = key
+        times, frame_times = series[key]
+        ax.step(times, frame_times, where="pre", color=colour(condition, palette), linewidth=0.9)
+        ax.text(0.01, 0.9, f"{condition} ({game}, {refresh:g} Hz)", transform=ax.transAxes, fontsize=8, va="top",
+                bbox={"facecolor": "white", "alpha": 0.8, "linewidth": 0})
+        ax.set_ylabel("ms", fontsize=8)
+        ax.set_ylim(bottom=0)
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+    axes.flat[-1].set_xlabel("time over the condition's horizon (s)")
+    fig.suptitle("frame time of each new image (frametimes.csv)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+

@@ -567,3 +567,24 @@ def load_answers(export_dir):
                         "mode": record["mode"], "value": value, "text": record["text"], "block": block,
                         "player_kind": record.get("player_kind")})
     return answers
+
+
+FRAME_TIMES = "frametimes.csv"
+
+
+def load_frame_times(export_dir):
+    """{(game, condition, refresh_hz): ([time_s], [frame_time_ms])} from frametimes.csv (docs/export.md),
+    in file order; {} for an export from before it."""
+    path = os.path.join(export_dir, FRAME_TIMES)
+    if not os.path.exists(path):
+        return {}
+    table = read_table(path, ["game", "condition", "refresh_hz", "time_s", "frame_time_ms"])
+    series = {}
+    for record in table.records:
+        key = (text(table, record, "game"), text(table, record, "condition"),
+               positive(table, record, "refresh_hz"))
+        times, frame_times = series.setdefault(key, ([], []))
+        times.append(number(table, record, "time_s"))
+        frame_times.append(positive(table, record, "frame_time_ms"))
+    return series
+

@@ -154,28 +154,47 @@ double ModeSchedule::sceneLatency(double tau) const {
 }
 
 template <typename Depicted>
-ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::latencySpans(std::int64_t first, std::int64_t last,
+                                                                  Depicted depicted) const {
     // The instants frames depict never decrease with the frame, so between two consecutive
     // distinct instants a < b a step at b is shown by the first frame depicting b, and a step
-    // just after a by that same frame, b - a later: the latency's least and greatest values
-    // over a cycle. Two whole cycles after the lag has passed cover every case (a drawn
-    // cadence: its horizon, twice).
-    const std::int64_t cycle = cadence_.cycleFrames() * fillPeriod_;
-    const std::int64_t first = 4 * cycle + lagFrames_, last = first + 2 * cycle;
+    // just after a by that same frame, b - a later.
     std::vector<double> instants;
     for (std::int64_t k = first; k <= last; ++k) {
         const double t = depicted(frame(k));
         if (instants.empty() || t > instants.back() + 1e-12) instants.push_back(t);
     }
+    std::vector<LatencySpan> spans;
+    for (std::size_t i = 1; i < instants.size(); ++i)
+        spans.push_back({instants[i - 1], instants[i], instants[i] + firstShowing(instants[i], depicted)});
+    return spans;
+}
+
+std::int64_t ModeSchedule::settledFrame() const { return 4 * cycle() + lagFrames_; }
+
+template <typename Depicted>
+ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+    // Two whole cycles cover every case of a cadence that repeats within the horizon; one that
+    // does not (drawn, or a rate with no short cycle) is looked at over the horizon, as
+    // condition::pacingStats looks at it.
+    const auto horizon = std::llround(kDrawnHorizonS * refreshHz_);
+    const std::int64_t first = settledFrame();
+    const std::int64_t last = first + (cadence_.cycleFrames() < horizon ? 2 * cycle() : horizon);
     Range r{1e300, -1e300};
-    for (std::size_t i = 1; i + 1 < instants.size(); ++i) {
-        const double shown = instants[i] + firstShowing(instants[i], depicted);
-        r.min = std::min(r.min, shown - instants[i]);
-        r.max = std::max(r.max, shown - instants[i - 1]);
+    for (const LatencySpan& s : latencySpans(first, last, depicted)) {
+        r.min = std::min(r.min, s.shownAt - s.to);
+        r.max = std::max(r.max, s.shownAt - s.from);
     }
     // Steps and frames are both on the display's frame grid: the latencies are whole frames.
     auto whole = [&](double s) { return static_cast<double>(std::llround(s * refreshHz_)) / refreshHz_; };
     return {whole(r.min), whole(r.max)};
+}
+
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::viewLatencySpans(std::int64_t first, std::int64_t last) const {
+    return latencySpans(first, last, [](const ScheduledFrame& f) { return f.cameraTime; });
+}
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::sceneLatencySpans(std::int64_t first, std::int64_t last) const {
+    return latencySpans(first, last, [](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
 ModeSchedule::Range ModeSchedule::viewLatencyRange() const {

@@ -137,6 +137,7 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
         {"condition_position",
          [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.shot.mode, r.shot.scoredPhase)); }},
+        {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
 }
@@ -294,6 +295,7 @@ const std::vector<Column<MatchRow>>& matchTrailingColumns() {
     static const std::vector<Column<R>> columns = {
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
         {"condition_position", [](F& f, const R& r) { optionalInteger(f, r.position); }},
+        {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
 }
@@ -326,6 +328,38 @@ const std::vector<Column<ConditionListing>>& conditionColumns() {
         {"game", [](F& f, const R& r) { f.text(r.game); }},
         {"description", [](F& f, const R& r) { f.text(r.summary.condition.description); }},
         {"used_in", [](F& f, const R& r) { f.text(r.analysed ? "test" : "training"); }},
+        // Its pacing over condition::kPacingStatsHorizonS (docs/frame-pacing.md, "Pacing as numbers").
+        {"mean_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.meanFps); }},
+        {"low_1pct_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.low1Fps); }},
+        {"low_5pct_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.low5Fps); }},
+        {"frame_time_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.medianS)); }},
+        {"frame_time_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.p95S)); }},
+        {"frame_time_p99_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.p99S)); }},
+        {"frame_time_max_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.maxS)); }},
+        {"stutters", [](F& f, const R& r) { f.integer(r.pacing.frameTimes.stutters); }},
+        {"view_latency_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.viewS.median)); }},
+        {"view_latency_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.viewS.p95)); }},
+        {"scene_latency_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.sceneS.median)); }},
+        {"scene_latency_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.sceneS.p95)); }},
+    };
+    return columns;
+}
+
+// The frame times behind conditions.csv's pacing columns, for the report's frame-time graphs.
+const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
+    using F = CsvFile;
+    using R = FrameTimeRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
+        {"condition", [](F& f, const R& r) { f.text(r.listing.summary.condition.name); }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.listing.summary.refreshHz); }},
+        // From the start of the horizon, so every condition's graph starts at 0.
+        {"time_s",
+         [](F& f, const R& r) {
+             const condition::PacingStats& p = r.listing.pacing;
+             f.number(p.frames.shownAtS[r.index] - static_cast<double>(p.firstFrame) / r.listing.summary.refreshHz);
+         }},
+        {"frame_time_ms", [](F& f, const R& r) { f.number(r.listing.pacing.frames.frameTimeS[r.index] * 1000.0); }},
     };
     return columns;
 }

@@ -45,6 +45,24 @@ TEST(CliPacing, UnevenConditionsRunHeadlessOnTheDisplaysLabsOwnAndReplayExactly)
     }
 }
 
+// `warplab conditions` says each condition's pacing on its second line: 60 fps on 144 Hz is a
+// 3, 2, 3, 2, 2 cadence, frame times of 13.9 and 20.8 ms, so both lows are 48 fps.
+TEST(CliPacing, ConditionsPrintsEachConditionsPacing) {
+    const std::string dir = warplab::testing::scratch("pacing", "conditions");
+    const auto table = warplab("conditions " + pacedProtocol(dir, 144));
+    ASSERT_EQ(table.status, 0) << table.output;
+    const std::size_t even = table.output.find("\neven60 ");
+    ASSERT_NE(even, std::string::npos) << table.output;
+    const std::size_t second = table.output.find('\n', even + 1) + 1;
+    EXPECT_EQ(table.output.substr(second, table.output.find('\n', second) - second),
+              "    60 fps (1% low 48, 5% low 48); frame time 13.9 / 20.8 / 20.8 / 20.8 ms, 0 stutters; latency min / "
+              "median / p95 / max: view 0.0 / 8.3 / 18.8 / 20.8 ms, scene 0.0 / 8.3 / 18.8 / 20.8 ms")
+        << table.output;
+    const auto csv = warplab("conditions " + pacedProtocol(dir, 144) + " --csv");
+    ASSERT_EQ(csv.status, 0) << csv.output;
+    EXPECT_TRUE(contains(csv.output, ",stutters,")) << csv.output;
+}
+
 // A render rate above the refresh is one sentence naming the path, exit 1, nothing written.
 TEST(CliPacing, ARenderRateAboveTheRefreshIsRefused) {
     const std::string dir = warplab::testing::scratch("pacing", "above");

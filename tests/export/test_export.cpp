@@ -395,6 +395,67 @@ TEST(Export, ConditionsCsvListsWhatTheSessionsRan) {
     EXPECT_EQ(conv15.at("fill"), "hold");
     EXPECT_EQ(conv15.at("fill_hz"), "");
     EXPECT_EQ(conv15.at("lag_frames"), "0");
+    // Pacing: 15 renders a second held, a step waits half a render period in the median.
+    EXPECT_EQ(conv15.at("mean_fps"), "15");
+    EXPECT_NEAR(std::stod(conv15.at("frame_time_p95_ms")), 1000.0 / 15, 1e-9);
+    EXPECT_NEAR(std::stod(conv15.at("low_1pct_fps")), 15, 1e-9);
+    EXPECT_EQ(conv15.at("stutters"), "0");
+    EXPECT_NEAR(std::stod(conv15.at("view_latency_median_ms")), 1000.0 / 30, 1e-6);
+    EXPECT_EQ(warp.at("mean_fps"), "120");  // every warped frame is a new image
+    EXPECT_NEAR(std::stod(warp.at("frame_time_max_ms")), 1000.0 / 120, 1e-9);
+
+    // frametimes.csv: the frame times behind those numbers, 10 s of each condition.
+    std::map<std::string, std::vector<double>> times;
+    for (const Row& r : readCsv(out + "/frametimes.csv")) {
+        EXPECT_EQ(r.at("game"), "shooter");
+        EXPECT_GT(std::stod(r.at("time_s")), 0.0);
+        EXPECT_LT(std::stod(r.at("time_s")), 10.0);
+        times[r.at("condition")].push_back(std::stod(r.at("frame_time_ms")));
+    }
+    EXPECT_EQ(times.size(), used.size());
+    EXPECT_EQ(times["conv15"].size(), 149u);  // 150 new images, each but the first from the one before
+    for (const double t : times["conv15"]) EXPECT_NEAR(t, 1000.0 / 15, 1e-9);
+    EXPECT_EQ(times["warp15to120"].size(), 1199u);
+}
+
+// Each shot's frame_time_p95_ms: from the session's own frames table, over the trial's last
+// second. Headless sessions keep their conditions' steady cadences, so it is the render period
+// of a hold and the refresh of a warp; with every other frame of a shot's last second held, twice that.
+TEST(Export, EachShotCarriesTheFrameTimeP95OfItsLastSecond) {
+    const std::string results = scratch("shot-p95/results"), out = scratch("shot-p95/out");
+    const std::string file = headless("shooter-quick.json", "P01", results, 1);
+    exportQuietly(results, out);
+    const std::map<std::string, double> expected{
+        {"conv15", 1000.0 / 15}, {"conv120", 1000.0 / 120}, {"warp15to120", 1000.0 / 120}};
+    int checked = 0;
+    for (const Row& r : readCsv(out + "/shots.csv")) {
+        if (r.at("frame_time_p95_ms").empty()) continue;  // a trial too short for two new images
+        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), expected.at(r.at("mode")), 1e-9) << r.at("trial");
+        ++checked;
+    }
+    EXPECT_GE(checked, 10);
+
+    // The same session with every odd frame of conv120's trials held: 16.7 ms, never 8.3.
+    session::SessionData data = session::readSession(file);
+    fs::remove_all(results);
+    fs::create_directories(results);
+    session::SessionHeader header = data.header;
+    header.startedAt = "";
+    session::SessionWriter w = session::SessionWriter::create(results, header);
+    for (session::FrameRecord f : data.frames) {
+        if (f.mode == "conv120" && f.kind == "rendered" && f.frame % 2 == 1) f.kind = "held";
+        w.addFrame(f);
+    }
+    for (const auto& e : data.events) w.addEvent(e);
+    w.finish();
+    exportQuietly(results, out);
+    int held = 0;
+    for (const Row& r : readCsv(out + "/shots.csv")) {
+        if (r.at("mode") != "conv120" || r.at("frame_time_p95_ms").empty()) continue;
+        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), 2000.0 / 120, 1e-9) << r.at("trial");
+        ++held;
+    }
+    EXPECT_GE(held, 3);
 }
 
 // A session's results with a new participant id (and start time), as if run again.
@@ -1044,7 +1105,7 @@ TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
 
 TEST(ExportColumns, MatchDocsExportMd) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 11u);
+    ASSERT_EQ(written.size(), 12u);
     for (const exporter::CsvColumns& csv : written) {
         SCOPED_TRACE("docs/export.md, " + csv.file);
         const DocumentedColumns documented = documentedColumns(csv.file);

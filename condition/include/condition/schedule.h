@@ -69,6 +69,17 @@ public:
     };
     Range viewLatencyRange() const;
     Range sceneLatencyRange() const;
+    // Where a step falling in (from, to] is first shown: `from` and `to` are consecutive distinct
+    // instants that frames depict, so its latency falls linearly from shownAt - from to shownAt - to.
+    struct LatencySpan {
+        double from = 0.0, to = 0.0, shownAt = 0.0;
+    };
+    // The spans of the instants display frames first..last depict, but the first of them.
+    std::vector<LatencySpan> viewLatencySpans(std::int64_t first, std::int64_t last) const;
+    std::vector<LatencySpan> sceneLatencySpans(std::int64_t first, std::int64_t last) const;
+    // The first display frame the latency ranges (and condition::pacingStats) look at: once the
+    // lag and four cycles have passed, so nothing the queue held before the schedule started shows.
+    std::int64_t settledFrame() const;
     std::int64_t lagFrames() const { return lagFrames_; }
     const RenderCadence& cadence() const { return cadence_; }
 
@@ -77,6 +88,9 @@ private:
     double firstShowing(double tau, Depicted depicted) const;
     template <typename Depicted>
     Range latencyRange(Depicted depicted) const;
+    template <typename Depicted>
+    std::vector<LatencySpan> latencySpans(std::int64_t first, std::int64_t last, Depicted depicted) const;
+    std::int64_t cycle() const { return cadence_.cycleFrames() * fillPeriod_; }
     // The frame the fill makes at production frame j, before the queue and any late warp.
     ScheduledFrame produced(std::int64_t j) const;
     // A bidirectional fill at production frame j: the render interval it plays and the
