@@ -520,7 +520,7 @@ TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
     std::ofstream(dir + "/uneven.json") << R"({"format_version":8,"name":"uneven","game":"shooter",
  "display":{"refresh_hz":144,"refresh_mismatch":"warn"},
  "conditions":{"even60":{"render_hz":60},
-  "rough60":{"render_hz":60,"frame_time_jitter":{"distribution":"normal","sd_ms":4},"hitches":{"ms":100,"every_s":0.5}}},
+  "rough60":{"render_hz":60,"frame_time_jitter":{"distribution":"normal","sd_ms":4},"hitches":{"ms":100,"every_s":0.2}}},
  "acclimation":{"duration_s":0.25,"level":0,"mode":"even60"},
  "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.25,
   "high_mode":"even60","low_mode":"rough60"},
