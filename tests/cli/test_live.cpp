@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <cstdlib>
 #include <cstdio>
@@ -508,6 +509,56 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
     EXPECT_FALSE(contains(replayed, "differ")) << replayed;
     EXPECT_TRUE(fs::exists(dir + "/frame_4000.png"));
+}
+
+// Uneven cadences in a real window (docs/frame-pacing.md): 60 fps on a 144 Hz protocol (new
+// images 2 and 3 refreshes apart) and 60 fps with jitter and hitches play as headless, event
+// for event, and replay exactly; the stored pacing holds each condition's own unevenness
+// (its intended intervals between new images) apart from what the machine missed.
+TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
+    const std::string dir = scratch("uneven"), headless = scratch("uneven-headless");
+    std::ofstream(dir + "/uneven.json") << R"({"format_version":8,"name":"uneven","game":"shooter",
+ "display":{"refresh_hz":144,"refresh_mismatch":"warn"},
+ "conditions":{"even60":{"render_hz":60},
+  "rough60":{"render_hz":60,"frame_time_jitter":{"distribution":"normal","sd_ms":4},"hitches":{"ms":100,"every_s":0.2}}},
+ "acclimation":{"duration_s":0.25,"level":0,"mode":"even60"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.25,
+  "high_mode":"even60","low_mode":"rough60"},
+ "test":{"conditions":["even60","rough60"],"targets_per_condition":1,"timeout_s":1.0,"pause_s":0.25}})";
+    const std::string path = dir + "/uneven.json";
+    const auto window = inWindow("run --protocol " + path + " --participant U --out " + dir +
+                                 " --width 320 --height 180 --player bot:3 --seed 4");
+    ASSERT_EQ(window.status, 0) << window.output;
+    const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant U --out " +
+                                  headless + " --headless --width 320 --height 180 --player bot:3 --seed 4");
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    const auto a = warplab::session::readSession(sessionIn(dir));
+    const auto b = warplab::session::readSession(sessionIn(headless));
+    EXPECT_TRUE(a.completed) << a.note;
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+    ASSERT_EQ(a.inputs.size(), b.inputs.size());
+    for (std::size_t i = 0; i < a.inputs.size(); ++i)
+        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
+    ASSERT_EQ(a.frames.size(), b.frames.size());
+    for (std::size_t i = 0; i < a.frames.size(); ++i) ASSERT_EQ(a.frames[i].kind, b.frames[i].kind) << "frame " << i;
+    const std::string replayed = replayOf(sessionIn(dir));
+    EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
+    EXPECT_FALSE(contains(replayed, "differ")) << replayed;
+
+    std::vector<warplab::session::ModePacing> pacing;
+    ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
+    std::map<std::string, warplab::session::ModePacing> byMode;
+    for (const auto& p : pacing) byMode[p.mode] = p;
+    ASSERT_EQ(byMode.count("even60"), 1u) << a.summaries.at("pacing");
+    ASSERT_EQ(byMode.count("rough60"), 1u) << a.summaries.at("pacing");
+    const double refreshMs = 1000.0 / 144.0;
+    EXPECT_NEAR(byMode["even60"].intendedMaxMs, 3 * refreshMs, 1e-9);  // never a hitch's stall
+    EXPECT_GE(byMode["rough60"].intendedMaxMs, 100.0);  // the hitch, as the schedule meant it
+    EXPECT_GT(byMode["even60"].newImages, 0);
+    EXPECT_LT(byMode["even60"].newImages, byMode["even60"].shown);  // held frames between renders
+    EXPECT_FALSE(std::isnan(byMode["even60"].shownMaxMs)) << "the window measured what it showed";
 }
 
 // A second window on the rig recorded into the folder beside the first. While another session

@@ -162,7 +162,9 @@ TEST(Pacing, RandomHitchesComeAtTheirRate) {
     // 400 s: 200 expected, SD 14.
     EXPECT_GT(stalls, 155);
     EXPECT_LT(stalls, 245);
+    // The seed's: the same seed, the same stalls; another seed, others.
     EXPECT_EQ(frames, renderFrames(ModeSchedule(c, 120, 3), 120 * 400));
+    EXPECT_NE(frames, renderFrames(ModeSchedule(c, 120, 4), 120 * 400));
 }
 
 // Warp fills from the latest render at every refresh; bidirectional reprojection plays each
