@@ -556,7 +556,7 @@ std::vector<ConditionListing> listedConditions(const game::Study& study) {
                                       [&](const ConditionListing& r) { return r.summary.condition.name == name; });
         if (seen) continue;
         rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
-                        std::find(analysed.begin(), analysed.end(), name) != analysed.end()});
+                        std::find(analysed.begin(), analysed.end(), name) != analysed.end(), {}});
     }
     return rows;
 }

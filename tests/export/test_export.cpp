@@ -325,8 +325,8 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     EXPECT_EQ(static_cast<int>(matches.size()), scoredMatches);
     // The ratings last but for the columns added after them (export.cpp: matchTrailingColumns).
     const auto matchHeader = headerOf(out + "/matches.csv");
-    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 3, matchHeader.end()),
-              (std::vector<std::string>{"rating_4", "player_kind", "condition_position"}));
+    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 4, matchHeader.end()),
+              (std::vector<std::string>{"rating_4", "player_kind", "condition_position", "frame_time_p95_ms"}));
     for (const auto& m : matches) {
         EXPECT_EQ(std::stoi(m.at("clicks")),
                   std::stoi(m.at("green_hits")) + std::stoi(m.at("red_hits")) + std::stoi(m.at("misses")));
