@@ -58,10 +58,12 @@ bool isNumber(const std::string& s, double& out) {
 }
 
 // A frame time as a trace gives it, checked: a positive, finite number of ms up to the limit.
-double frameMs(const std::string& cell, std::size_t line, const std::string& what) {
-    double ms = 0.0;
-    if (!isNumber(cell, ms) || !std::isfinite(ms))
+// toMs: what one of the trace's units is in ms (MangoHud 0.6 logs microseconds).
+double frameMs(const std::string& cell, std::size_t line, const std::string& what, double toMs = 1.0) {
+    double value = 0.0;
+    if (!isNumber(cell, value) || !std::isfinite(value))
         throw TraceError(line, what + " is \"" + cell.substr(0, 40) + "\", not a number of milliseconds");
+    const double ms = value * toMs;
     if (!(ms > 0.0) || ms > kMaxTraceFrameMs)
         throw TraceError(line,
                          what + " is " + number(ms) + " ms; a frame time must be above 0 and at most " +
@@ -104,7 +106,7 @@ void checkLength(std::size_t frames, std::size_t line) {
 
 std::vector<double> columnValues(const std::vector<std::string>& text, std::size_t headerLine, std::size_t col,
                                  const std::string& what, bool skipFirstZero,
-                                 const std::vector<std::size_t>& sameAcrossRows) {
+                                 const std::vector<std::size_t>& sameAcrossRows, double toMs = 1.0) {
     const std::size_t width = fields(text[headerLine]).size();
     std::vector<double> ms;
     std::vector<std::string> first;
@@ -134,20 +136,65 @@ std::vector<double> columnValues(const std::vector<std::string>& text, std::size
             continue;
         }
         skipFirstZero = false;
-        ms.push_back(frameMs(row[col], i + 1, what));
+        ms.push_back(frameMs(row[col], i + 1, what, toMs));
         checkLength(ms.size(), i + 1);
     }
     return ms;
 }
 
+std::size_t indexOf(const std::vector<std::string>& header, const char* name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+}
+
+// The median of a row's frametime x fps: about 1000 when frametime is in ms (MangoHud 0.7 on),
+// 10^6 when it is in microseconds (MangoHud 0.6, as Debian 12 ships it).
+double medianTimesFps(const std::vector<std::string>& text, std::size_t headerLine, std::size_t timeCol,
+                      std::size_t fpsCol) {
+    std::vector<double> products;
+    for (std::size_t i = headerLine + 1; i < text.size(); ++i) {
+        const std::vector<std::string> row = fields(text[i]);
+        double t = 0.0, fps = 0.0;
+        if (row.size() > std::max(timeCol, fpsCol) && isNumber(row[timeCol], t) && isNumber(row[fpsCol], fps))
+            products.push_back(t * fps);
+    }
+    if (products.empty()) return 1000.0;
+    const auto middle = products.begin() + static_cast<std::ptrdiff_t>(products.size() / 2);
+    std::nth_element(products.begin(), middle, products.end());
+    return *middle;
+}
+
+// A log written every log_interval (100 ms by default) holds one frame per interval, not every
+// frame: its frame times fall far short of the time its `elapsed` column (ns) spans.
+void requireEveryFrame(const std::vector<std::string>& text, std::size_t headerLine, const std::vector<double>& ms) {
+    const std::size_t col = indexOf(fields(text[headerLine]), "elapsed");
+    std::vector<double> elapsed;
+    for (std::size_t i = headerLine + 1; i < text.size(); ++i) {
+        const std::vector<std::string> row = fields(text[i]);
+        double e = 0.0;
+        if (col < row.size() && isNumber(row[col], e)) elapsed.push_back(e);
+    }
+    if (elapsed.size() != ms.size() || ms.size() < 3) return;
+    const double rows = static_cast<double>(ms.size() - 1);
+    const double spanMs = (elapsed.back() - elapsed.front()) / 1e6;
+    const double framesMs = std::accumulate(ms.begin() + 1, ms.end(), 0.0);
+    if (framesMs < 0.5 * spanMs)
+        throw TraceError(0,
+                         "holds a row every " + number(spanMs / rows) + " ms but frames of " + number(framesMs / rows) +
+                             " ms: MangoHud logged one frame each log_interval, not every frame; record with "
+                             "log_interval=0");
+}
+
 std::vector<double> mangoHud(const std::vector<std::string>& text) {
     for (std::size_t i = 0; i < text.size() && i < kMangoHudHeaderWithin; ++i) {
         const std::vector<std::string> header = fields(text[i]);
-        if (isMangoHudHeader(header))
-            return columnValues(
-                text, i,
-                static_cast<std::size_t>(std::find(header.begin(), header.end(), kMangoHudColumn) - header.begin()),
-                kMangoHudColumn, false, {});
+        if (!isMangoHudHeader(header)) continue;
+        const std::size_t col = indexOf(header, kMangoHudColumn), fps = indexOf(header, "fps");
+        const bool micro = fps < header.size() && medianTimesFps(text, i, col, fps) > 30000.0;
+        const std::vector<double> ms =
+            columnValues(text, i, col, micro ? "frametime (microseconds, as MangoHud 0.6 logs it)" : kMangoHudColumn,
+                         false, {}, micro ? 1e-3 : 1.0);
+        requireEveryFrame(text, i, ms);
+        return ms;
     }
     throw TraceError(0,
                      std::string("is not a MangoHud log: none of its first ") + std::to_string(kMangoHudHeaderWithin) +

@@ -61,6 +61,18 @@ const char* kPresentMonFrameTime =
     "game.exe,4242,0x1F2E,DXGI,1,0,0,Hardware: Independent Flip,Application,1058.4,12.5,5,7.5,1,6\n"
     "game.exe,4242,0x1F2E,DXGI,1,0,0,Hardware: Independent Flip,Application,1070.9,16.7,5,11.7,1,6\n";
 
+// MangoHud 0.6 (Debian 12's) logs frametime in microseconds; its fps column tells them apart.
+const char* kMangoHud06 =
+    "os,cpu,gpu,ram,kernel,driver,cpuscheduler\n"
+    "Debian GNU/Linux 12 (bookworm),AMD EPYC,,24683664,6.1.0,4.5 Mesa 22.3.6,\n"
+    "fps,frametime,cpu_load,gpu_load,cpu_temp,gpu_temp,gpu_core_clock,gpu_mem_clock,gpu_vram_used,gpu_power,"
+    "ram_used,elapsed\n"
+    "59.88,16700,100,0,0,0,0,0,0,0,0.84,974463347\n"
+    "120.48,8300,100,0,0,0,0,0,0,0,0.84,982763347\n"
+    "29.94,33400,100,0,0,0,0,0,0,0,0.84,1016163347\n"
+    "80,12500,100,0,0,0,0,0,0,0,0.84,1028663347\n"
+    "59.88,16700,100,0,0,0,0,0,0,0,0.84,1045363347\n";
+
 const char* kList = "# frame times, ms\n16.7\n8.3\n\n33.4\n12.5\n16.7\n";
 
 std::vector<double> read(const std::string& text) { return parseTrace(text, detectTraceFormat(text)); }
@@ -72,6 +84,9 @@ TEST(FrameTrace, MangoHudPresentMonAndAListGiveTheSameFrameTimes) {
     EXPECT_EQ(detectTraceFormat(kPresentMonFrameTime), "presentmon");
     EXPECT_EQ(detectTraceFormat(kList), "list");
     EXPECT_EQ(read(kMangoHud), kMs);
+    const std::vector<double> micro = read(kMangoHud06);
+    ASSERT_EQ(micro.size(), kMs.size());
+    for (std::size_t i = 0; i < kMs.size(); ++i) EXPECT_NEAR(micro[i], kMs[i], 1e-9);
     EXPECT_EQ(read(kPresentMon1), kMs);
     EXPECT_EQ(read(kPresentMon2), kMs);
     EXPECT_EQ(read(kPresentMonFrameTime), kMs);
@@ -101,6 +116,9 @@ TEST(FrameTrace, BadTracesNameTheLineAndWhatIsAllowed) {
     expectRefused("os,cpu,gpu\nLinux,x,y\nfps,cpu_load\n60,3\n", 0, "frametime column");
     expectRefused("fps,frametime\n60,16.7\n60\n", 3, "has 1 fields where the header has 2");
     expectRefused("fps,frametime\n", 0, "no frame times");
+    // A row each 100 ms (MangoHud's default log_interval) of 16.7 ms frames: not every frame.
+    expectRefused("fps,frametime,elapsed\n60,16.7,0\n60,16.7,100000000\n60,16.7,200000000\n", 0,
+                  "record with log_interval=0");
     expectRefused(std::string("Application,ProcessID,SwapChainAddress,msBetweenPresents\n") +
                       "a.exe,1,0x1,16.7\nb.exe,2,0x2,16.7\n",
                   3, "another swap chain");
