@@ -33,11 +33,11 @@ std::string pacingLine(const condition::PacingStats& p) {
     };
     char text[256];
     std::snprintf(text, sizeof text,
-                  "%.4g fps (1%% low %.4g, 5%% low %.4g); frame time %.1f / %.1f / %.1f / %.1f ms, %lld stutters; "
+                  "%.4g fps (1%% low %.4g, 5%% low %.4g); frame time %.1f / %.1f / %.1f / %.1f ms, %lld stutter%s; "
                   "latency min / median / p95 / max: view %s ms, scene %s ms",
                   f.meanFps, f.low1Fps, f.low5Fps, f.medianS * 1000.0, f.p95S * 1000.0, f.p99S * 1000.0,
-                  f.maxS * 1000.0, static_cast<long long>(f.stutters), latency(p.viewS).c_str(),
-                  latency(p.sceneS).c_str());
+                  f.maxS * 1000.0, static_cast<long long>(f.stutters), f.stutters == 1 ? "" : "s",
+                  latency(p.viewS).c_str(), latency(p.sceneS).c_str());
     return text;
 }
 
