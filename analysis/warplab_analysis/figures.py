@@ -8,7 +8,9 @@
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
   of seed 000 Table 2);
 - each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
-  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale.
+  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
+- each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
+  histograms drawn exactly from the spans, a row per condition on one latency scale.
 Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
 table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
@@ -186,3 +188,58 @@ def frame_times_figure(path, series, palette):
     fig.savefig(path)
     plt.close(fig)
 
+
+
+# Bins no narrower than the display's timing says anything about and few enough to read:
+# about LATENCY_BINS across the widest latency, at a width of 1, 2 or 5 times a power of ten ms.
+LATENCY_BINS = 80
+
+
+def latency_bin_width(most_ms):
+    rough = max(most_ms, 1e-3) / LATENCY_BINS
+    power = 10.0 ** math.floor(math.log10(rough))
+    return next(k * power for k in (1, 2, 5, 10) if k * power >= rough)
+
+
+def latency_shares(spans, edges):
+    """The share of steps whose latency falls in each bin [edges[i], edges[i+1]): each span
+    (from, to, weight) holds its weight uniformly between from and to, so this is exact."""
+    low, high, weight = (np.array(column, dtype=float) for column in zip(*spans))
+    below = np.clip((edges[:, None] - low) / (high - low), 0.0, 1.0) @ weight
+    return np.diff(below)
+
+
+def latency_figure(path, distributions, palette):
+    """distributions: {(game, condition, refresh_hz): {"view"|"scene": [(from_ms, to_ms, weight)]}}
+    (inputs.load_latency). A row per condition, view then scene latency, every panel on one
+    latency axis and one share axis, so a condition's spread and delay read against the others'."""
+    keys = list(distributions)
+    kinds = ("view", "scene")
+    most = max(to for key in keys for spans in distributions[key].values() for _, to, _ in spans)
+    width = latency_bin_width(most)
+    edges = np.arange(0.0, most + width, width)
+    shares = {(key, kind): 100.0 * latency_shares(distributions[key][kind], edges)
+              for key in keys for kind in kinds if distributions[key].get(kind)}
+    fig, axes = plt.subplots(len(keys), 2, figsize=(10.0, 1.45 * len(keys) + 1.2), dpi=110, squeeze=False,
+                             sharex=True, sharey=True)
+    for row, key in enumerate(keys):
+        game, condition, refresh = key
+        for column, kind in enumerate(kinds):
+            ax = axes[row][column]
+            if (key, kind) in shares:
+                ax.stairs(shares[(key, kind)], edges, fill=True, color=colour(condition, palette), alpha=0.85)
+            ax.text(0.99, 0.9, f"{condition} ({game}, {refresh:g} Hz)", transform=ax.transAxes, fontsize=8,
+                    va="top", ha="right", bbox={"facecolor": "white", "alpha": 0.8, "linewidth": 0})
+            ax.grid(True, linewidth=0.4, alpha=0.5)
+            if column == 0:
+                ax.set_ylabel("% of steps", fontsize=8)
+        axes[0][0].set_title("view latency (a step in mouse input)", fontsize=9)
+        axes[0][1].set_title("scene latency (a step in the scene's motion)", fontsize=9)
+    for ax in axes[-1]:
+        ax.set_xlabel("latency (ms)", fontsize=8)
+    axes[0][0].set_xlim(0.0, edges[-1])
+    axes[0][0].set_ylim(bottom=0)
+    fig.suptitle(f"latency of a step falling uniformly in time, in {width:g} ms bins (latency.csv)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
