@@ -43,11 +43,12 @@ def test_an_export_without_latency_draws_none(tmp_path):
 def test_the_bins_hold_each_spans_weight_by_overlap():
     from warplab_analysis import figures
     edges = np.arange(0.0, 80.0, 10.0)
-    shares = figures.latency_shares([(0.0, 20.0, 0.5), (15.0, 25.0, 0.5)], edges)
+    shares = figures.latency_shares([(0.0, 20.0, 0.8), (15.0, 25.0, 0.2)], edges)
     # [0, 10): half of the first; [10, 20): the other half of it and half of the second; [20, 30): the rest.
-    assert shares == pytest.approx([0.25, 0.25 + 0.25, 0.25, 0, 0, 0, 0])
-    assert figures.latency_bin_width(75.0) == 1.0  # 75 / 80 bins: 0.94 ms, up to 1
-    assert figures.latency_bin_width(216.7) == 5.0  # 2.7 ms, up to 5
+    assert shares == pytest.approx([0.4, 0.4 + 0.1, 0.1, 0, 0, 0, 0])
+    assert figures.latency_bin_width(216.7) == 1.0  # 216.7 ms in 250 bins: 0.87 ms, up to 1
+    assert figures.latency_bin_width(75.0) == 0.5  # 0.3 ms, up to 0.5
+    assert figures.latency_bin_width(500.0) == 2.0  # exactly 2: not up to 5
 
 
 @pytest.mark.parametrize("row, sentence", [

@@ -19,6 +19,7 @@ import math
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.ticker  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -190,15 +191,18 @@ def frame_times_figure(path, series, palette):
 
 
 
-# Bins no narrower than the display's timing says anything about and few enough to read:
+# Bins fine enough that a refresh period (4.2 ms at 240 Hz) spans several, few enough to see:
 # about LATENCY_BINS across the widest latency, at a width of 1, 2 or 5 times a power of ten ms.
-LATENCY_BINS = 80
+LATENCY_BINS = 250
+# The least share the log scale shows: a hitch's tail (a 100 ms stall every 2 s holds 5 % of the
+# steps over 100 ms, 0.05 % a ms) stays visible beside the bulk's tens of percent.
+LATENCY_FLOOR_PERCENT = 1e-3
 
 
 def latency_bin_width(most_ms):
     rough = max(most_ms, 1e-3) / LATENCY_BINS
     power = 10.0 ** math.floor(math.log10(rough))
-    return next(k * power for k in (1, 2, 5, 10) if k * power >= rough)
+    return next(k * power for k in (1, 2, 5, 10) if k * power >= rough * (1 - 1e-9))
 
 
 def latency_shares(spans, edges):
@@ -212,34 +216,39 @@ def latency_shares(spans, edges):
 def latency_figure(path, distributions, palette):
     """distributions: {(game, condition, refresh_hz): {"view"|"scene": [(from_ms, to_ms, weight)]}}
     (inputs.load_latency). A row per condition, view then scene latency, every panel on one
-    latency axis and one share axis, so a condition's spread and delay read against the others'."""
+    latency axis and one logarithmic share axis, so a condition's delay, spread and tail read
+    against the others'."""
     keys = list(distributions)
-    kinds = ("view", "scene")
+    kinds = (("view", "view latency (a step in mouse input)"), ("scene", "scene latency (a step in the scene's motion)"))
     most = max(to for key in keys for spans in distributions[key].values() for _, to, _ in spans)
     width = latency_bin_width(most)
     edges = np.arange(0.0, most + width, width)
-    shares = {(key, kind): 100.0 * latency_shares(distributions[key][kind], edges)
-              for key in keys for kind in kinds if distributions[key].get(kind)}
-    fig, axes = plt.subplots(len(keys), 2, figsize=(10.0, 1.45 * len(keys) + 1.2), dpi=110, squeeze=False,
-                             sharex=True, sharey=True)
+    fig, axes = plt.subplots(len(keys), 2, figsize=(10.0, 1.1 * len(keys) + 1.3), dpi=110, squeeze=False,
+                             sharex=True, sharey=True, layout="constrained")
     for row, key in enumerate(keys):
         game, condition, refresh = key
-        for column, kind in enumerate(kinds):
+        for column, (kind, title) in enumerate(kinds):
             ax = axes[row][column]
-            if (key, kind) in shares:
-                ax.stairs(shares[(key, kind)], edges, fill=True, color=colour(condition, palette), alpha=0.85)
-            ax.text(0.99, 0.9, f"{condition} ({game}, {refresh:g} Hz)", transform=ax.transAxes, fontsize=8,
-                    va="top", ha="right", bbox={"facecolor": "white", "alpha": 0.8, "linewidth": 0})
+            spans = distributions[key].get(kind)
+            if spans:
+                shares = np.maximum(100.0 * latency_shares(spans, edges), LATENCY_FLOOR_PERCENT / 10)
+                ax.stairs(shares, edges, baseline=LATENCY_FLOOR_PERCENT / 10, fill=True,
+                          color=colour(condition, palette), alpha=0.85)
+                ax.axvline(max(to for _, to, _ in spans), color="black", linewidth=0.6, linestyle=":")
+            ax.set_yscale("log")
             ax.grid(True, linewidth=0.4, alpha=0.5)
-            if column == 0:
-                ax.set_ylabel("% of steps", fontsize=8)
-        axes[0][0].set_title("view latency (a step in mouse input)", fontsize=9)
-        axes[0][1].set_title("scene latency (a step in the scene's motion)", fontsize=9)
+            ax.tick_params(labelsize=7)
+            if row == 0:
+                ax.set_title(title, fontsize=9)
+        axes[row][0].set_ylabel(f"{condition}\n{game}, {refresh:g} Hz", rotation=0, ha="right", va="center",
+                                fontsize=8)
     for ax in axes[-1]:
         ax.set_xlabel("latency (ms)", fontsize=8)
-    axes[0][0].set_xlim(0.0, edges[-1])
-    axes[0][0].set_ylim(bottom=0)
-    fig.suptitle(f"latency of a step falling uniformly in time, in {width:g} ms bins (latency.csv)", fontsize=10)
-    fig.tight_layout()
+    axes[0][0].set_xlim(0.0, edges[-1] * 1.03)  # room for the longest's dotted line beside the frame
+    axes[0][0].set_ylim(LATENCY_FLOOR_PERCENT, 100.0)
+    axes[0][0].set_yticks([1e-3, 1e-1, 10.0], ["0.001 %", "0.1 %", "10 %"])
+    axes[0][0].yaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+    fig.suptitle(f"latency of a step falling uniformly in time: % of steps per {width:g} ms bin, log scale; "
+                 "dotted: the longest (latency.csv)", fontsize=9)
     fig.savefig(path)
     plt.close(fig)
