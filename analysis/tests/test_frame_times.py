@@ -1,10 +1,12 @@
 """frametimes.csv (docs/export.md) into the report's frame-time graph."""
 import os
+import shutil
 import sys
 
 import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+import analyze  # noqa: E402
 from warplab_analysis import inputs  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -33,3 +35,14 @@ def test_a_frame_time_that_is_not_positive_names_its_line(tmp_path):
     (tmp_path / "frametimes.csv").write_text(HEADER + "shooter,conv15,120,0.1,0\n")
     with pytest.raises(BadInput, match=r"frametimes.csv: line 2, column 'frame_time_ms' is not above 0"):
         inputs.load_frame_times(str(tmp_path))
+
+
+def test_a_bad_frame_times_csv_ends_the_report_in_one_sentence(tmp_path, capsys):
+    data = os.path.join(os.path.dirname(__file__), "data")
+    shutil.copy(os.path.join(data, "thesis_table1_hitrates.csv"), tmp_path / "hitrates.csv")
+    shutil.copy(os.path.join(data, "modes.csv"), tmp_path / "modes.csv")
+    (tmp_path / "frametimes.csv").write_text(HEADER + "shooter,conv15,120,0.1,0\n")
+    assert analyze.main([str(tmp_path), "--out", str(tmp_path / "report")]) == 1
+    err = capsys.readouterr().err.strip()
+    assert err.endswith("column 'frame_time_ms' is not above 0: '0'.") and "\n" not in err
+    assert not list((tmp_path / "report").glob("*.png"))

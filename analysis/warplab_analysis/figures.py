@@ -8,7 +8,9 @@
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
   of seed 000 Table 2);
 - each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
-  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale.
+  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
+- each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
+  histograms drawn exactly from the spans, a row per condition on one latency scale.
 Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
 table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
@@ -17,6 +19,7 @@ import math
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.ticker  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -186,3 +189,66 @@ def frame_times_figure(path, series, palette):
     fig.savefig(path)
     plt.close(fig)
 
+
+
+# Bins fine enough that a refresh period (4.2 ms at 240 Hz) spans several, few enough to see:
+# about LATENCY_BINS across the widest latency, at a width of 1, 2 or 5 times a power of ten ms.
+LATENCY_BINS = 250
+# The least share the log scale shows: a hitch's tail (a 100 ms stall every 2 s holds 5 % of the
+# steps over 100 ms, 0.05 % a ms) stays visible beside the bulk's tens of percent.
+LATENCY_FLOOR_PERCENT = 1e-3
+
+
+def latency_bin_width(most_ms):
+    rough = max(most_ms, 1e-3) / LATENCY_BINS
+    power = 10.0 ** math.floor(math.log10(rough))
+    return next(k * power for k in (1, 2, 5, 10) if k * power >= rough * (1 - 1e-9))
+
+
+def latency_shares(spans, edges):
+    """The share of steps whose latency falls in each bin [edges[i], edges[i+1]): each span
+    (from, to, weight) holds its weight uniformly between from and to, so this is exact."""
+    low, high, weight = (np.array(column, dtype=float) for column in zip(*spans))
+    below = np.clip((edges[:, None] - low) / (high - low), 0.0, 1.0) @ weight
+    return np.diff(below)
+
+
+def latency_figure(path, distributions, palette):
+    """distributions: {(game, condition, refresh_hz): {"view"|"scene": [(from_ms, to_ms, weight)]}}
+    (inputs.load_latency). A row per condition, view then scene latency, every panel on one
+    latency axis and one logarithmic share axis, so a condition's delay, spread and tail read
+    against the others'."""
+    keys = list(distributions)
+    kinds = (("view", "view latency (a step in mouse input)"), ("scene", "scene latency (a step in the scene's motion)"))
+    most = max(to for key in keys for spans in distributions[key].values() for _, to, _ in spans)
+    width = latency_bin_width(most)
+    edges = np.arange(0.0, most + width, width)
+    fig, axes = plt.subplots(len(keys), 2, figsize=(10.0, 1.1 * len(keys) + 1.3), dpi=110, squeeze=False,
+                             sharex=True, sharey=True, layout="constrained")
+    for row, key in enumerate(keys):
+        game, condition, refresh = key
+        for column, (kind, title) in enumerate(kinds):
+            ax = axes[row][column]
+            spans = distributions[key].get(kind)
+            if spans:
+                shares = np.maximum(100.0 * latency_shares(spans, edges), LATENCY_FLOOR_PERCENT / 10)
+                ax.stairs(shares, edges, baseline=LATENCY_FLOOR_PERCENT / 10, fill=True,
+                          color=colour(condition, palette), alpha=0.85)
+                ax.axvline(max(to for _, to, _ in spans), color="black", linewidth=0.6, linestyle=":")
+            ax.set_yscale("log")
+            ax.grid(True, linewidth=0.4, alpha=0.5)
+            ax.tick_params(labelsize=7)
+            if row == 0:
+                ax.set_title(title, fontsize=9)
+        axes[row][0].set_ylabel(f"{condition}\n{game}, {refresh:g} Hz", rotation=0, ha="right", va="center",
+                                fontsize=8)
+    for ax in axes[-1]:
+        ax.set_xlabel("latency (ms)", fontsize=8)
+    axes[0][0].set_xlim(0.0, edges[-1] * 1.03)  # room for the longest's dotted line beside the frame
+    axes[0][0].set_ylim(LATENCY_FLOOR_PERCENT, 100.0)
+    axes[0][0].set_yticks([1e-3, 1e-1, 10.0], ["0.001 %", "0.1 %", "10 %"])
+    axes[0][0].yaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+    fig.suptitle(f"latency of a step falling uniformly in time: % of steps per {width:g} ms bin, log scale; "
+                 "dotted: the longest (latency.csv)", fontsize=9)
+    fig.savefig(path)
+    plt.close(fig)

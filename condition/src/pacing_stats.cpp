@@ -90,8 +90,10 @@ PacingStats pacingStats(const ModeSchedule& schedule) {
         previous = f.displayTime;
     }
     stats.frameTimes = summarizeFrameTimes(stats.frames, newImages, stats.horizonS);
-    stats.viewS = distributionOf(schedule.viewLatencySpans(first, first + frames));
-    stats.sceneS = distributionOf(schedule.sceneLatencySpans(first, first + frames));
+    stats.viewSpans = schedule.viewLatencySpans(first, first + frames);
+    stats.sceneSpans = schedule.sceneLatencySpans(first, first + frames);
+    stats.viewS = distributionOf(stats.viewSpans);
+    stats.sceneS = distributionOf(stats.sceneSpans);
     return stats;
 }
 

@@ -331,6 +331,12 @@ public:
                 writeCells(frameTimes, frameTimeColumns(), FrameTimeRow{row, i});
                 frameTimes.endRow();
             }
+        CsvFile latency(file(outDir, "latency.csv"), headerOf(latencyColumns()));
+        for (const ConditionListing& row : conditions_)
+            for (const LatencyRow& span : latencyRows(row)) {
+                writeCells(latency, latencyColumns(), span);
+                latency.endRow();
+            }
         // The games of the readable sessions, in the order the registry knows them.
         CsvFile games(file(outDir, "games.csv"), headerOf(gameColumns()));
         for (const std::string& name : game::gameNames()) {
@@ -341,7 +347,7 @@ public:
         }
         std::vector<std::string> written;
         for (CsvFile* f : {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &frameTimes,
-                           &games, &pacing_}) {
+                           &latency, &games, &pacing_}) {
             f->close();
             written.push_back(f->path());
         }
@@ -454,6 +460,7 @@ std::vector<CsvColumns> exportColumns() {
             {"answers.csv", headerOf(answerColumns()), "", 0},
             {"conditions.csv", headerOf(conditionColumns()), "", 0},
             {"frametimes.csv", headerOf(frameTimeColumns()), "", 0},
+            {"latency.csv", headerOf(latencyColumns()), "", 0},
             {"pacing.csv", headerOf(pacingColumns()), "", 0},
             {"games.csv", headerOf(gameColumns()), "", 0},
             {"participants.csv", headerOf(participantColumns()), "", 0},
@@ -555,8 +562,10 @@ std::vector<ConditionListing> listedConditions(const game::Study& study) {
         const bool seen = std::any_of(rows.begin(), rows.end(),
                                       [&](const ConditionListing& r) { return r.summary.condition.name == name; });
         if (seen) continue;
-        rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
-                        std::find(analysed.begin(), analysed.end(), name) != analysed.end(), {}});
+        rows.push_back({study.game(),
+                        condition::summarize(study.conditions().at(name), study.refreshHz()),
+                        std::find(analysed.begin(), analysed.end(), name) != analysed.end(),
+                        {}});
     }
     return rows;
 }

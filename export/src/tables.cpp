@@ -1,7 +1,10 @@
 #include "tables.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <map>
+#include <utility>
 #include <stdexcept>
 
 namespace warplab::exporter {
@@ -233,6 +236,14 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
         {"budget_ms", [](F& f, const R& r) { f.number(r.pacing.budgetMs); }},
         {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
+        // After the columns above, so that they keep their places: the condition's own unevenness
+        // against what was shown (session::ModePacing). A summary stored before these were kept
+        // has none of them: empty cells, not zeros that claim a count.
+        {"new_images", [](F& f, const R& r) { optionalInteger(f, r.pacing.newImages); }},
+        {"intended_p95_ms", [](F& f, const R& r) { f.number(r.pacing.intendedP95Ms); }},
+        {"intended_max_ms", [](F& f, const R& r) { f.number(r.pacing.intendedMaxMs); }},
+        {"shown_p95_ms", [](F& f, const R& r) { f.number(r.pacing.shownP95Ms); }},
+        {"shown_max_ms", [](F& f, const R& r) { f.number(r.pacing.shownMaxMs); }},
     };
     return columns;
 }
@@ -360,6 +371,52 @@ const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
              f.number(p.frames.shownAtS[r.index] - static_cast<double>(p.firstFrame) / r.listing.summary.refreshHz);
          }},
         {"frame_time_ms", [](F& f, const R& r) { f.number(r.listing.pacing.frames.frameTimeS[r.index] * 1000.0); }},
+    };
+    return columns;
+}
+
+std::vector<LatencyRow> latencyRows(const ConditionListing& listing) {
+    std::vector<LatencyRow> rows;
+    const auto add = [&](const char* kind, const std::vector<condition::ModeSchedule::LatencySpan>& spans) {
+        // A step in (from, to] waits shownAt - tau: uniformly over [shownAt - to, shownAt - from),
+        // as likely as the span is long. A steady cadence repeats a few spans over and over; they
+        // differ only by rounding, so spans a nanosecond apart are one, keeping the widest bounds.
+        std::map<std::pair<std::int64_t, std::int64_t>, LatencyRow> same;
+        double total = 0.0;
+        for (const auto& s : spans) {
+            const double from = s.shownAt - s.to, to = s.shownAt - s.from;
+            const auto key = std::make_pair(std::llround(from * 1e9), std::llround(to * 1e9));
+            const auto [at, fresh] = same.try_emplace(key, LatencyRow{listing, kind, from, to, 0.0});
+            if (!fresh) {
+                at->second.fromS = std::min(at->second.fromS, from);
+                at->second.toS = std::max(at->second.toS, to);
+            }
+            at->second.weight += s.to - s.from;
+            total += s.to - s.from;
+        }
+        for (auto& [key, row] : same) {
+            row.weight /= total;
+            rows.push_back(row);
+        }
+    };
+    add("view", listing.pacing.viewSpans);
+    add("scene", listing.pacing.sceneSpans);
+    return rows;
+}
+
+// The latency distributions behind conditions.csv's latency columns, exactly, for the report's
+// latency histograms.
+const std::vector<Column<LatencyRow>>& latencyColumns() {
+    using F = CsvFile;
+    using R = LatencyRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
+        {"condition", [](F& f, const R& r) { f.text(r.listing.summary.condition.name); }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.listing.summary.refreshHz); }},
+        {"kind", [](F& f, const R& r) { f.text(r.kind); }},
+        {"latency_ms_from", [](F& f, const R& r) { f.number(r.fromS * 1000.0); }},
+        {"latency_ms_to", [](F& f, const R& r) { f.number(r.toS * 1000.0); }},
+        {"weight", [](F& f, const R& r) { f.number(r.weight); }},
     };
     return columns;
 }

@@ -97,6 +97,17 @@ struct FrameTimeRow {
     std::size_t index;  // into listing.pacing.frames
 };
 
+// A piece of a condition's latency distribution, as latency.csv lists it: a step falling
+// uniformly in time over the horizon waits between fromS and toS, uniformly, with probability
+// weight. Spans of the schedule with the same latencies are one row.
+struct LatencyRow {
+    const ConditionListing& listing;
+    const char* kind;  // "view" or "scene"
+    double fromS = 0.0, toS = 0.0, weight = 0.0;
+};
+// The view spans, then the scene spans, of `listing`'s pacing, each by ascending latency.
+std::vector<LatencyRow> latencyRows(const ConditionListing& listing);
+
 // matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
 // longest list seen, then the trailing ones.
 constexpr const char* kRatingColumn = "rating_";
@@ -123,6 +134,7 @@ const std::vector<Column<MatchRow>>& matchColumns();  // before the rating_k col
 const std::vector<Column<MatchRow>>& matchTrailingColumns();  // after them
 const std::vector<Column<ConditionListing>>& conditionColumns();
 const std::vector<Column<FrameTimeRow>>& frameTimeColumns();
+const std::vector<Column<LatencyRow>>& latencyColumns();
 const std::vector<Column<GameRow>>& gameColumns();
 
 }  // namespace warplab::exporter

@@ -66,7 +66,7 @@ void PacingTally::add(const FrameRecord& f, const std::string& scheduledKind) {
     }
     const bool newImage = showsNewImage(scheduledKind.empty() ? f.kind : scheduledKind);
     addInterval(*mode, f, newImage);
-    mode->counts.newImages += newImage;
+    *mode->counts.newImages += newImage;
     if (f.kind == kSkippedFrameKind) {
         ++mode->counts.skipped;
         return;
@@ -131,7 +131,7 @@ std::string pacingReport(const std::vector<ModePacing>& pacing) {
             // The condition's own unevenness beside what the display showed of it.
             out.pop_back();
             std::snprintf(line, sizeof line, "; new images %lld, intended p95 %.1f ms, max %.1f",
-                          static_cast<long long>(p.newImages), p.intendedP95Ms, p.intendedMaxMs);
+                          static_cast<long long>(p.newImages.value_or(0)), p.intendedP95Ms, p.intendedMaxMs);
             out += line;
             if (!std::isnan(p.shownMaxMs)) {
                 std::snprintf(line, sizeof line, ", shown p95 %.1f, max %.1f", p.shownP95Ms, p.shownMaxMs);
@@ -157,7 +157,7 @@ std::string pacingText(const std::vector<ModePacing>& pacing) {
                         {"max_ms", number(p.maxMs)},
                         {"budget_ms", number(p.budgetMs)},
                         {"over_budget", p.overBudget},
-                        {"new_images", p.newImages},
+                        {"new_images", p.newImages ? nlohmann::json(*p.newImages) : nlohmann::json()},
                         {"intended_p95_ms", number(p.intendedP95Ms)},
                         {"intended_max_ms", number(p.intendedMaxMs)},
                         {"shown_p95_ms", number(p.shownP95Ms)},
@@ -182,7 +182,8 @@ bool parsePacing(const std::string& text, std::vector<ModePacing>& out) {
         p.maxMs = number(o.value("max_ms", nlohmann::json()));
         p.budgetMs = number(o.value("budget_ms", nlohmann::json()));
         p.overBudget = o.value("over_budget", std::int64_t{0});
-        p.newImages = o.value("new_images", std::int64_t{0});
+        const nlohmann::json newImages = o.value("new_images", nlohmann::json());
+        p.newImages = newImages.is_number_integer() ? std::optional(newImages.get<std::int64_t>()) : std::nullopt;
         p.intendedP95Ms = number(o.value("intended_p95_ms", nlohmann::json()));
         p.intendedMaxMs = number(o.value("intended_max_ms", nlohmann::json()));
         p.shownP95Ms = number(o.value("shown_p95_ms", nlohmann::json()));

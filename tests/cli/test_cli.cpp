@@ -787,8 +787,8 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
               0);
     const auto ok = warplab("export " + results + " --out " + out);
     EXPECT_EQ(ok.status, 0) << ok.output;
-    for (const char* name :
-         {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "conditions.csv", "games.csv"}) {
+    for (const char* name : {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv",
+                             "conditions.csv", "frametimes.csv", "latency.csv", "games.csv", "pacing.csv"}) {
         EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
         EXPECT_TRUE(contains(ok.output, out + "/" + name)) << ok.output;
     }

@@ -53,6 +53,9 @@ struct PacingStats {
     FrameTimes frames;  // of the new images shown over the horizon
     FrameTimeSummary frameTimes;
     LatencyDistribution viewS, sceneS;  // of steps falling over the horizon
+    // The spans those distributions are exact mixes of (export's latency.csv, the report's
+    // latency histograms).
+    std::vector<ModeSchedule::LatencySpan> viewSpans, sceneSpans;
 };
 // Of kPacingStatsHorizonS of `schedule` from its settledFrame().
 PacingStats pacingStats(const ModeSchedule& schedule);

@@ -65,7 +65,7 @@ std::vector<ConditionListing> conditionsOf(const game::Study& study);
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows);
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
-// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, frametimes.csv, games.csv and pacing.csv into outDir (created
+// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, frametimes.csv, latency.csv, games.csv and pacing.csv into outDir (created
 // when missing), and participants.csv and orders.csv when there is a study plan (options.studyDir, or the
 // results folder's parent once a session carries a plan_id); a study.json that does not read
 // is a plan::PlanError with options.studyDir and a warning on `log` without it. Progress and one line per excluded or damaged session go to `log`.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,9 @@ struct ModePacing {
     // and as the display showed them (present to present, from one new image shown to the next;
     // a new image skipped is no image shown). NaN when there is no interval (or, shown, none was
     // measured: a headless session, or one stored before these were kept).
-    std::int64_t newImages = 0;  // frames the schedule makes a new image on, shown or skipped
+    // Frames the schedule makes a new image on, shown or skipped; none in a summary stored before
+    // they were counted, which export writes as an empty cell rather than a count of 0.
+    std::optional<std::int64_t> newImages = 0;
     double intendedP95Ms = 0.0, intendedMaxMs = 0.0;
     double shownP95Ms = 0.0, shownMaxMs = 0.0;
 };
@@ -73,7 +76,8 @@ std::string pacingReport(const std::vector<ModePacing>& pacing);
 
 // The summary as JSON text (an array of objects, keys as the fields' snake_case names), as the
 // store keeps it; and back. parsePacing returns false for text that is not such an array; a
-// key a session stored before it was kept reads as 0 (counts) or NaN (times).
+// key a session stored before it was kept reads as 0 (counts), NaN (times) or, for new_images,
+// none.
 std::string pacingText(const std::vector<ModePacing>& pacing);
 bool parsePacing(const std::string& text, std::vector<ModePacing>& out);
 
