@@ -63,6 +63,64 @@ TEST(CliPacing, ConditionsPrintsEachConditionsPacing) {
     EXPECT_TRUE(contains(csv.output, ",stutters,")) << csv.output;
 }
 
+// A game's frame times as conditions: written inline, and in a file beside the protocol (a
+// MangoHud log played from 50 ms in, rescaled to 50 frames a second, under bidirectional
+// reprojection, which waits through its longest frames).
+std::string tracedProtocol(const std::string& dir) {
+    std::filesystem::create_directories(dir + "/traces");
+    std::ofstream(dir + "/traces/game.csv")
+        << "os,cpu,gpu,ram,kernel,driver,cpuscheduler\n"
+           "Debian GNU/Linux 12,AMD Ryzen 7 5800X,AMD Radeon RX 6800,32768,6.1.0-27-amd64,Mesa 22.3.6,\n"
+           "fps,frametime,cpu_load,gpu_load,elapsed\n"
+           "59.88,16.7,31,88,16700000\n120.48,8.3,30,87,25000000\n29.94,33.4,29,86,58400000\n"
+           "80,12.5,31,88,70900000\n59.88,16.7,31,88,87600000\n21.2,47.1,35,90,134700000\n";
+    const std::string path = dir + "/traced.json";
+    std::ofstream(path) << R"({"format_version":8,"name":"traced","game":"shooter",
+ "display":{"refresh_hz":144,"refresh_mismatch":"warn"},
+ "conditions":{
+  "inline-trace":{"frame_times":{"ms":[16.7,8.3,33.4,12.5,16.7,20.0,11.1]}},
+  "file-trace":{"fill":"bireproj","frame_times":{"file":"traces/game.csv","offset_s":0.05,"mean_hz":50}}},
+ "acclimation":{"duration_s":0.5,"level":0,"mode":"inline-trace"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5,
+  "high_mode":"inline-trace","low_mode":"file-trace"},
+ "test":{"conditions":["inline-trace","file-trace"],"targets_per_condition":3,
+  "timeout_s":0.75,"pause_s":0.25,"supervisor_starts":false}})";
+    return path;
+}
+
+// The session keeps the frame times in its protocol copy: with the trace file gone, or changed
+// to other frame times, the session still replays every outcome.
+TEST(CliPacing, TracedConditionsRunHeadlessAndReplayWithoutTheTraceFile) {
+    const std::string dir = warplab::testing::scratch("pacing", "traced");
+    const std::string protocol = tracedProtocol(dir);
+    const auto run = warplab("run --protocol " + protocol + " --participant P --out " + dir +
+                             " --headless --player bot:3 --seed 11");
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string session = warplab::testing::sessionIn(dir);
+    ASSERT_FALSE(session.empty());
+    const auto replay = warplab("replay " + session);
+    EXPECT_EQ(replay.status, 0) << replay.output;
+    EXPECT_TRUE(contains(replay.output, "outcomes reproduced")) << replay.output;
+
+    std::filesystem::remove(dir + "/traces/game.csv");
+    const auto without = warplab("replay " + session);
+    EXPECT_EQ(without.status, 0) << without.output;
+    EXPECT_TRUE(contains(without.output, "outcomes reproduced")) << without.output;
+    std::ofstream(dir + "/traces/game.csv") << "40\n5\n40\n5\n";
+    const auto changed = warplab("replay " + session);
+    EXPECT_EQ(changed.status, 0) << changed.output;
+    EXPECT_TRUE(contains(changed.output, "outcomes reproduced")) << changed.output;
+}
+
+// `warplab conditions` lists both traced conditions of the protocol, with the trace's rate.
+TEST(CliPacing, ConditionsListsTracedConditions) {
+    const std::string dir = warplab::testing::scratch("pacing", "traced-conditions");
+    const auto table = warplab("conditions " + tracedProtocol(dir));
+    ASSERT_EQ(table.status, 0) << table.output;
+    EXPECT_TRUE(contains(table.output, "\ninline-trace ")) << table.output;
+    EXPECT_TRUE(contains(table.output, "\nfile-trace ")) << table.output;
+}
+
 // A render rate above the refresh is one sentence naming the path, exit 1, nothing written.
 TEST(CliPacing, ARenderRateAboveTheRefreshIsRefused) {
     const std::string dir = warplab::testing::scratch("pacing", "above");
