@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -45,18 +46,33 @@ TEST(CliPacing, UnevenConditionsRunHeadlessOnTheDisplaysLabsOwnAndReplayExactly)
     }
 }
 
+// The line of `warplab conditions` that starts with the condition's name, and the one after it.
+std::pair<std::string, std::string> conditionLines(const std::string& output, const std::string& name) {
+    const std::size_t first = output.find("\n" + name + " ");
+    if (first == std::string::npos) return {};
+    const std::size_t second = output.find('\n', first + 1) + 1;
+    return {output.substr(first + 1, second - first - 2), output.substr(second, output.find('\n', second) - second)};
+}
+
 // `warplab conditions` says each condition's pacing on its second line: 60 fps on 144 Hz is a
-// 3, 2, 3, 2, 2 cadence, frame times of 13.9 and 20.8 ms, so both lows are 48 fps.
+// 3, 2, 3, 2, 2 cadence, frame times of 13.9 and 20.8 ms, so both lows are 48 fps. A 100 ms
+// hitch every 0.5 s is 20 stutters in the 10 s looked at, each a frame time of 111.1 ms (the
+// hitch and the 60 fps interval it stalls, at a refresh).
 TEST(CliPacing, ConditionsPrintsEachConditionsPacing) {
     const std::string dir = warplab::testing::scratch("pacing", "conditions");
     const auto table = warplab("conditions " + pacedProtocol(dir, 144));
     ASSERT_EQ(table.status, 0) << table.output;
-    const std::size_t even = table.output.find("\neven60 ");
-    ASSERT_NE(even, std::string::npos) << table.output;
-    const std::size_t second = table.output.find('\n', even + 1) + 1;
-    EXPECT_EQ(table.output.substr(second, table.output.find('\n', second) - second),
+    EXPECT_EQ(conditionLines(table.output, "even60").second,
               "    60 fps (1% low 48, 5% low 48); frame time 13.9 / 20.8 / 20.8 / 20.8 ms, 0 stutters; latency min / "
               "median / p95 / max: view 0.0 / 8.3 / 18.8 / 20.8 ms, scene 0.0 / 8.3 / 18.8 / 20.8 ms")
+        << table.output;
+    EXPECT_EQ(conditionLines(table.output, "jitter60").second,
+              "    60.1 fps (1% low 36, 5% low 48); frame time 13.9 / 20.8 / 27.8 / 34.7 ms, 1 stutters; latency min / "
+              "median / p95 / max: view 0.0 / 8.5 / 19.6 / 34.7 ms, scene 0.0 / 8.5 / 19.6 / 34.7 ms")
+        << table.output;
+    EXPECT_EQ(conditionLines(table.output, "hitch60-bireproj").second,
+              "    98 fps (1% low 9, 5% low 72); frame time 6.9 / 13.9 / 111.1 / 111.1 ms, 20 stutters; latency min / "
+              "median / p95 / max: view 13.9 / 20.6 / 113.9 / 125.0 ms, scene 6.9 / 17.4 / 100.0 / 125.0 ms")
         << table.output;
     const auto csv = warplab("conditions " + pacedProtocol(dir, 144) + " --csv");
     ASSERT_EQ(csv.status, 0) << csv.output;
@@ -112,13 +128,25 @@ TEST(CliPacing, TracedConditionsRunHeadlessAndReplayWithoutTheTraceFile) {
     EXPECT_TRUE(contains(changed.output, "outcomes reproduced")) << changed.output;
 }
 
-// `warplab conditions` lists both traced conditions of the protocol, with the trace's rate.
+// `warplab conditions` lists both traced conditions of the protocol: the inline trace at its
+// own rate (7 frames in 118.7 ms), the file's rescaled to 50 frames a second and played from
+// 50 ms in: its longest frame, 47.1 ms rescaled by 44.54 / 50 fps to 41.96 ms, shows 6 refreshes apart.
 TEST(CliPacing, ConditionsListsTracedConditions) {
     const std::string dir = warplab::testing::scratch("pacing", "traced-conditions");
     const auto table = warplab("conditions " + tracedProtocol(dir));
     ASSERT_EQ(table.status, 0) << table.output;
-    EXPECT_TRUE(contains(table.output, "\ninline-trace ")) << table.output;
-    EXPECT_TRUE(contains(table.output, "\nfile-trace ")) << table.output;
+    const auto [inlineFirst, inlineSecond] = conditionLines(table.output, "inline-trace");
+    EXPECT_TRUE(contains(inlineFirst, " 58.9722 Hz  0 frames hold ")) << table.output;
+    EXPECT_EQ(inlineSecond,
+              "    59 fps (1% low 28.8, 5% low 28.8); frame time 13.9 / 34.7 / 34.7 / 34.7 ms, 68 stutters; latency "
+              "min / median / p95 / max: view 0.0 / 8.9 / 27.4 / 34.7 ms, scene 0.0 / 8.9 / 27.4 / 34.7 ms")
+        << table.output;
+    const auto [fileFirst, fileSecond] = conditionLines(table.output, "file-trace");
+    EXPECT_TRUE(contains(fileFirst, " 50 Hz  0 frames bireproj 144 ")) << table.output;
+    EXPECT_EQ(fileSecond,
+              "    80 fps (1% low 28.8, 5% low 28.8); frame time 6.9 / 34.7 / 34.7 / 41.7 ms, 176 stutters; latency "
+              "min / median / p95 / max: view 6.9 / 20.8 / 46.0 / 55.6 ms, scene 6.9 / 17.8 / 42.8 / 55.6 ms")
+        << table.output;
 }
 
 // A render rate above the refresh is one sentence naming the path, exit 1, nothing written.
