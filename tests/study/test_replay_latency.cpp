@@ -149,7 +149,7 @@ TEST(ReplayLatency, MouseStepsShowWithTheSchedulesViewLatencyFrameByFrame) {
     for (const std::string& mode : kUneven) {
         SCOPED_TRACE(mode);
         int measured = 0;
-        std::set<std::int64_t> phases;  // where in 60-on-144's 12-refresh cycle the steps fell
+        std::set<std::int64_t> phases;  // refreshes since the schedule started
         for (const Stretch& st : stretches(s, mode)) {
             const condition::ModeSchedule schedule = scheduleOf(s, s.frames[st.first]);
             for (std::size_t v = st.first + 1; v <= st.last; ++v) {
@@ -178,7 +178,7 @@ TEST(ReplayLatency, MouseStepsShowWithTheSchedulesViewLatencyFrameByFrame) {
         }
         std::set<std::int64_t> cycle;
         for (const std::int64_t p : phases) cycle.insert(p % 12);
-        EXPECT_EQ(cycle.size(), 12u) << "steps at every refresh of the cadence's cycle";
+        EXPECT_EQ(cycle.size(), 12u) << "steps at every refresh of 60 fps on 144 Hz's 12-refresh cycle";
         EXPECT_GE(measured, 500);
     }
 }
