@@ -67,7 +67,7 @@ TEST(CliPacing, ConditionsPrintsEachConditionsPacing) {
               "median / p95 / max: view 0.0 / 8.3 / 18.8 / 20.8 ms, scene 0.0 / 8.3 / 18.8 / 20.8 ms")
         << table.output;
     EXPECT_EQ(conditionLines(table.output, "jitter60").second,
-              "    60.1 fps (1% low 36, 5% low 48); frame time 13.9 / 20.8 / 27.8 / 34.7 ms, 1 stutters; latency min / "
+              "    60.1 fps (1% low 36, 5% low 48); frame time 13.9 / 20.8 / 27.8 / 34.7 ms, 1 stutter; latency min / "
               "median / p95 / max: view 0.0 / 8.5 / 19.6 / 34.7 ms, scene 0.0 / 8.5 / 19.6 / 34.7 ms")
         << table.output;
     EXPECT_EQ(conditionLines(table.output, "hitch60-bireproj").second,
