@@ -180,6 +180,9 @@ TEST(FrameTrace, PlaysFromItsOffsetLoopedAndRescaledToItsMeanRate) {
     EXPECT_DOUBLE_EQ(slow.renderHz, 20.0);
     const ModeSchedule rescaled(slow, 1000.0);
     EXPECT_EQ(renderFrames(rescaled, 220), (std::vector<std::int64_t>{0, 20, 60, 120, 200, 220}));
+    // An offset on a frame's start plays that frame first: 30 ms in plays 30, 40, 10 ...
+    EXPECT_EQ(renderFrames(ModeSchedule(traced(ms, 0.03), 1000.0), 130),
+              (std::vector<std::int64_t>{0, 30, 70, 80, 100, 130}));
     // An offset past the end wraps: 125 ms is 25 ms into the 100 ms trace.
     EXPECT_EQ(renderFrames(ModeSchedule(traced(ms, 0.125), 1000.0), 130), renderFrames(offset, 130));
 }

@@ -121,6 +121,14 @@ TEST(Pacing, JitterIsTheSeedsAndHasTheSdAsked) {
         EXPECT_NE(frames, renderFrames(other, 200000));
         const double sd = sampleSdMs(intervals(frames), kRefresh);
         EXPECT_NEAR(sd, c.expectedSdMs, 0.06 * c.expectedSdMs) << jitterShapeName(c.shape);
+        // Normal draws beyond 3 SD are drawn again (some 30 of these 12000 would lie beyond),
+        // so no interval is farther from the mean than that and a refresh of rounding.
+        if (c.shape == JitterShape::Normal) {
+            const std::vector<std::int64_t> each = intervals(frames);
+            const auto [shortest, longest] = std::minmax_element(each.begin(), each.end());
+            EXPECT_LE(static_cast<double>(*longest), 1000.0 / 60 + 3 * c.sdMs + 1);
+            EXPECT_GE(static_cast<double>(*shortest), 1000.0 / 60 - 3 * c.sdMs - 1);
+        }
         // The mean rate stays render_hz (log-normal's cut tail lowers its mean interval a little).
         EXPECT_NEAR(static_cast<double>(frames.size() - 1) / 200.0, 60.0, 60.0 * 0.01) << jitterShapeName(c.shape);
     }
@@ -165,6 +173,24 @@ TEST(Pacing, RandomHitchesComeAtTheirRate) {
     // The seed's: the same seed, the same stalls; another seed, others.
     EXPECT_EQ(frames, renderFrames(ModeSchedule(c, 120, 3), 120 * 400));
     EXPECT_NE(frames, renderFrames(ModeSchedule(c, 120, 4), 120 * 400));
+}
+
+// Hitches that fall during a stall merge with it: the render after a stall waits only for a
+// hitch falling in its own interval. 100 ms hitches at 4 a second: one falls within a stall a
+// third of the time (1 - e^-0.4), within a 60 fps interval after it 6 % of the time (1 - e^-1/15).
+TEST(Pacing, HitchesFallingDuringAStallMergeWithIt) {
+    Condition c = steady(60);
+    c.hitches.ms = 100;
+    c.hitches.ratePerS = 4;
+    const auto frameIntervals = intervals(renderFrames(ModeSchedule(c, 1000, 9), 1000 * 200));
+    int stalls = 0, stallAfterStall = 0;
+    for (std::size_t i = 0; i < frameIntervals.size(); ++i) {
+        if (frameIntervals[i] < 100) continue;
+        ++stalls;
+        stallAfterStall += i + 1 < frameIntervals.size() && frameIntervals[i + 1] >= 100;
+    }
+    EXPECT_GT(stalls, 400);  // some 600 in 200 s
+    EXPECT_LT(stallAfterStall, stalls / 6) << stallAfterStall << " of " << stalls;
 }
 
 // Warp fills from the latest render at every refresh; bidirectional reprojection plays each
