@@ -27,6 +27,16 @@ def test_frame_times_are_read_per_condition_and_drawn(tmp_path):
     assert path.stat().st_size > 10000
 
 
+def test_every_panel_reaches_the_longest_frame_time(tmp_path):
+    # A steady condition drawn first must not cap the axis below a later one's hitch.
+    series = {("shooter", "even60", 144.0): ([0.1, 0.2, 0.3], [13.9, 20.8, 13.9]),
+              ("shooter", "hitch100", 144.0): ([0.1, 0.2, 0.3], [13.9, 118.1, 20.8])}
+    from warplab_analysis import figures
+    low, high = figures.frame_times_figure(str(tmp_path / "frame_times.png"), series, ["even60", "hitch100"])
+    assert low == 0
+    assert 118.1 < high < 130
+
+
 def test_an_export_without_frame_times_draws_none(tmp_path):
     assert inputs.load_frame_times(str(tmp_path)) == {}
 

@@ -170,8 +170,12 @@ def click_figure(path, click, palette):
 
 def frame_times_figure(path, series, palette):
     """series: {(game, condition, refresh_hz): ([time_s], [frame_time_ms])}. One panel per condition,
-    stacked, sharing both axes, so a hitch or an uneven cadence stands out against a steady one."""
+    stacked, sharing both axes, so a hitch or an uneven cadence stands out against a steady one.
+    Returns the shared frame-time axis's limits (ms): up to the longest frame time of any."""
     keys = list(series)
+    # Set once for all: a limit set panel by panel stops at the first panel's frame times, and a
+    # later condition's hitches would run off the top.
+    longest = max((max(frame_times) for _, frame_times in series.values() if frame_times), default=1.0)
     fig, axes = plt.subplots(len(keys), 1, figsize=(9.0, 1.5 * len(keys) + 1.0), dpi=110, squeeze=False,
                              sharex=True, sharey=True)
     for ax, key in zip(axes.flat, keys):
@@ -181,13 +185,15 @@ def frame_times_figure(path, series, palette):
         ax.text(0.01, 0.9, f"{condition} ({game}, {refresh:g} Hz)", transform=ax.transAxes, fontsize=8, va="top",
                 bbox={"facecolor": "white", "alpha": 0.8, "linewidth": 0})
         ax.set_ylabel("ms", fontsize=8)
-        ax.set_ylim(bottom=0)
         ax.grid(True, linewidth=0.4, alpha=0.5)
+    axes.flat[0].set_ylim(0, 1.08 * longest)
     axes.flat[-1].set_xlabel("time over the condition's horizon (s)")
     fig.suptitle("frame time of each new image (frametimes.csv)", fontsize=10)
     fig.tight_layout()
     fig.savefig(path)
+    limits = axes.flat[-1].get_ylim()
     plt.close(fig)
+    return limits
 
 
 
