@@ -53,6 +53,22 @@ Result inWindow(const std::string& arguments) {
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
 
+// "" when two sessions hold the same events and inputs, record for record (a window's session
+// and the headless one the same player plays); else the first that differs.
+std::string firstRecordDifference(const warplab::session::SessionData& a, const warplab::session::SessionData& b) {
+    if (a.events.size() != b.events.size())
+        return std::to_string(a.events.size()) + " events against " + std::to_string(b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        if (const std::string d = warplab::session::firstDifference(a.events[i], b.events[i]); !d.empty())
+            return "event " + std::to_string(i) + ": " + d;
+    if (a.inputs.size() != b.inputs.size())
+        return std::to_string(a.inputs.size()) + " inputs against " + std::to_string(b.inputs.size());
+    for (std::size_t i = 0; i < a.inputs.size(); ++i)
+        if (const std::string d = warplab::session::firstDifference(a.inputs[i], b.inputs[i]); !d.empty())
+            return "input " + std::to_string(i) + ": " + d;
+    return "";
+}
+
 using warplab::testing::tinyProtocol;
 
 // The click game in a few seconds: two modes (one of them interpolating between renders),
@@ -188,12 +204,7 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
         const auto a = warplab::session::readSession(sessionIn(dir));
         const auto b = warplab::session::readSession(sessionIn(headless));
         EXPECT_TRUE(a.completed) << a.note;
-        ASSERT_EQ(a.events.size(), b.events.size()) << protocol;
-        for (std::size_t i = 0; i < a.events.size(); ++i)
-            ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << protocol << " event " << i;
-        ASSERT_EQ(a.inputs.size(), b.inputs.size());
-        for (std::size_t i = 0; i < a.inputs.size(); ++i)
-            ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << protocol << " input " << i;
+        ASSERT_EQ(firstRecordDifference(a, b), "") << protocol;
     }
     // Frame 100 of the tiny click session is on the first rating screen: the dark backdrop
     // (its top-left corner) and the seven boxes across the middle.
@@ -227,12 +238,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const auto a = warplab::session::readSession(sessionIn(dir));
     const auto b = warplab::session::readSession(sessionIn(headless));
     ASSERT_TRUE(a.completed) << a.note;
-    ASSERT_EQ(a.inputs.size(), b.inputs.size());
-    for (std::size_t i = 0; i < a.inputs.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
-    ASSERT_EQ(a.events.size(), b.events.size());
-    for (std::size_t i = 0; i < a.events.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
 
     // Every late frame is followed by the display frames it took, skipped; no other frame is.
     const double periodMs = 1000.0 / 120.0;
@@ -495,12 +501,7 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     const auto a = warplab::session::readSession(sessionIn(dir));
     const auto b = warplab::session::readSession(sessionIn(headless));
     EXPECT_TRUE(a.completed) << a.note;
-    ASSERT_EQ(a.events.size(), b.events.size());
-    for (std::size_t i = 0; i < a.events.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
-    ASSERT_EQ(a.inputs.size(), b.inputs.size());
-    for (std::size_t i = 0; i < a.inputs.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
     std::set<std::string> modes;
     for (const auto& e : a.events)
         if (e.type == "shot") modes.insert(e.mode);
@@ -535,12 +536,7 @@ TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
     const auto a = warplab::session::readSession(sessionIn(dir));
     const auto b = warplab::session::readSession(sessionIn(headless));
     EXPECT_TRUE(a.completed) << a.note;
-    ASSERT_EQ(a.events.size(), b.events.size());
-    for (std::size_t i = 0; i < a.events.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
-    ASSERT_EQ(a.inputs.size(), b.inputs.size());
-    for (std::size_t i = 0; i < a.inputs.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
     ASSERT_EQ(a.frames.size(), b.frames.size());
     for (std::size_t i = 0; i < a.frames.size(); ++i) ASSERT_EQ(a.frames[i].kind, b.frames[i].kind) << "frame " << i;
     const std::string replayed = replayOf(sessionIn(dir));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "condition/frame_trace.h"
+#include "condition/render_frames.h"
 #include "condition/schedule.h"
 
 namespace warplab::condition {
@@ -139,13 +140,6 @@ Condition traced(const std::vector<double>& ms, double offsetS = 0.0, std::optio
     c.frameTimes = trace;
     c.renderHz = trace->playedHz();
     return c;
-}
-
-std::vector<std::int64_t> renderFrames(const ModeSchedule& s, std::int64_t frames) {
-    std::vector<std::int64_t> out;
-    for (std::int64_t k = 0; k <= frames; ++k)
-        if (s.frame(k).rendersNow) out.push_back(k);
-    return out;
 }
 
 // Each render is ready at the sum of the frame times before it and shown at the first refresh

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "condition/reference_schedule.h"
+#include "condition/render_frames.h"
 #include "condition/schedule.h"
 
 namespace warplab::condition {
@@ -20,14 +21,6 @@ Condition steady(double renderHz, const std::string& fill = "hold") {
     c.renderHz = renderHz;
     c.fill = fill;
     return c;
-}
-
-// The display frames that show a new render, in [0, frames].
-std::vector<std::int64_t> renderFrames(const ModeSchedule& s, std::int64_t frames) {
-    std::vector<std::int64_t> out;
-    for (std::int64_t k = 0; k <= frames; ++k)
-        if (s.frame(k).rendersNow) out.push_back(k);
-    return out;
 }
 
 std::vector<std::int64_t> intervals(const std::vector<std::int64_t>& frames) {
