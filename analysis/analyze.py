@@ -283,6 +283,10 @@ def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
 
 def draw_figures(results, out_dir):
     """Draws every figure, records its file name in results, and returns the paths written."""
+    # Read here, not kept in results: report.json is the statistics, not every frame time. Read
+    # before anything is drawn, so that a bad file ends the report before any figure is written.
+    frame_times = inputs.load_frame_times(results["export_dir"])
+    latency = inputs.load_latency(results["export_dir"])
     from warplab_analysis import figures  # matplotlib only once the input has been accepted
     written, taken = [], set()
     table = ConditionTable(results["conditions"])
@@ -291,6 +295,14 @@ def draw_figures(results, out_dir):
         # A second group's figures are named after it: "scripted_shooter_hit_rates.png".
         prefix = f"{part['group']}_" if "group" in part else ""
         written += draw_part(figures, part, out_dir, taken, table, palette, prefix, results["conditions_file"])
+    if frame_times:
+        name = file_stem("frame_times", taken) + ".png"
+        figures.frame_times_figure(os.path.join(out_dir, name), frame_times, palette)
+        written.append(name)
+    if latency:
+        name = file_stem("latency", taken) + ".png"
+        figures.latency_figure(os.path.join(out_dir, name), latency, palette)
+        written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
 
@@ -408,6 +420,9 @@ def main(argv=None):
         written.append(target)
     except OSError as e:
         print(f"analyze: cannot write {e.filename or target}: {e.strerror or e}.", file=sys.stderr)
+        return 1
+    except BadInput as e:  # frametimes.csv or latency.csv, read as the figures are drawn
+        print(f"analyze: {e}", file=sys.stderr)
         return 1
     for path in written:
         print(path)

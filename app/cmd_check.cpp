@@ -40,8 +40,9 @@ Command checkCommand() {
         {"check",
          "Check this machine before a participant sits down: the GL context, the display's refresh\n"
          "(reported, and measured over 2 s of swaps), vsync, the frame time of each condition of the\n"
-         "protocol at the window's size against one refresh, the results folder and its lock, disk\n"
-         "space for a session, the audio device. One line per check: ok, warn or FAIL and why.\n"
+         "protocol at the window's size against one refresh and against the shortest interval between\n"
+         "new images its cadence asks for, the results folder and its lock, disk space for a session,\n"
+         "the audio device. One line per check: ok, warn or FAIL and why.\n"
          "Exits 1 on any FAIL, so a lab script can gate a session on it.",
          "warplab check [--protocol P] [--out RESULTS] [--fullscreen] [--display N] [--width W --height H]\n"
          "              [--photon CORNER]\n"

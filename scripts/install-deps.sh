@@ -14,6 +14,8 @@ packages=(
   libgl-dev libegl-dev libegl1-mesa-dev libosmesa6-dev libgl1-mesa-dri mesa-common-dev
   # libraries
   libglm-dev libtinyobjloader-dev nlohmann-json3-dev libstb-dev libsqlite3-dev
+  # SHA-256 of frame-time trace files (libcrypto)
+  libssl-dev
   # tests: GoogleTest, a virtual X server for the window tests, and xdotool to unmap, focus,
   # type into and destroy a window as a window manager or another program would
   libgtest-dev xvfb xauth xdotool

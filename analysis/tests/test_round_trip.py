@@ -131,7 +131,10 @@ def check_conditions_csv(export, report, data):
         header = next(csv.reader(f))
     assert header == ["condition", "render_hz", "lag_frames", "fill", "late_warp", "view_latency_min_ms",
                       "view_latency_max_ms", "scene_latency_min_ms", "scene_latency_max_ms", "fill_hz", "refresh_hz",
-                      "game", "description", "used_in"]
+                      "game", "description", "used_in", "mean_fps", "low_1pct_fps", "low_5pct_fps",
+                      "frame_time_median_ms", "frame_time_p95_ms", "frame_time_p99_ms", "frame_time_max_ms", "stutters",
+                      "view_latency_median_ms", "view_latency_p95_ms", "scene_latency_median_ms",
+                      "scene_latency_p95_ms"]
     names = list(dict.fromkeys(r["condition"] for r in rows))
     assert data["conditions_file"] == "conditions.csv"
     assert [m["mode"] for m in data["modes"]] == names

@@ -6,7 +6,11 @@
 - histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
 - the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
-  of seed 000 Table 2).
+  of seed 000 Table 2);
+- each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
+  MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
+- each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
+  histograms drawn exactly from the spans, a row per condition on one latency scale.
 Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
 table lists in the report's mode order (conditions.ConditionTable.all_conditions).
 """
@@ -15,6 +19,7 @@ import math
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.ticker  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -159,5 +164,97 @@ def click_figure(path, click, palette):
     fig.suptitle(f"{whose}: mean ± SD across participants (reference {click['reference_mode']}, bold outline)",
                  fontsize=10)
     fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def frame_times_figure(path, series, palette):
+    """series: {(game, condition, refresh_hz): ([time_s], [frame_time_ms])}. One panel per condition,
+    stacked, sharing both axes, so a hitch or an uneven cadence stands out against a steady one.
+    Returns the shared frame-time axis's limits (ms): up to the longest frame time of any."""
+    keys = list(series)
+    # Set once for all: a limit set panel by panel stops at the first panel's frame times, and a
+    # later condition's hitches would run off the top.
+    longest = max((max(frame_times) for _, frame_times in series.values() if frame_times), default=1.0)
+    fig, axes = plt.subplots(len(keys), 1, figsize=(9.0, 1.5 * len(keys) + 1.0), dpi=110, squeeze=False,
+                             sharex=True, sharey=True)
+    for ax, key in zip(axes.flat, keys):
+        game, condition, refresh = key
+        times, frame_times = series[key]
+        ax.step(times, frame_times, where="pre", color=colour(condition, palette), linewidth=0.9)
+        ax.text(0.01, 0.9, f"{condition} ({game}, {refresh:g} Hz)", transform=ax.transAxes, fontsize=8, va="top",
+                bbox={"facecolor": "white", "alpha": 0.8, "linewidth": 0})
+        ax.set_ylabel("ms", fontsize=8)
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+    axes.flat[0].set_ylim(0, 1.08 * longest)
+    axes.flat[-1].set_xlabel("time over the condition's horizon (s)")
+    fig.suptitle("frame time of each new image (frametimes.csv)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path)
+    limits = axes.flat[-1].get_ylim()
+    plt.close(fig)
+    return limits
+
+
+
+# Bins fine enough that a refresh period (4.2 ms at 240 Hz) spans several, few enough to see:
+# about LATENCY_BINS across the widest latency, at a width of 1, 2 or 5 times a power of ten ms.
+LATENCY_BINS = 250
+# The least share the log scale shows: a hitch's tail (a 100 ms stall every 2 s holds 5 % of the
+# steps over 100 ms, 0.05 % a ms) stays visible beside the bulk's tens of percent.
+LATENCY_FLOOR_PERCENT = 1e-3
+
+
+def latency_bin_width(most_ms):
+    rough = max(most_ms, 1e-3) / LATENCY_BINS
+    power = 10.0 ** math.floor(math.log10(rough))
+    return next(k * power for k in (1, 2, 5, 10) if k * power >= rough * (1 - 1e-9))
+
+
+def latency_shares(spans, edges):
+    """The share of steps whose latency falls in each bin [edges[i], edges[i+1]): each span
+    (from, to, weight) holds its weight uniformly between from and to, so this is exact."""
+    low, high, weight = (np.array(column, dtype=float) for column in zip(*spans))
+    below = np.clip((edges[:, None] - low) / (high - low), 0.0, 1.0) @ weight
+    return np.diff(below)
+
+
+def latency_figure(path, distributions, palette):
+    """distributions: {(game, condition, refresh_hz): {"view"|"scene": [(from_ms, to_ms, weight)]}}
+    (inputs.load_latency). A row per condition, view then scene latency, every panel on one
+    latency axis and one logarithmic share axis, so a condition's delay, spread and tail read
+    against the others'."""
+    keys = list(distributions)
+    kinds = (("view", "view latency (a step in mouse input)"), ("scene", "scene latency (a step in the scene's motion)"))
+    most = max(to for key in keys for spans in distributions[key].values() for _, to, _ in spans)
+    width = latency_bin_width(most)
+    edges = np.arange(0.0, most + width, width)
+    fig, axes = plt.subplots(len(keys), 2, figsize=(10.0, 1.1 * len(keys) + 1.3), dpi=110, squeeze=False,
+                             sharex=True, sharey=True, layout="constrained")
+    for row, key in enumerate(keys):
+        game, condition, refresh = key
+        for column, (kind, title) in enumerate(kinds):
+            ax = axes[row][column]
+            spans = distributions[key].get(kind)
+            if spans:
+                shares = np.maximum(100.0 * latency_shares(spans, edges), LATENCY_FLOOR_PERCENT / 10)
+                ax.stairs(shares, edges, baseline=LATENCY_FLOOR_PERCENT / 10, fill=True,
+                          color=colour(condition, palette), alpha=0.85)
+                ax.axvline(max(to for _, to, _ in spans), color="black", linewidth=0.6, linestyle=":")
+            ax.set_yscale("log")
+            ax.grid(True, linewidth=0.4, alpha=0.5)
+            ax.tick_params(labelsize=7)
+            if row == 0:
+                ax.set_title(title, fontsize=9)
+        axes[row][0].set_ylabel(f"{condition}\n{game}, {refresh:g} Hz", rotation=0, ha="right", va="center",
+                                fontsize=8)
+    for ax in axes[-1]:
+        ax.set_xlabel("latency (ms)", fontsize=8)
+    axes[0][0].set_xlim(0.0, edges[-1] * 1.03)  # room for the longest's dotted line beside the frame
+    axes[0][0].set_ylim(LATENCY_FLOOR_PERCENT, 100.0)
+    axes[0][0].set_yticks([1e-3, 1e-1, 10.0], ["0.001 %", "0.1 %", "10 %"])
+    axes[0][0].yaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+    fig.suptitle(f"latency of a step falling uniformly in time: % of steps per {width:g} ms bin, log scale; "
+                 "dotted: the longest (latency.csv)", fontsize=9)
     fig.savefig(path)
     plt.close(fig)

@@ -567,3 +567,63 @@ def load_answers(export_dir):
                         "mode": record["mode"], "value": value, "text": record["text"], "block": block,
                         "player_kind": record.get("player_kind")})
     return answers
+
+
+FRAME_TIMES = "frametimes.csv"
+
+
+def load_frame_times(export_dir):
+    """{(game, condition, refresh_hz): ([time_s], [frame_time_ms])} from frametimes.csv (docs/export.md),
+    in file order; {} for an export from before it."""
+    path = os.path.join(export_dir, FRAME_TIMES)
+    if not os.path.exists(path):
+        return {}
+    table = read_table(path, ["game", "condition", "refresh_hz", "time_s", "frame_time_ms"])
+    series = {}
+    for record in table.records:
+        key = (text(table, record, "game"), text(table, record, "condition"),
+               positive(table, record, "refresh_hz"))
+        times, frame_times = series.setdefault(key, ([], []))
+        times.append(number(table, record, "time_s"))
+        frame_times.append(positive(table, record, "frame_time_ms"))
+    return series
+
+
+
+LATENCY = "latency.csv"
+LATENCY_KINDS = ("view", "scene")
+# Weights are shares written as shortest round-trip decimals: their sum is 1 but for rounding.
+WEIGHT_SUM_SLACK = 1e-6
+
+
+def load_latency(export_dir):
+    """{(game, condition, refresh_hz): {kind: [(latency_ms_from, latency_ms_to, weight)]}} from
+    latency.csv (docs/export.md), kinds and spans in file order; {} for an export from before it.
+    Each kind's weights must add up to 1: a histogram drawn from fewer spans would be wrong, not
+    partial."""
+    path = os.path.join(export_dir, LATENCY)
+    if not os.path.exists(path):
+        return {}
+    table = read_table(path, ["game", "condition", "refresh_hz", "kind", "latency_ms_from", "latency_ms_to",
+                              "weight"])
+    distributions = {}
+    for record in table.records:
+        key = (text(table, record, "game"), text(table, record, "condition"),
+               positive(table, record, "refresh_hz"))
+        kind = text(table, record, "kind")
+        if kind not in LATENCY_KINDS:
+            raise BadInput(f"{path}: line {record['_line']}, column 'kind' is not view or scene: {kind!r}.")
+        low = number(table, record, "latency_ms_from")
+        high = number(table, record, "latency_ms_to")
+        if high <= low:
+            raise BadInput(f"{path}: line {record['_line']}, column 'latency_ms_to' is not above latency_ms_from: "
+                           f"{record['latency_ms_to']!r}.")
+        spans = distributions.setdefault(key, {}).setdefault(kind, [])
+        spans.append((low, high, positive(table, record, "weight")))
+    for (game, condition, refresh), kinds in distributions.items():
+        for kind, spans in kinds.items():
+            total = sum(weight for _, _, weight in spans)
+            if abs(total - 1.0) > WEIGHT_SUM_SLACK:
+                raise BadInput(f"{path}: the weights of {condition}'s {kind} latency ({game}, {refresh:g} Hz) add "
+                               f"up to {total:.9g}, not 1.")
+    return distributions

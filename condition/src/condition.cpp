@@ -1,5 +1,8 @@
 #include "condition/condition.h"
 
+#include "condition/pacing.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -72,18 +75,59 @@ std::string ordinal(std::int64_t n) {
     return std::to_string(n) + suffix;
 }
 
-// The rates that divide the refresh, for a message: "120, 60, 40, 30, 24, 20, 15 ..." (the
-// first few, from the refresh down).
-std::string dividingRates(double refreshHz) {
-    std::string text;
-    int shown = 0;
-    for (int n = 1; n <= 1000 && shown < 8; ++n) {
-        const double rate = refreshHz / n;
-        if (std::abs(rate - std::round(rate)) > 1e-9) continue;
-        text += (text.empty() ? "" : ", ") + number(rate);
-        ++shown;
+// What is wrong with a condition's frame_time_jitter or hitches, measured against its mean
+// render interval; the part is the key within them.
+std::optional<Problem> pacingProblem(const Condition& c) {
+    const double meanMs = 1000.0 / c.renderHz;
+    const std::string mean =
+        "the mean render interval (" + number(meanMs) + " ms at render_hz " + number(c.renderHz) + ")";
+    const Jitter& j = c.jitter;
+    auto positive = [](double v) { return v > 0.0 && std::isfinite(v); };
+    if (c.frameTimes) {
+        if (c.frameTimes->recordedMs.empty()) return Problem{"frame_times", "holds no frame times"};
+        if (j.shape != JitterShape::None)
+            return Problem{"frame_time_jitter",
+                           "is for a steady render_hz; with frame_times the trace gives every render interval "
+                           "(leave frame_time_jitter out)"};
     }
-    return text.empty() ? number(refreshHz) : text + " ...";
+    switch (j.shape) {
+        case JitterShape::None: break;
+        case JitterShape::Normal:
+            if (!positive(j.sdMs) || j.sdMs > meanMs / 3.0)
+                return Problem{"frame_time_jitter.sd_ms",
+                               "is " + number(j.sdMs) +
+                                   " ms; a normal jitter's SD must be above 0 and at most a third of " + mean +
+                                   ", so intervals stay positive (\"lognormal\" allows wider)"};
+            break;
+        case JitterShape::Lognormal:
+            if (!positive(j.sdMs) || j.sdMs > 2.0 * meanMs)
+                return Problem{
+                    "frame_time_jitter.sd_ms",
+                    "is " + number(j.sdMs) + " ms; a log-normal jitter's SD must be above 0 and at most twice " + mean};
+            break;
+        case JitterShape::Uniform:
+            if (!positive(j.rangeMs) || j.rangeMs >= 2.0 * meanMs)
+                return Problem{"frame_time_jitter.range_ms",
+                               "is " + number(j.rangeMs) +
+                                   " ms; a uniform jitter's range must be above 0 and below twice " + mean +
+                                   ", so intervals stay positive"};
+            break;
+    }
+    const Hitches& h = c.hitches;
+    if (h.ms == 0.0 && h.everyS == 0.0 && h.ratePerS == 0.0) return std::nullopt;
+    if (!positive(h.ms) || h.ms > 10000.0)
+        return Problem{"hitches.ms", "is " + number(h.ms) + "; a hitch lasts more than 0 and at most 10000 ms"};
+    if ((h.everyS > 0.0) == (h.ratePerS > 0.0))
+        return Problem{"hitches", "needs one of every_s (periodic) and rate_per_s (random), not both or neither"};
+    if (h.everyS > 0.0 && (!std::isfinite(h.everyS) || h.ms >= 1000.0 * h.everyS))
+        return Problem{"hitches.ms",
+                       "is " + number(h.ms) + " ms, not shorter than its period (every_s " + number(h.everyS) +
+                           " s); a hitch must end before the next is due"};
+    if (h.ratePerS > 0.0 && (!std::isfinite(h.ratePerS) || h.ms >= 1000.0 / h.ratePerS))
+        return Problem{"hitches.ms",
+                       "is " + number(h.ms) + " ms, not shorter than its mean period (1 / rate_per_s = " +
+                           number(1000.0 / h.ratePerS) + " ms)"};
+    return std::nullopt;
 }
 
 }  // namespace
@@ -171,7 +215,29 @@ std::string Condition::sourceMethod() const {
 
 bool Condition::sameParts(const Condition& o) const {
     return renderHz == o.renderHz && lagFrames == o.lagFrames && lagMs == o.lagMs && fill == o.fill &&
-        fillHz == o.fillHz && lateWarp == o.lateWarp;
+        fillHz == o.fillHz && lateWarp == o.lateWarp && jitter == o.jitter && hitches == o.hitches &&
+        (frameTimes && o.frameTimes ? *frameTimes == *o.frameTimes : frameTimes == o.frameTimes);
+}
+
+const std::vector<JitterShape>& jitterShapes() {
+    static const std::vector<JitterShape> list = {JitterShape::Normal, JitterShape::Lognormal, JitterShape::Uniform};
+    return list;
+}
+
+const char* jitterShapeName(JitterShape shape) {
+    switch (shape) {
+        case JitterShape::None: return "none";
+        case JitterShape::Normal: return "normal";
+        case JitterShape::Lognormal: return "lognormal";
+        case JitterShape::Uniform: return "uniform";
+    }
+    return "?";
+}
+
+std::optional<JitterShape> jitterShapeNamed(const std::string& name) {
+    for (const JitterShape s : jitterShapes())
+        if (name == jitterShapeName(s)) return s;
+    return std::nullopt;
 }
 
 const std::vector<Condition>& presets() {
@@ -233,13 +299,30 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
                                (near == 1 ? std::string("every") : "every " + ordinal(near)) +
                                " display frame); write " + runs};
         }
-        const std::string above = rateHz > refreshHz ? " (it is above the refresh)" : "";
-        return Problem{part,
-                       "is " + rate + " Hz: the display refresh must be a whole multiple of " + rate + " Hz, not " +
-                           refresh + above + "; rates that fit " + refresh + ": " + dividingRates(refreshHz)};
+        return Problem{
+            part,
+            "is " + rate + " Hz: the display refresh must be a whole multiple of " + rate + " Hz, not " + refresh};
     };
+    // Any render rate up to the refresh runs: one that does not divide it shows the uneven
+    // cadence a vsync'd game shows (60 fps on 144 Hz: 2, 3, 2, 3, 2 refreshes).
     const std::optional<std::int64_t> renderPeriod = wholeRatio(refreshHz, c.renderHz);
-    if (!renderPeriod) return uneven("render_hz", c.renderHz);
+    if (!renderPeriod) {
+        // A hair off a rate that fits (59.999999999 Hz at 120 Hz) is a typo for it, not a cadence.
+        const auto near = std::llround(refreshHz / c.renderHz);
+        if (near >= 1 && std::abs(refreshHz / c.renderHz - static_cast<double>(near)) < 1e-6)
+            return uneven("render_hz", c.renderHz);
+    }
+    if (c.renderHz > refreshHz && c.frameTimes)
+        return Problem{c.frameTimes->meanHz ? "frame_times.mean_hz" : "frame_times",
+                       "plays at " + number(c.renderHz) + " frames a second, above the refresh (" + refresh +
+                           "): a display shows at most one new render per refresh; give frame_times.mean_hz up "
+                           "to " +
+                           refresh + " to play it slower"};
+    if (c.renderHz > refreshHz)
+        return Problem{"render_hz",
+                       "is " + exactNumber(c.renderHz) + " Hz, above the refresh (" + refresh +
+                           "): a display shows at most one new render per refresh; allowed: up to " + refresh};
+    if (const auto p = pacingProblem(c)) return p;
     std::int64_t lag = 0;
     try {
         lag = lagFramesAt(c, refreshHz);
@@ -266,21 +349,36 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
         if (!p) return uneven("fill_hz", *c.fillHz);
         fillPeriod = *p;
     }
-    if (*fill != Fill::Hold && *renderPeriod % fillPeriod != 0)
+    const double fillRate = refreshHz / static_cast<double>(fillPeriod);
+    if (*fill != Fill::Hold && renderPeriod && c.steadyPacing() && *renderPeriod % fillPeriod != 0)
         return Problem{c.fillHz ? "fill_hz" : "render_hz",
-                       "the fill's rate (" + number(refreshHz / static_cast<double>(fillPeriod)) +
-                           " Hz) must be a whole multiple of render_hz (" + number(c.renderHz) + " Hz)"};
+                       "the fill's rate (" + number(fillRate) + " Hz) must be a whole multiple of render_hz (" +
+                           number(c.renderHz) + " Hz)"};
+    // Renders that do not fall evenly on the fill's frames interleave with them; a fill
+    // slower than the renders would make none of its own.
+    if (*fill != Fill::Hold && fillRate < c.renderHz)
+        return Problem{
+            c.fillHz ? "fill_hz" : "render_hz",
+            "the fill's rate (" + number(fillRate) + " Hz) must be at least render_hz (" + number(c.renderHz) + " Hz)"};
     if (c.lateWarp != LateWarp::None && (*fill == Fill::Bireproj || *fill == Fill::Blend))
         return Problem{"late_warp",
                        std::string("must be \"none\" with fill \"") + c.fill +
                            "\": a late warp re-projects one frame, and " + c.fill +
                            " shows two (allowed with it: none)"};
-    const std::int64_t lookBack = lag + 2 * *renderPeriod;
-    if (lookBack > kMaxLookBackFrames)
-        return Problem{c.lagFrames ? "lag_frames" : "lag_ms",
-                       "looks back " + std::to_string(lookBack) +
-                           " display frames (the lag plus two render periods), " + "more than the " +
-                           std::to_string(kMaxLookBackFrames) + " a game keeps"};
+    // The longest render interval, in whole frames: what a held render and bidirectional
+    // reprojection's wait for the next may look back.
+    const std::int64_t longest = renderPeriod && c.steadyPacing()
+        ? *renderPeriod
+        : static_cast<std::int64_t>(std::ceil(longestRenderIntervalS(c) * refreshHz)) + 1;
+    const std::int64_t lookBack = lag + 2 * longest;
+    if (lookBack > kMaxLookBackFrames) {
+        const char* part = c.lagFrames ? "lag_frames" : "lag_ms";
+        if (!c.steadyPacing() && lag < kMaxLookBackFrames / 2)
+            part = c.hitches.ms > 0.0 ? "hitches.ms" : (c.frameTimes ? "frame_times" : "frame_time_jitter");
+        return Problem{part,
+                       "looks back " + std::to_string(lookBack) + " display frames (the lag plus two of the longest " +
+                           "render intervals), more than the " + std::to_string(kMaxLookBackFrames) + " a game keeps"};
+    }
     return std::nullopt;
 }
 

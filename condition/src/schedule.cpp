@@ -26,26 +26,35 @@ const char* frameKindName(FrameKind kind) {
     return "?";
 }
 
-ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz) : mode_(condition), refreshHz_(refreshHz) {
+ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed)
+    : mode_(condition), refreshHz_(refreshHz), cadence_(checked(condition, refreshHz), refreshHz, pacingSeed) {
+    fill_ = condition.fillKind();
+    lagFrames_ = lagFramesAt(condition, refreshHz);
+    // Hold makes no frames of its own: a steady cadence's cycle is its render period squared,
+    // as the latency ranges have always scanned it.
+    const std::int64_t period = cadence_.wholePeriod().value_or(1);
+    fillPeriod_ = fill_ == Fill::Hold ? period : (condition.fillHz ? std::llround(refreshHz / *condition.fillHz) : 1);
+}
+
+const Condition& ModeSchedule::checked(const Condition& condition, double refreshHz) {
     if (const auto p = problem(condition, refreshHz))
         throw std::invalid_argument("condition " + condition.name + (p->part.empty() ? " " : ": " + p->part + " ") +
                                     p->reason);
-    fill_ = condition.fillKind();
-    renderPeriod_ = std::llround(refreshHz / condition.renderHz);
-    lagFrames_ = lagFramesAt(condition, refreshHz);
-    fillPeriod_ =
-        fill_ == Fill::Hold ? renderPeriod_ : (condition.fillHz ? std::llround(refreshHz / *condition.fillHz) : 1);
+    return condition;
 }
 
 ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
     ScheduledFrame f;
-    f.rendersNow = floorTo(j, renderPeriod_) == j;
+    // The render on screen at j (the latest shown at or before it) and the one before it.
+    const std::int64_t latest = cadence_.latestAtOrBefore(j);
+    f.rendersNow = latest == j;
     auto time = [&](std::int64_t frame) { return static_cast<double>(frame) / refreshHz_; };
+    // The latest frame the fill made: its own cadence, or a render that came between.
+    const std::int64_t made = std::max(floorTo(j, fillPeriod_), latest);
     switch (fill_) {
         case Fill::Hold: {
-            // The last render is on screen.
-            f.sourceIndex = floorTo(j, renderPeriod_);
-            f.made = f.sourceIndex == j ? FrameKind::Rendered : FrameKind::Held;
+            f.sourceIndex = latest;
+            f.made = f.kind = f.sourceIndex == j ? FrameKind::Rendered : FrameKind::Held;
             f.cameraTime = f.sceneTime = f.worldSampleTime = time(f.sourceIndex);
             f.samplesInput = f.rendersNow;
             break;
@@ -53,25 +62,32 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
         case Fill::Warp: {
             // The latest render, warped to the instant of the latest fill frame: the camera is
             // read at each (view latency) and pixels move by their velocity (scene latency).
-            const std::int64_t made = floorTo(j, fillPeriod_);
-            f.sourceIndex = floorTo(j, renderPeriod_);
+            f.sourceIndex = latest;
             f.made = j == f.sourceIndex ? FrameKind::Rendered
                                         : (made == f.sourceIndex ? FrameKind::Held : FrameKind::Warped);
             f.cameraTime = f.sceneTime = time(made);
             f.worldSampleTime = time(f.sourceIndex);
             f.samplesInput = made == j;
+            // Between the frames the fill makes, its last one is shown again (docs/protocol.md,
+            // fill_hz): held, and made again as it was (the same instant, the same sources).
+            f.kind = made == j ? f.made : FrameKind::Held;
             break;
         }
         case Fill::Bireproj:
         case Fill::Blend: {
             // A frame between two renders can only be made once the later one exists, so the
-            // display runs one render period behind, at the fill's cadence (seed 000 section 7).
-            const std::int64_t depicted = floorTo(j, fillPeriod_) - renderPeriod_;
-            f.sourceIndex = floorTo(depicted, renderPeriod_);
-            const bool onRender = f.sourceIndex == depicted;
-            f.nextSourceIndex = onRender ? -1 : f.sourceIndex + renderPeriod_;
-            const bool newFrame = floorTo(j, fillPeriod_) == j;
+            // display plays each render interval from the moment the render that ends it
+            // arrives, at the fill's cadence (seed 000 section 7): one render period behind
+            // when renders are even. When the next render is later than the interval is long,
+            // the render that ends it stays on screen until then, however long that is.
+            const Between now = between(j), before = between(j - 1);
+            const std::int64_t depicted = now.depicted;
+            const bool onRender = depicted == now.from || depicted == now.to;
+            f.sourceIndex = depicted == now.to ? now.to : now.from;
+            f.nextSourceIndex = onRender ? -1 : now.to;
+            const bool newFrame = made == j && depicted != before.depicted;
             f.made = onRender ? (newFrame ? FrameKind::Rendered : FrameKind::Held) : FrameKind::Interpolated;
+            f.kind = newFrame ? f.made : FrameKind::Held;
             f.sceneTime = time(depicted);
             if (fill_ == Fill::Bireproj) {
                 f.cameraTime = f.sceneTime;
@@ -79,17 +95,23 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
             } else {
                 // A cross-fade moves nothing: its camera and objects are those of the nearer
                 // render (the one its id buffer shows: blend.frag takes B from a weight of 1/2).
-                const bool later = !onRender && 2 * (depicted - f.sourceIndex) >= renderPeriod_;
+                const bool later = !onRender && 2 * (depicted - f.sourceIndex) >= f.nextSourceIndex - f.sourceIndex;
                 f.cameraTime = f.worldSampleTime = time(later ? f.nextSourceIndex : f.sourceIndex);
             }
             f.samplesInput = newFrame;
             break;
         }
     }
-    // Between the frames the fill makes, its last one is shown again (docs/protocol.md, fill_hz):
-    // held, and made again as it was (the same instant, the same sources).
-    f.kind = floorTo(j, fillPeriod_) == j ? f.made : FrameKind::Held;
     return f;
+}
+
+ModeSchedule::Between ModeSchedule::between(std::int64_t j) const {
+    Between b;
+    b.to = cadence_.latestAtOrBefore(j);
+    b.from = cadence_.latestAtOrBefore(b.to - 1);
+    const std::int64_t made = std::max(floorTo(j, fillPeriod_), b.to);
+    b.depicted = std::min(b.from + (made - b.to), b.to);
+    return b;
 }
 
 ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
@@ -132,27 +154,47 @@ double ModeSchedule::sceneLatency(double tau) const {
 }
 
 template <typename Depicted>
-ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::latencySpans(std::int64_t first, std::int64_t last,
+                                                                  Depicted depicted) const {
     // The instants frames depict never decrease with the frame, so between two consecutive
     // distinct instants a < b a step at b is shown by the first frame depicting b, and a step
-    // just after a by that same frame, b - a later: the latency's least and greatest values
-    // over a cycle. Two whole cycles after the lag has passed cover every case.
-    const std::int64_t cycle = renderPeriod_ * fillPeriod_;
-    const std::int64_t first = 4 * cycle + lagFrames_, last = first + 2 * cycle;
+    // just after a by that same frame, b - a later.
     std::vector<double> instants;
     for (std::int64_t k = first; k <= last; ++k) {
         const double t = depicted(frame(k));
         if (instants.empty() || t > instants.back() + 1e-12) instants.push_back(t);
     }
+    std::vector<LatencySpan> spans;
+    for (std::size_t i = 1; i < instants.size(); ++i)
+        spans.push_back({instants[i - 1], instants[i], instants[i] + firstShowing(instants[i], depicted)});
+    return spans;
+}
+
+std::int64_t ModeSchedule::settledFrame() const { return 4 * cycle() + lagFrames_; }
+
+template <typename Depicted>
+ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+    // Two whole cycles cover every case of a cadence that repeats within the horizon; one that
+    // does not (drawn, or a rate with no short cycle) is looked at over the horizon, as
+    // condition::pacingStats looks at it.
+    const auto horizon = std::llround(kDrawnHorizonS * refreshHz_);
+    const std::int64_t first = settledFrame();
+    const std::int64_t last = first + (cadence_.cycleFrames() < horizon ? 2 * cycle() : horizon);
     Range r{1e300, -1e300};
-    for (std::size_t i = 1; i + 1 < instants.size(); ++i) {
-        const double shown = instants[i] + firstShowing(instants[i], depicted);
-        r.min = std::min(r.min, shown - instants[i]);
-        r.max = std::max(r.max, shown - instants[i - 1]);
+    for (const LatencySpan& s : latencySpans(first, last, depicted)) {
+        r.min = std::min(r.min, s.shownAt - s.to);
+        r.max = std::max(r.max, s.shownAt - s.from);
     }
     // Steps and frames are both on the display's frame grid: the latencies are whole frames.
     auto whole = [&](double s) { return static_cast<double>(std::llround(s * refreshHz_)) / refreshHz_; };
     return {whole(r.min), whole(r.max)};
+}
+
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::viewLatencySpans(std::int64_t first, std::int64_t last) const {
+    return latencySpans(first, last, [](const ScheduledFrame& f) { return f.cameraTime; });
+}
+std::vector<ModeSchedule::LatencySpan> ModeSchedule::sceneLatencySpans(std::int64_t first, std::int64_t last) const {
+    return latencySpans(first, last, [](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
 ModeSchedule::Range ModeSchedule::viewLatencyRange() const {

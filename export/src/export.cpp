@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -28,6 +30,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kSessionSuffix = ".warplab-session";
+
+// conditionsOf without their pacing, which export works out once per condition, not per session.
+std::vector<ConditionListing> listedConditions(const game::Study& study);
 
 // Every regular *.warplab-session file under dir, sorted, so that every export of the same
 // folder lists (and de-duplicates) them in the same order. Hidden files are sessions still
@@ -77,6 +82,38 @@ public:
         return static_cast<std::int64_t>(last - first);
     }
     std::int64_t total() const { return static_cast<std::int64_t>(frames_.size()); }
+
+private:
+    double refreshHz_;
+    std::vector<std::int64_t> frames_;  // in order: the frames table is
+};
+
+// The display frames of a session that showed a new image (docs/frame-pacing.md: any but a held
+// frame, a frozen feedback pause, a screen or a skipped frame), for the frame times of a stretch.
+class NewImages {
+public:
+    NewImages(const session::SessionData& data, double refreshHz) : refreshHz_(refreshHz) {
+        using condition::FrameKind;
+        const std::string made[] = {condition::frameKindName(FrameKind::Rendered),
+                                    condition::frameKindName(FrameKind::Warped),
+                                    condition::frameKindName(FrameKind::Interpolated)};
+        for (const auto& f : data.frames)
+            if (std::find(std::begin(made), std::end(made), f.kind) != std::end(made)) frames_.push_back(f.frame);
+    }
+    // The nearest-rank 95th percentile of the frame times between the new images shown over the
+    // second of display time up to and including `end` (s), within the trial, from `start` (a
+    // pause or screen before it is no stutter of it); NaN where fewer than two were shown.
+    double p95Before(double start, double end) const {
+        constexpr double kStretchS = 1.0;
+        if (std::isnan(end)) return std::numeric_limits<double>::quiet_NaN();
+        const double from = std::isnan(start) ? end - kStretchS : std::max(start, end - kStretchS);
+        const auto first = std::lower_bound(frames_.begin(), frames_.end(), std::llround(from * refreshHz_));
+        const auto last = std::upper_bound(frames_.begin(), frames_.end(), std::llround(end * refreshHz_));
+        std::vector<double> times;
+        for (auto it = first; it != last && std::next(it) != last; ++it)
+            times.push_back(static_cast<double>(*std::next(it) - *it) / refreshHz_);
+        return condition::percentile(times, 95.0);
+    }
 
 private:
     double refreshHz_;
@@ -202,7 +239,9 @@ public:
         sessions_.endRow();
         const SkippedFrames skipped(data, study->refreshHz());
         writePacing(h.participant, name, data, kind);
-        if (out.included) write({h.participant, name, study->game(), kind, positionsOf(results)}, results, skipped);
+        if (out.included)
+            write({h.participant, name, study->game(), kind, positionsOf(results)}, results, skipped,
+                  NewImages(data, study->refreshHz()));
         return out;
     }
 
@@ -231,14 +270,16 @@ public:
     // One name meaning two things in one export is said, since the analysis keys on names.
     // A condition one session runs only in training and another in its test is used in a test.
     void addConditions(const game::Study& study, const std::string& session) {
-        for (const ConditionListing& listing : conditionsOf(study)) {
+        for (ConditionListing& listing : listedConditions(study)) {
             const condition::Condition& c = listing.summary.condition;
             const auto same = std::find_if(conditions_.begin(), conditions_.end(), [&](const ConditionListing& r) {
                 return r.game == listing.game && r.summary.condition.name == c.name &&
                     r.summary.refreshHz == listing.summary.refreshHz;
             });
             if (same == conditions_.end()) {
-                conditions_.push_back(listing);
+                // Once per condition, not per session: it walks the horizon's frames.
+                listing.pacing = condition::pacingStats(condition::ModeSchedule(c, listing.summary.refreshHz));
+                conditions_.push_back(std::move(listing));
                 continue;
             }
             same->analysed = same->analysed || listing.analysed;
@@ -284,6 +325,18 @@ public:
             writeCells(conditions, conditionColumns(), row);
             conditions.endRow();
         }
+        CsvFile frameTimes(file(outDir, "frametimes.csv"), headerOf(frameTimeColumns()));
+        for (const ConditionListing& row : conditions_)
+            for (std::size_t i = 0; i < row.pacing.frames.frameTimeS.size(); ++i) {
+                writeCells(frameTimes, frameTimeColumns(), FrameTimeRow{row, i});
+                frameTimes.endRow();
+            }
+        CsvFile latency(file(outDir, "latency.csv"), headerOf(latencyColumns()));
+        for (const ConditionListing& row : conditions_)
+            for (const LatencyRow& span : latencyRows(row)) {
+                writeCells(latency, latencyColumns(), span);
+                latency.endRow();
+            }
         // The games of the readable sessions, in the order the registry knows them.
         CsvFile games(file(outDir, "games.csv"), headerOf(gameColumns()));
         for (const std::string& name : game::gameNames()) {
@@ -293,8 +346,8 @@ public:
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f :
-             {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &games, &pacing_}) {
+        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &frameTimes,
+                           &latency, &games, &pacing_}) {
             f->close();
             written.push_back(f->path());
         }
@@ -333,14 +386,17 @@ private:
         return positions;
     }
 
-    void write(const Origin& from, const game::SessionResults& results, const SkippedFrames& skipped) {
+    void write(const Origin& from, const game::SessionResults& results, const SkippedFrames& skipped,
+               const NewImages& newImages) {
         const std::string& participant = from.participant;
         const std::string& gameName = from.game;
         kinds_[participant].insert(from.playerKind);
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            writeCells(shots_, shotColumns(), ShotRow{from, s, skipped.between(s.spawnTime, s.time)});
+            writeCells(
+                shots_, shotColumns(),
+                ShotRow{from, s, skipped.between(s.spawnTime, s.time), newImages.p95Before(s.spawnTime, s.time)});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
             Tally& t = tallies_[{participant, gameName, s.mode}];
@@ -360,7 +416,8 @@ private:
             }
             // A match event is logged at its last frame.
             matches_.push_back({participant, from.session, m, skipped.between(m.endTime - m.durationS, m.endTime),
-                                from.playerKind, positionOf(from.positions, m.mode, m.scoredPhase)});
+                                from.playerKind, positionOf(from.positions, m.mode, m.scoredPhase),
+                                newImages.p95Before(m.endTime - m.durationS, m.endTime)});
         }
         for (const auto& a : results.answers) {
             if (!a.scoredPhase && !options_.allPhases) continue;
@@ -402,6 +459,8 @@ std::vector<CsvColumns> exportColumns() {
             {"ratings.csv", headerOf(ratingColumns()), "", 0},
             {"answers.csv", headerOf(answerColumns()), "", 0},
             {"conditions.csv", headerOf(conditionColumns()), "", 0},
+            {"frametimes.csv", headerOf(frameTimeColumns()), "", 0},
+            {"latency.csv", headerOf(latencyColumns()), "", 0},
             {"pacing.csv", headerOf(pacingColumns()), "", 0},
             {"games.csv", headerOf(gameColumns()), "", 0},
             {"participants.csv", headerOf(participantColumns()), "", 0},
@@ -488,17 +547,30 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
 }
 
 std::vector<ConditionListing> conditionsOf(const game::Study& study) {
+    std::vector<ConditionListing> rows = listedConditions(study);
+    for (ConditionListing& row : rows)
+        row.pacing = condition::pacingStats(condition::ModeSchedule(row.summary.condition, row.summary.refreshHz));
+    return rows;
+}
+
+namespace {
+
+std::vector<ConditionListing> listedConditions(const game::Study& study) {
     const std::vector<std::string> analysed = study.analysedModes();
     std::vector<ConditionListing> rows;
     for (const std::string& name : study.modes()) {
         const bool seen = std::any_of(rows.begin(), rows.end(),
                                       [&](const ConditionListing& r) { return r.summary.condition.name == name; });
         if (seen) continue;
-        rows.push_back({study.game(), condition::summarize(study.conditions().at(name), study.refreshHz()),
-                        std::find(analysed.begin(), analysed.end(), name) != analysed.end()});
+        rows.push_back({study.game(),
+                        condition::summarize(study.conditions().at(name), study.refreshHz()),
+                        std::find(analysed.begin(), analysed.end(), name) != analysed.end(),
+                        {}});
     }
     return rows;
 }
+
+}  // namespace
 
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows) {
     CsvFile table(out, headerOf(conditionColumns()));

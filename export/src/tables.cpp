@@ -1,7 +1,10 @@
 #include "tables.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
+#include <map>
+#include <utility>
 #include <stdexcept>
 
 namespace warplab::exporter {
@@ -137,6 +140,7 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
         {"condition_position",
          [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.shot.mode, r.shot.scoredPhase)); }},
+        {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
 }
@@ -232,6 +236,14 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
         {"budget_ms", [](F& f, const R& r) { f.number(r.pacing.budgetMs); }},
         {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
+        // After the columns above, so that they keep their places: the condition's own unevenness
+        // against what was shown (session::ModePacing). A summary stored before these were kept
+        // has none of them: empty cells, not zeros that claim a count.
+        {"new_images", [](F& f, const R& r) { optionalInteger(f, r.pacing.newImages); }},
+        {"intended_p95_ms", [](F& f, const R& r) { f.number(r.pacing.intendedP95Ms); }},
+        {"intended_max_ms", [](F& f, const R& r) { f.number(r.pacing.intendedMaxMs); }},
+        {"shown_p95_ms", [](F& f, const R& r) { f.number(r.pacing.shownP95Ms); }},
+        {"shown_max_ms", [](F& f, const R& r) { f.number(r.pacing.shownMaxMs); }},
     };
     return columns;
 }
@@ -294,6 +306,7 @@ const std::vector<Column<MatchRow>>& matchTrailingColumns() {
     static const std::vector<Column<R>> columns = {
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
         {"condition_position", [](F& f, const R& r) { optionalInteger(f, r.position); }},
+        {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
 }
@@ -326,6 +339,84 @@ const std::vector<Column<ConditionListing>>& conditionColumns() {
         {"game", [](F& f, const R& r) { f.text(r.game); }},
         {"description", [](F& f, const R& r) { f.text(r.summary.condition.description); }},
         {"used_in", [](F& f, const R& r) { f.text(r.analysed ? "test" : "training"); }},
+        // Its pacing over condition::kPacingStatsHorizonS (docs/frame-pacing.md, "Pacing as numbers").
+        {"mean_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.meanFps); }},
+        {"low_1pct_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.low1Fps); }},
+        {"low_5pct_fps", [](F& f, const R& r) { f.number(r.pacing.frameTimes.low5Fps); }},
+        {"frame_time_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.medianS)); }},
+        {"frame_time_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.p95S)); }},
+        {"frame_time_p99_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.p99S)); }},
+        {"frame_time_max_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.frameTimes.maxS)); }},
+        {"stutters", [](F& f, const R& r) { f.integer(r.pacing.frameTimes.stutters); }},
+        {"view_latency_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.viewS.median)); }},
+        {"view_latency_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.viewS.p95)); }},
+        {"scene_latency_median_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.sceneS.median)); }},
+        {"scene_latency_p95_ms", [ms](F& f, const R& r) { f.number(ms(r.pacing.sceneS.p95)); }},
+    };
+    return columns;
+}
+
+// The frame times behind conditions.csv's pacing columns, for the report's frame-time graphs.
+const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
+    using F = CsvFile;
+    using R = FrameTimeRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
+        {"condition", [](F& f, const R& r) { f.text(r.listing.summary.condition.name); }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.listing.summary.refreshHz); }},
+        // From the start of the horizon, so every condition's graph starts at 0.
+        {"time_s",
+         [](F& f, const R& r) {
+             const condition::PacingStats& p = r.listing.pacing;
+             f.number(p.frames.shownAtS[r.index] - static_cast<double>(p.firstFrame) / r.listing.summary.refreshHz);
+         }},
+        {"frame_time_ms", [](F& f, const R& r) { f.number(r.listing.pacing.frames.frameTimeS[r.index] * 1000.0); }},
+    };
+    return columns;
+}
+
+std::vector<LatencyRow> latencyRows(const ConditionListing& listing) {
+    std::vector<LatencyRow> rows;
+    const auto add = [&](const char* kind, const std::vector<condition::ModeSchedule::LatencySpan>& spans) {
+        // A step in (from, to] waits shownAt - tau: uniformly over [shownAt - to, shownAt - from),
+        // as likely as the span is long. A steady cadence repeats a few spans over and over; they
+        // differ only by rounding, so spans a nanosecond apart are one, keeping the widest bounds.
+        std::map<std::pair<std::int64_t, std::int64_t>, LatencyRow> same;
+        double total = 0.0;
+        for (const auto& s : spans) {
+            const double from = s.shownAt - s.to, to = s.shownAt - s.from;
+            const auto key = std::make_pair(std::llround(from * 1e9), std::llround(to * 1e9));
+            const auto [at, fresh] = same.try_emplace(key, LatencyRow{listing, kind, from, to, 0.0});
+            if (!fresh) {
+                at->second.fromS = std::min(at->second.fromS, from);
+                at->second.toS = std::max(at->second.toS, to);
+            }
+            at->second.weight += s.to - s.from;
+            total += s.to - s.from;
+        }
+        for (auto& [key, row] : same) {
+            row.weight /= total;
+            rows.push_back(row);
+        }
+    };
+    add("view", listing.pacing.viewSpans);
+    add("scene", listing.pacing.sceneSpans);
+    return rows;
+}
+
+// The latency distributions behind conditions.csv's latency columns, exactly, for the report's
+// latency histograms.
+const std::vector<Column<LatencyRow>>& latencyColumns() {
+    using F = CsvFile;
+    using R = LatencyRow;
+    static const std::vector<Column<R>> columns = {
+        {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
+        {"condition", [](F& f, const R& r) { f.text(r.listing.summary.condition.name); }},
+        {"refresh_hz", [](F& f, const R& r) { f.number(r.listing.summary.refreshHz); }},
+        {"kind", [](F& f, const R& r) { f.text(r.kind); }},
+        {"latency_ms_from", [](F& f, const R& r) { f.number(r.fromS * 1000.0); }},
+        {"latency_ms_to", [](F& f, const R& r) { f.number(r.toS * 1000.0); }},
+        {"weight", [](F& f, const R& r) { f.number(r.weight); }},
     };
     return columns;
 }

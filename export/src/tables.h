@@ -49,6 +49,7 @@ struct ShotRow {
     Origin from;
     const game::ShotResult& shot;
     std::optional<std::int64_t> skipped;  // display frames skipped from the target's appearance to the shot
+    double frameTimeP95S;  // of the new images of the second before the shot; NaN: none
 };
 
 struct RatingRow {
@@ -87,7 +88,25 @@ struct MatchRow {
     std::optional<std::int64_t> skipped;  // display frames skipped during the match
     std::string playerKind;
     std::optional<std::int64_t> position;  // condition_position; none outside the scored phase
+    double frameTimeP95S = 0.0;  // of the new images of the match's last second; NaN: none
 };
+
+// One frame time of a condition's horizon, as frametimes.csv lists it.
+struct FrameTimeRow {
+    const ConditionListing& listing;
+    std::size_t index;  // into listing.pacing.frames
+};
+
+// A piece of a condition's latency distribution, as latency.csv lists it: a step falling
+// uniformly in time over the horizon waits between fromS and toS, uniformly, with probability
+// weight. Spans of the schedule with the same latencies are one row.
+struct LatencyRow {
+    const ConditionListing& listing;
+    const char* kind;  // "view" or "scene"
+    double fromS = 0.0, toS = 0.0, weight = 0.0;
+};
+// The view spans, then the scene spans, of `listing`'s pacing, each by ascending latency.
+std::vector<LatencyRow> latencyRows(const ConditionListing& listing);
 
 // matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
 // longest list seen, then the trailing ones.
@@ -114,6 +133,8 @@ const std::vector<Column<HitRateRow>>& hitRateColumns();
 const std::vector<Column<MatchRow>>& matchColumns();  // before the rating_k columns
 const std::vector<Column<MatchRow>>& matchTrailingColumns();  // after them
 const std::vector<Column<ConditionListing>>& conditionColumns();
+const std::vector<Column<FrameTimeRow>>& frameTimeColumns();
+const std::vector<Column<LatencyRow>>& latencyColumns();
 const std::vector<Column<GameRow>>& gameColumns();
 
 }  // namespace warplab::exporter

@@ -157,7 +157,7 @@ void ClickGame::beginMatch() {
     // its schedule's renders, start with the next one.
     matchStart_ = frame_ + 1;
     world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
-    schedule_.emplace(protocol_.conditionTable.at(m.mode), protocol_.refreshHz);
+    schedule_.emplace(protocol_.conditionTable.at(m.mode), protocol_.refreshHz, pacingSeed(seed_, matchStart_));
     worldHistory_.clear();
     // The cursor stays where the hand left it; frames before the match shows its own
     // history (lag, bireproj) show it where the match found it.

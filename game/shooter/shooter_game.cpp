@@ -60,7 +60,7 @@ ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_
     plane_ = physics::fitTargetPlane(restingCamera_, aspect, protocol.targetRadius);
     camera_ = restingCamera_;
     mode_ = protocol.acclimationMode;
-    schedule_.emplace(protocol.conditionTable.at(mode_), protocol.refreshHz);
+    schedule_.emplace(protocol.conditionTable.at(mode_), protocol.refreshHz, pacingSeed(seed, scheduleStart_));
 }
 
 std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
@@ -251,8 +251,8 @@ void ShooterGame::startTrial(const std::string& mode, int level) {
     trial_ = t;
     // Every trial starts its mode's schedule afresh (DESIGN: switching modes starts clean).
     mode_ = mode;
-    schedule_.emplace(protocol_.conditionTable.at(mode), protocol_.refreshHz);
     scheduleStart_ = frame_;
+    schedule_.emplace(protocol_.conditionTable.at(mode), protocol_.refreshHz, pacingSeed(seed_, scheduleStart_));
 }
 
 void ShooterGame::finishTrainingLevel() {

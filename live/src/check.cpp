@@ -8,6 +8,7 @@
 #include <optional>
 #include <thread>
 
+#include "cadence_check.h"
 #include "game/game.h"
 #include "present/frame_maker.h"
 #include "photon_marker.h"
@@ -190,6 +191,7 @@ private:
         // rendered frames and the frames made between them are both in the count.
         int renders = 0;
         std::vector<double> ms, drawingMs;  // every frame made; those of them that drew a render
+        std::vector<double> newImageMs;  // those of them that put a new image on the display
         const auto start = Clock::now();
         Clock::time_point timedFrom{};
         while (renders < 4 || secondsSince(timedFrom) < run_.conditionSeconds) {
@@ -209,6 +211,7 @@ private:
             if (renders == 2 && shown.rendersNow) timedFrom = Clock::now();
             if (renders >= 2) ms.push_back(made);
             if (renders >= 2 && maker_->rendersDrawn() > rendersBefore) drawingMs.push_back(made);
+            if (renders >= 2 && shown.schedule.kind != condition::FrameKind::Held) newImageMs.push_back(made);
             if (secondsSince(start) > kMaxConditionSeconds) break;  // a renderer this slow fails anyway
         }
         const double budget = 1000.0 / study_->refreshHz();
@@ -230,6 +233,9 @@ private:
         } else if (verdict == Verdict::Warn)
             detail += ": those would miss their vsync";
         lines_.add(verdict, "frame time " + mode, detail);
+        const CheckLine cadence = cadenceLine(mode, cadenceNeed(study_->conditions().at(mode), study_->refreshHz()),
+                                              study_->refreshHz(), p95(newImageMs), newImageMs.size());
+        lines_.add(cadence.verdict, cadence.name, cadence.detail);
     }
 
     // How far short a session would fall: a frame m ms in the making holds the screen for the

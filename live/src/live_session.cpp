@@ -49,7 +49,9 @@ public:
     }
     void presented(const game::ShownFrame& shown, const FrameTiming& timing) override {
         session::FrameRecord record = game_->frameRecord(shown);
-        // A skipped frame was never on screen: its kind says so, and it has no times.
+        // A skipped frame was never on screen: its kind says so, and it has no times. Pacing
+        // still counts a new image the schedule made there as one the machine missed.
+        const std::string scheduledKind = record.kind;
         if (timing.skipped) record.kind = session::kSkippedFrameKind;
         record.frameMs = timing.frameMs;
         record.renderMs = timing.renderMs;
@@ -63,7 +65,7 @@ public:
             detail["photon_press"] = timing.photonPress;
             record.detailJson = detail.dump();
         }
-        pacing_.add(record);
+        pacing_.add(record, scheduledKind);
         warnIfOverBudget(record);
         writer_.addFrame(record);
         commits_.afterFrame(shown.frame, game_->atCommitPoint());

@@ -202,7 +202,19 @@ struct ParsedProtocol {
     std::string name, game;
     std::vector<std::string> conditions;
     bool blocked = false;
+    std::string copy;  // what the plan folder keeps of it
 };
+
+// Whether a protocol plays a frame-time trace from a file, which it names relative to itself.
+bool readsTraceFile(const Json& document) {
+    const auto conditions = document.find("conditions");
+    if (conditions == document.end() || !conditions->is_object()) return false;
+    for (const auto& [name, c] : conditions->items()) {
+        const auto trace = c.find("frame_times");
+        if (trace != c.end() && trace->is_object() && !trace->contains("ms")) return true;
+    }
+    return false;
+}
 
 // The loader's ProtocolError, as a PlanError with the same sentence.
 ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceName) {
@@ -223,6 +235,9 @@ ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceN
     const Json& section = canonical.at(list->section);
     out.conditions = section.at(list->list).get<std::vector<std::string>>();
     out.blocked = !section.at(list->shuffledFlag).get<bool>();
+    // The copy lies in the plan folder, away from a trace file the protocol names beside itself:
+    // such a protocol is kept as its canonical copy, the frame times inline (as a session keeps it).
+    out.copy = readsTraceFile(Json::parse(text)) ? study->protocolJson() : text;
     return out;
 }
 
@@ -560,11 +575,11 @@ StudyPlan makePlan(const std::string& planDir, const std::vector<std::string>& p
                                 "' have the same file name, and the plan keeps both in " + entry.file);
         entry.name = parsed.name;
         entry.game = parsed.game;
-        entry.hash = fnv1a64(text);
+        entry.hash = fnv1a64(parsed.copy);
         entry.conditions = parsed.conditions;
         entry.blocked = parsed.blocked;
         plan.protocols.push_back(std::move(entry));
-        texts.push_back(std::move(text));
+        texts.push_back(parsed.copy);
     }
 
     appendParticipants(plan, participants, ids, prefix);

@@ -179,7 +179,8 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
     p.formatVersion = r.formatVersion(document, kClickFormatVersion);
     r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
-    p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kClickConditionsSince));
+    p.conditionTable =
+        condition::ConditionTable(r.conditions(document, p.formatVersion, kClickConditionsSince, kClickPacingSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kClickInstructionsSince)
         for (ClickRound& round : p.rounds) round.instructions.clear();

@@ -92,8 +92,9 @@ bool conditionNameChar(char c) {
         c == '.' || c == '+';
 }
 constexpr int kMaxDefinedConditions = 64;
-const std::vector<const char*> kConditionKeys{"description", "render_hz", "lag_frames", "lag_ms",
-                                              "fill",        "fill_hz",   "late_warp"};
+const std::vector<const char*> kConditionKeys{"description", "render_hz",  "lag_frames", "lag_ms",
+                                              "fill",        "fill_hz",    "late_warp",  "frame_time_jitter",
+                                              "hitches",     "frame_times"};
 
 // The parts in words, for a message about a preset.
 std::string partsText(const condition::Condition& c) {
@@ -104,9 +105,77 @@ std::string partsText(const condition::Condition& c) {
     return text + ", late_warp " + condition::lateWarpName(c.lateWarp);
 }
 
+// The keys of "frame_time_jitter" and "hitches"; how far each may go on its own (what each
+// may be against the render rate is condition::problem's).
+const std::vector<const char*> kJitterKeys{"distribution", "sd_ms", "range_ms"};
+const std::vector<const char*> kHitchKeys{"ms", "every_s", "rate_per_s"};
+constexpr strict::NumberRange kPacingMs{0, true, 10000, false};
+
 }  // namespace
 
-std::vector<condition::Condition> Reader::conditions(const Json& document, int formatVersion, int since) {
+void Reader::pacing(const Json& value, const std::string& path, int formatVersion, int since,
+                    condition::Condition& c) const {
+    for (const char* key : {"frame_time_jitter", "hitches", "frame_times"})
+        if (value.contains(key) && formatVersion < since)
+            fail(joinPath(path, key),
+                 "is new in format_version " + std::to_string(since) + ", but this file is format_version " +
+                     std::to_string(formatVersion));
+    if (const Json* jitter = value.contains("frame_time_jitter") ? object(value, path, "frame_time_jitter") : nullptr) {
+        const std::string where = joinPath(path, "frame_time_jitter");
+        requireKnownKeys(*jitter, where, kJitterKeys);
+        std::vector<const char*> shapes;
+        for (const auto shape : condition::jitterShapes()) shapes.push_back(condition::jitterShapeName(shape));
+        if (!jitter->contains("distribution"))
+            fail(joinPath(where, "distribution"), "is required: \"normal\", \"lognormal\" or \"uniform\"");
+        std::string shape = "normal";
+        choice(jitter, where, "distribution", shapes, shape);
+        c.jitter.shape = *condition::jitterShapeNamed(shape);
+        const bool uniform = c.jitter.shape == condition::JitterShape::Uniform;
+        const char* needed = uniform ? "range_ms" : "sd_ms";
+        const char* other = uniform ? "sd_ms" : "range_ms";
+        if (!jitter->contains(needed))
+            fail(joinPath(where, needed), "is required for a " + shape + " jitter (milliseconds)");
+        if (jitter->contains(other))
+            fail(joinPath(where, other),
+                 std::string("is not a parameter of a ") + shape + " jitter (give " + needed + ")");
+        number(jitter, where, needed, kPacingMs, uniform ? c.jitter.rangeMs : c.jitter.sdMs);
+    }
+    if (const Json* hitches = value.contains("hitches") ? object(value, path, "hitches") : nullptr) {
+        const std::string where = joinPath(path, "hitches");
+        requireKnownKeys(*hitches, where, kHitchKeys);
+        if (!hitches->contains("ms")) fail(joinPath(where, "ms"), "is required: how long each hitch stalls, in ms");
+        number(hitches, where, "ms", kPacingMs, c.hitches.ms);
+        if (hitches->contains("every_s") == hitches->contains("rate_per_s"))
+            fail(where, "needs one of every_s (periodic) and rate_per_s (random), not both or neither");
+        number(hitches, where, "every_s", {0, true, 3600, false}, c.hitches.everyS);
+        number(hitches, where, "rate_per_s", {0, true, 1000, false}, c.hitches.ratePerS);
+    }
+    if (value.contains("frame_times")) frameTimes(value, path, c);
+}
+
+namespace {
+
+void writePacing(Json& o, const condition::Condition& c) {
+    if (c.jitter.shape != condition::JitterShape::None) {
+        Json& j = o["frame_time_jitter"];
+        j["distribution"] = condition::jitterShapeName(c.jitter.shape);
+        if (c.jitter.shape == condition::JitterShape::Uniform)
+            j["range_ms"] = c.jitter.rangeMs;
+        else
+            j["sd_ms"] = c.jitter.sdMs;
+    }
+    if (c.hitches.ms > 0.0) {
+        Json& h = o["hitches"];
+        h["ms"] = c.hitches.ms;
+        if (c.hitches.everyS > 0.0) h["every_s"] = c.hitches.everyS;
+        if (c.hitches.ratePerS > 0.0) h["rate_per_s"] = c.hitches.ratePerS;
+    }
+}
+
+}  // namespace
+
+std::vector<condition::Condition> Reader::conditions(const Json& document, int formatVersion, int since,
+                                                     int pacingSince) {
     std::vector<condition::Condition> defined;
     const auto it = document.find("conditions");
     if (it == document.end()) return defined;
@@ -129,7 +198,7 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         if (!value.is_object())
             fail(path,
                  "must be an object of the condition's parts (render_hz, lag_frames or lag_ms, fill, fill_hz, "
-                 "late_warp, description), got " +
+                 "late_warp, frame_time_jitter, hitches, frame_times, description), got " +
                      describe(value));
         requireKnownKeys(value, path, kConditionKeys);
         condition::Condition c;
@@ -137,7 +206,11 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         // "" is the default written out (writeConditions leaves it out).
         if (value.contains("description"))
             c.description = line(value["description"], joinPath(path, "description"), /*allowEmpty=*/true);
-        if (!value.contains("render_hz"))
+        // A trace's render rate is its own (frame_times.mean_hz rescales it).
+        if (value.contains("frame_times") && value.contains("render_hz"))
+            fail(joinPath(path, "render_hz"),
+                 "is given by frame_times (the trace's mean rate, or frame_times.mean_hz); leave render_hz out");
+        if (!value.contains("render_hz") && !value.contains("frame_times"))
             fail(joinPath(path, "render_hz"), "is required: conventional renders per second");
         number(&value, path, "render_hz", {0, true, kRefreshLimitHz, false}, c.renderHz);
         if (value.contains("lag_frames") && value.contains("lag_ms"))
@@ -161,6 +234,7 @@ std::vector<condition::Condition> Reader::conditions(const Json& document, int f
         std::string lateWarp = "none";
         choice(&value, path, "late_warp", lateWarps, lateWarp);
         c.lateWarp = *condition::lateWarpNamed(lateWarp);
+        pacing(value, path, formatVersion, pacingSince, c);
         if (const condition::Condition* preset = condition::findPreset(name); preset && !preset->sameParts(c))
             fail(path,
                  "shadows the preset " + name + " with other parts (the preset's: " + partsText(*preset) +
@@ -192,7 +266,7 @@ void writeConditions(Json& document, const std::vector<condition::Condition>& de
     for (const auto& c : defined) {
         Json& o = all[c.name];
         if (!c.description.empty()) o["description"] = c.description;
-        o["render_hz"] = c.renderHz;
+        if (!c.frameTimes) o["render_hz"] = c.renderHz;
         if (c.lagFrames)
             o["lag_frames"] = *c.lagFrames;
         else
@@ -200,6 +274,8 @@ void writeConditions(Json& document, const std::vector<condition::Condition>& de
         o["fill"] = c.fill;
         if (c.fillHz) o["fill_hz"] = *c.fillHz;
         o["late_warp"] = condition::lateWarpName(c.lateWarp);
+        writePacing(o, c);
+        writeFrameTimes(o, c);
     }
 }
 

@@ -79,7 +79,8 @@ public:
     // checked on their own; whether each can run is asked once the refresh is final
     // (requireConditions). A name that is a preset must repeat the preset's parts. Mode ids
     // name conditions; they are checked against these and the presets from here on.
-    std::vector<condition::Condition> conditions(const Json& document, int formatVersion, int since);
+    // Its pacing keys (frame_time_jitter, hitches) are new in format_version `pacingSince`.
+    std::vector<condition::Condition> conditions(const Json& document, int formatVersion, int since, int pacingSince);
     // Every defined condition runs at refreshHz: checked before the fields that name them, so
     // the error names the definition's part rather than a field that uses it.
     void requireConditionsRun(double refreshHz) const;
@@ -97,9 +98,17 @@ public:
     void requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const;
 
 private:
+    // A definition's frame_time_jitter and hitches, at `path`.
+    void pacing(const Json& value, const std::string& path, int formatVersion, int since,
+                condition::Condition& c) const;
+    // A definition's frame_times, at `path`: sets its trace and render rate (frame_times_json.cpp).
+    void frameTimes(const Json& value, const std::string& path, condition::Condition& c) const;
     condition::ConditionTable conditions_;
     mutable std::set<std::string> used_;  // the conditions requireMode was asked about
 };
+
+// A condition's "frame_times" as a stored copy keeps it: the frame times inline.
+void writeFrameTimes(Json& object, const condition::Condition& c);
 
 // The "conditions" object as a canonical protocol writes it; nothing when there are none.
 void writeConditions(Json& document, const std::vector<condition::Condition>& defined);

@@ -105,7 +105,8 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
 
     r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
-    p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, kShooterConditionsSince));
+    p.conditionTable = condition::ConditionTable(
+        r.conditions(document, p.formatVersion, kShooterConditionsSince, kShooterPacingSince));
     detail::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kShooterInstructionsSince)
         for (std::string* text : {&p.acclimationInstructions, &p.trainingInstructions, &p.testInstructions})

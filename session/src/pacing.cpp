@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -15,25 +17,62 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // fraction of a millisecond, and a timer's sleep overshoots by as much.
 constexpr double kOverBudgetShare = 1.1;
 
+// A held frame repeats the image before it and a frozen one holds the feedback pause's; every
+// other frame shown (a render, a fill's frame, a screen) puts a new image on the display.
+bool showsNewImage(const std::string& kind) { return kind != "held" && kind != "frozen" && kind != kSkippedFrameKind; }
+
+// The nearest-rank 95th percentile and the maximum; NaN, NaN of nothing.
+std::pair<double, double> p95AndMax(std::vector<double> t) {
+    if (t.empty()) return {kNaN, kNaN};
+    std::sort(t.begin(), t.end());
+    return {t[static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(t.size()))) - 1], t.back()};
+}
+
 }  // namespace
 
-void PacingTally::add(const FrameRecord& f) {
+void PacingTally::addInterval(Mode& m, const FrameRecord& f, bool newImage) {
+    // A run of the mode's frames ends where another mode's frames, or a feedback pause, came
+    // between: the time until the next run is no interval of the condition's cadence.
+    if (f.frame != m.lastFrame + 1) {
+        m.lastNewImage = -1;
+        m.newImageShown = false;
+        m.shownSince = 0.0;
+    }
+    m.lastFrame = f.kind == "frozen" ? -2 : f.frame;
+    if (f.kind == "frozen") return;
+    const bool skipped = f.kind == kSkippedFrameKind;
+    if (!skipped) m.shownSince += f.frameMs > 0.0 ? f.frameMs : kNaN;
+    if (!newImage) return;
+    if (m.lastNewImage >= 0) m.intendedFrames.push_back(f.frame - m.lastNewImage);
+    m.lastNewImage = f.frame;
+    if (skipped) return;
+    if (m.newImageShown && !std::isnan(m.shownSince)) m.shownMs.push_back(m.shownSince);
+    m.newImageShown = true;
+    m.shownSince = 0.0;
+}
+
+void PacingTally::add(const FrameRecord& f, const std::string& scheduledKind) {
     Mode* mode = &screens_;
     if (!f.mode.empty()) {
         // Few modes a session: a search beats a map.
         auto it = std::find_if(modes_.begin(), modes_.end(), [&](const Mode& m) { return m.counts.mode == f.mode; });
         if (it == modes_.end()) {
-            modes_.push_back(Mode{ModePacing{f.mode}, {}});
+            Mode added;
+            added.counts.mode = f.mode;
+            modes_.push_back(std::move(added));
             it = modes_.end() - 1;
         }
         mode = &*it;
     }
+    const bool newImage = showsNewImage(scheduledKind.empty() ? f.kind : scheduledKind);
+    addInterval(*mode, f, newImage);
+    *mode->counts.newImages += newImage;
     if (f.kind == kSkippedFrameKind) {
         ++mode->counts.skipped;
         return;
     }
     ++mode->counts.shown;
-    mode->counts.late += f.missedVsyncs > 0;
+    mode->counts.late += newImage && f.missedVsyncs > 0;
     if (f.frameMs > 0.0) mode->frameMs.push_back(f.frameMs);
 }
 
@@ -43,6 +82,10 @@ std::vector<ModePacing> PacingTally::summary(double refreshHz) const {
     auto summarize = [&](const Mode& mode) {
         ModePacing row = mode.counts;
         row.budgetMs = budget;
+        std::vector<double> intended;
+        for (const std::int64_t frames : mode.intendedFrames) intended.push_back(static_cast<double>(frames) * budget);
+        std::tie(row.intendedP95Ms, row.intendedMaxMs) = p95AndMax(intended);
+        std::tie(row.shownP95Ms, row.shownMaxMs) = p95AndMax(mode.shownMs);
         std::vector<double> t = mode.frameMs;
         if (t.empty()) {
             row.medianMs = row.p95Ms = row.maxMs = kNaN;
@@ -51,8 +94,7 @@ std::vector<ModePacing> PacingTally::summary(double refreshHz) const {
         std::sort(t.begin(), t.end());
         const std::size_t n = t.size();
         row.medianMs = n % 2 == 1 ? t[n / 2] : (t[n / 2 - 1] + t[n / 2]) / 2.0;
-        row.p95Ms = t[static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(n))) - 1];
-        row.maxMs = t.back();
+        std::tie(row.p95Ms, row.maxMs) = p95AndMax(t);
         row.overBudget = 0;
         for (const double ms : t) row.overBudget += ms > budget * kOverBudgetShare;
         return row;
@@ -85,6 +127,18 @@ std::string pacingReport(const std::vector<ModePacing>& pacing) {
                       100.0 * static_cast<double>(p.late) / all, static_cast<long long>(p.skipped),
                       100.0 * static_cast<double>(p.skipped) / all, p.medianMs, p.p95Ms, p.maxMs);
         out += line;
+        if (!std::isnan(p.intendedMaxMs)) {
+            // The condition's own unevenness beside what the display showed of it.
+            out.pop_back();
+            std::snprintf(line, sizeof line, "; new images %lld, intended p95 %.1f ms, max %.1f",
+                          static_cast<long long>(p.newImages.value_or(0)), p.intendedP95Ms, p.intendedMaxMs);
+            out += line;
+            if (!std::isnan(p.shownMaxMs)) {
+                std::snprintf(line, sizeof line, ", shown p95 %.1f, max %.1f", p.shownP95Ms, p.shownMaxMs);
+                out += line;
+            }
+            out += "\n";
+        }
     }
     return out;
 }
@@ -102,7 +156,12 @@ std::string pacingText(const std::vector<ModePacing>& pacing) {
                         {"p95_ms", number(p.p95Ms)},
                         {"max_ms", number(p.maxMs)},
                         {"budget_ms", number(p.budgetMs)},
-                        {"over_budget", p.overBudget}});
+                        {"over_budget", p.overBudget},
+                        {"new_images", p.newImages ? nlohmann::json(*p.newImages) : nlohmann::json()},
+                        {"intended_p95_ms", number(p.intendedP95Ms)},
+                        {"intended_max_ms", number(p.intendedMaxMs)},
+                        {"shown_p95_ms", number(p.shownP95Ms)},
+                        {"shown_max_ms", number(p.shownMaxMs)}});
     return list.dump();
 }
 
@@ -123,6 +182,12 @@ bool parsePacing(const std::string& text, std::vector<ModePacing>& out) {
         p.maxMs = number(o.value("max_ms", nlohmann::json()));
         p.budgetMs = number(o.value("budget_ms", nlohmann::json()));
         p.overBudget = o.value("over_budget", std::int64_t{0});
+        const nlohmann::json newImages = o.value("new_images", nlohmann::json());
+        p.newImages = newImages.is_number_integer() ? std::optional(newImages.get<std::int64_t>()) : std::nullopt;
+        p.intendedP95Ms = number(o.value("intended_p95_ms", nlohmann::json()));
+        p.intendedMaxMs = number(o.value("intended_max_ms", nlohmann::json()));
+        p.shownP95Ms = number(o.value("shown_p95_ms", nlohmann::json()));
+        p.shownMaxMs = number(o.value("shown_max_ms", nlohmann::json()));
         out.push_back(p);
     }
     return true;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <string>
 #include <regex>
 #include <sstream>
 #include <unistd.h>
@@ -97,6 +98,35 @@ bool expectFrameTime(const std::string& line, const std::string& mode, const std
     return verdict == "FAIL";
 }
 
+// A cadence line: its form, the schedule's shortest and longest intervals between new images,
+// and a verdict that says what its numbers say (FAIL: the p95 is longer than the shortest).
+// Returns whether it fails.
+bool expectCadence(const std::string& line, const std::string& mode, int refreshHz, int shortest, int longest) {
+    const std::regex form("(ok  |FAIL)  cadence " + mode +
+                          ": its frames that make a new image take p95 ([0-9.]+) ms over [0-9]+ frames, (within|longer "
+                          "than) the ([0-9.]+) ms its schedule leaves the shortest of its intervals between new images "
+                          "\\(" +
+                          std::to_string(shortest) + (shortest == 1 ? " refresh" : " refreshes") + " at " +
+                          std::to_string(refreshHz) + " Hz; they run " + std::to_string(shortest) + " to " +
+                          std::to_string(longest) + "\\)(.*)");
+    std::smatch m;
+    EXPECT_TRUE(std::regex_match(line, m, form)) << line;
+    if (m.empty()) return false;
+    char budget[16];
+    std::snprintf(budget, sizeof budget, "%.2f", 1000.0 * shortest / refreshHz);
+    EXPECT_EQ(m[4], budget) << line;
+    const bool fails = std::stod(m[2]) > 1000.0 * shortest / refreshHz + 0.05;
+    if (std::abs(std::stod(m[2]) - 1000.0 * shortest / refreshHz) > 0.05) {  // the p95 is printed to a tenth
+        EXPECT_EQ(m[1], fails ? "FAIL" : "ok  ") << line;
+        EXPECT_EQ(m[3], fails ? "longer than" : "within") << line;
+    }
+    EXPECT_EQ(
+        m[5],
+        m[1] == "FAIL" ? ": its new images would reach the screen after the refreshes the schedule gives them" : "")
+        << line;
+    return m[1] == "FAIL";
+}
+
 void expectMachineLines(const std::vector<std::string>& lines) {
     ASSERT_GE(lines.size(), 4u);
     EXPECT_TRUE(std::regex_match(lines[0], std::regex(kGl))) << lines[0];
@@ -110,7 +140,7 @@ TEST(Check, OnXvfbTheThesisProtocolFailsTheUnknownRefresh) {
     const auto r = check("--protocol " + protocol("shooter-thesis") + " --out " + dir);
     EXPECT_EQ(r.status, 1) << r.output;
     const auto lines = linesOf(r.output);
-    ASSERT_EQ(lines.size(), 10u) << r.output;
+    ASSERT_EQ(lines.size(), 13u) << r.output;
     expectMachineLines(lines);
     EXPECT_EQ(lines[1],
               "FAIL  refresh: the display reports no refresh rate, so it cannot be checked against the "
@@ -118,29 +148,32 @@ TEST(Check, OnXvfbTheThesisProtocolFailsTheUnknownRefresh) {
                   protocol("shooter-thesis") +
                   "' needs; set the display to 120 Hz on a system that reports it (or pass "
                   "--allow-refresh-mismatch for a pilot)");
-    // Each of its conditions once, in the protocol's order.
+    // Each of its conditions once, in the protocol's order, and whether it keeps its cadence.
     expectFrameTime(lines[4], "conv120", "120 Hz", "8.33");
-    expectFrameTime(lines[5], "conv15", "120 Hz", "8.33");
-    expectFrameTime(lines[6], "warp15to120", "120 Hz", "8.33");
-    EXPECT_EQ(lines[7], "ok    results folder: '" + dir + "' is writable and no session holds it");
+    expectCadence(lines[5], "conv120", 120, 1, 1);
+    expectFrameTime(lines[6], "conv15", "120 Hz", "8.33");
+    expectCadence(lines[7], "conv15", 120, 8, 8);
+    expectFrameTime(lines[8], "warp15to120", "120 Hz", "8.33");
+    expectCadence(lines[9], "warp15to120", 120, 1, 1);
+    EXPECT_EQ(lines[10], "ok    results folder: '" + dir + "' is writable and no session holds it");
     // 248385 frames: the bot's session, which replays the same on every machine.
-    EXPECT_TRUE(std::regex_match(lines[8],
+    EXPECT_TRUE(std::regex_match(lines[11],
                                  std::regex("ok    disk: [0-9.]+ [kMG]B free in '" + dir +
                                             "'; a session of shooter-thesis writes about [0-9.]+ MB and "
                                             "needs [0-9.]+ MB free \\(248385 frames by its bot at [0-9]+ "
                                             "bytes each, doubled for a participant, doubled again as it "
                                             "finishes\\)")))
-        << lines[8];
-    EXPECT_EQ(lines[9], kAudio);
+        << lines[11];
+    EXPECT_EQ(lines[12], kAudio);
 }
 
 // shooter-quick warns of another refresh, so only the machine's speed can fail it: exit 1
-// exactly when a frame-time line fails (on llvmpipe under load, it may).
+// exactly when a frame-time or cadence line fails (on llvmpipe under load, it may).
 TEST(Check, OnXvfbTheQuickProtocolWarnsOfTheUnknownRefreshAndFailsOnlyOnSpeed) {
     const std::string dir = scratch("quick");
     const auto r = check("--protocol " + protocol("shooter-quick") + " --out " + dir);
     const auto lines = linesOf(r.output);
-    ASSERT_EQ(lines.size(), 10u) << r.output;
+    ASSERT_EQ(lines.size(), 13u) << r.output;
     expectMachineLines(lines);
     EXPECT_EQ(lines[1],
               "warn  refresh: the display reports no refresh rate, so it cannot be checked against the "
@@ -148,10 +181,40 @@ TEST(Check, OnXvfbTheQuickProtocolWarnsOfTheUnknownRefreshAndFailsOnlyOnSpeed) {
                   protocol("shooter-quick") + "' needs; a session would pace its frames by a timer");
     bool slow = false;
     const char* const modes[] = {"conv120", "conv15", "warp15to120"};
-    for (int i = 0; i < 3; ++i) slow = expectFrameTime(lines[4 + i], modes[i], "120 Hz", "8.33") || slow;
-    EXPECT_EQ(lines[7], "ok    results folder: '" + dir + "' is writable and no session holds it");
-    EXPECT_TRUE(contains(lines[8], "; a session of shooter-quick writes about ")) << lines[8];
-    EXPECT_EQ(lines[9], kAudio);
+    const int shortest[] = {1, 8, 1};
+    for (int i = 0; i < 3; ++i) {
+        slow = expectFrameTime(lines[4 + 2 * i], modes[i], "120 Hz", "8.33") || slow;
+        slow = expectCadence(lines[5 + 2 * i], modes[i], 120, shortest[i], shortest[i]) || slow;
+    }
+    EXPECT_EQ(lines[10], "ok    results folder: '" + dir + "' is writable and no session holds it");
+    EXPECT_TRUE(contains(lines[11], "; a session of shooter-quick writes about ")) << lines[11];
+    EXPECT_EQ(lines[12], kAudio);
+    EXPECT_EQ(r.status, slow ? 1 : 0) << r.output;
+}
+
+// A protocol at 144 Hz with uneven conditions: each is held against its own shortest interval
+// between new images -- 60 fps 2 refreshes, 90 fps with jitter and hitches 1 -- not one refresh.
+TEST(Check, AnUnevenConditionIsHeldAgainstItsShortestInterval) {
+    const std::string dir = scratch("uneven");
+    std::ofstream(dir + "/uneven.json") << R"({"format_version":8,"name":"uneven","game":"shooter",
+ "display":{"refresh_hz":144,"refresh_mismatch":"warn"},
+ "conditions":{"even60":{"render_hz":60},
+  "rough60":{"render_hz":60,"frame_time_jitter":{"distribution":"normal","sd_ms":4},"hitches":{"ms":100,"every_s":0.5}}},
+ "acclimation":{"duration_s":0.5,"level":0,"mode":"even60"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.5,
+  "high_mode":"even60","low_mode":"rough60"},
+ "test":{"conditions":["even60","rough60"],"targets_per_condition":1,"timeout_s":0.5,"pause_s":0.25}})";
+    const auto r = check("--protocol " + dir + "/uneven.json --out " + dir);
+    const auto lines = linesOf(r.output);
+    ASSERT_EQ(lines.size(), 11u) << r.output;
+    bool slow = expectFrameTime(lines[4], "even60", "144 Hz", "6.94");
+    slow = expectCadence(lines[5], "even60", 144, 2, 3) || slow;
+    slow = expectFrameTime(lines[6], "rough60", "144 Hz", "6.94") || slow;
+    const std::regex rough("(ok  |FAIL)  cadence rough60: .* \\(1 refresh at 144 Hz; they run 1 to ([0-9]+)\\).*");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_match(lines[7], m, rough)) << lines[7];
+    EXPECT_GE(std::stoi(m[2]), 15) << "the 100 ms hitch";
+    slow = expectCadence(lines[7], "rough60", 144, 1, std::stoi(m[2])) || slow;
     EXPECT_EQ(r.status, slow ? 1 : 0) << r.output;
 }
 

@@ -417,7 +417,9 @@ TEST(CliConditions, PrintsEachConditionsPartsAndLatency) {
     ASSERT_EQ(csv.status, 0) << csv.output;
     EXPECT_EQ(csv.output.substr(0, csv.output.find('\n')),
               "condition,render_hz,lag_frames,fill,late_warp,view_latency_min_ms,view_latency_max_ms,"
-              "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description,used_in");
+              "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description,used_in,mean_fps,"
+              "low_1pct_fps,low_5pct_fps,frame_time_median_ms,frame_time_p95_ms,frame_time_p99_ms,frame_time_max_ms,"
+              "stutters,view_latency_median_ms,view_latency_p95_ms,scene_latency_median_ms,scene_latency_p95_ms");
     EXPECT_TRUE(contains(csv.output,
                          "\nlag60x5-rotation,60,10,hold,rotation,0,8.333333333333334,83.33333333333333,"
                          "100,,120,shooter,"))
@@ -785,8 +787,8 @@ TEST(CliExport, ExportsARunAndNamesWhatIsWrongWithItsArguments) {
               0);
     const auto ok = warplab("export " + results + " --out " + out);
     EXPECT_EQ(ok.status, 0) << ok.output;
-    for (const char* name :
-         {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv", "conditions.csv", "games.csv"}) {
+    for (const char* name : {"sessions.csv", "shots.csv", "hitrates.csv", "matches.csv", "ratings.csv",
+                             "conditions.csv", "frametimes.csv", "latency.csv", "games.csv", "pacing.csv"}) {
         EXPECT_TRUE(fs::exists(out + "/" + name)) << name;
         EXPECT_TRUE(contains(ok.output, out + "/" + name)) << ok.output;
     }

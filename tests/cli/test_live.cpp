@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <cstdlib>
 #include <cstdio>
@@ -51,6 +52,22 @@ Result inWindow(const std::string& arguments) {
 }
 
 std::string scratch(const std::string& name) { return warplab::testing::scratch("live", name); }
+
+// "" when two sessions hold the same events and inputs, record for record (a window's session
+// and the headless one the same player plays); else the first that differs.
+std::string firstRecordDifference(const warplab::session::SessionData& a, const warplab::session::SessionData& b) {
+    if (a.events.size() != b.events.size())
+        return std::to_string(a.events.size()) + " events against " + std::to_string(b.events.size());
+    for (std::size_t i = 0; i < a.events.size(); ++i)
+        if (const std::string d = warplab::session::firstDifference(a.events[i], b.events[i]); !d.empty())
+            return "event " + std::to_string(i) + ": " + d;
+    if (a.inputs.size() != b.inputs.size())
+        return std::to_string(a.inputs.size()) + " inputs against " + std::to_string(b.inputs.size());
+    for (std::size_t i = 0; i < a.inputs.size(); ++i)
+        if (const std::string d = warplab::session::firstDifference(a.inputs[i], b.inputs[i]); !d.empty())
+            return "input " + std::to_string(i) + ": " + d;
+    return "";
+}
 
 using warplab::testing::tinyProtocol;
 
@@ -187,12 +204,7 @@ TEST(LiveSession, TheBotInTheWindowWritesTheSameSessionAsHeadless) {
         const auto a = warplab::session::readSession(sessionIn(dir));
         const auto b = warplab::session::readSession(sessionIn(headless));
         EXPECT_TRUE(a.completed) << a.note;
-        ASSERT_EQ(a.events.size(), b.events.size()) << protocol;
-        for (std::size_t i = 0; i < a.events.size(); ++i)
-            ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << protocol << " event " << i;
-        ASSERT_EQ(a.inputs.size(), b.inputs.size());
-        for (std::size_t i = 0; i < a.inputs.size(); ++i)
-            ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << protocol << " input " << i;
+        ASSERT_EQ(firstRecordDifference(a, b), "") << protocol;
     }
     // Frame 100 of the tiny click session is on the first rating screen: the dark backdrop
     // (its top-left corner) and the seven boxes across the middle.
@@ -226,12 +238,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const auto a = warplab::session::readSession(sessionIn(dir));
     const auto b = warplab::session::readSession(sessionIn(headless));
     ASSERT_TRUE(a.completed) << a.note;
-    ASSERT_EQ(a.inputs.size(), b.inputs.size());
-    for (std::size_t i = 0; i < a.inputs.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
-    ASSERT_EQ(a.events.size(), b.events.size());
-    for (std::size_t i = 0; i < a.events.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
 
     // Every late frame is followed by the display frames it took, skipped; no other frame is.
     const double periodMs = 1000.0 / 120.0;
@@ -494,12 +501,7 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     const auto a = warplab::session::readSession(sessionIn(dir));
     const auto b = warplab::session::readSession(sessionIn(headless));
     EXPECT_TRUE(a.completed) << a.note;
-    ASSERT_EQ(a.events.size(), b.events.size());
-    for (std::size_t i = 0; i < a.events.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.events[i], b.events[i]), "") << "event " << i;
-    ASSERT_EQ(a.inputs.size(), b.inputs.size());
-    for (std::size_t i = 0; i < a.inputs.size(); ++i)
-        ASSERT_EQ(warplab::session::firstDifference(a.inputs[i], b.inputs[i]), "") << "input " << i;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
     std::set<std::string> modes;
     for (const auto& e : a.events)
         if (e.type == "shot") modes.insert(e.mode);
@@ -508,6 +510,51 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
     EXPECT_FALSE(contains(replayed, "differ")) << replayed;
     EXPECT_TRUE(fs::exists(dir + "/frame_4000.png"));
+}
+
+// Uneven cadences in a real window (docs/frame-pacing.md): 60 fps on a 144 Hz protocol (new
+// images 2 and 3 refreshes apart) and 60 fps with jitter and hitches play as headless, event
+// for event, and replay exactly; the stored pacing holds each condition's own unevenness
+// (its intended intervals between new images) apart from what the machine missed.
+TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
+    const std::string dir = scratch("uneven"), headless = scratch("uneven-headless");
+    std::ofstream(dir + "/uneven.json") << R"({"format_version":8,"name":"uneven","game":"shooter",
+ "display":{"refresh_hz":144,"refresh_mismatch":"warn"},
+ "conditions":{"even60":{"render_hz":60},
+  "rough60":{"render_hz":60,"frame_time_jitter":{"distribution":"normal","sd_ms":4},"hitches":{"ms":100,"every_s":0.2}}},
+ "acclimation":{"duration_s":0.25,"level":0,"mode":"even60"},
+ "training":{"start_level":12,"shots_per_level_easy":1,"shots_per_level_hard":1,"time_limit_s":0.25,
+  "high_mode":"even60","low_mode":"rough60"},
+ "test":{"conditions":["even60","rough60"],"targets_per_condition":1,"timeout_s":1.0,"pause_s":0.25}})";
+    const std::string path = dir + "/uneven.json";
+    const auto window = inWindow("run --protocol " + path + " --participant U --out " + dir +
+                                 " --width 320 --height 180 --player bot:3 --seed 4");
+    ASSERT_EQ(window.status, 0) << window.output;
+    const auto plain = runCommand(std::string(WARPLAB_BINARY) + " run --protocol " + path + " --participant U --out " +
+                                  headless + " --headless --width 320 --height 180 --player bot:3 --seed 4");
+    ASSERT_EQ(plain.status, 0) << plain.output;
+    const auto a = warplab::session::readSession(sessionIn(dir));
+    const auto b = warplab::session::readSession(sessionIn(headless));
+    EXPECT_TRUE(a.completed) << a.note;
+    ASSERT_EQ(firstRecordDifference(a, b), "");
+    ASSERT_EQ(a.frames.size(), b.frames.size());
+    for (std::size_t i = 0; i < a.frames.size(); ++i) ASSERT_EQ(a.frames[i].kind, b.frames[i].kind) << "frame " << i;
+    const std::string replayed = replayOf(sessionIn(dir));
+    EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
+    EXPECT_FALSE(contains(replayed, "differ")) << replayed;
+
+    std::vector<warplab::session::ModePacing> pacing;
+    ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
+    std::map<std::string, warplab::session::ModePacing> byMode;
+    for (const auto& p : pacing) byMode[p.mode] = p;
+    ASSERT_EQ(byMode.count("even60"), 1u) << a.summaries.at("pacing");
+    ASSERT_EQ(byMode.count("rough60"), 1u) << a.summaries.at("pacing");
+    const double refreshMs = 1000.0 / 144.0;
+    EXPECT_NEAR(byMode["even60"].intendedMaxMs, 3 * refreshMs, 1e-9);  // never a hitch's stall
+    EXPECT_GE(byMode["rough60"].intendedMaxMs, 100.0);  // the hitch, as the schedule meant it
+    EXPECT_GT(byMode["even60"].newImages, 0);
+    EXPECT_LT(byMode["even60"].newImages, byMode["even60"].shown);  // held frames between renders
+    EXPECT_FALSE(std::isnan(byMode["even60"].shownMaxMs)) << "the window measured what it showed";
 }
 
 // A second window on the rig recorded into the folder beside the first. While another session

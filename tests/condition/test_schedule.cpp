@@ -110,8 +110,9 @@ TEST(Modes, CheckModeNamesTheProblem) {
     EXPECT_NE(ConditionTable().check("conv45", 60.0).find("unknown condition 'conv45'"), std::string::npos);
 }
 
-TEST(Modes, RefreshMustBeAWholeMultipleOfTheRates) {
-    EXPECT_THROW(ModeSchedule(preset("conv15"), 100.0), std::invalid_argument);
+TEST(Modes, RatesAboveTheRefreshAndLagsOfPartFramesAreRefused) {
+    EXPECT_THROW(ModeSchedule(preset("conv120"), 60.0), std::invalid_argument);
+    EXPECT_NO_THROW(ModeSchedule(preset("conv15"), 100.0));  // the uneven 6-7-7 cadence
     EXPECT_THROW(ModeSchedule(preset("warp15to120"), 60.0), std::invalid_argument);
     EXPECT_THROW(ModeSchedule(preset("lag50"), 90.0),
                  std::invalid_argument);  // 4.5 frames of lag

@@ -33,100 +33,12 @@
 #include "condition/schedule.h"
 #include "study/session_runner.h"
 #include "session/session_store.h"
+#include "export_test_support.h"
 
 namespace warplab::app {
 namespace {
 
-namespace fs = std::filesystem;
-using Row = std::map<std::string, std::string>;
-
-std::string scratch(const std::string& name) {
-    const fs::path dir = fs::path(WARPLAB_BINARY_DIR) / "test-output" / "export" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir.string();
-}
-
-std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-// RFC 4180, written independently of the exporter: quoted cells, doubled quotes, line breaks
-// inside quotes. Every row must have as many cells as the header.
-std::vector<Row> readCsv(const std::string& path) {
-    const std::string text = slurp(path);
-    std::vector<std::vector<std::string>> rows(1);
-    std::string cell;
-    bool quoted = false;
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        const char c = text[i];
-        if (quoted) {
-            if (c == '"' && i + 1 < text.size() && text[i + 1] == '"')
-                cell += '"', ++i;
-            else if (c == '"')
-                quoted = false;
-            else
-                cell += c;
-        } else if (c == '"') {
-            quoted = true;
-        } else if (c == ',') {
-            rows.back().push_back(cell);
-            cell.clear();
-        } else if (c == '\n') {
-            rows.back().push_back(cell);
-            cell.clear();
-            rows.emplace_back();
-        } else {
-            cell += c;
-        }
-    }
-    EXPECT_TRUE(rows.back().empty() && cell.empty()) << path << " does not end with a line break";
-    rows.pop_back();
-    std::vector<Row> out;
-    if (rows.empty()) {
-        ADD_FAILURE() << path << " has no header";
-        return out;
-    }
-    for (std::size_t r = 1; r < rows.size(); ++r) {
-        EXPECT_EQ(rows[r].size(), rows[0].size()) << path << " row " << r;
-        Row row;
-        for (std::size_t k = 0; k < rows[0].size() && k < rows[r].size(); ++k) row[rows[0][k]] = rows[r][k];
-        out.push_back(row);
-    }
-    return out;
-}
-
-std::vector<std::string> headerOf(const std::string& path) {
-    std::string line = slurp(path);
-    line = line.substr(0, line.find('\n'));
-    std::vector<std::string> names;
-    std::stringstream s(line);
-    for (std::string name; std::getline(s, name, ',');) names.push_back(name);
-    return names;
-}
-
-std::string headless(const std::string& protocol, const std::string& participant, const std::string& dir,
-                     std::uint64_t seed) {
-    study::HeadlessRun run;
-    run.protocolPath = std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + protocol;
-    run.participant = participant;
-    run.resultsDir = dir;
-    run.player = "bot:" + std::to_string(seed);
-    run.seed = seed;
-    std::ostringstream quiet;
-    return study::runHeadless(run, quiet);
-}
-
-exporter::ExportSummary exportQuietly(const std::string& results, const std::string& out,
-                                      const exporter::ExportOptions& options = {}, std::string* log = nullptr) {
-    std::ostringstream lines;
-    exporter::ExportSummary summary = exporter::exportResults(results, out, options, lines);
-    if (log != nullptr) *log = lines.str();
-    return summary;
-}
+using namespace exporttest;
 
 // A session of `source` as another player played it: the same record under a new session id, so
 // that it is a session of its own rather than a copy.
@@ -325,8 +237,8 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     EXPECT_EQ(static_cast<int>(matches.size()), scoredMatches);
     // The ratings last but for the columns added after them (export.cpp: matchTrailingColumns).
     const auto matchHeader = headerOf(out + "/matches.csv");
-    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 3, matchHeader.end()),
-              (std::vector<std::string>{"rating_4", "player_kind", "condition_position"}));
+    EXPECT_EQ(std::vector<std::string>(matchHeader.end() - 4, matchHeader.end()),
+              (std::vector<std::string>{"rating_4", "player_kind", "condition_position", "frame_time_p95_ms"}));
     for (const auto& m : matches) {
         EXPECT_EQ(std::stoi(m.at("clicks")),
                   std::stoi(m.at("green_hits")) + std::stoi(m.at("red_hits")) + std::stoi(m.at("misses")));
@@ -395,6 +307,67 @@ TEST(Export, ConditionsCsvListsWhatTheSessionsRan) {
     EXPECT_EQ(conv15.at("fill"), "hold");
     EXPECT_EQ(conv15.at("fill_hz"), "");
     EXPECT_EQ(conv15.at("lag_frames"), "0");
+    // Pacing: 15 renders a second held, a step waits half a render period in the median.
+    EXPECT_EQ(conv15.at("mean_fps"), "15");
+    EXPECT_NEAR(std::stod(conv15.at("frame_time_p95_ms")), 1000.0 / 15, 1e-9);
+    EXPECT_NEAR(std::stod(conv15.at("low_1pct_fps")), 15, 1e-9);
+    EXPECT_EQ(conv15.at("stutters"), "0");
+    EXPECT_NEAR(std::stod(conv15.at("view_latency_median_ms")), 1000.0 / 30, 1e-6);
+    EXPECT_EQ(warp.at("mean_fps"), "120");  // every warped frame is a new image
+    EXPECT_NEAR(std::stod(warp.at("frame_time_max_ms")), 1000.0 / 120, 1e-9);
+
+    // frametimes.csv: the frame times behind those numbers, 10 s of each condition.
+    std::map<std::string, std::vector<double>> times;
+    for (const Row& r : readCsv(out + "/frametimes.csv")) {
+        EXPECT_EQ(r.at("game"), "shooter");
+        EXPECT_GT(std::stod(r.at("time_s")), 0.0);
+        EXPECT_LT(std::stod(r.at("time_s")), 10.0);
+        times[r.at("condition")].push_back(std::stod(r.at("frame_time_ms")));
+    }
+    EXPECT_EQ(times.size(), used.size());
+    EXPECT_EQ(times["conv15"].size(), 149u);  // 150 new images, each but the first from the one before
+    for (const double t : times["conv15"]) EXPECT_NEAR(t, 1000.0 / 15, 1e-9);
+    EXPECT_EQ(times["warp15to120"].size(), 1199u);
+}
+
+// Each shot's frame_time_p95_ms: from the session's own frames table, over the trial's last
+// second. Headless sessions keep their conditions' steady cadences, so it is the render period
+// of a hold and the refresh of a warp; with every other frame of a shot's last second held, twice that.
+TEST(Export, EachShotCarriesTheFrameTimeP95OfItsLastSecond) {
+    const std::string results = scratch("shot-p95/results"), out = scratch("shot-p95/out");
+    const std::string file = headless("shooter-quick.json", "P01", results, 1);
+    exportQuietly(results, out);
+    const std::map<std::string, double> expected{
+        {"conv15", 1000.0 / 15}, {"conv120", 1000.0 / 120}, {"warp15to120", 1000.0 / 120}};
+    int checked = 0;
+    for (const Row& r : readCsv(out + "/shots.csv")) {
+        if (r.at("frame_time_p95_ms").empty()) continue;  // a trial too short for two new images
+        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), expected.at(r.at("mode")), 1e-9) << r.at("trial");
+        ++checked;
+    }
+    EXPECT_GE(checked, 10);
+
+    // The same session with every odd frame of conv120's trials held: 16.7 ms, never 8.3.
+    session::SessionData data = session::readSession(file);
+    fs::remove_all(results);
+    fs::create_directories(results);
+    session::SessionHeader header = data.header;
+    header.startedAt = "";
+    session::SessionWriter w = session::SessionWriter::create(results, header);
+    for (session::FrameRecord f : data.frames) {
+        if (f.mode == "conv120" && f.kind == "rendered" && f.frame % 2 == 1) f.kind = "held";
+        w.addFrame(f);
+    }
+    for (const auto& e : data.events) w.addEvent(e);
+    w.finish();
+    exportQuietly(results, out);
+    int held = 0;
+    for (const Row& r : readCsv(out + "/shots.csv")) {
+        if (r.at("mode") != "conv120" || r.at("frame_time_p95_ms").empty()) continue;
+        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), 2000.0 / 120, 1e-9) << r.at("trial");
+        ++held;
+    }
+    EXPECT_GE(held, 3);
 }
 
 // A session's results with a new participant id (and start time), as if run again.
@@ -1044,7 +1017,7 @@ TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
 
 TEST(ExportColumns, MatchDocsExportMd) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 11u);
+    ASSERT_EQ(written.size(), 13u);
     for (const exporter::CsvColumns& csv : written) {
         SCOPED_TRACE("docs/export.md, " + csv.file);
         const DocumentedColumns documented = documentedColumns(csv.file);

@@ -231,7 +231,30 @@ std::vector<condition::Condition> composedConditions() {
     warp.fillHz = 60;
     warp.lateWarp = condition::LateWarp::Rotation;
     list.push_back(warp);
+    // Uneven renders (docs/frame-pacing.md): a rate the refresh does not divide, seeded jitter
+    // and hitches, held, warped and interpolated.
+    condition::Condition uneven;
+    uneven.name = "uneven50";
+    uneven.renderHz = 50;
+    list.push_back(uneven);
+    condition::Condition jitter = uneven;
+    jitter.name = "jitter50-warp";
+    jitter.fill = "warp-full";
+    jitter.jitter = {condition::JitterShape::Normal, 4, 0};
+    list.push_back(jitter);
+    condition::Condition hitch;
+    hitch.name = "hitch30-bireproj";
+    hitch.renderHz = 30;
+    hitch.fill = "bireproj";
+    hitch.hitches = {80, 0.25, 0};
+    list.push_back(hitch);
     return list;
+}
+
+// The schedule a game runs a mode on from session frame `start`: jittered and hitching
+// cadences are drawn from the game's seed (5 in ModeRig) and where the schedule starts.
+condition::ModeSchedule gameSchedule(const condition::Condition& c, double refreshHz, const ShownFrame& shown) {
+    return condition::ModeSchedule(c, refreshHz, pacingSeed(5, shown.frame - shown.schedule.index));
 }
 
 // Every condition the latency tests measure: the presets, then the composed ones.
@@ -270,7 +293,8 @@ TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});  // the step, read at this frame
             const double stepTime = stepFrame.time;
-            const condition::ModeSchedule schedule(rig.p.conditionTable.at(mode), rig.p.refreshHz);
+            const condition::ModeSchedule schedule =
+                gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, stepFrame);
             const double local = stepFrame.schedule.displayTime;
             ShownFrame f = stepFrame;
             while (f.camera.yaw == before) f = rig.game->step({});
@@ -348,7 +372,6 @@ TEST(ShooterGame, LateWarpShowsTheWorldOfItsRenderThroughTheCameraOfNow) {
 TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
     for (const auto& mode : measuredConditions()) {
         ModeRig rig(mode);
-        const condition::ModeSchedule schedule(rig.p.conditionTable.at(mode), rig.p.refreshHz);
         bool measured = false;
         for (int attempt = 0; attempt < 8 && !measured; ++attempt) {
             while (rig.last.frozen || rig.last.scene.objects.empty()) rig.last = rig.game->step({});
@@ -363,6 +386,8 @@ TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
                 now + std::min(until(p0.x, v0.x, plane.minX, plane.maxX), until(p0.y, v0.y, plane.minY, plane.maxY));
             const std::int64_t scheduleStart = rig.last.frame - rig.last.schedule.index;
             const double localBounce = bounce - static_cast<double>(scheduleStart) / rig.p.refreshHz;
+            const condition::ModeSchedule schedule =
+                gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, rig.last);
             if (bounce + schedule.sceneLatency(localBounce) > trial->spawnTime + rig.p.timeoutS - 0.05) {
                 while (!rig.last.frozen) rig.last = rig.game->step({});  // too late in this trial: next one
                 continue;

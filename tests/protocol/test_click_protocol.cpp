@@ -725,7 +725,7 @@ TEST(ClickErrors, UnknownMode) {
 TEST(ClickErrors, ModeThatCannotRunAtTheRefresh) {
     const std::string message = messageFor(yangWith("/matches/modes/3", "conv120"));
     EXPECT_EQ(message, modeError("matches.modes[3]", "conv120", 60));
-    EXPECT_NE(message.find("whole multiple of 120 Hz"), std::string::npos) << message;
+    EXPECT_NE(message.find("above the refresh (60 Hz)"), std::string::npos) << message;
     // The defaults are checked too: the published modes need a multiple of 60 Hz.
     Json document = minimal();
     document["display"] = Json{{"refresh_hz", 50}};
@@ -850,12 +850,12 @@ TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
     // A click file newer than this build is still just that, with or without fields of its own:
     // a bare header is any game's, and a newer click file's sections are no shooter's.
     for (const Json& newer :
-         {Json{{"format_version", 6}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 6)}) {
+         {Json{{"format_version", 7}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 7)}) {
         try {
             game::parseStudy(newer.dump(), kSource);
             ADD_FAILURE() << "expected a ProtocolError";
         } catch (const ProtocolError& e) {
-            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 6 is newer than this warplab supports (5)");
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 7 is newer than this warplab supports (6)");
         }
     }
 }
@@ -906,7 +906,7 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 6, "format_version 6 is newer than this warplab supports (5)"},
+        {"/format_version", 7, "format_version 7 is newer than this warplab supports (6)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);

@@ -7,9 +7,12 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "condition/frame_trace.h"
 
 namespace warplab::condition {
 
@@ -56,6 +59,35 @@ inline constexpr int kMaxLagFrames = 480;
 // (lag_frames 480; lag_ms 1000 at the 1000 Hz ceiling) and render periods of hundreds of frames.
 inline constexpr std::int64_t kMaxLookBackFrames = 2048;
 
+// Frame-time jitter (docs/frame-pacing.md): each render interval drawn around 1 / render_hz from
+// the schedule's seeded stream, so a seed means the same cadence and replay is exact.
+enum class JitterShape : std::uint8_t {
+    None,
+    Normal,  // sd_ms; draws beyond 3 SD of the mean are drawn again, so no interval is negative
+    Lognormal,  // sd_ms; the mean interval is 1 / render_hz
+    Uniform,  // range_ms: the mean interval +- range_ms / 2
+};
+const char* jitterShapeName(JitterShape shape);
+std::optional<JitterShape> jitterShapeNamed(const std::string& name);
+const std::vector<JitterShape>& jitterShapes();
+
+struct Jitter {
+    JitterShape shape = JitterShape::None;
+    double sdMs = 0.0;  // normal, lognormal
+    double rangeMs = 0.0;  // uniform
+    bool operator==(const Jitter& o) const { return shape == o.shape && sdMs == o.sdMs && rangeMs == o.rangeMs; }
+};
+
+// Stalls added to the render cadence: the render due when a hitch falls stalls `ms` longer.
+// Periodic (every everyS seconds, the first at everyS) or random (a Poisson process of
+// ratePerS, from the schedule's seeded stream); ms 0: none.
+struct Hitches {
+    double ms = 0.0;
+    double everyS = 0.0;
+    double ratePerS = 0.0;
+    bool operator==(const Hitches& o) const { return ms == o.ms && everyS == o.everyS && ratePerS == o.ratePerS; }
+};
+
 struct Condition {
     std::string name;  // as protocols, logs and CSVs write it
     std::string description;
@@ -68,8 +100,15 @@ struct Condition {
     std::string fill = "hold";  // a FillSpelling's name
     std::optional<double> fillHz;  // frames the fill makes per second; unset: every display frame
     LateWarp lateWarp = LateWarp::None;
+    Jitter jitter;  // frame_time_jitter
+    Hitches hitches;
+    // A real game's frame times (frame_times), played as the render intervals; renderHz is then
+    // the rate they play at. Shared: a trace is read once, and copies of a condition are many.
+    std::shared_ptr<const FrameTrace> frameTimes;
 
     Fill fillKind() const;  // of `fill`, which parsing has checked
+    // Whether render intervals are all 1 / render_hz: no jitter, no hitches, no trace.
+    bool steadyPacing() const { return jitter.shape == JitterShape::None && hitches.ms == 0.0 && !frameTimes; }
     // Whether the world a frame shows is the source's moved on by velocities (warp fill, depth
     // late warp), as opposed to the world as sampled or blended.
     bool movesWorld() const { return fillKind() == Fill::Warp || lateWarp == LateWarp::Depth; }
@@ -91,7 +130,8 @@ const Condition& preset(const std::string& name);
 std::vector<std::string> presetNames();
 
 // What is wrong with a condition on a display of refreshHz: the part at fault (its JSON key:
-// "render_hz", "lag_frames", "lag_ms", "fill", "fill_hz", "late_warp") and why, in words that
+// "render_hz", "lag_frames", "lag_ms", "fill", "fill_hz", "late_warp", or a key within
+// "frame_time_jitter" and "hitches", as "hitches.ms") and why, in words that
 // name the allowed values. nullopt when it can run.
 struct Problem {
     std::string part;

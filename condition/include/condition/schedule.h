@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "condition/condition.h"
+#include "condition/pacing.h"
 
 namespace warplab::condition {
 
@@ -46,8 +47,10 @@ struct ScheduledFrame {
 class ModeSchedule {
 public:
     // Throws std::invalid_argument with condition::problem's reason when the condition cannot
-    // run at this refresh (a 15 Hz render on a 100 Hz display would judder unevenly).
-    ModeSchedule(const Condition& condition, double refreshHz);
+    // run at this refresh (a render rate above it, a lag that is not whole frames). A jittered
+    // or hitching condition draws its render intervals from pacingSeed: the same seed, the
+    // same cadence (games derive it from the session's seed and where the schedule starts).
+    ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed = 0);
 
     const Condition& mode() const { return mode_; }
     double refreshHz() const { return refreshHz_; }
@@ -66,20 +69,41 @@ public:
     };
     Range viewLatencyRange() const;
     Range sceneLatencyRange() const;
+    // Where a step falling in (from, to] is first shown: `from` and `to` are consecutive distinct
+    // instants that frames depict, so its latency falls linearly from shownAt - from to shownAt - to.
+    struct LatencySpan {
+        double from = 0.0, to = 0.0, shownAt = 0.0;
+    };
+    // The spans of the instants display frames first..last depict, but the first of them.
+    std::vector<LatencySpan> viewLatencySpans(std::int64_t first, std::int64_t last) const;
+    std::vector<LatencySpan> sceneLatencySpans(std::int64_t first, std::int64_t last) const;
+    // The first display frame the latency ranges (and condition::pacingStats) look at: once the
+    // lag and four cycles have passed, so nothing the queue held before the schedule started shows.
+    std::int64_t settledFrame() const;
     std::int64_t lagFrames() const { return lagFrames_; }
-    std::int64_t renderPeriod() const { return renderPeriod_; }
+    const RenderCadence& cadence() const { return cadence_; }
 
 private:
     template <typename Depicted>
     double firstShowing(double tau, Depicted depicted) const;
     template <typename Depicted>
     Range latencyRange(Depicted depicted) const;
+    template <typename Depicted>
+    std::vector<LatencySpan> latencySpans(std::int64_t first, std::int64_t last, Depicted depicted) const;
+    std::int64_t cycle() const { return cadence_.cycleFrames() * fillPeriod_; }
     // The frame the fill makes at production frame j, before the queue and any late warp.
     ScheduledFrame produced(std::int64_t j) const;
+    // A bidirectional fill at production frame j: the render interval it plays and the
+    // instant (display frame) it depicts.
+    struct Between {
+        std::int64_t from = 0, to = 0, depicted = 0;
+    };
+    Between between(std::int64_t j) const;
+    static const Condition& checked(const Condition& condition, double refreshHz);
     Condition mode_;
     double refreshHz_;
+    RenderCadence cadence_;
     Fill fill_;
-    std::int64_t renderPeriod_;  // display frames between conventional renders
     std::int64_t lagFrames_;  // display frames a rendered frame waits in the queue
     std::int64_t fillPeriod_;  // display frames between the frames the fill makes
 };

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "condition/pacing_stats.h"
 #include "condition/schedule.h"
 
 namespace warplab::game {
@@ -55,14 +56,16 @@ struct ConditionListing {
     // The part the study analyses runs it (used_in "test"); false: only practice or training
     // does (used_in "training"), so no analysed row has it.
     bool analysed = true;
+    // Its frame pacing and latency distributions over condition::kPacingStatsHorizonS (seed 0).
+    condition::PacingStats pacing;
 };
-// The conditions `study` runs, each once, in the order its fields first name them.
+// The conditions `study` runs, each once, in the order its fields first name them, with their pacing.
 std::vector<ConditionListing> conditionsOf(const game::Study& study);
 // The rows as CSV, with conditions.csv's header, to `out`.
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows);
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
-// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, games.csv and pacing.csv into outDir (created
+// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, frametimes.csv, latency.csv, games.csv and pacing.csv into outDir (created
 // when missing), and participants.csv and orders.csv when there is a study plan (options.studyDir, or the
 // results folder's parent once a session carries a plan_id); a study.json that does not read
 // is a plan::PlanError with options.studyDir and a warning on `log` without it. Progress and one line per excluded or damaged session go to `log`.

@@ -20,6 +20,14 @@ inline std::uint64_t subSeed(std::uint64_t seed, int tag, int index) {
     return mix(seed ^ mix((static_cast<std::uint64_t>(tag) << 32) ^ static_cast<std::uint32_t>(index)));
 }
 
+// The seed of one schedule's render cadence (condition/pacing.h: jitter, random hitches): a
+// stream of the session's seed per schedule, told apart by the session frame it starts at, so
+// trials differ from one another and a replay draws the same cadence.
+inline constexpr int kTagPacing = 90;
+inline std::uint64_t pacingSeed(std::uint64_t seed, std::int64_t scheduleStart) {
+    return subSeed(seed, kTagPacing, static_cast<int>(scheduleStart));
+}
+
 // Fisher-Yates with our own generator.
 template <typename T>
 void shuffle(std::vector<T>& items, std::uint64_t seed) {

@@ -2,9 +2,10 @@
 // down (docs/live-sessions.md, "The supervisor's steps"). One line per check, ok / warn /
 // FAIL with a short reason: the GL context, the display's refresh as the system reports it
 // and as ~2 s of swaps measure it, vsync, the frame time of every condition of the protocol at
-// the display's size, the results folder and its lock, disk space for a session, and the
+// the display's size and whether it keeps that condition's cadence, the results folder and its lock, disk space for a session, and the
 // audio device. A FAIL is what would refuse the session or spoil its data: a refresh the
-// protocol refuses (an unknown one included), frames slower than a refresh, no room, no folder.
+// protocol refuses (an unknown one included), frames slower than a refresh or than a
+// condition's shortest interval between new images, no room, no folder.
 #pragma once
 
 #include <ostream>

@@ -18,9 +18,11 @@ namespace warplab::protocol {
 // The newest click protocol format this build reads and the one toJson writes.
 // 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions"), 3 each
 // round's "instructions" screen, 4 matches.questions in place of the ratings section, 5
-// display.photon_marker.
-inline constexpr int kClickFormatVersion = 5;
+// display.photon_marker, 6 a condition's frame_time_jitter and hitches.
+inline constexpr int kClickFormatVersion = 6;
 inline constexpr int kClickConditionsSince = 2;
+// A condition's frame_time_jitter and hitches (docs/frame-pacing.md).
+inline constexpr int kClickPacingSince = 6;
 inline constexpr int kClickInstructionsSince = 3;
 // From 4 the questions after each match are matches.questions (any kind), and a file may no
 // longer have a ratings section; older files rate the ratings section's statements, and their

@@ -18,9 +18,12 @@ namespace warplab::protocol {
 // replay under the rules they were recorded with. 3 added the protocol's own "conditions", 4
 // each phase's "instructions" screen, 5 the questions after each block of the test, 6
 // display.photon_marker, 7 the view re-centred where training and the test begin and the
-// question screens' cursor starting clear of every answer.
-inline constexpr int kShooterFormatVersion = 7;
+// question screens' cursor starting clear of every answer, 8 a condition's frame_time_jitter and
+// hitches.
+inline constexpr int kShooterFormatVersion = 8;
 inline constexpr int kShooterConditionsSince = 3;
+// A condition's frame_time_jitter and hitches (docs/frame-pacing.md).
+inline constexpr int kShooterPacingSince = 8;
 inline constexpr int kShooterInstructionsSince = 4;
 inline constexpr int kShooterQuestionsSince = 5;  // test.questions
 inline constexpr int kShooterPhotonMarkerSince = 6;  // display.photon_marker
