@@ -287,31 +287,22 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
         return Problem{"", "needs a display refresh that is a positive number of Hz"};
     if (!(c.renderHz > 0.0) || !std::isfinite(c.renderHz))
         return Problem{"render_hz", "must be a positive number of Hz, got " + number(c.renderHz)};
-    // Rates the display cannot run evenly: the refresh must be a whole multiple of each.
-    auto uneven = [&](const char* part, double rateHz) {
-        const std::string rate = exactNumber(rateHz);
-        // A hair off a rate that fits (59.999999999 Hz at 120 Hz) would run as that rate.
+    // A hair off a rate that fits (59.999999999 Hz at 120 Hz) is a typo for it, not a cadence:
+    // a display would run it as that rate.
+    auto hairOff = [&](const char* part, double rateHz) -> std::optional<Problem> {
+        if (wholeRatio(refreshHz, rateHz)) return std::nullopt;
         const auto near = std::llround(refreshHz / rateHz);
-        if (near >= 1 && std::abs(refreshHz / rateHz - static_cast<double>(near)) < 1e-6) {
-            const std::string runs = exactNumber(refreshHz / static_cast<double>(near));
-            return Problem{part,
-                           "is " + rate + " Hz, which a " + refresh + " display can only run as " + runs + " Hz (" +
-                               (near == 1 ? std::string("every") : "every " + ordinal(near)) +
-                               " display frame); write " + runs};
-        }
-        return Problem{
-            part,
-            "is " + rate + " Hz: the display refresh must be a whole multiple of " + rate + " Hz, not " + refresh};
+        if (near < 1 || std::abs(refreshHz / rateHz - static_cast<double>(near)) >= 1e-6) return std::nullopt;
+        const std::string runs = exactNumber(refreshHz / static_cast<double>(near));
+        return Problem{part,
+                       "is " + exactNumber(rateHz) + " Hz, which a " + refresh + " display can only run as " + runs +
+                           " Hz (" + (near == 1 ? std::string("every") : "every " + ordinal(near)) +
+                           " display frame); write " + runs};
     };
     // Any render rate up to the refresh runs: one that does not divide it shows the uneven
     // cadence a vsync'd game shows (60 fps on 144 Hz: 2, 3, 2, 3, 2 refreshes).
     const std::optional<std::int64_t> renderPeriod = wholeRatio(refreshHz, c.renderHz);
-    if (!renderPeriod) {
-        // A hair off a rate that fits (59.999999999 Hz at 120 Hz) is a typo for it, not a cadence.
-        const auto near = std::llround(refreshHz / c.renderHz);
-        if (near >= 1 && std::abs(refreshHz / c.renderHz - static_cast<double>(near)) < 1e-6)
-            return uneven("render_hz", c.renderHz);
-    }
+    if (const auto p = hairOff("render_hz", c.renderHz)) return p;
     if (c.renderHz > refreshHz && c.frameTimes)
         return Problem{c.frameTimes->meanHz ? "frame_times.mean_hz" : "frame_times",
                        "plays at " + number(c.renderHz) + " frames a second, above the refresh (" + refresh +
@@ -341,16 +332,22 @@ std::optional<Problem> problem(const Condition& c, double refreshHz) {
         for (const auto& s : fillSpellings()) known += std::string(known.empty() ? "" : ", ") + s.name;
         return Problem{"fill", "must be one of " + known + ", not \"" + c.fill + "\""};
     }
-    std::int64_t fillPeriod = 1;
+    // A fill rate the refresh does not divide makes its frames unevenly, each at the first
+    // refresh at or after it, as renders are (120 Hz on 144: 1, 1, 1, 1, 2 refreshes apart).
+    std::optional<std::int64_t> fillPeriod = 1;
+    double fillRate = refreshHz;
     if (c.fillHz) {
         if (*fill == Fill::Hold)
             return Problem{"fill_hz", "is for a fill that makes frames; \"hold\" makes none (leave fill_hz out)"};
-        const std::optional<std::int64_t> p = wholeRatio(refreshHz, *c.fillHz);
-        if (!p) return uneven("fill_hz", *c.fillHz);
-        fillPeriod = *p;
+        if (const auto p = hairOff("fill_hz", *c.fillHz)) return p;
+        fillPeriod = wholeRatio(refreshHz, *c.fillHz);
+        if (*c.fillHz > refreshHz)
+            return Problem{"fill_hz",
+                           "is " + exactNumber(*c.fillHz) + " Hz, above the refresh (" + refresh +
+                               "): a display shows at most one new frame per refresh; allowed: up to " + refresh};
+        fillRate = *c.fillHz;
     }
-    const double fillRate = refreshHz / static_cast<double>(fillPeriod);
-    if (*fill != Fill::Hold && renderPeriod && c.steadyPacing() && *renderPeriod % fillPeriod != 0)
+    if (*fill != Fill::Hold && renderPeriod && fillPeriod && c.steadyPacing() && *renderPeriod % *fillPeriod != 0)
         return Problem{c.fillHz ? "fill_hz" : "render_hz",
                        "the fill's rate (" + number(fillRate) + " Hz) must be a whole multiple of render_hz (" +
                            number(c.renderHz) + " Hz)"};

@@ -6,15 +6,6 @@
 #include <stdexcept>
 
 namespace warplab::condition {
-namespace {
-
-// Floor division and modulo that stay right for negative frame indices.
-std::int64_t floorTo(std::int64_t k, std::int64_t period) {
-    const std::int64_t r = ((k % period) + period) % period;
-    return k - r;
-}
-
-}  // namespace
 
 const char* frameKindName(FrameKind kind) {
     switch (kind) {
@@ -26,14 +17,28 @@ const char* frameKindName(FrameKind kind) {
     return "?";
 }
 
+namespace {
+
+// The fill's frames as a steady cadence of its own: at fill_hz, or every display frame.
+Condition fillPacing(const Condition& condition, double refreshHz) {
+    Condition fill;
+    fill.name = condition.name;
+    fill.renderHz = condition.fillKind() != Fill::Hold && condition.fillHz ? *condition.fillHz : refreshHz;
+    return fill;
+}
+
+}  // namespace
+
 ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed)
-    : mode_(condition), refreshHz_(refreshHz), cadence_(checked(condition, refreshHz), refreshHz, pacingSeed) {
+    : mode_(condition),
+      refreshHz_(refreshHz),
+      cadence_(checked(condition, refreshHz), refreshHz, pacingSeed),
+      fillCadence_(fillPacing(condition, refreshHz), refreshHz, 0) {
     fill_ = condition.fillKind();
     lagFrames_ = lagFramesAt(condition, refreshHz);
     // Hold makes no frames of its own: a steady cadence's cycle is its render period squared,
     // as the latency ranges have always scanned it.
-    const std::int64_t period = cadence_.wholePeriod().value_or(1);
-    fillPeriod_ = fill_ == Fill::Hold ? period : (condition.fillHz ? std::llround(refreshHz / *condition.fillHz) : 1);
+    cycleFactor_ = fill_ == Fill::Hold ? cadence_.wholePeriod().value_or(1) : fillCadence_.cycleFrames();
 }
 
 const Condition& ModeSchedule::checked(const Condition& condition, double refreshHz) {
@@ -50,7 +55,7 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
     f.rendersNow = latest == j;
     auto time = [&](std::int64_t frame) { return static_cast<double>(frame) / refreshHz_; };
     // The latest frame the fill made: its own cadence, or a render that came between.
-    const std::int64_t made = std::max(floorTo(j, fillPeriod_), latest);
+    const std::int64_t made = std::max(fillCadence_.latestAtOrBefore(j), latest);
     switch (fill_) {
         case Fill::Hold: {
             f.sourceIndex = latest;
@@ -109,7 +114,7 @@ ModeSchedule::Between ModeSchedule::between(std::int64_t j) const {
     Between b;
     b.to = cadence_.latestAtOrBefore(j);
     b.from = cadence_.latestAtOrBefore(b.to - 1);
-    const std::int64_t made = std::max(floorTo(j, fillPeriod_), b.to);
+    const std::int64_t made = std::max(fillCadence_.latestAtOrBefore(j), b.to);
     b.depicted = std::min(b.from + (made - b.to), b.to);
     return b;
 }

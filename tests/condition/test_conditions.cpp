@@ -205,10 +205,15 @@ TEST(Conditions, ImpossibleCombinationsNameThePartAndWhatIsAllowed) {
               "(7 frames) and 66.6667 ms (8 frames), or give lag_frames");
     ms.lagMs = 62.5;
     EXPECT_EQ(problemOf(ms, 240), "");
-    // A fill whose rate does not divide the refresh, or is not a multiple of the render rate.
+    // A fill above the refresh, or not a multiple of a render rate that divides the refresh;
+    // one the refresh does not divide runs unevenly, as renders do.
     Condition fill = composed(15, 0, "warp-sparse8", LateWarp::None);
     fill.fillHz = 50;
-    EXPECT_EQ(problemOf(fill, 120).rfind("fill_hz: is 50 Hz", 0), 0u);
+    EXPECT_EQ(problemOf(fill, 120), "");
+    fill.fillHz = 150;
+    EXPECT_EQ(problemOf(fill, 120),
+              "fill_hz: is 150 Hz, above the refresh (120 Hz): a display shows at most one new frame per refresh; "
+              "allowed: up to 120 Hz");
     fill.fillHz = 40;
     EXPECT_EQ(problemOf(fill, 120), "fill_hz: the fill's rate (40 Hz) must be a whole multiple of render_hz (15 Hz)");
     Condition hold = composed(60, 0, "hold", LateWarp::None);

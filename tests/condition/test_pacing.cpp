@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -227,6 +228,37 @@ TEST(Pacing, FillsWorkOverUnevenRenders) {
 std::string problemOf(const Condition& c, double refreshHz) {
     const auto p = problem(c, refreshHz);
     return p ? p->part + ": " + p->reason : "";
+}
+
+// The published upconversion presets on a 144 Hz display: their fill rates (120, 60 Hz) do not
+// divide it, so the fill makes its frames at the first refresh at or after each of its
+// instants, as renders are shown; every frame the schedule shows new is a render or such a
+// fill frame, and nothing else.
+TEST(Pacing, AFillTheRefreshDoesNotDivideMakesItsFramesUnevenly) {
+    for (const char* name : {"warp15to120", "bireproj15to60"}) {
+        const Condition& c = preset(name);
+        ASSERT_EQ(problem(c, 144.0), std::nullopt) << name;
+        const ModeSchedule s(c, 144.0);
+        const double fillFrames = 144.0 / *c.fillHz, renderFrames = 144.0 / c.renderHz;
+        std::set<std::int64_t> expected;
+        for (std::int64_t i = 0; i * fillFrames < 2000; ++i)
+            expected.insert(static_cast<std::int64_t>(std::ceil(static_cast<double>(i) * fillFrames - 1e-7)));
+        for (std::int64_t i = 0; i * renderFrames < 2000; ++i)
+            expected.insert(static_cast<std::int64_t>(std::ceil(static_cast<double>(i) * renderFrames - 1e-7)));
+        // Bidirectional reprojection plays a render interval once its later render exists: its
+        // new frames are those instants, after the first interval it cannot yet play.
+        const std::int64_t from = c.fillKind() == Fill::Bireproj ? 10 : 0;
+        std::vector<std::int64_t> shown, wanted;
+        for (std::int64_t k = from; k < 1900; ++k) {
+            if (s.frame(k).kind != FrameKind::Held) shown.push_back(k);
+            if (expected.count(k)) wanted.push_back(k);
+        }
+        EXPECT_EQ(shown, wanted) << name;
+        // The fill's frames are 1 or 2 refreshes apart (120 Hz) or 2 or 3 (60 Hz): 1.2 and 2.4
+        // on average.
+        EXPECT_NEAR(static_cast<double>(shown.size()) / static_cast<double>(1900 - from) * fillFrames, 1.0, 0.01)
+            << name;
+    }
 }
 
 TEST(Pacing, ParametersOutOfRangeNameTheKeyAndWhatIsAllowed) {

@@ -232,7 +232,7 @@ std::vector<condition::Condition> composedConditions() {
     warp.lateWarp = condition::LateWarp::Rotation;
     list.push_back(warp);
     // Uneven renders (docs/frame-pacing.md): a rate the refresh does not divide, seeded jitter
-    // and hitches, held, warped and interpolated.
+    // and hitches, held, warped and interpolated; and uneven fills.
     condition::Condition uneven;
     uneven.name = "uneven50";
     uneven.renderHz = 50;
@@ -248,6 +248,17 @@ std::vector<condition::Condition> composedConditions() {
     hitch.fill = "bireproj";
     hitch.hitches = {80, 0.25, 0};
     list.push_back(hitch);
+    // Fills at a rate the refresh does not divide (50 Hz on 120: 2, 3, 2, 3, 2 refreshes).
+    condition::Condition warpFill;
+    warpFill.name = "warp15-fill50";
+    warpFill.renderHz = 15;
+    warpFill.fill = "warp-full";
+    warpFill.fillHz = 50;
+    list.push_back(warpFill);
+    condition::Condition bireprojFill = warpFill;
+    bireprojFill.name = "bireproj15-fill50";
+    bireprojFill.fill = "bireproj";
+    list.push_back(bireprojFill);
     return list;
 }
 

@@ -92,9 +92,10 @@ TEST(ProtocolPacing, JitterAndHitchesReadAndWriteBack) {
     EXPECT_EQ(p.conditionTable.at("hitch").hitches.everyS, 2);
     EXPECT_EQ(p.conditionTable.at("rare").hitches.ratePerS, 0.25);
     EXPECT_TRUE(parseShooterProtocol(toJson(p), "copy").conditionTable == p.conditionTable);
-    // On a 144 Hz display every preset the refresh does not divide runs too.
+    // On a 144 Hz display every preset whose rates the refresh does not divide runs too (the
+    // lag presets' lags are not whole frames there).
     Json presets = paced(8);
-    for (const char* preset : {"conv15", "conv30", "conv60", "conv120"})
+    for (const char* preset : {"conv15", "conv30", "conv60", "conv120", "warp15to120", "bireproj15to60"})
         presets["test"]["conditions"].push_back(preset);
     EXPECT_EQ(errorOf(presets), "");
 }

@@ -597,15 +597,15 @@ TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
     document["test"]["conditions"].erase(7);
     EXPECT_NO_THROW(parse(document.dump()));
 
-    // 90 Hz: the lag modes' 60 Hz renders run unevenly and 100 ms is 9 whole frames, but a fill
-    // at 60 Hz must still divide the refresh.
+    // 90 Hz: the lag modes' 60 Hz renders run unevenly and 100 ms is 9 whole frames; a fill at
+    // 60 Hz makes its frames 1 or 2 refreshes apart; but 50 ms is not whole frames.
     document = thesisWith("/display/refresh_hz", 90);
     document["acclimation"]["mode"] = "conv30";
     document["training"]["high_mode"] = "conv30";
-    document["test"]["conditions"] = {"conv15", "lag100"};
+    document["test"]["conditions"] = {"conv15", "lag100", "bireproj15to60"};
     EXPECT_NO_THROW(parse(document.dump()));
-    document["test"]["conditions"] = {"bireproj15to60"};
-    expectContains(errorOf(document), {"test.conditions[0] is \"bireproj15to60\"", "multiple of 60"});
+    document["test"]["conditions"] = {"lag50"};
+    expectContains(errorOf(document), {"test.conditions[0] is \"lag50\"", "4.5 frames at 90 Hz"});
 
     // The training pair is checked like any other mode.
     document = thesisWith("/display/refresh_hz", 45);

@@ -90,7 +90,7 @@ private:
     Range latencyRange(Depicted depicted) const;
     template <typename Depicted>
     std::vector<LatencySpan> latencySpans(std::int64_t first, std::int64_t last, Depicted depicted) const;
-    std::int64_t cycle() const { return cadence_.cycleFrames() * fillPeriod_; }
+    std::int64_t cycle() const { return cadence_.cycleFrames() * cycleFactor_; }
     // The frame the fill makes at production frame j, before the queue and any late warp.
     ScheduledFrame produced(std::int64_t j) const;
     // A bidirectional fill at production frame j: the render interval it plays and the
@@ -103,9 +103,14 @@ private:
     Condition mode_;
     double refreshHz_;
     RenderCadence cadence_;
+    // The display frames the fill makes a frame at: every one, or fill_hz's steady cadence,
+    // uneven when the refresh is not a whole multiple of it (120 Hz on 144: 1, 1, 1, 1, 2).
+    RenderCadence fillCadence_;
     Fill fill_;
     std::int64_t lagFrames_;  // display frames a rendered frame waits in the queue
-    std::int64_t fillPeriod_;  // display frames between the frames the fill makes
+    // cycle() is the render cadence's cycle times this: the fill's cycle, or for hold the render
+    // period (a steady cadence's cycle squared, as the latency ranges have always scanned it).
+    std::int64_t cycleFactor_;
 };
 
 // A condition at one refresh, as `warplab conditions` and export's conditions.csv list it.
