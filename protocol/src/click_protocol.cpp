@@ -1,6 +1,6 @@
 #include "protocol/click_protocol.h"
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 #include "questions_json.h"
 
 namespace warplab::protocol {
@@ -14,7 +14,7 @@ using detail::kCommitStretchLimitS;
 using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
-// Bounds that no study needs to exceed (json_fields.h says why they exist).
+// Bounds that no study needs to exceed (protocol/fields.h says why they exist).
 constexpr double kGravityLimit = 100;  // about 10 g
 // m: below half the smallest side of the physics box (physics::SphereBox, 3.8 m deep), which
 // refused every radius from 1.9 up whatever the other fields said.

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 
 namespace warplab::protocol::detail {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 #include "protocol/questions.h"
 
 namespace warplab::protocol::detail {

@@ -1,6 +1,6 @@
 #include "protocol/shooter_protocol.h"
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 #include "questions_json.h"
 
 namespace warplab::protocol {
@@ -11,7 +11,7 @@ using detail::kCommitStretchLimitS;
 using detail::kRefreshLimitHz;
 using detail::NumberRange;
 
-// Bounds that no study needs to exceed (json_fields.h says why they exist).
+// Bounds that no study needs to exceed (protocol/fields.h says why they exist).
 constexpr int kLevelLimit = 120;  // v0 * 2^20: far beyond any hittable speed
 constexpr int kTargetsLimit = 100000;
 constexpr int kShotsLimit = 10000;

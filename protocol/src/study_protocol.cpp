@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 
 namespace warplab::protocol {
 
