@@ -6,13 +6,13 @@
 namespace warplab::protocol {
 namespace {
 
-using detail::elementPath;
-using detail::formatNumber;
-using detail::joinPath;
-using detail::Json;
-using detail::kCommitStretchLimitS;
-using detail::kRefreshLimitHz;
-using detail::NumberRange;
+using fields::elementPath;
+using fields::formatNumber;
+using fields::joinPath;
+using fields::Json;
+using fields::kCommitStretchLimitS;
+using fields::kRefreshLimitHz;
+using fields::NumberRange;
 
 // Bounds that no study needs to exceed (protocol/fields.h says why they exist).
 constexpr double kGravityLimit = 100;  // about 10 g
@@ -36,29 +36,29 @@ constexpr double kMatchLimitS = kCommitStretchLimitS;  // 5 minutes, 6.7 times t
 constexpr double kSpawnDelayLimitS = 60;  // 120 times the default 0.5 s
 
 using P = ClickProtocol;
-using K = detail::Keys<P>;
-using detail::at;
+using K = fields::Keys<P>;
+using fields::at;
 
 // The keys of each element of matches.rounds. "name" is required.
-const std::vector<detail::Key<ClickRound>>& roundKeys() {
+const std::vector<fields::Key<ClickRound>>& roundKeys() {
     using R = ClickRound;
-    static const std::vector<detail::Key<R>> keys = [] {
-        detail::Key<R> name = detail::Keys<R>::make(
-            "name", at(&R::name), [](const detail::Reader& r, const Json* item, const std::string& where, R& round) {
+    static const std::vector<fields::Key<R>> keys = [] {
+        fields::Key<R> name = fields::Keys<R>::make(
+            "name", at(&R::name), [](const fields::Reader& r, const Json* item, const std::string& where, R& round) {
                 if (!item->contains("name")) r.fail(joinPath(where, "name"), "is required but missing");
                 round.name = r.line(item->at("name"), joinPath(where, "name"));
             });
-        return std::vector<detail::Key<R>>{
+        return std::vector<fields::Key<R>>{
             name,
-            detail::Keys<R>::boolean("scored", at(&R::scored)),
-            detail::Keys<R>::integer("matches_per_mode", at(&R::matchesPerMode), 1, kMatchesPerModeLimit),
-            detail::instructionsKey<R>(at(&R::instructions), kClickInstructionsSince),
+            fields::Keys<R>::boolean("scored", at(&R::scored)),
+            fields::Keys<R>::integer("matches_per_mode", at(&R::matchesPerMode), 1, kMatchesPerModeLimit),
+            fields::instructionsKey<R>(at(&R::instructions), kClickInstructionsSince),
         };
     }();
     return keys;
 }
 
-void readRounds(const detail::Reader& r, const Json* matches, const std::string& path, P& p) {
+void readRounds(const fields::Reader& r, const Json* matches, const std::string& path, P& p) {
     const Json* rounds = r.array(matches, path, "rounds", "rounds");
     if (!rounds) return;
     std::vector<ClickRound> read;
@@ -66,9 +66,9 @@ void readRounds(const detail::Reader& r, const Json* matches, const std::string&
     for (std::size_t i = 0; i < rounds->size(); ++i) {
         const Json& item = (*rounds)[i];
         const std::string where = elementPath("matches.rounds", i);
-        if (!item.is_object()) r.fail(where, "must be an object, got " + detail::describe(item));
+        if (!item.is_object()) r.fail(where, "must be an object, got " + fields::describe(item));
         ClickRound round;
-        detail::readKeys(r, item, where, roundKeys(), p.formatVersion, round);
+        fields::readKeys(r, item, where, roundKeys(), p.formatVersion, round);
         names.push_back(round.name);
         read.push_back(round);
     }
@@ -80,12 +80,12 @@ void writeRounds(Json& matches, const P& p) {
     matches["rounds"] = Json::array();
     for (const ClickRound& round : p.rounds) {
         Json item = Json::object();
-        detail::writeKeys(item, roundKeys(), p.formatVersion, round);
+        fields::writeKeys(item, roundKeys(), p.formatVersion, round);
         matches["rounds"].push_back(item);
     }
 }
 
-void readStatements(const detail::Reader& r, const Json* ratings, const std::string& path, P& p) {
+void readStatements(const fields::Reader& r, const Json* ratings, const std::string& path, P& p) {
     // May be empty, but only with ratings off (checked once both are final).
     const Json* statements = r.array(ratings, path, "statements", "statements", true);
     if (!statements) return;
@@ -114,16 +114,16 @@ std::vector<Question> ratingsAsQuestions(const P& p) {
 // matches.questions, new in format 4. An older struct's questions are its ratings', which the
 // ratings section already writes; where they are not, the key is written so that parsing the
 // copy refuses it rather than asking what the ratings say.
-detail::Key<P> matchQuestionsKey() {
-    detail::Key<P> k = detail::questionsKey<P>(at(&P::questions), kClickQuestionsSince);
+fields::Key<P> matchQuestionsKey() {
+    fields::Key<P> k = fields::questionsKey<P>(at(&P::questions), kClickQuestionsSince);
     k.isDefault = [](const P& p) { return p.questions == ratingsAsQuestions(p); };
     return k;
 }
 
 // Every key of a click protocol below the top level, once (docs/protocol.md lists each).
-const std::vector<detail::Section<P>>& sections() {
-    static const std::vector<detail::Section<P>> list = [] {
-        std::vector<detail::Key<P>> display = {
+const std::vector<fields::Section<P>>& sections() {
+    static const std::vector<fields::Section<P>> list = [] {
+        std::vector<fields::Key<P>> display = {
             K::number("refresh_hz", at(&P::refreshHz), {1, false, kRefreshLimitHz, false}),
             K::number("vertical_fov_deg", at(&P::verticalFovDeg),
                       {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}),
@@ -131,8 +131,8 @@ const std::vector<detail::Section<P>>& sections() {
                       {-kMaxCameraPitchDeg, false, kMaxCameraPitchDeg, false}),
             K::choice("refresh_mismatch", at(&P::refreshMismatch)),
         };
-        for (auto& k : detail::renderKeys<P>(kClickPhotonMarkerSince)) display.push_back(k);
-        return std::vector<detail::Section<P>>{
+        for (auto& k : fields::renderKeys<P>(kClickPhotonMarkerSince)) display.push_back(k);
+        return std::vector<fields::Section<P>>{
             {"display", display},
             {"physics",
              {K::number("gravity_m_per_s2", at(&P::gravity), {0, false, kGravityLimit, false}),
@@ -151,7 +151,7 @@ const std::vector<detail::Section<P>>& sections() {
              {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}), K::modeList("modes", at(&P::modes)),
               K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
               K::choice("scoring", at(&P::scoring)), matchQuestionsKey()}},
-            detail::Section<P>{"ratings",
+            fields::Section<P>{"ratings",
                                {K::boolean("enabled", at(&P::ratingsEnabled)),
                                 K::custom("statements", readStatements,
                                           [](Json& o, const P& p) { o["statements"] = p.ratingStatements; }),
@@ -166,22 +166,22 @@ const std::vector<detail::Section<P>>& sections() {
 }  // namespace
 
 std::vector<std::string> clickProtocolKeys() {
-    return detail::keyPaths(
+    return fields::keyPaths(
         sections(),
-        {{"matches.rounds", detail::keyNames(roundKeys())}, {"matches.questions", detail::questionKeyNames()}});
+        {{"matches.rounds", fields::keyNames(roundKeys())}, {"matches.questions", fields::questionKeyNames()}});
 }
 
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName) {
-    detail::Reader r(sourceName);
+    fields::Reader r(sourceName);
     const Json document = r.parseObject(jsonText);
     ClickProtocol p;
     r.requireGame(document, "click");
     p.formatVersion = r.formatVersion(document, kClickFormatVersion);
-    r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
+    r.requireKnownKeys(document, "", fields::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
     p.conditionTable =
         condition::ConditionTable(r.conditions(document, p.formatVersion, kClickConditionsSince, kClickPacingSince));
-    detail::readSections(r, document, sections(), p.formatVersion, p);
+    fields::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kClickInstructionsSince)
         for (ClickRound& round : p.rounds) round.instructions.clear();
     if (p.formatVersion < kClickQuestionsSince) p.questions = ratingsAsQuestions(p);
@@ -212,10 +212,10 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 ClickProtocol loadClickProtocol(const std::string& path) { return parseClickProtocol(readProtocolFile(path), path); }
 
 std::string toJson(const ClickProtocol& p) {
-    Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
-    detail::writeConditions(document, p.conditionTable.defined());
-    detail::writeSections(document, sections(), p.formatVersion, p);
-    return detail::canonicalText(document);
+    Json document = fields::headerJson(p.formatVersion, p.name, p.description, p.game);
+    fields::writeConditions(document, p.conditionTable.defined());
+    fields::writeSections(document, sections(), p.formatVersion, p);
+    return fields::canonicalText(document);
 }
 
 }  // namespace warplab::protocol

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-namespace warplab::protocol::detail {
+namespace warplab::protocol::fields {
 namespace {
 
 [[noreturn]] void raiseProtocolError(const std::string& sentence) { throw ProtocolError(sentence); }
@@ -283,4 +283,4 @@ void Reader::requireModes(const std::string& path, const std::vector<std::string
     for (std::size_t i = 0; i < ids.size(); ++i) requireMode(elementPath(path, i), ids[i], refreshHz);
 }
 
-}  // namespace warplab::protocol::detail
+}  // namespace warplab::protocol::fields

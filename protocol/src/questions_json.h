@@ -9,7 +9,7 @@
 #include "protocol/fields.h"
 #include "protocol/questions.h"
 
-namespace warplab::protocol::detail {
+namespace warplab::protocol::fields {
 
 // A question's keys, in the order they are read and written.
 std::vector<const char*> questionKeyNames();
@@ -38,4 +38,4 @@ Key<P> questionsKey(Get get, int since) {
     return k.since(since, true);
 }
 
-}  // namespace warplab::protocol::detail
+}  // namespace warplab::protocol::fields

@@ -6,10 +6,10 @@
 namespace warplab::protocol {
 namespace {
 
-using detail::Json;
-using detail::kCommitStretchLimitS;
-using detail::kRefreshLimitHz;
-using detail::NumberRange;
+using fields::Json;
+using fields::kCommitStretchLimitS;
+using fields::kRefreshLimitHz;
+using fields::NumberRange;
 
 // Bounds that no study needs to exceed (protocol/fields.h says why they exist).
 constexpr int kLevelLimit = 120;  // v0 * 2^20: far beyond any hittable speed
@@ -37,21 +37,21 @@ constexpr double kAcclimationLimitS = 1800;  // 6 times the thesis' 5 minutes
 constexpr double kTrainingLimitS = 3600;  // 5 times the thesis' 12 minutes
 
 using P = ShooterProtocol;
-using K = detail::Keys<P>;
-using detail::at;
+using K = fields::Keys<P>;
+using fields::at;
 
 // Every key of a shooter protocol below the top level, once (docs/protocol.md lists each).
-const std::vector<detail::Section<P>>& sections() {
-    static const std::vector<detail::Section<P>> list = [] {
-        std::vector<detail::Key<P>> display = {
+const std::vector<fields::Section<P>>& sections() {
+    static const std::vector<fields::Section<P>> list = [] {
+        std::vector<fields::Key<P>> display = {
             K::number("refresh_hz", at(&P::refreshHz), {1, false, kRefreshLimitHz, false}),
             K::number("vertical_fov_deg", at(&P::verticalFovDeg),
                       {kMinVerticalFovDeg, false, kMaxVerticalFovDeg, false}),
             K::choice("refresh_mismatch", at(&P::refreshMismatch)).since(2),
         };
-        for (auto& k : detail::renderKeys<P>(kShooterPhotonMarkerSince)) display.push_back(k);
+        for (auto& k : fields::renderKeys<P>(kShooterPhotonMarkerSince)) display.push_back(k);
         using S = StaircaseSettings;
-        return std::vector<detail::Section<P>>{
+        return std::vector<fields::Section<P>>{
             {"display", display},
             {"target", {K::number("radius_m", at(&P::targetRadius), {kRadiusMin, false, kRadiusLimit, true})}},
             {"input",
@@ -60,7 +60,7 @@ const std::vector<detail::Section<P>>& sections() {
             {"acclimation",
              {K::number("duration_s", at(&P::acclimationS), {0, true, kAcclimationLimitS, false}),
               K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit), K::modeId("mode", at(&P::acclimationMode)),
-              detail::instructionsKey<P>(at(&P::acclimationInstructions), kShooterInstructionsSince)}},
+              fields::instructionsKey<P>(at(&P::acclimationInstructions), kShooterInstructionsSince)}},
             {"training",
              {K::number("base_speed_m_per_s", at(&P::training, &S::baseSpeed), {0, true, kMaxBaseSpeedMPerS, false}),
               K::integer("start_level", at(&P::training, &S::startLevel), 0, kLevelLimit),
@@ -70,7 +70,7 @@ const std::vector<detail::Section<P>>& sections() {
               K::modeId("high_mode", at(&P::training, &S::highMode)),
               K::modeId("low_mode", at(&P::training, &S::lowMode)),
               K::number("time_limit_s", at(&P::training, &S::timeLimitS), {0, true, kTrainingLimitS, false}),
-              detail::instructionsKey<P>(at(&P::trainingInstructions), kShooterInstructionsSince)}},
+              fields::instructionsKey<P>(at(&P::trainingInstructions), kShooterInstructionsSince)}},
             {"test",
              {K::modeList("conditions", at(&P::conditions)),
               K::integer("targets_per_condition", at(&P::targetsPerCondition), 1, kTargetsLimit),
@@ -82,8 +82,8 @@ const std::vector<detail::Section<P>>& sections() {
               // is written anyway, so that parsing the copy refuses it instead of quietly
               // replaying it differently.
               K::choice("click_timing", at(&P::clickTiming)).since(2, true),
-              detail::instructionsKey<P>(at(&P::testInstructions), kShooterInstructionsSince),
-              detail::questionsKey<P>(at(&P::questions), kShooterQuestionsSince)}},
+              fields::instructionsKey<P>(at(&P::testInstructions), kShooterInstructionsSince),
+              fields::questionsKey<P>(at(&P::questions), kShooterQuestionsSince)}},
         };
     }();
     return list;
@@ -92,22 +92,22 @@ const std::vector<detail::Section<P>>& sections() {
 }  // namespace
 
 std::vector<std::string> shooterProtocolKeys() {
-    return detail::keyPaths(sections(), {{"test.questions", detail::questionKeyNames()}});
+    return fields::keyPaths(sections(), {{"test.questions", fields::questionKeyNames()}});
 }
 
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName) {
-    detail::Reader r(sourceName);
+    fields::Reader r(sourceName);
     const Json document = r.parseObject(jsonText);
     ShooterProtocol p;
     r.requireGame(document, "shooter");
     p.formatVersion = r.formatVersion(document, kShooterFormatVersion);
     p.legacyRules = p.formatVersion == 1;
 
-    r.requireKnownKeys(document, "", detail::topLevelKeys(sections()));
+    r.requireKnownKeys(document, "", fields::topLevelKeys(sections()));
     r.nameAndDescription(document, p.name, p.description);
     p.conditionTable = condition::ConditionTable(
         r.conditions(document, p.formatVersion, kShooterConditionsSince, kShooterPacingSince));
-    detail::readSections(r, document, sections(), p.formatVersion, p);
+    fields::readSections(r, document, sections(), p.formatVersion, p);
     if (p.formatVersion < kShooterInstructionsSince)
         for (std::string* text : {&p.acclimationInstructions, &p.trainingInstructions, &p.testInstructions})
             text->clear();
@@ -143,10 +143,10 @@ ShooterProtocol loadShooterProtocol(const std::string& path) {
 }
 
 std::string toJson(const ShooterProtocol& p) {
-    Json document = detail::headerJson(p.formatVersion, p.name, p.description, p.game);
-    detail::writeConditions(document, p.conditionTable.defined());
-    detail::writeSections(document, sections(), p.formatVersion, p);
-    return detail::canonicalText(document);
+    Json document = fields::headerJson(p.formatVersion, p.name, p.description, p.game);
+    fields::writeConditions(document, p.conditionTable.defined());
+    fields::writeSections(document, sections(), p.formatVersion, p);
+    return fields::canonicalText(document);
 }
 
 }  // namespace warplab::protocol

@@ -1,7 +1,8 @@
-// Private to protocol/: what every game's protocol parser is built from, over the strict reader
-// (strict/json.h) that all of warplab's files share, so that all protocol files follow the same
-// rules (docs/protocol.md, "Rules"): the header every protocol starts with, its own
-// conditions, mode ids, and the field tables below.
+// What every game's protocol parser is built from, over the strict reader (strict/json.h) that
+// all of warplab's files share, so that all protocol files follow the same rules
+// (docs/protocol.md, "Rules"): the header every protocol starts with, its own conditions, mode
+// ids, and the field tables below. Public, so that a game's module (games/NAME/) reads its own
+// sections with it; nothing here names a game.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +18,7 @@
 #include "scene/limits.h"
 #include "strict/json.h"
 
-namespace warplab::protocol::detail {
+namespace warplab::protocol::fields {
 
 using strict::describe;
 using strict::elementPath;
@@ -349,4 +350,4 @@ std::vector<Key<P>> renderKeys(int photonMarkerSince) {
             .since(photonMarkerSince, true)};
 }
 
-}  // namespace warplab::protocol::detail
+}  // namespace warplab::protocol::fields
