@@ -13,7 +13,7 @@
 
 #include "condition/condition.h"
 #include "game/game.h"
-#include "question_bot.h"
+#include "game/question_bot.h"
 #include "game/random.h"
 #include "protocol/click_protocol.h"
 

@@ -17,7 +17,7 @@
 #include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
-#include "questionnaire.h"
+#include "game/questionnaire.h"
 #include "physics/falling_spheres.h"
 #include "protocol/click_protocol.h"
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "click/click_bot.h"
-#include "event_detail.h"
-#include "questionnaire.h"
+#include "game/event_detail.h"
+#include "game/questionnaire.h"
 #include "click/click_game.h"
 #include "protocol/click_protocol.h"
 #include "protocol/study_protocol.h"

@@ -11,7 +11,7 @@
 
 #include "game/game.h"
 #include "game/random.h"
-#include "question_bot.h"
+#include "game/question_bot.h"
 #include "protocol/shooter_protocol.h"
 
 namespace warplab::game {

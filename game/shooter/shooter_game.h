@@ -15,7 +15,7 @@
 #include "game/depiction.h"
 #include "game/frame_history.h"
 #include "game/game.h"
-#include "questionnaire.h"
+#include "game/questionnaire.h"
 #include "condition/schedule.h"
 #include "physics/bouncing_target.h"
 #include "session/session_store.h"

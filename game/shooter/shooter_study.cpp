@@ -2,8 +2,8 @@
 
 #include <set>
 
-#include "event_detail.h"
-#include "questionnaire.h"
+#include "game/event_detail.h"
+#include "game/questionnaire.h"
 #include "shooter/shooter_bot.h"
 #include "shooter/shooter_game.h"
 #include "protocol/shooter_protocol.h"

@@ -14,7 +14,7 @@
 #include "click/click_game.h"
 #include "protocol/click_protocol.h"
 #include "protocol/shooter_protocol.h"
-#include "questionnaire.h"
+#include "game/questionnaire.h"
 #include "session/records.h"
 #include "shooter/shooter_bot.h"
 #include "shooter/shooter_game.h"

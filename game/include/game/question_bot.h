@@ -1,4 +1,4 @@
-// Private to game/: how the scripted bots (shooter_bot.h, click_bot.h) answer a question screen
+// For the games' modules: how the scripted bots (shooter_bot.h, click_bot.h) answer a question screen
 // by the keyboard. Bots are scripted players for tests and pilots, not models of anyone: they
 // give a fixed, documented answer (docs/protocol.md, "Questions").
 #pragma once

@@ -1,4 +1,4 @@
-// Private to game/: the question screens every game shows after a block of play (the click
+// For the games' modules: the question screens every game shows after a block of play (the click
 // game after each match, the shooter after each block of its test), one question at a time,
 // from the protocol's list (protocol/questions.h). The games own when a list opens and what the
 // answers' events are about; this owns the screens' layout, what answers, and the answer.

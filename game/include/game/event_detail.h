@@ -1,4 +1,4 @@
-// Reading a stored event's detail_json for export (Study::results). Private to game/: the
+// Reading a stored event's detail_json for export (Study::results), for the games' modules: the
 // games write their details with nlohmann::json and read them back the same way.
 #pragma once
 
