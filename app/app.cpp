@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "commands.h"
+#include "games/games.h"
 #include "renderer/mesh.h"
 
 #ifndef WARPLAB_DEFAULT_DATA_DIR
@@ -109,6 +110,8 @@ const std::vector<Command>& commands() {
 }
 
 int run(const std::vector<std::string>& args) {
+    // Every command may read a protocol: the games are known before anything else happens.
+    games::registerGames();
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         std::cout << overview();
         return args.empty() ? 2 : 0;

@@ -8,7 +8,7 @@
 
 #include "commands.h"
 #include "game/shooter_scene.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "renderer/upconvert.h"
 #include "renderer/window.h"
 #include "scene/limits.h"
@@ -17,7 +17,7 @@ namespace warplab::app {
 namespace {
 
 // Where a flag's value stops making a frame worth looking at. The field of view, the pitch
-// and the speed are the protocols' own limits (protocol/shooter_protocol.h), so a frame a
+// and the speed are the protocols' own limits (shooter/shooter_protocol.h), so a frame a
 // protocol can ask for can always be rendered here, and the other way round.
 // 100 turns either way: the camera holds yaw as float radians, and at 628 rad a float still
 // resolves 0.0035 degrees, under a tenth of a pixel at 1080 lines over 60 degrees.

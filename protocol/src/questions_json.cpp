@@ -1,4 +1,4 @@
-#include "questions_json.h"
+#include "protocol/questions_json.h"
 
 #include <algorithm>
 #include <cstddef>

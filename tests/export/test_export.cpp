@@ -26,8 +26,8 @@
 
 #include "export/csv.h"
 #include "game/registry.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "export/export.h"
 #include "plan/study_plan.h"
 #include "condition/schedule.h"

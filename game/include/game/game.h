@@ -4,7 +4,8 @@
 //   Study  -- a parsed protocol bound to its game: makes games and bots;
 //   Game   -- a deterministic state machine stepped once per displayed frame;
 //   Player -- whoever produces the input: a bot, the simulated participant, a recorded session.
-// A game is one folder (game/shooter/, game/click/) plus one line in game/src/registry.cpp (or a registerGame call).
+// A game is a module of its own (games/shooter/, games/click/) plus one line in
+// games/src/games.cpp (or a registerGame call); nothing outside it names the game.
 #pragma once
 
 #include <cstdint>

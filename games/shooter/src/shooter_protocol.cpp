@@ -1,7 +1,7 @@
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 
 #include "protocol/fields.h"
-#include "questions_json.h"
+#include "protocol/questions_json.h"
 
 namespace warplab::protocol {
 namespace {

@@ -1,7 +1,7 @@
-#include "protocol/click_protocol.h"
+#include "click/click_protocol.h"
 
 #include "protocol/fields.h"
-#include "questions_json.h"
+#include "protocol/questions_json.h"
 
 namespace warplab::protocol {
 namespace {

@@ -1,4 +1,4 @@
-#include "shooter/shooter_game.h"
+#include "shooter_game.h"
 
 #include <algorithm>
 #include <cmath>

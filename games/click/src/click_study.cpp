@@ -6,11 +6,11 @@
 #include <utility>
 #include <vector>
 
-#include "click/click_bot.h"
+#include "click_bot.h"
 #include "game/event_detail.h"
 #include "game/questionnaire.h"
-#include "click/click_game.h"
-#include "protocol/click_protocol.h"
+#include "click_game.h"
+#include "click/click_protocol.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::game {

@@ -19,7 +19,7 @@
 #include "condition/schedule.h"
 #include "physics/bouncing_target.h"
 #include "session/session_store.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "scene/scene.h"
 
 namespace warplab::game {

@@ -1,4 +1,4 @@
-// Private to protocol/: a list of questions (protocol/questions.h) as every game's protocol
+// For every game's protocol parser (protocol/fields.h): a list of questions (protocol/questions.h) as every game's protocol
 // writes it. One reader and one writer, so that a question reads, is checked and is written
 // the same in every game's file (docs/protocol.md, "Questions").
 #pragma once

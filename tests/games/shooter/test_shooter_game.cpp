@@ -8,11 +8,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "shooter/shooter_bot.h"
-#include "shooter/shooter_game.h"
+#include "shooter_bot.h"
+#include "shooter_game.h"
 #include "game/registry.h"
 #include "session/records.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "scene/camera.h"
 
 namespace warplab::game {

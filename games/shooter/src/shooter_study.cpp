@@ -4,9 +4,9 @@
 
 #include "game/event_detail.h"
 #include "game/questionnaire.h"
-#include "shooter/shooter_bot.h"
-#include "shooter/shooter_game.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter_bot.h"
+#include "shooter_game.h"
+#include "shooter/shooter_protocol.h"
 
 namespace warplab::game {
 namespace {

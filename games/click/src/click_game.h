@@ -19,7 +19,7 @@
 #include "game/game.h"
 #include "game/questionnaire.h"
 #include "physics/falling_spheres.h"
-#include "protocol/click_protocol.h"
+#include "click/click_protocol.h"
 
 namespace warplab::game {
 

@@ -15,7 +15,7 @@
 #include "game/game.h"
 #include "game/question_bot.h"
 #include "game/random.h"
-#include "protocol/click_protocol.h"
+#include "click/click_protocol.h"
 
 namespace warplab::game {
 

@@ -1,4 +1,4 @@
-#include "click/click_game.h"
+#include "click_game.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "click/click_bot.h"
+#include "click_bot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -13,11 +13,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "click/click_bot.h"
+#include "click_bot.h"
 #include "condition/readme_latency_table.h"
-#include "click/click_game.h"
+#include "click_game.h"
 #include "game/screen.h"
-#include "protocol/click_protocol.h"
+#include "click/click_protocol.h"
 #include "game/registry.h"
 #include "session/records.h"
 

@@ -17,9 +17,9 @@
 
 #include "condition/schedule.h"
 #include "game/registry.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
-#include "questions_text.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
+#include "protocol/questions_text.h"
 
 namespace warplab::protocol {
 namespace {

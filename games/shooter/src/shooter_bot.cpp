@@ -1,5 +1,5 @@
-#include "shooter/shooter_bot.h"
-#include "shooter/shooter_game.h"
+#include "shooter_bot.h"
+#include "shooter_game.h"
 
 #include <algorithm>
 #include <cmath>

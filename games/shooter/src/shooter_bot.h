@@ -12,7 +12,7 @@
 #include "game/game.h"
 #include "game/random.h"
 #include "game/question_bot.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 
 namespace warplab::game {
 

@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "condition/schedule.h"
-#include "protocol/shooter_protocol.h"
-#include "questions_text.h"
+#include "shooter/shooter_protocol.h"
+#include "protocol/questions_text.h"
 
 namespace warplab::protocol {
 namespace {
@@ -744,7 +744,7 @@ TEST(ProtocolQuestions, OlderFilesMayNotAskAny) {
 }
 
 TEST(ProtocolQuestions, BadQuestionsAreNamedByTheirPathInTheTest) {
-    // The same reader as the click game's (tests/protocol/test_click_protocol.cpp has every
+    // The same reader as the click game's (tests/games/click/test_click_protocol.cpp has every
     // case): here each message names test.questions.
     EXPECT_EQ(errorOf(withTestQuestions(Json::array({Json{{"id", "a"}, {"prompt", "A"}, {"max_length", 9}}}))),
               "protocol 'p.json': test.questions[0].max_length is only for a text question; this one is likert");
