@@ -26,4 +26,11 @@ bool hasGameFields(const std::string& jsonText) {
     return false;
 }
 
+std::string withList(const std::string& jsonText, const char* section, const char* key,
+                     const std::vector<std::string>& list) {
+    fields::Json document = fields::Json::parse(jsonText);
+    document[section][key] = list;
+    return document.dump(2, ' ', false, fields::Json::error_handler_t::replace) + "\n";
+}
+
 }  // namespace warplab::protocol

@@ -46,6 +46,9 @@ public:
     bool isOutcome(const session::EventRecord& event) const override { return event.type == "click"; }
     PointerProbe probePointer(const ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const override;
+    // Match events recorded before bidirectional reprojection existed say that a stand-in drew
+    // the mode's frames ("stand_in": the rendering, not the game).
+    std::vector<std::string> renderDetailKeys() const override { return {"stand_in"}; }
     // Free play: one endless match in `mode` (the click game has no difficulty levels).
     void switchTo(const std::string& mode, int difficulty) override;
 

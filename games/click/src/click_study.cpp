@@ -119,6 +119,13 @@ public:
             p.planned += protocol_.modes.size() * static_cast<std::size_t>(round.matchesPerMode);
         return p;
     }
+    std::optional<CounterbalancedList> counterbalanced() const override {
+        return CounterbalancedList{protocol_.modes, !protocol_.shuffle};
+    }
+    std::string withConditionOrder(const std::string& protocolText,
+                                   const std::vector<std::string>& order) const override {
+        return protocol::withList(protocolText, "matches", "modes", order);
+    }
 
 private:
     bool roundScored(const std::string& round) const {

@@ -93,6 +93,13 @@ public:
         return {"test trials", ended.size(),
                 protocol_.conditions.size() * static_cast<std::size_t>(protocol_.targetsPerCondition)};
     }
+    std::optional<CounterbalancedList> counterbalanced() const override {
+        return CounterbalancedList{protocol_.conditions, !protocol_.interleaveConditions};
+    }
+    std::string withConditionOrder(const std::string& protocolText,
+                                   const std::vector<std::string>& order) const override {
+        return protocol::withList(protocolText, "test", "conditions", order);
+    }
 
 private:
     protocol::ShooterProtocol protocol_;
