@@ -1,4 +1,4 @@
-#include "game/toy_game.h"
+#include "toy/toy.h"
 
 #include <cmath>
 #include <optional>

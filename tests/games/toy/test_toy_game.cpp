@@ -12,7 +12,7 @@
 #include "export/export.h"
 #include "study/session_runner.h"
 #include "game/registry.h"
-#include "game/toy_game.h"
+#include "toy/toy.h"
 #include "session/records.h"
 #include "session/session_store.h"
 
