@@ -1,6 +1,6 @@
 #include <csignal>
 
-#include "app.h"
+#include "app/app.h"
 
 int main(int argc, char** argv) {
     // A session must outlive its output: when whoever reads stdout or stderr goes away (`| head`,
