@@ -1,6 +1,7 @@
 // The seam a game plugs into, proved by a game the application has never heard of: the toy
-// (tests/game/toy_game.*) registers itself and then runs headless, replays bit for bit and
-// exports, through the same runner, replay and export as the shooter and the click game.
+// (tests/games/toy/, a module of its own) is registered by one line and then runs headless,
+// replays bit for bit and exports, through the same runner, replay and export as the shooter
+// and the click game.
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -15,11 +16,18 @@
 #include "toy/toy.h"
 #include "session/records.h"
 #include "session/session_store.h"
+#include "toy/toy.h"
 
 namespace warplab {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The toy's one registration line, after the built-in games (as a lab's own task would add it).
+class RegisterTheToy : public ::testing::Environment {
+    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy); }
+};
+[[maybe_unused]] const auto* const registered = ::testing::AddGlobalTestEnvironment(new RegisterTheToy);
 
 std::string readAll(const fs::path& path) {
     std::ifstream in(path);
@@ -31,13 +39,12 @@ std::string readAll(const fs::path& path) {
 class ToyGame : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
-    game::toy::registerToyGame();
     const std::string mode = GetParam();
     const fs::path dir = fs::path(testing::TempDir()) / ("warplab-toy-" + mode);
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     const fs::path protocolPath = dir / "toy.json";
-    std::ofstream(protocolPath) << game::toy::toyProtocol(mode);
+    std::ofstream(protocolPath) << toy::toyProtocol(mode);
 
     study::HeadlessRun run;
     run.protocolPath = protocolPath.string();
@@ -94,11 +101,10 @@ INSTANTIATE_TEST_SUITE_P(Modes, ToyGame, ::testing::Values("conv15", "warp15to12
 // interruption: its kept frames are played again with their text, so the clicks after it
 // report the uninterrupted session's `typed`, and the whole is that session, row for row.
 TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
-    game::toy::registerToyGame();
     const fs::path dir = fs::path(testing::TempDir()) / "warplab-toy-resume";
     fs::remove_all(dir);
     for (const char* folder : {"whole", "cut", "resumed"}) fs::create_directories(dir / folder);
-    std::ofstream(dir / "toy.json") << game::toy::toyProtocol("conv15");
+    std::ofstream(dir / "toy.json") << toy::toyProtocol("conv15");
 
     study::HeadlessRun run;
     run.protocolPath = (dir / "toy.json").string();
@@ -145,7 +151,6 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
 }
 
 TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
-    game::toy::registerToyGame();
     const auto names = game::gameNames();
     ASSERT_GE(names.size(), 3u);
     EXPECT_EQ(names[0], "shooter");
@@ -155,7 +160,7 @@ TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
         game::registerGame(
             "click", [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> { return nullptr; }),
         std::invalid_argument);
-    EXPECT_EQ(game::parseStudy(game::toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
+    EXPECT_EQ(game::parseStudy(toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
 }
 
 }  // namespace
