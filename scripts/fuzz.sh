@@ -41,7 +41,7 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 
 # Protocol keys, enum values and mode ids, quoted as JSON writes them: the parsers' own string
 # literals and the shipped protocols', so the dictionary follows the code without a list to keep.
-grep -ohE '"[A-Za-z0-9_.+-]{2,40}"' protocol/src/*_protocol.cpp protocol/src/fields.cpp condition/src/condition.cpp \
+grep -ohE '"[A-Za-z0-9_.+-]{2,40}"' games/*/src/*_protocol.cpp protocol/src/fields.cpp condition/src/condition.cpp \
   protocol/*.json tests/fuzz/corpus/protocol/*.json |
   sort -u | sed 's/"/\\"/g; s/.*/"&"/' >"$work/protocol.dict"
 
