@@ -16,7 +16,7 @@
 
 #include "game/game.h"
 #include "condition/schedule.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 
 namespace warplab::game {
 

@@ -19,7 +19,7 @@
 
 #include "condition/schedule.h"
 #include "game/results.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 #include "protocol/questions.h"
 #include "protocol/study_protocol.h"
 #include "scene/scene.h"

@@ -15,7 +15,7 @@
 #include "game/game.h"
 #include "game/results.h"
 #include "protocol/questions.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 
 namespace warplab::game {
 

@@ -18,7 +18,7 @@
 #include "game/questionnaire.h"
 #include "condition/schedule.h"
 #include "physics/bouncing_target.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 #include "shooter/shooter_protocol.h"
 #include "scene/scene.h"
 
