@@ -409,26 +409,23 @@ ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
     return shown;
 }
 
-ShownFrame ShooterGame::step(const FrameInput& input) {
-    ++frame_;
-    commitPoint_ = false;
-    if (questionsDue_ && frame_ >= pauseUntil_) {
-        // The block's last pause is over: its questions, from this frame.
-        questionsDue_ = false;
-        asking_ = true;
-        pauseUntil_ = -1;
-        frozenFrame_.reset();
-        banner_.clear();
-        // At the middle the cursor lay on the Likert row's middle box, lit as if chosen: from
-        // format 7 it starts above every answer's box (they lie in the lower half), under the
-        // status line.
-        questionCursor_ = {
-            display_.width * 0.5,
-            display_.height * (protocol_.formatVersion >= protocol::kShooterRecentresSince ? 0.25 : 0.5)};
-        questions_.open(frame_ - 1);
-    }
-    if (asking_) return questionFrame(input);
-    const double refresh = protocol_.refreshHz;
+void ShooterGame::openQuestionsIfDue() {
+    if (!questionsDue_ || frame_ < pauseUntil_) return;
+    // The block's last pause is over: its questions, from this frame.
+    questionsDue_ = false;
+    asking_ = true;
+    pauseUntil_ = -1;
+    frozenFrame_.reset();
+    banner_.clear();
+    // At the middle the cursor lay on the Likert row's middle box, lit as if chosen: from
+    // format 7 it starts above every answer's box (they lie in the lower half), under the
+    // status line.
+    questionCursor_ = {display_.width * 0.5,
+                       display_.height * (protocol_.formatVersion >= protocol::kShooterRecentresSince ? 0.25 : 0.5)};
+    questions_.open(frame_ - 1);
+}
+
+void ShooterGame::turnCamera(const FrameInput& input) {
     const double sensitivity = protocol_.mouseRadiansPerCount;
     if (std::exchange(recentre_, false)) {
         camera_.yaw = restingCamera_.yaw;
@@ -437,42 +434,23 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
     camera_.yaw = static_cast<float>(camera_.yaw + input.mouseDx * sensitivity);
     camera_.pitch = static_cast<float>(std::clamp(camera_.pitch - input.mouseDy * sensitivity, -kMaxPitch, kMaxPitch));
     cameraHistory_.record(frame_, camera_);
-    bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
-    const bool enter = (input.keys & kKeyEnter) && !(previousKeys_ & kKeyEnter);
-    previousButtons_ = input.buttons;
-    previousKeys_ = input.keys;
+}
 
-    if (frame_ == 0) beginPhase(Phase::Acclimation);
-    if (pauseUntil_ >= 0 && frame_ >= pauseUntil_) {
-        pauseUntil_ = -1;
-        frozenFrame_.reset();
-        banner_.clear();
-        scheduleNextTrial();
-    }
-    if (reading_ && enter && frame_ > phaseStartFrame_)  // a press made while the text is up
-        finishReading();
-    else if (phase_ == Phase::AwaitingSupervisor && enter)
-        beginPhase(Phase::Training);
-    if (reading_) {
-        clickGate_.clear();
-        return readingFrame();
-    }
+ShownFrame ShooterGame::frozenShownFrame() const {
+    ShownFrame shown = *frozenFrame_;
+    shown.frame = frame_;
+    shown.inputFrame = frame_;  // the banner answers the shot at once, whatever the mode's lag
+    shown.time = now();
+    shown.frozen = true;
+    shown.rendersNow = false;
+    shown.banner = banner_;
+    shown.bannerGood = banner_ == "HIT";
+    return shown;
+}
 
-    if (frozenFrame_) {
-        clickGate_.clear();
-        ShownFrame shown = *frozenFrame_;
-        shown.frame = frame_;
-        shown.inputFrame = frame_;  // the banner answers the shot at once, whatever the mode's lag
-        shown.time = now();
-        shown.frozen = true;
-        shown.rendersNow = false;
-        shown.banner = banner_;
-        shown.bannerGood = banner_ == "HIT";
-        return shown;
-    }
-
+ShownFrame ShooterGame::scheduledFrame(const condition::ScheduledFrame& f) const {
+    const double refresh = protocol_.refreshHz;
     const SchedulePlacement placement{scheduleStart_, refresh};
-    const condition::ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
     ShownFrame shown = scheduledShownFrame(frame_, schedule_->mode(), f, placement);
     shown.camera = cameraHistory_.at(cameraFrame(f, placement));
     if (const auto p = displayedTarget(f)) {
@@ -492,6 +470,10 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
                 physics::targetObject(plane_, trial_->motion, now() - spawn, protocol_.targetRadius));
         }
     }
+    return shown;
+}
+
+void ShooterGame::describePhase(ShownFrame& shown) const {
     switch (phase_) {
         case Phase::Acclimation: {
             if (freePlay_) {
@@ -499,7 +481,8 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
                 break;
             }
             // Appendix B: the supervisor and the participant see how much practice is left.
-            const double left = protocol_.acclimationS - static_cast<double>(frame_ - phaseStartFrame_) / refresh;
+            const double left =
+                protocol_.acclimationS - static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz;
             const long seconds = std::max(0L, static_cast<long>(std::ceil(left)));
             char text[48];
             std::snprintf(text, sizeof text, "Acclimation: %ld:%02ld left", seconds / 60, seconds % 60);
@@ -523,39 +506,76 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
             break;
         case Phase::Done: shown.phaseText = "Thank you"; break;
     }
+}
 
+void ShooterGame::judgeTrial(bool click, ShownFrame& shown) {
+    // The click first: the frame the timeout falls on still shows the target, so a click on
+    // it is a shot at what the participant saw (aim time exactly timeout_s), not a timeout
+    // (docs/shooter-study.md, "Test").
+    if (click) {
+        // World: the aim the mouse really has now against the world now. Displayed: what is
+        // under the reticle of the frame on screen (its camera, its target).
+        const auto world = targetAt(now());
+        const glm::dvec3 eye(camera_.eye);
+        const glm::dvec3 aim(scene::forwardDirection(camera_.yaw, camera_.pitch));
+        const bool worldHit = world && physics::raySphereHit(eye, aim, *world, protocol_.targetRadius).has_value();
+        const glm::dvec3 shownAim(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch));
+        const bool shownHit = !shown.scene.objects.empty() &&
+            physics::raySphereHit(glm::dvec3(shown.camera.eye), shownAim,
+                                  glm::dvec3(shown.scene.objects.front().position), protocol_.targetRadius)
+                .has_value();
+        const double error = world ? glm::degrees(physics::angleBetweenRayAndPoint(eye, aim, *world)) : 180.0;
+        frozenFrame_ = shown;
+        finishTrial(worldHit ? Outcome::Hit : Outcome::Miss, shownHit ? Outcome::Hit : Outcome::Miss, now(), error);
+    } else if (timedOut(*trial_)) {
+        const auto world = targetAt(now());
+        const double error = world
+            ? glm::degrees(physics::angleBetweenRayAndPoint(
+                  glm::dvec3(camera_.eye), glm::dvec3(scene::forwardDirection(camera_.yaw, camera_.pitch)), *world))
+            : 180.0;
+        frozenFrame_ = shown;
+        finishTrial(Outcome::Timeout, Outcome::Timeout, now(), error);
+    }
+    if (!trial_) shown.feedback = banner_ == "HIT" ? "hit" : (banner_ == "TIMEOUT" ? "timeout" : "miss");
+}
+
+ShownFrame ShooterGame::step(const FrameInput& input) {
+    ++frame_;
+    commitPoint_ = false;
+    openQuestionsIfDue();
+    if (asking_) return questionFrame(input);
+    turnCamera(input);
+    bool click = (input.buttons & kButtonLeft) && !(previousButtons_ & kButtonLeft);
+    const bool enter = (input.keys & kKeyEnter) && !(previousKeys_ & kKeyEnter);
+    previousButtons_ = input.buttons;
+    previousKeys_ = input.keys;
+
+    if (frame_ == 0) beginPhase(Phase::Acclimation);
+    if (pauseUntil_ >= 0 && frame_ >= pauseUntil_) {
+        pauseUntil_ = -1;
+        frozenFrame_.reset();
+        banner_.clear();
+        scheduleNextTrial();
+    }
+    if (reading_ && enter && frame_ > phaseStartFrame_)  // a press made while the text is up
+        finishReading();
+    else if (phase_ == Phase::AwaitingSupervisor && enter)
+        beginPhase(Phase::Training);
+    if (reading_) {
+        clickGate_.clear();
+        return readingFrame();
+    }
+    if (frozenFrame_) {
+        clickGate_.clear();
+        return frozenShownFrame();
+    }
+
+    const condition::ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
+    ShownFrame shown = scheduledFrame(f);
+    describePhase(shown);
     // A press while no target is up never waits for the next target.
     click = clickGate_.pass(click, f, trial_.has_value());
-    if (trial_) {
-        // The click first: the frame the timeout falls on still shows the target, so a click on
-        // it is a shot at what the participant saw (aim time exactly timeout_s), not a timeout
-        // (docs/shooter-study.md, "Test").
-        if (click) {
-            // World: the aim the mouse really has now against the world now. Displayed: what is
-            // under the reticle of the frame on screen (its camera, its target).
-            const auto world = targetAt(now());
-            const glm::dvec3 eye(camera_.eye);
-            const glm::dvec3 aim(scene::forwardDirection(camera_.yaw, camera_.pitch));
-            const bool worldHit = world && physics::raySphereHit(eye, aim, *world, protocol_.targetRadius).has_value();
-            const glm::dvec3 shownAim(scene::forwardDirection(shown.camera.yaw, shown.camera.pitch));
-            const bool shownHit = !shown.scene.objects.empty() &&
-                physics::raySphereHit(glm::dvec3(shown.camera.eye), shownAim,
-                                      glm::dvec3(shown.scene.objects.front().position), protocol_.targetRadius)
-                    .has_value();
-            const double error = world ? glm::degrees(physics::angleBetweenRayAndPoint(eye, aim, *world)) : 180.0;
-            frozenFrame_ = shown;
-            finishTrial(worldHit ? Outcome::Hit : Outcome::Miss, shownHit ? Outcome::Hit : Outcome::Miss, now(), error);
-        } else if (timedOut(*trial_)) {
-            const auto world = targetAt(now());
-            const double error = world
-                ? glm::degrees(physics::angleBetweenRayAndPoint(
-                      glm::dvec3(camera_.eye), glm::dvec3(scene::forwardDirection(camera_.yaw, camera_.pitch)), *world))
-                : 180.0;
-            frozenFrame_ = shown;
-            finishTrial(Outcome::Timeout, Outcome::Timeout, now(), error);
-        }
-        if (!trial_) shown.feedback = banner_ == "HIT" ? "hit" : (banner_ == "TIMEOUT" ? "timeout" : "miss");
-    }
+    if (trial_) judgeTrial(click, shown);
     return shown;
 }
 

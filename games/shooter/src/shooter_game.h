@@ -88,6 +88,13 @@ private:
     void finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg);
     // A frame of the questions after a block of the test: the mouse moves a cursor, not the view.
     ShownFrame questionFrame(const FrameInput& input);
+    // The parts of step(), in the order it takes them.
+    void openQuestionsIfDue();  // a block's last pause over: its questions, from this frame
+    void turnCamera(const FrameInput& input);  // the mouse turns the view; recorded per frame
+    ShownFrame frozenShownFrame() const;  // the frame of the last shot, held with its banner
+    ShownFrame scheduledFrame(const condition::ScheduledFrame& f) const;  // the mode's frame and the target in it
+    void describePhase(ShownFrame& shown) const;  // the status line for the participant and supervisor
+    void judgeTrial(bool click, ShownFrame& shown);  // a shot or a timeout ends the trial
     void finishTrainingLevel();
     bool timedOut(const Trial& trial) const;
     std::optional<glm::dvec3> targetAt(double time) const;  // the world; nullopt when no target
