@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "export/csv.h"
+#include "table/csv.h"
 
-namespace warplab::exporter {
+namespace warplab::table {
 
 // One column of a CSV: its header name and how a row's cell is written. Each file's columns
 // are one table, which its header and every row walk, so the two cannot drift apart, and
@@ -30,4 +30,4 @@ void writeCells(CsvFile& file, const std::vector<Column<Row>>& columns, const Ro
     for (const auto& c : columns) c.write(file, row);
 }
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::exporter {
+namespace warplab::table {
 
 // True when `text` is well-formed UTF-8 (no stray, cut, overlong or surrogate sequences).
 bool isValidUtf8(const std::string& text);
@@ -59,4 +59,4 @@ private:
     bool closed_ = false;
 };
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table

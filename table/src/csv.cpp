@@ -1,11 +1,11 @@
-#include "export/csv.h"
+#include "table/csv.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
-namespace warplab::exporter {
+namespace warplab::table {
 namespace {
 
 // Length of the valid UTF-8 sequence starting at s[i], or 0 when it is not one (overlong
@@ -159,4 +159,4 @@ void CsvFile::close() {
     closed_ = true;
 }
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table
