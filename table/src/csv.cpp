@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 namespace warplab::table {
 namespace {
@@ -90,8 +91,8 @@ CsvFile::CsvFile(std::string path, const std::vector<std::string>& header)
     writeHeader(header);
 }
 
-CsvFile::CsvFile(std::ostream& out, const std::vector<std::string>& header)
-    : path_("standard output"), out_(&out), columns_(header.size()), closed_(true) {
+CsvFile::CsvFile(std::ostream& out, const std::vector<std::string>& header, std::string name)
+    : path_(std::move(name)), out_(&out), columns_(header.size()), closed_(true) {
     writeHeader(header);
 }
 
@@ -131,6 +132,12 @@ CsvFile& CsvFile::boolean(bool value) {
 }
 CsvFile& CsvFile::empty() {
     cell("");
+    return *this;
+}
+CsvFile& CsvFile::formatted(const std::string& number) {
+    if (number.find_first_of(",\"\r\n") != std::string::npos)
+        throw std::logic_error(path_ + ": '" + number + "' is not a number's text");
+    cell(number);
     return *this;
 }
 

@@ -22,8 +22,8 @@ const std::string kHeader =
 // bench.csv as runBench writes it: the header, then `rows`.
 std::string csvOf(const std::vector<Row>& rows) {
     std::ostringstream out;
-    out << kCsvHeader << '\n';
-    for (const Row& r : rows) writeRow(out, r);
+    table::CsvFile csv(out, table::headerOf(csvColumns()));
+    for (const Row& r : rows) writeRow(csv, r);
     return out.str();
 }
 
