@@ -111,71 +111,113 @@ std::string sessionOf(const std::string& log) {
     return log.substr(start, log.find('\n', start) - start);
 }
 
-}  // namespace
+// The demo's command line, read and checked before anything is written.
+struct DemoSetup {
+    std::string out;
+    int participants = 0;
+    std::string player;
+    int jobs = 1;
+    renderer::DataPaths paths;
+    renderer::GlBackend backend = renderer::GlBackend::OSMesa;
+    participants::Population population;
+    std::vector<fs::path> protocols;
+    fs::path results, logs;
+};
 
-int runDemo(const ParsedArgs& args) {
+DemoSetup readDemoSetup(const ParsedArgs& args) {
+    DemoSetup d;
     const std::string out = args.path("out", "demo-out");
+    d.out = out;
     if (const std::string found = sessionUnder(out); !found.empty())
         throw UsageError("option --out: '" + out + "' already holds sessions (" + found +
                          "); a demo analyses only its own, so choose another --out");
     // Two at least: the analysis pairs modes within participants across them.
-    const int participants = static_cast<int>(args.integer("participants", 8, 2, 100));
+    d.participants = static_cast<int>(args.integer("participants", 8, 2, 100));
     const std::string player = args.string("player", "sim");
+    d.player = player;
     if (player != "sim" && player != "bot")
         throw UsageError("option --player of 'warplab demo' needs sim or bot, got '" + player + "'");
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    const int jobs = static_cast<int>(args.integer("jobs", std::min(cores, 64), 1, 64));
-    const renderer::DataPaths paths = dataPathsFrom(args);
-    const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
-    if (backend == renderer::GlBackend::Window) throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
-    const fs::path root = fs::path(paths.shaderDir).parent_path();
+    d.jobs = static_cast<int>(args.integer("jobs", std::min(cores, 64), 1, 64));
+    d.paths = dataPathsFrom(args);
+    d.backend = backendFrom(args, renderer::GlBackend::OSMesa);
+    if (d.backend == renderer::GlBackend::Window)
+        throw UsageError("option --gl: the demo runs headless (osmesa or egl)");
+    const fs::path root = fs::path(d.paths.shaderDir).parent_path();
     if (player == "bot" && args.has("population"))
         throw UsageError("option --population only applies with --player sim (the bot reads the game)");
     // Read (and a bad file refused) now, not in a child; the bot has no population to read.
-    const participants::Population population =
-        player == "sim" ? populationFrom(args, paths) : participants::uniformPopulation();
-    const std::vector<fs::path> protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
-    const fs::path results = outputFolder(args, "out", out) + "/results", logs = fs::path(out) / "logs";
-    fs::create_directories(results);
-    fs::create_directories(logs);
-    // One lock for the folder, taken here and inherited by every child: the demo's sessions
-    // share it, and no `warplab run` writes into it meanwhile (nor another demo).
-    std::string protocolNames;
-    for (const auto& protocol : protocols)
-        protocolNames += (protocolNames.empty() ? "" : ",") + protocol.stem().string();
-    const session::ResultsFolderLock lock(results.string(), player + "-1.." + std::to_string(participants),
-                                          protocolNames);
+    d.population = player == "sim" ? populationFrom(args, d.paths) : participants::uniformPopulation();
+    d.protocols = protocolPaths(args.string("protocols", "shooter-demo,click-demo"), root);
+    d.results = outputFolder(args, "out", out) + "/results";
+    d.logs = fs::path(out) / "logs";
+    return d;
+}
 
-    std::deque<Job> waiting;
-    for (int i = 1; i <= participants; ++i)
-        for (const auto& protocol : protocols)
-            waiting.push_back(
-                {i, protocol, logs / (player + "-" + std::to_string(i) + "-" + protocol.stem().string() + ".log"), {}});
-    const std::size_t total = waiting.size();
-    const auto started = std::chrono::steady_clock::now();
-    std::cerr << "demo: " << participants << " simulated participants (" << player << ") x " << protocols.size()
-              << (protocols.size() == 1 ? " protocol, " : " protocols, ") << std::min<std::size_t>(jobs, total)
-              << " at a time, into " << results.string() << "\n";
-
-    std::map<pid_t, Job> running;
+// Where the sessions stand.
+struct DemoProgress {
     std::size_t finished = 0, reproduced = 0;
     std::string failure;  // the first session that could not be run or replayed
-    while (!running.empty() || (!waiting.empty() && failure.empty())) {
-        while (failure.empty() && !waiting.empty() && static_cast<int>(running.size()) < jobs) {
+};
+
+// Forks the child that runs `job`'s session; returns its process id.
+pid_t startSession(const DemoSetup& d, const Job& job) {
+    study::HeadlessRun run;
+    run.protocolPath = job.protocol.string();
+    run.participant = d.player + "-" + std::to_string(job.participant);
+    run.resultsDir = d.results.string();
+    run.player = d.player + ":" + std::to_string(job.participant);
+    run.seed = static_cast<std::uint64_t>(job.participant);
+    run.seeingPlayer = participants::perceptualPlayerMaker(d.paths, d.backend, d.population);
+    std::cout.flush();
+    std::cerr.flush();
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("demo: cannot start a session process (fork failed)");
+    if (pid == 0) runChild(run, job.log);
+    return pid;
+}
+
+// A child has ended with `status`: its session replayed, or the first failure noted.
+void sessionEnded(const DemoSetup& d, const Job& job, int status, std::size_t total,
+                  std::chrono::steady_clock::time_point started, DemoProgress& progress) {
+    ++progress.finished;
+    const std::string log = readFile(job.log);
+    const std::string session = sessionOf(log);
+    const std::string name = d.player + "-" + std::to_string(job.participant) + ", " + job.protocol.stem().string();
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || session.empty()) {
+        std::cerr << log;
+        if (progress.failure.empty())
+            progress.failure = "the session of " + name + " failed (" +
+                (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
+                                     : "exit status " + std::to_string(WEXITSTATUS(status))) +
+                "); its log is " + job.log.string();
+        return;
+    }
+    // Every outcome must replay from the log alone, as a reviewer would check it.
+    const study::ReplayResult replay = study::replaySession(session);
+    if (study::replayExitCode(replay) == study::kReplayReproduced) {
+        ++progress.reproduced;
+    } else if (progress.failure.empty()) {
+        progress.failure =
+            session + " did not replay: " + (replay.difference.empty() ? replay.note : replay.difference);
+    }
+    std::cerr << "demo: [" << progress.finished << "/" << total << "] " << name << ": " << replay.reproduced << "/"
+              << replay.outcomes << " outcomes replayed, " << std::fixed << std::setprecision(0)
+              << secondsSince(job.started) << " s; " << secondsSince(started) << " s elapsed\n"
+              << std::defaultfloat;
+}
+
+// Every session in `waiting`, --jobs at a time, each replayed as it ends; none started after
+// the first failure.
+DemoProgress runSessions(const DemoSetup& d, std::deque<Job> waiting, std::chrono::steady_clock::time_point started) {
+    const std::size_t total = waiting.size();
+    std::map<pid_t, Job> running;
+    DemoProgress progress;
+    while (!running.empty() || (!waiting.empty() && progress.failure.empty())) {
+        while (progress.failure.empty() && !waiting.empty() && static_cast<int>(running.size()) < d.jobs) {
             Job job = waiting.front();
             waiting.pop_front();
-            study::HeadlessRun run;
-            run.protocolPath = job.protocol.string();
-            run.participant = player + "-" + std::to_string(job.participant);
-            run.resultsDir = results.string();
-            run.player = player + ":" + std::to_string(job.participant);
-            run.seed = static_cast<std::uint64_t>(job.participant);
-            run.seeingPlayer = participants::perceptualPlayerMaker(paths, backend, population);
-            std::cout.flush();
-            std::cerr.flush();
-            const pid_t pid = fork();
-            if (pid < 0) throw std::runtime_error("demo: cannot start a session process (fork failed)");
-            if (pid == 0) runChild(run, job.log);
+            const pid_t pid = startSession(d, job);
             job.started = std::chrono::steady_clock::now();
             running.emplace(pid, job);
         }
@@ -186,56 +228,69 @@ int runDemo(const ParsedArgs& args) {
         if (it == running.end()) continue;
         const Job job = it->second;
         running.erase(it);
-        ++finished;
-        const std::string log = readFile(job.log);
-        const std::string session = sessionOf(log);
-        const std::string name = player + "-" + std::to_string(job.participant) + ", " + job.protocol.stem().string();
-        if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || session.empty()) {
-            std::cerr << log;
-            if (failure.empty())
-                failure = "the session of " + name + " failed (" +
-                    (WIFSIGNALED(status) ? "killed by signal " + std::to_string(WTERMSIG(status))
-                                         : "exit status " + std::to_string(WEXITSTATUS(status))) +
-                    "); its log is " + job.log.string();
-            continue;
-        }
-        // Every outcome must replay from the log alone, as a reviewer would check it.
-        const study::ReplayResult replay = study::replaySession(session);
-        if (study::replayExitCode(replay) == study::kReplayReproduced) {
-            ++reproduced;
-        } else if (failure.empty()) {
-            failure = session + " did not replay: " + (replay.difference.empty() ? replay.note : replay.difference);
-        }
-        std::cerr << "demo: [" << finished << "/" << total << "] " << name << ": " << replay.reproduced << "/"
-                  << replay.outcomes << " outcomes replayed, " << std::fixed << std::setprecision(0)
-                  << secondsSince(job.started) << " s; " << secondsSince(started) << " s elapsed\n"
-                  << std::defaultfloat;
+        sessionEnded(d, job, status, total, started, progress);
     }
-    if (!failure.empty()) {
-        std::cerr << "demo: " << failure << "\n"
-                  << "demo: stopped after " << finished << " of " << total << " sessions (" << reproduced
-                  << " replayed); they are kept in " << results.string() << "\n";
-        return 1;
-    }
+    return progress;
+}
 
+// The sessions exported and analysed into the report.
+int exportAndAnalyse(const DemoSetup& d, std::size_t total, std::chrono::steady_clock::time_point started) {
+    const std::string& out = d.out;
     const std::string exportDir = (fs::path(out) / "export").string();
     exporter::ExportOptions options;
-    exporter::exportResults(results.string(), exportDir, options, std::cerr);
+    exporter::exportResults(d.results.string(), exportDir, options, std::cerr);
     const std::string reportDir = (fs::path(out) / "report").string();
-    const std::string command = shellQuoted(paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) + " --out " +
-        shellQuoted(reportDir) + " 1>&2";
+    const std::string command = shellQuoted(d.paths.analysisDir + "/analyze") + " " + shellQuoted(exportDir) +
+        " --out " + shellQuoted(reportDir) + " 1>&2";
     std::cerr << "demo: analysing " << exportDir << "\n";
     const int status = std::system(command.c_str());
     if (status != 0) {
-        std::cerr << "demo: the analysis failed (" << paths.analysisDir
+        std::cerr << "demo: the analysis failed (" << d.paths.analysisDir
                   << "/analyze exited non-zero); the sessions and CSVs are kept in " << out << "\n";
         return 1;
     }
-    std::cout << "demo: " << total << " sessions in " << results.string() << ", every outcome replayed\n"
+    std::cout << "demo: " << total << " sessions in " << d.results.string() << ", every outcome replayed\n"
               << "demo: CSVs in " << exportDir << "\n"
               << "demo: the report in " << reportDir << "/report.md, with its figures\n";
     std::cerr << "demo: done in " << std::fixed << std::setprecision(0) << secondsSince(started) << " s\n";
     return 0;
+}
+
+}  // namespace
+
+int runDemo(const ParsedArgs& args) {
+    const DemoSetup d = readDemoSetup(args);
+    fs::create_directories(d.results);
+    fs::create_directories(d.logs);
+    // One lock for the folder, taken here and inherited by every child: the demo's sessions
+    // share it, and no `warplab run` writes into it meanwhile (nor another demo).
+    std::string protocolNames;
+    for (const auto& protocol : d.protocols)
+        protocolNames += (protocolNames.empty() ? "" : ",") + protocol.stem().string();
+    const session::ResultsFolderLock lock(d.results.string(), d.player + "-1.." + std::to_string(d.participants),
+                                          protocolNames);
+
+    std::deque<Job> waiting;
+    for (int i = 1; i <= d.participants; ++i)
+        for (const auto& protocol : d.protocols)
+            waiting.push_back({i,
+                               protocol,
+                               d.logs / (d.player + "-" + std::to_string(i) + "-" + protocol.stem().string() + ".log"),
+                               {}});
+    const std::size_t total = waiting.size();
+    const auto started = std::chrono::steady_clock::now();
+    std::cerr << "demo: " << d.participants << " simulated participants (" << d.player << ") x " << d.protocols.size()
+              << (d.protocols.size() == 1 ? " protocol, " : " protocols, ") << std::min<std::size_t>(d.jobs, total)
+              << " at a time, into " << d.results.string() << "\n";
+
+    const DemoProgress progress = runSessions(d, std::move(waiting), started);
+    if (!progress.failure.empty()) {
+        std::cerr << "demo: " << progress.failure << "\n"
+                  << "demo: stopped after " << progress.finished << " of " << total << " sessions ("
+                  << progress.reproduced << " replayed); they are kept in " << d.results.string() << "\n";
+        return 1;
+    }
+    return exportAndAnalyse(d, total, started);
 }
 
 // The command's options, beside the code that reads them.

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "commands.h"
-#include "export/csv.h"
+#include "table/csv.h"
 #include "live/live_session.h"
 #include "present/replay_render.h"
 #include "study/session_runner.h"
@@ -86,7 +86,7 @@ void checkParticipant(const std::string& id) {
     const std::string what = "option --participant ";
     if (id.find_first_not_of(" \t") == std::string::npos) throw UsageError(what + "must not be empty or blank");
     if (id.size() > 128) throw UsageError(what + "must be at most 128 bytes, got " + std::to_string(id.size()));
-    if (!exporter::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text, got " + quotedForMessage(id));
+    if (!table::isValidUtf8(id)) throw UsageError(what + "must be UTF-8 text, got " + quotedForMessage(id));
     for (const char c : id)
         if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
             throw UsageError(what + "must not hold control characters, got " + quotedForMessage(id));

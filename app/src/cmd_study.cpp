@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "export/csv.h"
+#include "table/csv.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
 
@@ -92,9 +92,9 @@ void printSummary(const std::vector<plan::ParticipantStatus>& status) {
 }
 
 void writeStatusCsv(const plan::StudyPlan& studyPlan, const std::vector<plan::ParticipantStatus>& status) {
-    exporter::CsvFile csv(std::cout,
-                          {"participant", "position", "protocol", "status", "sessions", "done", "planned", "unit",
-                           "detail", "player_kind", "complete_rigs"});
+    table::CsvFile csv(std::cout,
+                       {"participant", "position", "protocol", "status", "sessions", "done", "planned", "unit",
+                        "detail", "player_kind", "complete_rigs"});
     for (const auto& p : status)
         for (std::size_t i = 0; i < p.protocols.size(); ++i) {
             const plan::ProtocolStatus& s = p.protocols[i];

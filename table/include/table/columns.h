@@ -1,17 +1,17 @@
-// Private to export/: a CSV file's columns as one table, which its header and every row walk.
+// A CSV file's columns as one table: export's files and bench.csv.
 #pragma once
 
 #include <functional>
 #include <string>
 #include <vector>
 
-#include "export/csv.h"
+#include "table/csv.h"
 
-namespace warplab::exporter {
+namespace warplab::table {
 
 // One column of a CSV: its header name and how a row's cell is written. Each file's columns
-// are one table, which its header and every row walk, so the two cannot drift apart, and
-// docs/export.md is checked against the tables.
+// are one table, which its header and every row walk, so the two cannot drift apart (and
+// docs/export.md is checked against export's tables).
 template <class Row>
 struct Column {
     const char* name;
@@ -30,4 +30,4 @@ void writeCells(CsvFile& file, const std::vector<Column<Row>>& columns, const Ro
     for (const auto& c : columns) c.write(file, row);
 }
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table

@@ -7,7 +7,7 @@
 
 namespace warplab::renderer {
 
-class FrameHistory {
+class AccumulationHistory {
 public:
     // A history is reprojected from the frame before only; a gap longer than this (a cut, or a
     // bench that samples frames far apart) starts it again, so that a frame's result depends

@@ -1,11 +1,12 @@
-#include "export/csv.h"
+#include "table/csv.h"
 
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
-namespace warplab::exporter {
+namespace warplab::table {
 namespace {
 
 // Length of the valid UTF-8 sequence starting at s[i], or 0 when it is not one (overlong
@@ -90,8 +91,8 @@ CsvFile::CsvFile(std::string path, const std::vector<std::string>& header)
     writeHeader(header);
 }
 
-CsvFile::CsvFile(std::ostream& out, const std::vector<std::string>& header)
-    : path_("standard output"), out_(&out), columns_(header.size()), closed_(true) {
+CsvFile::CsvFile(std::ostream& out, const std::vector<std::string>& header, std::string name)
+    : path_(std::move(name)), out_(&out), columns_(header.size()), closed_(true) {
     writeHeader(header);
 }
 
@@ -133,6 +134,12 @@ CsvFile& CsvFile::empty() {
     cell("");
     return *this;
 }
+CsvFile& CsvFile::formatted(const std::string& number) {
+    if (number.find_first_of(",\"\r\n") != std::string::npos)
+        throw std::logic_error(path_ + ": '" + number + "' is not a number's text");
+    cell(number);
+    return *this;
+}
 
 void CsvFile::endRow() {
     if (cellsInRow_ != columns_)
@@ -159,4 +166,4 @@ void CsvFile::close() {
     closed_ = true;
 }
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table

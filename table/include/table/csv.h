@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace warplab::exporter {
+namespace warplab::table {
 
 // True when `text` is well-formed UTF-8 (no stray, cut, overlong or surrogate sequences).
 bool isValidUtf8(const std::string& text);
@@ -28,8 +28,9 @@ std::string csvNumber(double value);
 class CsvFile {
 public:
     CsvFile(std::string path, const std::vector<std::string>& header);
-    // Rows straight to `out` (a command's standard output): nothing to rename.
-    CsvFile(std::ostream& out, const std::vector<std::string>& header);
+    // Rows straight to `out` (a command's standard output, or a file its caller keeps open and
+    // flushes): nothing to rename. `name` is what path() and errors call it.
+    CsvFile(std::ostream& out, const std::vector<std::string>& header, std::string name = "standard output");
     ~CsvFile();  // without close(): removes the partial file
     CsvFile(const CsvFile&) = delete;
     CsvFile& operator=(const CsvFile&) = delete;
@@ -39,6 +40,9 @@ public:
     CsvFile& integer(std::int64_t value);
     CsvFile& boolean(bool value);  // "true" / "false": R and pandas both read these as logical
     CsvFile& empty();
+    // A number its caller formatted (a measurement to the decimals it has), written as it is;
+    // throws std::logic_error when it holds , " or a line break, which would split the cell.
+    CsvFile& formatted(const std::string& number);
     // Ends the row; throws std::logic_error when it has another number of cells than the header.
     void endRow();
 
@@ -59,4 +63,4 @@ private:
     bool closed_ = false;
 };
 
-}  // namespace warplab::exporter
+}  // namespace warplab::table
