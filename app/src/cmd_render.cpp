@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "commands.h"
-#include "game/shooter_scene.h"
+#include "physics/target_scene.h"
 #include "shooter/shooter_protocol.h"
 #include "renderer/upconvert.h"
 #include "renderer/window.h"
@@ -183,12 +183,12 @@ int runRender(const ParsedArgs& args) {
     const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
     const renderer::DataPaths paths = dataPathsFrom(args);
 
-    game::ShooterSceneConfig config;
+    physics::TargetSceneConfig config;
     config.verticalFovDeg = static_cast<float>(r.fov);
     config.aspect = static_cast<double>(r.width) / r.height;
     config.targetSpeed = r.speed;
     config.seed = r.seed;
-    const game::ShooterScene shooter(config);
+    const physics::TargetScene shooter(config);
 
     const auto frameAt = [&](double t, double yawDeg, double pitchDeg) {
         scene::FrameDescription f;
