@@ -37,4 +37,24 @@ private:
     bool typed_ = false;
 };
 
+// When a scripted bot presses Enter on a prompt (ShownFrame::promptsEnter: the supervisor's, an
+// instruction screen's): once it has been up `afterS`. Another prompt straight after one is
+// told by its text, so the key is let go and pressed anew.
+class BotPromptReader {
+public:
+    bool pressesEnter(const ShownFrame& shown, double afterS) {
+        if (!shown.promptsEnter) {
+            since_ = -1.0;
+            return false;
+        }
+        if (since_ < 0.0 || shown.phaseText != text_) since_ = shown.time;
+        text_ = shown.phaseText;
+        return shown.time - since_ >= afterS;
+    }
+
+private:
+    double since_ = -1.0;
+    std::string text_;  // the prompt's phase text, to tell one prompt from the next
+};
+
 }  // namespace warplab::game

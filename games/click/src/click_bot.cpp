@@ -124,15 +124,7 @@ FrameInput ClickBot::play(const ShownFrame& shown) {
 
 FrameInput ClickBot::next(const ShownFrame& shown) {
     FrameInput input;
-    if (shown.promptsEnter) {
-        // Another prompt straight after one (the supervisor's Enter, then instructions) is
-        // told by its text: the key is let go and pressed anew.
-        if (promptSince_ < 0.0 || shown.phaseText != promptText_) promptSince_ = shown.time;
-        promptText_ = shown.phaseText;
-        if (shown.time - promptSince_ >= settings_.enterAfterS) input.keys = kKeyEnter;
-    } else {
-        promptSince_ = -1.0;
-    }
+    if (prompt_.pressesEnter(shown, settings_.enterAfterS)) input.keys = kKeyEnter;
     if (!shown.mode.empty()) lastMode_ = shown.mode;
     // Screens show the cursor live, so there the bot sees exactly where it is; in a match it
     // keeps track itself, since the frame shows the cursor as late as the mode shows it.

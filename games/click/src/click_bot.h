@@ -60,8 +60,7 @@ private:
     double aimingSince_ = 0.0;
     std::map<std::uint32_t, double> clicked_;  // ids it clicked, and when
     bool buttonDown_ = false;
-    double promptSince_ = -1.0;
-    std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
+    BotPromptReader prompt_;
     std::string lastMode_;
     BotQuestionReader reader_;
 };

@@ -410,12 +410,7 @@ ShownFrame ClickGame::step(const FrameInput& input) {
 }
 
 session::FrameRecord ClickGame::frameRecord(const ShownFrame& shown) const {
-    session::FrameRecord r;
-    r.frame = shown.frame;
-    r.mode = shown.mode;
-    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
-    r.cameraYaw = shown.camera.yaw;
-    r.cameraPitch = shown.camera.pitch;
+    session::FrameRecord r = frameRecordOf(shown);
     nlohmann::json detail{{"cursor", {shown.cursor.x, shown.cursor.y}}};
     // Spheres where the frame shows something new; a held frame shows the frame before it again.
     if (!shown.blank && shown.schedule.kind != condition::FrameKind::Held) {

@@ -57,15 +57,7 @@ FrameInput ShooterBot::next(const ShownFrame& shown) {
     if (shown.question) return input;  // still reading it
 
     // The supervisor's Enter.
-    if (shown.promptsEnter) {
-        // Another prompt straight after one (the supervisor's Enter, then instructions) is
-        // told by its text: the key is let go and pressed anew.
-        if (promptSince_ < 0.0 || shown.phaseText != promptText_) promptSince_ = shown.time;
-        promptText_ = shown.phaseText;
-        if (shown.time - promptSince_ >= settings_.enterAfterS) input.keys = kKeyEnter;
-    } else {
-        promptSince_ = -1.0;
-    }
+    if (prompt_.pressesEnter(shown, settings_.enterAfterS)) input.keys = kKeyEnter;
 
     const Seen& old = seen_.front();  // what it perceives now: the screen a reaction time ago
     if (!s.target) {

@@ -46,8 +46,7 @@ private:
     double visibleSince_ = -1.0;
     bool clickedThisTarget_ = false;
     bool buttonDown_ = false;
-    double promptSince_ = -1.0;
-    std::string promptText_;  // the prompt's phase text, to tell one prompt from the next
+    BotPromptReader prompt_;
     BotQuestionReader questions_;
 };
 

@@ -580,12 +580,7 @@ ShownFrame ShooterGame::step(const FrameInput& input) {
 }
 
 session::FrameRecord ShooterGame::frameRecord(const ShownFrame& shown) const {
-    session::FrameRecord r;
-    r.frame = shown.frame;
-    r.mode = shown.mode;
-    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
-    r.cameraYaw = shown.camera.yaw;
-    r.cameraPitch = shown.camera.pitch;
+    session::FrameRecord r = frameRecordOf(shown);
     if (!shown.scene.objects.empty()) {
         const auto& p = shown.scene.objects.front().position;
         r.detailJson = nlohmann::json{{"target", {p.x, p.y, p.z}}}.dump();

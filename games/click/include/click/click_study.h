@@ -1,5 +1,5 @@
 // The click game's registration: its protocol section parsed and bound to ClickGame and
-// ClickBot. game/src/registry.cpp lists it; nothing else names the click game.
+// ClickBot. games/src/games.cpp registers it; nothing below the app names the click game.
 #pragma once
 
 #include <memory>

@@ -1,5 +1,5 @@
 // The shooter's registration: its protocol section parsed and bound to ShooterGame and
-// ShooterBot. game/src/registry.cpp lists it; nothing else names the shooter.
+// ShooterBot. games/src/games.cpp registers it; nothing below the app names the shooter.
 #pragma once
 
 #include <memory>

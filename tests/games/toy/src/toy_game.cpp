@@ -92,10 +92,7 @@ game::ShownFrame ToyGame::step(const game::FrameInput& input) {
 }
 
 session::FrameRecord ToyGame::frameRecord(const game::ShownFrame& shown) const {
-    session::FrameRecord r;
-    r.frame = shown.frame;
-    r.mode = shown.mode;
-    r.kind = condition::frameKindName(shown.schedule.kind);
+    session::FrameRecord r = game::frameRecordOf(shown);
     r.detailJson = nlohmann::json{{"x", shown.scene.objects.front().position.x}}.dump();
     return r;
 }
