@@ -41,7 +41,7 @@ export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1}"
 
 # Protocol keys, enum values and mode ids, quoted as JSON writes them: the parsers' own string
 # literals and the shipped protocols', so the dictionary follows the code without a list to keep.
-grep -ohE '"[A-Za-z0-9_.+-]{2,40}"' protocol/src/*_protocol.cpp protocol/src/json_fields.cpp condition/src/condition.cpp \
+grep -ohE '"[A-Za-z0-9_.+-]{2,40}"' games/*/src/*_protocol.cpp protocol/src/fields.cpp condition/src/condition.cpp \
   protocol/*.json tests/fuzz/corpus/protocol/*.json |
   sort -u | sed 's/"/\\"/g; s/.*/"&"/' >"$work/protocol.dict"
 
@@ -80,7 +80,7 @@ fuzz() {
 }
 
 # Protocols are a few kilobytes; 16 KiB leaves room to grow them without slowing every run.
-# (The 1 MiB size and 32-level depth limits in protocol/src/json_fields.h are unit-tested.)
+# (The 1 MiB size and 32-level depth limits in protocol/include/protocol/fields.h are unit-tested.)
 fuzz warplab_fuzz_protocol 16384 -dict="$work/protocol.dict" -- \
   protocol/*.json tests/fuzz/corpus/protocol/*.json
 # Session files are SQLite pages of 4 KiB; 96 KiB holds the committed seeds whole and cuts the

@@ -53,7 +53,10 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
     for (const std::string& why : plan.skipped) progress << "bench: skipped: " << why << "\n";
     std::filesystem::create_directories(options.outDir);
     const std::string csvPath = options.outDir + "/bench.csv";
-    std::ofstream csv = openCsv(csvPath);
+    // Written straight to bench.csv and flushed after every display frame, so that a long run's
+    // rows can be read while it runs and outlive it when it is cut short.
+    std::ofstream csvFile = openCsv(csvPath);
+    table::CsvFile csv(csvFile, table::headerOf(csvColumns()), csvPath);
 
     Rig rig(options, plan, paths);
     rig.warmUp(plan.sequences.front()->at(0.0));
@@ -67,11 +70,11 @@ void runBench(const BenchOptions& options, const renderer::DataPaths& paths, con
                 writeRow(csv, row);
                 rows.push_back(row);
             }
-            csv.flush();
+            csvFile.flush();
             frames.frameDone(sequence.name(), k);
         }
     }
-    if (!csv) throw std::runtime_error("writing '" + csvPath + "' failed");
+    if (!csvFile) throw std::runtime_error("writing '" + csvPath + "' failed");
 
     const ShadingSweep sweep = timeShadingSweep(rig, options, plan);
     std::string summary = summaryMarkdown(options, gl, plan, times, rows, sweep);

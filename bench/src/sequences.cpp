@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "game/shooter_scene.h"
+#include "physics/target_scene.h"
 #include "physics/bouncing_target.h"
 #include "scene/hangar_layout.h"
 
@@ -42,14 +42,14 @@ scene::CameraState restingCamera(const SequenceConfig& config) {
     return camera;
 }
 
-ShooterScene shooterTarget(const SequenceConfig& config, double speed) {
-    ShooterSceneConfig shooter;
+physics::TargetScene shooterTarget(const SequenceConfig& config, double speed) {
+    physics::TargetSceneConfig shooter;
     shooter.verticalFovDeg = config.verticalFovDeg;
     shooter.aspect = config.aspect;
     shooter.targetRadius = kTargetRadius;
     shooter.targetSpeed = speed;
     shooter.seed = config.seed;
-    return ShooterScene(shooter);
+    return physics::TargetScene(shooter);
 }
 
 class ScriptedSequence : public BenchSequence {
@@ -88,7 +88,7 @@ private:
     // rational multiple of the yaw's that repeats within the run, so the path is no loop.
     static constexpr Sinusoid kYaw{25.0 * kDegrees, 2.5};
     static constexpr Sinusoid kPitch{6.0 * kDegrees, 1.9};
-    ShooterScene target_;
+    physics::TargetScene target_;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -119,7 +119,7 @@ public:
 
 private:
     static constexpr double kReactionLag = 0.080;  // seconds
-    ShooterScene target_;
+    physics::TargetScene target_;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -148,7 +148,7 @@ public:
 private:
     static constexpr Sinusoid kSway{1.5, 3.0};
     static constexpr Sinusoid kBob{0.3, 2.2};
-    ShooterScene target_;
+    physics::TargetScene target_;
 };
 
 // ---------------------------------------------------------------------------------------
@@ -308,7 +308,7 @@ private:
     static constexpr double kTurnsPerSecond = 1.5;  // tips at ~15 m/s
     static constexpr double kStartAngle = 0.3;  // radians; not axis-aligned at t = 0
     static constexpr Sinusoid kSlide{0.6, 4.0};  // slow sideways drift of the hub
-    ShooterScene target_;
+    physics::TargetScene target_;
 };
 
 // ---------------------------------------------------------------------------------------

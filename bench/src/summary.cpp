@@ -188,28 +188,57 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
 
 }  // namespace
 
-const char* const kCsvHeader =
-    "sequence,method,frame,time_s,psnr_db,ssim,border_mae,border_px,disocc_mae,disocc_px,corr_all_lt_0p1,corr_all_lt_"
-    "0p5,corr_all_lt_1,"
-    "corr_hit_lt_0p1,corr_hit_lt_0p5,corr_hit_lt_1,pass_ms,gpu_ms,conventional_ms,source_ms,triangles,stage_ms,"
-    "budget_share,family,age_mean_ms,age_p95_ms";
+const std::vector<table::Column<Row>>& csvColumns() {
+    using F = table::CsvFile;
+    using R = Row;
+    // A measure to `digits` decimals, as field() prints it: empty when it does not apply.
+    const auto measure = [](double Row::*value, int digits) {
+        return [value, digits](F& f, const R& r) { f.formatted(field(r.*value, digits)); };
+    };
+    // A share of correspondences, empty for a method that reports none.
+    const auto corr = [](double CorrespondenceStats::*share) {
+        return [share](F& f, const R& r) { f.formatted(r.hasCorr ? field(r.corr.*share) : std::string()); };
+    };
+    static const std::vector<table::Column<Row>> columns = {
+        {"sequence", [](F& f, const R& r) { f.text(r.sequence); }},
+        {"method", [](F& f, const R& r) { f.text(r.method); }},
+        {"frame", [](F& f, const R& r) { f.integer(r.frame); }},
+        {"time_s", measure(&R::time, 6)},
+        {"psnr_db", measure(&R::psnr, 3)},
+        {"ssim", measure(&R::ssim, 5)},
+        {"border_mae", measure(&R::borderMae, 3)},
+        {"border_px", [](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.borderPx)); }},
+        {"disocc_mae", measure(&R::disoccMae, 3)},
+        {"disocc_px", [](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.disoccPx)); }},
+        {"corr_all_lt_0p1", corr(&CorrespondenceStats::allLt0p1)},
+        {"corr_all_lt_0p5", corr(&CorrespondenceStats::allLt0p5)},
+        {"corr_all_lt_1", corr(&CorrespondenceStats::allLt1)},
+        {"corr_hit_lt_0p1", corr(&CorrespondenceStats::hitLt0p1)},
+        {"corr_hit_lt_0p5", corr(&CorrespondenceStats::hitLt0p5)},
+        {"corr_hit_lt_1", corr(&CorrespondenceStats::hitLt1)},
+        {"pass_ms", measure(&R::passMs, 3)},
+        {"gpu_ms", measure(&R::gpuMs, 3)},
+        {"conventional_ms", measure(&R::conventionalMs, 3)},
+        {"source_ms", measure(&R::sourceMs, 3)},
+        {"triangles", measure(&R::triangles, 0)},
+        {"stage_ms", [](F& f, const R& r) { f.text(stagesField(r.stages)); }},
+        {"budget_share", measure(&R::budgetShare, 6)},
+        {"family", [](F& f, const R& r) { f.text(r.family); }},
+        {"age_mean_ms", measure(&R::ageMeanMs, 3)},
+        {"age_p95_ms", measure(&R::ageP95Ms, 3)},
+    };
+    return columns;
+}
 
 std::ofstream openCsv(const std::string& path) {
     std::ofstream csv(path);
     if (!csv) throw std::runtime_error("cannot write '" + path + "'");
-    csv << kCsvHeader << '\n';
     return csv;
 }
 
-void writeRow(std::ostream& csv, const Row& r) {
-    auto c = [&](double v) { return r.hasCorr ? field(v) : std::string(); };
-    csv << r.sequence << ',' << r.method << ',' << r.frame << ',' << field(r.time, 6) << ',' << field(r.psnr, 3) << ','
-        << field(r.ssim, 5) << ',' << field(r.borderMae, 3) << ',' << r.borderPx << ',' << field(r.disoccMae, 3) << ','
-        << r.disoccPx << ',' << c(r.corr.allLt0p1) << ',' << c(r.corr.allLt0p5) << ',' << c(r.corr.allLt1) << ','
-        << c(r.corr.hitLt0p1) << ',' << c(r.corr.hitLt0p5) << ',' << c(r.corr.hitLt1) << ',' << field(r.passMs, 3)
-        << ',' << field(r.gpuMs, 3) << ',' << field(r.conventionalMs, 3) << ',' << field(r.sourceMs, 3) << ','
-        << field(r.triangles, 0) << ',' << stagesField(r.stages) << ',' << field(r.budgetShare, 6) << ',' << r.family
-        << ',' << field(r.ageMeanMs, 3) << ',' << field(r.ageP95Ms, 3) << '\n';
+void writeRow(table::CsvFile& csv, const Row& r) {
+    table::writeCells(csv, csvColumns(), r);
+    csv.endRow();
 }
 
 ShadingSweep timeShadingSweep(Rig& rig, const BenchOptions& options, const BenchPlan& plan) {
@@ -236,7 +265,9 @@ std::string summaryMarkdown(const BenchOptions& options, const renderer::GlInfo&
     writeTable(md, plan, rows);
     writeStages(md, plan, rows);
     writeSweep(md, plan, rows, sweep);
-    md << "\nColumns of bench.csv: " << kCsvHeader
+    std::string header;
+    for (const std::string& name : table::headerOf(csvColumns())) header += (header.empty() ? "" : ",") + name;
+    md << "\nColumns of bench.csv: " << header
        << ". Empty = does not apply; psnr_db inf = identical to ground truth; stage_ms lists a pass's stages "
           "as name=ms;name=ms. PSNR in the table is that of the "
           "mean squared error over the frames. Ratios divide medians measured in this run.\n";

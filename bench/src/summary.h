@@ -11,14 +11,18 @@
 #include "bench/bench.h"
 #include "measure.h"
 #include "plan.h"
+#include "table/columns.h"
 
 namespace warplab::bench {
 
-extern const char* const kCsvHeader;
+// bench.csv's columns, each name beside how its cell is written: its header and every row
+// walk this one table.
+const std::vector<table::Column<Row>>& csvColumns();
 
-// `path` created with the header line; throws std::runtime_error naming it when it cannot be.
+// `path` created for bench.csv; throws std::runtime_error naming it when it cannot be.
 std::ofstream openCsv(const std::string& path);
-void writeRow(std::ostream& csv, const Row& r);
+// One row of bench.csv, through csvColumns().
+void writeRow(table::CsvFile& csv, const Row& r);
 
 // (shading cost, median wall ms of a conventional frame), one per options.shadingSweep cost, at
 // the first sequence's t = 0; leaves the rig's renderer at the run's shading.

@@ -15,7 +15,7 @@
 #include <tuple>
 
 #include "tables.h"
-#include "export/csv.h"
+#include "table/csv.h"
 #include "participants_csv.h"
 #include "condition/schedule.h"
 #include "game/registry.h"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "columns.h"
+#include "csv_columns.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "columns.h"
+#include "csv_columns.h"
 #include "export/export.h"
 #include "game/game.h"
 #include "game/results.h"

@@ -2,6 +2,16 @@
 
 namespace warplab::game {
 
+session::FrameRecord frameRecordOf(const ShownFrame& shown) {
+    session::FrameRecord r;
+    r.frame = shown.frame;
+    r.mode = shown.mode;
+    r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
+    r.cameraYaw = shown.camera.yaw;
+    r.cameraPitch = shown.camera.pitch;
+    return r;
+}
+
 ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement) {
     ShownFrame shown;

@@ -1,4 +1,4 @@
-#include "question_bot.h"
+#include "game/question_bot.h"
 
 namespace warplab::game {
 

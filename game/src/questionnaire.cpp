@@ -1,10 +1,10 @@
-#include "questionnaire.h"
+#include "game/questionnaire.h"
 
 #include <algorithm>
 #include <limits>
 #include <utility>
 
-#include "event_detail.h"
+#include "game/event_detail.h"
 
 namespace warplab::game {
 namespace {

@@ -5,42 +5,23 @@
 
 #include <nlohmann/json.hpp>
 
-#include "click/click_study.h"
-#include "shooter/shooter_study.h"
 #include "protocol/study_protocol.h"
 
 namespace warplab::game {
 namespace {
-
-struct GameEntry {
-    const char* name;  // the protocol's "game"
-    std::unique_ptr<Study> (*parse)(const std::string& jsonText, const std::string& sourceName);
-};
-
-// The one list of built-in games. A new built-in game adds its folder and one line here.
-constexpr GameEntry kGames[] = {
-    {"shooter", parseShooterStudy},
-    {"click", parseClickStudy},
-};
 
 struct RegisteredGame {
     std::string name;
     StudyParser parse;
 };
 
-// Games registered at run time, after the built-in ones.
+// Every known game, in the order registered: the app's (games/src/games.cpp) first.
 std::vector<RegisteredGame>& registered() {
     static std::vector<RegisteredGame> games;
     return games;
 }
 
-// Every known game, built-in first.
-std::vector<RegisteredGame> allGames() {
-    std::vector<RegisteredGame> games;
-    for (const auto& g : kGames) games.push_back({g.name, g.parse});
-    games.insert(games.end(), registered().begin(), registered().end());
-    return games;
-}
+std::vector<RegisteredGame> allGames() { return registered(); }
 
 // The other known game whose protocol `jsonText` is, but for its "game" field: the file parses
 // as that game's once its "game" names it. Only a file with fields some game has but not every

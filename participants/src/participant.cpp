@@ -290,6 +290,36 @@ void SimulatedParticipant::remember(const Percept& percept) {
 
 game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     game::FrameInput input;
+    const double now = percept.time;
+    const Sighting* view = perceive(percept, dt);
+    judged_ = false;
+    statement_ = -1;
+
+    if (view == nullptr) {
+        move(input, {}, dt, false);
+        return input;
+    }
+    // Where it points now: with a reticle, the view the frame it acts on showed, turned on by
+    // what the hand has done since (efference copy); with a cursor, its hand, corrected by what
+    // it has seen of the cursor.
+    // The image it acts on appeared at its onset and showed the view as it was a seen delay
+    // before that, as far as the internal model bridges it.
+    const glm::dvec2 pointer = view->pointer == game::PointerKind::Reticle
+        ? view->view + (hand_ - handAt(view->onset - bridged()))
+        : hand_ + calibration_;
+    aim_ = pointer;
+    chooseTarget(*view, pointer, now);
+    if (!target_) {
+        const glm::dvec2 home = homeward(*view, pointer, now);
+        move(input, home, dt, home != glm::dvec2(0.0));
+        return input;
+    }
+    homeSeen_.reset();
+    pursue(input, *view, pointer, now, dt);
+    return input;
+}
+
+const SimulatedParticipant::Sighting* SimulatedParticipant::perceive(const Percept& percept, double dt) {
     // What it has seen of the frames shown so far (in hand coordinates, from the hand as it was
     // when each was on screen), and the one it acts on: a reaction time old.
     remember(percept);
@@ -313,75 +343,61 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
         const double rate = 1.0 - std::exp(-dt / params_.recalibrationS);
         calibration_ += rate * ((view->pointerAt - handAt(view->onset - seenDelay_)) - calibration_);
     }
-    judged_ = false;
-    statement_ = -1;
+    return view;
+}
 
-    if (view == nullptr) {
-        move(input, {}, dt, false);
-        return input;
-    }
-    // Where it points now: with a reticle, the view the frame it acts on showed, turned on by
-    // what the hand has done since (efference copy); with a cursor, its hand, corrected by what
-    // it has seen of the cursor.
-    // The image it acts on appeared at its onset and showed the view as it was a seen delay
-    // before that, as far as the internal model bridges it.
-    const glm::dvec2 pointer = view->pointer == game::PointerKind::Reticle
-        ? view->view + (hand_ - handAt(view->onset - bridged()))
-        : hand_ + calibration_;
-    aim_ = pointer;
-    const glm::dvec2 handBefore = hand_;
-    const auto sees = [&](const Sighting& s, std::uint32_t id) -> const Thing* {
-        if (!s.valid) return nullptr;
-        for (const auto& t : s.things)
-            if (t.id == id) return &t;
-        return nullptr;
-    };
+const SimulatedParticipant::Thing* SimulatedParticipant::sees(const Sighting& s, std::uint32_t id) {
+    if (!s.valid) return nullptr;
+    for (const auto& t : s.things)
+        if (t.id == id) return &t;
+    return nullptr;
+}
+
+void SimulatedParticipant::chooseTarget(const Sighting& view, glm::dvec2 pointer, double now) {
     // A clicked object is left alone until it has been seen gone (or for a while).
     for (auto it = clicked_.begin(); it != clicked_.end();) {
-        const bool gone = view->time > it->second && sees(*view, it->first) == nullptr;
+        const bool gone = view.time > it->second && sees(view, it->first) == nullptr;
         it = gone || now - it->second > params_.forgetClickedS ? clicked_.erase(it) : std::next(it);
     }
-    if (target_ && (sees(*view, *target_) == nullptr || clicked_.count(*target_))) target_.reset();
+    if (target_ && (sees(view, *target_) == nullptr || clicked_.count(*target_))) target_.reset();
     // Where only red is left, the field fills up with it (a clicked sphere is what makes room
     // for a new one): after a while without a green one in sight, a red one is cleared away.
     bool greenInSight = false;
-    for (const auto& t : view->things) greenInSight = greenInSight || (t.green && !clicked_.count(t.id));
-    if (greenInSight || !view->valid) lastGreenSeen_ = now;
+    for (const auto& t : view.things) greenInSight = greenInSight || (t.green && !clicked_.count(t.id));
+    if (greenInSight || !view.valid) lastGreenSeen_ = now;
     const bool clearRed = knowledge_.greenOnly && now - lastGreenSeen_ > params_.clearRedAfterS;
-    if (!target_ && view->valid) {
-        // The easiest one: the nearest, counting how far each moves while the participant reacts
-        // and the display lags, as it sees that lag -- where the display is late, a sphere
-        // resting on the floor is an easier choice than a falling one, and people choose so.
-        // It chooses once it has watched the field a tenth of a second: how each one moves is
-        // part of the choice.
-        const Sighting* before = nullptr;  // an image about a tenth of a second older
-        for (const auto& s : sightings_)
-            if (s.valid && s.time <= view->time - 0.1 + 1e-9) before = &s;
-        const double lead = params_.reactionS + seenDelay_;
-        double best = std::numeric_limits<double>::infinity();
-        for (const auto& t : before != nullptr ? view->things : std::vector<Thing>{}) {
-            if ((knowledge_.greenOnly && !t.green && !clearRed) || clicked_.count(t.id)) continue;
-            double d = glm::length(t.where - pointer);
-            if (const Thing* then = sees(*before, t.id))
-                d += glm::length(t.where - then->where) / (view->time - before->time) * lead;
-            if (d < best) {
-                best = d;
-                target_ = t.id;
-                aimingSince_ = now;
-            }
+    if (target_ || !view.valid) return;
+    // The easiest one: the nearest, counting how far each moves while the participant reacts
+    // and the display lags, as it sees that lag -- where the display is late, a sphere
+    // resting on the floor is an easier choice than a falling one, and people choose so.
+    // It chooses once it has watched the field a tenth of a second: how each one moves is
+    // part of the choice.
+    const Sighting* before = nullptr;  // an image about a tenth of a second older
+    for (const auto& s : sightings_)
+        if (s.valid && s.time <= view.time - 0.1 + 1e-9) before = &s;
+    const double lead = params_.reactionS + seenDelay_;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& t : before != nullptr ? view.things : std::vector<Thing>{}) {
+        if ((knowledge_.greenOnly && !t.green && !clearRed) || clicked_.count(t.id)) continue;
+        double d = glm::length(t.where - pointer);
+        if (const Thing* then = sees(*before, t.id))
+            d += glm::length(t.where - then->where) / (view.time - before->time) * lead;
+        if (d < best) {
+            best = d;
+            target_ = t.id;
+            aimingSince_ = now;
         }
     }
-    if (!target_) {
-        const glm::dvec2 home = homeward(*view, pointer, now);
-        move(input, home, dt, home != glm::dvec2(0.0));
-        return input;
-    }
-    homeSeen_.reset();
+}
+
+void SimulatedParticipant::pursue(game::FrameInput& input, const Sighting& view, glm::dvec2 pointer, double now,
+                                  double dt) {
+    const glm::dvec2 handBefore = hand_;
     std::vector<Sample> samples;
     const double maxSeenSpeed = handUnitsPerRadian() * glm::radians(params_.maxSeenSpeedDegPerS);
     for (const auto& s : sightings_) {
-        if (s.time > view->time) break;
-        if (s.onset < view->onset - params_.motionWindowS - 1e-9) continue;
+        if (s.time > view.time) break;
+        if (s.onset < view.onset - params_.motionWindowS - 1e-9) continue;
         // A frame held on screen shows nothing new: motion is judged from the changes seen. A
         // change faster than any target moves is a jump, not motion -- a new target, or the
         // view misjudged (the hall repeats itself) -- and the motion is judged afresh from it.
@@ -407,14 +423,13 @@ game::FrameInput SimulatedParticipant::play(const Percept& percept, double dt) {
     move(input, velocity, dt, true);
     // The press counts at the next frame, with the hand where it has just been sent.
     const glm::dvec2 predicted = seen.positionAt(ahead + dt);
-    const Thing& inView = *sees(*view, *target_);
+    const Thing& inView = *sees(view, *target_);
     aim_ = pointer + (hand_ - handBefore);
     if (decidesToClick(predicted - aim_, inView.offset, inView.radius, now - aimingSince_, params_)) {
         input.buttons = game::kButtonLeft;
         clicked_[*target_] = now;
         target_.reset();
     }
-    return input;
 }
 
 double SimulatedParticipant::handUnitsPerRadian() const {

@@ -1,6 +1,7 @@
 #include "participants/perception.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <limits>
 

@@ -29,26 +29,6 @@ namespace fs = std::filesystem;
 // Ordered, so study.json and a participant's protocol keep their keys in the order written.
 using Json = nlohmann::ordered_json;
 
-// Where each game's protocol keeps the list a plan counterbalances and the flag that says
-// whether the game shuffles it (docs/study-plan.md). The one table: makePlan reads the list
-// through it, participantProtocolJson writes the participant's order through it.
-struct CounterbalancedList {
-    const char* game;
-    const char* section;
-    const char* list;
-    const char* shuffledFlag;  // true: the session seed randomises the order
-};
-constexpr CounterbalancedList kCounterbalancedLists[] = {
-    {"shooter", "test", "conditions", "interleave"},
-    {"click", "matches", "modes", "shuffle"},
-};
-
-const CounterbalancedList* counterbalancedList(const std::string& game) {
-    for (const auto& entry : kCounterbalancedLists)
-        if (game == entry.game) return &entry;
-    return nullptr;
-}
-
 // Plan files are small: 10000 participants take about 3 MB.
 constexpr std::size_t kMaxPlanBytes = 64u << 20;
 using strict::formatNumber;
@@ -217,24 +197,25 @@ bool readsTraceFile(const Json& document) {
 }
 
 // The loader's ProtocolError, as a PlanError with the same sentence.
-ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceName) {
-    std::unique_ptr<game::Study> study;
+std::unique_ptr<game::Study> studyOf(const std::string& text, const std::string& sourceName) {
     try {
-        study = game::parseStudy(text, sourceName);
+        return game::parseStudy(text, sourceName);
     } catch (const protocol::ProtocolError& e) {
         throw PlanError(e.what());
     }
+}
+
+ParsedProtocol parseProtocol(const std::string& text, const std::string& sourceName) {
+    const std::unique_ptr<game::Study> study = studyOf(text, sourceName);
     ParsedProtocol out;
     out.name = study->name();
     out.game = study->game();
-    const CounterbalancedList* list = counterbalancedList(out.game);
+    const std::optional<game::CounterbalancedList> list = study->counterbalanced();
     if (!list)
         throw PlanError("protocol '" + sourceName + "': a study plan does not know which list of a " +
                         jsonString(out.game) + " protocol to counterbalance");
-    const Json canonical = Json::parse(study->protocolJson());
-    const Json& section = canonical.at(list->section);
-    out.conditions = section.at(list->list).get<std::vector<std::string>>();
-    out.blocked = !section.at(list->shuffledFlag).get<bool>();
+    out.conditions = list->conditions;
+    out.blocked = list->blocked;
     // The copy lies in the plan folder, away from a trace file the protocol names beside itself:
     // such a protocol is kept as its canonical copy, the frame times inline (as a session keeps it).
     out.copy = readsTraceFile(Json::parse(text)) ? study->protocolJson() : text;
@@ -642,14 +623,10 @@ std::string participantProtocolJson(const std::string& planDir, const StudyPlan&
     const ProtocolEntry& entry = plan.protocols[static_cast<std::size_t>(protocolIndex)];
     const std::string where = "protocols[" + std::to_string(protocolIndex) + "].file";
     const std::string text = protocolText(file, planDir, entry, where);
-    const CounterbalancedList* list = counterbalancedList(entry.game);
-    if (!list) file.fail(where, "is a " + jsonString(entry.game) + " protocol, whose list a study plan does not know");
-    Json document = Json::parse(text);
-    // A section the file leaves out is added with the list alone: its other fields keep their
-    // defaults, as they did in the file.
-    Json& section = document[list->section];
-    section[list->list] = participant.conditionOrder[static_cast<std::size_t>(protocolIndex)];
-    return document.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
+    const std::unique_ptr<game::Study> study = studyOf(text, protocolPath(file, planDir, entry, where).string());
+    if (!study->counterbalanced())
+        file.fail(where, "is a " + jsonString(entry.game) + " protocol, whose list a study plan does not know");
+    return study->withConditionOrder(text, participant.conditionOrder[static_cast<std::size_t>(protocolIndex)]);
 }
 
 }  // namespace warplab::plan

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "json_fields.h"
+#include "protocol/fields.h"
 
-namespace warplab::protocol::detail {
+namespace warplab::protocol::fields {
 namespace {
 
 const std::vector<const char*> kFrameTimesKeys{"file", "format", "sha256", "offset_s", "mean_hz", "ms"};
@@ -103,4 +103,4 @@ void writeFrameTimes(Json& o, const condition::Condition& c) {
     j["ms"] = t.recordedMs;
 }
 
-}  // namespace warplab::protocol::detail
+}  // namespace warplab::protocol::fields

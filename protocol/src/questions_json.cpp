@@ -1,10 +1,10 @@
-#include "questions_json.h"
+#include "protocol/questions_json.h"
 
 #include <algorithm>
 #include <cstddef>
 #include <optional>
 
-namespace warplab::protocol::detail {
+namespace warplab::protocol::fields {
 namespace {
 
 using Q = Question;
@@ -162,4 +162,4 @@ Json questionsJson(const std::vector<Question>& questions) {
     return list;
 }
 
-}  // namespace warplab::protocol::detail
+}  // namespace warplab::protocol::fields

@@ -250,6 +250,19 @@ struct ConventionalRenderer::Impl {
     Impl(const DataPaths& paths, const ShadingOptions& options) : shading(options), geometry(paths) {}
     void render(const scene::FrameDescription& frame, GBuffer& target, const scene::FrameDescription* flowTo);
     void resolveSamples(GBuffer::Impl& g);
+
+    // The camera at this instant and at the flow's other one, over the target's lattice.
+    struct Matrices {
+        glm::mat4 view{1.0f}, viewProjection{1.0f}, otherView{1.0f}, otherViewProjection{1.0f};
+    };
+    // render's steps, in the order it takes them.
+    void beginFrame(GBuffer::Impl& g);
+    Matrices matrices(const scene::FrameDescription& frame, const scene::FrameDescription& other,
+                      const GBuffer::Impl& g) const;
+    void setCameraUniforms(const scene::FrameDescription& frame, const Matrices& mats, const GBuffer::Impl& g);
+    void setShadingUniforms(const scene::FrameDescription& frame, const Matrices& mats);
+    void drawScene(const scene::FrameDescription& frame, const scene::FrameDescription* flowTo, GLint otherModel,
+                   int passHeight);
     struct Uniforms {
         GLint model, normalMatrix, viewProjection, objectId, linearVelocity, angularVelocity, centre, eye, tint,
             panelPattern, lampCount, lampPosition, lampColour, shadingCost, geometryOnly, masked, sampleMask;
@@ -317,94 +330,14 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
                                         const scene::FrameDescription* flowTo) {
     auto& m = *this;
     auto& g = target.impl();
-    // Made before anything is drawn, so a size the driver refuses throws with the state untouched.
     const int n = m.shading.supersampling;
-    if (n > 1 && (m.samples.width != n * g.width || m.samples.height != n * g.height))
-        m.samples = makeSampleBuffer(n * g.width, n * g.height, n);
-    glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
-    glViewport(0, 0, g.width, g.height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-    glDisable(GL_CULL_FACE);
-
-    const GLuint noId[4] = {scene::kIdNone, 0, 0, 0};
-    const GLfloat still[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearBufferfv(GL_COLOR, 0, kSky);
-    glClearBufferuiv(GL_COLOR, 1, noId);
-    glClearBufferfv(GL_COLOR, 2, still);
-    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-
-    // The frame the target shades a lattice of (the target itself without one). A frame pixel
-    // centre at NDC 2 (s X + p + 0.5) / W - 1 must land on the target's pixel centre
-    // 2 s (X + 0.5) / W - 1: a shift by (s - 1 - 2 p) / W, the same for every pixel.
-    const glm::ivec2 step = m.shading.latticeStep, phase = m.shading.latticePhase;
-    const glm::vec2 frameSize(static_cast<float>(g.width * step.x), static_cast<float>(g.height * step.y));
-    const float aspect = frameSize.x / frameSize.y;
-    const glm::vec3 latticeShift(static_cast<float>(step.x - 1 - 2 * phase.x) / frameSize.x,
-                                 static_cast<float>(step.y - 1 - 2 * phase.y) / frameSize.y, 0.0f);
-    const glm::mat4 shift = glm::translate(glm::mat4(1.0f), latticeShift);
-    const glm::mat4 view = scene::viewMatrix(frame.camera);
-    const glm::mat4 viewProjection = shift * scene::projectionMatrix(frame.camera, aspect) * view;
+    beginFrame(g);
     // Without a flow target the "other" instant is this one: the flow output, not stored, is 0.
     const scene::FrameDescription& other = flowTo != nullptr ? *flowTo : frame;
-    const glm::mat4 otherView = scene::viewMatrix(other.camera);
-    const glm::mat4 otherViewProjection = shift * scene::projectionMatrix(other.camera, aspect) * otherView;
-
-    glUseProgram(m.program.id());
-    auto u = [&](const char* name) { return gl::uniform(m.program, name); };
-    glUniformMatrix4fv(u("uView"), 1, GL_FALSE, glm::value_ptr(view));
-    glUniformMatrix4fv(u("uOtherView"), 1, GL_FALSE, glm::value_ptr(otherView));
-    glUniformMatrix4fv(u("uOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
-    glUniformMatrix4fv(u("uFlowOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(otherViewProjection));
-    const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(viewProjection)));
-    glUniformMatrix4fv(u("uFlowInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
-    glUniform2f(u("uFlowSize"), static_cast<float>(g.width), static_cast<float>(g.height));
-    glUniform1f(u("uFlowFar"), frame.camera.farPlane);
-    glUniform1i(u("uSky"), 0);
-    const GLint otherModel = u("uOtherModel");
-    glUniformMatrix4fv(m.u.viewProjection, 1, GL_FALSE, glm::value_ptr(viewProjection));
-    glUniform3fv(m.u.eye, 1, glm::value_ptr(frame.camera.eye));
-    const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
-    glUniform1i(m.u.lampCount, lampCount);
-    glUniform1i(m.u.shadingCost, m.shading.shadingCost);
-    glUniform1i(m.u.geometryOnly, m.shading.geometryOnly ? 1 : 0);
-    glUniform1i(m.u.masked, m.shading.sampleMask != 0 ? 1 : 0);
-    if (m.shading.sampleMask != 0) {
-        glActiveTexture(GL_TEXTURE0);
-        glBindTexture(GL_TEXTURE_2D, m.shading.sampleMask);
-        glUniform1i(m.u.sampleMask, 0);
-    }
-    std::vector<glm::vec3> positions, colours;
-    for (int i = 0; i < lampCount; ++i) {
-        positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);
-        colours.push_back(m.lamps[static_cast<std::size_t>(i)].colour);
-    }
-    glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
-    glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
-    // Each pass draws its spheres as finely as its own pixels need: the 1x pass as any render
-    // of this size does (so a flow pass of the same frame draws the same triangles), the
-    // samples as a render N times the size.
-    const auto drawScene = [&](int passHeight) {
-        m.geometry.draw(frame.scene, frame.camera, passHeight, [&](const SceneGeometry::Item& item) {
-            const scene::ObjectState* o = item.object;
-            const glm::mat4 there = o == nullptr || flowTo == nullptr
-                ? item.model
-                : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, other.scene));
-            glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
-            const glm::vec3 zero(0.0f);
-            const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
-            glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
-            glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
-            glUniform1ui(m.u.objectId, item.id);
-            glUniform3fv(m.u.centre, 1, glm::value_ptr(o ? o->position : zero));
-            glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(o ? o->velocity : zero));
-            glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(o ? o->angularVelocity : zero));
-            glUniform3fv(m.u.tint, 1, glm::value_ptr(o ? o->colour : glm::vec3(1.0f)));
-            glUniform1i(m.u.panelPattern, o == nullptr && m.shading.panelPattern ? 1 : 0);
-        });
-    };
+    const Matrices mats = matrices(frame, other, g);
+    setCameraUniforms(frame, mats, g);
+    const GLint otherModel = gl::uniform(m.program, "uOtherModel");
+    setShadingUniforms(frame, mats);
 
     if (flowTo != nullptr) {
         // The flow goes into a fourth target; the sky's flow first, under everything, as a
@@ -415,7 +348,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glDrawBuffers(4, four);
         m.geometry.drawSky(m.program);
     }
-    drawScene(g.height * step.y);
+    drawScene(frame, flowTo, otherModel, g.height * m.shading.latticeStep.y);
     if (flowTo != nullptr) {
         const GLenum three[] = {GBuffer::Impl::kColourAttachment, GBuffer::Impl::kIdAttachment,
                                 GBuffer::Impl::kVelocityAttachment};
@@ -435,7 +368,7 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
         glViewport(0, 0, m.samples.width, m.samples.height);
         glClearBufferfv(GL_COLOR, 0, kSky);
         glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
-        drawScene(m.samples.height);
+        drawScene(frame, flowTo, otherModel, m.samples.height);
         resolveSamples(g);
     }
     if (m.shading.sampleMask != 0) {
@@ -446,6 +379,115 @@ void ConventionalRenderer::Impl::render(const scene::FrameDescription& frame, GB
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     gl::checkErrors("rendering a conventional frame");
+}
+
+// The supersampling buffer when the size changed, the target bound and cleared to the sky.
+void ConventionalRenderer::Impl::beginFrame(GBuffer::Impl& g) {
+    auto& m = *this;
+    // Made before anything is drawn, so a size the driver refuses throws with the state untouched.
+    const int n = m.shading.supersampling;
+    if (n > 1 && (m.samples.width != n * g.width || m.samples.height != n * g.height))
+        m.samples = makeSampleBuffer(n * g.width, n * g.height, n);
+    glBindFramebuffer(GL_FRAMEBUFFER, g.framebuffer.id());
+    glViewport(0, 0, g.width, g.height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+
+    const GLuint noId[4] = {scene::kIdNone, 0, 0, 0};
+    const GLfloat still[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearBufferfv(GL_COLOR, 0, kSky);
+    glClearBufferuiv(GL_COLOR, 1, noId);
+    glClearBufferfv(GL_COLOR, 2, still);
+    glClearBufferfi(GL_DEPTH_STENCIL, 0, 1.0f, 0);
+}
+
+ConventionalRenderer::Impl::Matrices ConventionalRenderer::Impl::matrices(const scene::FrameDescription& frame,
+                                                                          const scene::FrameDescription& other,
+                                                                          const GBuffer::Impl& g) const {
+    // The frame the target shades a lattice of (the target itself without one). A frame pixel
+    // centre at NDC 2 (s X + p + 0.5) / W - 1 must land on the target's pixel centre
+    // 2 s (X + 0.5) / W - 1: a shift by (s - 1 - 2 p) / W, the same for every pixel.
+    const glm::ivec2 step = shading.latticeStep, phase = shading.latticePhase;
+    const glm::vec2 frameSize(static_cast<float>(g.width * step.x), static_cast<float>(g.height * step.y));
+    const float aspect = frameSize.x / frameSize.y;
+    const glm::vec3 latticeShift(static_cast<float>(step.x - 1 - 2 * phase.x) / frameSize.x,
+                                 static_cast<float>(step.y - 1 - 2 * phase.y) / frameSize.y, 0.0f);
+    const glm::mat4 shift = glm::translate(glm::mat4(1.0f), latticeShift);
+    Matrices mats;
+    mats.view = scene::viewMatrix(frame.camera);
+    mats.viewProjection = shift * scene::projectionMatrix(frame.camera, aspect) * mats.view;
+    mats.otherView = scene::viewMatrix(other.camera);
+    mats.otherViewProjection = shift * scene::projectionMatrix(other.camera, aspect) * mats.otherView;
+    return mats;
+}
+
+// The program in use, with the camera of this instant and the flow's other one.
+void ConventionalRenderer::Impl::setCameraUniforms(const scene::FrameDescription& frame, const Matrices& mats,
+                                                   const GBuffer::Impl& g) {
+    auto& m = *this;
+    glUseProgram(m.program.id());
+    auto u = [&](const char* name) { return gl::uniform(m.program, name); };
+    glUniformMatrix4fv(u("uView"), 1, GL_FALSE, glm::value_ptr(mats.view));
+    glUniformMatrix4fv(u("uOtherView"), 1, GL_FALSE, glm::value_ptr(mats.otherView));
+    glUniformMatrix4fv(u("uOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(mats.otherViewProjection));
+    glUniformMatrix4fv(u("uFlowOtherViewProjection"), 1, GL_FALSE, glm::value_ptr(mats.otherViewProjection));
+    const glm::mat4 inverse = glm::mat4(glm::inverse(glm::dmat4(mats.viewProjection)));
+    glUniformMatrix4fv(u("uFlowInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(inverse));
+    glUniform2f(u("uFlowSize"), static_cast<float>(g.width), static_cast<float>(g.height));
+    glUniform1f(u("uFlowFar"), frame.camera.farPlane);
+    glUniform1i(u("uSky"), 0);
+}
+
+// The projection, the eye, the lamps and the shading options.
+void ConventionalRenderer::Impl::setShadingUniforms(const scene::FrameDescription& frame, const Matrices& mats) {
+    auto& m = *this;
+    glUniformMatrix4fv(m.u.viewProjection, 1, GL_FALSE, glm::value_ptr(mats.viewProjection));
+    glUniform3fv(m.u.eye, 1, glm::value_ptr(frame.camera.eye));
+    const int lampCount = std::min<int>(static_cast<int>(m.lamps.size()), kMaxLamps);
+    glUniform1i(m.u.lampCount, lampCount);
+    glUniform1i(m.u.shadingCost, m.shading.shadingCost);
+    glUniform1i(m.u.geometryOnly, m.shading.geometryOnly ? 1 : 0);
+    glUniform1i(m.u.masked, m.shading.sampleMask != 0 ? 1 : 0);
+    if (m.shading.sampleMask != 0) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, m.shading.sampleMask);
+        glUniform1i(m.u.sampleMask, 0);
+    }
+    std::vector<glm::vec3> positions, colours;
+    for (int i = 0; i < lampCount; ++i) {
+        positions.push_back(m.lamps[static_cast<std::size_t>(i)].position);
+        colours.push_back(m.lamps[static_cast<std::size_t>(i)].colour);
+    }
+    glUniform3fv(m.u.lampPosition, lampCount, glm::value_ptr(positions.front()));
+    glUniform3fv(m.u.lampColour, lampCount, glm::value_ptr(colours.front()));
+}
+
+// Each pass draws its spheres as finely as its own pixels need: the 1x pass as any render
+// of this size does (so a flow pass of the same frame draws the same triangles), the
+// samples as a render N times the size.
+void ConventionalRenderer::Impl::drawScene(const scene::FrameDescription& frame, const scene::FrameDescription* flowTo,
+                                           GLint otherModel, int passHeight) {
+    auto& m = *this;
+    m.geometry.draw(frame.scene, frame.camera, passHeight, [&](const SceneGeometry::Item& item) {
+        const scene::ObjectState* o = item.object;
+        const glm::mat4 there = o == nullptr || flowTo == nullptr
+            ? item.model
+            : scene::modelMatrix(scene::objectAt(*o, frame.scene.time, flowTo->scene));
+        glUniformMatrix4fv(otherModel, 1, GL_FALSE, glm::value_ptr(there));
+        const glm::vec3 zero(0.0f);
+        const glm::mat3 normalMatrix = glm::transpose(glm::inverse(glm::mat3(item.model)));
+        glUniformMatrix4fv(m.u.model, 1, GL_FALSE, glm::value_ptr(item.model));
+        glUniformMatrix3fv(m.u.normalMatrix, 1, GL_FALSE, glm::value_ptr(normalMatrix));
+        glUniform1ui(m.u.objectId, item.id);
+        glUniform3fv(m.u.centre, 1, glm::value_ptr(o ? o->position : zero));
+        glUniform3fv(m.u.linearVelocity, 1, glm::value_ptr(o ? o->velocity : zero));
+        glUniform3fv(m.u.angularVelocity, 1, glm::value_ptr(o ? o->angularVelocity : zero));
+        glUniform3fv(m.u.tint, 1, glm::value_ptr(o ? o->colour : glm::vec3(1.0f)));
+        glUniform1i(m.u.panelPattern, o == nullptr && m.shading.panelPattern ? 1 : 0);
+    });
 }
 
 // Writes the mean of each N x N block of samples into the target's colour attachment only.

@@ -7,15 +7,16 @@
 namespace warplab::study {
 namespace {
 
-// Click sessions recorded before bidirectional reprojection existed say in each match event
-// that a stand-in drew the mode's frames ("stand_in"). That describes the rendering, which
-// replay does not redo, not what was played: it is left out of the comparison, so those
-// sessions still replay (and export still reports it).
-session::EventRecord withoutRenderNotes(session::EventRecord event) {
-    if (event.detailJson.find("\"stand_in\"") == std::string::npos) return event;
+// The event without the details that describe the rendering (Game::renderDetailKeys), which
+// replay does not redo: such sessions still replay, and export still reports the details.
+session::EventRecord withoutRenderNotes(session::EventRecord event, const std::vector<std::string>& keys) {
+    bool present = false;
+    for (const std::string& key : keys)
+        present = present || event.detailJson.find('"' + key + '"') != std::string::npos;
+    if (!present) return event;
     auto detail = nlohmann::json::parse(event.detailJson, nullptr, false);
     if (!detail.is_object()) return event;
-    detail.erase("stand_in");
+    for (const std::string& key : keys) detail.erase(key);
     event.detailJson = detail.dump();
     return event;
 }
@@ -25,6 +26,7 @@ session::EventRecord withoutRenderNotes(session::EventRecord event) {
 Rerun rerun(const session::SessionData& data, game::Game& game,
             const std::function<void(std::size_t, const game::ShownFrame&, std::size_t)>& stepped) {
     Rerun result;
+    const std::vector<std::string> renderKeys = game.renderDetailKeys();
     for (const auto& e : data.events) result.outcomes += game.isOutcome(e);
     std::size_t eventIndex = 0;
     for (std::size_t i = 0; i < data.inputs.size(); ++i) {
@@ -36,7 +38,8 @@ Rerun rerun(const session::SessionData& data, game::Game& game,
                 // The store ends before this event was committed: nothing more to check.
                 break;
             }
-            const std::string diff = session::firstDifference(withoutRenderNotes(data.events[eventIndex]), replayed);
+            const std::string diff =
+                session::firstDifference(withoutRenderNotes(data.events[eventIndex], renderKeys), replayed);
             const auto& logged = data.events[eventIndex];
             if (!diff.empty() && result.difference.empty()) {
                 result.difference = "record " + std::to_string(eventIndex + 1) + " (" + logged.type + " at frame " +

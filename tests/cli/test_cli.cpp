@@ -20,7 +20,7 @@
 
 #include "cli/cli_support.h"
 #include "session/session_store.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "image/image.h"
 
 namespace {
@@ -1142,7 +1142,7 @@ TEST(Cli, RenderRefusesEmptyOrBlankPaths) {
     EXPECT_EQ(filesIn(dir), 0u) << "a refused render wrote something";
 }
 
-// render and the protocols share one field-of-view range (protocol/shooter_protocol.h): a view a
+// render and the protocols share one field-of-view range (shooter/shooter_protocol.h): a view a
 // protocol may ask for can be rendered, and a value the one refuses the other refuses, naming
 // the same range. render once refused the ends 1 and 179 that protocols accept.
 TEST(Cli, RenderAndProtocolsShareTheFieldOfViewRange) {

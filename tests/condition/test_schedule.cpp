@@ -89,7 +89,7 @@ TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
 
 // The README's latency cells are the schedule's ranges: each preset's row gives its view and
 // scene latency as "A – B ms" (or "same as view"), which must be what `warplab conditions`
-// prints for it at 120 Hz, to the 0.1 ms the README rounds to. (tests/game/test_click_game.cpp
+// prints for it at 120 Hz, to the 0.1 ms the README rounds to. (tests/games/click/test_click_game.cpp
 // holds the same cells to a real run.)
 TEST(Modes, ReadmeLatencyCellsAreTheSchedulesRanges) {
     const readme::ReadmeLatencyTable table = readme::readmeLatencyTable();

@@ -24,10 +24,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "export/csv.h"
+#include "table/csv.h"
 #include "game/registry.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "export/export.h"
 #include "plan/study_plan.h"
 #include "condition/schedule.h"
@@ -90,43 +90,43 @@ void countScored(const session::SessionData& data, std::map<Key, Counts>& into) 
 // ---- cells ----
 
 TEST(ExportCsv, TextThatASpreadsheetWouldRunIsDefused) {
-    EXPECT_EQ(exporter::csvText("=1+2"), "'=1+2");
-    EXPECT_EQ(exporter::csvText("+41"), "'+41");
-    EXPECT_EQ(exporter::csvText("-5"), "'-5");
-    EXPECT_EQ(exporter::csvText("@SUM(A1)"), "'@SUM(A1)");
-    EXPECT_EQ(exporter::csvText("\tx"), "'\tx");
-    EXPECT_EQ(exporter::csvText("P-01"), "P-01");  // only the first character matters
-    EXPECT_EQ(exporter::csvText("=HYPERLINK(\"x\",\"y\")"), "\"'=HYPERLINK(\"\"x\"\",\"\"y\"\")\"");
+    EXPECT_EQ(table::csvText("=1+2"), "'=1+2");
+    EXPECT_EQ(table::csvText("+41"), "'+41");
+    EXPECT_EQ(table::csvText("-5"), "'-5");
+    EXPECT_EQ(table::csvText("@SUM(A1)"), "'@SUM(A1)");
+    EXPECT_EQ(table::csvText("\tx"), "'\tx");
+    EXPECT_EQ(table::csvText("P-01"), "P-01");  // only the first character matters
+    EXPECT_EQ(table::csvText("=HYPERLINK(\"x\",\"y\")"), "\"'=HYPERLINK(\"\"x\"\",\"\"y\"\")\"");
 }
 
 // One-to-one: two ids that differ are written differently ("=1" and "'=1" were both '=1, and the
 // analysis then took two participants for one), and one leading ' dropped gives the original.
 TEST(ExportCsv, TheEscapeIsOneToOne) {
-    EXPECT_EQ(exporter::csvText("=1"), "'=1");
-    EXPECT_EQ(exporter::csvText("'=1"), "''=1");
-    EXPECT_EQ(exporter::csvText("'quoted"), "''quoted");
+    EXPECT_EQ(table::csvText("=1"), "'=1");
+    EXPECT_EQ(table::csvText("'=1"), "''=1");
+    EXPECT_EQ(table::csvText("'quoted"), "''quoted");
     for (const std::string id : {"=1", "'=1", "''=1", "'x", "x", "-3", "'-3", "P01"}) {
-        const std::string cell = exporter::csvText(id);
+        const std::string cell = table::csvText(id);
         const std::string back = cell.rfind('\'', 0) == 0 ? cell.substr(1) : cell;
         EXPECT_EQ(back, id) << cell;
     }
 }
 
 TEST(ExportCsv, TextIsQuotedOnlyWhereRfc4180NeedsIt) {
-    EXPECT_EQ(exporter::csvText("plain text"), "plain text");
-    EXPECT_EQ(exporter::csvText("a,b"), "\"a,b\"");
-    EXPECT_EQ(exporter::csvText("say \"hi\""), "\"say \"\"hi\"\"\"");
-    EXPECT_EQ(exporter::csvText("two\nlines"), "\"two\nlines\"");
-    EXPECT_EQ(exporter::csvText(""), "");
+    EXPECT_EQ(table::csvText("plain text"), "plain text");
+    EXPECT_EQ(table::csvText("a,b"), "\"a,b\"");
+    EXPECT_EQ(table::csvText("say \"hi\""), "\"say \"\"hi\"\"\"");
+    EXPECT_EQ(table::csvText("two\nlines"), "\"two\nlines\"");
+    EXPECT_EQ(table::csvText(""), "");
 }
 
 TEST(ExportCsv, InvalidUtf8BecomesTheReplacementCharacterAndValidUtf8Stays) {
-    EXPECT_EQ(exporter::csvText("caf\xC3\xA9"), "caf\xC3\xA9");
-    EXPECT_EQ(exporter::csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");  // U+1F600
-    EXPECT_EQ(exporter::csvText("a\xFFz"), "a\xEF\xBF\xBDz");  // stray byte
-    EXPECT_EQ(exporter::csvText("\xC3"), "\xEF\xBF\xBD");  // cut sequence
-    EXPECT_EQ(exporter::csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");  // overlong '/'
-    EXPECT_EQ(exporter::csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
+    EXPECT_EQ(table::csvText("caf\xC3\xA9"), "caf\xC3\xA9");
+    EXPECT_EQ(table::csvText("\xF0\x9F\x98\x80"), "\xF0\x9F\x98\x80");  // U+1F600
+    EXPECT_EQ(table::csvText("a\xFFz"), "a\xEF\xBF\xBDz");  // stray byte
+    EXPECT_EQ(table::csvText("\xC3"), "\xEF\xBF\xBD");  // cut sequence
+    EXPECT_EQ(table::csvText("\xC0\xAF"), "\xEF\xBF\xBD\xEF\xBF\xBD");  // overlong '/'
+    EXPECT_EQ(table::csvText("\xED\xA0\x80"), "\xEF\xBF\xBD\xEF\xBF\xBD\xEF\xBF\xBD");  // a surrogate
 }
 
 TEST(ExportCsv, NumbersReadBackBitForBit) {
@@ -139,21 +139,21 @@ TEST(ExportCsv, NumbersReadBackBitForBit) {
         if (std::isfinite(d)) values.push_back(d);
     }
     for (const double v : values) {
-        const std::string text = exporter::csvNumber(v);
+        const std::string text = table::csvNumber(v);
         EXPECT_EQ(text.find(','), std::string::npos) << text;
         const double back = std::strtod(text.c_str(), nullptr);
         EXPECT_EQ(std::memcmp(&back, &v, sizeof v), 0) << text;
     }
-    EXPECT_EQ(exporter::csvNumber(0.1), "0.1");  // shortest, not 0.10000000000000001
-    EXPECT_EQ(exporter::csvNumber(std::nan("")), "");
-    EXPECT_EQ(exporter::csvNumber(HUGE_VAL), "Inf");
-    EXPECT_EQ(exporter::csvNumber(-HUGE_VAL), "-Inf");
+    EXPECT_EQ(table::csvNumber(0.1), "0.1");  // shortest, not 0.10000000000000001
+    EXPECT_EQ(table::csvNumber(std::nan("")), "");
+    EXPECT_EQ(table::csvNumber(HUGE_VAL), "Inf");
+    EXPECT_EQ(table::csvNumber(-HUGE_VAL), "-Inf");
 }
 
 TEST(ExportCsv, ARowWithTheWrongNumberOfCellsIsRefusedAndNoFileIsLeft) {
     const std::string dir = scratch("wrong-cells");
     {
-        exporter::CsvFile f(dir + "/t.csv", {"a", "b"});
+        table::CsvFile f(dir + "/t.csv", {"a", "b"});
         f.text("x");
         EXPECT_THROW(f.endRow(), std::logic_error);
     }

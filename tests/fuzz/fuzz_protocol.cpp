@@ -16,6 +16,7 @@
 #include <string>
 
 #include "game/registry.h"
+#include "games/games.h"
 #include "protocol/study_protocol.h"
 
 namespace {
@@ -39,6 +40,12 @@ std::unique_ptr<Study> parse(const std::string& text, const std::string& name) {
 }
 
 }  // namespace
+
+// The built-in games, known to the loader as the app makes them known.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    warplab::games::registerGames();
+    return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

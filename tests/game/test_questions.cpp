@@ -10,14 +10,14 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "click/click_bot.h"
-#include "click/click_game.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
-#include "questionnaire.h"
+#include "click_bot.h"
+#include "click_game.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
+#include "game/questionnaire.h"
 #include "session/records.h"
-#include "shooter/shooter_bot.h"
-#include "shooter/shooter_game.h"
+#include "shooter_bot.h"
+#include "shooter_game.h"
 
 namespace warplab::game {
 namespace {

@@ -73,12 +73,12 @@ renderer::DisplayImages produceFrom(const std::string& method, const RenderedSou
     return produceFrame(method, input, width, height);
 }
 
-game::ShooterScene shooterScene(int width, int height, std::uint64_t seed, double speed) {
-    game::ShooterSceneConfig config;
+physics::TargetScene shooterScene(int width, int height, std::uint64_t seed, double speed) {
+    physics::TargetSceneConfig config;
     config.aspect = static_cast<double>(width) / height;
     config.seed = seed;
     config.targetSpeed = speed;
-    return game::ShooterScene(config);
+    return physics::TargetScene(config);
 }
 
 int blackWhereTruthIsNot(const image::ImageRGBA8& shown, const image::ImageRGBA8& truth) {

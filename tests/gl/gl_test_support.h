@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "game/shooter_scene.h"
+#include "physics/target_scene.h"
 #include "renderer/context.h"
 #include "renderer/conventional.h"
 #include "renderer/upconvert.h"
@@ -40,7 +40,7 @@ renderer::DisplayImages produceFrom(const std::string& method, const RenderedSou
                                     const scene::CameraState& camera, double displayTime, int width, int height);
 
 // The shooter scene sized for a width x height image, target spawned from `seed`.
-game::ShooterScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);
+physics::TargetScene shooterScene(int width, int height, std::uint64_t seed = 1, double speed = 2.0);
 
 // Pixels left black by a method where the ground truth is not. "Black" robustly: a method's
 // colour is a source colour or a blend of two and the scene is almost never black, so a black

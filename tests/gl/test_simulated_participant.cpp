@@ -17,7 +17,7 @@
 #include "participants/eye.h"
 #include "participants/population.h"
 #include "participants/ideal_params.h"
-#include "click/click_game.h"
+#include "click_game.h"
 #include "game/registry.h"
 #include "game/screen.h"
 #include "gl/gl_test_support.h"

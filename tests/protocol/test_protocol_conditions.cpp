@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
 
 namespace warplab::protocol {
 namespace {

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "condition/reference_schedule.h"
-#include "protocol/click_protocol.h"
-#include "protocol/shooter_protocol.h"
+#include "click/click_protocol.h"
+#include "shooter/shooter_protocol.h"
 
 namespace warplab::protocol {
 namespace {

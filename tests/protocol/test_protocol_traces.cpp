@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 
 namespace warplab::protocol {
 namespace {

@@ -20,9 +20,9 @@
 #include "game/random.h"
 #include "game/registry.h"
 #include "physics/bouncing_target.h"
-#include "protocol/shooter_protocol.h"
+#include "shooter/shooter_protocol.h"
 #include "rerun.h"
-#include "shooter/shooter_game.h"
+#include "shooter_game.h"
 #include "study/session_runner.h"
 
 namespace warplab::study {

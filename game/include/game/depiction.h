@@ -16,7 +16,7 @@
 
 #include "game/game.h"
 #include "condition/schedule.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 
 namespace warplab::game {
 
@@ -36,6 +36,11 @@ struct SchedulePlacement {
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
 ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
                                const SchedulePlacement& placement);
+
+// The columns of a frame's record that every game fills alike from what the frame shows: its
+// frame, mode, kind ("screen" for a blank frame, "frozen" for a held shot, else the schedule's)
+// and camera. The game adds its own detail_json.
+session::FrameRecord frameRecordOf(const ShownFrame& shown);
 // A screen's ShownFrame (ready, instructions, questions, done): no scene, the camera at rest
 // where the game has it, the pointer as given; it answers this frame's input at once.
 ShownFrame screenShownFrame(std::int64_t frame, double time, const scene::CameraState& camera, PointerKind pointer,

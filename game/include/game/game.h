@@ -4,7 +4,8 @@
 //   Study  -- a parsed protocol bound to its game: makes games and bots;
 //   Game   -- a deterministic state machine stepped once per displayed frame;
 //   Player -- whoever produces the input: a bot, the simulated participant, a recorded session.
-// A game is one folder (game/shooter/, game/click/) plus one line in game/src/registry.cpp (or a registerGame call).
+// A game is a module of its own (games/shooter/, games/click/) plus one line in
+// games/src/games.cpp (or a registerGame call); nothing outside it names the game.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +19,7 @@
 
 #include "condition/schedule.h"
 #include "game/results.h"
-#include "session/session_store.h"
+#include "session/rows.h"
 #include "protocol/questions.h"
 #include "protocol/study_protocol.h"
 #include "scene/scene.h"
@@ -143,6 +144,10 @@ public:
     // For a logged pointer event (a shot or click): the object its displayed outcome names
     // (kIdNone for empty space); nullopt for any other event.
     virtual std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const = 0;
+    // Keys of this game's event details that say how frames were drawn, not what was played:
+    // replay, which does not redo the rendering, leaves them out of its comparison, so that
+    // the sessions that carry them still replay.
+    virtual std::vector<std::string> renderDetailKeys() const { return {}; }
 };
 
 // Free play, for pilots and demonstrations: the game runs on without end, nothing counts, and
@@ -229,6 +234,14 @@ inline bool resumedBefore(const session::SessionHeader& header, std::int64_t fra
     return false;
 }
 
+// The list of conditions a study plan counterbalances across participants (docs/study-plan.md).
+struct CounterbalancedList {
+    std::vector<std::string> conditions;  // in the protocol's order
+    // The game plays them in the order given, so a plan's order is what each participant
+    // plays; false: the session seed shuffles them (or their trials) anyway.
+    bool blocked = false;
+};
+
 // A protocol file parsed and bound to its game.
 class Study {
 public:
@@ -262,6 +275,17 @@ public:
     virtual SessionResults results(const std::vector<session::EventRecord>& events) const = 0;
     // How far a session of this protocol with these events got, of what the protocol plans.
     virtual Progress progress(const std::vector<session::EventRecord>& events) const = 0;
+    // What a study plan counterbalances in this protocol; nullopt: a game without such a list,
+    // which a plan refuses.
+    virtual std::optional<CounterbalancedList> counterbalanced() const { return std::nullopt; }
+    // `protocolText` (this protocol as its file has it) with the counterbalanced list in
+    // `order`, the rest as the file has it: the copy a participant's session runs. Called only
+    // where counterbalanced() has a list.
+    virtual std::string withConditionOrder(const std::string& protocolText,
+                                           const std::vector<std::string>& order) const {
+        (void)order;
+        return protocolText;
+    }
 };
 
 }  // namespace warplab::game

@@ -1,6 +1,7 @@
 // The games warplab knows, and the one protocol loader: it reads the protocol's "game" field
-// and hands the file to that game's parser. Adding a built-in game is one line in registry.cpp;
-// a game built elsewhere (a lab's own task, a test's) registers itself at run time.
+// and hands the file to that game's parser. Nothing here names a game: each is a module of its
+// own (games/NAME/), registered at run time -- the built-in ones by the app
+// (games::registerGames), a lab's own task or a test's by a registerGame call.
 #pragma once
 
 #include <memory>
@@ -18,8 +19,8 @@ std::vector<std::string> gameNames();
 
 // Parses a protocol of one game; throws protocol::ProtocolError naming the file and the field.
 using StudyParser = std::unique_ptr<Study> (*)(const std::string& jsonText, const std::string& sourceName);
-// Makes `name` (the protocol's "game") known to parseStudy and gameNames, after the built-in
-// games. Throws std::invalid_argument when a game of that name is already known.
+// Makes `name` (the protocol's "game") known to parseStudy and gameNames, after the games
+// registered before it. Throws std::invalid_argument when a game of that name is already known.
 void registerGame(const std::string& name, StudyParser parse);
 
 }  // namespace warplab::game

@@ -229,6 +229,12 @@ private:
         bool changed;  // the image differed from the frame before
     };
     game::FrameInput play(const Percept& percept, double dt);
+    // play's steps, in the order it takes them: what it sees (the sighting it acts on, or none
+    // yet), which object it goes for, and the hand's pursuit of it and the click.
+    const Sighting* perceive(const Percept& percept, double dt);
+    void chooseTarget(const Sighting& view, glm::dvec2 pointer, double now);
+    void pursue(game::FrameInput& input, const Sighting& view, glm::dvec2 pointer, double now, double dt);
+    static const Thing* sees(const Sighting& s, std::uint32_t id);  // the object as `s` shows it, if it does
     game::FrameInput rate(const Percept& percept);
     void move(game::FrameInput& input, glm::dvec2 velocity, double dt, bool pursuing);
     void remember(const Percept& percept);

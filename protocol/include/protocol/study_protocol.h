@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace warplab::protocol {
 
@@ -121,5 +122,12 @@ std::string protocolGame(const std::string& jsonText, const std::string& sourceN
 // description, game, conditions): one that only some game's protocol knows. False for text that
 // is not a JSON object.
 bool hasGameFields(const std::string& jsonText);
+
+// `jsonText` (a protocol object) with its `section`.`key` set to `list`, every other field as
+// the text has it, written with two-space indent and a trailing newline. A section the text
+// leaves out is added with the list alone: its other fields keep their defaults, as they did.
+// For a game's Study::withConditionOrder.
+std::string withList(const std::string& jsonText, const char* section, const char* key,
+                     const std::vector<std::string>& list);
 
 }  // namespace warplab::protocol

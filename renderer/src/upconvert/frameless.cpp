@@ -24,7 +24,7 @@
 #include "gbuffer_gl.h"
 #include "gl/check.h"
 #include "gl/program.h"
-#include "upconvert/frame_history.h"
+#include "upconvert/accumulation_history.h"
 #include "upconvert/fullscreen.h"
 #include "upconvert/stage_clock.h"
 #include "scene/camera.h"
@@ -314,7 +314,7 @@ private:
         glUniform1f(u("uNear"), input.camera.nearPlane);
         glUniform1f(u("uFar"), input.camera.farPlane);
         glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
-        glUniform1f(u("uDepthTolerance"), FrameHistory::kSameSurfaceDepth);
+        glUniform1f(u("uDepthTolerance"), AccumulationHistory::kSameSurfaceDepth);
         pass_.draw();
         endImagePass(9);
     }
@@ -383,7 +383,7 @@ private:
     std::vector<CellStats> statsLastMeasured_, statsForPlacing_;
     std::vector<int> placed_;
     bool statsKnown_ = false;
-    FrameHistory history_;
+    AccumulationHistory history_;
     double shadedSamples_ = std::nan("");
     StageClock clock_;
 };

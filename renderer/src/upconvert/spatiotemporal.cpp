@@ -16,7 +16,7 @@
 #include "gbuffer_gl.h"
 #include "gl/check.h"
 #include "gl/program.h"
-#include "upconvert/frame_history.h"
+#include "upconvert/accumulation_history.h"
 #include "upconvert/fullscreen.h"
 #include "upconvert/stage_clock.h"
 #include "scene/camera.h"
@@ -178,7 +178,7 @@ private:
         glUniform1f(u("uFar"), input.camera.farPlane);
         glUniform1i(u("uHaveHistory"), history_.follows() ? 1 : 0);
         glUniform1f(u("uMaxHistoryWeight"), kMaxHistoryWeight);
-        glUniform1f(u("uDepthTolerance"), FrameHistory::kSameSurfaceDepth);
+        glUniform1f(u("uDepthTolerance"), AccumulationHistory::kSameSurfaceDepth);
         glUniform1f(u("uStillTolerance"), kStillTolerance);
         pass_.draw();
         glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
@@ -197,7 +197,7 @@ private:
     std::vector<Slot> slots_;
     std::unique_ptr<GBuffer> low_;
     gl::Framebuffer framebuffer_;
-    FrameHistory history_;
+    AccumulationHistory history_;
     double shadedSamples_ = std::nan("");
     StageClock clock_;
 };

@@ -70,24 +70,15 @@ public:
         // A source with a guard band is larger, its camera widened to the same pixel pitch: the
         // mesh spans all its pixels (warpMatrices).
         const int sw = src.width, sh = src.height;
-        const scene::CameraState& sourceCamera = source.depicts.camera;
         const WarpMatrices m = warpMatrices(source, input, w, h);
-        // What warp_common.glsl needs, for the mesh and for the patch flags alike.
-        const auto setWarpUniforms = [&](const gl::Program& program) {
-            auto u = [&](const char* name) { return gl::uniform(program, name); };
-            bindTexture(program, "uSourceDepth", 0, src.depth);
-            bindTexture(program, "uSourceVelocity", 1, src.velocity);
-            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceInverse));
-            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
-            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetViewProjection));
-            glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
-            glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
-            glUniform2f(u("uTargetSize"), static_cast<float>(w), static_cast<float>(h));
-            glUniform1f(u("uDt"), m.dt);
-            glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
+        // The warp's uniforms for the mesh and for the patch flags alike, and the display's size
+        // (the fix's sheet test and the flags measure in display pixels).
+        const auto setMeshUniforms = [&](const gl::Program& program) {
+            setWarpUniforms(program, source, input, m);
+            glUniform2f(gl::uniform(program, "uTargetSize"), static_cast<float>(w), static_cast<float>(h));
         };
 
-        if (settings_.patchSize != 0) classifyPatches(source, sw, sh, setWarpUniforms);
+        if (settings_.patchSize != 0) classifyPatches(source, sw, sh, setMeshUniforms);
 
         auto& target = out.buffer().impl();
         glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer.id());
@@ -106,7 +97,7 @@ public:
         glDepthMask(GL_TRUE);
         glUseProgram(program_.id());
         auto u = [&](const char* name) { return gl::uniform(program_, name); };
-        setWarpUniforms(program_);
+        setMeshUniforms(program_);
         bindTexture(program_, "uSourceColour", 2, src.colour);
         bindTexture(program_, "uSourceIds", 3, src.ids);
         glUniform1f(u("uGrazingCosine"), std::cos(glm::radians(settings_.sheetAngleDeg)));
@@ -216,9 +207,9 @@ private:
 
     // One texel per patch saying where the depth (or velocity) jumps and this warp moves the
     // patch's pixels apart; the tessellation control stage reads it for the patch and its four
-    // neighbours. `setWarpUniforms` gives the pass the warp's own (warp_common.glsl).
-    template <typename SetWarpUniforms>
-    void classifyPatches(const SourceFrame& source, int w, int h, const SetWarpUniforms& setWarpUniforms) {
+    // neighbours. `setMeshUniforms` gives the pass the warp's own (warp_common.glsl).
+    template <typename SetMeshUniforms>
+    void classifyPatches(const SourceFrame& source, int w, int h, const SetMeshUniforms& setMeshUniforms) {
         const int n = settings_.patchSize;
         const int px = (w + 1 + n - 1) / n, py = (h + 1 + n - 1) / n;  // cover pixels -1 .. w
         if (px != patchCountX_ || py != patchCountY_) {
@@ -239,7 +230,7 @@ private:
         glViewport(0, 0, px, py);
         glDisable(GL_DEPTH_TEST);
         glUseProgram(flagsProgram_.id());
-        setWarpUniforms(flagsProgram_);
+        setMeshUniforms(flagsProgram_);
         glUniform1i(gl::uniform(flagsProgram_, "uPatchSize"), n);
         glUniform1f(gl::uniform(flagsProgram_, "uNear"), source.depicts.camera.nearPlane);
         glUniform1f(gl::uniform(flagsProgram_, "uFar"), source.depicts.camera.farPlane);
@@ -280,6 +271,22 @@ WarpMatrices warpMatrices(const SourceFrame& source, const UpconversionInput& in
     m.targetInverse = glm::mat4(glm::inverse(glm::dmat4(m.targetViewProjection)));
     m.dt = static_cast<float>(input.displayTime - source.depicts.scene.time);
     return m;
+}
+
+void setWarpUniforms(const gl::Program& program, const SourceFrame& source, const UpconversionInput& input,
+                     const WarpMatrices& m) {
+    const auto& src = source.gbuffer.impl();
+    const scene::CameraState& sourceCamera = source.depicts.camera;
+    auto u = [&](const char* name) { return gl::uniform(program, name); };
+    bindTexture(program, "uSourceDepth", 0, src.depth);
+    bindTexture(program, "uSourceVelocity", 1, src.velocity);
+    glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceInverse));
+    glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
+    glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetViewProjection));
+    glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
+    glUniform2f(u("uSize"), static_cast<float>(src.width), static_cast<float>(src.height));
+    glUniform1f(u("uDt"), m.dt);
+    glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
 }
 
 std::unique_ptr<UpconversionMethod> makeWarp(const DataPaths& paths, const std::string& name,

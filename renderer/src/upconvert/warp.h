@@ -4,6 +4,7 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/objects.h"
 #include "renderer/upconvert.h"
 
 namespace warplab::renderer {
@@ -34,5 +35,12 @@ struct WarpMatrices {
     float dt = 0.0f;  // display time - source time, s
 };
 WarpMatrices warpMatrices(const SourceFrame& source, const UpconversionInput& input, int width, int height);
+
+// Sets what warp_common.glsl declares on `program`, the current program: `source`'s depth and
+// velocity on texture units 0 and 1, the matrices `m`, its eye and size, the instant, and where
+// sky pixels go. Shared by every pass that warps with it (the meshes, the patch flags,
+// warp-splat's vertices and splat); each adds its own uniforms.
+void setWarpUniforms(const gl::Program& program, const SourceFrame& source, const UpconversionInput& input,
+                     const WarpMatrices& m);
 
 }  // namespace warplab::renderer

@@ -86,7 +86,6 @@ public:
         const int w = out.width(), h = out.height();
         const int sw = src.width, sh = src.height;
         allocate(sw, sh, w, h);
-        const scene::CameraState& sourceCamera = source.depicts.camera;
         const WarpMatrices m = warpMatrices(source, input, w, h);  // as the mesh warps make them
         const WarpSettings fix;  // the disocclusion fix's sheet rule, shared with the mesh warps
 
@@ -101,32 +100,23 @@ public:
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, depths_.id());
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, winners_.id());
-        // What warp_common.glsl needs: the vertex pass warps every grid vertex with it, the
-        // splat unprojects the corners of a triangle that may be a sheet.
-        const auto setWarpUniforms = [&](const gl::Program& program) {
-            auto u = [&](const char* n) { return gl::uniform(program, n); };
-            bindTexture(program, "uSourceDepth", 0, src.depth);
-            bindTexture(program, "uSourceVelocity", 1, src.velocity);
-            glUniformMatrix4fv(u("uSourceInverseViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceInverse));
-            glUniformMatrix4fv(u("uSourceViewProjection"), 1, GL_FALSE, glm::value_ptr(m.sourceViewProjection));
-            glUniformMatrix4fv(u("uTargetViewProjection"), 1, GL_FALSE, glm::value_ptr(m.targetViewProjection));
-            glUniform3fv(u("uSourceEye"), 1, glm::value_ptr(sourceCamera.eye));
-            glUniform2f(u("uSize"), static_cast<float>(sw), static_cast<float>(sh));
-            glUniform1f(u("uDt"), m.dt);
-            glUniform1f(u("uSkyDistance"), 0.9f * std::min(sourceCamera.farPlane, input.camera.farPlane));
-            glUniform2i(u("uCells"), sw + 1, sh + 1);
+        // The warp's uniforms (the vertex pass warps every grid vertex with them, the splat
+        // unprojects the corners of a triangle that may be a sheet) and the grid's size.
+        const auto setGridUniforms = [&](const gl::Program& program) {
+            setWarpUniforms(program, source, input, m);
+            glUniform2i(gl::uniform(program, "uCells"), sw + 1, sh + 1);
         };
 
         // 1a: the warped grid.
         glUseProgram(vertexProgram_.id());
-        setWarpUniforms(vertexProgram_);
+        setGridUniforms(vertexProgram_);
         glUniform2f(gl::uniform(vertexProgram_, "uTargetSize"), static_cast<float>(w), static_cast<float>(h));
         glDispatchCompute(groups(sw + 2), groups(sh + 2), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 
         // 1b and 1c: nearest depth, then the winner at that depth.
         glUseProgram(splatProgram_.id());
-        setWarpUniforms(splatProgram_);
+        setGridUniforms(splatProgram_);
         {
             auto u = [&](const char* n) { return gl::uniform(splatProgram_, n); };
             glUniform2i(u("uTargetPixels"), w, h);

@@ -1,0 +1,89 @@
+// The toy's Study: its protocol bound to its game, and everything the rest of warplab asks of a
+// game -- bots, results, progress, what a participant is told, the list a plan counterbalances.
+#include <memory>
+
+#include "protocol/study_protocol.h"
+#include "toy/toy.h"
+#include "toy_game.h"
+#include "toy_protocol.h"
+
+namespace warplab::toy {
+namespace {
+
+using game::Study;
+
+class ToyStudy final : public Study {
+public:
+    explicit ToyStudy(ToyProtocol p) : protocol_(std::move(p)) {}
+    std::string game() const override { return protocol_.game; }
+    std::string name() const override { return protocol_.name; }
+    std::string protocolJson() const override { return toJson(protocol_); }
+    double refreshHz() const override { return protocol_.refreshHz; }
+    std::unique_ptr<game::Game> newGame(std::uint64_t seed, const game::DisplaySize&) const override {
+        return std::make_unique<ToyGame>(protocol_, seed);
+    }
+    std::unique_ptr<game::FreePlayGame> newFreePlay(std::uint64_t seed, const game::DisplaySize&,
+                                                    const std::string& mode, int difficulty) const override {
+        auto game = std::make_unique<ToyGame>(protocol_, seed);
+        game->switchTo(mode, difficulty);
+        return game;
+    }
+    std::unique_ptr<game::Player> newBot(std::uint64_t, const game::DisplaySize&) const override {
+        return std::make_unique<ToyBot>();
+    }
+    std::vector<std::string> modes() const override { return protocol_.conditions; }
+    const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
+    // The view does not turn: the participant waits for the sphere and clicks.
+    game::Instructions instructions() const override {
+        game::Instructions i;
+        i.pointer = game::PointerKind::Reticle;
+        i.verticalFovDeg = scene::CameraState{}.verticalFovDeg;
+        i.radiansPerCount = 0.0;
+        i.targets = game::Instructions::Targets::All;
+        i.task = "Click while the sphere is under the reticle.";
+        return i;
+    }
+    bool warnsOnRefreshMismatch() const override { return true; }
+    protocol::RenderSettings rendering() const override { return {}; }
+    game::SessionResults results(const std::vector<session::EventRecord>& events) const override {
+        game::SessionResults out;
+        out.measure = {"toy hits", "clicks"};
+        for (const auto& e : events) {
+            if (e.type != "click") continue;
+            game::ShotResult r;
+            r.phase = e.phase;
+            r.scoredPhase = true;
+            r.trial = e.trial;
+            r.mode = e.mode;
+            r.outcome = e.displayedOutcome;
+            r.worldOutcome = e.worldOutcome;
+            r.displayedOutcome = e.displayedOutcome;
+            r.hit = r.outcome == "hit";
+            r.time = e.eventTime;
+            out.shots.push_back(std::move(r));
+        }
+        return out;
+    }
+    // Clicks, of no planned number: the toy runs for a time.
+    game::Progress progress(const std::vector<session::EventRecord>& events) const override {
+        return {"clicks", results(events).shots.size(), 0};
+    }
+    std::optional<game::CounterbalancedList> counterbalanced() const override {
+        return game::CounterbalancedList{protocol_.conditions, !protocol_.shuffle};
+    }
+    std::string withConditionOrder(const std::string& protocolText,
+                                   const std::vector<std::string>& order) const override {
+        return protocol::withList(protocolText, "play", "conditions", order);
+    }
+
+private:
+    ToyProtocol protocol_;
+};
+
+}  // namespace
+
+std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string& sourceName) {
+    return std::make_unique<ToyStudy>(parseToyProtocol(jsonText, sourceName));
+}
+
+}  // namespace warplab::toy
