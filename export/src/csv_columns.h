@@ -8,6 +8,7 @@
 namespace warplab::exporter {
 
 using table::Column;
+using table::CellWriter;
 using table::CsvFile;
 using table::headerOf;
 using table::writeCells;

@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include "export/documented_columns.h"
 #include "export/export.h"
 #include "study/session_runner.h"
 #include "game/registry.h"
-#include "toy/toy.h"
 #include "session/records.h"
 #include "session/session_store.h"
 #include "toy/toy.h"
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 // The toy's one registration line, after the built-in games (as a lab's own task would add it).
 class RegisterTheToy : public ::testing::Environment {
-    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy); }
+    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::tables); }
 };
 [[maybe_unused]] const auto* const registered = ::testing::AddGlobalTestEnvironment(new RegisterTheToy);
 
@@ -91,7 +91,30 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     EXPECT_NE(rates.find("toy-bot,toy," + mode + ","), std::string::npos) << rates;
     // What its hit rate counts, in its own words, for the report.
     const std::string games = readAll(dir / "csv" / "games.csv");
-    EXPECT_EQ(games, "game,hits_are,shots_are\ntoy,toy hits,clicks\n");
+    EXPECT_EQ(games, "game,hits_are,shots_are,tables\ntoy,toy hits,clicks,toy_clicks.csv\n");
+    // Its own table, one row per click, in the layout export gives a game's own tables; and the
+    // other games' own tables, header only.
+    const std::string clicks = readAll(dir / "csv" / "toy_clicks.csv");
+    EXPECT_EQ(clicks.substr(0, clicks.find('\n')),
+              "participant,session,click,mode,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
+    EXPECT_EQ(std::count(clicks.begin(), clicks.end(), '\n'), std::count(shots.begin(), shots.end(), '\n'));
+    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + mode + ","), std::string::npos)
+        << clicks;
+    const std::string matches = readAll(dir / "csv" / "matches.csv");
+    EXPECT_EQ(std::count(matches.begin(), matches.end(), '\n'), 1) << matches;
+}
+
+// The toy's own table is documented on its page, column for column, as export writes it.
+TEST(ToyModule, ItsOwnTableMatchesItsPage) {
+    const std::vector<game::GameTable> own = toy::tables();
+    ASSERT_EQ(own.size(), 1u);
+    const exporter::CsvColumns written = exporter::gameTableColumns(own.front());
+    const std::vector<std::string> pages = testing_docs::pagesDocumenting(written.file);
+    ASSERT_EQ(pages.size(), 1u);
+    EXPECT_EQ(fs::path(pages.front()).parent_path().filename(), "toy");
+    const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(written.file, pages.front());
+    EXPECT_EQ(documented.columns, written.columns);
+    EXPECT_EQ(documented.numbered, written.numbered);
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.
