@@ -98,14 +98,14 @@ TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
     protocol["test"]["interleave"] = false;
     const std::string file = source + "/blocked.json";
     std::ofstream(file) << protocol.dump(2);
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = file;
     run.participant = "P02";
     run.resultsDir = results;
     run.player = "bot:4";
     run.seed = 4;
     std::ostringstream quiet;
-    const std::string bot = study::runHeadless(run, quiet);
+    const std::string bot = runner::runHeadless(run, quiet);
     replayedAs(bot, results, "P01", "human (cm_per_360=0, dpi=800, invert_y=0)");
 
     const std::string out = scratch("kinds/out");

@@ -31,7 +31,7 @@
 #include "export/export.h"
 #include "plan/study_plan.h"
 #include "condition/schedule.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "session/session_store.h"
 #include "export_test_support.h"
 #include "export/documented_columns.h"
@@ -673,7 +673,7 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     }
     ASSERT_GT(marked, 0);
     w.finish();
-    const study::ReplayResult replay = study::replaySession(w.path());
+    const runner::ReplayResult replay = runner::replaySession(w.path());
     EXPECT_EQ(replay.difference, "");
     EXPECT_EQ(replay.reproduced, replay.outcomes);
     EXPECT_GT(replay.outcomes, 0u);
@@ -699,14 +699,14 @@ TEST(Export, RatingsCarryTheProtocolsScale) {
     protocol["ratings"]["max"] = 10;
     const std::string path = source + "/click-0-10.json";
     std::ofstream(path) << protocol.dump(2);
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = path;
     run.participant = "T";
     run.resultsDir = results;
     run.player = "bot:11";
     run.seed = 11;
     std::ostringstream quiet;
-    study::runHeadless(run, quiet);
+    runner::runHeadless(run, quiet);
 
     const std::string out = scratch("scale/out");
     exportQuietly(results, out);
@@ -755,14 +755,14 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
         p["test"]["questions"] = nlohmann::json::array({questions[1]});
     });
     for (const std::string& path : {click, shooter}) {
-        study::HeadlessRun run;
+        runner::HeadlessRun run;
         run.protocolPath = path;
         run.participant = "Q";
         run.resultsDir = results;
         run.player = "bot:11";
         run.seed = 11;
         std::ostringstream quiet;
-        study::runHeadless(run, quiet);
+        runner::runHeadless(run, quiet);
     }
     const std::string out = scratch("answers/out");
     exportQuietly(results, out);
@@ -864,7 +864,7 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
         plan::makePlan(dir, {std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"}, 2, {"A", "B"}, 3);
     plan::writePlan(dir, made);
     fs::create_directories(dir + "/results");
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = dir + "/" + made.protocols.front().file;
     run.protocolText = plan::participantProtocolJson(dir, made, made.participants.front(), 0);
     run.planId = made.id;
@@ -873,7 +873,7 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
     run.player = "bot:1";
     run.seed = made.participants.front().seed;
     std::ostringstream quiet;
-    study::runHeadless(run, quiet);
+    runner::runHeadless(run, quiet);
 
     for (const std::string& exported : {dir, dir + "/results"}) {
         const std::string out = scratch(exported == dir ? "plan-folder/out-of-plan" : "plan-folder/out-of-results");

@@ -23,9 +23,9 @@
 #include "shooter/shooter_protocol.h"
 #include "rerun.h"
 #include "shooter_game.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -253,4 +253,4 @@ TEST(ReplayLatency, TargetBouncesShowWithTheSchedulesSceneLatencyFrameByFrame) {
 }
 
 }  // namespace
-}  // namespace warplab::study
+}  // namespace warplab::runner

@@ -12,7 +12,7 @@
 
 #include "export/documented_columns.h"
 #include "export/export.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "game/registry.h"
 #include "session/records.h"
 #include "session/session_store.h"
@@ -46,21 +46,21 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     const fs::path protocolPath = dir / "toy.json";
     std::ofstream(protocolPath) << toy::toyProtocol(mode);
 
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = protocolPath.string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "results").string();
     run.player = "bot";
     std::ostringstream progress;
-    const std::string session = study::runHeadless(run, progress);
+    const std::string session = runner::runHeadless(run, progress);
 
-    const study::ReplayResult replayed = study::replaySession(session);
+    const runner::ReplayResult replayed = runner::replaySession(session);
     EXPECT_EQ(replayed.difference, "");
     EXPECT_TRUE(replayed.completed);
     EXPECT_FALSE(replayed.damaged);
     EXPECT_GE(replayed.outcomes, 3u) << "the bot clicks a few times";
     EXPECT_EQ(replayed.reproduced, replayed.outcomes);
-    EXPECT_EQ(study::replayExitCode(replayed), study::kReplayReproduced);
+    EXPECT_EQ(runner::replayExitCode(replayed), runner::kReplayReproduced);
 
     // What the bot typed is in the input record, and the session replays from it (the clicks'
     // `typed` above); played back as a player, it is recorded again as it was.
@@ -68,11 +68,11 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     const auto typing = std::count_if(recorded.inputs.begin(), recorded.inputs.end(),
                                       [](const session::InputRecord& in) { return !in.text.empty(); });
     EXPECT_GT(typing, 10);
-    study::HeadlessRun again = run;
+    runner::HeadlessRun again = run;
     again.player = "replay:" + session;
     again.resultsDir = (dir / "again").string();
     fs::create_directories(again.resultsDir);
-    const session::SessionData replayedRun = session::readSession(study::runHeadless(again, progress));
+    const session::SessionData replayedRun = session::readSession(runner::runHeadless(again, progress));
     ASSERT_EQ(replayedRun.inputs.size(), recorded.inputs.size());
     for (std::size_t i = 0; i < recorded.inputs.size(); ++i)
         ASSERT_EQ(session::firstDifference(recorded.inputs[i], replayedRun.inputs[i]), "") << "input " << i;
@@ -129,13 +129,13 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
     for (const char* folder : {"whole", "cut", "resumed"}) fs::create_directories(dir / folder);
     std::ofstream(dir / "toy.json") << toy::toyProtocol("conv15");
 
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = (dir / "toy.json").string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "whole").string();
     run.player = "bot";
     std::ostringstream progress;
-    const session::SessionData whole = session::readSession(study::runHeadless(run, progress));
+    const session::SessionData whole = session::readSession(runner::runHeadless(run, progress));
     ASSERT_TRUE(whole.completed);
 
     // Cut after its second click, as a kill just after that click's commit leaves it.
@@ -155,10 +155,10 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
         cut = writer.path();
     }
 
-    study::HeadlessRun resume = run;
+    runner::HeadlessRun resume = run;
     resume.resumeFrom = cut;
     resume.resultsDir = (dir / "resumed").string();
-    const session::SessionData resumed = session::readSession(study::runHeadless(resume, progress));
+    const session::SessionData resumed = session::readSession(runner::runHeadless(resume, progress));
     EXPECT_TRUE(resumed.completed);
     ASSERT_EQ(resumed.header.resumed.size(), 1u);
     EXPECT_EQ(resumed.header.resumed[0].frame, lastFrame + 1);

@@ -15,7 +15,7 @@
 #include "protocol/documented_keys.h"
 #include "protocol/study_protocol.h"
 #include "session/session_store.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "toy/toy.h"
 #include "toy_protocol.h"
 
@@ -85,14 +85,14 @@ std::vector<std::string> modesPlayed(const std::string& protocolText, const std:
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     std::ofstream(dir / "toy.json") << protocolText;
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = (dir / "toy.json").string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "results").string();
     run.player = "bot";
     run.seed = seed;
     std::ostringstream progress;
-    const session::SessionData data = session::readSession(study::runHeadless(run, progress));
+    const session::SessionData data = session::readSession(runner::runHeadless(run, progress));
     std::vector<std::string> modes;
     for (const auto& frame : data.frames)
         if (modes.empty() || modes.back() != frame.mode) modes.push_back(frame.mode);
