@@ -194,7 +194,8 @@ void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& 
     }
     // A recorded session to play is read now, so that a wrong one is all the run says (the
     // drawn seed's line and the window come after).
-    if (const std::string source = runner::replaySource(run.player); !source.empty()) session::readSessionHeader(source);
+    if (const std::string source = runner::replaySource(run.player); !source.empty())
+        session::readSessionHeader(source);
     // A resumed session goes on on the display it was played on (the click game's cursor
     // lives in its pixels).
     if (args.has("resume"))

@@ -7,8 +7,8 @@
 
 namespace warplab::exporter {
 
-using table::Column;
 using table::CellWriter;
+using table::Column;
 using table::CsvFile;
 using table::headerOf;
 using table::writeCells;

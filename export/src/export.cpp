@@ -332,8 +332,8 @@ public:
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &answers_, &hitrates, &conditions, &frameTimes, &latency, &games,
-                           &pacing_}) {
+        for (CsvFile* f :
+             {&sessions_, &shots_, &answers_, &hitrates, &conditions, &frameTimes, &latency, &games, &pacing_}) {
             f->close();
             written.push_back(f->path());
         }
@@ -400,8 +400,12 @@ private:
                 // the study ran is there.
                 if (t.spans && r.scoredPhase) tallies_.try_emplace({participant, gameName, r.mode});
                 if (!r.scoredPhase && !options_.allPhases) continue;
-                GameTableEntry e{participant, from.session, from.playerKind, r,
-                                 positionOf(from.positions, r.mode, r.scoredPhase), std::nullopt,
+                GameTableEntry e{participant,
+                                 from.session,
+                                 from.playerKind,
+                                 r,
+                                 positionOf(from.positions, r.mode, r.scoredPhase),
+                                 std::nullopt,
                                  std::numeric_limits<double>::quiet_NaN()};
                 if (t.spans) {
                     e.skipped = skipped.between(r.startTime, r.endTime);

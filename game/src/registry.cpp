@@ -66,8 +66,8 @@ void registerGame(const std::string& name, StudyParser parse, GameTables tables)
     for (const GameTable& t : own)
         for (const auto& [game, other] : gameTables())
             if (other.file == t.file)
-                throw std::invalid_argument("registerGame: " + name + "'s table " + t.file + " is already the " +
-                                            game + " game's");
+                throw std::invalid_argument("registerGame: " + name + "'s table " + t.file + " is already the " + game +
+                                            " game's");
     registered().push_back({name, parse, std::move(own)});
 }
 

@@ -228,7 +228,7 @@ LiveEnd runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ost
     SessionPolicy policy(loop, run.seed, writer, progress);
     if (resume) {
         runner::replayKeptFrames(*resume, policy.game(),
-                                [&](const game::ShownFrame& shown) { loop.sawBeforeResume(shown); });
+                                 [&](const game::ShownFrame& shown) { loop.sawBeforeResume(shown); });
         for (std::size_t i = 0; i < resume->keptFrames; ++i) policy.kept(resume->stored.frames[i]);
     }
     loop.captureMouse(true);

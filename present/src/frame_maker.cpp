@@ -9,6 +9,10 @@ namespace warplab::present {
 
 namespace {
 
+// The method that shows a source as it was rendered: the bench's hold at the display's own
+// rate, which copies its one source to every frame.
+constexpr const char* kShowSource = "hold120";
+
 renderer::HudQuestion::Kind hudKind(protocol::QuestionKind kind) {
     switch (kind) {
         case protocol::QuestionKind::Likert: return renderer::HudQuestion::Kind::Likert;
@@ -99,7 +103,7 @@ void FrameMaker::release(Kept& kept) {
 }
 
 void FrameMaker::prepareFor(const game::Study& study) {
-    method("hold120");
+    method(kShowSource);
     for (const std::string& mode : study.modes()) {
         const condition::Condition& c = study.conditions().at(mode);
         for (const std::string& name : {c.sourceMethod(), c.warpMethod(), c.interpolationMethod()})
@@ -133,7 +137,7 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 }
 
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
-    std::string name = "hold120";
+    std::string name = kShowSource;
     const auto kind = shown.schedule.made;  // a repeated frame is made as the one it repeats
     // Warped frames: the fill's warp, or the late warp of a held frame (to the display
     // instant's camera: shown.camera; and, with depth, the objects moved on to shown.scene.time).
@@ -168,7 +172,7 @@ const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& 
     if (kind != condition::FrameKind::Held && kind != condition::FrameKind::Rendered) return nullptr;
     const auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end() || !(it->second.band == renderer::GuardBand{})) return nullptr;
-    return &rendered(it->second);  // make() would show it by hold120: a copy
+    return &rendered(it->second);  // make() would show it by kShowSource: a copy
 }
 
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {

@@ -889,8 +889,82 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
     }
 }
 
+// Who played every row (a person, a bot), and where each condition came in the participant's order,
+// so that a model can keep people apart and fit order effects without deriving them from `trial`.
+TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
+    const std::string source = scratch("kinds/source"), results = scratch("kinds/results");
+    auto protocol = nlohmann::json::parse(slurp(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"));
+    protocol["test"]["conditions"] = {"warp15to120", "conv120"};  // conv15: training's low mode only
+    protocol["test"]["interleave"] = false;
+    const std::string file = source + "/blocked.json";
+    std::ofstream(file) << protocol.dump(2);
+    runner::HeadlessRun run;
+    run.protocolPath = file;
+    run.participant = "P02";
+    run.resultsDir = results;
+    run.player = "bot:4";
+    run.seed = 4;
+    std::ostringstream quiet;
+    const std::string bot = runner::runHeadless(run, quiet);
+    replayedAs(bot, results, "P01", "human (cm_per_360=0, dpi=800, invert_y=0)");
+
+    const std::string out = scratch("kinds/out");
+    exporter::ExportOptions all;
+    all.allPhases = true;
+    exportQuietly(results, out, all);
+    const std::map<std::string, std::string> kindOf{{"P01", "human"}, {"P02", "bot"}};
+    int test = 0, training = 0;
+    for (const auto& r : readCsv(out + "/shots.csv")) {
+        EXPECT_EQ(r.at("player_kind"), kindOf.at(r.at("participant")));
+        if (r.at("scored_phase") == "true") {
+            // Blocked: the protocol's order, which a plan's condition_order writes into it.
+            EXPECT_EQ(r.at("condition_position"), r.at("mode") == "warp15to120" ? "1" : "2") << r.at("trial");
+            ++test;
+        } else {
+            EXPECT_EQ(r.at("condition_position"), "") << r.at("phase");
+            ++training;
+        }
+    }
+    EXPECT_GT(test, 0);
+    EXPECT_GT(training, 0);
+    for (const char* name : {"/hitrates.csv", "/pacing.csv", "/sessions.csv"})
+        for (const auto& r : readCsv(out + name))
+            EXPECT_EQ(r.at("player_kind"), kindOf.at(r.at("participant"))) << name;
+    // The human's turn as it played: cm_per_360=0 is the protocol's own 0.0022 rad per count at
+    // 800 counts per inch, 2 pi / 0.0022 / 800 inches.
+    for (const auto& r : readCsv(out + "/sessions.csv")) {
+        if (r.at("participant") == "P01")
+            EXPECT_NEAR(std::stod(r.at("cm_per_360")), 2 * M_PI / 0.0022 / 800 * 2.54, 1e-9);
+        else
+            EXPECT_EQ(r.at("cm_per_360"), "");
+    }
+    std::map<std::string, std::string> usedIn;
+    for (const auto& r : readCsv(out + "/conditions.csv")) usedIn[r.at("condition")] = r.at("used_in");
+    EXPECT_EQ(
+        usedIn,
+        (std::map<std::string, std::string>{{"conv120", "test"}, {"conv15", "training"}, {"warp15to120", "test"}}));
+}
+
+TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
+    // The folder first: scratch() empties what it names, so the results inside come after.
+    const std::string inTheWay = scratch("no-out") + "/a-file";
+    const std::string results = scratch("no-out/results");
+    headless("shooter-quick.json", "P01", results, 1);
+    std::ofstream(inTheWay) << "not a folder\n";
+    try {
+        exportQuietly(results, inTheWay + "/out");
+        FAIL() << "exported under a file";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot create the output folder '" + inTheWay + "/out': Not a directory"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 // ============================ the documented columns ============================
 
+// The page analysts read is the contract: each CSV's documented columns are exactly the
+// columns its table writes, in the same order.
 TEST(ExportColumns, MatchTheirPages) {
     const auto written = exporter::exportColumns();
     ASSERT_EQ(written.size(), 13u);  // export's 11, and the click game's matches.csv and ratings.csv

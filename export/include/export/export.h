@@ -12,7 +12,7 @@
 namespace warplab::game {
 class Study;
 struct GameTable;
-}
+}  // namespace warplab::game
 
 namespace warplab::exporter {
 
