@@ -512,7 +512,8 @@ def load_games(export_dir):
     for record in table.records:
         games[text(table, record, "game")] = {"hits_are": text(table, record, "hits_are"),
                                               "shots_are": text(table, record, "shots_are"),
-                                              "tables": ([t for t in text(table, record, "tables").split(";") if t]
+                                              # Empty for a game without tables of its own.
+                                              "tables": ([t for t in record["tables"].split(";") if t]
                                                          if "tables" in table.header else None)}
     return games
 

@@ -280,7 +280,7 @@ public:
             });
             if (same == conditions_.end()) {
                 // Once per condition, not per session: it walks the horizon's frames.
-                listing.pacing = condition::pacingStats(condition::ModeSchedule(c, listing.summary.refreshHz));
+                listing.pacing = condition::pacingStats(condition::ConditionSchedule(c, listing.summary.refreshHz));
                 conditions_.push_back(std::move(listing));
                 continue;
             }
@@ -348,11 +348,11 @@ private:
     // older or interrupted one) from its frames table.
     void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data,
                      const std::string& kind) {
-        std::vector<session::ModePacing> pacing;
+        std::vector<session::ConditionPacing> pacing;
         const auto stored = data.summaries.find("pacing");
         if (stored == data.summaries.end() || !session::parsePacing(stored->second, pacing))
             pacing = session::summarizePacing(data.frames, data.header.refreshHz);
-        for (const session::ModePacing& p : pacing) {
+        for (const session::ConditionPacing& p : pacing) {
             writeCells(pacing_, pacingColumns(), PacingRow{participant, session, p, kind});
             pacing_.endRow();
         }
@@ -366,7 +366,7 @@ private:
             if (s.scoredPhase) firsts.emplace_back(s.time, s.mode);
         for (const game::GameTable& t : results.tables)
             for (const game::GameTableRow& r : t.rows)
-                if (t.spans && r.scoredPhase) firsts.emplace_back(r.startTime, r.mode);
+                if (t.spans && r.scoredPhase) firsts.emplace_back(r.startTime, r.condition);
         std::stable_sort(firsts.begin(), firsts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         Positions positions;
         for (const auto& [time, mode] : firsts)
@@ -398,13 +398,13 @@ private:
                 // A scored span without a shot (a match without a click) still ran its condition:
                 // hitrates.csv has its row, with 0 shots, so that every participant x condition
                 // the study ran is there.
-                if (t.spans && r.scoredPhase) tallies_.try_emplace({participant, gameName, r.mode});
+                if (t.spans && r.scoredPhase) tallies_.try_emplace({participant, gameName, r.condition});
                 if (!r.scoredPhase && !options_.allPhases) continue;
                 GameTableEntry e{participant,
                                  from.session,
                                  from.playerKind,
                                  r,
-                                 positionOf(from.positions, r.mode, r.scoredPhase),
+                                 positionOf(from.positions, r.condition, r.scoredPhase),
                                  std::nullopt,
                                  std::numeric_limits<double>::quiet_NaN()};
                 if (t.spans) {
@@ -598,16 +598,16 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
 std::vector<ConditionListing> conditionsOf(const game::Study& study) {
     std::vector<ConditionListing> rows = listedConditions(study);
     for (ConditionListing& row : rows)
-        row.pacing = condition::pacingStats(condition::ModeSchedule(row.summary.condition, row.summary.refreshHz));
+        row.pacing = condition::pacingStats(condition::ConditionSchedule(row.summary.condition, row.summary.refreshHz));
     return rows;
 }
 
 namespace {
 
 std::vector<ConditionListing> listedConditions(const game::Study& study) {
-    const std::vector<std::string> analysed = study.analysedModes();
+    const std::vector<std::string> analysed = study.analysedConditions();
     std::vector<ConditionListing> rows;
-    for (const std::string& name : study.modes()) {
+    for (const std::string& name : study.conditionNames()) {
         const bool seen = std::any_of(rows.begin(), rows.end(),
                                       [&](const ConditionListing& r) { return r.summary.condition.name == name; });
         if (seen) continue;

@@ -219,7 +219,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
         {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
         // After the columns above, so that they keep their places: the condition's own unevenness
-        // against what was shown (session::ModePacing). A summary stored before these were kept
+        // against what was shown (session::ConditionPacing). A summary stored before these were kept
         // has none of them: empty cells, not zeros that claim a count.
         {"new_images", [](F& f, const R& r) { optionalInteger(f, r.pacing.newImages); }},
         {"intended_p95_ms", [](F& f, const R& r) { f.number(r.pacing.intendedP95Ms); }},
@@ -365,7 +365,7 @@ const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
 
 std::vector<LatencyRow> latencyRows(const ConditionListing& listing) {
     std::vector<LatencyRow> rows;
-    const auto add = [&](const char* kind, const std::vector<condition::ModeSchedule::LatencySpan>& spans) {
+    const auto add = [&](const char* kind, const std::vector<condition::ConditionSchedule::LatencySpan>& spans) {
         // A step in (from, to] waits shownAt - tau: uniformly over [shownAt - to, shownAt - from),
         // as likely as the span is long. A steady cadence repeats a few spans over and over; they
         // differ only by rounding, so spans a nanosecond apart are one, keeping the widest bounds.

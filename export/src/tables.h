@@ -60,7 +60,7 @@ struct AnswerRow {
 struct PacingRow {
     const std::string& participant;
     const std::string& session;
-    const session::ModePacing& pacing;
+    const session::ConditionPacing& pacing;
     const std::string& playerKind;
 };
 

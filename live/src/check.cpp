@@ -104,7 +104,7 @@ public:
         if (!run_.photonCorner.empty()) photonPattern();
         if (!study_) return;
         std::vector<std::string> modes;  // each once, in the protocol's order (phases repeat them)
-        for (const std::string& mode : study_->modes())
+        for (const std::string& mode : study_->conditionNames())
             if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
         for (const std::string& mode : modes) frameTime(mode);
     }

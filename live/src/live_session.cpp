@@ -113,7 +113,7 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
         if (f.mode == record.mode) recent.push_back(f);
     const auto summary = session::summarizePacing(recent, refreshHz_);
     if (summary.empty()) return;
-    const session::ModePacing& p = summary.front();
+    const session::ConditionPacing& p = summary.front();
     if (p.skipped == 0 && p.overBudget * 10 <= p.shown) return;  // nine in ten on time: no need to say
     warnedAt_ = frame;
     char text[200];
@@ -129,7 +129,7 @@ void SessionPolicy::finish(WindowLoop& loop, std::ostream& progress) {
     // More display frames late or skipped than the protocol allows (display.max_late_share, 1 %
     // unless it says otherwise) is more than a study can call "at the protocol's rate": the
     // store says so, and export can leave such sessions out.
-    const std::vector<session::ModePacing> pacing = pacing_.summary(refreshHz_);
+    const std::vector<session::ConditionPacing> pacing = pacing_.summary(refreshHz_);
     std::int64_t displayFrames = 0, offTime = 0;
     for (const auto& p : pacing) {
         displayFrames += p.shown + p.skipped;

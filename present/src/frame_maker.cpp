@@ -104,7 +104,7 @@ void FrameMaker::release(Kept& kept) {
 
 void FrameMaker::prepareFor(const game::Study& study) {
     method(kShowSource);
-    for (const std::string& mode : study.modes()) {
+    for (const std::string& mode : study.conditionNames()) {
         const condition::Condition& c = study.conditions().at(mode);
         for (const std::string& name : {c.sourceMethod(), c.warpMethod(), c.interpolationMethod()})
             if (!name.empty()) method(name);
@@ -115,7 +115,7 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
         // The method that makes the condition's other frames from its sources (its fill, or
         // its late warp) says what they need.
-        const std::string name = shown.mode.empty() ? std::string() : shown.condition.sourceMethod();
+        const std::string name = shown.condition.name.empty() ? std::string() : shown.condition.sourceMethod();
         const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
         Kept kept{nullptr, shown.render, {}, std::nullopt};
         // Warps render beyond the displayed field of view, so what a turn brings into view is

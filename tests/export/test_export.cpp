@@ -271,7 +271,7 @@ TEST(Export, ConditionsCsvListsWhatTheSessionsRan) {
     const auto rows = readCsv(out + "/conditions.csv");
     const auto study = game::loadStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
     std::vector<std::string> used;
-    for (const auto& m : study->modes())
+    for (const auto& m : study->conditionNames())
         if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
     ASSERT_EQ(rows.size(), used.size());
     for (std::size_t i = 0; i < used.size(); ++i) {

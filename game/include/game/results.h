@@ -58,7 +58,7 @@ struct AnswerResult {
 // A row of a table of a game's own (the click game's matches.csv): the game's cells, and what
 // export needs to add its own columns to them.
 struct GameTableRow {
-    std::string mode;  // the condition it ran in: condition_position
+    std::string condition;  // the condition it ran in: condition_position
     bool scoredPhase = false;  // false: written only with --all-phases
     // A span table's row covers the stretch of play from startTime to endTime (display clock, s):
     // export adds the frames skipped in it and the frame time of its last second.

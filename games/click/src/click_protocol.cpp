@@ -211,8 +211,6 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 
 ClickProtocol loadClickProtocol(const std::string& path) { return parseClickProtocol(readProtocolFile(path), path); }
 
-std::string toJson(const ClickProtocol& p) {
-    return fields::protocolText(p, sections());
-}
+std::string toJson(const ClickProtocol& p) { return fields::protocolText(p, sections()); }
 
 }  // namespace warplab::protocol

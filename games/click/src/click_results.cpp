@@ -60,7 +60,7 @@ std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
     GameTable byRating{"ratings.csv", table::headerOf(ratingColumns()), false, "", {}};
     for (const MatchResult& m : matches) {
         GameTableRow row;
-        row.mode = m.mode;
+        row.condition = m.mode;
         row.scoredPhase = m.scoredPhase;
         row.startTime = m.endTime - m.durationS;  // a match event is logged at its last frame
         row.endTime = m.endTime;
@@ -79,7 +79,7 @@ std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
         byMatch.rows.push_back(std::move(row));
         for (const RatingResult& r : m.ratings) {
             GameTableRow rating;
-            rating.mode = m.mode;
+            rating.condition = m.mode;
             rating.scoredPhase = m.scoredPhase;
             table::writeCells(rating.cells, ratingColumns(), RatingOf{m, r});
             byRating.rows.push_back(std::move(rating));

@@ -36,7 +36,7 @@ public:
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
-    std::vector<std::string> modes() const override { return protocol_.modes; }
+    std::vector<std::string> conditionNames() const override { return protocol_.modes; }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     bool warnsOnRefreshMismatch() const override {
         return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;

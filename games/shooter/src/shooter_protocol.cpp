@@ -142,8 +142,6 @@ ShooterProtocol loadShooterProtocol(const std::string& path) {
     return parseShooterProtocol(readProtocolFile(path), path);
 }
 
-std::string toJson(const ShooterProtocol& p) {
-    return fields::protocolText(p, sections());
-}
+std::string toJson(const ShooterProtocol& p) { return fields::protocolText(p, sections()); }
 
 }  // namespace warplab::protocol

@@ -62,7 +62,7 @@ TEST(ToyProtocol, ItsCanonicalCopyReadsBackTheSame) {
         toy::parseStudy(toy::toyProtocol(std::vector<std::string>{"warp15to120", "conv15"}, 2.5, true), "toy.json");
     const auto again = toy::parseStudy(study->protocolJson(), "copy.json");
     EXPECT_EQ(again->protocolJson(), study->protocolJson());
-    EXPECT_EQ(again->modes(), (std::vector<std::string>{"warp15to120", "conv15"}));
+    EXPECT_EQ(again->conditionNames(), (std::vector<std::string>{"warp15to120", "conv15"}));
 }
 
 // Its page is the contract: it documents exactly the keys the parser's tables read, in order.
@@ -136,7 +136,7 @@ TEST(ToyStudy, AStudyPlanCounterbalancesItsConditions) {
     std::set<std::vector<std::string>> orders;
     for (const plan::ParticipantPlan& p : read.participants) {
         const std::string text = plan::participantProtocolJson(dir.string(), read, p, 0);
-        EXPECT_EQ(game::parseStudy(text, "participant.json")->modes(), p.conditionOrder[0]) << p.id;
+        EXPECT_EQ(game::parseStudy(text, "participant.json")->conditionNames(), p.conditionOrder[0]) << p.id;
         orders.insert(p.conditionOrder[0]);
     }
     EXPECT_EQ(orders.size(), 6u) << "a balanced Latin square of three conditions has six rows";

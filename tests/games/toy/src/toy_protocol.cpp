@@ -43,9 +43,7 @@ ToyProtocol parseToyProtocol(const std::string& jsonText, const std::string& sou
     return p;
 }
 
-std::string toJson(const ToyProtocol& p) {
-    return fields::protocolText(p, sections());
-}
+std::string toJson(const ToyProtocol& p) { return fields::protocolText(p, sections()); }
 
 std::string toyProtocol(const std::vector<std::string>& conditions, double secondsEach, bool shuffle) {
     ToyProtocol p;

@@ -56,7 +56,7 @@ public:
     std::unique_ptr<game::Player> newBot(std::uint64_t, const game::DisplaySize&) const override {
         return std::make_unique<ToyBot>();
     }
-    std::vector<std::string> modes() const override { return protocol_.conditions; }
+    std::vector<std::string> conditionNames() const override { return protocol_.conditions; }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     // The view does not turn: the participant waits for the sphere and clicks.
     game::Instructions instructions() const override {
@@ -77,7 +77,7 @@ public:
         for (const auto& e : events) {
             if (e.type != "click") continue;
             game::GameTableRow row;
-            row.mode = e.mode;
+            row.condition = e.mode;
             row.scoredPhase = true;
             table::writeCells(row.cells, clickColumns(), Click{e, game::EventDetail(e.detailJson)});
             out.tables.front().rows.push_back(std::move(row));
