@@ -200,11 +200,21 @@ def analyse_part(export_dir, data, who, reference_mode, table):
     if matches is not None and matches[2]:  # header-only when no session played matches: no matches section then
         chosen = [m for m in matches[0] if who is None or m["participant"] in who]
         if chosen or who is None:
-            of_session = inputs.session_games(export_dir)
-            match_games = {of_session[s] for s in matches[3] if s in of_session}
-            game = match_games.pop() if len(match_games) == 1 else None
+            game = matches_game(export_dir, described, matches[3])
             part["click"] = analyse_click((chosen,) + tuple(matches[1:]), statements, reference_mode, table, game)
     return part
+
+
+def matches_game(export_dir, described, sessions):
+    """The game whose matches matches.csv holds: the one games.csv says has the table; in an export
+    from before games.csv said so, the one game of the rows' sessions (sessions.csv); None when
+    neither tells."""
+    owners = [g for g, d in described.items() if inputs.MATCHES in (d.get("tables") or ())]
+    if len(owners) == 1:
+        return owners[0]
+    of_session = inputs.session_games(export_dir)
+    match_games = {of_session[s] for s in sessions if s in of_session}
+    return match_games.pop() if len(match_games) == 1 else None
 
 
 def title_of(game):

@@ -408,6 +408,12 @@ def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     assert report["click"]["game"] is None
     assert "## Matches (Yang et al. 2011, seed 000 §8)" in md and "## Spheres: hit rates" in md
     assert md.index("## Spheres: hit rates") < md.index("## Matches")
+    # games.csv's `tables` (exports since games own their tables) says it without sessions.csv.
+    # A game without tables of its own has an empty cell there.
+    write(tmp_path / "games.csv", [GAMES_HEADER + ",tables", "shooter,hits,shots,",
+                                   "spheres,green hits,clicks,matches.csv;ratings.csv"])
+    code, report = run_in_process(tmp_path, tmp_path / "out3")
+    assert code == 0 and report["click"]["game"] == "spheres"
 
 
 def test_modes_follow_modes_csv(tmp_path):

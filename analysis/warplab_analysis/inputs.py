@@ -501,8 +501,9 @@ def read_modes(path):
 
 
 def load_games(export_dir):
-    """{} without games.csv; else {game: {"hits_are", "shots_are"}} in file order: what each game's
-    hits and shots in hitrates.csv count, in words."""
+    """{} without games.csv; else {game: {"hits_are", "shots_are", "tables"}} in file order: what
+    each game's hits and shots in hitrates.csv count, in words, and the game's own tables (a list of
+    file names; None for an export from before games.csv listed them)."""
     path = os.path.join(export_dir, GAMES)
     if not os.path.exists(path):
         return {}
@@ -510,7 +511,10 @@ def load_games(export_dir):
     games = {}
     for record in table.records:
         games[text(table, record, "game")] = {"hits_are": text(table, record, "hits_are"),
-                                              "shots_are": text(table, record, "shots_are")}
+                                              "shots_are": text(table, record, "shots_are"),
+                                              # Empty for a game without tables of its own.
+                                              "tables": ([t for t in record["tables"].split(";") if t]
+                                                         if "tables" in table.header else None)}
     return games
 
 

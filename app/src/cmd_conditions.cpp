@@ -14,7 +14,7 @@ namespace warplab::app {
 namespace {
 
 // "0 – 66.7 ms (0 – 8 frames)"
-std::string range(const condition::ModeSchedule::Range& r, double refreshHz) {
+std::string range(const condition::ConditionSchedule::Range& r, double refreshHz) {
     char text[96];
     std::snprintf(text, sizeof text, "%.1f - %.1f ms (%.3g - %.3g frames)", r.min * 1000.0, r.max * 1000.0,
                   r.min * refreshHz, r.max * refreshHz);

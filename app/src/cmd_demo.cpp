@@ -29,7 +29,7 @@
 #include "commands.h"
 #include "export/export.h"
 #include "session/results_lock.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "participants/eye.h"
 #include "game/registry.h"
 #include "renderer/mesh.h"
@@ -81,12 +81,12 @@ struct Job {
 constexpr const char* kSessionLine = "demo-session\t";
 
 // In the forked child: one session, as `warplab run --headless` runs it; never returns.
-[[noreturn]] void runChild(const study::HeadlessRun& run, const fs::path& logPath) {
+[[noreturn]] void runChild(const runner::HeadlessRun& run, const fs::path& logPath) {
     int code = 1;
     {
         std::ofstream log(logPath);
         try {
-            const std::string session = study::runHeadless(run, log);
+            const std::string session = runner::runHeadless(run, log);
             log << kSessionLine << session << "\n";
             code = log ? 0 : 1;
         } catch (const std::exception& e) {
@@ -162,7 +162,7 @@ struct DemoProgress {
 
 // Forks the child that runs `job`'s session; returns its process id.
 pid_t startSession(const DemoSetup& d, const Job& job) {
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = job.protocol.string();
     run.participant = d.player + "-" + std::to_string(job.participant);
     run.resultsDir = d.results.string();
@@ -194,8 +194,8 @@ void sessionEnded(const DemoSetup& d, const Job& job, int status, std::size_t to
         return;
     }
     // Every outcome must replay from the log alone, as a reviewer would check it.
-    const study::ReplayResult replay = study::replaySession(session);
-    if (study::replayExitCode(replay) == study::kReplayReproduced) {
+    const runner::ReplayResult replay = runner::replaySession(session);
+    if (runner::replayExitCode(replay) == runner::kReplayReproduced) {
         ++progress.reproduced;
     } else if (progress.failure.empty()) {
         progress.failure =

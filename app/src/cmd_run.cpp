@@ -9,14 +9,14 @@
 #include "table/csv.h"
 #include "live/live_session.h"
 #include "present/replay_render.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "participants/eye.h"
 #include "plan/status.h"
 #include "plan/study_plan.h"
 #include "protocol/study_protocol.h"
 #include "scene/limits.h"
 #include "session/results_lock.h"
-#include "study/session_size.h"
+#include "runner/session_size.h"
 
 namespace warplab::app {
 
@@ -138,9 +138,9 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
     if (!run.resumeFrom.empty()) {
         const session::SessionHeader was = session::readSessionHeader(run.resumeFrom);
         participant = was.participant;
-        protocol = study::loadRunStudy(run.resumeFrom, was.protocolJson)->name();
+        protocol = runner::loadRunStudy(run.resumeFrom, was.protocolJson)->name();
     } else {
-        protocol = study::loadRunStudy(run.protocolPath, run.protocolText)->name();
+        protocol = runner::loadRunStudy(run.protocolPath, run.protocolText)->name();
     }
     try {
         return session::ResultsFolderLock(run.resultsDir, participant, protocol);
@@ -158,10 +158,10 @@ session::ResultsFolderLock lockResults(const ParsedArgs& args, const Run& run) {
 template <typename Run>
 void requireRoom(const ParsedArgs& args, const Run& run, const game::DisplaySize& display) {
     const auto study = run.resumeFrom.empty()
-        ? study::loadRunStudy(run.protocolPath, run.protocolText)
-        : study::loadRunStudy(run.resumeFrom, session::readSessionHeader(run.resumeFrom).protocolJson);
+        ? runner::loadRunStudy(run.protocolPath, run.protocolText)
+        : runner::loadRunStudy(run.resumeFrom, session::readSessionHeader(run.resumeFrom).protocolJson);
     try {
-        study::requireDiskSpace(run.resultsDir, study::estimateSessionSize(*study, display), study->name());
+        runner::requireDiskSpace(run.resultsDir, runner::estimateSessionSize(*study, display), study->name());
     } catch (const std::runtime_error& e) {
         throw std::runtime_error(
             e.what() +
@@ -172,7 +172,7 @@ void requireRoom(const ParsedArgs& args, const Run& run, const game::DisplaySize
 // `run`'s exit status for a session the supervisor ended before its end (README "Exit codes"):
 // replay's "incomplete", since that is what replay says of its file; 0 is kept for a session
 // that played to its end, so that a script does not go on to the next step as if it had.
-constexpr int kRunEndedEarly = study::kReplayIncomplete;
+constexpr int kRunEndedEarly = runner::kReplayIncomplete;
 
 constexpr long long kMaxSeed = 1LL << 62;
 
@@ -188,13 +188,14 @@ template <typename Run>
 void readSessionOptions(const ParsedArgs& args, const char* defaultPlayer, Run& run, bool recorded = true) {
     run.player = args.string("player", defaultPlayer);
     try {
-        study::checkPlayer(run.player);
+        runner::checkPlayer(run.player);
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
     // A recorded session to play is read now, so that a wrong one is all the run says (the
     // drawn seed's line and the window come after).
-    if (const std::string source = study::replaySource(run.player); !source.empty()) session::readSessionHeader(source);
+    if (const std::string source = runner::replaySource(run.player); !source.empty())
+        session::readSessionHeader(source);
     // A resumed session goes on on the display it was played on (the click game's cursor
     // lives in its pixels).
     if (args.has("resume"))
@@ -236,7 +237,7 @@ int runWindowed(const ParsedArgs& args) {
     live::LiveRun run;
     readSessionOptions(args, "human", run, !args.flag("free-play"));
     if (args.has("gl")) throw UsageError("option --gl only applies with --headless --player sim");
-    if (study::isSimulatedParticipant(run.player))
+    if (runner::isSimulatedParticipant(run.player))
         throw UsageError("--player " + run.player + " (the simulated participant) runs headless only: add --headless");
     run.width = static_cast<int>(args.integer("width", run.width, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.height = static_cast<int>(args.integer("height", run.height, scene::kMinDisplaySize, scene::kMaxImageSize));
@@ -318,14 +319,14 @@ int runRun(const ParsedArgs& args) {
             throw UsageError(std::string("option --") + option + " only applies in the window; leave out --headless");
     if (args.string("player", "bot") == "human")
         throw UsageError("a human player needs the window; leave out --headless");
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     readSessionOptions(args, "bot", run);
     if (args.has("study")) readStudyOptions(args, run);
     run.displayWidth =
         static_cast<int>(args.integer("width", run.displayWidth, scene::kMinDisplaySize, scene::kMaxImageSize));
     run.displayHeight =
         static_cast<int>(args.integer("height", run.displayHeight, scene::kMinDisplaySize, scene::kMaxImageSize));
-    if (study::isSimulatedParticipant(run.player)) {
+    if (runner::isSimulatedParticipant(run.player)) {
         // It draws what it sees: the shaders, and a headless context.
         const auto backend = backendFrom(args, renderer::GlBackend::OSMesa);
         if (backend == renderer::GlBackend::Window)
@@ -344,7 +345,7 @@ int runRun(const ParsedArgs& args) {
     const auto lock = lockResults(args, run);
     requireRoom(args, run, {run.displayWidth, run.displayHeight});
     tellDrawnSeed(args, run.seed);
-    const std::string path = study::runHeadless(run, std::cerr);
+    const std::string path = runner::runHeadless(run, std::cerr);
     std::cout << path << "\n";
     return 0;
 }
@@ -379,21 +380,21 @@ int runReplay(const ParsedArgs& args) {
         if (rendered.disagreed > 0) {
             std::cout << "replay --render: the pointer cross-check failed on " << rendered.disagreed
                       << " comparisons\n";
-            return study::kReplayFailed;
+            return runner::kReplayFailed;
         }
     }
-    study::ReplayResult r;
+    runner::ReplayResult r;
     try {
-        r = study::replaySession(path);
+        r = runner::replaySession(path);
     } catch (const session::SessionError& e) {
         std::cerr << "warplab replay: " << e.what() << "\n";
-        return study::kReplayDamaged;
+        return runner::kReplayDamaged;
     }
     if (!r.note.empty()) std::cout << path << ": " << r.note << "\n";
     if (!r.difference.empty()) {
         std::cout << "replay differs at " << r.difference << "\n"
                   << r.reproduced << "/" << r.outcomes << " outcomes reproduced before it\n";
-        return study::replayExitCode(r);
+        return runner::replayExitCode(r);
     }
     // Frames as well as seconds: a session under a second long (one ended early) said "0 s".
     char seconds[32];
@@ -401,13 +402,13 @@ int runReplay(const ParsedArgs& args) {
     std::cout << r.reproduced << "/" << r.outcomes << " outcomes reproduced (" << r.events << " events, " << r.frames
               << " frames, " << seconds << " s of display time replayed in " << r.seconds
               << " s: " << static_cast<long long>(r.seconds > 0 ? r.displaySeconds / r.seconds : 0) << "x real time)\n";
-    return study::replayExitCode(r);
+    return runner::replayExitCode(r);
 }
 
 // The command's options, beside the code that reads them (defaults and limits as it uses
 // them, so that --help cannot tell another story).
 Command runCommand() {
-    const study::HeadlessRun headless;
+    const runner::HeadlessRun headless;
     const live::LiveRun live;
     return {
         {"run",
@@ -492,7 +493,7 @@ Command replayCommand() {
         {"replay",
          "Re-run a session from its store without a window or rendering, check every logged\n"
          "outcome and print how many were reproduced, or the first difference (exit " +
-             std::to_string(study::kReplayDiffers) + ").",
+             std::to_string(runner::kReplayDiffers) + ").",
          "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
          {
              {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},

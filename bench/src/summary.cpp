@@ -189,7 +189,7 @@ void writeSweep(std::ostream& md, const BenchPlan& plan, const std::vector<Row>&
 }  // namespace
 
 const std::vector<table::Column<Row>>& csvColumns() {
-    using F = table::CsvFile;
+    using F = table::CellWriter;
     using R = Row;
     // A measure to `digits` decimals, as field() prints it: empty when it does not apply.
     const auto measure = [](double Row::*value, int digits) {

@@ -11,7 +11,7 @@ namespace {
 // The q-quantile (0 < q <= 1) of a step's latency over `spans`. A step in (from, to] waits
 // shownAt - tau, uniform over [shownAt - to, shownAt - from) with weight to - from, so the
 // density at x is the number of spans whose interval holds x: sweep their ends, adding area.
-double latencyQuantile(const std::vector<ModeSchedule::LatencySpan>& spans, double q) {
+double latencyQuantile(const std::vector<ConditionSchedule::LatencySpan>& spans, double q) {
     std::vector<std::pair<double, int>> ends;  // latency, +1 where a span's interval opens, -1 where it closes
     double total = 0.0;
     for (const auto& s : spans) {
@@ -32,11 +32,11 @@ double latencyQuantile(const std::vector<ModeSchedule::LatencySpan>& spans, doub
     return ends.empty() ? std::numeric_limits<double>::quiet_NaN() : ends.back().first;
 }
 
-LatencyDistribution distributionOf(const std::vector<ModeSchedule::LatencySpan>& spans) {
+LatencyDistribution distributionOf(const std::vector<ConditionSchedule::LatencySpan>& spans) {
     LatencyDistribution d{std::numeric_limits<double>::infinity(), 0.0, 0.0, -std::numeric_limits<double>::infinity()};
     for (const auto& s : spans) {
         d.min = std::min(d.min, s.shownAt - s.to);
-        // A supremum, as ModeSchedule::Range's max: a step just after `from` waits this long.
+        // A supremum, as ConditionSchedule::Range's max: a step just after `from` waits this long.
         d.max = std::max(d.max, s.shownAt - s.from);
     }
     d.median = latencyQuantile(spans, 0.5);
@@ -70,7 +70,7 @@ FrameTimeSummary summarizeFrameTimes(const FrameTimes& times, std::int64_t newIm
     return s;
 }
 
-PacingStats pacingStats(const ModeSchedule& schedule) {
+PacingStats pacingStats(const ConditionSchedule& schedule) {
     PacingStats stats;
     const double refreshHz = schedule.refreshHz();
     const std::int64_t first = schedule.settledFrame();

@@ -29,8 +29,8 @@ Condition fillPacing(const Condition& condition, double refreshHz) {
 
 }  // namespace
 
-ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed)
-    : mode_(condition),
+ConditionSchedule::ConditionSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed)
+    : condition_(condition),
       refreshHz_(refreshHz),
       cadence_(checked(condition, refreshHz), refreshHz, pacingSeed),
       fillCadence_(fillPacing(condition, refreshHz), refreshHz, 0) {
@@ -41,14 +41,14 @@ ModeSchedule::ModeSchedule(const Condition& condition, double refreshHz, std::ui
     cycleFactor_ = fill_ == Fill::Hold ? cadence_.wholePeriod().value_or(1) : fillCadence_.cycleFrames();
 }
 
-const Condition& ModeSchedule::checked(const Condition& condition, double refreshHz) {
+const Condition& ConditionSchedule::checked(const Condition& condition, double refreshHz) {
     if (const auto p = problem(condition, refreshHz))
         throw std::invalid_argument("condition " + condition.name + (p->part.empty() ? " " : ": " + p->part + " ") +
                                     p->reason);
     return condition;
 }
 
-ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
+ScheduledFrame ConditionSchedule::produced(std::int64_t j) const {
     ScheduledFrame f;
     // The render on screen at j (the latest shown at or before it) and the one before it.
     const std::int64_t latest = cadence_.latestAtOrBefore(j);
@@ -110,7 +110,7 @@ ScheduledFrame ModeSchedule::produced(std::int64_t j) const {
     return f;
 }
 
-ModeSchedule::Between ModeSchedule::between(std::int64_t j) const {
+ConditionSchedule::Between ConditionSchedule::between(std::int64_t j) const {
     Between b;
     b.to = cadence_.latestAtOrBefore(j);
     b.from = cadence_.latestAtOrBefore(b.to - 1);
@@ -119,7 +119,7 @@ ModeSchedule::Between ModeSchedule::between(std::int64_t j) const {
     return b;
 }
 
-ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
+ScheduledFrame ConditionSchedule::frame(std::int64_t k) const {
     // What the fill made lagFrames_ ago comes out of the queue now; what is rendered and read
     // now is the fill's work at this frame.
     ScheduledFrame f = produced(k - lagFrames_);
@@ -128,39 +128,39 @@ ScheduledFrame ModeSchedule::frame(std::int64_t k) const {
     f.displayTime = static_cast<double>(k) / refreshHz_;
     f.rendersNow = now.rendersNow;
     f.samplesInput = now.samplesInput;
-    if (mode_.lateWarp != LateWarp::None) {
+    if (condition_.lateWarp != LateWarp::None) {
         // Re-projected at the last moment to the camera read for this display frame (Kim et
         // al. 2020); a depth late warp also moves the objects on to this instant.
         f.samplesInput = true;
-        if (f.cameraTime != f.displayTime || (mode_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
+        if (f.cameraTime != f.displayTime || (condition_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
             f.kind = f.made = FrameKind::Warped;
         f.cameraTime = f.displayTime;
-        if (mode_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
+        if (condition_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
     }
     return f;
 }
 
 template <typename Depicted>
-double ModeSchedule::firstShowing(double tau, Depicted depicted) const {
+double ConditionSchedule::firstShowing(double tau, Depicted depicted) const {
     // Display frames are at k / refresh; the first candidate is the first frame at or after tau.
     auto k = static_cast<std::int64_t>(std::ceil(tau * refreshHz_ - 1e-9));
     for (std::int64_t n = 0; n < 1000000; ++n, ++k) {
         const ScheduledFrame f = frame(k);
         if (depicted(f) >= tau - 1e-12) return f.displayTime - tau;
     }
-    throw std::logic_error("ModeSchedule: no frame ever shows the step");
+    throw std::logic_error("ConditionSchedule: no frame ever shows the step");
 }
 
-double ModeSchedule::viewLatency(double tau) const {
+double ConditionSchedule::viewLatency(double tau) const {
     return firstShowing(tau, [](const ScheduledFrame& f) { return f.cameraTime; });
 }
-double ModeSchedule::sceneLatency(double tau) const {
+double ConditionSchedule::sceneLatency(double tau) const {
     return firstShowing(tau, [](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
 template <typename Depicted>
-std::vector<ModeSchedule::LatencySpan> ModeSchedule::latencySpans(std::int64_t first, std::int64_t last,
-                                                                  Depicted depicted) const {
+std::vector<ConditionSchedule::LatencySpan> ConditionSchedule::latencySpans(std::int64_t first, std::int64_t last,
+                                                                            Depicted depicted) const {
     // The instants frames depict never decrease with the frame, so between two consecutive
     // distinct instants a < b a step at b is shown by the first frame depicting b, and a step
     // just after a by that same frame, b - a later.
@@ -175,10 +175,10 @@ std::vector<ModeSchedule::LatencySpan> ModeSchedule::latencySpans(std::int64_t f
     return spans;
 }
 
-std::int64_t ModeSchedule::settledFrame() const { return 4 * cycle() + lagFrames_; }
+std::int64_t ConditionSchedule::settledFrame() const { return 4 * cycle() + lagFrames_; }
 
 template <typename Depicted>
-ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
+ConditionSchedule::Range ConditionSchedule::latencyRange(Depicted depicted) const {
     // Two whole cycles cover every case of a cadence that repeats within the horizon; one that
     // does not (drawn, or a rate with no short cycle) is looked at over the horizon, as
     // condition::pacingStats looks at it.
@@ -195,22 +195,24 @@ ModeSchedule::Range ModeSchedule::latencyRange(Depicted depicted) const {
     return {whole(r.min), whole(r.max)};
 }
 
-std::vector<ModeSchedule::LatencySpan> ModeSchedule::viewLatencySpans(std::int64_t first, std::int64_t last) const {
+std::vector<ConditionSchedule::LatencySpan> ConditionSchedule::viewLatencySpans(std::int64_t first,
+                                                                                std::int64_t last) const {
     return latencySpans(first, last, [](const ScheduledFrame& f) { return f.cameraTime; });
 }
-std::vector<ModeSchedule::LatencySpan> ModeSchedule::sceneLatencySpans(std::int64_t first, std::int64_t last) const {
+std::vector<ConditionSchedule::LatencySpan> ConditionSchedule::sceneLatencySpans(std::int64_t first,
+                                                                                 std::int64_t last) const {
     return latencySpans(first, last, [](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
-ModeSchedule::Range ModeSchedule::viewLatencyRange() const {
+ConditionSchedule::Range ConditionSchedule::viewLatencyRange() const {
     return latencyRange([](const ScheduledFrame& f) { return f.cameraTime; });
 }
-ModeSchedule::Range ModeSchedule::sceneLatencyRange() const {
+ConditionSchedule::Range ConditionSchedule::sceneLatencyRange() const {
     return latencyRange([](const ScheduledFrame& f) { return f.worldSampleTime; });
 }
 
 ConditionSummary summarize(const Condition& condition, double refreshHz) {
-    const ModeSchedule schedule(condition, refreshHz);
+    const ConditionSchedule schedule(condition, refreshHz);
     return {condition, refreshHz, schedule.lagFrames(), schedule.viewLatencyRange(), schedule.sceneLatencyRange()};
 }
 

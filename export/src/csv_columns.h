@@ -7,6 +7,7 @@
 
 namespace warplab::exporter {
 
+using table::CellWriter;
 using table::Column;
 using table::CsvFile;
 using table::headerOf;

@@ -159,9 +159,10 @@ public:
           carriedOn_(std::move(carriedOn)),
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
           shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
-          ratings_(file(outDir, "ratings.csv"), headerOf(ratingColumns())),
           answers_(file(outDir, "answers.csv"), headerOf(answerColumns())),
-          pacing_(file(outDir, "pacing.csv"), headerOf(pacingColumns())) {}
+          pacing_(file(outDir, "pacing.csv"), headerOf(pacingColumns())) {
+        for (auto& [gameName, shape] : game::gameTables()) gameFiles_.push_back({gameName, std::move(shape), {}, 0});
+    }
 
     ExportedSession add(const fs::path& path, const std::string& name) {
         ExportedSession out{name, "ok", false, ""};
@@ -227,6 +228,7 @@ public:
 
         const game::SessionResults results = study->results(data.events);
         measures_.emplace(study->game(), results.measure);
+        checkTables(study->game(), results.tables);
         const std::string kind = session::playerKind(h.player);
         // What participants.csv needs of a plan's session, so it is not read a second time.
         if (!h.planId.empty()) planSessions_.push_back(plan::factsOf(path.string(), data, *study));
@@ -278,7 +280,7 @@ public:
             });
             if (same == conditions_.end()) {
                 // Once per condition, not per session: it walks the horizon's frames.
-                listing.pacing = condition::pacingStats(condition::ModeSchedule(c, listing.summary.refreshHz));
+                listing.pacing = condition::pacingStats(condition::ConditionSchedule(c, listing.summary.refreshHz));
                 conditions_.push_back(std::move(listing));
                 continue;
             }
@@ -299,25 +301,6 @@ public:
             writeCells(hitrates, hitRateColumns(),
                        HitRateRow{participant, gameName, mode, t, timeoutGames_.count(gameName) != 0, kinds});
             hitrates.endRow();
-        }
-        // One rating column per statement of the longest list seen (rating_1 is statement 0).
-        std::vector<std::string> header = headerOf(matchColumns());
-        for (int k = 1; k <= ratingColumns_; ++k) header.push_back(kRatingColumn + std::to_string(k));
-        for (const std::string& name : headerOf(matchTrailingColumns())) header.push_back(name);
-        CsvFile matches(file(outDir, "matches.csv"), header);
-        for (const MatchRow& row : matches_) {
-            const game::MatchResult& m = row.match;
-            writeCells(matches, matchColumns(), row);
-            for (int k = 0; k < ratingColumns_; ++k) {
-                const auto r = std::find_if(m.ratings.begin(), m.ratings.end(),
-                                            [&](const game::RatingResult& x) { return x.statementIndex == k; });
-                if (r == m.ratings.end())
-                    matches.empty();
-                else
-                    matches.integer(r->value);
-            }
-            writeCells(matches, matchTrailingColumns(), row);
-            matches.endRow();
         }
         // Every condition a readable session's protocol runs, once per game and refresh.
         CsvFile conditions(file(outDir, "conditions.csv"), headerOf(conditionColumns()));
@@ -342,15 +325,19 @@ public:
         for (const std::string& name : game::gameNames()) {
             const auto measure = measures_.find(name);
             if (measure == measures_.end()) continue;
-            writeCells(games, gameColumns(), GameRow{name, measure->second});
+            std::string tables;
+            for (const GameFile& g : gameFiles_)
+                if (g.game == name) tables += (tables.empty() ? "" : ";") + g.shape.file;
+            writeCells(games, gameColumns(), GameRow{name, measure->second, tables});
             games.endRow();
         }
         std::vector<std::string> written;
-        for (CsvFile* f : {&sessions_, &shots_, &ratings_, &answers_, &hitrates, &matches, &conditions, &frameTimes,
-                           &latency, &games, &pacing_}) {
+        for (CsvFile* f :
+             {&sessions_, &shots_, &answers_, &hitrates, &conditions, &frameTimes, &latency, &games, &pacing_}) {
             f->close();
             written.push_back(f->path());
         }
+        for (const GameFile& g : gameFiles_) written.push_back(writeGameTable(outDir, g));
         return written;
     }
 
@@ -361,11 +348,11 @@ private:
     // older or interrupted one) from its frames table.
     void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data,
                      const std::string& kind) {
-        std::vector<session::ModePacing> pacing;
+        std::vector<session::ConditionPacing> pacing;
         const auto stored = data.summaries.find("pacing");
         if (stored == data.summaries.end() || !session::parsePacing(stored->second, pacing))
             pacing = session::summarizePacing(data.frames, data.header.refreshHz);
-        for (const session::ModePacing& p : pacing) {
+        for (const session::ConditionPacing& p : pacing) {
             writeCells(pacing_, pacingColumns(), PacingRow{participant, session, p, kind});
             pacing_.endRow();
         }
@@ -377,8 +364,9 @@ private:
         std::vector<std::pair<double, std::string>> firsts;
         for (const auto& s : results.shots)
             if (s.scoredPhase) firsts.emplace_back(s.time, s.mode);
-        for (const auto& m : results.matches)
-            if (m.scoredPhase) firsts.emplace_back(m.endTime - m.durationS, m.mode);
+        for (const game::GameTable& t : results.tables)
+            for (const game::GameTableRow& r : t.rows)
+                if (t.spans && r.scoredPhase) firsts.emplace_back(r.startTime, r.condition);
         std::stable_sort(firsts.begin(), firsts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         Positions positions;
         for (const auto& [time, mode] : firsts)
@@ -404,20 +392,28 @@ private:
             t.hits += s.hit;
             t.timeouts += s.timeout;
         }
-        for (const auto& m : results.matches) {
-            // A scored match without a click still ran its mode: hitrates.csv has its row, with 0
-            // clicks, so that every participant x mode the study ran is there.
-            if (m.scoredPhase) tallies_.try_emplace({participant, gameName, m.mode});
-            if (!m.scoredPhase && !options_.allPhases) continue;
-            for (const auto& r : m.ratings) {
-                ratingColumns_ = std::max(ratingColumns_, r.statementIndex + 1);
-                writeCells(ratings_, ratingColumns(), RatingRow{from, m, r});
-                ratings_.endRow();
+        for (const game::GameTable& t : results.tables) {
+            GameFile& g = *gameFileOf(t.file);
+            for (const game::GameTableRow& r : t.rows) {
+                // A scored span without a shot (a match without a click) still ran its condition:
+                // hitrates.csv has its row, with 0 shots, so that every participant x condition
+                // the study ran is there.
+                if (t.spans && r.scoredPhase) tallies_.try_emplace({participant, gameName, r.condition});
+                if (!r.scoredPhase && !options_.allPhases) continue;
+                GameTableEntry e{participant,
+                                 from.session,
+                                 from.playerKind,
+                                 r,
+                                 positionOf(from.positions, r.condition, r.scoredPhase),
+                                 std::nullopt,
+                                 std::numeric_limits<double>::quiet_NaN()};
+                if (t.spans) {
+                    e.skipped = skipped.between(r.startTime, r.endTime);
+                    e.frameTimeP95S = newImages.p95Before(r.startTime, r.endTime);
+                }
+                g.numbered = std::max(g.numbered, r.numbered.size());
+                g.entries.push_back(std::move(e));
             }
-            // A match event is logged at its last frame.
-            matches_.push_back({participant, from.session, m, skipped.between(m.endTime - m.durationS, m.endTime),
-                                from.playerKind, positionOf(from.positions, m.mode, m.scoredPhase),
-                                newImages.p95Before(m.endTime - m.durationS, m.endTime)});
         }
         for (const auto& a : results.answers) {
             if (!a.scoredPhase && !options_.allPhases) continue;
@@ -428,13 +424,57 @@ private:
 
     ExportOptions options_;
     CarriedOn carriedOn_;
-    CsvFile sessions_, shots_, ratings_, answers_, pacing_;
+    CsvFile sessions_, shots_, answers_, pacing_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::map<std::string, std::set<std::string>> kinds_;  // participant -> the kinds of their included sessions
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
-    std::vector<MatchRow> matches_;
-    int ratingColumns_ = 0;
+    // A game's own table, gathered over the sessions and written at the end, when the widest
+    // row's numbered columns are known; header only when no session of the game is included.
+    struct GameFile {
+        std::string game;
+        game::GameTable shape;  // its columns, without rows
+        std::vector<GameTableEntry> entries;
+        std::size_t numbered = 0;
+    };
+    std::vector<GameFile> gameFiles_;  // every registered game's, in the order registered
+
+    GameFile* gameFileOf(const std::string& name) {
+        for (GameFile& g : gameFiles_)
+            if (g.shape.file == name) return &g;
+        return nullptr;
+    }
+
+    // A session's tables are the ones its game registered (game::registerGame), column for column.
+    void checkTables(const std::string& gameName, const std::vector<game::GameTable>& tables) {
+        for (const game::GameTable& t : tables) {
+            const GameFile* g = gameFileOf(t.file);
+            if (g == nullptr || g->game != gameName || g->shape.columns != t.columns || g->shape.spans != t.spans ||
+                g->shape.numbered != t.numbered)
+                throw std::logic_error("the " + gameName + " game's results have a table " + t.file +
+                                       " it did not register with these columns (game::registerGame)");
+        }
+    }
+
+    std::string writeGameTable(const fs::path& outDir, const GameFile& g) {
+        CsvColumns shape = gameTableColumns(g.shape);
+        std::vector<std::string> header(shape.columns.begin(), shape.columns.begin() + shape.numberedAt);
+        for (std::size_t k = 1; k <= g.numbered; ++k) header.push_back(shape.numbered + std::to_string(k));
+        header.insert(header.end(), shape.columns.begin() + shape.numberedAt, shape.columns.end());
+        CsvFile out(file(outDir, g.shape.file.c_str()), header);
+        for (const GameTableEntry& e : g.entries) {
+            writeCells(out, gameTableLeadingColumns(), e);
+            out.cells(e.row.cells);
+            if (g.shape.spans) writeCells(out, gameTableSpanColumns(), e);
+            out.cells(e.row.numbered);
+            for (std::size_t k = e.row.numbered.size(); k < g.numbered; ++k) out.empty();
+            writeCells(out, gameTableTrailingColumns(), e);
+            if (g.shape.spans) writeCells(out, gameTableSpanTrailingColumns(), e);
+            out.endRow();
+        }
+        out.close();
+        return out.path();
+    }
     using SessionKey = std::tuple<std::string, std::string, std::string, std::uint64_t, std::string, std::string>;
     std::map<SessionKey, std::string> firstWith_;  // intact sessions, by what identifies them
     std::map<SessionKey, std::string> partialCopy_;  // included incomplete or damaged ones
@@ -449,22 +489,31 @@ private:
 }  // namespace
 
 std::vector<CsvColumns> exportColumns() {
-    std::vector<std::string> matches = headerOf(matchColumns());
-    const std::size_t ratingsAt = matches.size();
-    for (const std::string& name : headerOf(matchTrailingColumns())) matches.push_back(name);
-    return {{"sessions.csv", headerOf(sessionColumns()), "", 0},
-            {"shots.csv", headerOf(shotColumns()), "", 0},
-            {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
-            {"matches.csv", matches, kRatingColumn, ratingsAt},
-            {"ratings.csv", headerOf(ratingColumns()), "", 0},
-            {"answers.csv", headerOf(answerColumns()), "", 0},
-            {"conditions.csv", headerOf(conditionColumns()), "", 0},
-            {"frametimes.csv", headerOf(frameTimeColumns()), "", 0},
-            {"latency.csv", headerOf(latencyColumns()), "", 0},
-            {"pacing.csv", headerOf(pacingColumns()), "", 0},
-            {"games.csv", headerOf(gameColumns()), "", 0},
-            {"participants.csv", headerOf(participantColumns()), "", 0},
-            {"orders.csv", headerOf(orderColumns()), "", 0}};
+    std::vector<CsvColumns> out = {{"sessions.csv", headerOf(sessionColumns()), "", 0},
+                                   {"shots.csv", headerOf(shotColumns()), "", 0},
+                                   {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
+                                   {"answers.csv", headerOf(answerColumns()), "", 0},
+                                   {"conditions.csv", headerOf(conditionColumns()), "", 0},
+                                   {"frametimes.csv", headerOf(frameTimeColumns()), "", 0},
+                                   {"latency.csv", headerOf(latencyColumns()), "", 0},
+                                   {"pacing.csv", headerOf(pacingColumns()), "", 0},
+                                   {"games.csv", headerOf(gameColumns()), "", 0},
+                                   {"participants.csv", headerOf(participantColumns()), "", 0},
+                                   {"orders.csv", headerOf(orderColumns()), "", 0}};
+    for (const auto& [gameName, table] : game::gameTables()) out.push_back(gameTableColumns(table));
+    return out;
+}
+
+CsvColumns gameTableColumns(const game::GameTable& table) {
+    CsvColumns out{table.file, headerOf(gameTableLeadingColumns()), table.numbered, 0};
+    out.columns.insert(out.columns.end(), table.columns.begin(), table.columns.end());
+    if (table.spans)
+        for (const std::string& name : headerOf(gameTableSpanColumns())) out.columns.push_back(name);
+    out.numberedAt = out.columns.size();
+    for (const std::string& name : headerOf(gameTableTrailingColumns())) out.columns.push_back(name);
+    if (table.spans)
+        for (const std::string& name : headerOf(gameTableSpanTrailingColumns())) out.columns.push_back(name);
+    return out;
 }
 
 ExportSummary exportResults(const std::string& resultsDir, const std::string& outDir, const ExportOptions& options,
@@ -549,16 +598,16 @@ ExportSummary exportResults(const std::string& resultsDir, const std::string& ou
 std::vector<ConditionListing> conditionsOf(const game::Study& study) {
     std::vector<ConditionListing> rows = listedConditions(study);
     for (ConditionListing& row : rows)
-        row.pacing = condition::pacingStats(condition::ModeSchedule(row.summary.condition, row.summary.refreshHz));
+        row.pacing = condition::pacingStats(condition::ConditionSchedule(row.summary.condition, row.summary.refreshHz));
     return rows;
 }
 
 namespace {
 
 std::vector<ConditionListing> listedConditions(const game::Study& study) {
-    const std::vector<std::string> analysed = study.analysedModes();
+    const std::vector<std::string> analysed = study.analysedConditions();
     std::vector<ConditionListing> rows;
-    for (const std::string& name : study.modes()) {
+    for (const std::string& name : study.conditionNames()) {
         const bool seen = std::any_of(rows.begin(), rows.end(),
                                       [&](const ConditionListing& r) { return r.summary.condition.name == name; });
         if (seen) continue;

@@ -21,7 +21,7 @@ std::string perProtocol(const ParticipantRow& r, const Value& value) {
 }  // namespace
 
 const std::vector<Column<ParticipantRow>>& participantColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = ParticipantRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant.id); }},
@@ -66,7 +66,7 @@ const std::vector<Column<ParticipantRow>>& participantColumns() {
 }
 
 const std::vector<Column<OrderRow>>& orderColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = OrderRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},

@@ -10,7 +10,7 @@
 namespace warplab::exporter {
 namespace {
 
-void optionalInteger(CsvFile& f, const std::optional<std::int64_t>& v) {
+void optionalInteger(CellWriter& f, const std::optional<std::int64_t>& v) {
     if (v)
         f.integer(*v);
     else
@@ -19,8 +19,8 @@ void optionalInteger(CsvFile& f, const std::optional<std::int64_t>& v) {
 
 // A cell that only a readable session has.
 template <class F>
-std::function<void(CsvFile&, const SessionRow&)> whenRead(F cell) {
-    return [cell](CsvFile& f, const SessionRow& r) {
+std::function<void(CellWriter&, const SessionRow&)> whenRead(F cell) {
+    return [cell](CellWriter& f, const SessionRow& r) {
         if (r.data == nullptr)
             f.empty();
         else
@@ -68,7 +68,7 @@ std::string joined(const std::map<std::string, std::string>& flags) {
 }
 
 const std::vector<Column<SessionRow>>& sessionColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = SessionRow;
     static const std::vector<Column<R>> columns = {
         {"file", [](F& f, const R& r) { f.text(r.file); }},
@@ -87,8 +87,13 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
         {"status", [](F& f, const R& r) { f.text(r.outcome.status); }},
         {"included", [](F& f, const R& r) { f.boolean(r.outcome.included); }},
         {"trials", whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->shots.size())); })},
-        {"matches",
-         whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.results->matches.size())); })},
+        // The rows of its game's span tables (the click game's matches); 0 for a game without.
+        {"matches", whenRead([](F& f, const R& r) {
+             std::int64_t spans = 0;
+             for (const game::GameTable& t : r.results->tables)
+                 if (t.spans) spans += static_cast<std::int64_t>(t.rows.size());
+             f.integer(spans);
+         })},
         // How its frames kept pace with the display (pacing.csv has them per mode).
         {"display_frames",
          whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
@@ -115,7 +120,7 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
 }
 
 const std::vector<Column<ShotRow>>& shotColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = ShotRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
@@ -145,31 +150,8 @@ const std::vector<Column<ShotRow>>& shotColumns() {
     return columns;
 }
 
-const std::vector<Column<RatingRow>>& ratingColumns() {
-    using F = CsvFile;
-    using R = RatingRow;
-    static const std::vector<Column<R>> columns = {
-        {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
-        {"session", [](F& f, const R& r) { f.text(r.from.session); }},
-        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
-        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
-        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
-        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
-        {"statement_index", [](F& f, const R& r) { f.integer(r.rating.statementIndex); }},
-        {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
-        {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
-        {"answered_with", [](F& f, const R& r) { f.text(r.rating.answeredWith); }},
-        {"scale_min", [](F& f, const R& r) { f.integer(r.rating.scaleMin); }},
-        {"scale_max", [](F& f, const R& r) { f.integer(r.rating.scaleMax); }},
-        {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
-        {"condition_position",
-         [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.match.mode, r.match.scoredPhase)); }},
-    };
-    return columns;
-}
-
 const std::vector<Column<AnswerRow>>& answerColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = AnswerRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.from.participant); }},
@@ -221,7 +203,7 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
 }
 
 const std::vector<Column<PacingRow>>& pacingColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = PacingRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
@@ -237,7 +219,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
         {"over_budget", [](F& f, const R& r) { f.integer(r.pacing.overBudget); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
         // After the columns above, so that they keep their places: the condition's own unevenness
-        // against what was shown (session::ModePacing). A summary stored before these were kept
+        // against what was shown (session::ConditionPacing). A summary stored before these were kept
         // has none of them: empty cells, not zeros that claim a count.
         {"new_images", [](F& f, const R& r) { optionalInteger(f, r.pacing.newImages); }},
         {"intended_p95_ms", [](F& f, const R& r) { f.number(r.pacing.intendedP95Ms); }},
@@ -249,7 +231,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
 }
 
 const std::vector<Column<HitRateRow>>& hitRateColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = HitRateRow;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
@@ -278,34 +260,40 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
     return columns;
 }
 
-const std::vector<Column<MatchRow>>& matchColumns() {
-    using F = CsvFile;
-    using R = MatchRow;
+const std::vector<Column<GameTableEntry>>& gameTableLeadingColumns() {
+    using F = CellWriter;
+    using R = GameTableEntry;
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
         {"session", [](F& f, const R& r) { f.text(r.session); }},
-        {"round", [](F& f, const R& r) { f.text(r.match.round); }},
-        {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
-        {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
-        {"mode", [](F& f, const R& r) { f.text(r.match.mode); }},
-        {"stand_in", [](F& f, const R& r) { f.text(r.match.standIn); }},
-        {"green_hits", [](F& f, const R& r) { f.integer(r.match.greenHits); }},
-        {"red_hits", [](F& f, const R& r) { f.integer(r.match.redHits); }},
-        {"misses", [](F& f, const R& r) { f.integer(r.match.misses); }},
-        {"clicks", [](F& f, const R& r) { f.integer(r.match.clicks); }},
-        {"duration_s", [](F& f, const R& r) { f.number(r.match.durationS); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<GameTableEntry>>& gameTableSpanColumns() {
+    using F = CellWriter;
+    using R = GameTableEntry;
+    static const std::vector<Column<R>> columns = {
         {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
     };
     return columns;
 }
 
-// After the rating_k columns, so that the columns before them keep their places.
-const std::vector<Column<MatchRow>>& matchTrailingColumns() {
-    using F = CsvFile;
-    using R = MatchRow;
+// After the numbered columns, so that the columns before them keep their places.
+const std::vector<Column<GameTableEntry>>& gameTableTrailingColumns() {
+    using F = CellWriter;
+    using R = GameTableEntry;
     static const std::vector<Column<R>> columns = {
         {"player_kind", [](F& f, const R& r) { f.text(r.playerKind); }},
         {"condition_position", [](F& f, const R& r) { optionalInteger(f, r.position); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<GameTableEntry>>& gameTableSpanTrailingColumns() {
+    using F = CellWriter;
+    using R = GameTableEntry;
+    static const std::vector<Column<R>> columns = {
         {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
@@ -314,7 +302,7 @@ const std::vector<Column<MatchRow>>& matchTrailingColumns() {
 // The conditions the sessions were run in, with their parts and latencies at the refresh they
 // ran at, so the analysis keeps no list of its own. An unset fill rate is an empty cell.
 const std::vector<Column<ConditionListing>>& conditionColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = ConditionListing;
     auto ms = [](double seconds) { return seconds * 1000.0; };
     static const std::vector<Column<R>> columns = {
@@ -358,7 +346,7 @@ const std::vector<Column<ConditionListing>>& conditionColumns() {
 
 // The frame times behind conditions.csv's pacing columns, for the report's frame-time graphs.
 const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = FrameTimeRow;
     static const std::vector<Column<R>> columns = {
         {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
@@ -377,7 +365,7 @@ const std::vector<Column<FrameTimeRow>>& frameTimeColumns() {
 
 std::vector<LatencyRow> latencyRows(const ConditionListing& listing) {
     std::vector<LatencyRow> rows;
-    const auto add = [&](const char* kind, const std::vector<condition::ModeSchedule::LatencySpan>& spans) {
+    const auto add = [&](const char* kind, const std::vector<condition::ConditionSchedule::LatencySpan>& spans) {
         // A step in (from, to] waits shownAt - tau: uniformly over [shownAt - to, shownAt - from),
         // as likely as the span is long. A steady cadence repeats a few spans over and over; they
         // differ only by rounding, so spans a nanosecond apart are one, keeping the widest bounds.
@@ -407,7 +395,7 @@ std::vector<LatencyRow> latencyRows(const ConditionListing& listing) {
 // The latency distributions behind conditions.csv's latency columns, exactly, for the report's
 // latency histograms.
 const std::vector<Column<LatencyRow>>& latencyColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = LatencyRow;
     static const std::vector<Column<R>> columns = {
         {"game", [](F& f, const R& r) { f.text(r.listing.game); }},
@@ -424,12 +412,13 @@ const std::vector<Column<LatencyRow>>& latencyColumns() {
 // What each game's hit rate counts, in its own words, so a report words a game's measure without
 // knowing the game.
 const std::vector<Column<GameRow>>& gameColumns() {
-    using F = CsvFile;
+    using F = CellWriter;
     using R = GameRow;
     static const std::vector<Column<R>> columns = {
         {"game", [](F& f, const R& r) { f.text(r.game); }},
         {"hits_are", [](F& f, const R& r) { f.text(r.measure.hitsAre); }},
         {"shots_are", [](F& f, const R& r) { f.text(r.measure.shotsAre); }},
+        {"tables", [](F& f, const R& r) { f.text(r.tables); }},
     };
     return columns;
 }

@@ -33,7 +33,7 @@ struct SessionRow {
 };
 
 // Each condition's place in the order a session's scored phase first presented it, 1-based:
-// condition_position in shots.csv, matches.csv, ratings.csv and answers.csv (docs/export.md).
+// condition_position in shots.csv, answers.csv and the games' own tables (docs/export.md).
 using Positions = std::map<std::string, std::int64_t>;
 
 // Who and where a shot, match or rating comes from.
@@ -52,12 +52,6 @@ struct ShotRow {
     double frameTimeP95S;  // of the new images of the second before the shot; NaN: none
 };
 
-struct RatingRow {
-    Origin from;
-    const game::MatchResult& match;
-    const game::RatingResult& rating;
-};
-
 struct AnswerRow {
     Origin from;
     const game::AnswerResult& answer;
@@ -66,7 +60,7 @@ struct AnswerRow {
 struct PacingRow {
     const std::string& participant;
     const std::string& session;
-    const session::ModePacing& pacing;
+    const session::ConditionPacing& pacing;
     const std::string& playerKind;
 };
 
@@ -81,14 +75,13 @@ struct HitRateRow {
     const std::string& playerKinds;
 };
 
-struct MatchRow {
-    std::string participant;
-    std::string session;
-    game::MatchResult match;
-    std::optional<std::int64_t> skipped;  // display frames skipped during the match
-    std::string playerKind;
+// A row of a game's own table (game::GameTable), with what export adds to the game's cells.
+struct GameTableEntry {
+    std::string participant, session, playerKind;
+    game::GameTableRow row;
     std::optional<std::int64_t> position;  // condition_position; none outside the scored phase
-    double frameTimeP95S = 0.0;  // of the new images of the match's last second; NaN: none
+    std::optional<std::int64_t> skipped;  // a span row's display frames skipped in its span
+    double frameTimeP95S = 0.0;  // a span row's, of the new images of its last second; NaN: none
 };
 
 // One frame time of a condition's horizon, as frametimes.csv lists it.
@@ -108,13 +101,10 @@ struct LatencyRow {
 // The view spans, then the scene spans, of `listing`'s pacing, each by ascending latency.
 std::vector<LatencyRow> latencyRows(const ConditionListing& listing);
 
-// matches.csv's fixed columns; kRatingColumn + k (1-based) follow, one per statement of the
-// longest list seen, then the trailing ones.
-constexpr const char* kRatingColumn = "rating_";
-
 struct GameRow {
     const std::string& game;
     const game::HitMeasure& measure;
+    const std::string& tables;  // the game's own files, ;-separated
 };
 
 // The flag names of a session, ;-separated, as sessions.csv lists them.
@@ -126,12 +116,15 @@ std::optional<std::int64_t> positionOf(const Positions& positions, const std::st
 // Each CSV file's columns (docs/export.md lists them; a test checks it against these).
 const std::vector<Column<SessionRow>>& sessionColumns();
 const std::vector<Column<ShotRow>>& shotColumns();
-const std::vector<Column<RatingRow>>& ratingColumns();
 const std::vector<Column<AnswerRow>>& answerColumns();
 const std::vector<Column<PacingRow>>& pacingColumns();
 const std::vector<Column<HitRateRow>>& hitRateColumns();
-const std::vector<Column<MatchRow>>& matchColumns();  // before the rating_k columns
-const std::vector<Column<MatchRow>>& matchTrailingColumns();  // after them
+// The columns export adds to a game's own table: before the game's, after them in a span table,
+// after the numbered ones, and then last in a span table (game::GameTable).
+const std::vector<Column<GameTableEntry>>& gameTableLeadingColumns();
+const std::vector<Column<GameTableEntry>>& gameTableSpanColumns();
+const std::vector<Column<GameTableEntry>>& gameTableTrailingColumns();
+const std::vector<Column<GameTableEntry>>& gameTableSpanTrailingColumns();
 const std::vector<Column<ConditionListing>>& conditionColumns();
 const std::vector<Column<FrameTimeRow>>& frameTimeColumns();
 const std::vector<Column<LatencyRow>>& latencyColumns();

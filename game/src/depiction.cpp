@@ -5,7 +5,7 @@ namespace warplab::game {
 session::FrameRecord frameRecordOf(const ShownFrame& shown) {
     session::FrameRecord r;
     r.frame = shown.frame;
-    r.mode = shown.mode;
+    r.mode = shown.condition.name;
     r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
@@ -17,7 +17,6 @@ ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& m
     ShownFrame shown;
     shown.frame = frame;
     shown.time = static_cast<double>(frame) / placement.refreshHz;
-    shown.mode = mode.name;
     shown.condition = mode;
     shown.schedule = f;
     shown.sourceFrame = placement.start + f.sourceIndex;

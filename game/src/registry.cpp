@@ -13,6 +13,7 @@ namespace {
 struct RegisteredGame {
     std::string name;
     StudyParser parse;
+    std::vector<GameTable> tables;
 };
 
 // Every known game, in the order registered: the app's (games/src/games.cpp) first.
@@ -49,12 +50,25 @@ std::vector<std::string> gameNames() {
     return names;
 }
 
-void registerGame(const std::string& name, StudyParser parse) {
+std::vector<std::pair<std::string, GameTable>> gameTables() {
+    std::vector<std::pair<std::string, GameTable>> out;
+    for (const auto& g : allGames())
+        for (const GameTable& t : g.tables) out.emplace_back(g.name, t);
+    return out;
+}
+
+void registerGame(const std::string& name, StudyParser parse, GameTables tables) {
     if (name.empty() || parse == nullptr)
         throw std::invalid_argument("registerGame: a game needs a name and a protocol parser");
     for (const auto& known : gameNames())
         if (known == name) throw std::invalid_argument("registerGame: a game named \"" + name + "\" is already known");
-    registered().push_back({name, parse});
+    std::vector<GameTable> own = tables == nullptr ? std::vector<GameTable>{} : tables();
+    for (const GameTable& t : own)
+        for (const auto& [game, other] : gameTables())
+            if (other.file == t.file)
+                throw std::invalid_argument("registerGame: " + name + "'s table " + t.file + " is already the " + game +
+                                            " game's");
+    registered().push_back({name, parse, std::move(own)});
 }
 
 std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string& sourceName) {

@@ -13,7 +13,7 @@ void registerGames() {
     std::call_once(once, [] {
         // The one list of built-in games, in the order gameNames() gives them.
         game::registerGame("shooter", game::parseShooterStudy);
-        game::registerGame("click", game::parseClickStudy);
+        game::registerGame("click", game::parseClickStudy, game::clickTables);
     });
 }
 

@@ -10,7 +10,7 @@
 namespace warplab::live {
 
 CadenceNeed cadenceNeed(const condition::Condition& condition, double refreshHz) {
-    const condition::ModeSchedule schedule(condition, refreshHz, 0);
+    const condition::ConditionSchedule schedule(condition, refreshHz, 0);
     const std::int64_t cycle = schedule.cadence().cycleFrames();
     // Past what a lag or bidirectional queue held before the schedule began; a second at least,
     // so that a fill slower than the refresh shows its own cycle too.

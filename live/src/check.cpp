@@ -18,8 +18,8 @@
 #include "renderer/window.h"
 #include "session/results_lock.h"
 #include "sound.h"
-#include "study/session_runner.h"
-#include "study/session_size.h"
+#include "runner/session_runner.h"
+#include "runner/session_size.h"
 
 namespace warplab::live {
 namespace {
@@ -104,7 +104,7 @@ public:
         if (!run_.photonCorner.empty()) photonPattern();
         if (!study_) return;
         std::vector<std::string> modes;  // each once, in the protocol's order (phases repeat them)
-        for (const std::string& mode : study_->modes())
+        for (const std::string& mode : study_->conditionNames())
             if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
         for (const std::string& mode : modes) frameTime(mode);
     }
@@ -181,7 +181,7 @@ private:
         if (!maker_) {
             maker_.emplace(paths_, display_.width, display_.height, study_->rendering());
             game_ = study_->newFreePlay(1, display_, mode, 0);
-            bot_ = study::makePlayer("bot", 1, *study_, display_);
+            bot_ = runner::makePlayer("bot", 1, *study_, display_);
             input_ = bot_->first();
         } else {
             game_->switchTo(mode, 0);
@@ -335,25 +335,25 @@ bool resultsFolder(const CheckRun& run, const game::Study* study, Lines& lines) 
 }
 
 void disk(const CheckRun& run, const game::Study* study, const game::DisplaySize& display, Lines& lines) {
-    const std::uint64_t free = study::freeBytes(run.resultsDir);
+    const std::uint64_t free = runner::freeBytes(run.resultsDir);
     if (!study) {
-        lines.add(Verdict::Ok, "disk", study::bytesText(free) + " free in '" + run.resultsDir + "'");
+        lines.add(Verdict::Ok, "disk", runner::bytesText(free) + " free in '" + run.resultsDir + "'");
         return;
     }
-    study::SessionSize size;
+    runner::SessionSize size;
     try {
-        size = study::estimateSessionSize(*study, display);
+        size = runner::estimateSessionSize(*study, display);
     } catch (const std::exception& e) {
         lines.add(Verdict::Warn, "disk",
-                  study::bytesText(free) + " free in '" + run.resultsDir +
+                  runner::bytesText(free) + " free in '" + run.resultsDir +
                       "'; a session's size was not measured: " + e.what());
         return;
     }
     const bool room = free >= size.neededBytes();
     lines.add(room ? Verdict::Ok : Verdict::Fail, "disk",
-              study::bytesText(free) + " free in '" + run.resultsDir + "'; a session of " + study->name() +
-                  " writes about " + study::bytesText(size.sessionBytes()) + " and needs " +
-                  study::bytesText(size.neededBytes()) + " free (" + std::to_string(size.botFrames) +
+              runner::bytesText(free) + " free in '" + run.resultsDir + "'; a session of " + study->name() +
+                  " writes about " + runner::bytesText(size.sessionBytes()) + " and needs " +
+                  runner::bytesText(size.neededBytes()) + " free (" + std::to_string(size.botFrames) +
                   " frames by its bot at " + number(size.bytesPerFrame, 0) +
                   " bytes each, doubled for a participant, doubled again as it finishes)");
 }
@@ -378,7 +378,7 @@ std::string formatCheckLine(const CheckLine& line) {
 
 std::vector<CheckLine> checkMachine(const CheckRun& run, const renderer::DataPaths& paths, std::ostream& out) {
     const std::unique_ptr<game::Study> study =
-        run.protocolPath.empty() ? nullptr : study::loadRunStudy(run.protocolPath, "");
+        run.protocolPath.empty() ? nullptr : runner::loadRunStudy(run.protocolPath, "");
     Lines lines(out);
     game::DisplaySize display{run.width, run.height};
     {

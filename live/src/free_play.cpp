@@ -17,7 +17,7 @@ class FreePlayPolicy final : public LoopPolicy {
 public:
     FreePlayPolicy(const LiveRun& run, const game::Study& study, const game::DisplaySize& display,
                    std::ostream& progress)
-        : mode_(run.freePlayMode.empty() ? study.modes().front() : run.freePlayMode),
+        : mode_(run.freePlayMode.empty() ? study.conditionNames().front() : run.freePlayMode),
           level_(run.freePlayLevel),
           game_(study.newFreePlay(run.seed, display, mode_, level_)),
           refreshHz_(study.refreshHz()),

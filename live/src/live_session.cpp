@@ -16,8 +16,8 @@
 #include "game/game.h"
 #include "session/pacing.h"
 #include "session/session_store.h"
-#include "study/resume.h"
-#include "study/session_runner.h"
+#include "runner/resume.h"
+#include "runner/session_runner.h"
 #include "window_loop.h"
 
 namespace warplab::live {
@@ -40,7 +40,7 @@ public:
     }
     void beforeStep(const std::string&, std::int64_t, game::FrameInput&) override {}
     void stepped(const game::ShownFrame& shown, const game::FrameInput& input) override {
-        writer_.addInput(study::toRecord(shown.frame, shown.time, input));
+        writer_.addInput(runner::toRecord(shown.frame, shown.time, input));
         for (auto& e : game_->takeEvents()) writer_.addEvent(e);
     }
     void decorate(const game::ShownFrame&, std::int64_t, renderer::HudContent& hud) override {
@@ -85,7 +85,7 @@ private:
 
     std::unique_ptr<game::Game> game_;
     session::SessionWriter& writer_;
-    study::SessionCommits commits_;
+    runner::SessionCommits commits_;
     double refreshHz_;
     std::ostream& progress_;
     session::PacingTally pacing_;
@@ -113,7 +113,7 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
         if (f.mode == record.mode) recent.push_back(f);
     const auto summary = session::summarizePacing(recent, refreshHz_);
     if (summary.empty()) return;
-    const session::ModePacing& p = summary.front();
+    const session::ConditionPacing& p = summary.front();
     if (p.skipped == 0 && p.overBudget * 10 <= p.shown) return;  // nine in ten on time: no need to say
     warnedAt_ = frame;
     char text[200];
@@ -129,7 +129,7 @@ void SessionPolicy::finish(WindowLoop& loop, std::ostream& progress) {
     // More display frames late or skipped than the protocol allows (display.max_late_share, 1 %
     // unless it says otherwise) is more than a study can call "at the protocol's rate": the
     // store says so, and export can leave such sessions out.
-    const std::vector<session::ModePacing> pacing = pacing_.summary(refreshHz_);
+    const std::vector<session::ConditionPacing> pacing = pacing_.summary(refreshHz_);
     std::int64_t displayFrames = 0, offTime = 0;
     for (const auto& p : pacing) {
         displayFrames += p.shown + p.skipped;
@@ -162,7 +162,7 @@ std::string playerText(const LiveRun& run) {
 
 // A resumed session plays the interrupted one's protocol, seed, participant and plan, on a
 // window of its size (the click game's cursor lives in its pixels).
-LiveRun carryingOn(const LiveRun& given, const study::ResumePoint& resume) {
+LiveRun carryingOn(const LiveRun& given, const runner::ResumePoint& resume) {
     LiveRun run = given;
     const session::SessionHeader& was = resume.stored.header;
     run.protocolPath = resume.path;
@@ -180,8 +180,8 @@ LiveRun carryingOn(const LiveRun& given, const study::ResumePoint& resume) {
 }  // namespace
 
 LiveEnd runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ostream& progress) {
-    std::optional<study::ResumePoint> resume;
-    if (!given.resumeFrom.empty()) resume = study::findResumePoint(given.resumeFrom);
+    std::optional<runner::ResumePoint> resume;
+    if (!given.resumeFrom.empty()) resume = runner::findResumePoint(given.resumeFrom);
     const LiveRun run = resume ? carryingOn(given, *resume) : given;
     WindowLoop loop(run, paths, progress);
     const game::Study& study = loop.study();
@@ -194,7 +194,7 @@ LiveEnd runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ost
                                      " display but this window is " + std::to_string(loop.display().width) + "x" +
                                      std::to_string(loop.display().height) +
                                      ": resume it at the same size (without --fullscreen, or on that display)");
-        progress << study::resumeSummary(*resume) << "\n";
+        progress << runner::resumeSummary(*resume) << "\n";
         who += ", resumed after its last completed trial or match";
     }
 
@@ -214,21 +214,21 @@ LiveEnd runLive(const LiveRun& given, const renderer::DataPaths& paths, std::ost
         }
     }
 
-    auto header = study::sessionHeader(study, run.participant, run.seed, playerText(run), loop.display());
+    auto header = runner::sessionHeader(study, run.participant, run.seed, playerText(run), loop.display());
     header.planId = run.planId;
     header.glRenderer = loop.glInfo().renderer;
     header.glVersion = loop.glInfo().version;
     header.refreshHz = loop.shownRefreshHz();
     header.photonMarker = protocol::nameOf(loop.photonMarker());  // replay --render draws it
-    if (resume) header = study::resumedHeader(*resume, header);
+    if (resume) header = runner::resumedHeader(*resume, header);
     auto writer = session::SessionWriter::create(
-        run.resultsDir, header, resume ? study::keptRows(*resume) : session::SessionWriter::FirstCommit{});
+        run.resultsDir, header, resume ? runner::keptRows(*resume) : session::SessionWriter::FirstCommit{});
     progress << "session " << writer.path() << "\n";
 
     SessionPolicy policy(loop, run.seed, writer, progress);
     if (resume) {
-        study::replayKeptFrames(*resume, policy.game(),
-                                [&](const game::ShownFrame& shown) { loop.sawBeforeResume(shown); });
+        runner::replayKeptFrames(*resume, policy.game(),
+                                 [&](const game::ShownFrame& shown) { loop.sawBeforeResume(shown); });
         for (std::size_t i = 0; i < resume->keptFrames; ++i) policy.kept(resume->stored.frames[i]);
     }
     loop.captureMouse(true);

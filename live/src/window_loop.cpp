@@ -10,7 +10,7 @@
 #include "game/registry.h"
 #include "image/image.h"
 #include "refresh_rule.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
 namespace warplab::live {
 namespace {
@@ -117,13 +117,13 @@ WindowLoop::Opened WindowLoop::open(const LiveRun& run, const game::Study& study
 WindowLoop::WindowLoop(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress)
     : run_(run),
       progress_(progress),
-      study_(study::loadRunStudy(run.protocolPath, run.protocolText)),
+      study_(runner::loadRunStudy(run.protocolPath, run.protocolText)),
       script_(run.inputScript.empty() ? InputScript() : InputScript(run.inputScript)),
       opened_(open(run, *study_, progress)),
       window_(*opened_.window),
       display_(opened_.display),
       countScale_(countScaleFor(run, *study_)),
-      player_(run.player == "human" ? nullptr : study::makePlayer(run.player, run.seed, *study_, display_)),
+      player_(run.player == "human" ? nullptr : runner::makePlayer(run.player, run.seed, *study_, display_)),
       maker_(paths, display_.width, display_.height, study_->rendering()),
       hud_(paths),
       screen_(display_.width, display_.height),

@@ -9,6 +9,10 @@ namespace warplab::present {
 
 namespace {
 
+// The method that shows a source as it was rendered: the bench's hold at the display's own
+// rate, which copies its one source to every frame.
+constexpr const char* kShowSource = "hold120";
+
 renderer::HudQuestion::Kind hudKind(protocol::QuestionKind kind) {
     switch (kind) {
         case protocol::QuestionKind::Likert: return renderer::HudQuestion::Kind::Likert;
@@ -99,8 +103,8 @@ void FrameMaker::release(Kept& kept) {
 }
 
 void FrameMaker::prepareFor(const game::Study& study) {
-    method("hold120");
-    for (const std::string& mode : study.modes()) {
+    method(kShowSource);
+    for (const std::string& mode : study.conditionNames()) {
         const condition::Condition& c = study.conditions().at(mode);
         for (const std::string& name : {c.sourceMethod(), c.warpMethod(), c.interpolationMethod()})
             if (!name.empty()) method(name);
@@ -111,7 +115,7 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
     if (shown.rendersNow) {
         // The method that makes the condition's other frames from its sources (its fill, or
         // its late warp) says what they need.
-        const std::string name = shown.mode.empty() ? std::string() : shown.condition.sourceMethod();
+        const std::string name = shown.condition.name.empty() ? std::string() : shown.condition.sourceMethod();
         const renderer::MethodInfo* info = name.empty() ? nullptr : &method(name).info();
         Kept kept{nullptr, shown.render, {}, std::nullopt};
         // Warps render beyond the displayed field of view, so what a turn brings into view is
@@ -133,7 +137,7 @@ void FrameMaker::keepSource(const game::ShownFrame& shown) {
 }
 
 void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& display) {
-    std::string name = "hold120";
+    std::string name = kShowSource;
     const auto kind = shown.schedule.made;  // a repeated frame is made as the one it repeats
     // Warped frames: the fill's warp, or the late warp of a held frame (to the display
     // instant's camera: shown.camera; and, with depth, the objects moved on to shown.scene.time).
@@ -168,7 +172,7 @@ const renderer::SourceFrame* FrameMaker::shownUnchanged(const game::ShownFrame& 
     if (kind != condition::FrameKind::Held && kind != condition::FrameKind::Rendered) return nullptr;
     const auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end() || !(it->second.band == renderer::GuardBand{})) return nullptr;
-    return &rendered(it->second);  // make() would show it by hold120: a copy
+    return &rendered(it->second);  // make() would show it by kShowSource: a copy
 }
 
 renderer::UpconversionMethod& FrameMaker::method(const std::string& name) {

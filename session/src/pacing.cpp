@@ -76,11 +76,11 @@ void PacingTally::add(const FrameRecord& f, const std::string& scheduledKind) {
     if (f.frameMs > 0.0) mode->frameMs.push_back(f.frameMs);
 }
 
-std::vector<ModePacing> PacingTally::summary(double refreshHz) const {
+std::vector<ConditionPacing> PacingTally::summary(double refreshHz) const {
     const double budget = refreshHz > 0.0 ? 1000.0 / refreshHz : kNaN;
-    std::vector<ModePacing> out;
+    std::vector<ConditionPacing> out;
     auto summarize = [&](const Mode& mode) {
-        ModePacing row = mode.counts;
+        ConditionPacing row = mode.counts;
         row.budgetMs = budget;
         std::vector<double> intended;
         for (const std::int64_t frames : mode.intendedFrames) intended.push_back(static_cast<double>(frames) * budget);
@@ -104,18 +104,18 @@ std::vector<ModePacing> PacingTally::summary(double refreshHz) const {
     return out;
 }
 
-std::vector<ModePacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz) {
+std::vector<ConditionPacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz) {
     PacingTally tally;
     for (const FrameRecord& f : frames) tally.add(f);
     return tally.summary(refreshHz);
 }
 
-std::string pacingReport(const std::vector<ModePacing>& pacing) {
+std::string pacingReport(const std::vector<ConditionPacing>& pacing) {
     if (pacing.empty()) return "";
     char line[512];
     std::snprintf(line, sizeof line, "pacing per mode (a display frame every %.2f ms):\n", pacing.front().budgetMs);
     std::string out = line;
-    for (const ModePacing& p : pacing) {
+    for (const ConditionPacing& p : pacing) {
         const double all = static_cast<double>(std::max<std::int64_t>(1, p.shown + p.skipped));
         // How far short of the display it fell: the frames it showed a second of the display's.
         const double refreshHz = 1000.0 / p.budgetMs;
@@ -143,11 +143,11 @@ std::string pacingReport(const std::vector<ModePacing>& pacing) {
     return out;
 }
 
-std::string pacingText(const std::vector<ModePacing>& pacing) {
+std::string pacingText(const std::vector<ConditionPacing>& pacing) {
     nlohmann::json list = nlohmann::json::array();
     // NaN has no JSON form: null.
     auto number = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
-    for (const ModePacing& p : pacing)
+    for (const ConditionPacing& p : pacing)
         list.push_back({{"mode", p.mode},
                         {"shown", p.shown},
                         {"late", p.late},
@@ -165,14 +165,14 @@ std::string pacingText(const std::vector<ModePacing>& pacing) {
     return list.dump();
 }
 
-bool parsePacing(const std::string& text, std::vector<ModePacing>& out) {
+bool parsePacing(const std::string& text, std::vector<ConditionPacing>& out) {
     const auto list = nlohmann::json::parse(text, nullptr, false);
     if (!list.is_array()) return false;
     out.clear();
     auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : kNaN; };
     for (const auto& o : list) {
         if (!o.is_object() || !o.contains("mode") || !o["mode"].is_string()) return false;
-        ModePacing p;
+        ConditionPacing p;
         p.mode = o["mode"].get<std::string>();
         p.shown = o.value("shown", std::int64_t{0});
         p.late = o.value("late", std::int64_t{0});

@@ -114,30 +114,35 @@ void CsvFile::cell(const std::string& written) {
     *out_ << written;
 }
 
-CsvFile& CsvFile::text(const std::string& value) {
+CellWriter& CellWriter::text(const std::string& value) {
     cell(csvText(value));
     return *this;
 }
-CsvFile& CsvFile::number(double value) {
+CellWriter& CellWriter::number(double value) {
     cell(csvNumber(value));
     return *this;
 }
-CsvFile& CsvFile::integer(std::int64_t value) {
+CellWriter& CellWriter::integer(std::int64_t value) {
     cell(std::to_string(value));
     return *this;
 }
-CsvFile& CsvFile::boolean(bool value) {
+CellWriter& CellWriter::boolean(bool value) {
     cell(value ? "true" : "false");
     return *this;
 }
-CsvFile& CsvFile::empty() {
+CellWriter& CellWriter::empty() {
     cell("");
     return *this;
 }
-CsvFile& CsvFile::formatted(const std::string& number) {
+CellWriter& CellWriter::formatted(const std::string& number) {
     if (number.find_first_of(",\"\r\n") != std::string::npos)
-        throw std::logic_error(path_ + ": '" + number + "' is not a number's text");
+        throw std::logic_error("'" + number + "' is not a number's text");
     cell(number);
+    return *this;
+}
+
+CsvFile& CsvFile::cells(const Cells& row) {
+    for (const std::string& written : row.written()) cell(written);
     return *this;
 }
 

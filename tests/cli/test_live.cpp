@@ -274,7 +274,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
 
     // The pacing, printed and stored.
     EXPECT_TRUE(contains(window.output, "pacing per mode (a display frame every 8.33 ms)")) << window.output;
-    std::vector<warplab::session::ModePacing> pacing;
+    std::vector<warplab::session::ConditionPacing> pacing;
     ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
     std::int64_t storedSkipped = 0;
     for (const auto& p : pacing) storedSkipped += p.skipped;
@@ -543,9 +543,9 @@ TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
     EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
     EXPECT_FALSE(contains(replayed, "differ")) << replayed;
 
-    std::vector<warplab::session::ModePacing> pacing;
+    std::vector<warplab::session::ConditionPacing> pacing;
     ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
-    std::map<std::string, warplab::session::ModePacing> byMode;
+    std::map<std::string, warplab::session::ConditionPacing> byMode;
     for (const auto& p : pacing) byMode[p.mode] = p;
     ASSERT_EQ(byMode.count("even60"), 1u) << a.summaries.at("pacing");
     ASSERT_EQ(byMode.count("rough60"), 1u) << a.summaries.at("pacing");

@@ -95,7 +95,7 @@ private:
 // The first frame in [from, to] where the schedule differs from the reference, in words; ""
 // when none does. Every field is compared exactly: the instants are the same doubles.
 inline std::string firstDifference(const Condition& c, double refreshHz, std::int64_t from, std::int64_t to) {
-    const ModeSchedule now(c, refreshHz);
+    const ConditionSchedule now(c, refreshHz);
     const Schedule before(c, refreshHz);
     for (std::int64_t k = from; k <= to; ++k) {
         const ScheduledFrame a = now.frame(k), b = before.frame(k);

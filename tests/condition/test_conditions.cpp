@@ -82,7 +82,7 @@ TEST(Conditions, EveryPresetExpandsToTheScheduleItReplaced) {
     for (const double refresh : {60.0, 120.0}) {
         for (const auto& [name, mode] : old) {
             if (!ConditionTable().check(name, refresh).empty()) continue;
-            const ModeSchedule schedule(preset(name), refresh);
+            const ConditionSchedule schedule(preset(name), refresh);
             for (std::int64_t k = -50; k < 400; ++k) {
                 const ScheduledFrame a = schedule.frame(k), b = oldFrame(mode, refresh, k);
                 SCOPED_TRACE(name + " at " + std::to_string(refresh) + " Hz, frame " + std::to_string(k));
@@ -124,7 +124,7 @@ TEST(Conditions, LateWarpShowsTheMouseAtTheNextFrameAndTheWorldAfterTheLag) {
     const double refresh = 120, f = 1000.0 / refresh;
     for (const LateWarp late : {LateWarp::None, LateWarp::Rotation, LateWarp::Depth}) {
         SCOPED_TRACE(lateWarpName(late));
-        const ModeSchedule s(composed(60, 10, "hold", late), refresh);
+        const ConditionSchedule s(composed(60, 10, "hold", late), refresh);
         const auto view = s.viewLatencyRange(), scene = s.sceneLatencyRange();
         if (late == LateWarp::None) {
             EXPECT_NEAR(view.min * 1000, 10 * f, 1e-9);
@@ -165,7 +165,7 @@ TEST(Conditions, LateWarpShowsTheMouseAtTheNextFrameAndTheWorldAfterTheLag) {
 TEST(Conditions, AFillAtItsOwnRateRepeatsItsFrames) {
     Condition c = composed(36, 0, "warp-sparse8", LateWarp::None);
     c.fillHz = 72;
-    const ModeSchedule s(c, 144);
+    const ConditionSchedule s(c, 144);
     for (std::int64_t k = 0; k < 24; ++k) {
         const ScheduledFrame f = s.frame(k);
         EXPECT_EQ(f.sourceIndex, k / 4 * 4) << k;
@@ -177,7 +177,7 @@ TEST(Conditions, AFillAtItsOwnRateRepeatsItsFrames) {
     EXPECT_NEAR(s.viewLatencyRange().max * 144, 2, 1e-9);
     EXPECT_NEAR(s.sceneLatencyRange().max * 144, 4, 1e-9);
     c.fillHz = 48;  // not a whole multiple of 36
-    EXPECT_THROW(ModeSchedule(c, 144), std::invalid_argument);
+    EXPECT_THROW(ConditionSchedule(c, 144), std::invalid_argument);
 }
 
 std::string problemOf(const Condition& c, double refreshHz) {

@@ -158,7 +158,7 @@ std::vector<std::int64_t> expectedFrames(const std::vector<double>& playedMs, do
 TEST(FrameTrace, EachRenderIsShownAtTheFirstRefreshAfterItIsReady) {
     // 3 ms renders come faster than 144 Hz's 6.94 ms refresh: some are never shown.
     const std::vector<double> ms{10.0, 20.0, 5.0, 30.0, 3.0, 3.0, 47.0};
-    const ModeSchedule s(traced(ms), 144.0);
+    const ConditionSchedule s(traced(ms), 144.0);
     EXPECT_EQ(renderFrames(s, 1440), expectedFrames(ms, 144.0, 1440));
     EXPECT_EQ(renderFrames(s, 30), (std::vector<std::int64_t>{0, 2, 5, 6, 10, 11, 17, 19, 22, 23, 27, 28}));
     EXPECT_NEAR(traced(ms).renderHz, 1000.0 * 7 / 118.0, 1e-9);
@@ -167,18 +167,18 @@ TEST(FrameTrace, EachRenderIsShownAtTheFirstRefreshAfterItIsReady) {
 TEST(FrameTrace, PlaysFromItsOffsetLoopedAndRescaledToItsMeanRate) {
     const std::vector<double> ms{10.0, 20.0, 30.0, 40.0};
     // 25 ms in is the second frame's: it plays 20, 30, 40, 10, 20 ...
-    const ModeSchedule offset(traced(ms, 0.025), 1000.0);
+    const ConditionSchedule offset(traced(ms, 0.025), 1000.0);
     EXPECT_EQ(renderFrames(offset, 130), (std::vector<std::int64_t>{0, 20, 50, 90, 100, 120}));
     // Rescaled from 40 to 20 frames a second: every frame twice as long.
     const Condition slow = traced(ms, 0.0, 20.0);
     EXPECT_DOUBLE_EQ(slow.renderHz, 20.0);
-    const ModeSchedule rescaled(slow, 1000.0);
+    const ConditionSchedule rescaled(slow, 1000.0);
     EXPECT_EQ(renderFrames(rescaled, 220), (std::vector<std::int64_t>{0, 20, 60, 120, 200, 220}));
     // An offset on a frame's start plays that frame first: 30 ms in plays 30, 40, 10 ...
-    EXPECT_EQ(renderFrames(ModeSchedule(traced(ms, 0.03), 1000.0), 130),
+    EXPECT_EQ(renderFrames(ConditionSchedule(traced(ms, 0.03), 1000.0), 130),
               (std::vector<std::int64_t>{0, 30, 70, 80, 100, 130}));
     // An offset past the end wraps: 125 ms is 25 ms into the 100 ms trace.
-    EXPECT_EQ(renderFrames(ModeSchedule(traced(ms, 0.125), 1000.0), 130), renderFrames(offset, 130));
+    EXPECT_EQ(renderFrames(ConditionSchedule(traced(ms, 0.125), 1000.0), 130), renderFrames(offset, 130));
 }
 
 TEST(FrameTrace, ProblemsNameTheTraceAndWhatIsAllowed) {

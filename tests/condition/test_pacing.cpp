@@ -49,7 +49,7 @@ TEST(Pacing, PresetsExpandToTheScheduleTheyHadFrameByFrame) {
 // A vsync'd 60 fps game on a 144 Hz display: each render at the first refresh at or after
 // i / 60 s, so 2 or 3 refreshes apart, 2.4 on average.
 TEST(Pacing, SixtyOnOneFortyFourShowsTwoThreeCadenceOfMeanExactlyTwoPointFour) {
-    const ModeSchedule s(steady(60), 144);
+    const ConditionSchedule s(steady(60), 144);
     const std::vector<std::int64_t> frames = renderFrames(s, 1440);  // 10 s
     ASSERT_EQ(frames.front(), 0);
     ASSERT_EQ(frames.back(), 1440);
@@ -79,13 +79,13 @@ TEST(Pacing, OtherRatesTheRefreshDoesNotDivideRun) {
     };
     for (const Case c : {Case{50, 120, 2, 3}, Case{90, 144, 1, 2}, Case{100, 240, 2, 3}, Case{60, 165, 2, 3},
                          Case{15, 144, 9, 10}, Case{120, 144, 1, 2}}) {
-        const ModeSchedule s(steady(c.render), c.refresh);
+        const ConditionSchedule s(steady(c.render), c.refresh);
         const auto frames = renderFrames(s, static_cast<std::int64_t>(c.refresh) * 10);
         EXPECT_EQ(static_cast<double>(frames.size() - 1), c.render * 10) << c.render << " on " << c.refresh;
         for (const std::int64_t d : intervals(frames))
             EXPECT_TRUE(d == c.shorter || d == c.longer) << c.render << " on " << c.refresh << ": " << d;
     }
-    EXPECT_THROW(ModeSchedule(steady(145), 144), std::invalid_argument);
+    EXPECT_THROW(ConditionSchedule(steady(145), 144), std::invalid_argument);
 }
 
 double sampleSdMs(const std::vector<std::int64_t>& frameIntervals, double refreshHz) {
@@ -109,7 +109,7 @@ TEST(Pacing, JitterIsTheSeedsAndHasTheSdAsked) {
                          Case{JitterShape::Uniform, 0, 16, 16 / std::sqrt(12.0)}}) {
         Condition j = steady(60);
         j.jitter = {c.shape, c.sdMs, c.rangeMs};
-        const ModeSchedule a(j, kRefresh, 7), b(j, kRefresh, 7), other(j, kRefresh, 8);
+        const ConditionSchedule a(j, kRefresh, 7), b(j, kRefresh, 7), other(j, kRefresh, 8);
         const auto frames = renderFrames(a, 200000);  // 200 s, some 12000 renders
         EXPECT_EQ(frames, renderFrames(b, 200000));
         EXPECT_NE(frames, renderFrames(other, 200000));
@@ -134,7 +134,7 @@ TEST(Pacing, PeriodicHitchesStallTheRenderDueWhenEachFalls) {
     Condition c = steady(60);
     c.hitches.ms = 100;
     c.hitches.everyS = 2;
-    const ModeSchedule s(c, 144, 1);
+    const ConditionSchedule s(c, 144, 1);
     const auto frames = renderFrames(s, 144 * 11);
     std::vector<double> stalls;  // the instants the long intervals start
     for (std::size_t i = 1; i < frames.size(); ++i) {
@@ -157,7 +157,7 @@ TEST(Pacing, RandomHitchesComeAtTheirRate) {
     Condition c = steady(60);
     c.hitches.ms = 50;
     c.hitches.ratePerS = 0.5;
-    const ModeSchedule s(c, 120, 3);
+    const ConditionSchedule s(c, 120, 3);
     const auto frames = renderFrames(s, 120 * 400);
     int stalls = 0;
     for (const auto d : intervals(frames)) stalls += d > 3;
@@ -165,8 +165,8 @@ TEST(Pacing, RandomHitchesComeAtTheirRate) {
     EXPECT_GT(stalls, 155);
     EXPECT_LT(stalls, 245);
     // The seed's: the same seed, the same stalls; another seed, others.
-    EXPECT_EQ(frames, renderFrames(ModeSchedule(c, 120, 3), 120 * 400));
-    EXPECT_NE(frames, renderFrames(ModeSchedule(c, 120, 4), 120 * 400));
+    EXPECT_EQ(frames, renderFrames(ConditionSchedule(c, 120, 3), 120 * 400));
+    EXPECT_NE(frames, renderFrames(ConditionSchedule(c, 120, 4), 120 * 400));
 }
 
 // Hitches that fall during a stall merge with it: the render after a stall waits only for a
@@ -176,7 +176,7 @@ TEST(Pacing, HitchesFallingDuringAStallMergeWithIt) {
     Condition c = steady(60);
     c.hitches.ms = 100;
     c.hitches.ratePerS = 4;
-    const auto frameIntervals = intervals(renderFrames(ModeSchedule(c, 1000, 9), 1000 * 200));
+    const auto frameIntervals = intervals(renderFrames(ConditionSchedule(c, 1000, 9), 1000 * 200));
     int stalls = 0, stallAfterStall = 0;
     for (std::size_t i = 0; i < frameIntervals.size(); ++i) {
         if (frameIntervals[i] < 100) continue;
@@ -192,7 +192,7 @@ TEST(Pacing, HitchesFallingDuringAStallMergeWithIt) {
 TEST(Pacing, FillsWorkOverUnevenRenders) {
     Condition warp = steady(60, "warp-sparse8");
     warp.hitches = {100, 1, 0};
-    const ModeSchedule w(warp, 144, 5);
+    const ConditionSchedule w(warp, 144, 5);
     const auto frames = renderFrames(w, 144 * 4);
     for (std::int64_t k = 0; k < 144 * 4; ++k) {
         const ScheduledFrame f = w.frame(k);
@@ -202,7 +202,7 @@ TEST(Pacing, FillsWorkOverUnevenRenders) {
     }
     Condition bi = steady(60, "bireproj");
     bi.hitches = {100, 1, 0};
-    const ModeSchedule b(bi, 144, 5);
+    const ConditionSchedule b(bi, 144, 5);
     double lastDepicted = -1e9;
     int interpolated = 0, heldAtRender = 0;
     for (std::int64_t k = 0; k < 144 * 4; ++k) {
@@ -238,7 +238,7 @@ TEST(Pacing, AFillTheRefreshDoesNotDivideMakesItsFramesUnevenly) {
     for (const char* name : {"warp15to120", "bireproj15to60"}) {
         const Condition& c = preset(name);
         ASSERT_EQ(problem(c, 144.0), std::nullopt) << name;
-        const ModeSchedule s(c, 144.0);
+        const ConditionSchedule s(c, 144.0);
         const double fillFrames = 144.0 / *c.fillHz, renderFrames = 144.0 / c.renderHz;
         std::set<std::int64_t> expected;
         for (std::int64_t i = 0; i * fillFrames < 2000; ++i)

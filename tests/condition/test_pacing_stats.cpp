@@ -44,7 +44,7 @@ TEST(PacingStats, PercentileIsTheNearestRank) {
 }
 
 TEST(PacingStats, Conv120At120HzShowsEveryRefreshNewAndNeverStutters) {
-    const PacingStats s = pacingStats(ModeSchedule(preset("conv120"), 120));
+    const PacingStats s = pacingStats(ConditionSchedule(preset("conv120"), 120));
     EXPECT_DOUBLE_EQ(s.frameTimes.meanFps, 120);
     EXPECT_EQ(s.frames.frameTimeS.size(), 1199u);  // 1200 new images over 10 s
     for (const double t : s.frames.frameTimeS) EXPECT_NEAR(t * 1000, 8.333333, 1e-5);
@@ -55,7 +55,7 @@ TEST(PacingStats, Conv120At120HzShowsEveryRefreshNewAndNeverStutters) {
 }
 
 TEST(PacingStats, Conv15At120HzIsFifteenFramesASecond) {
-    const PacingStats s = pacingStats(ModeSchedule(preset("conv15"), 120));
+    const PacingStats s = pacingStats(ConditionSchedule(preset("conv15"), 120));
     EXPECT_DOUBLE_EQ(s.frameTimes.meanFps, 15);
     EXPECT_EQ(sortedUnique(s.frames.frameTimeS).size(), 1u);
     EXPECT_NEAR(s.frameTimes.medianS * 1000, 66.666667, 1e-5);
@@ -65,17 +65,17 @@ TEST(PacingStats, Conv15At120HzIsFifteenFramesASecond) {
 
 // A fill's frames are new images too: warped every refresh, interpolated at its fill rate.
 TEST(PacingStats, AFillsFramesCountAsNewImages) {
-    const PacingStats warp = pacingStats(ModeSchedule(preset("warp15to120"), 120));
+    const PacingStats warp = pacingStats(ConditionSchedule(preset("warp15to120"), 120));
     EXPECT_DOUBLE_EQ(warp.frameTimes.meanFps, 120);
     EXPECT_NEAR(warp.frameTimes.maxS * 120, 1, 1e-9);
-    const PacingStats bireproj = pacingStats(ModeSchedule(preset("bireproj15to60"), 120));
+    const PacingStats bireproj = pacingStats(ConditionSchedule(preset("bireproj15to60"), 120));
     EXPECT_DOUBLE_EQ(bireproj.frameTimes.meanFps, 60);
     EXPECT_NEAR(bireproj.frameTimes.maxS * 60, 1, 1e-9);
 }
 
 // 3, 2, 3, 2, 2 refreshes: 13.9 ms three times in five, 20.8 ms twice, a mean of exactly 60.
 TEST(PacingStats, SixtyOn144HzHasTwoFrameTimesAndAMeanOfExactlySixty) {
-    const PacingStats s = pacingStats(ModeSchedule(paced(60), 144));
+    const PacingStats s = pacingStats(ConditionSchedule(paced(60), 144));
     EXPECT_DOUBLE_EQ(s.frameTimes.meanFps, 60);
     const std::vector<double> times = sortedUnique(s.frames.frameTimeS);
     ASSERT_EQ(times.size(), 2u);
@@ -92,7 +92,7 @@ TEST(PacingStats, AHitchingConditionStuttersOncePerHitchInTheHorizon) {
     Condition c = paced(60);
     c.hitches.ms = 50;
     c.hitches.everyS = 0.75;
-    const PacingStats s = pacingStats(ModeSchedule(c, 120));
+    const PacingStats s = pacingStats(ConditionSchedule(c, 120));
     const double start = static_cast<double>(s.firstFrame) / 120;
     // The hitches whose stalled render and the one before it are both shown in the horizon.
     int hitches = 0;
@@ -126,7 +126,7 @@ std::vector<std::pair<Condition, double>> variety() {
 
 TEST(PacingStats, LeastAndGreatestLatencyAreTheScheduleRanges) {
     for (const auto& [c, refresh] : variety()) {
-        const ModeSchedule schedule(c, refresh);
+        const ConditionSchedule schedule(c, refresh);
         const PacingStats s = pacingStats(schedule);
         EXPECT_NEAR(s.viewS.min, schedule.viewLatencyRange().min, 1e-9) << c.name;
         EXPECT_NEAR(s.viewS.max, schedule.viewLatencyRange().max, 1e-9) << c.name;
@@ -139,10 +139,10 @@ TEST(PacingStats, LeastAndGreatestLatencyAreTheScheduleRanges) {
 }
 
 // The oracle: the latency of steps at evenly spaced instants over the horizon, from
-// ModeSchedule::viewLatency / sceneLatency one step at a time, then sorted.
+// ConditionSchedule::viewLatency / sceneLatency one step at a time, then sorted.
 TEST(PacingStats, LatencyQuantilesAgreeWithTheLatencyFunctionSampledDensely) {
     for (const auto& [c, refresh] : variety()) {
-        const ModeSchedule schedule(c, refresh);
+        const ConditionSchedule schedule(c, refresh);
         const PacingStats s = pacingStats(schedule);
         // Steps fall between the first and the last instant the horizon's frames depict.
         const auto spans = schedule.viewLatencySpans(s.firstFrame, s.firstFrame + std::llround(s.horizonS * refresh));
@@ -178,7 +178,7 @@ TEST(PacingStats, LatencyQuantilesAgreeWithTheLatencyFunctionSampledDensely) {
 // A step at a uniform instant of a 15 fps hold waits 0 to 66.7 ms for the next render: the
 // median half of that, the 95th percentile 95 % of it.
 TEST(PacingStats, Conv15ViewLatencyIsUniformOverTheRenderPeriod) {
-    const PacingStats s = pacingStats(ModeSchedule(preset("conv15"), 120));
+    const PacingStats s = pacingStats(ConditionSchedule(preset("conv15"), 120));
     EXPECT_NEAR(s.viewS.min, 0, 1e-9);
     EXPECT_NEAR(s.viewS.median * 1000, 1000.0 / 30, 1e-6);
     EXPECT_NEAR(s.viewS.p95 * 1000, 0.95 * 1000.0 / 15, 1e-6);

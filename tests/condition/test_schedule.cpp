@@ -18,7 +18,7 @@ namespace {
 constexpr double kRefresh = 120.0;
 constexpr double kFrame = 1.0 / kRefresh;
 
-ModeSchedule schedule(const std::string& id) { return ModeSchedule(preset(id), kRefresh); }
+ConditionSchedule schedule(const std::string& id) { return ConditionSchedule(preset(id), kRefresh); }
 
 // The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
 // name them; a mode added to the table comes after them and needs no edit here.
@@ -111,13 +111,13 @@ TEST(Modes, CheckModeNamesTheProblem) {
 }
 
 TEST(Modes, RatesAboveTheRefreshAndLagsOfPartFramesAreRefused) {
-    EXPECT_THROW(ModeSchedule(preset("conv120"), 60.0), std::invalid_argument);
-    EXPECT_NO_THROW(ModeSchedule(preset("conv15"), 100.0));  // the uneven 6-7-7 cadence
-    EXPECT_THROW(ModeSchedule(preset("warp15to120"), 60.0), std::invalid_argument);
-    EXPECT_THROW(ModeSchedule(preset("lag50"), 90.0),
+    EXPECT_THROW(ConditionSchedule(preset("conv120"), 60.0), std::invalid_argument);
+    EXPECT_NO_THROW(ConditionSchedule(preset("conv15"), 100.0));  // the uneven 6-7-7 cadence
+    EXPECT_THROW(ConditionSchedule(preset("warp15to120"), 60.0), std::invalid_argument);
+    EXPECT_THROW(ConditionSchedule(preset("lag50"), 90.0),
                  std::invalid_argument);  // 4.5 frames of lag
-    EXPECT_NO_THROW(ModeSchedule(preset("conv60"), 60.0));
-    EXPECT_NO_THROW(ModeSchedule(preset("bireproj15to60"), 60.0));
+    EXPECT_NO_THROW(ConditionSchedule(preset("conv60"), 60.0));
+    EXPECT_NO_THROW(ConditionSchedule(preset("bireproj15to60"), 60.0));
 }
 
 TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
@@ -197,7 +197,7 @@ struct Range {
 };
 
 // Steps at 97 instants spread over two source cycles, off the frame grid.
-Range latencies(const ModeSchedule& s, bool view) {
+Range latencies(const ConditionSchedule& s, bool view) {
     Range r;
     for (int i = 0; i < 97; ++i) {
         const double tau = 1.0 + (i + 0.5) / 97.0 * (16.0 * kFrame);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "export/export.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
 namespace warplab::app::exporttest {
 
@@ -91,14 +91,14 @@ inline std::vector<std::string> headerOf(const std::string& path) {
 
 inline std::string headless(const std::string& protocol, const std::string& participant, const std::string& dir,
                             std::uint64_t seed) {
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + protocol;
     run.participant = participant;
     run.resultsDir = dir;
     run.player = "bot:" + std::to_string(seed);
     run.seed = seed;
     std::ostringstream quiet;
-    return study::runHeadless(run, quiet);
+    return runner::runHeadless(run, quiet);
 }
 
 inline exporter::ExportSummary exportQuietly(const std::string& results, const std::string& out,

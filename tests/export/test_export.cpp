@@ -31,9 +31,10 @@
 #include "export/export.h"
 #include "plan/study_plan.h"
 #include "condition/schedule.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "session/session_store.h"
 #include "export_test_support.h"
+#include "export/documented_columns.h"
 
 namespace warplab::app {
 namespace {
@@ -247,7 +248,8 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
     EXPECT_EQ(static_cast<int>(readCsv(out + "/ratings.csv").size()), ratingEvents);
 
     // games.csv: each game once, in the registry's order, with the words for its hit rate.
-    EXPECT_EQ(slurp(out + "/games.csv"), "game,hits_are,shots_are\nshooter,hits,shots\nclick,green hits,clicks\n");
+    EXPECT_EQ(slurp(out + "/games.csv"),
+              "game,hits_are,shots_are,tables\nshooter,hits,shots,\nclick,green hits,clicks,matches.csv;ratings.csv\n");
 
     // --all-phases adds acclimation, training and the practice round to shots.csv, not to hit rates.
     const std::string all = scratch("real/all");
@@ -269,7 +271,7 @@ TEST(Export, ConditionsCsvListsWhatTheSessionsRan) {
     const auto rows = readCsv(out + "/conditions.csv");
     const auto study = game::loadStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json");
     std::vector<std::string> used;
-    for (const auto& m : study->modes())
+    for (const auto& m : study->conditionNames())
         if (std::find(used.begin(), used.end(), m) == used.end()) used.push_back(m);
     ASSERT_EQ(rows.size(), used.size());
     for (std::size_t i = 0; i < used.size(); ++i) {
@@ -671,7 +673,7 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     }
     ASSERT_GT(marked, 0);
     w.finish();
-    const study::ReplayResult replay = study::replaySession(w.path());
+    const runner::ReplayResult replay = runner::replaySession(w.path());
     EXPECT_EQ(replay.difference, "");
     EXPECT_EQ(replay.reproduced, replay.outcomes);
     EXPECT_GT(replay.outcomes, 0u);
@@ -697,14 +699,14 @@ TEST(Export, RatingsCarryTheProtocolsScale) {
     protocol["ratings"]["max"] = 10;
     const std::string path = source + "/click-0-10.json";
     std::ofstream(path) << protocol.dump(2);
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = path;
     run.participant = "T";
     run.resultsDir = results;
     run.player = "bot:11";
     run.seed = 11;
     std::ostringstream quiet;
-    study::runHeadless(run, quiet);
+    runner::runHeadless(run, quiet);
 
     const std::string out = scratch("scale/out");
     exportQuietly(results, out);
@@ -753,14 +755,14 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
         p["test"]["questions"] = nlohmann::json::array({questions[1]});
     });
     for (const std::string& path : {click, shooter}) {
-        study::HeadlessRun run;
+        runner::HeadlessRun run;
         run.protocolPath = path;
         run.participant = "Q";
         run.resultsDir = results;
         run.player = "bot:11";
         run.seed = 11;
         std::ostringstream quiet;
-        study::runHeadless(run, quiet);
+        runner::runHeadless(run, quiet);
     }
     const std::string out = scratch("answers/out");
     exportQuietly(results, out);
@@ -862,7 +864,7 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
         plan::makePlan(dir, {std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"}, 2, {"A", "B"}, 3);
     plan::writePlan(dir, made);
     fs::create_directories(dir + "/results");
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = dir + "/" + made.protocols.front().file;
     run.protocolText = plan::participantProtocolJson(dir, made, made.participants.front(), 0);
     run.planId = made.id;
@@ -871,7 +873,7 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
     run.player = "bot:1";
     run.seed = made.participants.front().seed;
     std::ostringstream quiet;
-    study::runHeadless(run, quiet);
+    runner::runHeadless(run, quiet);
 
     for (const std::string& exported : {dir, dir + "/results"}) {
         const std::string out = scratch(exported == dir ? "plan-folder/out-of-plan" : "plan-folder/out-of-results");
@@ -887,62 +889,6 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
     }
 }
 
-// ============================ the documented columns ============================
-
-// docs/export.md's column list for `file` ("### sessions.csv -- ..."): the backticked names
-// in the first cell of its table's rows, or, for a file described in a sentence, the names of
-// the backticked list that opens it ("`a, b (unit), c`"). "x_1 ... x_N" is given as "x_" in
-// `numbered`.
-struct DocumentedColumns {
-    std::vector<std::string> columns;
-    std::string numbered;
-};
-
-DocumentedColumns documentedColumns(const std::string& file) {
-    std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/docs/export.md");
-    EXPECT_TRUE(doc.good());
-    DocumentedColumns out;
-    std::string line, list;
-    bool inSection = false, inList = false, listDone = false;
-    while (std::getline(doc, line)) {
-        if (line.rfind("#", 0) == 0) {
-            if (inSection) break;
-            inSection = line.rfind("### " + file + " ", 0) == 0;
-            continue;
-        }
-        if (!inSection) continue;
-        if (line.rfind("| `", 0) == 0) {
-            const std::string cell = line.substr(1, line.find('|', 1) - 1);
-            for (std::size_t open = cell.find('`'); open != std::string::npos;) {
-                const std::size_t close = cell.find('`', open + 1);
-                out.columns.push_back(cell.substr(open + 1, close - open - 1));
-                open = cell.find('`', close + 1);
-            }
-        } else if (!listDone && (inList || line.rfind("`", 0) == 0)) {
-            const std::size_t from = inList ? 0 : 1;
-            const std::size_t close = line.find('`', from);
-            list += " " + line.substr(from, close == std::string::npos ? std::string::npos : close - from);
-            inList = close == std::string::npos;
-            listDone = !inList;
-        }
-    }
-    std::stringstream items(list);
-    for (std::string item; std::getline(items, item, ',');) {
-        if (const auto paren = item.find('('); paren != std::string::npos) item.erase(paren);
-        item.erase(0, item.find_first_not_of(' '));
-        item.erase(item.find_last_not_of(' ') + 1);
-        if (const auto dots = item.find(" ... "); dots != std::string::npos) {
-            out.numbered = item.substr(0, item.find('1'));
-            EXPECT_EQ(item, out.numbered + "1 ... " + out.numbered + "N");
-        } else if (!item.empty()) {
-            out.columns.push_back(item);
-        }
-    }
-    return out;
-}
-
-// The page analysts read is the contract: each CSV's documented columns are exactly the
-// columns its table writes, in the same order.
 // Who played every row (a person, a bot), and where each condition came in the participant's order,
 // so that a model can keep people apart and fit order effects without deriving them from `trial`.
 TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
@@ -952,14 +898,14 @@ TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
     protocol["test"]["interleave"] = false;
     const std::string file = source + "/blocked.json";
     std::ofstream(file) << protocol.dump(2);
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = file;
     run.participant = "P02";
     run.resultsDir = results;
     run.player = "bot:4";
     run.seed = 4;
     std::ostringstream quiet;
-    const std::string bot = study::runHeadless(run, quiet);
+    const std::string bot = runner::runHeadless(run, quiet);
     replayedAs(bot, results, "P01", "human (cm_per_360=0, dpi=800, invert_y=0)");
 
     const std::string out = scratch("kinds/out");
@@ -1015,12 +961,18 @@ TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
     }
 }
 
-TEST(ExportColumns, MatchDocsExportMd) {
+// ============================ the documented columns ============================
+
+// The page analysts read is the contract: each CSV's documented columns are exactly the
+// columns its table writes, in the same order.
+TEST(ExportColumns, MatchTheirPages) {
     const auto written = exporter::exportColumns();
-    ASSERT_EQ(written.size(), 13u);
+    ASSERT_EQ(written.size(), 13u);  // export's 11, and the click game's matches.csv and ratings.csv
     for (const exporter::CsvColumns& csv : written) {
-        SCOPED_TRACE("docs/export.md, " + csv.file);
-        const DocumentedColumns documented = documentedColumns(csv.file);
+        const std::vector<std::string> pages = testing_docs::pagesDocumenting(csv.file);
+        ASSERT_EQ(pages.size(), 1u) << csv.file << ": documented on one page";
+        SCOPED_TRACE(pages.front() + ", " + csv.file);
+        const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(csv.file, pages.front());
         EXPECT_EQ(documented.columns, csv.columns);
         EXPECT_EQ(documented.numbered, csv.numbered);
     }

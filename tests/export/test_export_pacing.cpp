@@ -74,7 +74,7 @@ TEST(ExportLatency, EachConditionsSpansWeighOneAndCoverItsLatencyRange) {
                 }
             }
             EXPECT_NEAR(total, 1.0, 1e-9);
-            // conditions.csv's range, which the schedule works out on its own (ModeSchedule::Range).
+            // conditions.csv's range, which the schedule works out on its own (ConditionSchedule::Range).
             EXPECT_NEAR(least, std::stod(c.at(kind + "_latency_min_ms")), 1e-9);
             EXPECT_NEAR(most, std::stod(c.at(kind + "_latency_max_ms")), 1e-9);
             // The spans are the distribution, not only its ends: its quantiles are conditions.csv's.
@@ -108,7 +108,7 @@ TEST(ExportPacing, AppendsTheSummarysNewImagesAndIntervalsEmptyWhereItHasNone) {
     const std::string results = scratch("pacing-columns/results"), out = scratch("pacing-columns/out");
     const std::string scratchDir = scratch("pacing-columns/source");
     const std::string source = headless("shooter-quick.json", "P00", scratchDir, 1);
-    session::ModePacing now;
+    session::ConditionPacing now;
     now.mode = "conv15";
     now.shown = 100;
     now.budgetMs = 1000.0 / 120;

@@ -35,20 +35,20 @@ std::optional<Point> worldAt(std::int64_t frame, const SchedulePlacement& at, Wo
     return trueAt(static_cast<double>(since) / at.refreshHz);
 }
 
-std::optional<Point> shownAt(const condition::ModeSchedule& schedule, std::int64_t k, const SchedulePlacement& at,
+std::optional<Point> shownAt(const condition::ConditionSchedule& schedule, std::int64_t k, const SchedulePlacement& at,
                              WorldClock clock) {
-    const WorldDepiction d = depictWorld(schedule.mode(), schedule.frame(k), at, clock);
+    const WorldDepiction d = depictWorld(schedule.condition(), schedule.frame(k), at, clock);
     return depictedState<Point>(
         d, [&](std::int64_t frame) { return worldAt(frame, at, clock); }, moveBy, blendOf);
 }
 
 TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
-    const condition::ModeSchedule warp(condition::preset("warp15to120"), 120.0);
+    const condition::ConditionSchedule warp(condition::preset("warp15to120"), 120.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{1237, 120.0};
         for (std::int64_t k = 0; k < 64; ++k) {
             const condition::ScheduledFrame f = warp.frame(k);
-            const WorldDepiction d = depictWorld(warp.mode(), f, at, clock);
+            const WorldDepiction d = depictWorld(warp.condition(), f, at, clock);
             ASSERT_EQ(d.how, Depicted::Extrapolated) << k;
             // The latest 15 Hz render (every 8th display frame) is the source, moved on to the
             // display instant.
@@ -63,11 +63,11 @@ TEST(Depiction, WarpFramesAreTheSourceMovedOnByTheMoveHook) {
 }
 
 TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
-    const condition::ModeSchedule bireproj(condition::preset("bireproj15to60"), 60.0);
+    const condition::ConditionSchedule bireproj(condition::preset("bireproj15to60"), 60.0);
     for (const WorldClock clock : {WorldClock::Session, WorldClock::Schedule}) {
         const SchedulePlacement at{905, 60.0};
         for (std::int64_t k = 4; k < 64; ++k) {
-            const WorldDepiction d = depictWorld(bireproj.mode(), bireproj.frame(k), at, clock);
+            const WorldDepiction d = depictWorld(bireproj.condition(), bireproj.frame(k), at, clock);
             const std::int64_t depicted = k - 4;  // one 15 Hz I-frame period behind
             EXPECT_EQ(d.depictedFrame, at.start + depicted) << k;
             if (depicted % 4 == 0) {
@@ -92,12 +92,13 @@ TEST(Depiction, BFramesAreTheBlendOfTheirIFramesOneIFramePeriodLate) {
 
 TEST(Depiction, HeldAndLaggedFramesShowTheStateAsSampled) {
     const SchedulePlacement at{40, 60.0};
-    const condition::ModeSchedule conv15(condition::preset("conv15"), 60.0), lag50(condition::preset("lag50"), 60.0);
+    const condition::ConditionSchedule conv15(condition::preset("conv15"), 60.0),
+        lag50(condition::preset("lag50"), 60.0);
     for (std::int64_t k = 0; k < 24; ++k) {
-        const WorldDepiction held = depictWorld(conv15.mode(), conv15.frame(k), at, WorldClock::Session);
+        const WorldDepiction held = depictWorld(conv15.condition(), conv15.frame(k), at, WorldClock::Session);
         EXPECT_EQ(held.how, Depicted::AsSampled);
         EXPECT_EQ(held.frame, at.start + k / 4 * 4) << k;
-        const WorldDepiction lagged = depictWorld(lag50.mode(), lag50.frame(k), at, WorldClock::Schedule);
+        const WorldDepiction lagged = depictWorld(lag50.condition(), lag50.frame(k), at, WorldClock::Schedule);
         EXPECT_EQ(lagged.how, Depicted::AsSampled);
         EXPECT_EQ(lagged.frame, at.start + k - 3) << k;  // 50 ms at 60 Hz
     }
@@ -105,13 +106,14 @@ TEST(Depiction, HeldAndLaggedFramesShowTheStateAsSampled) {
 
 // The arithmetic each game did itself before, verbatim but for names: the shooter's warp
 // and B-frames on the session clock, the click game's on the schedule's.
-double oldShooter(const condition::ModeSchedule& schedule, const condition::ScheduledFrame& f, std::int64_t start) {
+double oldShooter(const condition::ConditionSchedule& schedule, const condition::ScheduledFrame& f,
+                  std::int64_t start) {
     const double refresh = schedule.refreshHz();
     auto global = [&](double localTime) {
         return static_cast<double>(start + std::llround(localTime * refresh)) / refresh;
     };
     auto targetAt = [&](double time) { return trueAt(time).x; };
-    switch (schedule.mode().fillKind()) {
+    switch (schedule.condition().fillKind()) {
         case condition::Fill::Blend: break;  // no preset blends
         case condition::Fill::Hold: return targetAt(global(f.sceneTime));
         case condition::Fill::Warp: {
@@ -130,11 +132,11 @@ double oldShooter(const condition::ModeSchedule& schedule, const condition::Sche
     }
     return 0.0;
 }
-double oldClick(const condition::ModeSchedule& schedule, const condition::ScheduledFrame& f) {
+double oldClick(const condition::ConditionSchedule& schedule, const condition::ScheduledFrame& f) {
     const double refresh = schedule.refreshHz();
     auto at = [&](std::int64_t localFrame) { return trueAt(static_cast<double>(localFrame) / refresh); };
     auto frameOf = [&](double localTime) { return std::llround(localTime * refresh); };
-    switch (schedule.mode().fillKind()) {
+    switch (schedule.condition().fillKind()) {
         case condition::Fill::Blend: break;  // no preset blends
         case condition::Fill::Hold: return at(frameOf(f.sceneTime)).x;
         case condition::Fill::Warp: {
@@ -157,7 +159,7 @@ TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
     for (const double refresh : {60.0, 120.0}) {
         for (const std::string& id : condition::presetNames()) {
             if (!condition::ConditionTable().check(id, refresh).empty()) continue;
-            const condition::ModeSchedule schedule(condition::preset(id), refresh);
+            const condition::ConditionSchedule schedule(condition::preset(id), refresh);
             for (const std::int64_t start : {0, 1, 37, 4321, 987654}) {
                 const SchedulePlacement at{start, refresh};
                 for (std::int64_t k = 0; k < 200; ++k) {
@@ -173,7 +175,7 @@ TEST(Depiction, EachClockKeepsTheArithmeticItsGameDidBitForBit) {
 }
 
 TEST(Depiction, AnInputReadsClickWaitsForTheNextFrameThatReadsInput) {
-    const condition::ModeSchedule conv15(condition::preset("conv15"), 60.0);
+    const condition::ConditionSchedule conv15(condition::preset("conv15"), 60.0);
     ClickGate waits(true), atOnce(false);
     // Pressed at frame 1; conv15 at 60 Hz reads its input at frames 0, 4, 8, ...
     for (std::int64_t k = 0; k < 8; ++k) {

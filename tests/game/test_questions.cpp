@@ -232,7 +232,7 @@ TEST(ClickQuestions, EachKindAnswersAsDocumentedAndIsLoggedAsAnAnswer) {
     // The next match follows the last answer.
     shown = game.step({});
     EXPECT_FALSE(shown.question.has_value());
-    EXPECT_EQ(shown.mode, "conv30");
+    EXPECT_EQ(shown.condition.name, "conv30");
 }
 
 TEST(ClickQuestions, ADigitOfAChoiceOutsideItsOptionsAnswersNothing) {

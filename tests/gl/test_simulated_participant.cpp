@@ -264,7 +264,7 @@ TEST(SimulatedParticipant, AChangedWorldWithIdenticalFramesGivesIdenticalActions
     for (int frame = 0; frame < 360; ++frame) {
         const game::ShownFrame shown = game->step(input);
         game::ShownFrame changed = shown;
-        changed.mode = "another";
+        changed.condition.name = "another";
         changed.feedback = shown.feedback.empty() ? "" : "timeout";
         for (auto* snapshot : {&changed.scene, &changed.render.scene})
             for (auto& o : snapshot->objects) {

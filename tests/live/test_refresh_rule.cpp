@@ -3,13 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "refresh_rule.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
 namespace warplab::live {
 namespace {
 
 std::unique_ptr<game::Study> shipped(const std::string& name) {
-    return study::loadRunStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name + ".json", "");
+    return runner::loadRunStudy(std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name + ".json", "");
 }
 
 TEST(RefreshRule, HalfAHertzIsTheSameRefreshAndNoneIsAMismatch) {

@@ -18,7 +18,7 @@
 #include "plan/study_plan.h"
 #include "session/raw_access.h"
 #include "session/session_store.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
 namespace warplab::plan {
 namespace {
@@ -35,7 +35,7 @@ std::string scratch(const std::string& name) {
 
 std::string runParticipant(const std::string& dir, const StudyPlan& plan, int participant) {
     const ParticipantPlan& p = plan.participants[static_cast<std::size_t>(participant)];
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = (fs::path(dir) / plan.protocols.front().file).string();
     run.protocolText = participantProtocolJson(dir, plan, p, 0);
     run.planId = plan.id;
@@ -44,7 +44,7 @@ std::string runParticipant(const std::string& dir, const StudyPlan& plan, int pa
     run.player = "bot:" + std::to_string(participant + 1);
     run.seed = p.seed;
     std::ostringstream quiet;
-    return study::runHeadless(run, quiet);
+    return runner::runHeadless(run, quiet);
 }
 
 TEST(StudyStatus, ReadsEachSessionsOutlineAndSaysWhatTheWholeSessionsSay) {

@@ -40,7 +40,7 @@ std::vector<FrameRecord> sequence() {
 TEST(Pacing, SummarisesAKnownSequence) {
     const auto pacing = summarizePacing(sequence(), 60.0);
     ASSERT_EQ(pacing.size(), 3u);  // the modes in order of appearance, then the screens
-    const ModePacing& a = pacing[0];
+    const ConditionPacing& a = pacing[0];
     EXPECT_EQ(a.mode, "conv60");
     EXPECT_EQ(a.shown, 21);
     EXPECT_EQ(a.late, 1);
@@ -52,12 +52,12 @@ TEST(Pacing, SummarisesAKnownSequence) {
     EXPECT_DOUBLE_EQ(a.maxMs, 50.0);
     // Over 1.1 budgets (18.33 ms): 19, 20 and 50.
     EXPECT_EQ(a.overBudget, 3);
-    const ModePacing& b = pacing[1];
+    const ConditionPacing& b = pacing[1];
     EXPECT_EQ(b.mode, "conv30");
     EXPECT_EQ(b.shown, 2);
     EXPECT_TRUE(std::isnan(b.medianMs));  // nothing measured: no number, not 0
     EXPECT_TRUE(std::isnan(b.maxMs));
-    const ModePacing& screens = pacing[2];
+    const ConditionPacing& screens = pacing[2];
     EXPECT_EQ(screens.mode, "");
     EXPECT_EQ(screens.shown, 1);
     EXPECT_DOUBLE_EQ(screens.medianMs, 16.0);
@@ -87,7 +87,7 @@ TEST(Pacing, LateCountsOnlyNewImagesThatMissedTheirRefresh) {
     }
     const auto pacing = tally.summary(144.0);
     ASSERT_EQ(pacing.size(), 1u);
-    const ModePacing& p = pacing[0];
+    const ConditionPacing& p = pacing[0];
     EXPECT_EQ(p.shown, 31);
     EXPECT_EQ(p.skipped, 2);
     EXPECT_EQ(p.late, 1);  // frame 29; not 26, which was held
@@ -125,7 +125,7 @@ TEST(Pacing, IntervalsStayWithinARunOfTheModesFrames) {
 // What a session stored before the new images were kept reads as it was: its counts, and no
 // intervals rather than zero ones.
 TEST(Pacing, ASummaryStoredBeforeNewImagesReadsAsItWas) {
-    std::vector<ModePacing> read;
+    std::vector<ConditionPacing> read;
     ASSERT_TRUE(parsePacing(R"([{"mode":"conv60","shown":21,"late":4,"skipped":2,"median_ms":11.0,"p95_ms":20.0,)"
                             R"("max_ms":50.0,"budget_ms":16.666,"over_budget":3}])",
                             read));
@@ -147,7 +147,7 @@ TEST(Pacing, AnEvenCountTakesTheMeanOfTheMiddleTwo) {
 
 TEST(Pacing, TheStoredTextReadsBack) {
     const auto pacing = summarizePacing(sequence(), 60.0);
-    std::vector<ModePacing> read;
+    std::vector<ConditionPacing> read;
     ASSERT_TRUE(parsePacing(pacingText(pacing), read));
     ASSERT_EQ(read.size(), pacing.size());
     for (std::size_t i = 0; i < read.size(); ++i) {
@@ -157,9 +157,9 @@ TEST(Pacing, TheStoredTextReadsBack) {
         EXPECT_EQ(read[i].skipped, pacing[i].skipped);
         EXPECT_EQ(read[i].overBudget, pacing[i].overBudget);
         EXPECT_EQ(read[i].newImages, pacing[i].newImages);
-        for (auto m : {&ModePacing::medianMs, &ModePacing::p95Ms, &ModePacing::maxMs, &ModePacing::budgetMs,
-                       &ModePacing::intendedP95Ms, &ModePacing::intendedMaxMs, &ModePacing::shownP95Ms,
-                       &ModePacing::shownMaxMs}) {
+        for (auto m : {&ConditionPacing::medianMs, &ConditionPacing::p95Ms, &ConditionPacing::maxMs,
+                       &ConditionPacing::budgetMs, &ConditionPacing::intendedP95Ms, &ConditionPacing::intendedMaxMs,
+                       &ConditionPacing::shownP95Ms, &ConditionPacing::shownMaxMs}) {
             if (std::isnan(pacing[i].*m))
                 EXPECT_TRUE(std::isnan(read[i].*m));
             else

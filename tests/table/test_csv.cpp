@@ -20,8 +20,8 @@ struct Point {
 
 const std::vector<Column<Point>>& pointColumns() {
     static const std::vector<Column<Point>> columns = {
-        {"name", [](CsvFile& f, const Point& p) { f.text(p.name); }},
-        {"x", [](CsvFile& f, const Point& p) { f.formatted(std::to_string(p.x)); }},
+        {"name", [](table::CellWriter& f, const Point& p) { f.text(p.name); }},
+        {"x", [](table::CellWriter& f, const Point& p) { f.formatted(std::to_string(p.x)); }},
     };
     return columns;
 }

@@ -55,9 +55,9 @@ struct PacingStats {
     LatencyDistribution viewS, sceneS;  // of steps falling over the horizon
     // The spans those distributions are exact mixes of (export's latency.csv, the report's
     // latency histograms).
-    std::vector<ModeSchedule::LatencySpan> viewSpans, sceneSpans;
+    std::vector<ConditionSchedule::LatencySpan> viewSpans, sceneSpans;
 };
 // Of kPacingStatsHorizonS of `schedule` from its settledFrame().
-PacingStats pacingStats(const ModeSchedule& schedule);
+PacingStats pacingStats(const ConditionSchedule& schedule);
 
 }  // namespace warplab::condition

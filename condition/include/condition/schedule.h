@@ -44,15 +44,15 @@ struct ScheduledFrame {
     std::int64_t nextSourceIndex = -1;  // bidirectional: the later source frame
 };
 
-class ModeSchedule {
+class ConditionSchedule {
 public:
     // Throws std::invalid_argument with condition::problem's reason when the condition cannot
     // run at this refresh (a render rate above it, a lag that is not whole frames). A jittered
     // or hitching condition draws its render intervals from pacingSeed: the same seed, the
     // same cadence (games derive it from the session's seed and where the schedule starts).
-    ModeSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed = 0);
+    ConditionSchedule(const Condition& condition, double refreshHz, std::uint64_t pacingSeed = 0);
 
-    const Condition& mode() const { return mode_; }
+    const Condition& condition() const { return condition_; }
     double refreshHz() const { return refreshHz_; }
     ScheduledFrame frame(std::int64_t index) const;
 
@@ -100,7 +100,7 @@ private:
     };
     Between between(std::int64_t j) const;
     static const Condition& checked(const Condition& condition, double refreshHz);
-    Condition mode_;
+    Condition condition_;
     double refreshHz_;
     RenderCadence cadence_;
     // The display frames the fill makes a frame at: every one, or fill_hz's steady cadence,
@@ -118,9 +118,9 @@ struct ConditionSummary {
     Condition condition;
     double refreshHz = 0.0;
     std::int64_t lagFrames = 0;
-    ModeSchedule::Range viewS, sceneS;  // latencies, seconds
+    ConditionSchedule::Range viewS, sceneS;  // latencies, seconds
 };
-// Throws std::invalid_argument as ModeSchedule does.
+// Throws std::invalid_argument as ConditionSchedule does.
 ConditionSummary summarize(const Condition& condition, double refreshHz);
 
 }  // namespace warplab::condition

@@ -11,7 +11,8 @@
 
 namespace warplab::game {
 class Study;
-}
+struct GameTable;
+}  // namespace warplab::game
 
 namespace warplab::exporter {
 
@@ -46,7 +47,10 @@ struct CsvColumns {
     std::string numbered;
     std::size_t numberedAt = 0;
 };
+// The files every export writes: its own, then every registered game's own tables.
 std::vector<CsvColumns> exportColumns();
+// The columns of a game's own table as export writes it (its game's page lists them).
+CsvColumns gameTableColumns(const game::GameTable& table);
 
 // One condition as conditions.csv and `warplab conditions --csv` list it: its parts and
 // latencies at the refresh of the protocol that runs it.
@@ -65,8 +69,10 @@ std::vector<ConditionListing> conditionsOf(const game::Study& study);
 void writeConditionTable(std::ostream& out, const std::vector<ConditionListing>& rows);
 
 // Reads every *.warplab-session under resultsDir (sub-folders too, sorted by path), writes
-// sessions.csv, shots.csv, hitrates.csv, matches.csv, ratings.csv, answers.csv, conditions.csv, frametimes.csv, latency.csv, games.csv and pacing.csv into outDir (created
-// when missing), and participants.csv and orders.csv when there is a study plan (options.studyDir, or the
+// sessions.csv, shots.csv, hitrates.csv, answers.csv, conditions.csv, frametimes.csv, latency.csv,
+// games.csv and pacing.csv into outDir (created when missing), each readable session's game's own
+// tables (game::gameTables: the click game's matches.csv and ratings.csv, header only
+// where none of its sessions is included), and participants.csv and orders.csv when there is a study plan (options.studyDir, or the
 // results folder's parent once a session carries a plan_id); a study.json that does not read
 // is a plan::PlanError with options.studyDir and a warning on `log` without it. Progress and one line per excluded or damaged session go to `log`.
 // Throws std::runtime_error naming the folder when resultsDir is not a readable folder or

@@ -78,8 +78,9 @@ struct QuestionPrompt {
 struct ShownFrame {
     std::int64_t frame = 0;  // display frame since the session started
     double time = 0.0;  // its display time, seconds
-    std::string mode;  // the condition's name
-    condition::Condition condition;  // its parts: what the frame maker draws it with
+    // The condition it is shown in (its name; "" for a screen shown between conditions) and its
+    // parts: what the frame maker draws it with.
+    condition::Condition condition;
     condition::ScheduledFrame schedule;  // the condition's account of this frame (schedule-local)
     scene::CameraState camera;  // the camera the frame depicts
     scene::SceneSnapshot scene;  // the world as the frame depicts it
@@ -151,12 +152,13 @@ public:
 };
 
 // Free play, for pilots and demonstrations: the game runs on without end, nothing counts, and
-// the supervisor switches the mode (and, where the game has one, the difficulty) live. The
+// the supervisor switches the condition (and, where the game has one, the difficulty) live. The
 // runner records nothing of it.
 class FreePlayGame : public Game {
 public:
-    // Starts over in `mode` at `difficulty` from the next frame (a new target or a new field).
-    virtual void switchTo(const std::string& mode, int difficulty) = 0;
+    // Starts over in the condition named `condition` at `difficulty` from the next frame (a new
+    // target or a new field).
+    virtual void switchTo(const std::string& condition, int difficulty) = 0;
 };
 
 class Study;
@@ -251,15 +253,16 @@ public:
     virtual std::string protocolJson() const = 0;  // canonical copy, stored in the session
     virtual double refreshHz() const = 0;
     virtual std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const = 0;
-    // The same game in free play (see FreePlayGame), starting in `mode` at `difficulty`.
+    // The same game in free play (see FreePlayGame), starting in the condition named `condition`
+    // at `difficulty`.
     virtual std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
-                                                      const std::string& mode, int difficulty) const = 0;
+                                                      const std::string& condition, int difficulty) const = 0;
     virtual std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const = 0;
-    // Modes this protocol uses.
-    virtual std::vector<std::string> modes() const = 0;
+    // The names of the conditions this protocol plays, in its order.
+    virtual std::vector<std::string> conditionNames() const = 0;
     // Those of them the part the study analyses runs (the shooter's test, the click game's
     // matches), in the protocol's order; the others serve only practice or training.
-    virtual std::vector<std::string> analysedModes() const { return modes(); }
+    virtual std::vector<std::string> analysedConditions() const { return conditionNames(); }
     // The conditions it can name: the presets and those the protocol defines.
     virtual const condition::ConditionTable& conditions() const = 0;
     // How far one mouse count turns the camera, radians; 0 where the mouse does not turn it

@@ -6,9 +6,11 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "game/game.h"
+#include "game/results.h"
 
 namespace warplab::game {
 
@@ -19,8 +21,16 @@ std::vector<std::string> gameNames();
 
 // Parses a protocol of one game; throws protocol::ProtocolError naming the file and the field.
 using StudyParser = std::unique_ptr<Study> (*)(const std::string& jsonText, const std::string& sourceName);
+// The tables of a game's own that export writes (SessionResults::tables), without rows: every
+// export writes them, header only where no session of the game is included, so that a folder
+// exported again never keeps an older export's rows beside the new data.
+using GameTables = std::vector<GameTable> (*)();
 // Makes `name` (the protocol's "game") known to parseStudy and gameNames, after the games
-// registered before it. Throws std::invalid_argument when a game of that name is already known.
-void registerGame(const std::string& name, StudyParser parse);
+// registered before it. Throws std::invalid_argument when a game of that name is already known,
+// or when one of its tables has the file name of another game's.
+void registerGame(const std::string& name, StudyParser parse, GameTables tables = nullptr);
+
+// Every registered game's own tables, in the order registered: (game, table without rows).
+std::vector<std::pair<std::string, GameTable>> gameTables();
 
 }  // namespace warplab::game

@@ -1,12 +1,14 @@
-// A session's results in the columns every game shares: what `warplab export` writes as
-// shots.csv, matches.csv and ratings.csv (docs/export.md). Each game reads its own events
-// (Study::results), so export merges sessions of any game without naming one.
+// A session's results: the rows every game shares, which `warplab export` writes as shots.csv
+// and answers.csv, and the tables a game adds of its own (docs/export.md). Each game reads its
+// own events (Study::results), so export merges sessions of any game without naming one.
 #pragma once
 
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "table/csv.h"
 
 namespace warplab::game {
 
@@ -32,17 +34,6 @@ struct ShotResult {
     double targetSpeed = kNotApplicable;  // m/s
 };
 
-// One answer on a rating screen after a match.
-struct RatingResult {
-    int statementIndex = 0;  // 0-based, in the protocol's order
-    std::string statement;
-    int value = 0;
-    std::string answeredWith;  // "key" or "mouse"
-    // The answers the screen offered, both included: the protocol's ratings.min and ratings.max,
-    // which an analysis cannot know otherwise.
-    int scaleMin = 1, scaleMax = 7;
-};
-
 // One answer to a question after a block (a click match, a block of the shooter's test): a row
 // of answers.csv. Every kind of question, every game.
 struct AnswerResult {
@@ -64,17 +55,28 @@ struct AnswerResult {
     double answerS = kNotApplicable;  // from the question's appearance to the answer, s
 };
 
-// One click-game match: a row of matches.csv (its ratings also go to ratings.csv).
-struct MatchResult {
-    std::string round;
-    bool scoredPhase = false;
-    int match = -1;
-    std::string mode;
-    std::string standIn;  // method drawn in the mode's place ("" = the mode's own)
-    int greenHits = 0, redHits = 0, misses = 0, clicks = 0;
-    double durationS = 0.0;
-    double endTime = kNotApplicable;  // display time of the match's last frame, s
-    std::vector<RatingResult> ratings;  // as answered; a session cut short may lack some
+// A row of a table of a game's own (the click game's matches.csv): the game's cells, and what
+// export needs to add its own columns to them.
+struct GameTableRow {
+    std::string condition;  // the condition it ran in: condition_position
+    bool scoredPhase = false;  // false: written only with --all-phases
+    // A span table's row covers the stretch of play from startTime to endTime (display clock, s):
+    // export adds the frames skipped in it and the frame time of its last second.
+    double startTime = kNotApplicable, endTime = kNotApplicable;
+    table::Cells cells;  // GameTable::columns, in order
+    table::Cells numbered;  // GameTable::numbered + 1, + 2, ...: as many as it has, the rest empty
+};
+
+// A table a game adds to the export beside the shared ones (docs/export.md). Its file has
+// participant, session, then the game's columns; for a span table skipped_frames; then the
+// numbered columns, as many as the widest row has; then player_kind, condition_position and, for
+// a span table, frame_time_p95_ms. Rows of every session of the game go to one file.
+struct GameTable {
+    std::string file;  // "matches.csv"; one file, one game
+    std::vector<std::string> columns;  // the game's own, in order
+    bool spans = false;  // every row covers a stretch of play (a match, a block)
+    std::string numbered;  // the numbered columns' prefix ("rating_"); "" for none
+    std::vector<GameTableRow> rows;
 };
 
 // What a game's hit rate counts, in words a report uses ("hits out of shots", "green hits out of
@@ -88,7 +90,9 @@ struct SessionResults {
     bool canTimeOut = false;  // the game's trials can time out (hitrates.csv counts them)
     HitMeasure measure;  // the same for every session of a game
     std::vector<ShotResult> shots;
-    std::vector<MatchResult> matches;  // empty for games without matches
+    // The game's own tables: their columns even when it has no rows (a study with no session yet).
+    // A scored span row also ran its condition: hitrates.csv and condition_position count it.
+    std::vector<GameTable> tables;
     std::vector<AnswerResult> answers;  // in the order given; a match's ratings are among them
 };
 

@@ -17,7 +17,7 @@ int botRating(const condition::Condition& mode, double refreshHz, int statement,
     // Average time from an input to its frame: what the schedule shows a mouse step at a render
     // with (the queue; bidirectional reprojection's wait for the next I-frame), plus half a
     // render period of holding.
-    const condition::ModeSchedule schedule(mode, refreshHz);
+    const condition::ConditionSchedule schedule(mode, refreshHz);
     const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / mode.renderHz;
     const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
     const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
@@ -125,7 +125,7 @@ FrameInput ClickBot::play(const ShownFrame& shown) {
 FrameInput ClickBot::next(const ShownFrame& shown) {
     FrameInput input;
     if (prompt_.pressesEnter(shown, settings_.enterAfterS)) input.keys = kKeyEnter;
-    if (!shown.mode.empty()) lastMode_ = shown.mode;
+    if (!shown.condition.name.empty()) lastMode_ = shown.condition.name;
     // Screens show the cursor live, so there the bot sees exactly where it is; in a match it
     // keeps track itself, since the frame shows the cursor as late as the mode shows it.
     if (shown.blank) cursor_ = shown.cursor;

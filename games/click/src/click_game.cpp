@@ -98,8 +98,8 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
 }
 
 void ClickGame::switchTo(const std::string& mode, int) {
-    condition::ModeSchedule(protocol_.conditionTable.at(mode),
-                            protocol_.refreshHz);  // throws for a mode this display cannot run
+    condition::ConditionSchedule(protocol_.conditionTable.at(mode),
+                                 protocol_.refreshHz);  // throws for a mode this display cannot run
     freePlay_ = true;
     matches_ = {{0, 0, mode, 0, 1}};
     matchIndex_ = 0;
@@ -227,7 +227,7 @@ std::vector<physics::Sphere> ClickGame::depictedSpheres(const condition::Schedul
         return spheres;
     };
     const WorldDepiction d =
-        depictWorld(schedule_->mode(), f, {matchStart_, protocol_.refreshHz}, WorldClock::Schedule);
+        depictWorld(schedule_->condition(), f, {matchStart_, protocol_.refreshHz}, WorldClock::Schedule);
     // A B-frame shows the world of the instant it depicts (the schedule's sceneTime), late by
     // the interpolation lag and no more: a sphere only one of the I-frames has (clicked away, or
     // newly entered) is shown as that instant's world has it, there or gone, as the shooter's
@@ -298,7 +298,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
 
     const SchedulePlacement placement{matchStart_, refresh};
     const condition::ScheduledFrame f = schedule_->frame(k);
-    ShownFrame shown = scheduledShownFrame(frame_, schedule_->mode(), f, placement);
+    ShownFrame shown = scheduledShownFrame(frame_, schedule_->condition(), f, placement);
     shown.camera = camera_;
     shown.pointer = PointerKind::Cursor;
     shown.cursor = cursorHistory_.at(cameraFrame(f, placement));

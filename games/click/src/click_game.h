@@ -50,7 +50,7 @@ public:
     // the mode's frames ("stand_in": the rendering, not the game).
     std::vector<std::string> renderDetailKeys() const override { return {"stand_in"}; }
     // Free play: one endless match in `mode` (the click game has no difficulty levels).
-    void switchTo(const std::string& mode, int difficulty) override;
+    void switchTo(const std::string& condition, int difficulty) override;
 
     struct Match {
         int index = 0;  // over the whole session
@@ -103,7 +103,7 @@ private:
     std::size_t matchIndex_ = 0;
     std::int64_t matchStart_ = 0;
     std::optional<physics::FallingSpheres> world_;
-    std::optional<condition::ModeSchedule> schedule_;
+    std::optional<condition::ConditionSchedule> schedule_;
     FrameHistory<std::vector<physics::Sphere>> worldHistory_;  // the world at each frame of the match
     FrameHistory<glm::dvec2> cursorHistory_;
     int greenHits_ = 0, redHits_ = 0, misses_ = 0;

@@ -211,11 +211,6 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 
 ClickProtocol loadClickProtocol(const std::string& path) { return parseClickProtocol(readProtocolFile(path), path); }
 
-std::string toJson(const ClickProtocol& p) {
-    Json document = fields::headerJson(p.formatVersion, p.name, p.description, p.game);
-    fields::writeConditions(document, p.conditionTable.defined());
-    fields::writeSections(document, sections(), p.formatVersion, p);
-    return fields::canonicalText(document);
-}
+std::string toJson(const ClickProtocol& p) { return fields::protocolText(p, sections()); }
 
 }  // namespace warplab::protocol

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "click_bot.h"
+#include "click_results.h"
 #include "game/event_detail.h"
 #include "game/questionnaire.h"
 #include "click_game.h"
@@ -35,7 +36,7 @@ public:
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
-    std::vector<std::string> modes() const override { return protocol_.modes; }
+    std::vector<std::string> conditionNames() const override { return protocol_.modes; }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     bool warnsOnRefreshMismatch() const override {
         return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;
@@ -53,6 +54,7 @@ public:
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         out.measure = {"green hits", "clicks"};
+        std::vector<MatchResult> matches;
         // Ratings follow their match's "match" event; match indices are unique in a session.
         std::map<int, std::size_t> matchAt;
         // A click counts once its match has ended: a match a session was cut short in has no
@@ -92,8 +94,8 @@ public:
                 m.clicks = static_cast<int>(d.integer("clicks", 0));
                 m.durationS = d.number("duration_s");
                 m.endTime = e.eventTime;  // the match event is its last frame's
-                matchAt[e.trial] = out.matches.size();
-                out.matches.push_back(std::move(m));
+                matchAt[e.trial] = matches.size();
+                matches.push_back(std::move(m));
             } else if (auto a = answerResult(e, protocol_.questions)) {
                 a->scoredPhase = roundScored(e.phase);
                 // A match's Likert answers are its ratings too (matches.csv, ratings.csv).
@@ -106,15 +108,17 @@ public:
                     r.answeredWith = a->answeredWith;
                     r.scaleMin = a->scaleMin;  // the stored protocol's: the one the participant answered on
                     r.scaleMax = a->scaleMax;
-                    out.matches[at->second].ratings.push_back(std::move(r));
+                    matches[at->second].ratings.push_back(std::move(r));
                 }
                 out.answers.push_back(std::move(*a));
             }
         }
+        out.tables = clickTables(matches);
         return out;
     }
     Progress progress(const std::vector<session::EventRecord>& events) const override {
-        Progress p{"matches", results(events).matches.size(), 0};
+        Progress p{"matches", 0, 0};
+        for (const auto& e : events) p.done += e.type == "match";
         for (const auto& round : protocol_.rounds)
             p.planned += protocol_.modes.size() * static_cast<std::size_t>(round.matchesPerMode);
         return p;

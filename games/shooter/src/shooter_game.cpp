@@ -69,8 +69,9 @@ std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
 }
 
 void ShooterGame::switchTo(const std::string& mode, int difficulty) {
-    condition::ModeSchedule(protocol_.conditionTable.at(mode),
-                            protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
+    condition::ConditionSchedule(
+        protocol_.conditionTable.at(mode),
+        protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
     freePlay_ = true;
     freeMode_ = mode;
     freeLevel_ = std::max(0, difficulty);
@@ -155,7 +156,7 @@ std::optional<glm::dvec3> ShooterGame::displayedTarget(const condition::Schedule
     auto blend = [](const Target& before, const Target& after, double weight, double) {
         return Target{before.position + (after.position - before.position) * weight, before.velocity};
     };
-    const WorldDepiction d = depictWorld(schedule_->mode(), f, {scheduleStart_, refresh}, WorldClock::Session);
+    const WorldDepiction d = depictWorld(schedule_->condition(), f, {scheduleStart_, refresh}, WorldClock::Session);
     const auto shown = depictedState<Target>(d, at, move, blend);
     if (!shown) return std::nullopt;
     return shown->position;
@@ -451,7 +452,7 @@ ShownFrame ShooterGame::frozenShownFrame() const {
 ShownFrame ShooterGame::scheduledFrame(const condition::ScheduledFrame& f) const {
     const double refresh = protocol_.refreshHz;
     const SchedulePlacement placement{scheduleStart_, refresh};
-    ShownFrame shown = scheduledShownFrame(frame_, schedule_->mode(), f, placement);
+    ShownFrame shown = scheduledShownFrame(frame_, schedule_->condition(), f, placement);
     shown.camera = cameraHistory_.at(cameraFrame(f, placement));
     if (const auto p = displayedTarget(f)) {
         // Position as the frame depicts it; velocity the world's at that instant.

@@ -52,7 +52,7 @@ public:
     PointerProbe probePointer(const ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const override;
     // Free play: endless targets at `difficulty` (the staircase's level) in `mode`.
-    void switchTo(const std::string& mode, int difficulty) override;
+    void switchTo(const std::string& condition, int difficulty) override;
 
     Phase currentPhase() const { return phase_; }
     int testLevel() const { return testLevel_; }
@@ -120,7 +120,7 @@ private:
     bool reading_ = false;  // the phase's instructions are on screen
     bool recentre_ = false;  // the next frame's view starts from the resting one (a phase begins)
     std::string mode_;
-    std::optional<condition::ModeSchedule> schedule_;
+    std::optional<condition::ConditionSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;
 
     std::optional<Trial> trial_;

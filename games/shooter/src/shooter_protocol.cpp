@@ -142,11 +142,6 @@ ShooterProtocol loadShooterProtocol(const std::string& path) {
     return parseShooterProtocol(readProtocolFile(path), path);
 }
 
-std::string toJson(const ShooterProtocol& p) {
-    Json document = fields::headerJson(p.formatVersion, p.name, p.description, p.game);
-    fields::writeConditions(document, p.conditionTable.defined());
-    fields::writeSections(document, sections(), p.formatVersion, p);
-    return fields::canonicalText(document);
-}
+std::string toJson(const ShooterProtocol& p) { return fields::protocolText(p, sections()); }
 
 }  // namespace warplab::protocol

@@ -45,13 +45,13 @@ public:
         return i;
     }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
-    std::vector<std::string> modes() const override {
+    std::vector<std::string> conditionNames() const override {
         std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode,
                                      protocol_.training.highMode};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
-    std::vector<std::string> analysedModes() const override { return protocol_.conditions; }
+    std::vector<std::string> analysedConditions() const override { return protocol_.conditions; }
     SessionResults results(const std::vector<session::EventRecord>& events) const override {
         SessionResults out;
         out.canTimeOut = true;

@@ -17,12 +17,12 @@ namespace warplab::live {
 
 struct LiveRun {
     std::string protocolPath;
-    std::string protocolText, planId;  // a study plan's run: as study::HeadlessRun's
+    std::string protocolText, planId;  // a study plan's run: as runner::HeadlessRun's
     std::string participant;
     std::string resultsDir;
     std::string player = "human";  // "human", "bot[:SEED]" or "replay:SESSION"
     std::uint64_t seed = 1;
-    // An interrupted session to carry on (study/resume.h): its protocol, seed, participant,
+    // An interrupted session to carry on (runner/resume.h): its protocol, seed, participant,
     // plan and display size replace the run's own.
     std::string resumeFrom;
     bool fullscreen = false;

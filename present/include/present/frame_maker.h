@@ -22,7 +22,7 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner);
 
 // Makes each displayed frame the way its mode makes it (its schedule's `made`), from the
-// conventional renders it keeps: a render copied (hold120), or the mode's method for warped and
+// conventional renders it keeps: a render shown as it is, or the mode's method for warped and
 // interpolated frames, repeated ones too.
 //
 // A source is rendered when a frame made needs it, not when the game steps the frame that

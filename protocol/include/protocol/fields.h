@@ -309,6 +309,16 @@ void writeSections(Json& document, const std::vector<Section<P>>& sections, int 
         if (s.existsIn(formatVersion)) writeKeys(document[s.name], s.keys, formatVersion, p);
 }
 
+// A game's whole protocol as its canonical text: the header, its own conditions, then its
+// sections. P has the header's members and a conditionTable.
+template <class P>
+std::string protocolText(const P& p, const std::vector<Section<P>>& sections) {
+    Json document = headerJson(p.formatVersion, p.name, p.description, p.game);
+    writeConditions(document, p.conditionTable.defined());
+    writeSections(document, sections, p.formatVersion, p);
+    return canonicalText(document);
+}
+
 // The keys of each element of an array of objects: the array's path ("matches.rounds") and the
 // element's keys, in table order.
 struct ElementKeys {

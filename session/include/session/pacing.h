@@ -12,7 +12,7 @@
 
 namespace warplab::session {
 
-struct ModePacing {
+struct ConditionPacing {
     std::string mode;  // "" for the frames of screens (instructions, questions, start)
     std::int64_t shown = 0;  // display frames shown
     // ... that brought a new image (not held or frozen) and reached the screen a vsync or more
@@ -47,11 +47,11 @@ public:
     // (a skipped frame's); "" reads the record's kind.
     void add(const FrameRecord& frame, const std::string& scheduledKind = "");
     // Per mode in the order modes first appear, then the screens' row when there are screens.
-    std::vector<ModePacing> summary(double refreshHz) const;
+    std::vector<ConditionPacing> summary(double refreshHz) const;
 
 private:
     struct Mode {
-        ModePacing counts;
+        ConditionPacing counts;
         std::vector<double> frameMs;  // of the frames shown with a measured time
         std::vector<std::int64_t> intendedFrames;  // display frames between new images
         std::vector<double> shownMs;  // ms between new images shown
@@ -66,19 +66,19 @@ private:
     Mode screens_;
 };
 
-std::vector<ModePacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz);
+std::vector<ConditionPacing> summarizePacing(const std::vector<FrameRecord>& frames, double refreshHz);
 
 // The summary for the supervisor: a heading naming the budget, then a line per mode, e.g.
 //   conv120: 1163 shown (34.4 a second of 120), 12 late (1.0 %), 2888 skipped (71.3 %); frame time median
 //   25.1 ms, p95 31.0, max 60.2; new images 1163, intended p95 8.3 ms, max 8.3, shown p95 33.4, max 66.7
 // (the new images' part only where the mode has intervals).
-std::string pacingReport(const std::vector<ModePacing>& pacing);
+std::string pacingReport(const std::vector<ConditionPacing>& pacing);
 
 // The summary as JSON text (an array of objects, keys as the fields' snake_case names), as the
 // store keeps it; and back. parsePacing returns false for text that is not such an array; a
 // key a session stored before it was kept reads as 0 (counts), NaN (times) or, for new_images,
 // none.
-std::string pacingText(const std::vector<ModePacing>& pacing);
-bool parsePacing(const std::string& text, std::vector<ModePacing>& out);
+std::string pacingText(const std::vector<ConditionPacing>& pacing);
+bool parsePacing(const std::string& text, std::vector<ConditionPacing>& out);
 
 }  // namespace warplab::session

@@ -29,7 +29,7 @@ public:
     // the header. Only [A-Za-z0-9_-] of the participant id reach the file name; the raw id is
     // kept in the header only. Throws SessionError naming the path, before creating anything,
     // when the results folder is missing or unwritable.
-    // `first`: rows the session starts with (a resumed session's kept frames, study/resume.h),
+    // `first`: rows the session starts with (a resumed session's kept frames, runner/resume.h),
     // its first commit, written with the header before the file takes its name: a kill while
     // it is created leaves no session or one holding them all. Checked as the add* calls check.
     struct FirstCommit {

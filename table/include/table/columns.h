@@ -15,7 +15,7 @@ namespace warplab::table {
 template <class Row>
 struct Column {
     const char* name;
-    std::function<void(CsvFile&, const Row&)> write;
+    std::function<void(CellWriter&, const Row&)> write;  // into a file or a kept row
 };
 
 template <class Row>
@@ -26,7 +26,7 @@ std::vector<std::string> headerOf(const std::vector<Column<Row>>& columns) {
 }
 
 template <class Row>
-void writeCells(CsvFile& file, const std::vector<Column<Row>>& columns, const Row& row) {
+void writeCells(CellWriter& file, const std::vector<Column<Row>>& columns, const Row& row) {
     for (const auto& c : columns) c.write(file, row);
 }
 

@@ -23,9 +23,39 @@ std::string csvText(const std::string& text);
 // The shortest decimal that reads back as the same double; "" for NaN; "Inf"/"-Inf".
 std::string csvNumber(double value);
 
+// Where a row's cells go, each formatted as written above: a CSV file, or a row kept for a
+// file written later (Cells).
+class CellWriter {
+public:
+    virtual ~CellWriter() = default;
+    CellWriter& text(const std::string& value);
+    CellWriter& number(double value);
+    CellWriter& integer(std::int64_t value);
+    CellWriter& boolean(bool value);  // "true" / "false": R and pandas both read these as logical
+    CellWriter& empty();
+    // A number its caller formatted (a measurement to the decimals it has), written as it is;
+    // throws std::logic_error when it holds , " or a line break, which would split the cell.
+    CellWriter& formatted(const std::string& number);
+
+protected:
+    virtual void cell(const std::string& written) = 0;
+};
+
+// One row's cells, formatted and kept: a table one module fills and another writes (a game's
+// own tables, which export writes beside its columns).
+class Cells final : public CellWriter {
+public:
+    const std::vector<std::string>& written() const { return cells_; }
+    std::size_t size() const { return cells_.size(); }
+
+private:
+    void cell(const std::string& written) override { cells_.push_back(written); }
+    std::vector<std::string> cells_;
+};
+
 // A CSV file written to PATH.partial and renamed into place by close(): a failed or
 // interrupted export never leaves a half-written file under the final name.
-class CsvFile {
+class CsvFile final : public CellWriter {
 public:
     CsvFile(std::string path, const std::vector<std::string>& header);
     // Rows straight to `out` (a command's standard output, or a file its caller keeps open and
@@ -35,14 +65,8 @@ public:
     CsvFile(const CsvFile&) = delete;
     CsvFile& operator=(const CsvFile&) = delete;
 
-    CsvFile& text(const std::string& value);
-    CsvFile& number(double value);
-    CsvFile& integer(std::int64_t value);
-    CsvFile& boolean(bool value);  // "true" / "false": R and pandas both read these as logical
-    CsvFile& empty();
-    // A number its caller formatted (a measurement to the decimals it has), written as it is;
-    // throws std::logic_error when it holds , " or a line break, which would split the cell.
-    CsvFile& formatted(const std::string& number);
+    // The cells of a row kept for later, as they were written.
+    CsvFile& cells(const Cells& row);
     // Ends the row; throws std::logic_error when it has another number of cells than the header.
     void endRow();
 
@@ -53,7 +77,7 @@ public:
     void close();
 
 private:
-    void cell(const std::string& written);
+    void cell(const std::string& written) override;
     void writeHeader(const std::vector<std::string>& header);
     std::string path_, partial_;
     std::ofstream file_;

@@ -139,7 +139,7 @@ TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
     while (!game.finished()) {
         const ShownFrame shown = game.step(input);
         game.takeEvents();
-        if (!shown.mode.empty() || shown.question) {
+        if (!shown.condition.name.empty() || shown.question) {
             int n = 0, of = 0;
             ASSERT_EQ(std::sscanf(shown.phaseText.c_str(), "Match %d of %d", &n, &of), 2) << shown.phaseText;
             EXPECT_EQ(of, perRound);
@@ -188,10 +188,10 @@ TEST(ClickGame, EveryMatchOpensWithARender) {
         const ShownFrame shown = game.step(input);
         if (previousBlank && !shown.blank) {
             ++openings;
-            EXPECT_EQ(shown.schedule.index, 0) << shown.mode;
-            EXPECT_TRUE(shown.rendersNow) << shown.mode;
+            EXPECT_EQ(shown.schedule.index, 0) << shown.condition.name;
+            EXPECT_TRUE(shown.rendersNow) << shown.condition.name;
             EXPECT_EQ(shown.sourceFrame, shown.frame - (shown.schedule.index - shown.schedule.sourceIndex))
-                << shown.mode;
+                << shown.condition.name;
         }
         previousBlank = shown.blank;
         input = bot.next(shown);
@@ -212,7 +212,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
             const glm::dvec2 before = shown.cursor;
             const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
-            const condition::ModeSchedule schedule(condition::preset(mode), p.refreshHz);
+            const condition::ConditionSchedule schedule(condition::preset(mode), p.refreshHz);
             ShownFrame f = stepFrame;
             while (f.cursor == before) f = game.step({});
             EXPECT_NEAR(f.time - stepFrame.time, schedule.viewLatency(stepFrame.schedule.displayTime), 1e-9)
@@ -582,7 +582,7 @@ TEST(ClickGame, EachRoundOpensWithItsInstructionsUntilEnter) {
     EXPECT_EQ(detail(events[0])["read_s"].get<double>(), 31.0 / p.refreshHz);
     shown = game.step({});
     EXPECT_FALSE(shown.blank);
-    EXPECT_EQ(shown.mode, "conv60");
+    EXPECT_EQ(shown.condition.name, "conv60");
     while (!shown.blank) shown = game.step({});
     EXPECT_EQ(shown.instructions, "Read B");  // the next round opens with its own
     shown = game.step({0, 0, 0, kKeyEnter});

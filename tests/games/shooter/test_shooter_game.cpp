@@ -264,8 +264,8 @@ std::vector<condition::Condition> composedConditions() {
 
 // The schedule a game runs a mode on from session frame `start`: jittered and hitching
 // cadences are drawn from the game's seed (5 in ModeRig) and where the schedule starts.
-condition::ModeSchedule gameSchedule(const condition::Condition& c, double refreshHz, const ShownFrame& shown) {
-    return condition::ModeSchedule(c, refreshHz, pacingSeed(5, shown.frame - shown.schedule.index));
+condition::ConditionSchedule gameSchedule(const condition::Condition& c, double refreshHz, const ShownFrame& shown) {
+    return condition::ConditionSchedule(c, refreshHz, pacingSeed(5, shown.frame - shown.schedule.index));
 }
 
 // Every condition the latency tests measure: the presets, then the composed ones.
@@ -304,7 +304,7 @@ TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});  // the step, read at this frame
             const double stepTime = stepFrame.time;
-            const condition::ModeSchedule schedule =
+            const condition::ConditionSchedule schedule =
                 gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, stepFrame);
             const double local = stepFrame.schedule.displayTime;
             ShownFrame f = stepFrame;
@@ -397,7 +397,7 @@ TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
                 now + std::min(until(p0.x, v0.x, plane.minX, plane.maxX), until(p0.y, v0.y, plane.minY, plane.maxY));
             const std::int64_t scheduleStart = rig.last.frame - rig.last.schedule.index;
             const double localBounce = bounce - static_cast<double>(scheduleStart) / rig.p.refreshHz;
-            const condition::ModeSchedule schedule =
+            const condition::ConditionSchedule schedule =
                 gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, rig.last);
             if (bounce + schedule.sceneLatency(localBounce) > trial->spawnTime + rig.p.timeoutS - 0.05) {
                 while (!rig.last.frozen) rig.last = rig.game->step({});  // too late in this trial: next one

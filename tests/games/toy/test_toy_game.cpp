@@ -10,10 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include "export/documented_columns.h"
 #include "export/export.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "game/registry.h"
-#include "toy/toy.h"
 #include "session/records.h"
 #include "session/session_store.h"
 #include "toy/toy.h"
@@ -25,7 +25,7 @@ namespace fs = std::filesystem;
 
 // The toy's one registration line, after the built-in games (as a lab's own task would add it).
 class RegisterTheToy : public ::testing::Environment {
-    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy); }
+    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::tables); }
 };
 [[maybe_unused]] const auto* const registered = ::testing::AddGlobalTestEnvironment(new RegisterTheToy);
 
@@ -46,21 +46,21 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     const fs::path protocolPath = dir / "toy.json";
     std::ofstream(protocolPath) << toy::toyProtocol(mode);
 
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = protocolPath.string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "results").string();
     run.player = "bot";
     std::ostringstream progress;
-    const std::string session = study::runHeadless(run, progress);
+    const std::string session = runner::runHeadless(run, progress);
 
-    const study::ReplayResult replayed = study::replaySession(session);
+    const runner::ReplayResult replayed = runner::replaySession(session);
     EXPECT_EQ(replayed.difference, "");
     EXPECT_TRUE(replayed.completed);
     EXPECT_FALSE(replayed.damaged);
     EXPECT_GE(replayed.outcomes, 3u) << "the bot clicks a few times";
     EXPECT_EQ(replayed.reproduced, replayed.outcomes);
-    EXPECT_EQ(study::replayExitCode(replayed), study::kReplayReproduced);
+    EXPECT_EQ(runner::replayExitCode(replayed), runner::kReplayReproduced);
 
     // What the bot typed is in the input record, and the session replays from it (the clicks'
     // `typed` above); played back as a player, it is recorded again as it was.
@@ -68,11 +68,11 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     const auto typing = std::count_if(recorded.inputs.begin(), recorded.inputs.end(),
                                       [](const session::InputRecord& in) { return !in.text.empty(); });
     EXPECT_GT(typing, 10);
-    study::HeadlessRun again = run;
+    runner::HeadlessRun again = run;
     again.player = "replay:" + session;
     again.resultsDir = (dir / "again").string();
     fs::create_directories(again.resultsDir);
-    const session::SessionData replayedRun = session::readSession(study::runHeadless(again, progress));
+    const session::SessionData replayedRun = session::readSession(runner::runHeadless(again, progress));
     ASSERT_EQ(replayedRun.inputs.size(), recorded.inputs.size());
     for (std::size_t i = 0; i < recorded.inputs.size(); ++i)
         ASSERT_EQ(session::firstDifference(recorded.inputs[i], replayedRun.inputs[i]), "") << "input " << i;
@@ -91,7 +91,30 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     EXPECT_NE(rates.find("toy-bot,toy," + mode + ","), std::string::npos) << rates;
     // What its hit rate counts, in its own words, for the report.
     const std::string games = readAll(dir / "csv" / "games.csv");
-    EXPECT_EQ(games, "game,hits_are,shots_are\ntoy,toy hits,clicks\n");
+    EXPECT_EQ(games, "game,hits_are,shots_are,tables\ntoy,toy hits,clicks,toy_clicks.csv\n");
+    // Its own table, one row per click, in the layout export gives a game's own tables; and the
+    // other games' own tables, header only.
+    const std::string clicks = readAll(dir / "csv" / "toy_clicks.csv");
+    EXPECT_EQ(clicks.substr(0, clicks.find('\n')),
+              "participant,session,click,mode,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
+    EXPECT_EQ(std::count(clicks.begin(), clicks.end(), '\n'), std::count(shots.begin(), shots.end(), '\n'));
+    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + mode + ","), std::string::npos)
+        << clicks;
+    const std::string matches = readAll(dir / "csv" / "matches.csv");
+    EXPECT_EQ(std::count(matches.begin(), matches.end(), '\n'), 1) << matches;
+}
+
+// The toy's own table is documented on its page, column for column, as export writes it.
+TEST(ToyModule, ItsOwnTableMatchesItsPage) {
+    const std::vector<game::GameTable> own = toy::tables();
+    ASSERT_EQ(own.size(), 1u);
+    const exporter::CsvColumns written = exporter::gameTableColumns(own.front());
+    const std::vector<std::string> pages = testing_docs::pagesDocumenting(written.file);
+    ASSERT_EQ(pages.size(), 1u);
+    EXPECT_EQ(fs::path(pages.front()).parent_path().filename(), "toy");
+    const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(written.file, pages.front());
+    EXPECT_EQ(documented.columns, written.columns);
+    EXPECT_EQ(documented.numbered, written.numbered);
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.
@@ -106,13 +129,13 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
     for (const char* folder : {"whole", "cut", "resumed"}) fs::create_directories(dir / folder);
     std::ofstream(dir / "toy.json") << toy::toyProtocol("conv15");
 
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = (dir / "toy.json").string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "whole").string();
     run.player = "bot";
     std::ostringstream progress;
-    const session::SessionData whole = session::readSession(study::runHeadless(run, progress));
+    const session::SessionData whole = session::readSession(runner::runHeadless(run, progress));
     ASSERT_TRUE(whole.completed);
 
     // Cut after its second click, as a kill just after that click's commit leaves it.
@@ -132,10 +155,10 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
         cut = writer.path();
     }
 
-    study::HeadlessRun resume = run;
+    runner::HeadlessRun resume = run;
     resume.resumeFrom = cut;
     resume.resultsDir = (dir / "resumed").string();
-    const session::SessionData resumed = session::readSession(study::runHeadless(resume, progress));
+    const session::SessionData resumed = session::readSession(runner::runHeadless(resume, progress));
     EXPECT_TRUE(resumed.completed);
     ASSERT_EQ(resumed.header.resumed.size(), 1u);
     EXPECT_EQ(resumed.header.resumed[0].frame, lastFrame + 1);

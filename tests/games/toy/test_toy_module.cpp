@@ -15,7 +15,7 @@
 #include "protocol/documented_keys.h"
 #include "protocol/study_protocol.h"
 #include "session/session_store.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 #include "toy/toy.h"
 #include "toy_protocol.h"
 
@@ -62,7 +62,7 @@ TEST(ToyProtocol, ItsCanonicalCopyReadsBackTheSame) {
         toy::parseStudy(toy::toyProtocol(std::vector<std::string>{"warp15to120", "conv15"}, 2.5, true), "toy.json");
     const auto again = toy::parseStudy(study->protocolJson(), "copy.json");
     EXPECT_EQ(again->protocolJson(), study->protocolJson());
-    EXPECT_EQ(again->modes(), (std::vector<std::string>{"warp15to120", "conv15"}));
+    EXPECT_EQ(again->conditionNames(), (std::vector<std::string>{"warp15to120", "conv15"}));
 }
 
 // Its page is the contract: it documents exactly the keys the parser's tables read, in order.
@@ -85,14 +85,14 @@ std::vector<std::string> modesPlayed(const std::string& protocolText, const std:
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     std::ofstream(dir / "toy.json") << protocolText;
-    study::HeadlessRun run;
+    runner::HeadlessRun run;
     run.protocolPath = (dir / "toy.json").string();
     run.participant = "toy-bot";
     run.resultsDir = (dir / "results").string();
     run.player = "bot";
     run.seed = seed;
     std::ostringstream progress;
-    const session::SessionData data = session::readSession(study::runHeadless(run, progress));
+    const session::SessionData data = session::readSession(runner::runHeadless(run, progress));
     std::vector<std::string> modes;
     for (const auto& frame : data.frames)
         if (modes.empty() || modes.back() != frame.mode) modes.push_back(frame.mode);
@@ -136,7 +136,7 @@ TEST(ToyStudy, AStudyPlanCounterbalancesItsConditions) {
     std::set<std::vector<std::string>> orders;
     for (const plan::ParticipantPlan& p : read.participants) {
         const std::string text = plan::participantProtocolJson(dir.string(), read, p, 0);
-        EXPECT_EQ(game::parseStudy(text, "participant.json")->modes(), p.conditionOrder[0]) << p.id;
+        EXPECT_EQ(game::parseStudy(text, "participant.json")->conditionNames(), p.conditionOrder[0]) << p.id;
         orders.insert(p.conditionOrder[0]);
     }
     EXPECT_EQ(orders.size(), 6u) << "a balanced Latin square of three conditions has six rows";

@@ -4,11 +4,16 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "game/game.h"
+#include "game/results.h"
 
 namespace warplab::game {
 
 std::unique_ptr<Study> parseClickStudy(const std::string& jsonText, const std::string& sourceName);
+// The click game's own export tables, without rows: matches.csv and ratings.csv
+// (docs/click-study.md).
+std::vector<GameTable> clickTables();
 
 }  // namespace warplab::game

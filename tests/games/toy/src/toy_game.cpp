@@ -31,7 +31,7 @@ ToyGame::ToyGame(const ToyProtocol& p, std::uint64_t seed)
 
 void ToyGame::startCondition(std::size_t index, std::int64_t atFrame) {
     current_ = index;
-    schedule_ = condition::ModeSchedule(protocol_.conditionTable.at(order_[index]), protocol_.refreshHz);
+    schedule_ = condition::ConditionSchedule(protocol_.conditionTable.at(order_[index]), protocol_.refreshHz);
     scheduleStart_ = atFrame;
     clickGate_.clear();
 }
@@ -49,8 +49,8 @@ game::ShownFrame ToyGame::step(const game::FrameInput& input) {
     // What the condition shows of the dot, through the two hooks.
     const game::SchedulePlacement placement{scheduleStart_, protocol_.refreshHz};
     const condition::ScheduledFrame f = schedule_.frame(frame_ - scheduleStart_);
-    game::ShownFrame shown = game::scheduledShownFrame(frame_, schedule_.mode(), f, placement);
-    const game::WorldDepiction d = game::depictWorld(schedule_.mode(), f, placement, game::WorldClock::Schedule);
+    game::ShownFrame shown = game::scheduledShownFrame(frame_, schedule_.condition(), f, placement);
+    const game::WorldDepiction d = game::depictWorld(schedule_.condition(), f, placement, game::WorldClock::Schedule);
     const Dot seen = *game::depictedState<Dot>(
         d, [&](std::int64_t frame) -> std::optional<Dot> { return history_.at(frame); },
         [](Dot dot, double dt) {
@@ -69,7 +69,7 @@ game::ShownFrame ToyGame::step(const game::FrameInput& input) {
         session::EventRecord e;
         e.type = "click";
         e.trial = clicks_++;
-        e.mode = schedule_.mode().name;
+        e.mode = schedule_.condition().name;
         e.worldOutcome = underReticle(dotAt(now).x) ? "hit" : "miss";
         e.displayedOutcome = underReticle(seen.x) ? "hit" : "miss";
         // Everything typed so far, as typed (Backspaces kept): replay, and a resumed

@@ -36,7 +36,7 @@ public:
     bool isOutcome(const session::EventRecord& e) const override { return e.type == "click"; }
     game::PointerProbe probePointer(const game::ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const session::EventRecord& e) const override;
-    void switchTo(const std::string& mode, int difficulty) override;
+    void switchTo(const std::string& condition, int difficulty) override;
 
 private:
     void startCondition(std::size_t index, std::int64_t atFrame);
@@ -47,7 +47,7 @@ private:
     std::vector<std::string> order_;  // the conditions in the order played
     std::size_t current_ = 0;
     std::int64_t framesPerCondition_ = 0;
-    condition::ModeSchedule schedule_;
+    condition::ConditionSchedule schedule_;
     std::int64_t scheduleStart_ = 0;
     game::ClickGate clickGate_;
     game::EventQueue events_;

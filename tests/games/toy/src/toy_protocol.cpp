@@ -43,12 +43,7 @@ ToyProtocol parseToyProtocol(const std::string& jsonText, const std::string& sou
     return p;
 }
 
-std::string toJson(const ToyProtocol& p) {
-    Json document = fields::headerJson(p.formatVersion, p.name, p.description, p.game);
-    fields::writeConditions(document, p.conditionTable.defined());
-    fields::writeSections(document, sections(), p.formatVersion, p);
-    return fields::canonicalText(document);
-}
+std::string toJson(const ToyProtocol& p) { return fields::protocolText(p, sections()); }
 
 std::string toyProtocol(const std::vector<std::string>& conditions, double secondsEach, bool shuffle) {
     ToyProtocol p;

@@ -2,7 +2,9 @@
 // game -- bots, results, progress, what a participant is told, the list a plan counterbalances.
 #include <memory>
 
+#include "game/event_detail.h"
 #include "protocol/study_protocol.h"
+#include "table/columns.h"
 #include "toy/toy.h"
 #include "toy_game.h"
 #include "toy_protocol.h"
@@ -11,6 +13,29 @@ namespace warplab::toy {
 namespace {
 
 using game::Study;
+
+// A row of toy_clicks.csv: a click, and where the sphere was against where it was shown.
+struct Click {
+    const session::EventRecord& event;
+    game::EventDetail detail;
+};
+
+const std::vector<table::Column<Click>>& clickColumns() {
+    using F = table::CellWriter;
+    using R = Click;
+    static const std::vector<table::Column<R>> columns = {
+        {"click", [](F& f, const R& r) { f.integer(r.event.trial); }},
+        {"mode", [](F& f, const R& r) { f.text(r.event.mode); }},
+        {"shown_x_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x")); }},
+        {"true_x_m", [](F& f, const R& r) { f.number(r.detail.number("x")); }},
+        // What the condition's latency moved the sphere by, as the participant saw it.
+        {"shown_offset_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x") - r.detail.number("x")); }},
+        {"typed", [](F& f, const R& r) { f.text(r.detail.text("typed", "")); }},
+    };
+    return columns;
+}
+
+game::GameTable clicksTable() { return {"toy_clicks.csv", table::headerOf(clickColumns()), false, "", {}}; }
 
 class ToyStudy final : public Study {
 public:
@@ -31,7 +56,7 @@ public:
     std::unique_ptr<game::Player> newBot(std::uint64_t, const game::DisplaySize&) const override {
         return std::make_unique<ToyBot>();
     }
-    std::vector<std::string> modes() const override { return protocol_.conditions; }
+    std::vector<std::string> conditionNames() const override { return protocol_.conditions; }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     // The view does not turn: the participant waits for the sphere and clicks.
     game::Instructions instructions() const override {
@@ -48,8 +73,14 @@ public:
     game::SessionResults results(const std::vector<session::EventRecord>& events) const override {
         game::SessionResults out;
         out.measure = {"toy hits", "clicks"};
+        out.tables = {clicksTable()};
         for (const auto& e : events) {
             if (e.type != "click") continue;
+            game::GameTableRow row;
+            row.condition = e.mode;
+            row.scoredPhase = true;
+            table::writeCells(row.cells, clickColumns(), Click{e, game::EventDetail(e.detailJson)});
+            out.tables.front().rows.push_back(std::move(row));
             game::ShotResult r;
             r.phase = e.phase;
             r.scoredPhase = true;
@@ -85,5 +116,7 @@ private:
 std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string& sourceName) {
     return std::make_unique<ToyStudy>(parseToyProtocol(jsonText, sourceName));
 }
+
+std::vector<game::GameTable> tables() { return {clicksTable()}; }
 
 }  // namespace warplab::toy

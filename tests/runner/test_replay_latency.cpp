@@ -23,9 +23,9 @@
 #include "shooter/shooter_protocol.h"
 #include "rerun.h"
 #include "shooter_game.h"
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -96,7 +96,7 @@ Session runAndReplay(const std::string& name) {
     const Rerun r = rerun(data, *played, [&](std::size_t i, const game::ShownFrame& shown, std::size_t) {
         Replayed f;
         f.time = shown.time;
-        f.mode = shown.mode;
+        f.mode = shown.condition.name;
         f.scheduleStart = shown.frame - shown.schedule.index;
         f.localTime = shown.schedule.displayTime;
         f.onTarget = shooter->currentPhase() == game::Phase::Test && !shown.frozen && !shown.scene.objects.empty();
@@ -134,9 +134,9 @@ std::vector<Stretch> stretches(const Session& s, const std::string& mode) {
     return out;
 }
 
-condition::ModeSchedule scheduleOf(const Session& s, const Replayed& f) {
-    return condition::ModeSchedule(s.protocol.conditionTable.at(f.mode), s.protocol.refreshHz,
-                                   game::pacingSeed(s.seed, f.scheduleStart));
+condition::ConditionSchedule scheduleOf(const Session& s, const Replayed& f) {
+    return condition::ConditionSchedule(s.protocol.conditionTable.at(f.mode), s.protocol.refreshHz,
+                                        game::pacingSeed(s.seed, f.scheduleStart));
 }
 
 const std::vector<std::string> kUneven = {"even60", "rough60", "traced"};
@@ -151,7 +151,7 @@ TEST(ReplayLatency, MouseStepsShowWithTheSchedulesViewLatencyFrameByFrame) {
         int measured = 0;
         std::set<std::int64_t> phases;  // refreshes since the schedule started
         for (const Stretch& st : stretches(s, mode)) {
-            const condition::ModeSchedule schedule = scheduleOf(s, s.frames[st.first]);
+            const condition::ConditionSchedule schedule = scheduleOf(s, s.frames[st.first]);
             for (std::size_t v = st.first + 1; v <= st.last; ++v) {
                 const Replayed& step = s.frames[v];
                 if (step.trueYaw == s.frames[v - 1].trueYaw) continue;
@@ -216,7 +216,7 @@ TEST(ReplayLatency, TargetBouncesShowWithTheSchedulesSceneLatencyFrameByFrame) {
         for (const Stretch& st : stretches(s, mode)) {
             const Replayed& first = s.frames[st.first];
             ASSERT_TRUE(first.trial);
-            const condition::ModeSchedule schedule = scheduleOf(s, first);
+            const condition::ConditionSchedule schedule = scheduleOf(s, first);
             const auto& trial = *first.trial;
             const double clockStart = static_cast<double>(first.scheduleStart) / s.protocol.refreshHz;
             const std::vector<double> all = bounces(s.plane, trial, first.time - 0.2, s.frames[st.last].time);
@@ -253,4 +253,4 @@ TEST(ReplayLatency, TargetBouncesShowWithTheSchedulesSceneLatencyFrameByFrame) {
 }
 
 }  // namespace
-}  // namespace warplab::study
+}  // namespace warplab::runner

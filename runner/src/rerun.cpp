@@ -4,7 +4,7 @@
 
 #include "session/records.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 namespace {
 
 // The event without the details that describe the rendering (Game::renderDetailKeys), which
@@ -61,4 +61,4 @@ Rerun rerun(const session::SessionData& data, game::Game& game,
     return result;
 }
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

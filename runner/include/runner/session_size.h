@@ -8,7 +8,7 @@
 
 #include "game/game.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 
 struct SessionSize {
     // The protocol's frames as its bot plays it to the end, seed 1 (no store, no rendering).
@@ -50,4 +50,4 @@ std::string bytesText(std::uint64_t bytes);
 // needs, when the folder has less room than that (a sentence the caller ends with its advice).
 void requireDiskSpace(const std::string& folder, const SessionSize& size, const std::string& protocol);
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

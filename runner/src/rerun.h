@@ -10,7 +10,7 @@
 #include "game/game.h"
 #include "session/session_store.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 
 struct Rerun {
     std::size_t outcomes = 0;  // scored outcomes logged
@@ -27,4 +27,4 @@ struct Rerun {
 Rerun rerun(const session::SessionData& data, game::Game& game,
             const std::function<void(std::size_t, const game::ShownFrame&, std::size_t)>& stepped = {});
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

@@ -1,4 +1,4 @@
-#include "study/session_size.h"
+#include "runner/session_size.h"
 
 #include <unistd.h>
 
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -114,4 +114,4 @@ void requireDiskSpace(const std::string& folder, const SessionSize& size, const 
                              bytesText(size.sessionBytes()) + ", may be written twice as it finishes)");
 }
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

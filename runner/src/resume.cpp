@@ -1,4 +1,4 @@
-#include "study/resume.h"
+#include "runner/resume.h"
 
 #include <filesystem>
 #include <memory>
@@ -8,7 +8,7 @@
 #include "game/registry.h"
 #include "rerun.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 
 ResumePoint findResumePoint(const std::string& sessionPath) {
     ResumePoint point;
@@ -101,4 +101,4 @@ std::string resumeSummary(const ResumePoint& point) {
     return text.str();
 }
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

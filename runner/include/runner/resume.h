@@ -14,7 +14,7 @@
 #include "game/game.h"
 #include "session/session_store.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 
 // A session that cannot be resumed: one sentence naming its file and why (exit 1).
 class ResumeError : public std::runtime_error {
@@ -59,4 +59,4 @@ void replayKeptFrames(const ResumePoint& point, game::Game& game,
 // One line for the supervisor: what is kept and what is played again.
 std::string resumeSummary(const ResumePoint& point);
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

@@ -11,7 +11,7 @@
 #include "game/game.h"
 #include "session/session_store.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 
 struct HeadlessRun {
     std::string protocolPath;
@@ -21,7 +21,7 @@ struct HeadlessRun {
     std::string protocolText, planId;
     std::string participant;
     std::string resultsDir;
-    // An interrupted session to carry on (study/resume.h): its protocol, seed, participant,
+    // An interrupted session to carry on (runner/resume.h): its protocol, seed, participant,
     // display and plan replace the run's own.
     std::string resumeFrom;
     std::string player;  // "bot", "bot:SEED", "sim", "sim:SEED" or "replay:SESSION"
@@ -114,4 +114,4 @@ int replayExitCode(const ReplayResult& result);
 // Re-runs the session from its store without a window and without rendering.
 ReplayResult replaySession(const std::string& sessionPath);
 
-}  // namespace warplab::study
+}  // namespace warplab::runner

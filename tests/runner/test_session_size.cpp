@@ -1,14 +1,14 @@
-// A session's size known before it starts (study/session_size.h), against the file a whole
+// A session's size known before it starts (runner/session_size.h), against the file a whole
 // headless session of the same protocol and bot really writes.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <sstream>
 
-#include "study/session_runner.h"
-#include "study/session_size.h"
+#include "runner/session_runner.h"
+#include "runner/session_size.h"
 
-namespace warplab::study {
+namespace warplab::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -74,4 +74,4 @@ TEST(SessionSize, BytesAreSaidAsDisksAreSold) {
 }
 
 }  // namespace
-}  // namespace warplab::study
+}  // namespace warplab::runner

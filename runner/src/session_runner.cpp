@@ -1,4 +1,4 @@
-#include "study/session_runner.h"
+#include "runner/session_runner.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,13 +10,13 @@
 #include "game/registry.h"
 #include "session/session_store.h"
 #include "rerun.h"
-#include "study/resume.h"
+#include "runner/resume.h"
 
 #ifndef WARPLAB_VERSION
 #define WARPLAB_VERSION "0"
 #endif
 
-namespace warplab::study {
+namespace warplab::runner {
 
 session::InputRecord toRecord(std::int64_t frame, double time, const game::FrameInput& in) {
     session::InputRecord r;
@@ -235,4 +235,4 @@ ReplayResult replaySession(const std::string& sessionPath) {
     return result;
 }
 
-}  // namespace warplab::study
+}  // namespace warplab::runner
