@@ -88,7 +88,8 @@ def green_by_mode(warplab, folders, out):
             if row["scored_phase"] != "true":
                 continue
             g = int(row["green_hits"])
-            total[row["mode"]] = total.get(row["mode"], 0) + g
+            condition = row["condition"]
+            total[condition] = total.get(condition, 0) + g
     return total
 
 

@@ -389,6 +389,33 @@ def test_click_report_and_figures(click):
     assert report["games"]["click"]["hits_are"] == "green hits"
 
 
+def test_the_condition_column_reads_under_its_old_name_too(tmp_path):
+    # Exports name each row's condition in a column `condition`; older ones called it `mode`.
+    # The same data under either header gives the same report.
+    old, new = tmp_path / "old", tmp_path / "new"
+    old.mkdir()
+    write_click_export(old)
+    shutil.copytree(old, new)
+    renamed = 0
+    for name in ("hitrates.csv", "matches.csv", "answers.csv"):
+        if not (new / name).exists():
+            continue
+        lines = (new / name).read_text().split("\n")
+        header = lines[0].split(",")
+        assert "mode" in header and "condition" not in header, name
+        lines[0] = ",".join("condition" if c == "mode" else c for c in header)
+        (new / name).write_text("\n".join(lines))
+        renamed += 1
+    assert renamed >= 2
+    code_old, report_old = run_in_process(old, tmp_path / "out-old")
+    code_new, report_new = run_in_process(new, tmp_path / "out-new")
+    assert code_old == code_new == 0
+    for report in (report_old, report_new):
+        report.pop("export_dir")
+    assert report_new == report_old
+    assert report_new["click"]["modes"] == MODES
+
+
 def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     # The click game's data under another name: the matches' sections go with the game whose
     # sessions (sessions.csv) played them, and the wording is games.csv's.

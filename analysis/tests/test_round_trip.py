@@ -72,7 +72,7 @@ def test_hit_rates_are_the_counts_the_session_files_hold(study):
             expected[key][1] += hits
     with open(export / "hitrates.csv", newline="", encoding="utf-8") as f:
         rows = list(csv.DictReader(f))
-    got = {(r["participant"], r["game"], r["mode"]): [int(r["shots"]), int(r["hits"])] for r in rows}
+    got = {(r["participant"], r["game"], r["condition"]): [int(r["shots"]), int(r["hits"])] for r in rows}
     assert got == dict(expected)
     assert {r["game"] for r in rows} == {"shooter", "click"}
 
@@ -138,7 +138,7 @@ def check_conditions_csv(export, report, data):
     names = list(dict.fromkeys(r["condition"] for r in rows))
     assert data["conditions_file"] == "conditions.csv"
     assert [m["mode"] for m in data["modes"]] == names
-    assert {r["mode"] for r in read_csv(export / "hitrates.csv")} <= set(names)
+    assert {r["condition"] for r in read_csv(export / "hitrates.csv")} <= set(names)
     fixture = {r["condition"]: r for r in read_csv(ROOT / "analysis" / "tests" / "data" / "conditions.csv")}
     for r in rows:
         preset = fixture.get(r["condition"])

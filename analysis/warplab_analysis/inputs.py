@@ -21,8 +21,12 @@ MODES = "modes.csv"
 CONDITIONS = "conditions.csv"
 GAMES = "games.csv"
 
-HITRATES_REQUIRED = ["participant", "game", "mode", "shots", "hits"]
-MATCHES_REQUIRED = ["participant", "scored_phase", "mode", "green_hits", "red_hits", "misses"]
+# The column that names a row's condition; exports before it was called so name it "mode",
+# which the files of rows still read as (read_table's condition_column).
+CONDITION = "condition"
+LEGACY_CONDITION = "mode"
+HITRATES_REQUIRED = ["participant", "game", CONDITION, "shots", "hits"]
+MATCHES_REQUIRED = ["participant", "scored_phase", CONDITION, "green_hits", "red_hits", "misses"]
 RATINGS_REQUIRED = ["statement_index", "statement"]
 MODES_REQUIRED = ["mode", "description", "render_rate_hz", "added_lag_ms", "upconverts"]
 CONDITIONS_REQUIRED = ["condition", "render_hz", "lag_frames", "fill", "late_warp", "view_latency_min_ms",
@@ -61,7 +65,9 @@ class Table:
         self.header_line = header_line
 
 
-def read_table(path, required):
+def read_table(path, required, condition_column=False):
+    """condition_column: a file of rows that each name their condition, whose column an older
+    export called "mode": read under its name now, CONDITION."""
     # A pipe (or a device) under a CSV's name would block the open or the read for ever.
     if os.path.exists(path) and not os.path.isfile(path):
         raise BadInput(f"{path}: is not a regular file (a pipe, socket, device or folder), not a CSV.")
@@ -99,6 +105,10 @@ def read_table(path, required):
         raise BadInput(f"{path}: cannot be read ({e.strerror or e}).")
     if header is None:
         raise BadInput(f"{path}: the file is empty, expected a header line with columns {', '.join(required)}.")
+    if condition_column and CONDITION not in header and LEGACY_CONDITION in header:
+        header = [CONDITION if name == LEGACY_CONDITION else name for name in header]
+        for record in records:
+            record[CONDITION] = record.pop(LEGACY_CONDITION)
     for column in required:
         if column not in header:
             raise BadInput(f"{path}: line {header_line}, the header, is missing column '{column}'.")
@@ -160,7 +170,7 @@ def boolean(table, record, column):
 
 def load_hitrates(export_dir):
     """{game: {participant: {mode: (hits, shots)}}} and the number of rows, in file order."""
-    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED)
+    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED, condition_column=True)
     if not table.records:
         raise BadInput(f"{table.path}: has a header but no data rows.")
     optional_numeric = [c for c in ("timeouts", "hit_rate") if c in table.header]
@@ -169,7 +179,7 @@ def load_hitrates(export_dir):
     for record in table.records:
         participant = text(table, record, "participant")
         game = text(table, record, "game")
-        mode = text(table, record, "mode")
+        mode = text(table, record, CONDITION)
         shots = number(table, record, "shots", integer=True)
         hits = number(table, record, "hits", integer=True)
         for column in optional_numeric:
@@ -246,7 +256,7 @@ def load_matches(export_dir, scales=None):
     path = os.path.join(export_dir, MATCHES)
     if not os.path.exists(path):
         return None
-    table = read_table(path, MATCHES_REQUIRED)
+    table = read_table(path, MATCHES_REQUIRED, condition_column=True)
     numbered = sorted((int(m.group(1)), name) for name in table.header if (m := RATING_COLUMN.match(name)))
     for expected, (k, name) in enumerate(numbered, start=1):
         if k != expected:
@@ -262,7 +272,7 @@ def load_matches(export_dir, scales=None):
             continue
         match = {
             "participant": text(table, record, "participant"),
-            "mode": text(table, record, "mode"),
+            "mode": text(table, record, CONDITION),
             "green_hits": number(table, record, "green_hits", integer=True),
             "red_hits": number(table, record, "red_hits", integer=True),
             "misses": number(table, record, "misses", integer=True),
@@ -519,7 +529,7 @@ def load_games(export_dir):
 
 
 ANSWERS = "answers.csv"
-ANSWERS_REQUIRED = ["participant", "kind", "question_index", "prompt", "mode", "value", "text"]
+ANSWERS_REQUIRED = ["participant", "kind", "question_index", "prompt", CONDITION, "value", "text"]
 ANSWER_KINDS = ("likert", "choice", "text")
 # player_kind, as export writes it (session::playerKind): who played a session.
 PEOPLE = "human"
@@ -530,7 +540,7 @@ def load_player_kinds(export_dir):
     """None for an export without hitrates.csv's player_kind column (from before it); else
     {participant: the set of kinds of their sessions} over hitrates.csv's rows (a cell may list
     several, `;`-separated, for an id that named a person in one session and a bot in another)."""
-    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED)
+    table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED, condition_column=True)
     if "player_kind" not in table.header:
         return None
     kinds = {}
@@ -547,7 +557,7 @@ def load_answers(export_dir):
     path = os.path.join(export_dir, ANSWERS)
     if not os.path.exists(path):
         return None
-    table = read_table(path, ANSWERS_REQUIRED)
+    table = read_table(path, ANSWERS_REQUIRED, condition_column=True)
     answers = []
     for record in table.records:
         if "scored_phase" in table.header and not boolean(table, record, "scored_phase"):
@@ -568,7 +578,7 @@ def load_answers(export_dir):
         answers.append({"participant": text(table, record, "participant"), "kind": kind,
                         "question": number(table, record, "question_index", integer=True),
                         "question_id": record.get("question_id", ""), "prompt": record["prompt"],
-                        "mode": record["mode"], "value": value, "text": record["text"], "block": block,
+                        "mode": record[CONDITION], "value": value, "text": record["text"], "block": block,
                         "player_kind": record.get("player_kind")})
     return answers
 

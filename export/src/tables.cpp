@@ -129,7 +129,7 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"phase", [](F& f, const R& r) { f.text(r.shot.phase); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.shot.scoredPhase); }},
         {"trial", [](F& f, const R& r) { f.integer(r.shot.trial); }},
-        {"mode", [](F& f, const R& r) { f.text(r.shot.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.shot.mode); }},
         {"outcome", [](F& f, const R& r) { f.text(r.shot.outcome); }},
         {"hit", [](F& f, const R& r) { f.boolean(r.shot.hit); }},
         {"world_outcome", [](F& f, const R& r) { f.text(r.shot.worldOutcome); }},
@@ -160,7 +160,7 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
         {"block", [](F& f, const R& r) { f.text(r.answer.block); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.answer.scoredPhase); }},
         {"block_index", [](F& f, const R& r) { f.integer(r.answer.blockIndex); }},
-        {"mode", [](F& f, const R& r) { f.text(r.answer.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.answer.mode); }},
         {"question_index", [](F& f, const R& r) { f.integer(r.answer.questionIndex); }},
         {"question_id", [](F& f, const R& r) { f.text(r.answer.questionId); }},
         {"kind", [](F& f, const R& r) { f.text(r.answer.kind); }},
@@ -208,7 +208,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
         {"session", [](F& f, const R& r) { f.text(r.session); }},
-        {"mode", [](F& f, const R& r) { f.text(r.pacing.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.pacing.mode); }},
         {"shown", [](F& f, const R& r) { f.integer(r.pacing.shown); }},
         {"late", [](F& f, const R& r) { f.integer(r.pacing.late); }},
         {"skipped", [](F& f, const R& r) { f.integer(r.pacing.skipped); }},
@@ -236,7 +236,7 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
         {"game", [](F& f, const R& r) { f.text(r.game); }},
-        {"mode", [](F& f, const R& r) { f.text(r.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.mode); }},
         {"shots", [](F& f, const R& r) { f.integer(r.tally.shots); }},
         {"hits", [](F& f, const R& r) { f.integer(r.tally.hits); }},
         // The click game has no timeouts: an empty cell, not a zero that claims it measured some.

@@ -192,14 +192,14 @@ TEST(Export, AFolderOfRealSessionsGivesTheCountsTheEventsHold) {
 
     // hitrates.csv: exactly the expected rows, rates exactly hits/shots.
     EXPECT_EQ(headerOf(out + "/hitrates.csv"),
-              (std::vector<std::string>{"participant", "game", "mode", "shots", "hits", "timeouts", "hit_rate",
+              (std::vector<std::string>{"participant", "game", "condition", "shots", "hits", "timeouts", "hit_rate",
                                         "player_kind"}));
     const auto hitrates = readCsv(out + "/hitrates.csv");
     ASSERT_EQ(hitrates.size(), expected.size());
     int clickRows = 0;
     for (const auto& row : hitrates) {
-        const Key key{row.at("participant"), row.at("game"), row.at("mode")};
-        ASSERT_EQ(expected.count(key), 1u) << row.at("participant") << " " << row.at("mode");
+        const Key key{row.at("participant"), row.at("game"), row.at("condition")};
+        ASSERT_EQ(expected.count(key), 1u) << row.at("participant") << " " << row.at("condition");
         const Counts& c = expected[key];
         EXPECT_EQ(std::stoi(row.at("shots")), c.shots);
         EXPECT_EQ(std::stoi(row.at("hits")), c.hits);
@@ -344,7 +344,7 @@ TEST(Export, EachShotCarriesTheFrameTimeP95OfItsLastSecond) {
     int checked = 0;
     for (const Row& r : readCsv(out + "/shots.csv")) {
         if (r.at("frame_time_p95_ms").empty()) continue;  // a trial too short for two new images
-        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), expected.at(r.at("mode")), 1e-9) << r.at("trial");
+        EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), expected.at(r.at("condition")), 1e-9) << r.at("trial");
         ++checked;
     }
     EXPECT_GE(checked, 10);
@@ -365,7 +365,7 @@ TEST(Export, EachShotCarriesTheFrameTimeP95OfItsLastSecond) {
     exportQuietly(results, out);
     int held = 0;
     for (const Row& r : readCsv(out + "/shots.csv")) {
-        if (r.at("mode") != "conv120" || r.at("frame_time_p95_ms").empty()) continue;
+        if (r.at("condition") != "conv120" || r.at("frame_time_p95_ms").empty()) continue;
         EXPECT_NEAR(std::stod(r.at("frame_time_p95_ms")), 2000.0 / 120, 1e-9) << r.at("trial");
         ++held;
     }
@@ -574,7 +574,7 @@ TEST(Export, AModePlayedWithoutAClickHasAHitRateRowWithoutARate) {
     const std::string out = scratch("no-clicks/out");
     exportQuietly(results, out);
     std::map<std::string, Row> byMode;
-    for (const auto& row : readCsv(out + "/hitrates.csv")) byMode[row.at("mode")] = row;
+    for (const auto& row : readCsv(out + "/hitrates.csv")) byMode[row.at("condition")] = row;
     EXPECT_EQ(byMode.size(), modes.size()) << "one row per mode the scored round ran";
     ASSERT_EQ(byMode.count(mode), 1u) << mode << " has no row";
     const Row& row = byMode[mode];
@@ -610,14 +610,15 @@ TEST(Export, AClickMatchThatNeverEndedLeavesItsClicksOut) {
     std::map<std::string, int> clicksByMode;
     for (const auto& m : readCsv(out + "/matches.csv")) {
         listed.insert(m.at("match"));
-        clicksByMode[m.at("mode")] += std::stoi(m.at("clicks"));
+        clicksByMode[m.at("condition")] += std::stoi(m.at("clicks"));
     }
     EXPECT_EQ(listed.count(std::to_string(cutTrial)), 0u);
     const auto shots = readCsv(out + "/shots.csv");
     ASSERT_FALSE(shots.empty()) << "the first scored match ended and counts";
     for (const auto& s : shots) EXPECT_EQ(listed.count(s.at("trial")), 1u) << "a click of match " << s.at("trial");
     std::map<std::string, int> hitrateClicks;
-    for (const auto& row : readCsv(out + "/hitrates.csv")) hitrateClicks[row.at("mode")] = std::stoi(row.at("shots"));
+    for (const auto& row : readCsv(out + "/hitrates.csv"))
+        hitrateClicks[row.at("condition")] = std::stoi(row.at("shots"));
     EXPECT_EQ(hitrateClicks, clicksByMode);
 }
 
@@ -646,7 +647,7 @@ TEST(Export, AVersion1SessionExportsItsScoredTrials) {
     const auto rows = readCsv(out + "/hitrates.csv");
     ASSERT_EQ(rows.size(), expected.size());
     for (const auto& row : rows) {
-        const Counts& c = expected[{row.at("participant"), row.at("game"), row.at("mode")}];
+        const Counts& c = expected[{row.at("participant"), row.at("game"), row.at("condition")}];
         EXPECT_EQ(std::stoi(row.at("shots")), c.shots);
         EXPECT_EQ(std::stoi(row.at("hits")), c.hits);
     }
@@ -684,7 +685,7 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     exportQuietly(results, out, all);
     int standIns = 0;
     for (const auto& m : readCsv(out + "/matches.csv")) {
-        EXPECT_EQ(m.at("stand_in").empty(), m.at("mode") != "bireproj15to60") << m.at("mode");
+        EXPECT_EQ(m.at("stand_in").empty(), m.at("condition") != "bireproj15to60") << m.at("condition");
         standIns += !m.at("stand_in").empty();
     }
     EXPECT_EQ(standIns, marked);
@@ -783,7 +784,7 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
         EXPECT_EQ(a.at("question_id"), questions[i % 3]["id"].get<std::string>());
         EXPECT_EQ(a.at("kind"), questions[i % 3]["kind"].get<std::string>());
         EXPECT_EQ(a.at("prompt"), questions[i % 3]["prompt"].get<std::string>());
-        EXPECT_EQ(a.at("mode"), matches[i / 3].at("mode"));
+        EXPECT_EQ(a.at("condition"), matches[i / 3].at("condition"));
         EXPECT_EQ(a.at("block_index"), matches[i / 3].at("match"));
         EXPECT_GE(std::stod(a.at("answer_s")), 0.5);  // the settle time, then the bot's reading
     }
@@ -812,7 +813,7 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
         EXPECT_EQ(shots[i].at("block"), "test");
         EXPECT_EQ(shots[i].at("block_index"), std::to_string(i));
         EXPECT_EQ(shots[i].at("kind"), "choice");
-        modes.push_back(shots[i].at("mode"));
+        modes.push_back(shots[i].at("condition"));
     }
     EXPECT_EQ(modes, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
 }
@@ -918,7 +919,7 @@ TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
         EXPECT_EQ(r.at("player_kind"), kindOf.at(r.at("participant")));
         if (r.at("scored_phase") == "true") {
             // Blocked: the protocol's order, which a plan's condition_order writes into it.
-            EXPECT_EQ(r.at("condition_position"), r.at("mode") == "warp15to120" ? "1" : "2") << r.at("trial");
+            EXPECT_EQ(r.at("condition_position"), r.at("condition") == "warp15to120" ? "1" : "2") << r.at("trial");
             ++test;
         } else {
             EXPECT_EQ(r.at("condition_position"), "") << r.at("phase");

@@ -95,8 +95,9 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     // Its own table, one row per click, in the layout export gives a game's own tables; and the
     // other games' own tables, header only.
     const std::string clicks = readAll(dir / "csv" / "toy_clicks.csv");
-    EXPECT_EQ(clicks.substr(0, clicks.find('\n')),
-              "participant,session,click,mode,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
+    EXPECT_EQ(
+        clicks.substr(0, clicks.find('\n')),
+        "participant,session,click,condition,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
     EXPECT_EQ(std::count(clicks.begin(), clicks.end(), '\n'), std::count(shots.begin(), shots.end(), '\n'));
     EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + mode + ","), std::string::npos)
         << clicks;

@@ -25,7 +25,7 @@ const std::vector<table::Column<Click>>& clickColumns() {
     using R = Click;
     static const std::vector<table::Column<R>> columns = {
         {"click", [](F& f, const R& r) { f.integer(r.event.trial); }},
-        {"mode", [](F& f, const R& r) { f.text(r.event.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.event.mode); }},
         {"shown_x_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x")); }},
         {"true_x_m", [](F& f, const R& r) { f.number(r.detail.number("x")); }},
         // What the condition's latency moved the sphere by, as the participant saw it.
