@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -185,6 +186,13 @@ TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
             "click", [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> { return nullptr; }),
         std::invalid_argument);
     EXPECT_EQ(game::parseStudy(toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
+    // One file, one game: a second game naming the toy's table is refused, and not registered.
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, toy::tables), std::invalid_argument);
+    const auto after = game::gameNames();
+    EXPECT_EQ(std::find(after.begin(), after.end(), "toy-copy"), after.end());
+    std::size_t toyClicks = 0;
+    for (const auto& [owner, table] : game::gameTables()) toyClicks += table.file == "toy_clicks.csv";
+    EXPECT_EQ(toyClicks, 1u);
 }
 
 }  // namespace
