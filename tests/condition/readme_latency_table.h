@@ -1,5 +1,5 @@
 // The README's latency table ("## Modes and their latency"), read as the tests that check it
-// need it: each row's mode and its view and scene latency cells, and the display refreshes the
+// need it: each row's condition and its view and scene latency cells, and the display refreshes the
 // section says the table holds at. Read in one place, so every test that holds the table to
 // the schedule or to a real run reads the same cells.
 #pragma once

@@ -19,7 +19,7 @@ struct ShotResult {
     std::string phase;  // shooter: acclimation/training/test; click: the round's name
     bool scoredPhase = false;  // the phase the study analyses (shooter "test", a scored round)
     int trial = -1;  // shooter: trial index; click: match index
-    std::string mode;
+    std::string condition;
     std::string outcome;  // the one the protocol scores: hit/miss/timeout, green/red/miss
     std::string worldOutcome, displayedOutcome;
     bool hit = false;  // outcome counts as a hit (shooter "hit", click "green")
@@ -40,7 +40,7 @@ struct AnswerResult {
     std::string block;  // what the answer is about: the click round's name, the shooter's "test"
     bool scoredPhase = false;  // the block is in the part the study analyses
     int blockIndex = -1;  // click: the match index; shooter: the test block, 0-based
-    std::string mode;  // the block's condition; "" where its trials mixed conditions
+    std::string condition;  // the block's condition; "" where its trials mixed conditions
     int questionIndex = 0;  // 0-based, in the protocol's order
     std::string questionId;  // the protocol's id ("" in sessions of protocols that had none)
     std::string kind;  // "likert", "choice" or "text"

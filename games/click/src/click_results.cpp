@@ -24,7 +24,7 @@ const std::vector<Column<MatchResult>>& matchColumns() {
         {"round", [](F& f, const R& r) { f.text(r.round); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.scoredPhase); }},
         {"match", [](F& f, const R& r) { f.integer(r.match); }},
-        {"condition", [](F& f, const R& r) { f.text(r.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.condition); }},
         {"stand_in", [](F& f, const R& r) { f.text(r.standIn); }},
         {"green_hits", [](F& f, const R& r) { f.integer(r.greenHits); }},
         {"red_hits", [](F& f, const R& r) { f.integer(r.redHits); }},
@@ -42,7 +42,7 @@ const std::vector<Column<RatingOf>>& ratingColumns() {
         {"round", [](F& f, const R& r) { f.text(r.match.round); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
         {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
-        {"condition", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.match.condition); }},
         {"statement_index", [](F& f, const R& r) { f.integer(r.rating.statementIndex); }},
         {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
         {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
@@ -60,7 +60,7 @@ std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
     GameTable byRating{"ratings.csv", table::headerOf(ratingColumns()), false, "", {}};
     for (const MatchResult& m : matches) {
         GameTableRow row;
-        row.condition = m.mode;
+        row.condition = m.condition;
         row.scoredPhase = m.scoredPhase;
         row.startTime = m.endTime - m.durationS;  // a match event is logged at its last frame
         row.endTime = m.endTime;
@@ -79,7 +79,7 @@ std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
         byMatch.rows.push_back(std::move(row));
         for (const RatingResult& r : m.ratings) {
             GameTableRow rating;
-            rating.condition = m.mode;
+            rating.condition = m.condition;
             rating.scoredPhase = m.scoredPhase;
             table::writeCells(rating.cells, ratingColumns(), RatingOf{m, r});
             byRating.rows.push_back(std::move(rating));

@@ -25,8 +25,8 @@ struct MatchResult {
     std::string round;
     bool scoredPhase = false;
     int match = -1;
-    std::string mode;
-    std::string standIn;  // method drawn in the mode's place ("" = the mode's own)
+    std::string condition;
+    std::string standIn;  // method drawn in the condition's place ("" = the condition's own)
     int greenHits = 0, redHits = 0, misses = 0, clicks = 0;
     double durationS = 0.0;
     double endTime = kNotApplicable;  // display time of the match's last frame, s

@@ -21,10 +21,10 @@ public:
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ShooterGame>(protocol_, seed, display);
     }
-    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
-                                              int difficulty) const override {
+    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
+                                              const std::string& condition, int difficulty) const override {
         auto game = std::make_unique<ShooterGame>(protocol_, seed, display);
-        game->switchTo(mode, difficulty);
+        game->switchTo(condition, difficulty);
         return game;
     }
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
@@ -46,8 +46,8 @@ public:
     }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     std::vector<std::string> conditionNames() const override {
-        std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode,
-                                     protocol_.training.highMode};
+        std::vector<std::string> ids{protocol_.acclimationCondition, protocol_.training.lowCondition,
+                                     protocol_.training.highCondition};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
@@ -68,7 +68,7 @@ public:
             r.phase = e.phase;
             r.scoredPhase = e.phase == "test";  // acclimation and training set up the test; only it is analysed
             r.trial = e.trial;
-            r.mode = e.mode;
+            r.condition = e.condition;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
             r.outcome =

@@ -40,12 +40,12 @@ std::string readAll(const fs::path& path) {
 class ToyGame : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
-    const std::string mode = GetParam();
-    const fs::path dir = fs::path(testing::TempDir()) / ("warplab-toy-" + mode);
+    const std::string condition = GetParam();
+    const fs::path dir = fs::path(testing::TempDir()) / ("warplab-toy-" + condition);
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     const fs::path protocolPath = dir / "toy.json";
-    std::ofstream(protocolPath) << toy::toyProtocol(mode);
+    std::ofstream(protocolPath) << toy::toyProtocol(condition);
 
     runner::HeadlessRun run;
     run.protocolPath = protocolPath.string();
@@ -87,9 +87,9 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     EXPECT_TRUE(summary.sessions[0].included) << summary.sessions[0].why;
     const std::string shots = readAll(dir / "csv" / "shots.csv");
     EXPECT_NE(shots.find(",toy,"), std::string::npos) << shots;
-    EXPECT_NE(shots.find(mode), std::string::npos) << shots;
+    EXPECT_NE(shots.find(condition), std::string::npos) << shots;
     const std::string rates = readAll(dir / "csv" / "hitrates.csv");
-    EXPECT_NE(rates.find("toy-bot,toy," + mode + ","), std::string::npos) << rates;
+    EXPECT_NE(rates.find("toy-bot,toy," + condition + ","), std::string::npos) << rates;
     // What its hit rate counts, in its own words, for the report.
     const std::string games = readAll(dir / "csv" / "games.csv");
     EXPECT_EQ(games, "game,hits_are,shots_are,tables\ntoy,toy hits,clicks,toy_clicks.csv\n");
@@ -100,7 +100,8 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
         clicks.substr(0, clicks.find('\n')),
         "participant,session,click,condition,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
     EXPECT_EQ(std::count(clicks.begin(), clicks.end(), '\n'), std::count(shots.begin(), shots.end(), '\n'));
-    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + mode + ","), std::string::npos)
+    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + condition + ","),
+              std::string::npos)
         << clicks;
     const std::string matches = readAll(dir / "csv" / "matches.csv");
     EXPECT_EQ(std::count(matches.begin(), matches.end(), '\n'), 1) << matches;
@@ -120,7 +121,7 @@ TEST(ToyModule, ItsOwnTableMatchesItsPage) {
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.
-INSTANTIATE_TEST_SUITE_P(Modes, ToyGame, ::testing::Values("conv15", "warp15to120", "bireproj15to60"));
+INSTANTIATE_TEST_SUITE_P(Conditions, ToyGame, ::testing::Values("conv15", "warp15to120", "bireproj15to60"));
 
 // A session interrupted after a click and resumed carries on from what was typed before the
 // interruption: its kept frames are played again with their text, so the clicks after it

@@ -25,7 +25,7 @@ const std::vector<table::Column<Click>>& clickColumns() {
     using R = Click;
     static const std::vector<table::Column<R>> columns = {
         {"click", [](F& f, const R& r) { f.integer(r.event.trial); }},
-        {"condition", [](F& f, const R& r) { f.text(r.event.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.event.condition); }},
         {"shown_x_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x")); }},
         {"true_x_m", [](F& f, const R& r) { f.number(r.detail.number("x")); }},
         // What the condition's latency moved the sphere by, as the participant saw it.
@@ -48,9 +48,9 @@ public:
         return std::make_unique<ToyGame>(protocol_, seed);
     }
     std::unique_ptr<game::FreePlayGame> newFreePlay(std::uint64_t seed, const game::DisplaySize&,
-                                                    const std::string& mode, int difficulty) const override {
+                                                    const std::string& condition, int difficulty) const override {
         auto game = std::make_unique<ToyGame>(protocol_, seed);
-        game->switchTo(mode, difficulty);
+        game->switchTo(condition, difficulty);
         return game;
     }
     std::unique_ptr<game::Player> newBot(std::uint64_t, const game::DisplaySize&) const override {
@@ -77,7 +77,7 @@ public:
         for (const auto& e : events) {
             if (e.type != "click") continue;
             game::GameTableRow row;
-            row.condition = e.mode;
+            row.condition = e.condition;
             row.scoredPhase = true;
             table::writeCells(row.cells, clickColumns(), Click{e, game::EventDetail(e.detailJson)});
             out.tables.front().rows.push_back(std::move(row));
@@ -85,7 +85,7 @@ public:
             r.phase = e.phase;
             r.scoredPhase = true;
             r.trial = e.trial;
-            r.mode = e.mode;
+            r.condition = e.condition;
             r.outcome = e.displayedOutcome;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
