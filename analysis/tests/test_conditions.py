@@ -13,10 +13,10 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from test_analyze import (DATA, GAMES_HEADER, assert_same, hitrate_lines, modes_csv_exports,  # noqa: E402
+from exports import (DATA, GAMES_HEADER, assert_same, hitrate_lines, modes_csv_exports,  # noqa: E402
                           run_in_process, sign_test, with_modes, write, write_click_export)
 
-import analyze  # noqa: E402  (importing test_analyze has put analysis/ on the path)
+import analyze  # noqa: E402  (importing exports has put analysis/ on the path)
 
 CONDITIONS_HEADER = ("condition,render_hz,lag_frames,fill,late_warp,view_latency_min_ms,view_latency_max_ms,"
                      "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description")
