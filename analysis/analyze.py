@@ -94,11 +94,11 @@ def analyse_game(game, participants, table, wording):
             if differences:
                 rows.append({"participant": p, "differences": differences})
         rows.sort(key=lambda r: (sort_by not in r["differences"], r["differences"].get(sort_by, 0.0)))
-        upconversion.append({"mode": condition, "against": others, "sorted_by": sort_by, "rows": rows})
+        upconversion.append({"condition": condition, "against": others, "sorted_by": sort_by, "rows": rows})
     notes = []
     if len(conditions) == 1:
-        notes.append(f"Only one mode ({conditions[0]}): no pairs to test.")
-    summary = {"participants": order, "modes": conditions, "hits_are": wording["hits_are"],
+        notes.append(f"Only one condition ({conditions[0]}): no pairs to test.")
+    summary = {"participants": order, "conditions": conditions, "hits_are": wording["hits_are"],
                "shots_are": wording["shots_are"], "hit_rates": hit_rates, "upconversion_differences": upconversion,
                "figures": {}, "notes": notes}
     return summary, tests
@@ -112,17 +112,17 @@ def choose_reference(requested, conditions, table):
     for."""
     if requested in conditions:
         return requested, None
-    asked = (f"The default reference mode {requested}" if requested == DEFAULT_REFERENCE
-             else f"The reference mode {requested}")
+    asked = (f"The default reference condition {requested}" if requested == DEFAULT_REFERENCE
+             else f"The reference condition {requested}")
     if DEFAULT_REFERENCE in conditions:
         return DEFAULT_REFERENCE, (f"{asked} is not in the scored matches; {DEFAULT_REFERENCE}, the default, is the "
                                    "reference instead.")
     upconverting = [c for c in conditions if table.upconverts(c)]
     if upconverting:
-        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first mode in the mode "
-                                 "order that upconverts, is the reference instead.")
-    return conditions[0], (f"{asked} is not in the scored matches and no mode there upconverts; {conditions[0]}, the "
-                           "first in the mode order, is the reference instead.")
+        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first condition in "
+                                 "the condition order that upconverts, is the reference instead.")
+    return conditions[0], (f"{asked} is not in the scored matches and no condition there upconverts; "
+                           f"{conditions[0]}, the first in the condition order, is the reference instead.")
 
 
 def analyse_matches(loaded, statements, requested_reference, table, game):
@@ -131,11 +131,11 @@ def analyse_matches(loaded, statements, requested_reference, table, game):
     matches, rating_columns, rows = loaded[:3]
     labels = statements[0] if statements else {}
     measures = MATCH_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
-    result = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
-              "reference_mode": None, "reference_requested": requested_reference, "anova_available": None,
+    result = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "conditions": [],
+              "reference_condition": None, "reference_requested": requested_reference, "anova_available": None,
               "measures": {}, "notes": list(statements[1]) if statements else [], "figure": None}
     if not matches:
-        result["notes"].append("matches.csv has no scored matches: no click-game table.")
+        result["notes"].append("matches.csv has no scored matches: nothing to tabulate.")
         return result
     participants = sorted({m["participant"] for m in matches}, key=natural_key)
     conditions = table.order({m["condition"] for m in matches})
@@ -143,7 +143,7 @@ def analyse_matches(loaded, statements, requested_reference, table, game):
     if note:
         result["notes"].append(note)
     others = [c for c in conditions if c != reference]
-    result.update(participants=participants, modes=conditions, reference_mode=reference)
+    result.update(participants=participants, conditions=conditions, reference_condition=reference)
     try:
         importlib.import_module("statsmodels.stats.anova")
         result["anova_available"] = True
@@ -174,18 +174,18 @@ def analyse_matches(loaded, statements, requested_reference, table, game):
             for k in ("df_num", "df_den"):
                 if anova[k] is not None and float(anova[k]).is_integer():
                     anova[k] = int(anova[k])
-        result["measures"][key] = {"label": label, "modes": per_condition, "anova": anova,
+        result["measures"][key] = {"label": label, "conditions": per_condition, "anova": anova,
                                    "participant_means": values}
     if not others:
-        result["notes"].append(f"Only one mode ({reference}) in the scored matches: nothing to compare.")
+        result["notes"].append(f"Only one condition ({reference}) in the scored matches: nothing to compare.")
     return result
 
 
 def analyse_part(export_dir, data, who, reference_condition, table):
-    """The statistics of the participants `who` (None: everyone): {games, sign_tests, click,
+    """The statistics of the participants `who` (None: everyone): {games, sign_tests, matches,
     answers}. A game that has fewer than two of them has no paired tests: a note says so."""
     games, described, matches, statements, answers = data
-    part = {"games": {}, "sign_tests": [], "click": None, "group_notes": [],
+    part = {"games": {}, "sign_tests": [], "matches": None, "group_notes": [],
             "answers": [a for a in answers or [] if who is None or a["participant"] in who]}
     for game in order_games(games, described):
         chosen = {p: row for p, row in games[game].items() if who is None or p in who}
@@ -203,7 +203,7 @@ def analyse_part(export_dir, data, who, reference_condition, table):
         chosen = [m for m in matches[0] if who is None or m["participant"] in who]
         if chosen or who is None:
             game = matches_game(export_dir, described, matches[3])
-            part["click"] = analyse_matches((chosen,) + tuple(matches[1:]), statements, reference_condition, table,
+            part["matches"] = analyse_matches((chosen,) + tuple(matches[1:]), statements, reference_condition, table,
                                             game)
     return part
 
@@ -240,17 +240,18 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
     described = inputs.load_games(export_dir)
     table = ConditionTable(records)
     results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
-               "sessions": None, "modes": table.summary(), "mode_order": [], "games": {}, "sign_tests": [],
-               "click": None, "figures": [], "notes": [], "conditions": table.records, "conditions_file": source}
+               "sessions": None, "conditions_file": source, "conditions": table.records, "condition_order": [],
+               "games": {}, "sign_tests": [], "matches": None, "figures": [], "notes": []}
     if isinstance(sessions, str):
         results["notes"].append(sessions)
     else:
         results["sessions"] = sessions
     if source is None:
-        results["notes"].append("No modes.csv (an export from before warplab wrote one): modes in the order of their "
-                                "ids, none known as an upconversion mode, so no Table 2 and no histograms.")
+        results["notes"].append("No modes.csv (an export from before warplab wrote one): conditions in the order of "
+                                "their ids, none known as an upconverting condition, so no Table 2 and no "
+                                "histograms.")
     elif source == inputs.MODES:
-        results["inputs"][inputs.MODES] = {"modes": len(records)}
+        results["inputs"][inputs.MODES] = {"conditions": len(records)}
     else:
         results["inputs"][inputs.CONDITIONS] = {"rows": len(records), "conditions": len(table.rows)}
     results["notes"] += table_notes
@@ -281,16 +282,16 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
         results["inputs"][inputs.RATINGS] = {"statements": len(statements[0])}
     seen = set()
     for part in [results] + results.get("player_groups", []):
-        seen |= {c for g in part["games"].values() for c in g["modes"]}
-        if part["click"]:
-            seen |= set(part["click"]["modes"])
-    results["mode_order"] = table.order(seen)
+        seen |= {c for g in part["games"].values() for c in g["conditions"]}
+        if part["matches"]:
+            seen |= set(part["matches"]["conditions"])
+    results["condition_order"] = table.order(seen)
     for part in [results] + results.get("player_groups", []):
-        part["questions"] = questions.summarise(part.pop("answers"), results["mode_order"], natural_key)
-    unlisted = [c for c in results["mode_order"] if not table.known(c)]
+        part["questions"] = questions.summarise(part.pop("answers"), results["condition_order"], natural_key)
+    unlisted = [c for c in results["condition_order"] if not table.known(c)]
     if source is not None and unlisted:
         results["notes"].append(f"{source} does not list {', '.join(unlisted)}: they follow the others by name, and "
-                                "none counts as an upconversion mode.")
+                                "none counts as an upconverting condition.")
     return results
 
 
@@ -329,8 +330,8 @@ def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_
     for game, summary in part["games"].items():
         stem = file_stem(prefix + game, taken)
         name = f"{stem}_hit_rates.png"
-        labels = {c: legend_label(c, table.latency(c, game)) for c in summary["modes"]}
-        figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
+        labels = {c: legend_label(c, table.latency(c, game)) for c in summary["conditions"]}
+        figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["conditions"],
                                  summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette,
                                  labels)
         summary["figures"]["hit_rates"] = name
@@ -347,14 +348,14 @@ def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_
             figures.differences_figure(os.path.join(out_dir, name), game, panels, palette)
             summary["figures"]["differences"] = name
             written.append(name)
-        elif len(summary["modes"]) > 1:
+        elif len(summary["conditions"]) > 1:
             upconverting = [c for c in palette if table.upconverts(c)]
             lists_none = f"{conditions_file or inputs.MODES} lists none"
-            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or lists_none}): "
+            summary["notes"].append(f"No upconverting condition ({', '.join(upconverting) or lists_none}): "
                                     "no histograms of differences.")
-    matches = part["click"]
-    if matches and matches["modes"]:
-        name = file_stem(prefix + "click_measures", taken) + ".png"
+    matches = part["matches"]
+    if matches and matches["conditions"]:
+        name = file_stem(prefix + "matches", taken) + ".png"
         figures.matches_figure(os.path.join(out_dir, name), matches, palette)
         matches["figure"] = name
         written.append(name)

@@ -160,7 +160,7 @@ def main():
     (Path(args.out) / "population.json").write_text(json.dumps(fitted, indent=2) + "\n")
     (Path(args.out) / "fit.json").write_text(json.dumps({"paper_ratio": PAPER_RATIO, "fitted": FITTED,
                                                          "evaluations": log, "best": best}, indent=2) + "\n")
-    print("\nmode             paper  fitted")
+    print("\ncondition        paper  fitted")
     for condition in CONDITIONS:
         print(f"{condition:16s} {PAPER_RATIO[condition]:.3f}  {best['ratio'][condition]:.3f}")
     return 0

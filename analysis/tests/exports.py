@@ -25,14 +25,14 @@ def write(path, lines):
 
 def with_modes(export, extra=()):
     """modes.csv as warplab exports it (the nine published presets; test_round_trip checks the copy
-    against a real export), plus `extra` rows: what the analysis knows of the modes."""
+    against a real export), plus `extra` rows: what the analysis knows of the conditions."""
     lines = (DATA / "modes.csv").read_text(encoding="utf-8").splitlines() + list(extra)
     write(export / "modes.csv", lines)
     return export
 
 
 def hitrate_lines(rows, game="shooter"):
-    """rows: (participant, mode, hits, shots)."""
+    """rows: (participant, condition, hits, shots)."""
     return [HITRATES_HEADER] + [f"{p},{game},{m},{s},{h},0,{h / s:.6f}" for p, m, h, s in rows]
 
 
@@ -47,11 +47,11 @@ def sign_test(report, a, b, game="shooter"):
     return test
 
 
-# The click game: two scored matches per participant and mode, a practice match that must not
+# The click game: two scored matches per participant and condition, a practice match that must not
 # count, two rating statements; P5 lacks conv15 (paired tests use whom they can, the ANOVA drops P5).
-MODES = ["bireproj15to60", "conv60", "conv15"]
+CLICK_CONDITIONS = ["bireproj15to60", "conv60", "conv15"]
 STATEMENTS = ["I enjoyed playing this game", "This game was difficult to play"]
-# (participant, mode): [(green, red, misses, rating_1, rating_2), ...]; None: the rating is missing.
+# (participant, condition): [(green, red, misses, rating_1, rating_2), ...]; None: the rating is missing.
 CLICK = {
     ("P1", "bireproj15to60"): [(30, 3, 20, 5, 4), (32, 2, 22, 6, 4)],
     ("P1", "conv60"): [(41, 1, 15, 6, 3), (44, 2, 14, 7, 2)],
@@ -80,7 +80,7 @@ GAMES_HEADER = "game,hits_are,shots_are"
 
 
 def write_click_export(export, game="click", rename=None, table=None, scale=None):
-    """rename: {mode of CLICK: the name the export gives it}; table: writes the condition table
+    """rename: {condition of CLICK: the name the export gives it}; table: writes the condition table
     (default: with_modes); scale: (ratings.min, ratings.max) for ratings.csv's scale_min and
     scale_max, None for an export from before those columns."""
     rename = rename or {}
@@ -93,20 +93,20 @@ def write_click_export(export, game="click", rename=None, table=None, scale=None
     hitrates = {}
     k = 0
     for (p, preset), games in CLICK.items():
-        mode = rename.get(preset, preset)
+        condition = rename.get(preset, preset)
         practice = [(99, 0, 0, 1, 1)]  # wild values: must be ignored
         for scored, (g, r, m, *rs) in [(False, x) for x in practice] + [(True, x) for x in games]:
             phase, flag = ("scored", "true") if scored else ("practice", "false")
-            stand_in = "bidirectional reprojection" if mode == "bireproj15to60" else ""
-            matches.append(f"{p},{p}_s.db,{phase},{flag},{k},{mode},{stand_in},{g},{r},{m},{g + r + m},45.0,"
+            stand_in = "bidirectional reprojection" if condition == "bireproj15to60" else ""
+            matches.append(f"{p},{p}_s.db,{phase},{flag},{k},{condition},{stand_in},{g},{r},{m},{g + r + m},45.0,"
                            + ",".join(fmt_cell(v) for v in rs))
             for i, v in enumerate(rs):
                 if v is not None:
-                    ratings.append(f'{p},{p}_s.db,{phase},{flag},{k},{mode},{i},"{STATEMENTS[i]}",{v},key'
+                    ratings.append(f'{p},{p}_s.db,{phase},{flag},{k},{condition},{i},"{STATEMENTS[i]}",{v},key'
                                    + scale_cells)
             if scored:
-                hits, shots = hitrates.get((p, mode), (0, 0))
-                hitrates[(p, mode)] = (hits + g, shots + g + r + m)
+                hits, shots = hitrates.get((p, condition), (0, 0))
+                hitrates[(p, condition)] = (hits + g, shots + g + r + m)
             k += 1
     write(export / "matches.csv", matches)
     write(export / "ratings.csv", ratings)

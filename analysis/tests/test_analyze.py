@@ -58,7 +58,7 @@ def test_thesis_sign_tests(thesis):
     # Two-sided: twice the smaller tail here (n = 20, p = 1/2 is symmetric).
     assert vs15["p_two_sided"] == pytest.approx(2 * 21 / 2 ** 20, rel=1e-12)
     assert vs120["p_greater"] == 1.0 and vs15["p_less"] == pytest.approx(1 - 1 / 2 ** 20, rel=1e-12)
-    # Pairs follow the mode order: warp first, then conv120 before conv15; every pair once.
+    # Pairs follow the condition order: warp first, then conv120 before conv15; every pair once.
     assert [(t["a"], t["b"]) for t in report["sign_tests"]] == [
         ("warp15to120", "conv120"), ("warp15to120", "conv15"), ("conv120", "conv15")]
 
@@ -71,9 +71,9 @@ def test_thesis_table2_differences(thesis):
     for participant, (d15, d120) in THESIS_TABLE2.items():
         assert vs15[participant] == pytest.approx(d15, abs=5e-4), participant
         assert vs120[participant] == pytest.approx(d120, abs=5e-4), participant
-    # report.json's Table 2: sorted by the difference to conv15 (the lowest-rate conventional mode).
+    # report.json's Table 2: sorted by the difference to conv15 (the lowest-rate conventional condition).
     (table2,) = report["games"]["shooter"]["upconversion_differences"]
-    assert table2["mode"] == "warp15to120" and table2["sorted_by"] == "conv15"
+    assert table2["condition"] == "warp15to120" and table2["sorted_by"] == "conv15"
     assert table2["against"] == ["conv15", "conv120"]
     column = [row["differences"]["conv15"] for row in table2["rows"]]
     assert column == sorted(column) and table2["rows"][0]["participant"] == "16"
@@ -94,7 +94,7 @@ def test_thesis_report_json_keys_and_files(thesis):
         assert set(test["diff_quartiles"]) == {"min", "q25", "median", "q75", "max"}
         assert all(isinstance(test[k], float) for k in ("p_greater", "p_less", "p_two_sided"))
         assert test["participants"] == 20
-    assert report["click"] is None and list(report["games"]) == ["shooter"]
+    assert report["matches"] is None and list(report["games"]) == ["shooter"]
     for name in ("report.md", "report.json", "shooter_hit_rates.png", "shooter_differences.png"):
         assert (out / name).is_file(), name
     assert (out / "shooter_hit_rates.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -151,7 +151,7 @@ def test_type7_quartiles_by_hand():
     assert stats.quartiles([]) is None
 
 
-def test_one_mode_games_and_missing_modes(tmp_path):
+def test_one_condition_games_and_missing_conditions(tmp_path):
     rows = [("NA", "warp15to120", 5, 10), ("NA", "conv15", 3, 10), ("'=1+1", "warp15to120", 4, 10),
             ("'=1+1", "conv15", 5, 10), ("x", "warp15to120", 6, 10)]  # x lacks conv15: left out of the pair
     lines = hitrate_lines(rows) + hitrate_lines([("p1", "conv60", 1, 5), ("p2", "conv60", 2, 5)], "other")[1:]
@@ -162,15 +162,16 @@ def test_one_mode_games_and_missing_modes(tmp_path):
     assert test["participants"] == 2 and set(test["differences"]) == {"NA", "'=1+1"}
     assert (test["positive"], test["negative"]) == (1, 1)
     assert not [t for t in report["sign_tests"] if t["game"] == "other"]
-    assert report["games"]["other"]["modes"] == ["conv60"]
+    assert report["games"]["other"]["conditions"] == ["conv60"]
     md = (tmp_path / "out" / "report.md").read_text()
-    assert "Only one mode (conv60): no pairs to test." in md
+    assert "Only one condition (conv60): no pairs to test." in md
 
 
 
-def test_a_mode_played_without_a_shot_has_no_rate_and_enters_no_test(tmp_path):
-    # hitrates.csv has a row for every participant x mode run; one without a click (shots 0, an
-    # empty hit_rate) is as if the participant lacked the mode: no 0/0, no rate of 0 in a mean.
+def test_a_condition_played_without_a_shot_has_no_rate_and_enters_no_test(tmp_path):
+    # hitrates.csv has a row for every participant x condition run; one without a click (shots 0,
+    # an empty hit_rate) is as if the participant lacked the condition: no 0/0, no rate of 0 in a
+    # mean.
     rows = [("a", "warp15to120", 5, 10), ("a", "conv15", 3, 10), ("b", "warp15to120", 4, 10),
             ("b", "conv15", 5, 10), ("c", "warp15to120", 6, 10)]
     write(with_modes(tmp_path) / "hitrates.csv", hitrate_lines(rows) + ["c,shooter,conv15,0,0,0,"])
@@ -181,9 +182,9 @@ def test_a_mode_played_without_a_shot_has_no_rate_and_enters_no_test(tmp_path):
     assert "conv15" not in report["games"]["shooter"]["hit_rates"]["c"]
 
 
-def test_modes_follow_modes_csv(tmp_path):
-    # A mode the analysis has never heard of, described by modes.csv alone: a 20 Hz conventional
-    # mode and a made-up upconversion mode. Order, Table 2 and descriptions all follow the file.
+def test_conditions_follow_modes_csv(tmp_path):
+    # Conditions the analysis has never heard of, described by modes.csv alone: a 20 Hz conventional
+    # one and a made-up upconverting one. Order, Table 2 and descriptions all follow the file.
     with_modes(tmp_path, ['conv20,"conventional rendering at 20 Hz, held",20,0,none,,,false',
                           'blend20to60,"blended from 20 Hz, to 60 Hz",20,0,bidirectional,60,blend,true'])
     rows = [(p, m, h, 20) for p, base in (("a", 5), ("b", 7), ("c", 9))
@@ -191,35 +192,35 @@ def test_modes_follow_modes_csv(tmp_path):
     write(tmp_path / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
-    assert report["games"]["shooter"]["modes"] == ["blend20to60", "conv20", "conv15", "lag50"]
+    assert report["games"]["shooter"]["conditions"] == ["blend20to60", "conv20", "conv15", "lag50"]
     (table2,) = report["games"]["shooter"]["upconversion_differences"]
-    assert table2["mode"] == "blend20to60" and table2["sorted_by"] == "conv15"
+    assert table2["condition"] == "blend20to60" and table2["sorted_by"] == "conv15"
     assert sign_test(report, "blend20to60", "conv15")["positive"] == 3
     md = (tmp_path / "out" / "report.md").read_text()
     assert "blend20to60 (blended from 20 Hz, to 60 Hz); conv20 (conventional rendering at 20 Hz, held)" in md
     assert (tmp_path / "out" / "shooter_differences.png").is_file()
 
 
-def test_without_modes_csv_modes_are_in_id_order_with_a_note(tmp_path):
+def test_without_a_condition_table_conditions_are_in_id_order_with_a_note(tmp_path):
     rows = [(p, m, h, 20) for p, h in (("a", 5), ("b", 7)) for m in ("warp15to120", "conv15")]
     write(tmp_path / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
-    assert report["games"]["shooter"]["modes"] == ["conv15", "warp15to120"]
+    assert report["games"]["shooter"]["conditions"] == ["conv15", "warp15to120"]
     assert report["games"]["shooter"]["upconversion_differences"] == []
     md = (tmp_path / "out" / "report.md").read_text()
-    assert "No modes.csv" in md and "Modes: conv15; warp15to120." in md
+    assert "No modes.csv" in md and "Conditions: conv15; warp15to120." in md
 
 
 # What the analysis reported for exports written before conditions.csv (modes.csv, or neither),
-# as analysis/analyze wrote it from these exports before it read conditions.csv. Such an export
-# must keep giving the same numbers, orders and notes.
+# as analysis/analyze wrote it from these exports before it read conditions.csv, in the report's
+# names since (condition where it said mode; `matches` where it said `click`; its one entry per
+# condition, then `modes`, as `conditions` with each name's description, render_hz, added_lag_ms
+# and upconverts). Such an export must keep giving the same numbers, orders and notes.
 BEFORE = DATA / "modes_csv_reports"
-# report.json's keys that the analysis has added since the pinned reports were written: the
-# condition table's rows (here modes.csv's, mapped) and which file they come from.
-# Added since, each said once: who played (unknown in these exports: a note), the questions.
-ADDED_KEYS = {"conditions", "conditions_file", "players", "questions", "group_notes"}
-
+# report.json's keys that the analysis has added since the pinned reports were written: which file
+# the condition table comes from; who played (unknown in these exports: a note), the questions.
+ADDED_KEYS = {"conditions_file", "players", "questions", "group_notes"}
 
 
 def without_conditions_section(md):
@@ -238,7 +239,11 @@ def test_modes_csv_export_reports_as_before(tmp_path, name):
     assert report.pop("export_dir") == str(export)
     assert set(report) - set(expected) == ADDED_KEYS and set(expected) <= set(report)
     assert report["conditions_file"] == ("modes.csv" if name == "both" else None)
-    assert [r["condition"] for r in report["conditions"]] == [m["mode"] for m in expected["modes"]]
+    assert [r["condition"] for r in report["conditions"]] == [c["condition"] for c in expected["conditions"]]
+    # Each row has gained the parts a condition table gives since (fill, late warp, refresh, game,
+    # latencies): compared, the rows keep what the pinned ones say.
+    pinned = list(expected["conditions"][0]) if expected["conditions"] else []
+    report["conditions"] = [{k: row[k] for k in pinned} for row in report["conditions"]]
     if report["sessions"]:
         assert report["sessions"].pop("players") == {"human": 5}  # added since: who played, by kind
     report["notes"].remove(players.UNKNOWN_NOTE)
@@ -269,7 +274,7 @@ BAD_CASES = {
                          "line 2"),
     "bad rating": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,5,good"], "'rating_2'",
                    "line 2"),
-    # Yang et al.'s scale, 1 to 7 (the protocol's default): a 9 would move the mode's mean.
+    # Yang et al.'s scale, 1 to 7 (the protocol's default): a 9 would move the condition's mean.
     "rating above the scale": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,9,3"],
                                "'rating_1'", "line 2, column 'rating_1' is 9, outside the rating scale 1 to 7"),
     "rating below the scale": ("matches.csv", [MATCH_HEADER, "a,s,scored,true,0,conv15,,1,1,2,4,45,4,0"],
@@ -333,12 +338,13 @@ def test_entry_point_writes_the_report(tmp_path):
     assert result.returncode == 0, result.stderr
     printed = result.stdout.split()
     for name in ("report.md", "report.json", "shooter_hit_rates.png", "shooter_differences.png",
-                 "click_hit_rates.png", "click_measures.png"):
+                 "click_hit_rates.png", "matches.png"):
         assert (out / name).is_file() and str(out / name) in printed, name
     md = (out / "report.md").read_text()
     assert md.index("## Shooter") < md.index("## Click game")
     report = json.loads((out / "report.json").read_text())
-    assert set(report["games"]) == {"shooter", "click"} and report["click"]["reference_mode"] == "bireproj15to60"
+    assert (set(report["games"]) == {"shooter", "click"}
+            and report["matches"]["reference_condition"] == "bireproj15to60")
 
 
 def test_entry_point_bad_input_has_no_traceback(tmp_path):
@@ -360,8 +366,8 @@ def test_a_study_of_1700_participants_gets_readable_figures(tmp_path):
     export = tmp_path / "export"
     export.mkdir()
     with_modes(export)
-    rows = [(f"P{k}", mode, 20 + (k * 7 + j * 5) % 40, 80)
-            for k in range(1, 1701) for j, mode in enumerate(("warp15to120", "conv15", "conv120"))]
+    rows = [(f"P{k}", condition, 20 + (k * 7 + j * 5) % 40, 80)
+            for k in range(1, 1701) for j, condition in enumerate(("warp15to120", "conv15", "conv120"))]
     write(export / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(export, tmp_path / "out")
     assert code == 0
@@ -378,8 +384,8 @@ def test_the_thesis_data_stands_beside_itself(thesis):
     md = (out / "report.md").read_text(encoding="utf-8")
     rows = {cells[0]: cells for cells in papers_rows(md, "the thesis's Table 1")}
     assert "sessions.csv does not say who played" in md
-    for mode, (mean, sd) in papers.thesis_hit_rates().items():
-        cells = rows[mode]
+    for condition, (mean, sd) in papers.thesis_hit_rates().items():
+        cells = rows[condition]
         assert cells[1] == cells[4] == f"{mean:.3f}"
         assert cells[2] == cells[5] == f"{sd:.3f}"
         assert cells[3] == cells[6]

@@ -11,7 +11,7 @@ import sys
 import pytest
 import scipy.stats
 
-from exports import (CLICK, GAMES_HEADER, MODES, STATEMENTS, papers_rows, run_in_process, write,
+from exports import (CLICK, GAMES_HEADER, CLICK_CONDITIONS, STATEMENTS, papers_rows, run_in_process, write,
                      write_click_export)
 
 import analyze  # noqa: E402  (importing exports has put analysis/ on the path)
@@ -19,11 +19,11 @@ from warplab_analysis import stats  # noqa: E402
 
 
 def participant_means(index):
-    """{participant: {mode: mean over that participant's scored matches}} of measure `index`."""
+    """{participant: {condition: mean over that participant's scored matches}} of measure `index`."""
     means = {}
-    for (p, mode), games in CLICK.items():
+    for (p, condition), games in CLICK.items():
         values = [g[index] for g in games if g[index] is not None]
-        means.setdefault(p, {})[mode] = sum(values) / len(values)
+        means.setdefault(p, {})[condition] = sum(values) / len(values)
     return means
 
 
@@ -39,45 +39,45 @@ def click(tmp_path_factory):
 
 def test_click_means_and_sds(click):
     report, _ = click
-    c = report["click"]
-    assert c["reference_mode"] == "bireproj15to60" and c["modes"] == MODES
+    c = report["matches"]
+    assert c["reference_condition"] == "bireproj15to60" and c["conditions"] == CLICK_CONDITIONS
     assert c["scored_matches"] == 28 and c["participants"] == ["P1", "P2", "P3", "P4", "P5"]
     assert list(c["measures"]) == ["green_hits", "red_hits", "misses", "rating_1", "rating_2"]
     assert [m["label"] for m in c["measures"].values()] == ["Green hits", "Red hits", "Misses"] + STATEMENTS
     for index, key in enumerate(c["measures"]):
         means = participant_means(index)
-        for mode in MODES:
-            values = [row[mode] for row in means.values() if mode in row]
-            entry = c["measures"][key]["modes"][mode]
+        for condition in CLICK_CONDITIONS:
+            values = [row[condition] for row in means.values() if condition in row]
+            entry = c["measures"][key]["conditions"][condition]
             assert entry["n"] == len(values)
             assert entry["mean"] == pytest.approx(statistics.mean(values), rel=1e-12)
             assert entry["sd"] == pytest.approx(statistics.stdev(values), rel=1e-12)
     # A hand check on one cell: conv60 green hits per participant 42.5, 37, 46, 38, 41.
-    assert c["measures"]["green_hits"]["modes"]["conv60"]["mean"] == pytest.approx(40.9)
+    assert c["measures"]["green_hits"]["conditions"]["conv60"]["mean"] == pytest.approx(40.9)
     # P2's missing rating: their bireproj mean of rating_2 is the one answered match (5).
     assert c["measures"]["rating_2"]["participant_means"]["P2"]["bireproj15to60"] == 5.0
 
 
 def test_click_paired_t_against_hand_formula(click):
     report, _ = click
-    c = report["click"]
+    c = report["matches"]
     for index, key in enumerate(c["measures"]):
         means = participant_means(index)
-        for mode in ("conv60", "conv15"):
-            d = [row[mode] - row["bireproj15to60"] for row in means.values() if mode in row]
+        for condition in ("conv60", "conv15"):
+            d = [row[condition] - row["bireproj15to60"] for row in means.values() if condition in row]
             n = len(d)
             mean, sd = sum(d) / n, math.sqrt(sum((x - sum(d) / n) ** 2 for x in d) / (n - 1))
             t = mean / (sd / math.sqrt(n))
             p = 2 * scipy.stats.t.sf(abs(t), n - 1)
-            v = c["measures"][key]["modes"][mode]["vs_reference"]
+            v = c["measures"][key]["conditions"][condition]["vs_reference"]
             assert v["n"] == n and v["df"] == n - 1
             assert v["t"] == pytest.approx(t, rel=1e-9) and v["p_t"] == pytest.approx(p, rel=1e-9)
             positive, negative = sum(x > 0 for x in d), sum(x < 0 for x in d)
             assert (v["positive"], v["negative"], v["ties"]) == (positive, negative, n - positive - negative)
             assert 0.0 < v["p_wilcoxon"] <= 1.0 and 0.0 < v["p_sign"] <= 1.0
-    assert c["measures"]["green_hits"]["modes"]["bireproj15to60"]["vs_reference"] is None
+    assert c["measures"]["green_hits"]["conditions"]["bireproj15to60"]["vs_reference"] is None
     # Green hits, conv60 against bireproj: every participant hit more, so the sign test is 2 / 2^5.
-    v = c["measures"]["green_hits"]["modes"]["conv60"]["vs_reference"]
+    v = c["measures"]["green_hits"]["conditions"]["conv60"]["vs_reference"]
     assert (v["positive"], v["n"]) == (5, 5) and v["p_sign"] == pytest.approx(2 / 32, rel=1e-12)
     # Wilcoxon, exact: all five signed ranks positive, two-sided p = 2 / 2^5.
     assert v["p_wilcoxon"] == pytest.approx(2 / 32, rel=1e-12)
@@ -86,17 +86,17 @@ def test_click_paired_t_against_hand_formula(click):
 def test_click_anova_against_hand_formula(click):
     pytest.importorskip("statsmodels")
     report, _ = click
-    c = report["click"]
+    c = report["matches"]
     for index, key in enumerate(c["measures"]):
         means = participant_means(index)
-        complete = [row for row in means.values() if all(m in row for m in MODES)]  # P5 dropped
-        n, k = len(complete), len(MODES)
-        grand = sum(row[m] for row in complete for m in MODES) / (n * k)
-        ss_modes = n * sum((sum(row[m] for row in complete) / n - grand) ** 2 for m in MODES)
-        ss_subjects = k * sum((sum(row[m] for m in MODES) / k - grand) ** 2 for row in complete)
-        ss_total = sum((row[m] - grand) ** 2 for row in complete for m in MODES)
-        ss_error = ss_total - ss_modes - ss_subjects
-        f = (ss_modes / (k - 1)) / (ss_error / ((k - 1) * (n - 1)))
+        complete = [row for row in means.values() if all(m in row for m in CLICK_CONDITIONS)]  # P5 dropped
+        n, k = len(complete), len(CLICK_CONDITIONS)
+        grand = sum(row[m] for row in complete for m in CLICK_CONDITIONS) / (n * k)
+        ss_conditions = n * sum((sum(row[m] for row in complete) / n - grand) ** 2 for m in CLICK_CONDITIONS)
+        ss_subjects = k * sum((sum(row[m] for m in CLICK_CONDITIONS) / k - grand) ** 2 for row in complete)
+        ss_total = sum((row[m] - grand) ** 2 for row in complete for m in CLICK_CONDITIONS)
+        ss_error = ss_total - ss_conditions - ss_subjects
+        f = (ss_conditions / (k - 1)) / (ss_error / ((k - 1) * (n - 1)))
         anova = c["measures"][key]["anova"]
         assert anova["F"] == pytest.approx(f, rel=1e-9)
         assert (anova["df_num"], anova["df_den"]) == (k - 1, (k - 1) * (n - 1))
@@ -108,17 +108,17 @@ def test_click_report_and_figures(click):
     report, out = click
     md = (out / "report.md").read_text()
     assert "## Click game" in md and "I enjoyed playing this game" in md
-    assert "F(1, n − 1) = t²" in md and "](click_measures.png)" in md
+    assert "F(1, n − 1) = t²" in md and "](matches.png)" in md
     assert "Sessions (sessions.csv): 5 of 6 included" in md
     assert "Table 1 (click)" in md  # hit rates: green hits / clicks, with their sign tests
     assert "#### Planning (click): participants for 80 % power" in md  # and what a study would need
     assert all(t["planning"]["pilot_participants"] == t["participants"] for t in report["sign_tests"])
-    assert (out / "click_measures.png").stat().st_size > 10_000
+    assert (out / "matches.png").stat().st_size > 10_000
     assert "Pulkkinen" not in md  # no shooter data, no shooter section
     assert [t["game"] for t in report["sign_tests"]] == ["click"] * 3
     # games.csv's words for what the click game's hit rate counts.
     assert "rate = green hits out of clicks" in md and "### Hit rates: green hits / clicks" in md
-    assert report["click"]["game"] == "click"
+    assert report["matches"]["game"] == "click"
     assert report["games"]["click"]["hits_are"] == "green hits"
 
 
@@ -146,7 +146,7 @@ def test_the_condition_column_reads_under_its_old_name_too(tmp_path):
     for report in (report_old, report_new):
         report.pop("export_dir")
     assert report_new == report_old
-    assert report_new["click"]["modes"] == MODES
+    assert report_new["matches"]["conditions"] == CLICK_CONDITIONS
 
 
 def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
@@ -159,13 +159,13 @@ def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     assert "## Spheres game (Yang et al. 2011, seed 000 §8)" in md and "Click game" not in md
     assert "F(1, n − 1) = t²" in md and "Pulkkinen" not in md
     assert "rate = green hits out of clicks" in md and "### Hit rates: green hits / clicks" in md
-    assert report["click"]["game"] == "spheres" and report["click"]["modes"] == MODES
+    assert report["matches"]["game"] == "spheres" and report["matches"]["conditions"] == CLICK_CONDITIONS
     # Without sessions.csv nothing says whose matches they are: a section of their own.
     (tmp_path / "sessions.csv").unlink()
     code, report = run_in_process(tmp_path, tmp_path / "out2")
     assert code == 0
     md = (tmp_path / "out2" / "report.md").read_text()
-    assert report["click"]["game"] is None
+    assert report["matches"]["game"] is None
     assert "## Matches (Yang et al. 2011, seed 000 §8)" in md and "## Spheres: hit rates" in md
     assert md.index("## Spheres: hit rates") < md.index("## Matches")
     # games.csv's `tables` (exports since games own their tables) says it without sessions.csv.
@@ -173,7 +173,7 @@ def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     write(tmp_path / "games.csv", [GAMES_HEADER + ",tables", "shooter,hits,shots,",
                                    "spheres,green hits,clicks,matches.csv;ratings.csv"])
     code, report = run_in_process(tmp_path, tmp_path / "out3")
-    assert code == 0 and report["click"]["game"] == "spheres"
+    assert code == 0 and report["matches"]["game"] == "spheres"
 
 
 
@@ -183,13 +183,13 @@ def test_click_reference_fallback_and_no_statsmodels(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "statsmodels.stats.anova", None)
     code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-mode", "warp15to120")
     assert code == 0
-    c = report["click"]
-    assert c["reference_mode"] == "bireproj15to60" and c["reference_requested"] == "warp15to120"
+    c = report["matches"]
+    assert c["reference_condition"] == "bireproj15to60" and c["reference_requested"] == "warp15to120"
     assert any("warp15to120 is not in the scored matches" in note for note in c["notes"])
     assert c["anova_available"] is False and all(m["anova"] is None for m in c["measures"].values())
-    assert c["measures"]["green_hits"]["modes"]["conv60"]["vs_reference"]["p_t"] > 0
+    assert c["measures"]["green_hits"]["conditions"]["conv60"]["vs_reference"]["p_t"] > 0
     md = (tmp_path / "out" / "report.md").read_text()
-    assert "statsmodels is not installed" in md and "Reference mode: bireproj15to60." in md
+    assert "statsmodels is not installed" in md and "Reference condition: bireproj15to60." in md
 
 
 def test_paired_tests_with_all_differences_zero():
@@ -200,7 +200,7 @@ def test_paired_tests_with_all_differences_zero():
 def test_all_phases_export_counts_only_scored_rows(click):
     report, _ = click
     # The practice matches have 99 green hits; a mean above 50 would mean one was counted.
-    assert all(e["mean"] < 50 for e in report["click"]["measures"]["green_hits"]["modes"].values())
+    assert all(e["mean"] < 50 for e in report["matches"]["measures"]["green_hits"]["conditions"].values())
 
 
 def drop_column(path, name):
@@ -258,7 +258,7 @@ def test_a_study_on_a_0_to_10_scale_needs_no_flag(tmp_path):
     set_scored_rating(tmp_path, 9)
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
-    means = report["click"]["measures"]["rating_1"]["participant_means"]
+    means = report["matches"]["measures"]["rating_1"]["participant_means"]
     assert means["P1"]["bireproj15to60"] == (9 + 6) / 2
 
 
@@ -340,7 +340,7 @@ def test_half_a_recorded_scale_is_refused(tmp_path, capsys):
 
 def test_anova_without_residual_variation_is_infinite_not_rounding_noise():
     pytest.importorskip("statsmodels")
-    # Every participant rates each mode the same amount above their own level: no residual.
+    # Every participant rates each condition the same amount above their own level: no residual.
     values = {f"p{k}": {"a": 1.0 + k * 0.1, "b": 3.0 + k * 0.1, "c": 2.0 + k * 0.1} for k in range(5)}
     result = stats.rm_anova(values, ["a", "b", "c"])
     assert result["F"] == math.inf and result["p"] == 0.0
@@ -362,7 +362,7 @@ def test_a_simulated_study_says_so_beside_yangs_people(tmp_path):
     assert "participants are **simulated**" in md
     rows = {(cells[0], cells[1]): cells for cells in papers_rows(md, "Yang et al.'s Table 2")}
     green = rows[("Green hits", "conv15")]
-    ours = report["click"]["measures"]["green_hits"]["modes"]
+    ours = report["matches"]["measures"]["green_hits"]["conditions"]
     assert green[2] == f"{ours['conv15']['mean']:.2f}"
     assert green[4] == f"{ours['conv15']['mean'] / ours['conv60']['mean']:.2f}"
     assert green[5:] == ["31.89", "6.82", f"{31.89 / 43.79:.2f}"]

@@ -87,9 +87,3 @@ class ConditionTable:
         return (min(r["view_latency_min_ms"] for r in rows), max(r["view_latency_max_ms"] for r in rows),
                 min(r["scene_latency_min_ms"] for r in rows), max(r["scene_latency_max_ms"] for r in rows))
 
-    def summary(self):
-        """One entry per name, in the table's order, with what the order uses (report.json's `modes`;
-        for a modes.csv export the file's own rows)."""
-        return [{"mode": name, "description": self.description(name), "render_rate_hz": self.first(name)["render_hz"],
-                 "added_lag_ms": self.added_lag_ms(name), "upconverts": self.upconverts(name)}
-                for name in self.rows]

@@ -63,10 +63,10 @@ def hit_rates_figure(path, game, participants, conditions, hit_rates, measure, p
     ax.set_ylim(0, 1.02)
     ax.set_xlabel("participant")
     ax.set_ylabel(f"hit rate ({measure})")
-    ax.set_title(f"{game}: hit rate per participant and mode")
+    ax.set_title(f"{game}: hit rate per participant and condition")
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     # Beside the axes, not over them: with points only, any corner may hold a participant's rate.
-    ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+    ax.legend(title="condition", fontsize=8, title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0),
               framealpha=0.9)
     fig.tight_layout()
     fig.savefig(path)
@@ -94,9 +94,9 @@ def hit_rates_summary_figure(path, game, participants, conditions, hit_rates, me
     ax.set_xticklabels([labels.get(c, c) for c in conditions], rotation=30, ha="right", fontsize=8)
     ax.set_xlim(-0.6, len(conditions) - 0.2)
     ax.set_ylim(0, 1.02)
-    ax.set_xlabel("mode")
+    ax.set_xlabel("condition")
     ax.set_ylabel(f"hit rate ({measure})")
-    ax.set_title(f"{game}: hit rate per mode over {len(participants)} participants (box: quartiles; dots: "
+    ax.set_title(f"{game}: hit rate per condition over {len(participants)} participants (box: quartiles; dots: "
                  "participants)", fontsize=10)
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     fig.tight_layout()
@@ -122,7 +122,7 @@ def differences_figure(path, game, panels, palette):
             ax.hist(values, bins=bins(values), color=colour(condition, palette), edgecolor="black", linewidth=0.6)
             ax.axvline(0.0, color="0.3", linestyle="--", linewidth=0.9)
         else:
-            ax.text(0.5, 0.5, "no participant has both modes", ha="center", va="center", transform=ax.transAxes,
+            ax.text(0.5, 0.5, "no participant has both conditions", ha="center", va="center", transform=ax.transAxes,
                     fontsize=8)
         ax.set_title(f"{condition} − {other}", fontsize=9)
         ax.set_xlabel("hit-rate difference")
@@ -130,7 +130,7 @@ def differences_figure(path, game, panels, palette):
         ax.yaxis.get_major_locator().set_params(integer=True)
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
-    fig.suptitle(f"{game}: hit-rate differences, upconversion against each other mode (bins of {BIN_WIDTH:g})",
+    fig.suptitle(f"{game}: hit-rate differences, upconversion against each other condition (bins of {BIN_WIDTH:g})",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)
@@ -141,20 +141,20 @@ def matches_figure(path, matches, palette):
     """Each measure of the matches (analyze.analyse_matches): per condition the mean ± SD across
     participants, a panel per measure."""
     measures = list(matches["measures"].values())
-    conditions = matches["modes"]
+    conditions = matches["conditions"]
     columns = min(4, len(measures))
     rows = math.ceil(len(measures) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.4 * rows), dpi=110, squeeze=False)
     x = np.arange(len(conditions))
     for k, (ax, measure) in enumerate(zip(axes.flat, measures)):
-        means = [measure["modes"][c]["mean"] for c in conditions]
-        sds = [measure["modes"][c]["sd"] for c in conditions]
+        means = [measure["conditions"][c]["mean"] for c in conditions]
+        sds = [measure["conditions"][c]["sd"] for c in conditions]
         means = [math.nan if v is None else v for v in means]
         sds = [0.0 if v is None else v for v in sds]
         bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(c, palette) for c in conditions],
                       edgecolor="black", linewidth=0.5, error_kw={"linewidth": 0.8})
-        if matches["reference_mode"] in conditions:
-            bars[conditions.index(matches["reference_mode"])].set_linewidth(2.0)
+        if matches["reference_condition"] in conditions:
+            bars[conditions.index(matches["reference_condition"])].set_linewidth(2.0)
         ax.set_xticks(x)
         ax.set_xticklabels(conditions, rotation=60, ha="right", fontsize=7)
         label = measure["label"]
@@ -165,7 +165,7 @@ def matches_figure(path, matches, palette):
     for ax in list(axes.flat)[len(measures):]:
         ax.set_visible(False)
     whose = f"{matches['game']} game" if matches["game"] else "matches"
-    fig.suptitle(f"{whose}: mean ± SD across participants (reference {matches['reference_mode']}, bold outline)",
+    fig.suptitle(f"{whose}: mean ± SD across participants (reference {matches['reference_condition']}, bold outline)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)

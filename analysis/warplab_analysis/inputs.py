@@ -190,7 +190,7 @@ def load_hitrates(export_dir):
         key = (game, participant, condition)
         if key in first_seen:
             raise BadInput(f"{table.path}: line {line}, column 'participant': {participant!r} has a second row "
-                           f"for game {game!r} and mode {condition!r} (the first is on line {first_seen[key]}).")
+                           f"for game {game!r} and condition {condition!r} (the first is on line {first_seen[key]}).")
         first_seen[key] = line
         if shots == 0:
             continue  # a condition played without a shot or click: it ran, but has no rate to compare

@@ -15,7 +15,7 @@ def likert_summary(values):
 
 def summarise(answers, condition_order, order_key):
     """One entry per question (by its place in the protocol and its prompt), in protocol order:
-    {question, question_id, prompt, kind, modes: [...], by_mode: {condition: summary}}; a Likert
+    {question, question_id, prompt, kind, conditions: [...], by_condition: {condition: summary}}; a Likert
     summary likert_summary's, a choice's {n, counts: [{option, text, count}]} by option number, a
     text question's {n, answers: [{participant, block, text}]} by participant then block."""
     questions = {}
@@ -47,6 +47,6 @@ def summarise(answers, condition_order, order_key):
                 by_condition[condition] = {"n": len(rows), "answers": [{"participant": r["participant"],
                                                                         "block": r["block"], "text": r["text"]}
                                                                        for r in listed]}
-        q.update(modes=conditions, by_mode=by_condition)
+        q.update(conditions=conditions, by_condition=by_condition)
         out.append(q)
     return out

@@ -14,6 +14,7 @@ import math
 import statistics
 
 from . import papers, planning, players
+from .conditions import ConditionTable
 
 NOTHING = "–"
 
@@ -45,7 +46,7 @@ def title(game):
 def hit_rate_sections(out, game, summary, tests, level):
     """Tables 1–3 (numbered as the thesis's, labelled with the game), sign tests and figures."""
     h = "#" * level
-    participants, conditions, rates = summary["participants"], summary["modes"], summary["hit_rates"]
+    participants, conditions, rates = summary["participants"], summary["conditions"], summary["hit_rates"]
     out.append(f"{h} Table 1 ({cell(game)}): hits and hit rates per participant\n")
     shots = {rates[p][c]["shots"] for p in participants for c in conditions if c in rates[p]}
     uniform = len(shots) == 1
@@ -60,19 +61,19 @@ def hit_rate_sections(out, game, summary, tests, level):
         row += [fmt(rates[p][c]["hit_rate"], ".3f") if c in rates[p] else NOTHING for c in conditions]
         rows.append(row)
     what = f"{summary['hits_are']} out of {summary['shots_are']}"
-    out.append(f"{len(participants)} participants, {len(conditions)} modes; rate = {what}"
-               + (f", {shots.pop()} per participant and mode" if uniform else "") + "."
-               + (" A dash: the participant has no data in that mode." if any(
+    out.append(f"{len(participants)} participants, {len(conditions)} conditions; rate = {what}"
+               + (f", {shots.pop()} per participant and condition" if uniform else "") + "."
+               + (" A dash: the participant has no data in that condition." if any(
                    c not in rates[p] for p in participants for c in conditions) else "") + "\n")
     out.append(table(header, rows))
     if "hit_rates" in summary["figures"]:
-        out.append(f"![{cell(game)}: hit rate per participant and mode]({summary['figures']['hit_rates']})\n")
+        out.append(f"![{cell(game)}: hit rate per participant and condition]({summary['figures']['hit_rates']})\n")
     for note in summary["notes"]:
         out.append(f"{note}\n")
     if not tests:
         return
-    out.append(f"{h} Sign tests between every two modes\n")
-    out.append("Per participant with both modes, d = rate(a) − rate(b). A tie (equal rates, decided on the "
+    out.append(f"{h} Sign tests between every two conditions\n")
+    out.append("Per participant with both conditions, d = rate(a) − rate(b). A tie (equal rates, decided on the "
                "integer counts) is dropped from n. With X ~ Binomial(n, ½): p(a > b) = P(X ≥ +) tests "
                "whether a beats b, p(a < b) = P(X ≤ +) whether b beats a; two-sided is scipy's binomtest. "
                "Exact, as R's binom.test (seed 004 §7.1).\n")
@@ -82,14 +83,14 @@ def hit_rate_sections(out, game, summary, tests, level):
     out.append(table(["a", "b", "paired", "n", "+", "−", "ties", "p(a > b)", "p(a < b)", "p two-sided"], rows))
     for t in tests:
         if t["n"] == 0:
-            why = "no participant has both modes" if t["participants"] == 0 else "every pair is tied"
+            why = "no participant has both conditions" if t["participants"] == 0 else "every pair is tied"
             out.append(f"{t['a']} against {t['b']}: no untied pairs remain ({why}), so n = 0 and every p is 1.\n")
     for k, upconversion in enumerate(summary["upconversion_differences"]):
-        condition, against, sort_by = upconversion["mode"], upconversion["against"], upconversion["sorted_by"]
+        condition, against, sort_by = upconversion["condition"], upconversion["against"], upconversion["sorted_by"]
         suffix = "abcdefgh"[k % 8] if len(summary["upconversion_differences"]) > 1 else ""
-        out.append(f"{h} Table 2{suffix} ({cell(game)}): {condition} hit rate minus each other mode's\n")
+        out.append(f"{h} Table 2{suffix} ({cell(game)}): {condition} hit rate minus each other condition's\n")
         if not upconversion["rows"]:
-            out.append(f"No participant has {condition} and another mode.\n")
+            out.append(f"No participant has {condition} and another condition.\n")
             continue
         out.append(f"Sorted by the difference to {sort_by}. Positive: {condition} hit more.\n")
         rows = [[cell(r["participant"])] + [fmt(r["differences"].get(o), ".3f") for o in against]
@@ -150,34 +151,34 @@ def matches_sections(out, matches, level):
     h = "#" * level
     for note in matches["notes"]:
         out.append(f"{note}\n")
-    if not matches["modes"]:
+    if not matches["conditions"]:
         return
-    ref = matches["reference_mode"]
-    others = [c for c in matches["modes"] if c != ref]
+    ref = matches["reference_condition"]
+    others = [c for c in matches["conditions"] if c != ref]
     out.append(f"{matches['scored_matches']} scored matches from {len(matches['participants'])} participants "
-               f"(matches.csv, scored_phase = true). Reference mode: {ref}.\n")
-    out.append(f"{h} Table: results per mode\n")
-    out.append("Each participant's measures are averaged over their matches in a mode; M and SD (n − 1) are "
-               f"across participants. p: paired t-test of the mode against {ref} over the participants with "
+               f"(matches.csv, scored_phase = true). Reference condition: {ref}.\n")
+    out.append(f"{h} Table: results per condition\n")
+    out.append("Each participant's measures are averaged over their matches in a condition; M and SD (n − 1) are "
+               f"across participants. p: paired t-test of the condition against {ref} over the participants with "
                "both. That is the simple contrast Yang et al. report: F(1, n − 1) = t², same p.\n")
     header = ["Measure", f"{ref} M", f"{ref} SD"]
     for c in others:
         header += [f"{c} M", f"{c} SD", f"{c} p"]
     rows = []
     for measure in matches["measures"].values():
-        entry = measure["modes"][ref]
+        entry = measure["conditions"][ref]
         row = [cell(measure["label"]), fmt(entry["mean"], ".2f"), fmt(entry["sd"], ".2f")]
         for c in others:
-            e = measure["modes"][c]
+            e = measure["conditions"][c]
             row += [fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"), fmt(e["vs_reference"]["p_t"], ".4g")]
         rows.append(row)
     out.append(table(header, rows))
     if matches["figure"]:
         whose = f"{matches['game']} game" if matches["game"] else "matches"
-        out.append(f"![{cell(whose)}: mean ± SD per mode]({matches['figure']})\n")
+        out.append(f"![{cell(whose)}: mean ± SD per condition]({matches['figure']})\n")
     if others:
         out.append(f"{h} Paired tests against {ref}\n")
-        out.append(f"Difference = mode − {ref} per participant. t: paired t-test (df = n − 1; "
+        out.append(f"Difference = condition − {ref} per participant. t: paired t-test (df = n − 1; "
                    "F(1, n − 1) = t²). "
                    "Wilcoxon: signed-rank, two-sided, zero differences dropped (p = 1 when all are zero), tied "
                    "|differences| given their mid-rank; p exact (the conditional distribution of the statistic given "
@@ -187,21 +188,22 @@ def matches_sections(out, matches, level):
         rows = []
         for measure in matches["measures"].values():
             for c in others:
-                v = measure["modes"][c]["vs_reference"]
+                v = measure["conditions"][c]["vs_reference"]
                 t = v["t"]
                 f_value = t * t if t is not None and math.isfinite(t) else None
                 rows.append([cell(measure["label"]), c, str(v["n"]), fmt(v["mean_diff"], ".3f"), fmt(t, ".3f"),
                              fmt(f_value, ".3f"), fmt(v["p_t"], ".4g"),
                              f"{fmt(v['p_wilcoxon'], '.4g')} ({v.get('wilcoxon_method', 'exact')})",
                              f"{v['positive']}/{v['negative']}/{v['ties']}", fmt(v["p_sign"], ".4g")])
-        out.append(table(["Measure", "mode", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
+        out.append(table(["Measure", "condition", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
                           "+/−/ties", "p (sign)"], rows))
-    out.append(f"{h} Repeated-measures ANOVA over modes\n")
+    out.append(f"{h} Repeated-measures ANOVA over conditions\n")
     if not matches["anova_available"]:
         out.append("Left out: statsmodels is not installed (Debian: python3-statsmodels).\n")
         return
-    out.append("statsmodels' AnovaRM, one within factor (mode), on the per-participant averages. A participant "
-               "lacking a mode (or every rating of a statement in a mode) is dropped from that measure's ANOVA.\n")
+    out.append("statsmodels' AnovaRM, one within factor (condition), on the per-participant averages. A "
+               "participant lacking a condition (or every rating of a statement in a condition) is dropped from that "
+               "measure's ANOVA.\n")
     rows = []
     for measure in matches["measures"].values():
         a = measure["anova"]
@@ -226,20 +228,20 @@ def conditions_section(out, results):
     rows_of = {}
     for record in results["conditions"]:
         rows_of.setdefault(record["condition"], []).append(record)
-    listed = [c for c in results["mode_order"] if c in rows_of]
+    listed = [c for c in results["condition_order"] if c in rows_of]
     if not listed:
         return
     source = results["conditions_file"]
     out.append("## Conditions\n")
     if source == "modes.csv":
-        words = ("What each mode is, as modes.csv gives it (an export from before conditions.csv, which says no "
+        words = ("What each condition is, as modes.csv gives it (an export from before conditions.csv, which says no "
                  "display refresh, game or latencies).")
     else:
-        words = (f"What each mode is, as {source} gives it: one row per display refresh and game it ran at. Added "
+        words = (f"What each condition is, as {source} gives it: one row per display refresh and game it ran at. Added "
                  "lag = lag frames × 1000 / refresh. Latency, min–max over where in the render cycle a step falls: "
                  "view, a mouse step to the screen; scene, a change of the world's motion to the screen.")
-    out.append(words + " A mode upconverts when its fill is not hold or it late-warps.\n")
-    columns = [("mode", lambda r: cell(r["condition"])),
+    out.append(words + " A condition upconverts when its fill is not hold or it late-warps.\n")
+    columns = [("condition", lambda r: cell(r["condition"])),
                ("refresh (Hz)", lambda r: None if r["refresh_hz"] is None else hz(r["refresh_hz"])),
                ("game", lambda r: None if r["game"] is None else cell(r["game"])),
                ("render (Hz)", lambda r: hz(r["render_hz"])),
@@ -278,9 +280,9 @@ def render(results):
         detail = "; ".join(f"{g or '(no game)'}: {c['included']} of {c['listed']}" for g, c in by_game.items())
         out.append(f"Sessions (sessions.csv): {sessions['included']} of {sessions['listed']} included"
                    + (f" ({detail})" if detail else "") + ".\n")
-    descriptions = {row["mode"]: row["description"] for row in results["modes"]}
-    out.append("Modes: " + "; ".join(f"{m} ({cell(descriptions[m])})" if descriptions.get(m) else m
-                                     for m in results["mode_order"]) + ".\n")
+    described = ConditionTable(results["conditions"])
+    out.append("Conditions: " + "; ".join(f"{c} ({cell(described.description(c))})" if described.description(c) else c
+                                          for c in results["condition_order"]) + ".\n")
     for note in results["notes"]:
         out.append(f"{note}\n")
     conditions_section(out, results)
@@ -324,7 +326,7 @@ def game_sections(out, results, part):
         tests_by_game.setdefault(test["game"], []).append(test)
     # The matches' sections go with the game whose sessions played them; when sessions.csv does not
     # say which game that is, they stand on their own after the games.
-    matches = part["click"]
+    matches = part["matches"]
     match_game = matches["game"] if matches is not None else None
     games = list(part["games"])
     if matches is not None and match_game not in games:
@@ -335,7 +337,7 @@ def game_sections(out, results, part):
             heading = f"{title(game)} game" if game else "Matches"
             out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
             matches_sections(out, matches, 3)
-            if shares(matches["modes"], papers.YANG_CONDITIONS, papers.YANG_BEST):
+            if shares(matches["conditions"], papers.YANG_CONDITIONS, papers.YANG_BEST):
                 yang_section(out, results, matches, 3)
             if summary:
                 out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
@@ -343,7 +345,7 @@ def game_sections(out, results, part):
         else:
             out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
-            if shares(summary["modes"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
+            if shares(summary["conditions"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
 
 
@@ -365,17 +367,17 @@ def questions_section(out, summaries):
         out.append(f"### Question {q['question'] + 1} ({q['kind']}): {cell(name + q['prompt'])}\n")
         if q["kind"] == "likert":
             rows = [[condition_name(c), str(e["n"]), fmt(e["median"], "g"), fmt(e["q25"], "g"), fmt(e["q75"], "g"),
-                     fmt(e["iqr"], "g")] for c, e in q["by_mode"].items()]
+                     fmt(e["iqr"], "g")] for c, e in q["by_condition"].items()]
             out.append(table(["condition", "n", "median", "25 %", "75 %", "IQR"], rows))
         elif q["kind"] == "choice":
             rows = [[condition_name(c), str(e["n"]), "; ".join(f"{c['option']}. {cell(c['text'])}: {c['count']}"
                                                            for c in e["counts"])]
-                    for c, e in q["by_mode"].items()]
+                    for c, e in q["by_condition"].items()]
             out.append(table(["condition", "n", "chosen (option: times)"], rows))
         else:
             rows = [[condition_name(c), cell(a["participant"]), NOTHING if a["block"] is None else str(a["block"]),
                      cell(a["text"]) if a["text"] else NOTHING]
-                    for c, e in q["by_mode"].items() for a in e["answers"]]
+                    for c, e in q["by_condition"].items() for a in e["answers"]]
             out.append(table(["condition", "participant", "block", "answer"], rows))
 
 
@@ -403,20 +405,20 @@ def who_played(results):
         who = "This study's sessions (" + ", ".join(f"{k}: {n}" for k, n in sorted(players.items())) + ")."
     else:
         who = "sessions.csv does not say who played."
-    return who + (" Relative: the mode's mean over the best mode's, the measure the studies' own comparisons rest "
-                  "on, since difficulty and skill set the absolute level.\n")
+    return who + (" Relative: the condition's mean over the best condition's, the measure the studies' own "
+                  "comparisons rest on, since difficulty and skill set the absolute level.\n")
 
 
 def thesis_section(out, results, game, summary, level):
     """The shooter beside the thesis's people (Table 1), for the conditions both have."""
     rates = summary["hit_rates"]
     thesis = papers.thesis_hit_rates()
-    conditions = [c for c in papers.THESIS_CONDITIONS if c in summary["modes"]]
+    conditions = [c for c in papers.THESIS_CONDITIONS if c in summary["conditions"]]
     ours = {c: mean_sd([rates[p][c]["hit_rate"] for p in summary["participants"] if c in rates[p]])
             for c in conditions}
     best, best_paper = ours[papers.THESIS_BEST][0], thesis[papers.THESIS_BEST][0]
     out.append(f"{'#' * level} Beside the papers' people: the thesis's Table 1 (seed 004, 20 people, "
-               f"{papers.THESIS_TARGETS} targets per mode)\n")
+               f"{papers.THESIS_TARGETS} targets per condition)\n")
     out.append(who_played(results))
     rows = []
     for c in conditions:
@@ -424,14 +426,14 @@ def thesis_section(out, results, game, summary, level):
         relative = mean / best if mean is not None and best else None
         rows.append([c, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(relative, ".2f"), fmt(thesis[c][0], ".3f"),
                      fmt(thesis[c][1], ".3f"), fmt(thesis[c][0] / best_paper, ".2f")])
-    out.append(table(["mode", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
+    out.append(table(["condition", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
 
 
 def yang_section(out, results, matches, level):
     """The matches beside Yang et al.'s people (Table 2), for the conditions and measures both have."""
     ref = papers.YANG_BEST
     out.append(f"{'#' * level} Beside the papers' people: Yang et al.'s Table 2 (seed 000 §8, 33 people, two 45 s "
-               "matches per mode)\n")
+               "matches per condition)\n")
     out.append(who_played(results))
     out.append("Counts are per match, so their absolute size follows the match length: compare the relative "
                "columns. Ratings on 1..7 compare as they are.\n")
@@ -442,11 +444,11 @@ def yang_section(out, results, matches, level):
             continue
         paper = papers.YANG_TABLE2[paper_key]
         counts = paper_key in ("green_hits", "red_hits", "misses")
-        ref_mean = measure["modes"][ref]["mean"]
-        for c in [c for c in papers.YANG_CONDITIONS if c in matches["modes"]]:
-            e = measure["modes"][c]
+        ref_mean = measure["conditions"][ref]["mean"]
+        for c in [c for c in papers.YANG_CONDITIONS if c in matches["conditions"]]:
+            e = measure["conditions"][c]
             relative = e["mean"] / ref_mean if counts and e["mean"] is not None and ref_mean else None
             rows.append([cell(measure["label"]), c, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
                          fmt(relative, ".2f") if counts else NOTHING, fmt(paper[c][0], ".2f"),
                          fmt(paper[c][1], ".2f"), fmt(paper[c][0] / paper[ref][0], ".2f") if counts else NOTHING])
-    out.append(table(["measure", "mode", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
+    out.append(table(["measure", "condition", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
