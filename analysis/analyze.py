@@ -2,7 +2,8 @@
 """Statistics for a warplab study: from the CSVs `warplab export` writes to report.md, report.json
 and PNG figures.
 
-Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE] [--rating-scale MIN:MAX]
+Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-condition NAME] [--rating-scale MIN:MAX]
+       [--pool-players]
 
 A condition (the `condition` column of the other files; `mode` in an older export) is one the
 export's condition table describes: conditions.csv, or modes.csv in an export from before it
@@ -393,15 +394,19 @@ def rating_scale(text):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, click-game tables and figures from "
+    parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, the matches' tables and figures from "
                                                                  "the CSVs `warplab export` writes.")
     parser.add_argument("export_dir", metavar="EXPORT_DIR", help="the folder `warplab export` wrote")
     parser.add_argument("--out", required=True, metavar="REPORT_DIR",
                         help="where to write report.md, report.json and the figures (created if missing)")
-    parser.add_argument("--reference-mode", default=DEFAULT_REFERENCE, metavar="MODE",
-                        help=f"the condition (a mode of the matches) every other one is compared with (default "
-                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
+    parser.add_argument("--reference-condition", default=DEFAULT_REFERENCE, metavar="NAME",
+                        help=f"the condition of the matches every other one is compared with (default "
+                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the condition order that "
                              "upconverts, else the first)")
+    # The same option under its name from before the analysis said condition, for the scripts that
+    # pass it; left out of --help.
+    parser.add_argument("--reference-mode", dest="reference_condition", default=argparse.SUPPRESS,
+                        help=argparse.SUPPRESS)
     parser.add_argument("--rating-scale", type=rating_scale, metavar="MIN:MAX",
                         help="the lowest and highest answer of every statement, in place of the protocol's "
                              "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
@@ -412,7 +417,7 @@ def main(argv=None):
                              "default each kind is analysed on its own, people first")
     args = parser.parse_args(argv)
     try:
-        results = analyse(args.export_dir, args.reference_mode, args.rating_scale, args.pool_players)
+        results = analyse(args.export_dir, args.reference_condition, args.rating_scale, args.pool_players)
     except BadInput as e:
         print(f"analyze: {e}", file=sys.stderr)
         return 1

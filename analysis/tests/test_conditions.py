@@ -197,12 +197,12 @@ def test_reference_without_any_upconverting_condition(tmp_path):
     assert ("The default reference condition bireproj15to60 is not in the scored matches and no condition there "
             "upconverts; plain60, the first in the condition order, is the reference instead.") in matches["notes"]
     # Asked for one it lacks: the same rule.
-    code, report = run_in_process(tmp_path, tmp_path / "out2", "--reference-mode", "conv60")
+    code, report = run_in_process(tmp_path, tmp_path / "out2", "--reference-condition", "conv60")
     assert code == 0 and report["matches"]["reference_condition"] == "plain60"
     assert report["matches"]["notes"][-1].startswith(
         "The reference condition conv60 is not in the scored matches and")
     # Asked for one it has.
-    code, report = run_in_process(tmp_path, tmp_path / "out3", "--reference-mode", "plain60-lag2")
+    code, report = run_in_process(tmp_path, tmp_path / "out3", "--reference-condition", "plain60-lag2")
     assert code == 0 and report["matches"]["reference_condition"] == "plain60-lag2"
     assert not any("reference" in n for n in report["matches"]["notes"])
 
@@ -210,7 +210,7 @@ def test_reference_without_any_upconverting_condition(tmp_path):
 def test_reference_defaults_to_bireproj_even_when_not_first(tmp_path):
     # warp15to120 comes first in the order, yet an absent request falls back to bireproj15to60.
     write_click_export(tmp_path, rename={"conv15": "warp15to120"})
-    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-mode", "conv120")
+    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-condition", "conv120")
     assert code == 0
     assert report["matches"]["conditions"][:2] == ["warp15to120", "bireproj15to60"]
     assert report["matches"]["reference_condition"] == "bireproj15to60"

@@ -3,6 +3,7 @@ tests and the repeated-measures ANOVA checked against formulas written out here,
 and its fallback, where the matches' sections go, the rating scale and its refusals, and the
 matches beside Yang et al.'s people.
 """
+import json
 import math
 import shutil
 import statistics
@@ -181,7 +182,7 @@ def test_click_reference_fallback_and_no_statsmodels(tmp_path, monkeypatch):
     write_click_export(tmp_path)
     monkeypatch.setitem(sys.modules, "statsmodels", None)  # `import statsmodels` now raises ImportError
     monkeypatch.setitem(sys.modules, "statsmodels.stats.anova", None)
-    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-mode", "warp15to120")
+    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-condition", "warp15to120")
     assert code == 0
     c = report["matches"]
     assert c["reference_condition"] == "bireproj15to60" and c["reference_requested"] == "warp15to120"
@@ -190,6 +191,29 @@ def test_click_reference_fallback_and_no_statsmodels(tmp_path, monkeypatch):
     assert c["measures"]["green_hits"]["conditions"]["conv60"]["vs_reference"]["p_t"] > 0
     md = (tmp_path / "out" / "report.md").read_text()
     assert "statsmodels is not installed" in md and "Reference condition: bireproj15to60." in md
+
+
+def test_reference_mode_is_the_older_name_of_reference_condition(tmp_path, capsys):
+    """--reference-mode, the option's name in older scripts, gives the report --reference-condition
+    gives; --help shows only the new name."""
+    export = tmp_path / "export"
+    export.mkdir()
+    write_click_export(export)
+    written = {}
+    for flag in ("--reference-condition", "--reference-mode"):
+        out = tmp_path / flag.lstrip("-")
+        assert analyze.main([str(export), "--out", str(out), flag, "conv60"]) == 0
+        written[flag] = {name: (out / name).read_bytes() for name in ("report.json", "report.md")}
+    assert written["--reference-mode"] == written["--reference-condition"]
+    report = json.loads(written["--reference-condition"]["report.json"])
+    # Asked for, and not the default: the flag took effect under either name.
+    assert report["matches"]["reference_condition"] == "conv60" != analyze.DEFAULT_REFERENCE
+    assert report["matches"]["reference_requested"] == "conv60"
+    capsys.readouterr()
+    with pytest.raises(SystemExit):
+        analyze.main(["--help"])
+    shown = capsys.readouterr().out
+    assert "--reference-condition NAME" in shown and "--reference-mode" not in shown
 
 
 def test_paired_tests_with_all_differences_zero():
