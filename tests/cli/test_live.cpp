@@ -606,26 +606,36 @@ TEST(LiveSession, FreePlaySwitchesConditionsLiveAndRecordsNothing) {
 
 // ] and [ (PageDown and PageUp) step through every condition, past the ninth that the digits end
 // at, around the list, and over the conditions the display cannot run.
+// The condition to start in is --condition, or --mode, its older name.
 TEST(LiveSession, FreePlayStepsPastTheNinthConditionAndAroundTheList) {
-    const std::string dir = scratch("free-play-steps");
-    std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
-                                          "80 key esc\n80 key q\n";
-    const auto r =
-        inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                 "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " + dir +
-                 " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
-    ASSERT_EQ(r.status, 0) << r.output;
-    // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
-    // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
-    std::size_t at = 0;
-    for (const char* condition : {"bireproj15to60", "conv15", "bireproj15to60", "lag200", "bireproj15to60"}) {
-        const std::size_t found = r.output.find("free play: " + std::string(condition) + ", level 0", at);
-        ASSERT_NE(found, std::string::npos) << "no switch to " << condition << " after offset " << at << ":\n"
-                                            << r.output;
-        at = found + 1;
+    for (const char* option : {"--condition", "--mode"}) {
+        SCOPED_TRACE(option);
+        const std::string dir = scratch("free-play-steps");
+        std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
+                                              "80 key esc\n80 key q\n";
+        const auto r =
+            inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                     "/protocol/click-quick.json --free-play " + option + " lag200 --width 320 --height 180 --out " +
+                     dir + " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
+        ASSERT_EQ(r.status, 0) << r.output;
+        // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
+        // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
+        std::size_t at = 0;
+        for (const char* condition : {"bireproj15to60", "conv15", "bireproj15to60", "lag200", "bireproj15to60"}) {
+            const std::size_t found = r.output.find("free play: " + std::string(condition) + ", level 0", at);
+            ASSERT_NE(found, std::string::npos) << "no switch to " << condition << " after offset " << at << ":\n"
+                                                << r.output;
+            at = found + 1;
+        }
+        EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
+        EXPECT_TRUE(fs::exists(dir + "/free_30.png"));
+        fs::remove_all(dir);
     }
-    EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
-    EXPECT_TRUE(fs::exists(dir + "/free_30.png"));
+    const auto both = inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                               "/protocol/click-quick.json --free-play --condition lag200 --mode lag100 --out " +
+                               scratch("free-play-both"));
+    EXPECT_EQ(both.status, 2) << both.output;
+    EXPECT_TRUE(contains(both.output, "options --condition and --mode are one option")) << both.output;
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {
