@@ -77,7 +77,7 @@ TEST(Conditions, ReadmeAndProtocolDocsDescribeEveryCondition) {
     const std::vector<std::string> ids = presetNames();
     const std::set<std::string> known(ids.begin(), ids.end());
     for (const auto& [page, heading] : std::vector<std::pair<std::string, std::string>>{
-             {"README.md", "## Modes and their latency"},
+             {"README.md", "## Conditions and their latency"},
              {"docs/protocol.md", "## Conditions: presets and a protocol's own"}}) {
         SCOPED_TRACE(page + ", " + heading);
         const std::vector<std::string> documented = documentedConditionIds(page, heading);
