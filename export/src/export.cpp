@@ -158,7 +158,8 @@ public:
         : options_(options),
           carriedOn_(std::move(carriedOn)),
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
-          shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
+          shotsLayout_(shotsLayout()),
+          shots_(file(outDir, "shots.csv"), shotsLayout_.header),
           answers_(file(outDir, "answers.csv"), headerOf(answerColumns())),
           pacing_(file(outDir, "pacing.csv"), headerOf(pacingColumns())) {
         for (auto& [gameName, shape] : game::gameTables()) gameFiles_.push_back({gameName, std::move(shape), {}, 0});
@@ -382,9 +383,8 @@ private:
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            writeCells(
-                shots_, shotColumns(),
-                ShotRow{from, s, skipped.between(s.spawnTime, s.time), newImages.p95Before(s.spawnTime, s.time)});
+            writeShot(shots_, shotsLayout_,
+                      ShotRow{from, s, skipped.between(s.spawnTime, s.time), newImages.p95Before(s.spawnTime, s.time)});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
             Tally& t = tallies_[{participant, gameName, s.condition}];
@@ -424,7 +424,9 @@ private:
 
     ExportOptions options_;
     CarriedOn carriedOn_;
-    CsvFile sessions_, shots_, answers_, pacing_;
+    CsvFile sessions_;
+    ShotsLayout shotsLayout_;  // before shots_, whose header it gives
+    CsvFile shots_, answers_, pacing_;
     std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, condition
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::map<std::string, std::set<std::string>> kinds_;  // participant -> the kinds of their included sessions
@@ -490,7 +492,7 @@ private:
 
 std::vector<CsvColumns> exportColumns() {
     std::vector<CsvColumns> out = {{"sessions.csv", headerOf(sessionColumns()), "", 0},
-                                   {"shots.csv", headerOf(shotColumns()), "", 0},
+                                   {"shots.csv", shotsLayout().header, "", 0},
                                    {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
                                    {"answers.csv", headerOf(answerColumns()), "", 0},
                                    {"conditions.csv", headerOf(conditionColumns()), "", 0},

@@ -1,5 +1,7 @@
 #include "tables.h"
 
+#include "game/registry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -119,7 +121,7 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
     return columns;
 }
 
-const std::vector<Column<ShotRow>>& shotColumns() {
+const std::vector<Column<ShotRow>>& shotLeadingColumns() {
     using F = CellWriter;
     using R = ShotRow;
     static const std::vector<Column<R>> columns = {
@@ -137,10 +139,14 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"time_s", [](F& f, const R& r) { f.number(r.shot.time); }},
         {"spawn_time_s", [](F& f, const R& r) { f.number(r.shot.spawnTime); }},
         {"aim_time_s", [](F& f, const R& r) { f.number(r.shot.aimTime); }},
-        {"angular_error_deg", [](F& f, const R& r) { f.number(r.shot.angularErrorDeg); }},
-        {"error_px", [](F& f, const R& r) { f.number(r.shot.errorPx); }},
-        {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
-        {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<ShotRow>>& shotTrailingColumns() {
+    using F = CellWriter;
+    using R = ShotRow;
+    static const std::vector<Column<R>> columns = {
         {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
         {"condition_position",
@@ -150,6 +156,32 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
+}
+
+ShotsLayout shotsLayout() {
+    ShotsLayout out;
+    out.header = headerOf(shotLeadingColumns());
+    const auto games = game::gameShotColumns();
+    for (const auto& [gameName, own] : games) out.gameColumns.insert(out.gameColumns.end(), own.begin(), own.end());
+    // A game's cells go under its own columns, each game's a run of its own (registerGame).
+    for (const auto& [gameName, own] : games) {
+        std::vector<int>& at = out.at[gameName];
+        for (const std::string& name : out.gameColumns) {
+            const auto found = std::find(own.begin(), own.end(), name);
+            at.push_back(found == own.end() ? -1 : static_cast<int>(found - own.begin()));
+        }
+    }
+    out.header.insert(out.header.end(), out.gameColumns.begin(), out.gameColumns.end());
+    for (const std::string& name : headerOf(shotTrailingColumns())) out.header.push_back(name);
+    return out;
+}
+
+void writeShot(CsvFile& file, const ShotsLayout& layout, const ShotRow& row) {
+    writeCells(file, shotLeadingColumns(), row);
+    const auto at = layout.at.find(row.from.game);
+    file.cells(at == layout.at.end() ? table::Cells().rearranged(std::vector<int>(layout.gameColumns.size(), -1))
+                                     : row.shot.own.rearranged(at->second));
+    writeCells(file, shotTrailingColumns(), row);
 }
 
 const std::vector<Column<AnswerRow>>& answerColumns() {

@@ -115,7 +115,17 @@ std::optional<std::int64_t> positionOf(const Positions& positions, const std::st
 
 // Each CSV file's columns (docs/export.md lists them; a test checks it against these).
 const std::vector<Column<SessionRow>>& sessionColumns();
-const std::vector<Column<ShotRow>>& shotColumns();
+// shots.csv: export's leading columns, then every registered game's own (in the order the games
+// were registered; empty in another game's rows), then export's trailing ones.
+struct ShotsLayout {
+    std::vector<std::string> header;
+    std::vector<std::string> gameColumns;
+    std::map<std::string, std::vector<int>> at;  // per game: where each of gameColumns is in its own cells; -1 none
+};
+ShotsLayout shotsLayout();
+void writeShot(table::CsvFile& file, const ShotsLayout& layout, const ShotRow& row);
+const std::vector<Column<ShotRow>>& shotLeadingColumns();
+const std::vector<Column<ShotRow>>& shotTrailingColumns();
 const std::vector<Column<AnswerRow>>& answerColumns();
 const std::vector<Column<PacingRow>>& pacingColumns();
 const std::vector<Column<HitRateRow>>& hitRateColumns();

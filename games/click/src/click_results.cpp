@@ -53,7 +53,22 @@ const std::vector<Column<RatingOf>>& ratingColumns() {
     return columns;
 }
 
+// The click game's own columns of shots.csv (docs/click-study.md), from a click's event detail.
+const std::vector<Column<EventDetail>>& shotColumns() {
+    using F = CellWriter;
+    using R = EventDetail;
+    static const std::vector<Column<R>> columns = {
+        // Cursor to the nearest green sphere's centre on screen; empty with none.
+        {"error_px", [](F& f, const R& d) { f.number(d.number("nearest_green_px")); }},
+    };
+    return columns;
+}
+
 }  // namespace
+
+void writeClickShotCells(table::Cells& own, const EventDetail& click) { table::writeCells(own, shotColumns(), click); }
+
+GameExport clickExport() { return {table::headerOf(shotColumns()), clickTables}; }
 
 std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
     GameTable byMatch{"matches.csv", table::headerOf(matchColumns()), true, "rating_", {}};

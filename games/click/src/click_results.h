@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "game/event_detail.h"
 #include "game/results.h"
 
 namespace warplab::game {
@@ -35,5 +36,8 @@ struct MatchResult {
 
 // matches.csv (a span table, one rating_k column per statement) and ratings.csv, in that order.
 std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches);
+
+// A click's cells of the click game's own columns of shots.csv, from its event's detail.
+void writeClickShotCells(table::Cells& own, const EventDetail& click);
 
 }  // namespace warplab::game

@@ -75,7 +75,7 @@ public:
                                    protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
                 r.hit = r.outcome == "green";
                 r.time = e.eventTime;
-                r.errorPx = d.number("nearest_green_px");
+                writeClickShotCells(r.own, d);
                 unfinished[e.trial].push_back(std::move(r));
             } else if (e.type == "match") {
                 if (const auto clicks = unfinished.find(e.trial); clicks != unfinished.end()) {

@@ -7,9 +7,23 @@
 #include "shooter_bot.h"
 #include "shooter_game.h"
 #include "shooter/shooter_protocol.h"
+#include "table/columns.h"
 
 namespace warplab::game {
 namespace {
+
+// The shooter's own columns of shots.csv (docs/shooter-study.md), from a shot's or a timeout's
+// event detail.
+const std::vector<table::Column<EventDetail>>& shotColumns() {
+    using F = table::CellWriter;
+    using R = EventDetail;
+    static const std::vector<table::Column<R>> columns = {
+        {"angular_error_deg", [](F& f, const R& d) { f.number(d.number("angular_error_deg")); }},
+        {"difficulty", [](F& f, const R& d) { f.number(d.number("difficulty")); }},
+        {"target_speed", [](F& f, const R& d) { f.number(d.number("target_speed")); }},
+    };
+    return columns;
+}
 
 class ShooterStudy final : public Study {
 public:
@@ -78,9 +92,7 @@ public:
             r.time = e.eventTime;
             r.spawnTime = d.number("spawn_time");
             r.aimTime = d.number("aim_time");
-            r.angularErrorDeg = d.number("angular_error_deg");
-            r.difficulty = d.number("difficulty");
-            r.targetSpeed = d.number("target_speed");
+            table::writeCells(r.own, shotColumns(), d);
             out.shots.push_back(std::move(r));
         }
         return out;
@@ -110,5 +122,7 @@ private:
 std::unique_ptr<Study> parseShooterStudy(const std::string& jsonText, const std::string& sourceName) {
     return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName));
 }
+
+GameExport shooterExport() { return {table::headerOf(shotColumns()), nullptr}; }
 
 }  // namespace warplab::game

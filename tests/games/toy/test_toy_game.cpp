@@ -13,6 +13,7 @@
 
 #include "export/documented_columns.h"
 #include "export/export.h"
+#include "export/export_test_support.h"
 #include "runner/session_runner.h"
 #include "game/registry.h"
 #include "session/records.h"
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 
 // The toy's one registration line, after the built-in games (as a lab's own task would add it).
 class RegisterTheToy : public ::testing::Environment {
-    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::tables); }
+    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::exports()); }
 };
 [[maybe_unused]] const auto* const registered = ::testing::AddGlobalTestEnvironment(new RegisterTheToy);
 
@@ -105,6 +106,22 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
         << clicks;
     const std::string matches = readAll(dir / "csv" / "matches.csv");
     EXPECT_EQ(std::count(matches.begin(), matches.end(), '\n'), 1) << matches;
+
+    // Its own column of shots.csv after the other games', filled in its rows (the offset its
+    // table has too) and the other games' columns empty there.
+    EXPECT_NE(shots.find(",aim_time_s,angular_error_deg,difficulty,target_speed,error_px,toy_offset_m,skipped_frames,"),
+              std::string::npos)
+        << shots.substr(0, shots.find('\n'));
+    const auto shotRows = app::exporttest::readCsv((dir / "csv" / "shots.csv").string());
+    const auto clickRows = app::exporttest::readCsv((dir / "csv" / "toy_clicks.csv").string());
+    ASSERT_EQ(shotRows.size(), clickRows.size());
+    ASSERT_GE(shotRows.size(), 3u);
+    for (std::size_t i = 0; i < shotRows.size(); ++i) {
+        EXPECT_EQ(shotRows[i].at("toy_offset_m"), clickRows[i].at("shown_offset_m")) << "click " << i;
+        EXPECT_FALSE(shotRows[i].at("toy_offset_m").empty()) << "click " << i;
+        for (const char* other : {"angular_error_deg", "difficulty", "target_speed", "error_px"})
+            EXPECT_EQ(shotRows[i].at(other), "") << other;
+    }
 }
 
 // The toy's own table is documented on its page, column for column, as export writes it.
@@ -118,6 +135,9 @@ TEST(ToyModule, ItsOwnTableMatchesItsPage) {
     const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(written.file, pages.front());
     EXPECT_EQ(documented.columns, written.columns);
     EXPECT_EQ(documented.numbered, written.numbered);
+    // And its own column of shots.csv.
+    EXPECT_EQ(testing_docs::documentedColumns("shots.csv", pages.front()).columns, toy::exports().shotColumns);
+    EXPECT_FALSE(toy::exports().shotColumns.empty());
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.
@@ -187,8 +207,13 @@ TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
             "click", [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> { return nullptr; }),
         std::invalid_argument);
     EXPECT_EQ(game::parseStudy(toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
-    // One file, one game: a second game naming the toy's table is refused, and not registered.
-    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, toy::tables), std::invalid_argument);
+    // One file, one game: a second game naming the toy's table is refused, and not registered;
+    // so is one naming a column of shots.csv that is the toy's, or its own twice.
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {{}, toy::tables}), std::invalid_argument);
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {toy::exports().shotColumns, nullptr}),
+                 std::invalid_argument);
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {{"copy_m", "copy_m"}, nullptr}),
+                 std::invalid_argument);
     const auto after = game::gameNames();
     EXPECT_EQ(std::find(after.begin(), after.end(), "toy-copy"), after.end());
     std::size_t toyClicks = 0;

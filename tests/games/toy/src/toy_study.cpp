@@ -35,6 +35,16 @@ const std::vector<table::Column<Click>>& clickColumns() {
     return columns;
 }
 
+// The toy's own column of shots.csv: what the condition's latency moved the sphere by.
+const std::vector<table::Column<game::EventDetail>>& shotColumns() {
+    using F = table::CellWriter;
+    using R = game::EventDetail;
+    static const std::vector<table::Column<R>> columns = {
+        {"toy_offset_m", [](F& f, const R& d) { f.number(d.number("shown_x") - d.number("x")); }},
+    };
+    return columns;
+}
+
 game::GameTable clicksTable() { return {"toy_clicks.csv", table::headerOf(clickColumns()), false, "", {}}; }
 
 class ToyStudy final : public Study {
@@ -91,6 +101,7 @@ public:
             r.displayedOutcome = e.displayedOutcome;
             r.hit = r.outcome == "hit";
             r.time = e.eventTime;
+            table::writeCells(r.own, shotColumns(), game::EventDetail(e.detailJson));
             out.shots.push_back(std::move(r));
         }
         return out;
@@ -118,5 +129,7 @@ std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string
 }
 
 std::vector<game::GameTable> tables() { return {clicksTable()}; }
+
+game::GameExport exports() { return {table::headerOf(shotColumns()), tables}; }
 
 }  // namespace warplab::toy
