@@ -2,22 +2,24 @@
 """Statistics for a warplab study: from the CSVs `warplab export` writes to report.md, report.json
 and PNG figures.
 
-Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-mode MODE] [--rating-scale MIN:MAX]
+Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-condition NAME] [--rating-scale MIN:MAX]
+       [--pool-players]
 
-A mode (the `mode` column of the other files) names a condition of the export's condition
-table: conditions.csv, or modes.csv in an export from before it (conditions.ConditionTable).
+A condition (the `condition` column of the other files; `mode` in an older export) is one the
+export's condition table describes: conditions.csv, or modes.csv in an export from before it
+(conditions.ConditionTable).
 
-Hit rates (hitrates.csv, every game): exact paired sign tests between every two modes of a game,
+Hit rates (hitrates.csv, every game): exact paired sign tests between every two conditions of a game,
 as Pulkkinen's thesis tests warp upconversion against 15 and 120 Hz rendering (seed 004 §7,
 Tables 1–3, Figures 32–34): per participant the difference of hit rates, ties dropped, binomial
-tails, and the type-7 quartiles of the differences. Pairs are oriented by the mode order, taken
-from the condition table: conditions that upconvert first, so warp15to120 − conv15 is positive
+tails, and the type-7 quartiles of the differences. Pairs are oriented by the condition order,
+taken from the condition table: conditions that upconvert first, so warp15to120 − conv15 is positive
 where warping helps. What a game's hits and shots are (green hits out of clicks) is games.csv's.
 
-Matches (matches.csv, scored matches only; the click game's): per participant and mode the average over their
-matches of green hits, red hits, misses and each rating, then per mode mean and SD across
-participants, each mode against a reference mode (bireproj15to60 by default; choose_reference
-says which when the matches lack it) by paired t-test
+Matches (matches.csv, scored matches only; the click game's): per participant and condition the
+average over their matches of green hits, red hits, misses and each rating, then per condition
+mean and SD across participants, each condition against a reference condition (bireproj15to60 by
+default; choose_reference says which when the matches lack it) by paired t-test
 (the "simple contrast" F(1, n−1) = t² Yang et al. report, seed 000 §8 Table 2), Wilcoxon
 signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodels' AnovaRM,
 left out with a note if statsmodels is missing).
@@ -43,7 +45,7 @@ from warplab_analysis.inputs import BadInput  # noqa: E402
 # Yang et al.'s reference (seed 000 §8): bidirectional reprojection, the method their study tests.
 # An export without it falls back by choose_reference's rule.
 DEFAULT_REFERENCE = "bireproj15to60"
-CLICK_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
+MATCH_COUNTS = [("green_hits", "Green hits"), ("red_hits", "Red hits"), ("misses", "Misses")]
 
 
 def natural_key(participant):
@@ -67,123 +69,124 @@ def file_stem(name, taken):
 
 
 def analyse_game(game, participants, table, wording):
-    """One game's hit rates: Table 1 data, every pair's sign test, Table 2 per upconversion mode."""
+    """One game's hit rates: Table 1 data, every pair's sign test, Table 2 per upconverting condition."""
     order = sorted(participants, key=natural_key)
     participants = {p: participants[p] for p in order}
-    modes = table.order({m for row in participants.values() for m in row})
-    hit_rates = {p: {m: {"shots": row[m][1], "hits": row[m][0], "hit_rate": row[m][0] / row[m][1]}
-                     for m in modes if m in row}
+    conditions = table.order({c for row in participants.values() for c in row})
+    hit_rates = {p: {c: {"shots": row[c][1], "hits": row[c][0], "hit_rate": row[c][0] / row[c][1]}
+                     for c in conditions if c in row}
                  for p, row in participants.items()}
     tests = [stats.hit_rate_sign_test(game, a, b, participants)
-             for i, a in enumerate(modes) for b in modes[i + 1:]]
+             for i, a in enumerate(conditions) for b in conditions[i + 1:]]
     upconversion = []
-    for mode in [m for m in modes if table.upconverts(m)]:
-        others = [m for m in modes if m != mode]
+    for condition in [c for c in conditions if table.upconverts(c)]:
+        others = [c for c in conditions if c != condition]
         if not others:
             continue
-        conventional = [m for m in others if table.conventional_rate(m) is not None]
+        conventional = [c for c in others if table.conventional_rate(c) is not None]
         sort_by = min(conventional, key=table.conventional_rate) if conventional else others[0]
-        others = [sort_by] + [m for m in others if m != sort_by]  # the thesis's Table 2 leads with it
+        others = [sort_by] + [c for c in others if c != sort_by]  # the thesis's Table 2 leads with it
         rows = []
         for p, row in participants.items():
             differences = {}
             for other in others:
-                if mode in row and other in row:
-                    differences[other] = stats.rate_difference(row[mode], row[other])[1]
+                if condition in row and other in row:
+                    differences[other] = stats.rate_difference(row[condition], row[other])[1]
             if differences:
                 rows.append({"participant": p, "differences": differences})
         rows.sort(key=lambda r: (sort_by not in r["differences"], r["differences"].get(sort_by, 0.0)))
-        upconversion.append({"mode": mode, "against": others, "sorted_by": sort_by, "rows": rows})
+        upconversion.append({"condition": condition, "against": others, "sorted_by": sort_by, "rows": rows})
     notes = []
-    if len(modes) == 1:
-        notes.append(f"Only one mode ({modes[0]}): no pairs to test.")
-    summary = {"participants": order, "modes": modes, "hits_are": wording["hits_are"],
+    if len(conditions) == 1:
+        notes.append(f"Only one condition ({conditions[0]}): no pairs to test.")
+    summary = {"participants": order, "conditions": conditions, "hits_are": wording["hits_are"],
                "shots_are": wording["shots_are"], "hit_rates": hit_rates, "upconversion_differences": upconversion,
                "figures": {}, "notes": notes}
     return summary, tests
 
 
-def choose_reference(requested, modes, table):
+def choose_reference(requested, conditions, table):
     """(reference, note or None): `requested` when the scored matches have it; else as if none had
-    been asked for: bireproj15to60 when there, else the first mode in the mode order that
-    upconverts (the method under test, the part bireproj15to60 plays in Yang et al.'s table), else
-    the first in the order. A note says which rule chose it whenever it is not the one asked for."""
-    if requested in modes:
+    been asked for: bireproj15to60 when there, else the first condition in the condition order
+    that upconverts (the method under test, the part bireproj15to60 plays in Yang et al.'s table),
+    else the first in the order. A note says which rule chose it whenever it is not the one asked
+    for."""
+    if requested in conditions:
         return requested, None
-    asked = (f"The default reference mode {requested}" if requested == DEFAULT_REFERENCE
-             else f"The reference mode {requested}")
-    if DEFAULT_REFERENCE in modes:
+    asked = (f"The default reference condition {requested}" if requested == DEFAULT_REFERENCE
+             else f"The reference condition {requested}")
+    if DEFAULT_REFERENCE in conditions:
         return DEFAULT_REFERENCE, (f"{asked} is not in the scored matches; {DEFAULT_REFERENCE}, the default, is the "
                                    "reference instead.")
-    upconverting = [m for m in modes if table.upconverts(m)]
+    upconverting = [c for c in conditions if table.upconverts(c)]
     if upconverting:
-        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first mode in the mode "
-                                 "order that upconverts, is the reference instead.")
-    return modes[0], (f"{asked} is not in the scored matches and no mode there upconverts; {modes[0]}, the first in "
-                      "the mode order, is the reference instead.")
+        return upconverting[0], (f"{asked} is not in the scored matches; {upconverting[0]}, the first condition in "
+                                 "the condition order that upconverts, is the reference instead.")
+    return conditions[0], (f"{asked} is not in the scored matches and no condition there upconverts; "
+                           f"{conditions[0]}, the first in the condition order, is the reference instead.")
 
 
-def analyse_click(loaded, statements, requested_reference, table, game):
+def analyse_matches(loaded, statements, requested_reference, table, game):
     """The matches' tables; `game` is the game whose sessions hold them (None when sessions.csv does
     not say, or names several)."""
     matches, rating_columns, rows = loaded[:3]
     labels = statements[0] if statements else {}
-    measures = CLICK_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
-    click = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "modes": [],
-             "reference_mode": None, "reference_requested": requested_reference, "anova_available": None,
-             "measures": {}, "notes": list(statements[1]) if statements else [], "figure": None}
+    measures = MATCH_COUNTS + [(c, labels.get(int(c.split("_")[1]), c)) for c in rating_columns]
+    result = {"game": game, "scored_matches": len(matches), "rows": rows, "participants": [], "conditions": [],
+              "reference_condition": None, "reference_requested": requested_reference, "anova_available": None,
+              "measures": {}, "notes": list(statements[1]) if statements else [], "figure": None}
     if not matches:
-        click["notes"].append("matches.csv has no scored matches: no click-game table.")
-        return click
+        result["notes"].append("matches.csv has no scored matches: nothing to tabulate.")
+        return result
     participants = sorted({m["participant"] for m in matches}, key=natural_key)
-    modes = table.order({m["mode"] for m in matches})
-    reference, note = choose_reference(requested_reference, modes, table)
+    conditions = table.order({m["condition"] for m in matches})
+    reference, note = choose_reference(requested_reference, conditions, table)
     if note:
-        click["notes"].append(note)
-    others = [m for m in modes if m != reference]
-    click.update(participants=participants, modes=modes, reference_mode=reference)
+        result["notes"].append(note)
+    others = [c for c in conditions if c != reference]
+    result.update(participants=participants, conditions=conditions, reference_condition=reference)
     try:
         importlib.import_module("statsmodels.stats.anova")
-        click["anova_available"] = True
+        result["anova_available"] = True
     except ImportError:
-        click["anova_available"] = False
-        click["notes"].append("statsmodels is not installed (Debian: python3-statsmodels): no repeated-measures "
+        result["anova_available"] = False
+        result["notes"].append("statsmodels is not installed (Debian: python3-statsmodels): no repeated-measures "
                               "ANOVA.")
     for index, (key, label) in enumerate(measures):
-        cells = {}  # participant -> mode -> the values of their matches
+        cells = {}  # participant -> condition -> the values of their matches
         for m in matches:
-            value = m[key] if index < len(CLICK_COUNTS) else m["ratings"][index - len(CLICK_COUNTS)]
+            value = m[key] if index < len(MATCH_COUNTS) else m["ratings"][index - len(MATCH_COUNTS)]
             if value is not None:
-                cells.setdefault(m["participant"], {}).setdefault(m["mode"], []).append(float(value))
-        values = {p: {mode: sum(v) / len(v) for mode, v in cells.get(p, {}).items()} for p in participants}
-        per_mode = {}
-        for mode in modes:
-            entry = stats.describe([row[mode] for row in values.values() if mode in row])
-            if mode != reference:
-                paired = [p for p in participants if mode in values[p] and reference in values[p]]
-                entry["vs_reference"] = stats.paired_tests([values[p][mode] for p in paired],
+                cells.setdefault(m["participant"], {}).setdefault(m["condition"], []).append(float(value))
+        values = {p: {c: sum(v) / len(v) for c, v in cells.get(p, {}).items()} for p in participants}
+        per_condition = {}
+        for condition in conditions:
+            entry = stats.describe([row[condition] for row in values.values() if condition in row])
+            if condition != reference:
+                paired = [p for p in participants if condition in values[p] and reference in values[p]]
+                entry["vs_reference"] = stats.paired_tests([values[p][condition] for p in paired],
                                                            [values[p][reference] for p in paired])
             else:
                 entry["vs_reference"] = None
-            per_mode[mode] = entry
+            per_condition[condition] = entry
         anova = None
-        if click["anova_available"]:
-            anova = stats.rm_anova(values, modes)
+        if result["anova_available"]:
+            anova = stats.rm_anova(values, conditions)
             for k in ("df_num", "df_den"):
                 if anova[k] is not None and float(anova[k]).is_integer():
                     anova[k] = int(anova[k])
-        click["measures"][key] = {"label": label, "modes": per_mode, "anova": anova,
-                                  "participant_means": values}
+        result["measures"][key] = {"label": label, "conditions": per_condition, "anova": anova,
+                                   "participant_means": values}
     if not others:
-        click["notes"].append(f"Only one mode ({reference}) in the scored matches: nothing to compare.")
-    return click
+        result["notes"].append(f"Only one condition ({reference}) in the scored matches: nothing to compare.")
+    return result
 
 
-def analyse_part(export_dir, data, who, reference_mode, table):
-    """The statistics of the participants `who` (None: everyone): {games, sign_tests, click,
+def analyse_part(export_dir, data, who, reference_condition, table):
+    """The statistics of the participants `who` (None: everyone): {games, sign_tests, matches,
     answers}. A game that has fewer than two of them has no paired tests: a note says so."""
     games, described, matches, statements, answers = data
-    part = {"games": {}, "sign_tests": [], "click": None, "group_notes": [],
+    part = {"games": {}, "sign_tests": [], "matches": None, "group_notes": [],
             "answers": [a for a in answers or [] if who is None or a["participant"] in who]}
     for game in order_games(games, described):
         chosen = {p: row for p, row in games[game].items() if who is None or p in who}
@@ -201,7 +204,8 @@ def analyse_part(export_dir, data, who, reference_mode, table):
         chosen = [m for m in matches[0] if who is None or m["participant"] in who]
         if chosen or who is None:
             game = matches_game(export_dir, described, matches[3])
-            part["click"] = analyse_click((chosen,) + tuple(matches[1:]), statements, reference_mode, table, game)
+            part["matches"] = analyse_matches((chosen,) + tuple(matches[1:]), statements, reference_condition, table,
+                                            game)
     return part
 
 
@@ -221,7 +225,7 @@ def title_of(game):
     return game[:1].upper() + game[1:]
 
 
-def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
+def analyse(export_dir, reference_condition, rating_scale=None, pool_players=False):
     """rating_scale: (low, high) for every statement, overriding the scales ratings.csv records;
     pool_players: analyse people and scripted players together (players.py)."""
     if not os.path.exists(export_dir):
@@ -237,17 +241,18 @@ def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
     described = inputs.load_games(export_dir)
     table = ConditionTable(records)
     results = {"export_dir": export_dir, "inputs": {inputs.HITRATES: {"rows": hitrate_rows}},
-               "sessions": None, "modes": table.summary(), "mode_order": [], "games": {}, "sign_tests": [],
-               "click": None, "figures": [], "notes": [], "conditions": table.records, "conditions_file": source}
+               "sessions": None, "conditions_file": source, "conditions": table.records, "condition_order": [],
+               "games": {}, "sign_tests": [], "matches": None, "figures": [], "notes": []}
     if isinstance(sessions, str):
         results["notes"].append(sessions)
     else:
         results["sessions"] = sessions
     if source is None:
-        results["notes"].append("No modes.csv (an export from before warplab wrote one): modes in the order of their "
-                                "ids, none known as an upconversion mode, so no Table 2 and no histograms.")
+        results["notes"].append("No modes.csv (an export from before warplab wrote one): conditions in the order of "
+                                "their ids, none known as an upconverting condition, so no Table 2 and no "
+                                "histograms.")
     elif source == inputs.MODES:
-        results["inputs"][inputs.MODES] = {"modes": len(records)}
+        results["inputs"][inputs.MODES] = {"conditions": len(records)}
     else:
         results["inputs"][inputs.CONDITIONS] = {"rows": len(records), "conditions": len(table.rows)}
     results["notes"] += table_notes
@@ -268,7 +273,7 @@ def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
     parts = {"all": None} if kinds is None or pool_players or len(split) <= 1 else split
     data = (games, described, matches, statements, answers)
     for k, (group, who) in enumerate(parts.items()):
-        part = analyse_part(export_dir, data, None if who is None else set(who), reference_mode, table)
+        part = analyse_part(export_dir, data, None if who is None else set(who), reference_condition, table)
         if k == 0:
             results["players"]["analysed"] = None if who is None else group
             results.update(part)
@@ -276,18 +281,18 @@ def analyse(export_dir, reference_mode, rating_scale=None, pool_players=False):
             results.setdefault("player_groups", []).append(dict(part, group=group, participants=who))
     if statements is not None:
         results["inputs"][inputs.RATINGS] = {"statements": len(statements[0])}
-    all_modes = set()
+    seen = set()
     for part in [results] + results.get("player_groups", []):
-        all_modes |= {m for g in part["games"].values() for m in g["modes"]}
-        if part["click"]:
-            all_modes |= set(part["click"]["modes"])
-    results["mode_order"] = table.order(all_modes)
+        seen |= {c for g in part["games"].values() for c in g["conditions"]}
+        if part["matches"]:
+            seen |= set(part["matches"]["conditions"])
+    results["condition_order"] = table.order(seen)
     for part in [results] + results.get("player_groups", []):
-        part["questions"] = questions.summarise(part.pop("answers"), results["mode_order"], natural_key)
-    unlisted = [m for m in results["mode_order"] if not table.known(m)]
+        part["questions"] = questions.summarise(part.pop("answers"), results["condition_order"], natural_key)
+    unlisted = [c for c in results["condition_order"] if not table.known(c)]
     if source is not None and unlisted:
         results["notes"].append(f"{source} does not list {', '.join(unlisted)}: they follow the others by name, and "
-                                "none counts as an upconversion mode.")
+                                "none counts as an upconverting condition.")
     return results
 
 
@@ -326,8 +331,8 @@ def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_
     for game, summary in part["games"].items():
         stem = file_stem(prefix + game, taken)
         name = f"{stem}_hit_rates.png"
-        labels = {m: legend_label(m, table.latency(m, game)) for m in summary["modes"]}
-        figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["modes"],
+        labels = {c: legend_label(c, table.latency(c, game)) for c in summary["conditions"]}
+        figures.hit_rates_figure(os.path.join(out_dir, name), game, summary["participants"], summary["conditions"],
                                  summary["hit_rates"], f"{summary['hits_are']} / {summary['shots_are']}", palette,
                                  labels)
         summary["figures"]["hit_rates"] = name
@@ -344,25 +349,25 @@ def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_
             figures.differences_figure(os.path.join(out_dir, name), game, panels, palette)
             summary["figures"]["differences"] = name
             written.append(name)
-        elif len(summary["modes"]) > 1:
-            upconverting = [m for m in palette if table.upconverts(m)]
+        elif len(summary["conditions"]) > 1:
+            upconverting = [c for c in palette if table.upconverts(c)]
             lists_none = f"{conditions_file or inputs.MODES} lists none"
-            summary["notes"].append(f"No upconversion mode ({', '.join(upconverting) or lists_none}): "
+            summary["notes"].append(f"No upconverting condition ({', '.join(upconverting) or lists_none}): "
                                     "no histograms of differences.")
-    click = part["click"]
-    if click and click["modes"]:
-        name = file_stem(prefix + "click_measures", taken) + ".png"
-        figures.click_figure(os.path.join(out_dir, name), click, palette)
-        click["figure"] = name
+    matches = part["matches"]
+    if matches and matches["conditions"]:
+        name = file_stem(prefix + "matches", taken) + ".png"
+        figures.matches_figure(os.path.join(out_dir, name), matches, palette)
+        matches["figure"] = name
         written.append(name)
     return written
 
 
-def legend_label(mode, latency):
-    """The mode, and how long a mouse step takes to reach the screen in it where the table says."""
+def legend_label(condition, latency):
+    """The condition, and how long a mouse step takes to reach the screen in it where the table says."""
     if latency is None:
-        return mode
-    return f"{mode} (view {latency[0]:.1f}–{latency[1]:.1f} ms)"
+        return condition
+    return f"{condition} (view {latency[0]:.1f}–{latency[1]:.1f} ms)"
 
 
 def finite_or_none(value):
@@ -389,15 +394,19 @@ def rating_scale(text):
 
 
 def main(argv=None):
-    parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, click-game tables and figures from "
+    parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, the matches' tables and figures from "
                                                                  "the CSVs `warplab export` writes.")
     parser.add_argument("export_dir", metavar="EXPORT_DIR", help="the folder `warplab export` wrote")
     parser.add_argument("--out", required=True, metavar="REPORT_DIR",
                         help="where to write report.md, report.json and the figures (created if missing)")
-    parser.add_argument("--reference-mode", default=DEFAULT_REFERENCE, metavar="MODE",
-                        help=f"the condition (a mode of the matches) every other one is compared with (default "
-                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the mode order that "
+    parser.add_argument("--reference-condition", default=DEFAULT_REFERENCE, metavar="NAME",
+                        help=f"the condition of the matches every other one is compared with (default "
+                             f"{DEFAULT_REFERENCE}; when the matches lack it, the first in the condition order that "
                              "upconverts, else the first)")
+    # The same option under its name from before the analysis said condition, for the scripts that
+    # pass it; left out of --help.
+    parser.add_argument("--reference-mode", dest="reference_condition", default=argparse.SUPPRESS,
+                        help=argparse.SUPPRESS)
     parser.add_argument("--rating-scale", type=rating_scale, metavar="MIN:MAX",
                         help="the lowest and highest answer of every statement, in place of the protocol's "
                              "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
@@ -408,7 +417,7 @@ def main(argv=None):
                              "default each kind is analysed on its own, people first")
     args = parser.parse_args(argv)
     try:
-        results = analyse(args.export_dir, args.reference_mode, args.rating_scale, args.pool_players)
+        results = analyse(args.export_dir, args.reference_condition, args.rating_scale, args.pool_players)
     except BadInput as e:
         print(f"analyze: {e}", file=sys.stderr)
         return 1

@@ -2,7 +2,7 @@
 """Fits the simulated participants' population to one paper's people and predicts the other's.
 
 Fit: the medians of a few traits of assets/population.json are chosen to bring simulated
-participants' green hits per mode, relative to 60 fps, to Yang et al.'s Table 2 (seed 000 §8,
+participants' green hits per condition, relative to 60 fps, to Yang et al.'s Table 2 (seed 000 §8,
 33 people): the click game. Every evaluation plays the same participants (seeds 1..N) with the
 same game seeds -- common random numbers, so that the objective changes only with the traits --
 on protocol/click-fit.json through `warplab run --headless --player sim`, and reads their
@@ -15,7 +15,7 @@ fit never saw, and its report puts the thesis's Table 1 beside it (docs/simulate
     /usr/bin/python3 analysis/fit_participants.py --warplab build/app/warplab \\
         --participants 6 --evaluations 4 --confirm 12 --out fit-out
 writes fit-out/population.json (the fitted population), fit-out/fit.json (every evaluation:
-traits, per-mode ratios, objective) and prints a table of the fitted ratios against the paper's.
+traits, per-condition ratios, objective) and prints a table of the fitted ratios against the paper's.
 """
 import argparse
 import concurrent.futures
@@ -34,15 +34,15 @@ from warplab_analysis import papers
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# Yang et al. 2011, Table 2: green hits per mode relative to 60 fps (33 people).
+# Yang et al. 2011, Table 2: green hits per condition relative to 60 fps (33 people).
 BEST = papers.YANG_BEST
-MODES = papers.YANG_MODES
+CONDITIONS = papers.YANG_CONDITIONS
 PAPER_RATIO = papers.yang_ratio("green_hits")
 
 # The trait fitted (its median) and the range searched; the rest of the population (spreads
 # included) stays as the starting file has it. One trait, because each evaluation plays the
 # whole study again (minutes on two cores) and its outcome is noisy: the delay the model bridges
-# is what the lag modes, half of the paper's, turn on; the frame-rate modes are left to predict.
+# is what the lag conditions, half of the paper's, turn on; the frame-rate ones are left to predict.
 FITTED = "delay_adaptation"
 BOUNDS = (0.0, 1.0)
 
@@ -67,8 +67,8 @@ def play(warplab, protocol, population_file, seed, out):
     return folder
 
 
-def green_by_mode(warplab, folders, out):
-    """Green hits of the scored matches, summed per mode over participants."""
+def green_by_condition(warplab, folders, out):
+    """Green hits of the scored matches, summed per condition over participants."""
     export = out / "export"
     if export.exists():
         shutil.rmtree(export)
@@ -102,14 +102,14 @@ def evaluate(args, base, medians, index, log, participants=None):
     seeds = range(1, participants + 1)
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         folders = list(pool.map(lambda s: play(args.warplab, args.protocol, pop_file, s, out), seeds))
-    total = green_by_mode(args.warplab, folders, out)
-    ratio = {mode: total.get(mode, 0) / max(1, total.get(BEST, 0)) for mode in MODES}
-    objective = float(sum((ratio[m] - PAPER_RATIO[m]) ** 2 for m in MODES if m != BEST))
+    total = green_by_condition(args.warplab, folders, out)
+    ratio = {c: total.get(c, 0) / max(1, total.get(BEST, 0)) for c in CONDITIONS}
+    objective = float(sum((ratio[c] - PAPER_RATIO[c]) ** 2 for c in CONDITIONS if c != BEST))
     entry = {"evaluation": index, "participants": participants, "medians": medians, "green_hits": total,
              "ratio": ratio, "objective": objective}
     log.append(entry)
     print(f"eval {index:2d}: " + ", ".join(f"{k} {v:.3f}" for k, v in medians.items()) +
-          f" -> objective {objective:.4f} (" + " ".join(f"{m} {ratio[m]:.2f}" for m in MODES) + ")",
+          f" -> objective {objective:.4f} (" + " ".join(f"{c} {ratio[c]:.2f}" for c in CONDITIONS) + ")",
           flush=True)
     if not args.keep:
         shutil.rmtree(out)
@@ -160,9 +160,9 @@ def main():
     (Path(args.out) / "population.json").write_text(json.dumps(fitted, indent=2) + "\n")
     (Path(args.out) / "fit.json").write_text(json.dumps({"paper_ratio": PAPER_RATIO, "fitted": FITTED,
                                                          "evaluations": log, "best": best}, indent=2) + "\n")
-    print("\nmode             paper  fitted")
-    for mode in MODES:
-        print(f"{mode:16s} {PAPER_RATIO[mode]:.3f}  {best['ratio'][mode]:.3f}")
+    print("\ncondition        paper  fitted")
+    for condition in CONDITIONS:
+        print(f"{condition:16s} {PAPER_RATIO[condition]:.3f}  {best['ratio'][condition]:.3f}")
     return 0
 
 

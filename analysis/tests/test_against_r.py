@@ -6,7 +6,7 @@ ours convolves half-ranks). Beyond it: wilcox.test(d, exact = FALSE, correct = T
 approximation with tie-corrected variance and continuity correction. Both drop zero differences.
 
 The vectors are mostly tied and zero-laden, as the click game's are: a few participants, each
-difference one of a mode's mean ratings (1 to 7, over one to three matches) minus another's.
+difference one of a condition's mean ratings (1 to 7, over one to three matches) minus another's.
 R is run once for the whole batch; the values travel as hexadecimal floats, so R ranks the very
 doubles Python does.
 """
@@ -40,7 +40,7 @@ for (line in lines) {
 
 
 def mean_rating_differences(rng, participants):
-    """Per participant: mean of 1-3 ratings (1-7) in one mode minus the mean in another."""
+    """Per participant: mean of 1-3 ratings (1-7) in one condition minus the mean in another."""
     def mean_rating():
         return float(np.mean(rng.integers(1, 8, size=rng.integers(1, 4))))
     return [mean_rating() - mean_rating() for _ in range(participants)]

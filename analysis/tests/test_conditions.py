@@ -13,10 +13,10 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from test_analyze import (DATA, GAMES_HEADER, assert_same, hitrate_lines, modes_csv_exports,  # noqa: E402
+from exports import (DATA, GAMES_HEADER, assert_same, hitrate_lines, modes_csv_exports,  # noqa: E402
                           run_in_process, sign_test, with_modes, write, write_click_export)
 
-import analyze  # noqa: E402  (importing test_analyze has put analysis/ on the path)
+import analyze  # noqa: E402  (importing exports has put analysis/ on the path)
 
 CONDITIONS_HEADER = ("condition,render_hz,lag_frames,fill,late_warp,view_latency_min_ms,view_latency_max_ms,"
                      "scene_latency_min_ms,scene_latency_max_ms,fill_hz,refresh_hz,game,description")
@@ -29,6 +29,16 @@ def condition(name, render=60, lag=0, fill="hold", late="none", view=(8, 16), sc
     csv.writer(out, lineterminator="").writerow([name, render, lag, fill, late, *view, *scene, fill_hz, refresh, game,
                                                  description])
     return out.getvalue()
+
+
+def per_name(report):
+    """What report.json's `conditions` says of each name, in the table's order: its first row, with
+    the least added lag over its rows (what the condition order uses)."""
+    names = {}
+    for row in report["conditions"]:
+        first = names.setdefault(row["condition"], dict(row))
+        first["added_lag_ms"] = min(first["added_lag_ms"], row["added_lag_ms"])
+    return list(names.values())
 
 
 def with_conditions(export, lines=None):
@@ -51,8 +61,8 @@ def test_presets_keep_the_documented_order(tmp_path, table):
     write(tmp_path / "hitrates.csv", hitrate_lines(rows))
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
-    assert report["games"]["shooter"]["modes"] == report["mode_order"] == PRESET_ORDER
-    assert [t["mode"] for t in report["games"]["shooter"]["upconversion_differences"]] == PRESET_ORDER[:2]
+    assert report["games"]["shooter"]["conditions"] == report["condition_order"] == PRESET_ORDER
+    assert [t["condition"] for t in report["games"]["shooter"]["upconversion_differences"]] == PRESET_ORDER[:2]
 
 
 def test_presets_in_conditions_csv_give_modes_csv_results(tmp_path):
@@ -70,13 +80,15 @@ def test_presets_in_conditions_csv_give_modes_csv_results(tmp_path):
         assert code == 0
     old, new = reports["modes"], reports["conditions"]
     assert new["conditions_file"] == "conditions.csv" and old["conditions_file"] == "modes.csv"
-    for key in ("mode_order", "games", "sign_tests", "click", "figures"):
+    for key in ("condition_order", "games", "sign_tests", "matches", "figures"):
         assert_same(new[key], old[key], key)
-    assert [m["mode"] for m in new["modes"]] == ["conv15", "conv30", "conv60", "conv120", "lag50", "lag100", "lag200",
-                                                 "warp15to120", "bireproj15to60"]
-    assert_same([(m["mode"], m["description"], m["upconverts"], m["render_rate_hz"]) for m in new["modes"]],
-                [(m["mode"], m["description"], m["upconverts"], m["render_rate_hz"]) for m in old["modes"]], "modes")
-    assert [m["added_lag_ms"] for m in new["modes"]] == pytest.approx([m["added_lag_ms"] for m in old["modes"]])
+    new_names, old_names = per_name(new), per_name(old)
+    assert [c["condition"] for c in new_names] == ["conv15", "conv30", "conv60", "conv120", "lag50", "lag100",
+                                                   "lag200", "warp15to120", "bireproj15to60"]
+    assert_same([(c["condition"], c["description"], c["upconverts"], c["render_hz"]) for c in new_names],
+                [(c["condition"], c["description"], c["upconverts"], c["render_hz"]) for c in old_names],
+                "conditions")
+    assert [c["added_lag_ms"] for c in new_names] == pytest.approx([c["added_lag_ms"] for c in old_names])
     # conv60 ran in both games, at two refreshes: two rows, the lag in frames per refresh.
     lag50 = [(r["game"], r["refresh_hz"], r["lag_frames"]) for r in new["conditions"] if r["condition"] == "lag50"]
     assert lag50 == [("shooter", 120, 6), ("click", 60, 3)]
@@ -108,7 +120,7 @@ LAB_CLICK = {"bireproj15to60": "blend-30to120", "conv60": "plain60", "conv15": "
 
 
 def lab_export(export, rename=LAB_CLICK):
-    """Both games, every mode a lab condition (two the table does not list), no preset anywhere."""
+    """Both games, every condition a lab's (two the table does not list), no preset anywhere."""
     write_click_export(export, rename=rename, table=lambda e: with_conditions(e, LAB))
     rows = [(p, m, h + k, 20) for p, h in (("s1", 2), ("s2", 5), ("s3", 4), ("s4", 6))
             for k, m in enumerate(["b-unlisted", "plain60-lag2", "base30", "a-unlisted", "plain60", "my-144hz-warp",
@@ -135,39 +147,39 @@ def test_a_labs_conditions(tmp_path, monkeypatch):
     shooter = report["games"]["shooter"]
     # Upconverting first, in file order (late warp alone makes lag60x5-rotation one); then the least
     # added lag, at equal lag the highest render rate; unlisted ones by name.
-    assert shooter["modes"] == LAB_SHOOTER_ORDER
-    assert report["mode_order"] == ["lag60x5-rotation", "my-144hz-warp", "blend-30to120", "plain60", "base30",
+    assert shooter["conditions"] == LAB_SHOOTER_ORDER
+    assert report["condition_order"] == ["lag60x5-rotation", "my-144hz-warp", "blend-30to120", "plain60", "base30",
                                     "plain60-lag2", "a-unlisted", "b-unlisted"]
     table2 = shooter["upconversion_differences"]
-    assert [t["mode"] for t in table2] == ["lag60x5-rotation", "my-144hz-warp"]
+    assert [t["condition"] for t in table2] == ["lag60x5-rotation", "my-144hz-warp"]
     assert all(t["sorted_by"] == "base30" for t in table2)  # the lowest-rate condition without lag or upconversion
     assert sign_test(report, "lag60x5-rotation", "plain60")["positive"] == 4
     assert sign_test(report, "lag60x5-rotation", "my-144hz-warp")["positive"] == 4
-    modes = {m["mode"]: m for m in report["modes"]}
-    assert modes["plain60-lag2"]["added_lag_ms"] == pytest.approx(100 / 3)
-    assert modes["lag60x5-rotation"]["upconverts"] and not modes["plain60-lag2"]["upconverts"]
+    names = {c["condition"]: c for c in per_name(report)}
+    assert names["plain60-lag2"]["added_lag_ms"] == pytest.approx(100 / 3)
+    assert names["lag60x5-rotation"]["upconverts"] and not names["plain60-lag2"]["upconverts"]
     # The click game: no bireproj15to60, so the first upconverting condition is the reference.
-    click = report["click"]
-    assert click["modes"] == ["blend-30to120", "plain60", "plain60-lag2"]
-    assert click["reference_mode"] == "blend-30to120" and click["reference_requested"] == "bireproj15to60"
-    assert ("The default reference mode bireproj15to60 is not in the scored matches; blend-30to120, the first mode "
-            "in the mode order that upconverts, is the reference instead.") in click["notes"]
+    matches = report["matches"]
+    assert matches["conditions"] == ["blend-30to120", "plain60", "plain60-lag2"]
+    assert matches["reference_condition"] == "blend-30to120" and matches["reference_requested"] == "bireproj15to60"
+    assert ("The default reference condition bireproj15to60 is not in the scored matches; blend-30to120, the first "
+            "condition in the condition order that upconverts, is the reference instead.") in matches["notes"]
     out = tmp_path / "out"
     for name in ("shooter_hit_rates.png", "shooter_differences.png", "click_hit_rates.png", "click_differences.png",
-                 "click_measures.png"):
+                 "matches.png"):
         assert (out / name).stat().st_size > 10_000, name
     md = (out / "report.md").read_text()
     assert "conditions.csv (8 rows, 6 conditions)" in md
-    assert ("Modes: lag60x5-rotation (60 Hz, 5 frames late, each re-projected by rotation to the display instant's "
+    assert ("Conditions: lag60x5-rotation (60 Hz, 5 frames late, each re-projected by rotation to the display instant's "
             "camera); my-144hz-warp (36 Hz renders, warped (full) to 144 Hz, \"fast\"); blend-30to120") in md
     assert "a-unlisted; b-unlisted." in md
     assert ("conditions.csv does not list a-unlisted, b-unlisted: they follow the others by name, and none counts as "
-            "an upconversion mode.") in report["notes"]
+            "an upconverting condition.") in report["notes"]
     assert ("| lag60x5-rotation | 60 | shooter | 60 | 83.33 | 5 | hold | rotation | yes | 16.67–33.33 "
             "| 100.00–116.67 |") in md
     assert "| my-144hz-warp | 144 | shooter | 36 | 0.00 | 0 | warp-full, 144 Hz | none | yes | 6.94–13.89 |" in md
     assert "| plain60-lag2 | 120 | click | 60 | 33.33 | 4 | hold |" in md
-    assert "Reference mode: blend-30to120." in md and "Table 2a (shooter): lag60x5-rotation hit rate minus" in md
+    assert "Reference condition: blend-30to120." in md and "Table 2a (shooter): lag60x5-rotation hit rate minus" in md
     assert not any(p in md for p in PRESET_ORDER if p != "bireproj15to60")
     # The legend says how long a mouse step takes to reach the screen, for the game's own rows.
     assert legends["shooter"]["lag60x5-rotation"] == "lag60x5-rotation (view 16.7–33.3 ms)"
@@ -179,29 +191,31 @@ def test_reference_without_any_upconverting_condition(tmp_path):
     lab_export(tmp_path, rename={"bireproj15to60": "base30", "conv60": "plain60", "conv15": "plain60-lag2"})
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
-    click = report["click"]
-    assert click["modes"] == ["plain60", "base30", "plain60-lag2"] and click["reference_mode"] == "plain60"
-    assert ("The default reference mode bireproj15to60 is not in the scored matches and no mode there upconverts; "
-            "plain60, the first in the mode order, is the reference instead.") in click["notes"]
+    matches = report["matches"]
+    assert matches["conditions"] == ["plain60", "base30", "plain60-lag2"]
+    assert matches["reference_condition"] == "plain60"
+    assert ("The default reference condition bireproj15to60 is not in the scored matches and no condition there "
+            "upconverts; plain60, the first in the condition order, is the reference instead.") in matches["notes"]
     # Asked for one it lacks: the same rule.
-    code, report = run_in_process(tmp_path, tmp_path / "out2", "--reference-mode", "conv60")
-    assert code == 0 and report["click"]["reference_mode"] == "plain60"
-    assert report["click"]["notes"][-1].startswith("The reference mode conv60 is not in the scored matches and")
+    code, report = run_in_process(tmp_path, tmp_path / "out2", "--reference-condition", "conv60")
+    assert code == 0 and report["matches"]["reference_condition"] == "plain60"
+    assert report["matches"]["notes"][-1].startswith(
+        "The reference condition conv60 is not in the scored matches and")
     # Asked for one it has.
-    code, report = run_in_process(tmp_path, tmp_path / "out3", "--reference-mode", "plain60-lag2")
-    assert code == 0 and report["click"]["reference_mode"] == "plain60-lag2"
-    assert not any("reference" in n for n in report["click"]["notes"])
+    code, report = run_in_process(tmp_path, tmp_path / "out3", "--reference-condition", "plain60-lag2")
+    assert code == 0 and report["matches"]["reference_condition"] == "plain60-lag2"
+    assert not any("reference" in n for n in report["matches"]["notes"])
 
 
 def test_reference_defaults_to_bireproj_even_when_not_first(tmp_path):
     # warp15to120 comes first in the order, yet an absent request falls back to bireproj15to60.
     write_click_export(tmp_path, rename={"conv15": "warp15to120"})
-    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-mode", "conv120")
+    code, report = run_in_process(tmp_path, tmp_path / "out", "--reference-condition", "conv120")
     assert code == 0
-    assert report["click"]["modes"][:2] == ["warp15to120", "bireproj15to60"]
-    assert report["click"]["reference_mode"] == "bireproj15to60"
-    assert ("The reference mode conv120 is not in the scored matches; bireproj15to60, the default, is the reference "
-            "instead.") in report["click"]["notes"]
+    assert report["matches"]["conditions"][:2] == ["warp15to120", "bireproj15to60"]
+    assert report["matches"]["reference_condition"] == "bireproj15to60"
+    assert ("The reference condition conv120 is not in the scored matches; bireproj15to60, the default, is the "
+            "reference instead.") in report["matches"]["notes"]
 
 
 # --- conditions.csv over modes.csv -----------------------------------------------------------------
@@ -218,13 +232,13 @@ def test_conditions_csv_wins_over_modes_csv(tmp_path):
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
     assert report["conditions_file"] == "conditions.csv"
-    assert report["games"]["shooter"]["modes"] == ["conv15", "warp15to120", "conv120"]
+    assert report["games"]["shooter"]["conditions"] == ["conv15", "warp15to120", "conv120"]
     assert [(t["a"], t["b"]) for t in report["sign_tests"]] == [
         ("conv15", "warp15to120"), ("conv15", "conv120"), ("warp15to120", "conv120")]
     assert sign_test(report, "conv15", "warp15to120")["negative"] == 19
     assert "modes.csv" not in report["inputs"] and report["inputs"]["conditions.csv"] == {"rows": 3, "conditions": 3}
     md = (tmp_path / "out" / "report.md").read_text()
-    assert "Modes: conv15 (15 Hz, late-warped by rotation here); warp15to120 (warp); conv120 (120 Hz)." in md
+    assert "Conditions: conv15 (15 Hz, late-warped by rotation here); warp15to120 (warp); conv120 (120 Hz)." in md
     assert "conditions.csv is read and modes.csv beside it is not" in md
 
 

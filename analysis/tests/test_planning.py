@@ -135,7 +135,7 @@ def test_no_difference_to_detect():
         assert result["needed"] is None and result["first"] is None
         assert result["note"] == "no difference to detect", counts
     assert planning.sample_size(0, 0, 4)["p_plus"] is None and planning.sample_size(0, 0, 4)["tie_share"] == 1.0
-    assert planning.sample_size(0, 0, 0)["note"] == "no participant has both modes"
+    assert planning.sample_size(0, 0, 0)["note"] == "no participant has both conditions"
     # At p+ = ½ the power is the test's size, never above α (so no n would reach 0.8).
     assert planning.power_curve(0.5, 0.3).max() <= 0.05
 
@@ -158,7 +158,7 @@ def test_report_has_the_planning_table(tmp_path):
     for k in range(21):
         rows += [(f"p{k}", "conv60", 10), (f"p{k}", "conv15", 10), (f"p{k}", "conv30", 9 if k < 11 else 11)]
     (tmp_path / "hitrates.csv").write_text(hitrate_csv(rows))
-    shutil.copy(DATA / "modes.csv", tmp_path / "modes.csv")  # the mode order: conv60 before conv30
+    shutil.copy(DATA / "modes.csv", tmp_path / "modes.csv")  # the condition order: conv60 before conv30
     assert analyze.main([str(tmp_path), "--out", str(tmp_path / "out")]) == 0
     report = json.loads((tmp_path / "out" / "report.json").read_text())
     plans = {(t["a"], t["b"]): t["planning"] for t in report["sign_tests"]}

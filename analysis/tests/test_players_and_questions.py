@@ -30,21 +30,21 @@ def write_mixed(export, kinds=True):
     rows = ["participant,game,mode,shots,hits,timeouts,hit_rate" + (",player_kind" if kinds else "")]
     for p in order:
         kind = "human" if p in PEOPLE else "bot"
-        for k, mode in enumerate(("conv120", "conv15")):
+        for k, condition in enumerate(("conv120", "conv15")):
             hits = (PEOPLE.get(p) or BOTS[p])[k]
-            rows.append(f"{p},shooter,{mode},200,{hits},0,{hits / 200}" + (f",{kind}" if kinds else ""))
+            rows.append(f"{p},shooter,{condition},200,{hits},0,{hits / 200}" + (f",{kind}" if kinds else ""))
     (export / "hitrates.csv").write_text("\n".join(rows) + "\n", encoding="utf-8")
     shutil.copy(DATA / "modes.csv", export / "modes.csv")
     answers = [ANSWERS_HEADER]
-    for mode_index, mode in enumerate(("conv120", "conv15")):
+    for index, condition in enumerate(("conv120", "conv15")):
         for i, p in enumerate(order):
             kind = "human" if p in PEOPLE else "bot"
-            answers.append(f"{p},{p}.s,shooter,test,true,{mode_index},{mode},0,smooth,likert,How smooth?,"
-                           f"{LIKERT[mode][i]},,key,1,7,1,1,{kind},{mode_index + 1}")
-            answers.append(f'{p},{p}.s,shooter,test,true,{mode_index},{mode},1,what,text,Anything else?,,'
-                           f'"said {p}, {mode}",typed,,,1,1,{kind},{mode_index + 1}')
-            answers.append(f"{p},{p}.s,shooter,test,true,{mode_index},{mode},2,pick,choice,Which?,"
-                           f"{1 + i % 2},{'AB'[i % 2]},key,1,2,1,1,{kind},{mode_index + 1}")
+            answers.append(f"{p},{p}.s,shooter,test,true,{index},{condition},0,smooth,likert,How smooth?,"
+                           f"{LIKERT[condition][i]},,key,1,7,1,1,{kind},{index + 1}")
+            answers.append(f'{p},{p}.s,shooter,test,true,{index},{condition},1,what,text,Anything else?,,'
+                           f'"said {p}, {condition}",typed,,,1,1,{kind},{index + 1}')
+            answers.append(f"{p},{p}.s,shooter,test,true,{index},{condition},2,pick,choice,Which?,"
+                           f"{1 + i % 2},{'AB'[i % 2]},key,1,2,1,1,{kind},{index + 1}")
     (export / "answers.csv").write_text("\n".join(answers) + "\n", encoding="utf-8")
     return export
 
@@ -99,7 +99,7 @@ def test_questions_are_summarised_per_condition_for_the_people(tmp_path):
     likert, text, choice = report["questions"]
     assert (likert["kind"], text["kind"], choice["kind"]) == ("likert", "text", "choice")
     people = LIKERT["conv15"][:3]  # P1, P2, P5: the bots' answers are in their own section
-    e = likert["by_mode"]["conv15"]
+    e = likert["by_condition"]["conv15"]
     assert e["n"] == 3
     if shutil.which("Rscript"):
         q25, median, q75, iqr = r_quantiles(people)
@@ -108,12 +108,12 @@ def test_questions_are_summarised_per_condition_for_the_people(tmp_path):
         q25, median, q75 = s[0] + 0.5 * (s[1] - s[0]), s[1], s[1] + 0.5 * (s[2] - s[1])
         iqr = q75 - q25
     assert (e["q25"], e["median"], e["q75"], e["iqr"]) == pytest.approx((q25, median, q75, iqr))
-    assert [a["participant"] for a in text["by_mode"]["conv120"]["answers"]] == ["P1", "P2", "P5"]
-    assert text["by_mode"]["conv120"]["answers"][0]["text"] == "said P1, conv120"
-    assert choice["by_mode"]["conv15"]["counts"] == [{"option": 1, "text": "A", "count": 2},
+    assert [a["participant"] for a in text["by_condition"]["conv120"]["answers"]] == ["P1", "P2", "P5"]
+    assert text["by_condition"]["conv120"]["answers"][0]["text"] == "said P1, conv120"
+    assert choice["by_condition"]["conv15"]["counts"] == [{"option": 1, "text": "A", "count": 2},
                                                      {"option": 2, "text": "B", "count": 1}]
     assert "### Question 1 (likert): smooth: How smooth?" in md and "said P5, conv15" in md
-    bots = report["player_groups"][0]["questions"][0]["by_mode"]["conv120"]
+    bots = report["player_groups"][0]["questions"][0]["by_condition"]["conv120"]
     assert bots["n"] == 2 and bots["median"] == 2
 
 

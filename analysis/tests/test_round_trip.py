@@ -20,7 +20,8 @@ PARTICIPANTS = ["P1", "P2", "P3"]
 
 
 def scored_counts_from_sqlite(session):
-    """(participant, game, mode) -> [shots, hits] over the scored phase, straight from SQL."""
+    """(participant, game, condition) -> [shots, hits] over the scored phase, straight from SQL (the
+    session file names a row's condition in its events' `mode` column)."""
     db = sqlite3.connect(f"file:{session}?mode=ro&immutable=1", uri=True)
     meta = dict(db.execute("SELECT key, value FROM meta"))
     protocol = json.loads(meta["protocol_json"])
@@ -37,8 +38,8 @@ def scored_counts_from_sqlite(session):
         rows = db.execute(f"SELECT mode, world_outcome, displayed_outcome FROM events WHERE type = 'click' "
                           f"AND phase IN ({','.join('?' * len(scored_rounds))})", scored_rounds)
         hit = "green"
-    for mode, world, displayed in rows:
-        c = counts[(meta["participant"], game, mode)]
+    for condition, world, displayed in rows:
+        c = counts[(meta["participant"], game, condition)]
         c[0] += 1
         c[1] += (world if scoring == "world" else displayed) == hit
     db.close()
@@ -89,12 +90,12 @@ def test_report_has_both_games_tables_and_figures(study):
         assert t["positive"] + t["negative"] == t["n"]
     with open(export / "matches.csv", newline="", encoding="utf-8") as f:
         scored = [m for m in csv.DictReader(f) if m["scored_phase"] == "true"]
-    assert data["click"]["scored_matches"] == len(scored) > 0
+    assert data["matches"]["scored_matches"] == len(scored) > 0
     text = (report / "report.md").read_text()
     assert "Table 1 (shooter)" in text and "Click game" in text
     for figure in data["figures"]:
         assert (report / figure).stat().st_size > 1000
-    assert "shooter_hit_rates.png" in data["figures"] and "click_measures.png" in data["figures"]
+    assert "shooter_hit_rates.png" in data["figures"] and "matches.png" in data["figures"]
 
 
 def read_csv(path):
@@ -102,22 +103,22 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def test_modes_and_games_come_from_the_export(study):
+def test_conditions_and_games_come_from_the_export(study):
     _, export, report = study
     data = json.loads((report / "report.json").read_text())
     if (export / "conditions.csv").exists():
         check_conditions_csv(export, report, data)
     else:
         # An export from before conditions.csv. The analysis tests' modes.csv is what export writes
-        # for the published presets: its rows are rows of the real file (which may list more modes).
+        # for the published presets: its rows are rows of the real file (which may list more).
         exported = (export / "modes.csv").read_text(encoding="utf-8").splitlines()
         fixture = (ROOT / "analysis" / "tests" / "data" / "modes.csv").read_text(encoding="utf-8").splitlines()
         assert exported[:len(fixture)] == fixture
-        assert [m["mode"] for m in data["modes"]] == [line.split(",")[0] for line in exported[1:]]
+        assert [r["condition"] for r in data["conditions"]] == [line.split(",")[0] for line in exported[1:]]
         assert "warp15to120 (rendered at 15 Hz, the frames between warped" in (report / "report.md").read_text()
     games = {r["game"]: (r["hits_are"], r["shots_are"]) for r in read_csv(export / "games.csv")}
     assert games == {"shooter": ("hits", "shots"), "click": ("green hits", "clicks")}
-    assert data["click"]["game"] == "click"
+    assert data["matches"]["game"] == "click"
     text = (report / "report.md").read_text()
     assert "rate = green hits out of clicks" in text and "rate = hits out of shots" in text
 
@@ -137,7 +138,7 @@ def check_conditions_csv(export, report, data):
                       "scene_latency_p95_ms"]
     names = list(dict.fromkeys(r["condition"] for r in rows))
     assert data["conditions_file"] == "conditions.csv"
-    assert [m["mode"] for m in data["modes"]] == names
+    assert list(dict.fromkeys(r["condition"] for r in data["conditions"])) == names
     assert {r["condition"] for r in read_csv(export / "hitrates.csv")} <= set(names)
     fixture = {r["condition"]: r for r in read_csv(ROOT / "analysis" / "tests" / "data" / "conditions.csv")}
     for r in rows:
@@ -154,7 +155,7 @@ def check_conditions_csv(export, report, data):
         assert abs(lag_ms - int(preset["lag_frames"]) * 1000 / float(preset["refresh_hz"])) <= 500 / refresh + 1e-9, \
             r["condition"]
     text = (report / "report.md").read_text()
-    assert "## Conditions" in text and all(f"| {name} |" in text for name in data["mode_order"] if name in names)
+    assert "## Conditions" in text and all(f"| {name} |" in text for name in data["condition_order"] if name in names)
 
 
 def test_a_condition_the_protocol_defines_reaches_every_table(study):
@@ -165,7 +166,7 @@ def test_a_condition_the_protocol_defines_reaches_every_table(study):
     assert rows["lag60x5-rotation"]["lag_frames"] == "10"
     assert float(rows["lag60x5-rotation"]["view_latency_max_ms"]) == pytest.approx(1000 / 120)
     assert float(rows["lag60x5"]["view_latency_min_ms"]) == pytest.approx(10000 / 120)
-    names = [m["mode"] for m in data["modes"]]
+    names = {r["condition"] for r in data["conditions"]}
     for name in ("base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"):
         assert name in names
     # Late warp upconverts: it comes before the plain lagged condition in every sign test.

@@ -1,12 +1,12 @@
 """What the export's condition table says about each condition, and the order in which the report
 compares them.
 
-A condition is what the other files' `mode` columns name. A lab composes its own in the protocol
-(render rate, added latency in display frames, what fills the frames between renders, late warp:
-re-projecting an old lagged frame to the display instant's camera, Kim et al. 2020), so the
-analysis keeps no list of conditions of its own: it learns them from conditions.csv, or from
-modes.csv in an export from before conditions.csv, whose rows inputs.load_conditions maps into
-the same records. A record:
+A condition is what the other files' `condition` columns name (`mode` in an older export). A lab
+composes its own in the protocol (render rate, added latency in display frames, what fills the
+frames between renders, late warp: re-projecting an old lagged frame to the display instant's
+camera, Kim et al. 2020), so the analysis keeps no list of conditions of its own: it learns them
+from conditions.csv, or from modes.csv in an export from before conditions.csv, whose rows
+inputs.load_conditions maps into the same records. A record:
 
     condition, description, render_hz, lag_frames, added_lag_ms, fill, fill_hz, late_warp,
     view_latency_min_ms, view_latency_max_ms, scene_latency_min_ms, scene_latency_max_ms,
@@ -87,9 +87,3 @@ class ConditionTable:
         return (min(r["view_latency_min_ms"] for r in rows), max(r["view_latency_max_ms"] for r in rows),
                 min(r["scene_latency_min_ms"] for r in rows), max(r["scene_latency_max_ms"] for r in rows))
 
-    def summary(self):
-        """One entry per name, in the table's order, with what the order uses (report.json's `modes`;
-        for a modes.csv export the file's own rows)."""
-        return [{"mode": name, "description": self.description(name), "render_rate_hz": self.first(name)["render_hz"],
-                 "added_lag_ms": self.added_lag_ms(name), "upconverts": self.upconverts(name)}
-                for name in self.rows]

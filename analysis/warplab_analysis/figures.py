@@ -1,18 +1,18 @@
 """The report's figures (PNG, matplotlib's Agg backend, so no display is needed).
 
-- hit rate per participant, one marker per mode, not joined (participants are categories; seed 004
-  Figure 32); beyond
-  PER_PARTICIPANT_LIMIT participants, one box of the participants' hit rates per mode instead;
-- histograms of upconversion − other mode hit-rate differences, one panel per pair (Figures
+- hit rate per participant, one marker per condition, not joined (participants are categories;
+  seed 004 Figure 32); beyond PER_PARTICIPANT_LIMIT participants, one box of the participants'
+  hit rates per condition instead;
+- histograms of upconverting − other condition hit-rate differences, one panel per pair (Figures
   33–34), in bins of 0.05 (five percentage points, as the thesis discusses them) aligned on 0;
-- the click game's per-mode mean ± SD of each measure, reference mode highlighted (the numbers
-  of seed 000 Table 2);
+- the matches' per-condition mean ± SD of each measure, reference condition highlighted (the
+  numbers of seed 000 Table 2);
 - each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
   MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
 - each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
   histograms drawn exactly from the spans, a row per condition on one latency scale.
-Each mode keeps one colour in every figure: its place in `palette`, every condition the export's
-table lists in the report's mode order (conditions.ConditionTable.all_conditions).
+Each condition keeps one colour in every figure: its place in `palette`, every condition the
+export's table lists in the report's condition order (conditions.ConditionTable.all_conditions).
 """
 import math
 
@@ -26,75 +26,77 @@ import numpy as np  # noqa: E402
 BIN_WIDTH = 0.05
 # Up to this many participants the hit-rate figure gives each a column (0.38 in, so 26 in and
 # about 2,900 px wide at most); beyond it the columns would be unreadable slivers, and at 1,700
-# participants wider than matplotlib draws (2^16 px), so each mode gets one box instead.
+# participants wider than matplotlib draws (2^16 px), so each condition gets one box instead.
 PER_PARTICIPANT_LIMIT = 60
 MARKERS = ["o", "s", "^", "D", "v", "P", "X", "<", ">", "h", "*", "p"]
 
 
-def colour(mode, palette):
-    """One colour per mode: those the condition table lists by their place in the mode order, others by name."""
+def colour(condition, palette):
+    """One colour per condition: those the condition table lists by their place in the condition
+    order, others by name."""
     cmap = plt.get_cmap("tab10")
-    if mode in palette:
-        return cmap(palette.index(mode) % 10)
-    return plt.get_cmap("Dark2")(sum(map(ord, mode)) % 8)
+    if condition in palette:
+        return cmap(palette.index(condition) % 10)
+    return plt.get_cmap("Dark2")(sum(map(ord, condition)) % 8)
 
 
-def hit_rates_figure(path, game, participants, modes, hit_rates, measure, palette, labels=None):
+def hit_rates_figure(path, game, participants, conditions, hit_rates, measure, palette, labels=None):
     """measure: what the rate counts, e.g. "hits / shots" or "green hits / clicks" (games.csv);
-    labels: each mode's legend entry (the mode's name where absent)."""
+    labels: each condition's legend entry (the condition's name where absent)."""
     labels = labels or {}
     if len(participants) > PER_PARTICIPANT_LIMIT:
-        hit_rates_summary_figure(path, game, participants, modes, hit_rates, measure, palette, labels)
+        hit_rates_summary_figure(path, game, participants, conditions, hit_rates, measure, palette, labels)
         return
     fig, ax = plt.subplots(figsize=(max(7.0, 0.38 * len(participants) + 3.0), 5.0), dpi=110)
     x = np.arange(len(participants))
-    # Modes side by side within a participant's column: equal hit rates (common with few shots)
-    # would otherwise hide one mode's marker behind another's.
-    dodge = min(0.25, 0.6 / max(1, len(modes)))
-    for k, mode in enumerate(modes):
-        y = [hit_rates[p][mode]["hit_rate"] if mode in hit_rates[p] else math.nan for p in participants]
+    # Conditions side by side within a participant's column: equal hit rates (common with few
+    # shots) would otherwise hide one condition's marker behind another's.
+    dodge = min(0.25, 0.6 / max(1, len(conditions)))
+    for k, condition in enumerate(conditions):
+        y = [hit_rates[p][condition]["hit_rate"] if condition in hit_rates[p] else math.nan for p in participants]
         # Points only: participants are categories, not a series, so no line joins one to the next.
-        ax.plot(x + (k - (len(modes) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="none",
-                markersize=6, color=colour(mode, palette), label=labels.get(mode, mode))
+        ax.plot(x + (k - (len(conditions) - 1) / 2) * dodge, y, marker=MARKERS[k % len(MARKERS)], linestyle="none",
+                markersize=6, color=colour(condition, palette), label=labels.get(condition, condition))
     ax.set_xticks(x)
     ax.set_xticklabels(participants, rotation=90 if max(map(len, participants)) > 3 else 0, fontsize=8)
     ax.set_xlim(-0.5, len(participants) - 0.5)
     ax.set_ylim(0, 1.02)
     ax.set_xlabel("participant")
     ax.set_ylabel(f"hit rate ({measure})")
-    ax.set_title(f"{game}: hit rate per participant and mode")
+    ax.set_title(f"{game}: hit rate per participant and condition")
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     # Beside the axes, not over them: with points only, any corner may hold a participant's rate.
-    ax.legend(title="mode", fontsize=8, title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+    ax.legend(title="condition", fontsize=8, title_fontsize=8, loc="upper left", bbox_to_anchor=(1.0, 1.0),
               framealpha=0.9)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
-def hit_rates_summary_figure(path, game, participants, modes, hit_rates, measure, palette, labels):
-    """One box per mode (quartiles, whiskers at 1.5 IQR) over every participant's hit rate, with
-    each participant a faint dot beside it: the spread of Figure 32 when a column each is too many."""
-    fig, ax = plt.subplots(figsize=(max(7.0, 1.1 * len(modes) + 3.0), 5.0), dpi=110)
+def hit_rates_summary_figure(path, game, participants, conditions, hit_rates, measure, palette, labels):
+    """One box per condition (quartiles, whiskers at 1.5 IQR) over every participant's hit rate,
+    with each participant a faint dot beside it: the spread of Figure 32 when a column each is too
+    many."""
+    fig, ax = plt.subplots(figsize=(max(7.0, 1.1 * len(conditions) + 3.0), 5.0), dpi=110)
     rng = np.random.default_rng(0)  # the dots' jitter: the same figure on every run
-    for k, mode in enumerate(modes):
-        y = np.array([hit_rates[p][mode]["hit_rate"] for p in participants if mode in hit_rates[p]])
+    for k, condition in enumerate(conditions):
+        y = np.array([hit_rates[p][condition]["hit_rate"] for p in participants if condition in hit_rates[p]])
         if len(y) == 0:
             continue
         ax.scatter(k + 0.3 + rng.uniform(-0.08, 0.08, len(y)), y, s=3, alpha=min(0.6, 30 / len(y) + 0.05),
-                   color=colour(mode, palette), linewidths=0)
+                   color=colour(condition, palette), linewidths=0)
         box = ax.boxplot([y], positions=[k], widths=0.35, patch_artist=True, showfliers=False,
                          medianprops={"color": "black"})
         for patch in box["boxes"]:
-            patch.set_facecolor(colour(mode, palette))
+            patch.set_facecolor(colour(condition, palette))
             patch.set_alpha(0.8)
-    ax.set_xticks(np.arange(len(modes)))
-    ax.set_xticklabels([labels.get(m, m) for m in modes], rotation=30, ha="right", fontsize=8)
-    ax.set_xlim(-0.6, len(modes) - 0.2)
+    ax.set_xticks(np.arange(len(conditions)))
+    ax.set_xticklabels([labels.get(c, c) for c in conditions], rotation=30, ha="right", fontsize=8)
+    ax.set_xlim(-0.6, len(conditions) - 0.2)
     ax.set_ylim(0, 1.02)
-    ax.set_xlabel("mode")
+    ax.set_xlabel("condition")
     ax.set_ylabel(f"hit rate ({measure})")
-    ax.set_title(f"{game}: hit rate per mode over {len(participants)} participants (box: quartiles; dots: "
+    ax.set_title(f"{game}: hit rate per condition over {len(participants)} participants (box: quartiles; dots: "
                  "participants)", fontsize=10)
     ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     fig.tight_layout()
@@ -111,48 +113,50 @@ def bins(values):
 
 
 def differences_figure(path, game, panels, palette):
-    """panels: [((upconversion mode, other mode), [differences])]."""
+    """panels: [((upconverting condition, other condition), [differences])]."""
     columns = min(3, len(panels))
     rows = math.ceil(len(panels) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(4.2 * columns, 3.4 * rows), dpi=110, squeeze=False)
-    for ax, ((mode, other), values) in zip(axes.flat, panels):
+    for ax, ((condition, other), values) in zip(axes.flat, panels):
         if values:
-            ax.hist(values, bins=bins(values), color=colour(mode, palette), edgecolor="black", linewidth=0.6)
+            ax.hist(values, bins=bins(values), color=colour(condition, palette), edgecolor="black", linewidth=0.6)
             ax.axvline(0.0, color="0.3", linestyle="--", linewidth=0.9)
         else:
-            ax.text(0.5, 0.5, "no participant has both modes", ha="center", va="center", transform=ax.transAxes,
+            ax.text(0.5, 0.5, "no participant has both conditions", ha="center", va="center", transform=ax.transAxes,
                     fontsize=8)
-        ax.set_title(f"{mode} − {other}", fontsize=9)
+        ax.set_title(f"{condition} − {other}", fontsize=9)
         ax.set_xlabel("hit-rate difference")
         ax.set_ylabel("participants")
         ax.yaxis.get_major_locator().set_params(integer=True)
     for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
-    fig.suptitle(f"{game}: hit-rate differences, upconversion against each other mode (bins of {BIN_WIDTH:g})",
+    fig.suptitle(f"{game}: hit-rate differences, upconversion against each other condition (bins of {BIN_WIDTH:g})",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
 
 
-def click_figure(path, click, palette):
-    measures = list(click["measures"].values())
-    modes = click["modes"]
+def matches_figure(path, matches, palette):
+    """Each measure of the matches (analyze.analyse_matches): per condition the mean ± SD across
+    participants, a panel per measure."""
+    measures = list(matches["measures"].values())
+    conditions = matches["conditions"]
     columns = min(4, len(measures))
     rows = math.ceil(len(measures) / columns)
     fig, axes = plt.subplots(rows, columns, figsize=(3.6 * columns, 3.4 * rows), dpi=110, squeeze=False)
-    x = np.arange(len(modes))
+    x = np.arange(len(conditions))
     for k, (ax, measure) in enumerate(zip(axes.flat, measures)):
-        means = [measure["modes"][m]["mean"] for m in modes]
-        sds = [measure["modes"][m]["sd"] for m in modes]
+        means = [measure["conditions"][c]["mean"] for c in conditions]
+        sds = [measure["conditions"][c]["sd"] for c in conditions]
         means = [math.nan if v is None else v for v in means]
         sds = [0.0 if v is None else v for v in sds]
-        bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(m, palette) for m in modes], edgecolor="black",
-                      linewidth=0.5, error_kw={"linewidth": 0.8})
-        if click["reference_mode"] in modes:
-            bars[modes.index(click["reference_mode"])].set_linewidth(2.0)
+        bars = ax.bar(x, means, yerr=sds, capsize=3, color=[colour(c, palette) for c in conditions],
+                      edgecolor="black", linewidth=0.5, error_kw={"linewidth": 0.8})
+        if matches["reference_condition"] in conditions:
+            bars[conditions.index(matches["reference_condition"])].set_linewidth(2.0)
         ax.set_xticks(x)
-        ax.set_xticklabels(modes, rotation=60, ha="right", fontsize=7)
+        ax.set_xticklabels(conditions, rotation=60, ha="right", fontsize=7)
         label = measure["label"]
         ax.set_title(label if len(label) <= 34 else label[:32] + "…", fontsize=9)
         if k % columns == 0:
@@ -160,8 +164,8 @@ def click_figure(path, click, palette):
         ax.grid(True, axis="y", linewidth=0.4, alpha=0.5)
     for ax in list(axes.flat)[len(measures):]:
         ax.set_visible(False)
-    whose = f"{click['game']} game" if click["game"] else "matches"
-    fig.suptitle(f"{whose}: mean ± SD across participants (reference {click['reference_mode']}, bold outline)",
+    whose = f"{matches['game']} game" if matches["game"] else "matches"
+    fig.suptitle(f"{whose}: mean ± SD across participants (reference {matches['reference_condition']}, bold outline)",
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(path)

@@ -169,7 +169,7 @@ def boolean(table, record, column):
 
 
 def load_hitrates(export_dir):
-    """{game: {participant: {mode: (hits, shots)}}} and the number of rows, in file order."""
+    """{game: {participant: {condition: (hits, shots)}}} and the number of rows, in file order."""
     table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED, condition_column=True)
     if not table.records:
         raise BadInput(f"{table.path}: has a header but no data rows.")
@@ -179,7 +179,7 @@ def load_hitrates(export_dir):
     for record in table.records:
         participant = text(table, record, "participant")
         game = text(table, record, "game")
-        mode = text(table, record, CONDITION)
+        condition = text(table, record, CONDITION)
         shots = number(table, record, "shots", integer=True)
         hits = number(table, record, "hits", integer=True)
         for column in optional_numeric:
@@ -187,14 +187,14 @@ def load_hitrates(export_dir):
         line = record["_line"]
         if hits > shots:
             raise BadInput(f"{table.path}: line {line}, column 'hits' ({hits}) exceeds column 'shots' ({shots}).")
-        key = (game, participant, mode)
+        key = (game, participant, condition)
         if key in first_seen:
             raise BadInput(f"{table.path}: line {line}, column 'participant': {participant!r} has a second row "
-                           f"for game {game!r} and mode {mode!r} (the first is on line {first_seen[key]}).")
+                           f"for game {game!r} and condition {condition!r} (the first is on line {first_seen[key]}).")
         first_seen[key] = line
         if shots == 0:
-            continue  # a mode played without a shot or click: it ran, but has no rate to compare
-        games.setdefault(game, {}).setdefault(participant, {})[mode] = (hits, shots)
+            continue  # a condition played without a shot or click: it ran, but has no rate to compare
+        games.setdefault(game, {}).setdefault(participant, {})[condition] = (hits, shots)
     for game, participants in games.items():
         if len(participants) < 2:
             only = next(iter(participants))
@@ -247,7 +247,7 @@ def load_matches(export_dir, scales=None):
     """None without matches.csv; else (scored match records, rating columns, rows in the file, the
     `session` of every row, the table).
 
-    A scored record: participant, mode, green_hits, red_hits, misses and `ratings`, a list with one
+    A scored record: participant, condition, green_hits, red_hits, misses and `ratings`, a list with one
     value or None per rating column, in column order rating_1, rating_2, ... The columns run from
     rating_1 without a gap (rating_k answers statement k), and a scored rating_k lies on
     scales[k] (rating_scales; default: 1 to 7 for every statement).
@@ -272,7 +272,7 @@ def load_matches(export_dir, scales=None):
             continue
         match = {
             "participant": text(table, record, "participant"),
-            "mode": text(table, record, CONDITION),
+            "condition": text(table, record, CONDITION),
             "green_hits": number(table, record, "green_hits", integer=True),
             "red_hits": number(table, record, "red_hits", integer=True),
             "misses": number(table, record, "misses", integer=True),
@@ -425,7 +425,7 @@ def load_conditions(export_dir):
                          f"{CONDITIONS}; a later export into the same folder leaves it there).")
         return read_conditions(path), CONDITIONS, notes
     if os.path.exists(old):
-        return read_modes(old), MODES, []
+        return read_modes_csv(old), MODES, []
     return None, None, []
 
 
@@ -484,18 +484,18 @@ def read_conditions(path):
     return records
 
 
-def read_modes(path):
+def read_modes_csv(path):
     """modes.csv's rows as condition records: its upconverts column as written, what fills the
     frames between renders from its method (or upconversion kind), and no late warp (warplab
     had none when it wrote modes.csv)."""
     table = read_table(path, MODES_REQUIRED)
     rows, first_seen = [], {}
     for record in table.records:
-        mode = text(table, record, "mode")
-        if mode in first_seen:
-            raise BadInput(f"{table.path}: line {record['_line']}, column 'mode': {mode!r} has a second row (the first "
-                           f"is on line {first_seen[mode]}).")
-        first_seen[mode] = record["_line"]
+        name = text(table, record, "mode")
+        if name in first_seen:
+            raise BadInput(f"{table.path}: line {record['_line']}, column 'mode': {name!r} has a second row (the first "
+                           f"is on line {first_seen[name]}).")
+        first_seen[name] = record["_line"]
         upconverts = boolean(table, record, "upconverts")
         fill = HOLD
         if upconverts:
@@ -504,7 +504,7 @@ def read_modes(path):
         if "upconverted_rate_hz" in record:
             fill_hz = number(table, record, "upconverted_rate_hz", optional=True)
         rows.append(conditions_record(
-            condition=mode, description=record["description"], render_hz=number(table, record, "render_rate_hz"),
+            condition=name, description=record["description"], render_hz=number(table, record, "render_rate_hz"),
             added_lag_ms=number(table, record, "added_lag_ms"), fill=fill, fill_hz=fill_hz, late_warp="none",
             upconverts=upconverts))
     return rows
@@ -552,7 +552,7 @@ def load_player_kinds(export_dir):
 
 def load_answers(export_dir):
     """None without answers.csv; else its answers of the scored blocks in file order, each a dict:
-    participant, kind, question (index), question_id, prompt, mode, value (None for text),
+    participant, kind, question (index), question_id, prompt, condition, value (None for text),
     text, block (block_index or None), player_kind (None in an export from before it)."""
     path = os.path.join(export_dir, ANSWERS)
     if not os.path.exists(path):
@@ -578,7 +578,7 @@ def load_answers(export_dir):
         answers.append({"participant": text(table, record, "participant"), "kind": kind,
                         "question": number(table, record, "question_index", integer=True),
                         "question_id": record.get("question_id", ""), "prompt": record["prompt"],
-                        "mode": record[CONDITION], "value": value, "text": record["text"], "block": block,
+                        "condition": record[CONDITION], "value": value, "text": record["text"], "block": block,
                         "player_kind": record.get("player_kind")})
     return answers
 

@@ -14,25 +14,25 @@ THESIS_HITS = [
     (168, 128, 114), (173, 156, 137), (91, 69, 53), (148, 130, 89), (171, 161, 134),
     (137, 107, 108), (185, 166, 122), (139, 119, 94), (170, 141, 122), (185, 162, 161),
 ]
-THESIS_MODES = ("conv120", "warp15to120", "conv15")
+THESIS_CONDITIONS = ("conv120", "warp15to120", "conv15")
 THESIS_BEST = "conv120"
 
 
 def thesis_hit_rates():
-    """mode -> (mean hit rate over the 20 people, SD across them)."""
+    """condition -> (mean hit rate over the 20 people, SD across them)."""
     out = {}
-    for i, mode in enumerate(THESIS_MODES):
+    for i, condition in enumerate(THESIS_CONDITIONS):
         rates = [row[i] / THESIS_TARGETS for row in THESIS_HITS]
-        out[mode] = (statistics.mean(rates), statistics.stdev(rates))
+        out[condition] = (statistics.mean(rates), statistics.stdev(rates))
     return out
 
 
-# Yang et al. 2011 (seed 000), Table 2: mean and SD across 33 people of each measure per mode
+# Yang et al. 2011 (seed 000), Table 2: mean and SD across 33 people of each measure per condition
 # (green, red hits and misses per 45 s match; ratings on 1..7 of the four statements).
 YANG_BEST = "conv60"
-YANG_MODES = ("conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60")
+YANG_CONDITIONS = ("conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60")
 YANG_TABLE2 = {
-    # measure: {mode: (M, SD)}
+    # measure: {condition: (M, SD)}
     "green_hits": {"bireproj15to60": (31.64, 7.37), "conv60": (43.79, 11.07), "conv30": (41.65, 9.86),
                    "conv15": (31.89, 6.82), "lag50": (35.47, 7.24), "lag100": (29.85, 6.98),
                    "lag200": (24.24, 5.72)},
@@ -56,9 +56,9 @@ YANG_STATEMENT_WORDS = {"enjoy": "enjoyed", "difficult": "difficult", "responsiv
 
 
 def yang_ratio(measure="green_hits"):
-    """mode -> the measure's mean relative to 60 fps's."""
+    """condition -> the measure's mean relative to 60 fps's."""
     table = YANG_TABLE2[measure]
-    return {mode: table[mode][0] / table[YANG_BEST][0] for mode in YANG_MODES}
+    return {condition: table[condition][0] / table[YANG_BEST][0] for condition in YANG_CONDITIONS}
 
 
 def yang_rating_key(statement):

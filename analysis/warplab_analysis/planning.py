@@ -79,7 +79,7 @@ def sample_size(positive, negative, ties, cap=CAP, alpha=ALPHA, target=TARGET_PO
               "extreme": untied > 0 and positive in (0, untied), "needed": None, "first": None,
               "power_at_needed": None, "note": None, "alpha": alpha, "target_power": target, "cap": cap}
     if participants == 0:
-        result["note"] = "no participant has both modes"
+        result["note"] = "no participant has both conditions"
     elif untied == 0 or 2 * positive == untied:
         result["note"] = "no difference to detect"
     else:

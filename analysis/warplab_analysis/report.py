@@ -1,19 +1,20 @@
 """report.md from the results analyze.py also writes to report.json, so the two cannot disagree.
 
 Shooter (and any other game): the thesis's layout (seed 004 §6–§7): Table 1 hits and rates per
-participant, the hit-rate figure, sign tests for every pair of modes, Table 2 differences of
-each upconversion mode, Table 3 quartiles, histograms, then a planning table (participants a
+participant, the hit-rate figure, sign tests for every pair of conditions, Table 2 differences of
+each upconverting condition, Table 3 quartiles, histograms, then a planning table (participants a
 study would need, this data as pilot). A game whose sessions played matches (matches.csv; the
 click game): the layout of Yang et al.'s Table 2 (seed 000 §8) first, then the same hit-rate
-sections on what its hits and shots count (games.csv: green hits / clicks). A mode names a
-condition, described as the export's condition table (conditions.csv, or modes.csv before it)
-describes it: its words and, in a section of their own, its parts and latencies.
+sections on what its hits and shots count (games.csv: green hits / clicks). Each condition is
+described as the export's condition table (conditions.csv, or modes.csv before it) describes it:
+its words and, in a section of their own, its parts and latencies.
 Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
 """
 import math
 import statistics
 
 from . import papers, planning, players
+from .conditions import ConditionTable
 
 NOTHING = "–"
 
@@ -45,33 +46,34 @@ def title(game):
 def hit_rate_sections(out, game, summary, tests, level):
     """Tables 1–3 (numbered as the thesis's, labelled with the game), sign tests and figures."""
     h = "#" * level
-    participants, modes, rates = summary["participants"], summary["modes"], summary["hit_rates"]
+    participants, conditions, rates = summary["participants"], summary["conditions"], summary["hit_rates"]
     out.append(f"{h} Table 1 ({cell(game)}): hits and hit rates per participant\n")
-    shots = {rates[p][m]["shots"] for p in participants for m in modes if m in rates[p]}
+    shots = {rates[p][c]["shots"] for p in participants for c in conditions if c in rates[p]}
     uniform = len(shots) == 1
-    header = ["participant"] + [f"{m} hits" for m in modes] + ([] if uniform else [f"{m} shots" for m in modes])
-    header += [f"{m} rate" for m in modes]
+    header = (["participant"] + [f"{c} hits" for c in conditions]
+              + ([] if uniform else [f"{c} shots" for c in conditions]))
+    header += [f"{c} rate" for c in conditions]
     rows = []
     for p in participants:
-        row = [cell(p)] + [str(rates[p][m]["hits"]) if m in rates[p] else NOTHING for m in modes]
+        row = [cell(p)] + [str(rates[p][c]["hits"]) if c in rates[p] else NOTHING for c in conditions]
         if not uniform:
-            row += [str(rates[p][m]["shots"]) if m in rates[p] else NOTHING for m in modes]
-        row += [fmt(rates[p][m]["hit_rate"], ".3f") if m in rates[p] else NOTHING for m in modes]
+            row += [str(rates[p][c]["shots"]) if c in rates[p] else NOTHING for c in conditions]
+        row += [fmt(rates[p][c]["hit_rate"], ".3f") if c in rates[p] else NOTHING for c in conditions]
         rows.append(row)
     what = f"{summary['hits_are']} out of {summary['shots_are']}"
-    out.append(f"{len(participants)} participants, {len(modes)} modes; rate = {what}"
-               + (f", {shots.pop()} per participant and mode" if uniform else "") + "."
-               + (" A dash: the participant has no data in that mode." if any(
-                   m not in rates[p] for p in participants for m in modes) else "") + "\n")
+    out.append(f"{len(participants)} participants, {len(conditions)} conditions; rate = {what}"
+               + (f", {shots.pop()} per participant and condition" if uniform else "") + "."
+               + (" A dash: the participant has no data in that condition." if any(
+                   c not in rates[p] for p in participants for c in conditions) else "") + "\n")
     out.append(table(header, rows))
     if "hit_rates" in summary["figures"]:
-        out.append(f"![{cell(game)}: hit rate per participant and mode]({summary['figures']['hit_rates']})\n")
+        out.append(f"![{cell(game)}: hit rate per participant and condition]({summary['figures']['hit_rates']})\n")
     for note in summary["notes"]:
         out.append(f"{note}\n")
     if not tests:
         return
-    out.append(f"{h} Sign tests between every two modes\n")
-    out.append("Per participant with both modes, d = rate(a) − rate(b). A tie (equal rates, decided on the "
+    out.append(f"{h} Sign tests between every two conditions\n")
+    out.append("Per participant with both conditions, d = rate(a) − rate(b). A tie (equal rates, decided on the "
                "integer counts) is dropped from n. With X ~ Binomial(n, ½): p(a > b) = P(X ≥ +) tests "
                "whether a beats b, p(a < b) = P(X ≤ +) whether b beats a; two-sided is scipy's binomtest. "
                "Exact, as R's binom.test (seed 004 §7.1).\n")
@@ -81,19 +83,19 @@ def hit_rate_sections(out, game, summary, tests, level):
     out.append(table(["a", "b", "paired", "n", "+", "−", "ties", "p(a > b)", "p(a < b)", "p two-sided"], rows))
     for t in tests:
         if t["n"] == 0:
-            why = "no participant has both modes" if t["participants"] == 0 else "every pair is tied"
+            why = "no participant has both conditions" if t["participants"] == 0 else "every pair is tied"
             out.append(f"{t['a']} against {t['b']}: no untied pairs remain ({why}), so n = 0 and every p is 1.\n")
     for k, upconversion in enumerate(summary["upconversion_differences"]):
-        mode, against, sort_by = upconversion["mode"], upconversion["against"], upconversion["sorted_by"]
+        condition, against, sort_by = upconversion["condition"], upconversion["against"], upconversion["sorted_by"]
         suffix = "abcdefgh"[k % 8] if len(summary["upconversion_differences"]) > 1 else ""
-        out.append(f"{h} Table 2{suffix} ({cell(game)}): {mode} hit rate minus each other mode's\n")
+        out.append(f"{h} Table 2{suffix} ({cell(game)}): {condition} hit rate minus each other condition's\n")
         if not upconversion["rows"]:
-            out.append(f"No participant has {mode} and another mode.\n")
+            out.append(f"No participant has {condition} and another condition.\n")
             continue
-        out.append(f"Sorted by the difference to {sort_by}. Positive: {mode} hit more.\n")
+        out.append(f"Sorted by the difference to {sort_by}. Positive: {condition} hit more.\n")
         rows = [[cell(r["participant"])] + [fmt(r["differences"].get(o), ".3f") for o in against]
                 for r in upconversion["rows"]]
-        out.append(table(["participant"] + [f"{mode} − {o}" for o in against], rows))
+        out.append(table(["participant"] + [f"{condition} − {o}" for o in against], rows))
     out.append(f"{h} Table 3 ({cell(game)}): quartiles of the differences\n")
     out.append("Of every paired participant's d = rate(a) − rate(b), ties included; R's default quantiles "
                "(type 7), as seed 004 Table 3.\n")
@@ -144,38 +146,39 @@ def planning_section(out, game, tests, h):
                    "could need at that tie share, and optimistic: a true p+ just short of 0 or 1 needs more.\n")
 
 
-def click_sections(out, click, level):
+def matches_sections(out, matches, level):
+    """The matches' tables (analyze.analyse_matches), as Yang et al.'s Table 2 lays them out."""
     h = "#" * level
-    for note in click["notes"]:
+    for note in matches["notes"]:
         out.append(f"{note}\n")
-    if not click["modes"]:
+    if not matches["conditions"]:
         return
-    ref = click["reference_mode"]
-    others = [m for m in click["modes"] if m != ref]
-    out.append(f"{click['scored_matches']} scored matches from {len(click['participants'])} participants "
-               f"(matches.csv, scored_phase = true). Reference mode: {ref}.\n")
-    out.append(f"{h} Table: results per mode\n")
-    out.append("Each participant's measures are averaged over their matches in a mode; M and SD (n − 1) are "
-               f"across participants. p: paired t-test of the mode against {ref} over the participants with "
+    ref = matches["reference_condition"]
+    others = [c for c in matches["conditions"] if c != ref]
+    out.append(f"{matches['scored_matches']} scored matches from {len(matches['participants'])} participants "
+               f"(matches.csv, scored_phase = true). Reference condition: {ref}.\n")
+    out.append(f"{h} Table: results per condition\n")
+    out.append("Each participant's measures are averaged over their matches in a condition; M and SD (n − 1) are "
+               f"across participants. p: paired t-test of the condition against {ref} over the participants with "
                "both. That is the simple contrast Yang et al. report: F(1, n − 1) = t², same p.\n")
     header = ["Measure", f"{ref} M", f"{ref} SD"]
-    for m in others:
-        header += [f"{m} M", f"{m} SD", f"{m} p"]
+    for c in others:
+        header += [f"{c} M", f"{c} SD", f"{c} p"]
     rows = []
-    for measure in click["measures"].values():
-        entry = measure["modes"][ref]
+    for measure in matches["measures"].values():
+        entry = measure["conditions"][ref]
         row = [cell(measure["label"]), fmt(entry["mean"], ".2f"), fmt(entry["sd"], ".2f")]
-        for m in others:
-            e = measure["modes"][m]
+        for c in others:
+            e = measure["conditions"][c]
             row += [fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"), fmt(e["vs_reference"]["p_t"], ".4g")]
         rows.append(row)
     out.append(table(header, rows))
-    if click["figure"]:
-        whose = f"{click['game']} game" if click["game"] else "matches"
-        out.append(f"![{cell(whose)}: mean ± SD per mode]({click['figure']})\n")
+    if matches["figure"]:
+        whose = f"{matches['game']} game" if matches["game"] else "matches"
+        out.append(f"![{cell(whose)}: mean ± SD per condition]({matches['figure']})\n")
     if others:
         out.append(f"{h} Paired tests against {ref}\n")
-        out.append(f"Difference = mode − {ref} per participant. t: paired t-test (df = n − 1; "
+        out.append(f"Difference = condition − {ref} per participant. t: paired t-test (df = n − 1; "
                    "F(1, n − 1) = t²). "
                    "Wilcoxon: signed-rank, two-sided, zero differences dropped (p = 1 when all are zero), tied "
                    "|differences| given their mid-rank; p exact (the conditional distribution of the statistic given "
@@ -183,25 +186,26 @@ def click_sections(out, click, level):
                    "variance and continuity correction; the cell says which. Sign test: exact, two-sided, ties "
                    "dropped.\n")
         rows = []
-        for measure in click["measures"].values():
-            for m in others:
-                v = measure["modes"][m]["vs_reference"]
+        for measure in matches["measures"].values():
+            for c in others:
+                v = measure["conditions"][c]["vs_reference"]
                 t = v["t"]
                 f_value = t * t if t is not None and math.isfinite(t) else None
-                rows.append([cell(measure["label"]), m, str(v["n"]), fmt(v["mean_diff"], ".3f"), fmt(t, ".3f"),
+                rows.append([cell(measure["label"]), c, str(v["n"]), fmt(v["mean_diff"], ".3f"), fmt(t, ".3f"),
                              fmt(f_value, ".3f"), fmt(v["p_t"], ".4g"),
                              f"{fmt(v['p_wilcoxon'], '.4g')} ({v.get('wilcoxon_method', 'exact')})",
                              f"{v['positive']}/{v['negative']}/{v['ties']}", fmt(v["p_sign"], ".4g")])
-        out.append(table(["Measure", "mode", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
+        out.append(table(["Measure", "condition", "n", "mean diff", "t", "F(1, n − 1)", "p (t)", "p (Wilcoxon)",
                           "+/−/ties", "p (sign)"], rows))
-    out.append(f"{h} Repeated-measures ANOVA over modes\n")
-    if not click["anova_available"]:
+    out.append(f"{h} Repeated-measures ANOVA over conditions\n")
+    if not matches["anova_available"]:
         out.append("Left out: statsmodels is not installed (Debian: python3-statsmodels).\n")
         return
-    out.append("statsmodels' AnovaRM, one within factor (mode), on the per-participant averages. A participant "
-               "lacking a mode (or every rating of a statement in a mode) is dropped from that measure's ANOVA.\n")
+    out.append("statsmodels' AnovaRM, one within factor (condition), on the per-participant averages. A "
+               "participant lacking a condition (or every rating of a statement in a condition) is dropped from that "
+               "measure's ANOVA.\n")
     rows = []
-    for measure in click["measures"].values():
+    for measure in matches["measures"].values():
         a = measure["anova"]
         df = NOTHING if a["df_num"] is None else f"{a['df_num']:g}, {a['df_den']:g}"
         rows.append([cell(measure["label"]), fmt(a["F"], ".3f"), df, fmt(a["p"], ".4g"), str(a["participants"]),
@@ -218,26 +222,26 @@ def hz(value):
 
 
 def conditions_section(out, results):
-    """One row per condition, display refresh and game the data has: what the mode's name stands
-    for, so a reader sees the latencies the modes compare without the protocol file. Columns the
-    table has nothing for (modes.csv has no refresh, game or latencies) are left out."""
+    """One row per condition, display refresh and game the data has: what the condition's name
+    stands for, so a reader sees the latencies the conditions compare without the protocol file.
+    Columns the table has nothing for (modes.csv has no refresh, game or latencies) are left out."""
     rows_of = {}
     for record in results["conditions"]:
         rows_of.setdefault(record["condition"], []).append(record)
-    listed = [m for m in results["mode_order"] if m in rows_of]
+    listed = [c for c in results["condition_order"] if c in rows_of]
     if not listed:
         return
     source = results["conditions_file"]
     out.append("## Conditions\n")
     if source == "modes.csv":
-        words = ("What each mode is, as modes.csv gives it (an export from before conditions.csv, which says no "
+        words = ("What each condition is, as modes.csv gives it (an export from before conditions.csv, which says no "
                  "display refresh, game or latencies).")
     else:
-        words = (f"What each mode is, as {source} gives it: one row per display refresh and game it ran at. Added "
+        words = (f"What each condition is, as {source} gives it: one row per display refresh and game it ran at. Added "
                  "lag = lag frames × 1000 / refresh. Latency, min–max over where in the render cycle a step falls: "
                  "view, a mouse step to the screen; scene, a change of the world's motion to the screen.")
-    out.append(words + " A mode upconverts when its fill is not hold or it late-warps.\n")
-    columns = [("mode", lambda r: cell(r["condition"])),
+    out.append(words + " A condition upconverts when its fill is not hold or it late-warps.\n")
+    columns = [("condition", lambda r: cell(r["condition"])),
                ("refresh (Hz)", lambda r: None if r["refresh_hz"] is None else hz(r["refresh_hz"])),
                ("game", lambda r: None if r["game"] is None else cell(r["game"])),
                ("render (Hz)", lambda r: hz(r["render_hz"])),
@@ -276,9 +280,9 @@ def render(results):
         detail = "; ".join(f"{g or '(no game)'}: {c['included']} of {c['listed']}" for g, c in by_game.items())
         out.append(f"Sessions (sessions.csv): {sessions['included']} of {sessions['listed']} included"
                    + (f" ({detail})" if detail else "") + ".\n")
-    descriptions = {row["mode"]: row["description"] for row in results["modes"]}
-    out.append("Modes: " + "; ".join(f"{m} ({cell(descriptions[m])})" if descriptions.get(m) else m
-                                     for m in results["mode_order"]) + ".\n")
+    described = ConditionTable(results["conditions"])
+    out.append("Conditions: " + "; ".join(f"{c} ({cell(described.description(c))})" if described.description(c) else c
+                                          for c in results["condition_order"]) + ".\n")
     for note in results["notes"]:
         out.append(f"{note}\n")
     conditions_section(out, results)
@@ -322,31 +326,31 @@ def game_sections(out, results, part):
         tests_by_game.setdefault(test["game"], []).append(test)
     # The matches' sections go with the game whose sessions played them; when sessions.csv does not
     # say which game that is, they stand on their own after the games.
-    click = part["click"]
-    match_game = click["game"] if click is not None else None
+    matches = part["matches"]
+    match_game = matches["game"] if matches is not None else None
     games = list(part["games"])
-    if click is not None and match_game not in games:
+    if matches is not None and match_game not in games:
         games.append(match_game)
     for game in games:
         summary = part["games"].get(game)
-        if click is not None and game == match_game:
+        if matches is not None and game == match_game:
             heading = f"{title(game)} game" if game else "Matches"
             out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
-            click_sections(out, click, 3)
-            if shares(click["modes"], papers.YANG_MODES, papers.YANG_BEST):
-                yang_section(out, results, click, 3)
+            matches_sections(out, matches, 3)
+            if shares(matches["conditions"], papers.YANG_CONDITIONS, papers.YANG_BEST):
+                yang_section(out, results, matches, 3)
             if summary:
                 out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
                 hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
         else:
             out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
-            if shares(summary["modes"], papers.THESIS_MODES, papers.THESIS_BEST):
+            if shares(summary["conditions"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
 
 
-def mode_name(mode):
-    return "(the whole test: its conditions interleaved)" if mode == "" else cell(mode)
+def condition_name(condition):
+    return "(the whole test: its conditions interleaved)" if condition == "" else cell(condition)
 
 
 def questions_section(out, summaries):
@@ -362,18 +366,18 @@ def questions_section(out, summaries):
         name = f"{q['question_id']}: " if q["question_id"] else ""
         out.append(f"### Question {q['question'] + 1} ({q['kind']}): {cell(name + q['prompt'])}\n")
         if q["kind"] == "likert":
-            rows = [[mode_name(m), str(e["n"]), fmt(e["median"], "g"), fmt(e["q25"], "g"), fmt(e["q75"], "g"),
-                     fmt(e["iqr"], "g")] for m, e in q["by_mode"].items()]
+            rows = [[condition_name(c), str(e["n"]), fmt(e["median"], "g"), fmt(e["q25"], "g"), fmt(e["q75"], "g"),
+                     fmt(e["iqr"], "g")] for c, e in q["by_condition"].items()]
             out.append(table(["condition", "n", "median", "25 %", "75 %", "IQR"], rows))
         elif q["kind"] == "choice":
-            rows = [[mode_name(m), str(e["n"]), "; ".join(f"{c['option']}. {cell(c['text'])}: {c['count']}"
+            rows = [[condition_name(c), str(e["n"]), "; ".join(f"{c['option']}. {cell(c['text'])}: {c['count']}"
                                                            for c in e["counts"])]
-                    for m, e in q["by_mode"].items()]
+                    for c, e in q["by_condition"].items()]
             out.append(table(["condition", "n", "chosen (option: times)"], rows))
         else:
-            rows = [[mode_name(m), cell(a["participant"]), NOTHING if a["block"] is None else str(a["block"]),
+            rows = [[condition_name(c), cell(a["participant"]), NOTHING if a["block"] is None else str(a["block"]),
                      cell(a["text"]) if a["text"] else NOTHING]
-                    for m, e in q["by_mode"].items() for a in e["answers"]]
+                    for c, e in q["by_condition"].items() for a in e["answers"]]
             out.append(table(["condition", "participant", "block", "answer"], rows))
 
 
@@ -384,9 +388,10 @@ def mean_sd(values):
     return statistics.mean(values), statistics.stdev(values) if len(values) > 1 else None
 
 
-def shares(modes, paper_modes, best):
-    """The study played the paper's best mode and another of the paper's: there is something to compare."""
-    return best in modes and len(set(modes) & set(paper_modes)) > 1
+def shares(conditions, paper_conditions, best):
+    """The study played the paper's best condition and another of the paper's: there is something to
+    compare."""
+    return best in conditions and len(set(conditions) & set(paper_conditions)) > 1
 
 
 def who_played(results):
@@ -400,49 +405,50 @@ def who_played(results):
         who = "This study's sessions (" + ", ".join(f"{k}: {n}" for k, n in sorted(players.items())) + ")."
     else:
         who = "sessions.csv does not say who played."
-    return who + (" Relative: the mode's mean over the best mode's, the measure the studies' own comparisons rest "
-                  "on, since difficulty and skill set the absolute level.\n")
+    return who + (" Relative: the condition's mean over the best condition's, the measure the studies' own "
+                  "comparisons rest on, since difficulty and skill set the absolute level.\n")
 
 
 def thesis_section(out, results, game, summary, level):
-    """The shooter beside the thesis's people (Table 1), for the modes both have."""
+    """The shooter beside the thesis's people (Table 1), for the conditions both have."""
     rates = summary["hit_rates"]
     thesis = papers.thesis_hit_rates()
-    modes = [m for m in papers.THESIS_MODES if m in summary["modes"]]
-    ours = {m: mean_sd([rates[p][m]["hit_rate"] for p in summary["participants"] if m in rates[p]]) for m in modes}
+    conditions = [c for c in papers.THESIS_CONDITIONS if c in summary["conditions"]]
+    ours = {c: mean_sd([rates[p][c]["hit_rate"] for p in summary["participants"] if c in rates[p]])
+            for c in conditions}
     best, best_paper = ours[papers.THESIS_BEST][0], thesis[papers.THESIS_BEST][0]
     out.append(f"{'#' * level} Beside the papers' people: the thesis's Table 1 (seed 004, 20 people, "
-               f"{papers.THESIS_TARGETS} targets per mode)\n")
+               f"{papers.THESIS_TARGETS} targets per condition)\n")
     out.append(who_played(results))
     rows = []
-    for m in modes:
-        mean, sd = ours[m]
+    for c in conditions:
+        mean, sd = ours[c]
         relative = mean / best if mean is not None and best else None
-        rows.append([m, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(relative, ".2f"), fmt(thesis[m][0], ".3f"),
-                     fmt(thesis[m][1], ".3f"), fmt(thesis[m][0] / best_paper, ".2f")])
-    out.append(table(["mode", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
+        rows.append([c, fmt(mean, ".3f"), fmt(sd, ".3f"), fmt(relative, ".2f"), fmt(thesis[c][0], ".3f"),
+                     fmt(thesis[c][1], ".3f"), fmt(thesis[c][0] / best_paper, ".2f")])
+    out.append(table(["condition", "hit rate M", "SD", "relative", "thesis M", "thesis SD", "thesis relative"], rows))
 
 
-def yang_section(out, results, click, level):
-    """The click game beside Yang et al.'s people (Table 2), for the modes and measures both have."""
+def yang_section(out, results, matches, level):
+    """The matches beside Yang et al.'s people (Table 2), for the conditions and measures both have."""
     ref = papers.YANG_BEST
     out.append(f"{'#' * level} Beside the papers' people: Yang et al.'s Table 2 (seed 000 §8, 33 people, two 45 s "
-               "matches per mode)\n")
+               "matches per condition)\n")
     out.append(who_played(results))
     out.append("Counts are per match, so their absolute size follows the match length: compare the relative "
                "columns. Ratings on 1..7 compare as they are.\n")
     rows = []
-    for key, measure in click["measures"].items():
+    for key, measure in matches["measures"].items():
         paper_key = key if key in papers.YANG_TABLE2 else papers.yang_rating_key(measure["label"])
         if paper_key is None:
             continue
         paper = papers.YANG_TABLE2[paper_key]
         counts = paper_key in ("green_hits", "red_hits", "misses")
-        ref_mean = measure["modes"][ref]["mean"]
-        for m in [m for m in papers.YANG_MODES if m in click["modes"]]:
-            e = measure["modes"][m]
+        ref_mean = measure["conditions"][ref]["mean"]
+        for c in [c for c in papers.YANG_CONDITIONS if c in matches["conditions"]]:
+            e = measure["conditions"][c]
             relative = e["mean"] / ref_mean if counts and e["mean"] is not None and ref_mean else None
-            rows.append([cell(measure["label"]), m, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
-                         fmt(relative, ".2f") if counts else NOTHING, fmt(paper[m][0], ".2f"),
-                         fmt(paper[m][1], ".2f"), fmt(paper[m][0] / paper[ref][0], ".2f") if counts else NOTHING])
-    out.append(table(["measure", "mode", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))
+            rows.append([cell(measure["label"]), c, fmt(e["mean"], ".2f"), fmt(e["sd"], ".2f"),
+                         fmt(relative, ".2f") if counts else NOTHING, fmt(paper[c][0], ".2f"),
+                         fmt(paper[c][1], ".2f"), fmt(paper[c][0] / paper[ref][0], ".2f") if counts else NOTHING])
+    out.append(table(["measure", "condition", "M", "SD", "relative", "Yang M", "Yang SD", "Yang relative"], rows))

@@ -54,16 +54,16 @@ def rate_difference(counts_a, counts_b):
 
 
 def hit_rate_sign_test(game, a, b, participants):
-    """Sign test of hit rate a − b over the participants with both modes, in the order given, and the
+    """Sign test of hit rate a − b over the participants with both conditions, in the order given, and the
     sample size a study would need to find this difference (planning.sample_size, this data as pilot).
 
-    participants: {participant: {mode: (hits, shots)}}; `differences` keeps its order.
+    participants: {participant: {condition: (hits, shots)}}; `differences` keeps its order.
     """
     differences = {}
     signs = {1: 0, -1: 0, 0: 0}
-    for participant, modes in participants.items():
-        if a in modes and b in modes:
-            sign, differences[participant] = rate_difference(modes[a], modes[b])
+    for participant, rates in participants.items():
+        if a in rates and b in rates:
+            sign, differences[participant] = rate_difference(rates[a], rates[b])
             signs[sign] += 1
     positive, negative, ties = signs[1], signs[-1], signs[0]
     n = positive + negative
@@ -126,15 +126,15 @@ def wilcoxon_signed_rank(differences):
     return float(min(1.0, dist[far].sum())), "exact"
 
 
-def paired_tests(mode_values, reference_values):
-    """Mode against reference on aligned per-participant values: paired t, Wilcoxon, sign test.
+def paired_tests(condition_values, reference_values):
+    """A condition against the reference on aligned per-participant values: paired t, Wilcoxon, sign test.
 
     Paired t: None below two pairs; t = 0, p = 1 when every difference is zero; t = ±inf, p = 0
     when the differences are one non-zero constant. Wilcoxon: wilcoxon_signed_rank (zero
     differences dropped, mid-ranks, exact up to WILCOXON_EXACT_LIMIT; which one in
     "wilcoxon_method"). Sign test: exact, ties dropped.
     """
-    x = np.asarray(mode_values, dtype=float)
+    x = np.asarray(condition_values, dtype=float)
     y = np.asarray(reference_values, dtype=float)
     d = x - y
     n = len(d)
@@ -155,38 +155,38 @@ def paired_tests(mode_values, reference_values):
     return result
 
 
-def rm_anova(values, modes):
+def rm_anova(values, conditions):
     """One-way repeated-measures ANOVA over `modes` with statsmodels' AnovaRM.
 
-    values: {participant: {mode: value}}; a participant lacking a finite value for any mode is
+    values: {participant: {condition: value}}; a participant lacking a finite value for any condition is
     dropped. Returns F, df_num, df_den, p, participants, dropped; the statistics are None below
     two participants or two modes. Raises ImportError without statsmodels.
     """
     from statsmodels.stats.anova import AnovaRM
     import pandas as pd
 
-    complete = [p for p, row in values.items() if all(m in row and math.isfinite(row[m]) for m in modes)]
+    complete = [p for p, row in values.items() if all(c in row and math.isfinite(row[c]) for c in conditions)]
     result = {"F": None, "df_num": None, "df_den": None, "p": None, "participants": len(complete),
               "dropped": len(values) - len(complete)}
-    if len(complete) < 2 or len(modes) < 2:
+    if len(complete) < 2 or len(conditions) < 2:
         return result
     # Integer codes: the ids and mode names never reach statsmodels' formula machinery.
-    frame = pd.DataFrame([{"subject": s, "mode": m, "value": values[p][mode]}
-                          for s, p in enumerate(complete) for m, mode in enumerate(modes)])
+    frame = pd.DataFrame([{"subject": s, "condition": k, "value": values[p][condition]}
+                          for s, p in enumerate(complete) for k, condition in enumerate(conditions)])
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        row = AnovaRM(frame, "value", "subject", within=["mode"]).fit().anova_table.iloc[0]
+        row = AnovaRM(frame, "value", "subject", within=["condition"]).fit().anova_table.iloc[0]
     result.update(F=float(row["F Value"]), df_num=float(row["Num DF"]), df_den=float(row["Den DF"]),
                   p=float(row["Pr > F"]))
-    # No residual variation (every participant shifted the same way between modes, e.g. a
+    # No residual variation (every participant shifted the same way between conditions, e.g. a
     # scripted player's ratings): F divides by rounding noise. Say infinite (or undefined when
-    # the modes do not differ either) rather than print a 30-digit F.
-    y = np.array([[values[p][mode] for mode in modes] for p in complete], dtype=float)
+    # the conditions do not differ either) rather than print a 30-digit F.
+    y = np.array([[values[p][condition] for condition in conditions] for p in complete], dtype=float)
     grand = y.mean()
-    ss_modes = len(complete) * float(((y.mean(axis=0) - grand) ** 2).sum())
+    ss_conditions = len(complete) * float(((y.mean(axis=0) - grand) ** 2).sum())
     ss_error = float(((y - y.mean(axis=1, keepdims=True) - y.mean(axis=0) + grand) ** 2).sum())
     if ss_error <= 1e-12 * max(float(((y - grand) ** 2).sum()), 1e-300):
-        result.update(F=math.inf, p=0.0) if ss_modes > 0 else result.update(F=None, p=None)
+        result.update(F=math.inf, p=0.0) if ss_conditions > 0 else result.update(F=None, p=None)
     return result
 
 

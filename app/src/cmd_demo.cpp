@@ -131,7 +131,7 @@ DemoSetup readDemoSetup(const ParsedArgs& args) {
     if (const std::string found = sessionUnder(out); !found.empty())
         throw UsageError("option --out: '" + out + "' already holds sessions (" + found +
                          "); a demo analyses only its own, so choose another --out");
-    // Two at least: the analysis pairs modes within participants across them.
+    // Two at least: the analysis pairs conditions within participants across them.
     d.participants = static_cast<int>(args.integer("participants", 8, 2, 100));
     const std::string player = args.string("player", "sim");
     d.player = player;
@@ -299,7 +299,7 @@ Command demoCommand() {
         {"demo",
          "The main job on a fresh machine: a small simulated study, headless, end to end. Simulated\n"
          "participants who see only the displayed frames play shooter-demo and click-demo in every\n"
-         "mode, several sessions at once; each session is replayed and checked, all are exported,\n"
+         "condition, several sessions at once; each session is replayed and checked, all are exported,\n"
          "and the analysis writes a report with figures and the participants a real study would need.",
          "warplab demo [--out DIR] [--participants N] [--protocols LIST] [--jobs N]",
          {

@@ -26,7 +26,7 @@ int runExport(const ParsedArgs& args) {
 Command exportCommand() {
     return {{"export",
              "Merge every session file of a results folder (sub-folders too) into tidy CSVs for the\n"
-             "analysis: sessions, shots/clicks, hit rates per participant x game x mode, matches,\n"
+             "analysis: sessions, shots/clicks, hit rates per participant x game x condition, matches,\n"
              "ratings, answers to the questions after blocks, and a study plan's participants\n"
              "(docs/export.md). Read-only; damaged files are reported and skipped.",
              "warplab export RESULTS [--out DIR] [--all-phases] [--include-incomplete] [--include-flagged]",

@@ -87,7 +87,7 @@ RenderRequest readRequest(const ParsedArgs& args) {
     r.rawPrefix = args.path("raw", "");
     r.truthPath = args.path("truth", "");
     r.errorPath = args.path("error", "");
-    // As a study's warp mode renders its sources (protocol display.guard_band, .supersampling).
+    // As a study's warp condition renders its sources (protocol display.guard_band, .supersampling).
     const protocol::RenderSettings studyDefaults;
     r.guardBand = args.number("guard-band", studyDefaults.guardBand, 0.0, scene::kMaxGuardBand);
     r.supersampling = static_cast<int>(args.integer("ssaa", studyDefaults.supersampling, 1, scene::kMaxSupersampling));

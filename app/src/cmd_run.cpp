@@ -290,7 +290,9 @@ int runWindowed(const ParsedArgs& args) {
         at = comma + 1;
     }
     if (args.flag("free-play")) {
-        run.freePlayMode = args.string("mode", "");
+        if (args.has("condition") && args.has("mode"))
+            throw UsageError("options --condition and --mode are one option (--mode is its older name): give one");
+        run.freePlayCondition = args.string("condition", args.string("mode", ""));
         run.freePlayLevel = static_cast<int>(args.integer("level", 0, 0, 120));
         live::runFreePlay(run, dataPathsFrom(args), std::cerr);
         return 0;
@@ -308,9 +310,9 @@ int runWindowed(const ParsedArgs& args) {
 // Options that only a window reads: under --headless they would be silently ignored (a
 // mistyped --cm-per-360 unnoticed, an --input-script that drives nothing).
 const char* const kWindowOnlyOptions[] = {
-    "fullscreen",  "display",           "cm-per-360",   "mouse-dpi", "invert-y", "allow-refresh-mismatch",
-    "screenshots", "screenshot-frames", "free-play",    "mode",      "level",    "input-script",
-    "every-frame", "slow-frames",       "photon-marker"};
+    "fullscreen",   "display",           "cm-per-360",  "mouse-dpi",    "invert-y", "allow-refresh-mismatch",
+    "screenshots",  "screenshot-frames", "free-play",   "condition",    "mode",     "level",
+    "input-script", "every-frame",       "slow-frames", "photon-marker"};
 
 int runRun(const ParsedArgs& args) {
     if (!args.flag("headless")) return runWindowed(args);
@@ -445,7 +447,7 @@ Command runCommand() {
              {"headless", "", "no window: the player is simulated or replayed", ""},
              {"player", "human|bot[:SEED]|sim[:SEED]|replay:SESSION",
               "who plays: the participant (window only), the scripted bot (reads the game's state), the "
-              "simulated participant (headless: sees only the displayed frames, as the mode draws them; "
+              "simulated participant (headless: sees only the displayed frames, as the condition draws them; "
               "SEED: its motor noise, default the session seed), or a recorded session's input",
               "human in a window, bot headless"},
              {"seed", "N", "session seed, 0..2^62: trial order and target spawns", "drawn at random, and printed"},
@@ -465,9 +467,10 @@ Command runCommand() {
              {"screenshots", "DIR", "window: also write the start and end screens and the --screenshot-frames as PNG",
               ""},
              {"screenshot-frames", "A,B,...", "with --screenshots: which session frames", ""},
-             {"free-play", "", "window: free play for pilots and demos, nothing recorded (keys 1-9 mode, U/D level)",
-              ""},
-             {"mode", "ID", "with --free-play: the mode to start in", "the protocol's first"},
+             {"free-play", "",
+              "window: free play for pilots and demos, nothing recorded (keys 1-9 condition, U/D level)", ""},
+             {"condition", "ID", "with --free-play: the condition to start in", "the protocol's first"},
+             {"mode", "ID", "the older name of --condition", ""},
              {"level", "N", "with --free-play: the difficulty (shooter: staircase level) to start at", "0"},
              {"input-script", "FILE", "window, tests: input given as if by the participant (see docs/live-sessions.md)",
               ""},
@@ -489,22 +492,22 @@ Command runCommand() {
 
 // The command's options, beside the code that reads them.
 Command replayCommand() {
-    return {
-        {"replay",
-         "Re-run a session from its store without a window or rendering, check every logged\n"
-         "outcome and print how many were reproduced, or the first difference (exit " +
-             std::to_string(runner::kReplayDiffers) + ").",
-         "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
-         {
-             {"render", "DIR", "also write the displayed frames of --frames as PNGs, made as the mode made them", ""},
-             {"frames", "FIRST:LAST", "with --render: which display frames", "0:599"},
-             {"width", "PIXELS", "with --render: image width", "the session's display"},
-             {"height", "PIXELS", "with --render: image height", "the session's display"},
-             glOption("osmesa"),
-             dataDirOption(),
-         },
-         true},
-        &runReplay};
+    return {{"replay",
+             "Re-run a session from its store without a window or rendering, check every logged\n"
+             "outcome and print how many were reproduced, or the first difference (exit " +
+                 std::to_string(runner::kReplayDiffers) + ").",
+             "warplab replay SESSION [--render DIR [--frames FIRST:LAST]]",
+             {
+                 {"render", "DIR",
+                  "also write the displayed frames of --frames as PNGs, made as the condition made them", ""},
+                 {"frames", "FIRST:LAST", "with --render: which display frames", "0:599"},
+                 {"width", "PIXELS", "with --render: image width", "the session's display"},
+                 {"height", "PIXELS", "with --render: image height", "the session's display"},
+                 glOption("osmesa"),
+                 dataDirOption(),
+             },
+             true},
+            &runReplay};
 }
 
 }  // namespace warplab::app

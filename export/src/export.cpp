@@ -158,7 +158,8 @@ public:
         : options_(options),
           carriedOn_(std::move(carriedOn)),
           sessions_(file(outDir, "sessions.csv"), headerOf(sessionColumns())),
-          shots_(file(outDir, "shots.csv"), headerOf(shotColumns())),
+          shotsLayout_(shotsLayout()),
+          shots_(file(outDir, "shots.csv"), shotsLayout_.header),
           answers_(file(outDir, "answers.csv"), headerOf(answerColumns())),
           pacing_(file(outDir, "pacing.csv"), headerOf(pacingColumns())) {
         for (auto& [gameName, shape] : game::gameTables()) gameFiles_.push_back({gameName, std::move(shape), {}, 0});
@@ -295,11 +296,11 @@ public:
     std::vector<std::string> close(const fs::path& outDir) {
         CsvFile hitrates(file(outDir, "hitrates.csv"), headerOf(hitRateColumns()));
         for (const auto& [key, t] : tallies_) {
-            const auto& [participant, gameName, mode] = key;
+            const auto& [participant, gameName, condition] = key;
             std::string kinds;
             for (const std::string& kind : kinds_[participant]) kinds += (kinds.empty() ? "" : ";") + kind;
             writeCells(hitrates, hitRateColumns(),
-                       HitRateRow{participant, gameName, mode, t, timeoutGames_.count(gameName) != 0, kinds});
+                       HitRateRow{participant, gameName, condition, t, timeoutGames_.count(gameName) != 0, kinds});
             hitrates.endRow();
         }
         // Every condition a readable session's protocol runs, once per game and refresh.
@@ -344,7 +345,7 @@ public:
 private:
     static std::string file(const fs::path& dir, const char* name) { return (dir / name).string(); }
 
-    // The session's pacing per mode: as its live run stored it, else (a headless session, an
+    // The session's pacing per condition: as its live run stored it, else (a headless session, an
     // older or interrupted one) from its frames table.
     void writePacing(const std::string& participant, const std::string& session, const session::SessionData& data,
                      const std::string& kind) {
@@ -363,14 +364,14 @@ private:
     static Positions positionsOf(const game::SessionResults& results) {
         std::vector<std::pair<double, std::string>> firsts;
         for (const auto& s : results.shots)
-            if (s.scoredPhase) firsts.emplace_back(s.time, s.mode);
+            if (s.scoredPhase) firsts.emplace_back(s.time, s.condition);
         for (const game::GameTable& t : results.tables)
             for (const game::GameTableRow& r : t.rows)
                 if (t.spans && r.scoredPhase) firsts.emplace_back(r.startTime, r.condition);
         std::stable_sort(firsts.begin(), firsts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         Positions positions;
-        for (const auto& [time, mode] : firsts)
-            positions.emplace(mode, static_cast<std::int64_t>(positions.size()) + 1);
+        for (const auto& [time, condition] : firsts)
+            positions.emplace(condition, static_cast<std::int64_t>(positions.size()) + 1);
         return positions;
     }
 
@@ -382,12 +383,11 @@ private:
         if (results.canTimeOut) timeoutGames_.insert(gameName);
         for (const auto& s : results.shots) {
             if (!s.scoredPhase && !options_.allPhases) continue;
-            writeCells(
-                shots_, shotColumns(),
-                ShotRow{from, s, skipped.between(s.spawnTime, s.time), newImages.p95Before(s.spawnTime, s.time)});
+            writeShot(shots_, shotsLayout_,
+                      ShotRow{from, s, skipped.between(s.spawnTime, s.time), newImages.p95Before(s.spawnTime, s.time)});
             shots_.endRow();
             if (!s.scoredPhase) continue;  // hit rates: the scored phase only, always
-            Tally& t = tallies_[{participant, gameName, s.mode}];
+            Tally& t = tallies_[{participant, gameName, s.condition}];
             ++t.shots;
             t.hits += s.hit;
             t.timeouts += s.timeout;
@@ -424,8 +424,10 @@ private:
 
     ExportOptions options_;
     CarriedOn carriedOn_;
-    CsvFile sessions_, shots_, answers_, pacing_;
-    std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, mode
+    CsvFile sessions_;
+    ShotsLayout shotsLayout_;  // before shots_, whose header it gives
+    CsvFile shots_, answers_, pacing_;
+    std::map<std::tuple<std::string, std::string, std::string>, Tally> tallies_;  // participant, game, condition
     std::set<std::string> timeoutGames_;  // games whose trials can time out (shooter)
     std::map<std::string, std::set<std::string>> kinds_;  // participant -> the kinds of their included sessions
     std::map<std::string, game::HitMeasure> measures_;  // every game of a readable session
@@ -490,7 +492,7 @@ private:
 
 std::vector<CsvColumns> exportColumns() {
     std::vector<CsvColumns> out = {{"sessions.csv", headerOf(sessionColumns()), "", 0},
-                                   {"shots.csv", headerOf(shotColumns()), "", 0},
+                                   {"shots.csv", shotsLayout().header, "", 0},
                                    {"hitrates.csv", headerOf(hitRateColumns()), "", 0},
                                    {"answers.csv", headerOf(answerColumns()), "", 0},
                                    {"conditions.csv", headerOf(conditionColumns()), "", 0},

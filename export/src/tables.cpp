@@ -1,5 +1,7 @@
 #include "tables.h"
 
+#include "game/registry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -54,9 +56,9 @@ std::optional<double> cmPer360Used(const SessionRow& r) {
 
 }  // namespace
 
-std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& mode, bool scoredPhase) {
+std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& condition, bool scoredPhase) {
     if (!scoredPhase) return std::nullopt;
-    const auto found = positions.find(mode);
+    const auto found = positions.find(condition);
     if (found == positions.end()) return std::nullopt;
     return found->second;
 }
@@ -94,7 +96,7 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
                  if (t.spans) spans += static_cast<std::int64_t>(t.rows.size());
              f.integer(spans);
          })},
-        // How its frames kept pace with the display (pacing.csv has them per mode).
+        // How its frames kept pace with the display (pacing.csv has them per condition).
         {"display_frames",
          whenRead([](F& f, const R& r) { f.integer(static_cast<std::int64_t>(r.data->frames.size())); })},
         {"late_frames", whenRead([](F& f, const R& r) {
@@ -119,7 +121,7 @@ const std::vector<Column<SessionRow>>& sessionColumns() {
     return columns;
 }
 
-const std::vector<Column<ShotRow>>& shotColumns() {
+const std::vector<Column<ShotRow>>& shotLeadingColumns() {
     using F = CellWriter;
     using R = ShotRow;
     static const std::vector<Column<R>> columns = {
@@ -129,7 +131,7 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"phase", [](F& f, const R& r) { f.text(r.shot.phase); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.shot.scoredPhase); }},
         {"trial", [](F& f, const R& r) { f.integer(r.shot.trial); }},
-        {"condition", [](F& f, const R& r) { f.text(r.shot.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.shot.condition); }},
         {"outcome", [](F& f, const R& r) { f.text(r.shot.outcome); }},
         {"hit", [](F& f, const R& r) { f.boolean(r.shot.hit); }},
         {"world_outcome", [](F& f, const R& r) { f.text(r.shot.worldOutcome); }},
@@ -137,17 +139,49 @@ const std::vector<Column<ShotRow>>& shotColumns() {
         {"time_s", [](F& f, const R& r) { f.number(r.shot.time); }},
         {"spawn_time_s", [](F& f, const R& r) { f.number(r.shot.spawnTime); }},
         {"aim_time_s", [](F& f, const R& r) { f.number(r.shot.aimTime); }},
-        {"angular_error_deg", [](F& f, const R& r) { f.number(r.shot.angularErrorDeg); }},
-        {"error_px", [](F& f, const R& r) { f.number(r.shot.errorPx); }},
-        {"difficulty", [](F& f, const R& r) { f.number(r.shot.difficulty); }},
-        {"target_speed", [](F& f, const R& r) { f.number(r.shot.targetSpeed); }},
+    };
+    return columns;
+}
+
+const std::vector<Column<ShotRow>>& shotTrailingColumns() {
+    using F = CellWriter;
+    using R = ShotRow;
+    static const std::vector<Column<R>> columns = {
         {"skipped_frames", [](F& f, const R& r) { optionalInteger(f, r.skipped); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
         {"condition_position",
-         [](F& f, const R& r) { optionalInteger(f, positionOf(r.from.positions, r.shot.mode, r.shot.scoredPhase)); }},
+         [](F& f, const R& r) {
+             optionalInteger(f, positionOf(r.from.positions, r.shot.condition, r.shot.scoredPhase));
+         }},
         {"frame_time_p95_ms", [](F& f, const R& r) { f.number(r.frameTimeP95S * 1000.0); }},
     };
     return columns;
+}
+
+ShotsLayout shotsLayout() {
+    ShotsLayout out;
+    out.header = headerOf(shotLeadingColumns());
+    const auto games = game::gameShotColumns();
+    for (const auto& [gameName, own] : games) out.gameColumns.insert(out.gameColumns.end(), own.begin(), own.end());
+    // A game's cells go under its own columns, each game's a run of its own (registerGame).
+    for (const auto& [gameName, own] : games) {
+        std::vector<int>& at = out.at[gameName];
+        for (const std::string& name : out.gameColumns) {
+            const auto found = std::find(own.begin(), own.end(), name);
+            at.push_back(found == own.end() ? -1 : static_cast<int>(found - own.begin()));
+        }
+    }
+    out.header.insert(out.header.end(), out.gameColumns.begin(), out.gameColumns.end());
+    for (const std::string& name : headerOf(shotTrailingColumns())) out.header.push_back(name);
+    return out;
+}
+
+void writeShot(CsvFile& file, const ShotsLayout& layout, const ShotRow& row) {
+    writeCells(file, shotLeadingColumns(), row);
+    const auto at = layout.at.find(row.from.game);
+    file.cells(at == layout.at.end() ? table::Cells().rearranged(std::vector<int>(layout.gameColumns.size(), -1))
+                                     : row.shot.own.rearranged(at->second));
+    writeCells(file, shotTrailingColumns(), row);
 }
 
 const std::vector<Column<AnswerRow>>& answerColumns() {
@@ -160,7 +194,7 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
         {"block", [](F& f, const R& r) { f.text(r.answer.block); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.answer.scoredPhase); }},
         {"block_index", [](F& f, const R& r) { f.integer(r.answer.blockIndex); }},
-        {"condition", [](F& f, const R& r) { f.text(r.answer.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.answer.condition); }},
         {"question_index", [](F& f, const R& r) { f.integer(r.answer.questionIndex); }},
         {"question_id", [](F& f, const R& r) { f.text(r.answer.questionId); }},
         {"kind", [](F& f, const R& r) { f.text(r.answer.kind); }},
@@ -193,10 +227,10 @@ const std::vector<Column<AnswerRow>>& answerColumns() {
         {"time_s", [](F& f, const R& r) { f.number(r.answer.time); }},
         {"answer_s", [](F& f, const R& r) { f.number(r.answer.answerS); }},
         {"player_kind", [](F& f, const R& r) { f.text(r.from.playerKind); }},
-        // None for a block of mixed conditions (mode "").
+        // None for a block of mixed conditions (condition "").
         {"condition_position",
          [](F& f, const R& r) {
-             optionalInteger(f, positionOf(r.from.positions, r.answer.mode, r.answer.scoredPhase));
+             optionalInteger(f, positionOf(r.from.positions, r.answer.condition, r.answer.scoredPhase));
          }},
     };
     return columns;
@@ -208,7 +242,7 @@ const std::vector<Column<PacingRow>>& pacingColumns() {
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
         {"session", [](F& f, const R& r) { f.text(r.session); }},
-        {"condition", [](F& f, const R& r) { f.text(r.pacing.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.pacing.condition); }},
         {"shown", [](F& f, const R& r) { f.integer(r.pacing.shown); }},
         {"late", [](F& f, const R& r) { f.integer(r.pacing.late); }},
         {"skipped", [](F& f, const R& r) { f.integer(r.pacing.skipped); }},
@@ -236,7 +270,7 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
     static const std::vector<Column<R>> columns = {
         {"participant", [](F& f, const R& r) { f.text(r.participant); }},
         {"game", [](F& f, const R& r) { f.text(r.game); }},
-        {"condition", [](F& f, const R& r) { f.text(r.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.condition); }},
         {"shots", [](F& f, const R& r) { f.integer(r.tally.shots); }},
         {"hits", [](F& f, const R& r) { f.integer(r.tally.hits); }},
         // The click game has no timeouts: an empty cell, not a zero that claims it measured some.
@@ -247,7 +281,7 @@ const std::vector<Column<HitRateRow>>& hitRateColumns() {
              else
                  f.empty();
          }},
-        // A mode played without a shot or click has no rate: an empty cell (NA), never 0/0.
+        // A condition played without a shot or click has no rate: an empty cell (NA), never 0/0.
         {"hit_rate",
          [](F& f, const R& r) {
              if (r.tally.shots == 0)

@@ -17,7 +17,7 @@
 
 namespace warplab::exporter {
 
-// Hit counts of one participant x game x mode over the scored phase.
+// Hit counts of one participant x game x condition over the scored phase.
 struct Tally {
     std::int64_t shots = 0, hits = 0, timeouts = 0;
 };
@@ -67,7 +67,7 @@ struct PacingRow {
 struct HitRateRow {
     const std::string& participant;
     const std::string& game;
-    const std::string& mode;
+    const std::string& condition;
     const Tally& tally;
     bool canTimeOut;
     // The kinds of the sessions counted, ;-separated: one participant id can name a person in
@@ -111,11 +111,21 @@ struct GameRow {
 std::string joined(const std::map<std::string, std::string>& flags);
 
 // A condition's place in `positions`, for a row of the scored phase; none otherwise.
-std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& mode, bool scoredPhase);
+std::optional<std::int64_t> positionOf(const Positions& positions, const std::string& condition, bool scoredPhase);
 
 // Each CSV file's columns (docs/export.md lists them; a test checks it against these).
 const std::vector<Column<SessionRow>>& sessionColumns();
-const std::vector<Column<ShotRow>>& shotColumns();
+// shots.csv: export's leading columns, then every registered game's own (in the order the games
+// were registered; empty in another game's rows), then export's trailing ones.
+struct ShotsLayout {
+    std::vector<std::string> header;
+    std::vector<std::string> gameColumns;
+    std::map<std::string, std::vector<int>> at;  // per game: where each of gameColumns is in its own cells; -1 none
+};
+ShotsLayout shotsLayout();
+void writeShot(table::CsvFile& file, const ShotsLayout& layout, const ShotRow& row);
+const std::vector<Column<ShotRow>>& shotLeadingColumns();
+const std::vector<Column<ShotRow>>& shotTrailingColumns();
 const std::vector<Column<AnswerRow>>& answerColumns();
 const std::vector<Column<PacingRow>>& pacingColumns();
 const std::vector<Column<HitRateRow>>& hitRateColumns();

@@ -5,19 +5,19 @@ namespace warplab::game {
 session::FrameRecord frameRecordOf(const ShownFrame& shown) {
     session::FrameRecord r;
     r.frame = shown.frame;
-    r.mode = shown.condition.name;
+    r.condition = shown.condition.name;
     r.kind = shown.blank ? "screen" : (shown.frozen ? "frozen" : condition::frameKindName(shown.schedule.kind));
     r.cameraYaw = shown.camera.yaw;
     r.cameraPitch = shown.camera.pitch;
     return r;
 }
 
-ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
-                               const SchedulePlacement& placement) {
+ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& condition,
+                               const condition::ScheduledFrame& f, const SchedulePlacement& placement) {
     ShownFrame shown;
     shown.frame = frame;
     shown.time = static_cast<double>(frame) / placement.refreshHz;
-    shown.condition = mode;
+    shown.condition = condition;
     shown.schedule = f;
     shown.sourceFrame = placement.start + f.sourceIndex;
     shown.nextSourceFrame = f.nextSourceIndex < 0 ? -1 : placement.start + f.nextSourceIndex;
@@ -44,14 +44,14 @@ std::int64_t cameraFrame(const condition::ScheduledFrame& f, const SchedulePlace
     return placement.frameAt(f.cameraTime);
 }
 
-WorldDepiction depictWorld(const condition::Condition& mode, const condition::ScheduledFrame& f,
+WorldDepiction depictWorld(const condition::Condition& condition, const condition::ScheduledFrame& f,
                            const SchedulePlacement& placement, WorldClock clock) {
     const double refresh = placement.refreshHz;
     auto sessionTime = [&](std::int64_t frame) { return static_cast<double>(frame) / refresh; };
     WorldDepiction d;
     d.depictedFrame = placement.frameAt(f.sceneTime);
     d.frame = d.depictedFrame;
-    if (mode.movesWorld()) {
+    if (condition.movesWorld()) {
         // The source's world moved on by its velocities, as the warp moves its pixels (a warp
         // fill, or a depth late warp to the display instant).
         d.how = Depicted::Extrapolated;
@@ -60,7 +60,7 @@ WorldDepiction depictWorld(const condition::Condition& mode, const condition::Sc
                                             : f.sceneTime - f.worldSampleTime;
         return d;
     }
-    switch (mode.fillKind()) {
+    switch (condition.fillKind()) {
         case condition::Fill::Hold:
         case condition::Fill::Warp: break;
         case condition::Fill::Blend:

@@ -93,7 +93,7 @@ std::optional<AnswerResult> answerResult(const session::EventRecord& e,
     AnswerResult r;
     r.block = e.phase;
     r.blockIndex = e.trial;
-    r.mode = e.mode;
+    r.condition = e.condition;
     r.time = e.eventTime;
     r.questionIndex = static_cast<int>(d.integer(legacy ? "statement_index" : "question_index", 0));
     r.questionId = d.text("question_id");

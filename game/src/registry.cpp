@@ -1,5 +1,6 @@
 #include "game/registry.h"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 
@@ -14,6 +15,7 @@ struct RegisteredGame {
     std::string name;
     StudyParser parse;
     std::vector<GameTable> tables;
+    std::vector<std::string> shotColumns;
 };
 
 // Every known game, in the order registered: the app's (games/src/games.cpp) first.
@@ -57,18 +59,33 @@ std::vector<std::pair<std::string, GameTable>> gameTables() {
     return out;
 }
 
-void registerGame(const std::string& name, StudyParser parse, GameTables tables) {
+std::vector<std::pair<std::string, std::vector<std::string>>> gameShotColumns() {
+    std::vector<std::pair<std::string, std::vector<std::string>>> out;
+    for (const auto& g : allGames()) out.emplace_back(g.name, g.shotColumns);
+    return out;
+}
+
+void registerGame(const std::string& name, StudyParser parse, GameExport exports) {
     if (name.empty() || parse == nullptr)
         throw std::invalid_argument("registerGame: a game needs a name and a protocol parser");
     for (const auto& known : gameNames())
         if (known == name) throw std::invalid_argument("registerGame: a game named \"" + name + "\" is already known");
-    std::vector<GameTable> own = tables == nullptr ? std::vector<GameTable>{} : tables();
+    std::vector<std::pair<std::string, std::vector<std::string>>> columns = gameShotColumns();
+    columns.emplace_back(name, std::vector<std::string>{});
+    for (const std::string& column : exports.shotColumns) {
+        for (const auto& [game, theirs] : columns)
+            if (std::find(theirs.begin(), theirs.end(), column) != theirs.end())
+                throw std::invalid_argument("registerGame: " + name + "'s shots.csv column " + column + " is already " +
+                                            (game == name ? "its own" : "the " + game + " game's"));
+        columns.back().second.push_back(column);
+    }
+    std::vector<GameTable> own = exports.tables == nullptr ? std::vector<GameTable>{} : exports.tables();
     for (const GameTable& t : own)
         for (const auto& [game, other] : gameTables())
             if (other.file == t.file)
                 throw std::invalid_argument("registerGame: " + name + "'s table " + t.file + " is already the " + game +
                                             " game's");
-    registered().push_back({name, parse, std::move(own)});
+    registered().push_back({name, parse, std::move(own), std::move(exports.shotColumns)});
 }
 
 std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string& sourceName) {

@@ -12,8 +12,8 @@ void registerGames() {
     static std::once_flag once;
     std::call_once(once, [] {
         // The one list of built-in games, in the order gameNames() gives them.
-        game::registerGame("shooter", game::parseShooterStudy);
-        game::registerGame("click", game::parseClickStudy, game::clickTables);
+        game::registerGame("shooter", game::parseShooterStudy, game::shooterExport());
+        game::registerGame("click", game::parseClickStudy, game::clickExport());
     });
 }
 

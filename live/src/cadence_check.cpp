@@ -30,7 +30,7 @@ CadenceNeed cadenceNeed(const condition::Condition& condition, double refreshHz)
     return need;
 }
 
-CheckLine cadenceLine(const std::string& mode, const CadenceNeed& need, double refreshHz, double newImageP95Ms,
+CheckLine cadenceLine(const std::string& condition, const CadenceNeed& need, double refreshHz, double newImageP95Ms,
                       std::size_t frames) {
     const double shortestMs = 1000.0 * static_cast<double>(need.shortestFrames) / refreshHz;
     const bool keeps = newImageP95Ms <= shortestMs;
@@ -43,7 +43,7 @@ CheckLine cadenceLine(const std::string& mode, const CadenceNeed& need, double r
         " at " + std::to_string(std::lround(refreshHz)) + " Hz; they run " + std::to_string(need.shortestFrames) +
         " to " + std::to_string(need.longestFrames) + ")";
     if (!keeps) detail += ": its new images would reach the screen after the refreshes the schedule gives them";
-    return {keeps ? Verdict::Ok : Verdict::Fail, "cadence " + mode, detail};
+    return {keeps ? Verdict::Ok : Verdict::Fail, "cadence " + condition, detail};
 }
 
 }  // namespace warplab::live

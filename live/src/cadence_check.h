@@ -24,7 +24,7 @@ CadenceNeed cadenceNeed(const condition::Condition& condition, double refreshHz)
 
 // "cadence MODE": ok when the measured p95 time of the frames that make a new image fits the
 // shortest interval, FAIL when it does not (its new images would reach the screen late).
-CheckLine cadenceLine(const std::string& mode, const CadenceNeed& need, double refreshHz, double newImageP95Ms,
+CheckLine cadenceLine(const std::string& condition, const CadenceNeed& need, double refreshHz, double newImageP95Ms,
                       std::size_t frames);
 
 }  // namespace warplab::live

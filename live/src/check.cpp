@@ -103,10 +103,11 @@ public:
         measured();
         if (!run_.photonCorner.empty()) photonPattern();
         if (!study_) return;
-        std::vector<std::string> modes;  // each once, in the protocol's order (phases repeat them)
-        for (const std::string& mode : study_->conditionNames())
-            if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
-        for (const std::string& mode : modes) frameTime(mode);
+        std::vector<std::string> conditions;  // each once, in the protocol's order (phases repeat them)
+        for (const std::string& condition : study_->conditionNames())
+            if (std::find(conditions.begin(), conditions.end(), condition) == conditions.end())
+                conditions.push_back(condition);
+        for (const std::string& condition : conditions) frameTime(condition);
     }
 
 private:
@@ -173,20 +174,20 @@ private:
                        ": vsynced frames would reach the screen at the measured rate");
     }
 
-    // The frames of one condition as a session makes them (present/frame_maker.h: the mode's
+    // The frames of one condition as a session makes them (present/frame_maker.h: the condition's
     // renders, warps or blends, and the HUD, timed to glFinish as the window loop times them),
     // played by the study's bot in free play, against one refresh.
-    void frameTime(const std::string& mode) {
-        screen("making frames of " + mode);
+    void frameTime(const std::string& condition) {
+        screen("making frames of " + condition);
         if (!maker_) {
             maker_.emplace(paths_, display_.width, display_.height, study_->rendering());
-            game_ = study_->newFreePlay(1, display_, mode, 0);
+            game_ = study_->newFreePlay(1, display_, condition, 0);
             bot_ = runner::makePlayer("bot", 1, *study_, display_);
             input_ = bot_->first();
         } else {
-            game_->switchTo(mode, 0);
+            game_->switchTo(condition, 0);
         }
-        // Its first renders give the mode's method its sources and compile its shaders: not
+        // Its first renders give the condition's method its sources and compile its shaders: not
         // timed. Then at least conditionSeconds, and at least two more renders, so that
         // rendered frames and the frames made between them are both in the count.
         int renders = 0;
@@ -232,9 +233,10 @@ private:
             detail += shortfall(ms, drawingMs, budget);
         } else if (verdict == Verdict::Warn)
             detail += ": those would miss their vsync";
-        lines_.add(verdict, "frame time " + mode, detail);
-        const CheckLine cadence = cadenceLine(mode, cadenceNeed(study_->conditions().at(mode), study_->refreshHz()),
-                                              study_->refreshHz(), p95(newImageMs), newImageMs.size());
+        lines_.add(verdict, "frame time " + condition, detail);
+        const CheckLine cadence =
+            cadenceLine(condition, cadenceNeed(study_->conditions().at(condition), study_->refreshHz()),
+                        study_->refreshHz(), p95(newImageMs), newImageMs.size());
         lines_.add(cadence.verdict, cadence.name, cadence.detail);
     }
 

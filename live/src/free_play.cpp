@@ -1,4 +1,4 @@
-// Free play: the window loop with nothing recorded, the supervisor's live switching of mode
+// Free play: the window loop with nothing recorded, the supervisor's live switching of condition
 // and difficulty, and a status line of frame times.
 #include <algorithm>
 #include <cstdio>
@@ -17,11 +17,11 @@ class FreePlayPolicy final : public LoopPolicy {
 public:
     FreePlayPolicy(const LiveRun& run, const game::Study& study, const game::DisplaySize& display,
                    std::ostream& progress)
-        : mode_(run.freePlayMode.empty() ? study.conditionNames().front() : run.freePlayMode),
+        : condition_(run.freePlayCondition.empty() ? study.conditionNames().front() : run.freePlayCondition),
           level_(run.freePlayLevel),
-          game_(study.newFreePlay(run.seed, display, mode_, level_)),
+          game_(study.newFreePlay(run.seed, display, condition_, level_)),
           refreshHz_(study.refreshHz()),
-          modes_(study.conditions().names()),
+          names_(study.conditions().names()),
           conditions_(study.conditions()),
           progress_(progress) {}
 
@@ -42,11 +42,11 @@ public:
     long lateFrames() const { return late_; }
 
 private:
-    std::string mode_;
+    std::string condition_;
     int level_;
     std::unique_ptr<game::FreePlayGame> game_;
     double refreshHz_;
-    std::vector<std::string> modes_;  // the presets, then the protocol's own conditions
+    std::vector<std::string> names_;  // the presets, then the protocol's own conditions
     condition::ConditionTable conditions_;
     std::ostream& progress_;
     std::vector<double> recentMs_;  // the last second's frame times, for the status line
@@ -56,17 +56,17 @@ private:
 };
 
 void FreePlayPolicy::beforeStep(const std::string& keys, std::int64_t frame, game::FrameInput& input) {
-    // The supervisor's keys: digits and [ ] pick a mode, U and D the difficulty.
+    // The supervisor's keys: digits and [ ] pick a condition, U and D the difficulty.
     const double refresh = refreshHz_;
-    const FreePlayChoice next = applyFreePlayKeys({mode_, level_}, keys, modes_, [&](const std::string& mode) {
-        return conditions_.check(mode, refresh).empty();
-    });
-    if (next.mode != mode_ || next.level != level_) {
+    const FreePlayChoice next =
+        applyFreePlayKeys({condition_, level_}, keys, names_,
+                          [&](const std::string& condition) { return conditions_.check(condition, refresh).empty(); });
+    if (next.condition != condition_ || next.level != level_) {
         try {
-            game_->switchTo(next.mode, next.level);
-            mode_ = next.mode;
+            game_->switchTo(next.condition, next.level);
+            condition_ = next.condition;
             level_ = next.level;
-            progress_ << "free play: " << mode_ << ", level " << level_ << "\n";
+            progress_ << "free play: " << condition_ << ", level " << level_ << "\n";
         } catch (const std::invalid_argument& e) {
             said_ = e.what();
             saidUntil_ = frame + static_cast<std::int64_t>(2 * refreshHz_);

@@ -24,7 +24,7 @@ namespace warplab::live {
 namespace {
 
 // Every frame's input, events and frame record go to the store, committed at the game's
-// commit points; the missed vsyncs are tallied per mode.
+// commit points; the missed vsyncs are tallied per condition.
 class SessionPolicy final : public LoopPolicy {
 public:
     SessionPolicy(const WindowLoop& loop, std::uint64_t seed, session::SessionWriter& writer, std::ostream& progress)
@@ -75,11 +75,11 @@ public:
     void kept(const session::FrameRecord& record) { pacing_.add(record); }
 
     // Flags a session with too many late or skipped frames, stores and prints the pacing per
-    // mode, and writes what waits (showing the supervisor why it takes long).
+    // condition, and writes what waits (showing the supervisor why it takes long).
     void finish(WindowLoop& loop, std::ostream& progress);
 
 private:
-    // Says on the supervisor's terminal, at most every few seconds, when the mode on screen
+    // Says on the supervisor's terminal, at most every few seconds, when the condition on screen
     // did not keep its rate over the last second.
     void warnIfOverBudget(const session::FrameRecord& record);
 
@@ -89,7 +89,7 @@ private:
     double refreshHz_;
     std::ostream& progress_;
     session::PacingTally pacing_;
-    std::deque<session::FrameRecord> lastSecond_;  // mode, kind, frame time: the last refresh's worth
+    std::deque<session::FrameRecord> lastSecond_;  // condition, kind, frame time: the last refresh's worth
     std::int64_t warnedAt_ = -1;
 };
 
@@ -97,7 +97,7 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
     // What pacing reads of a frame, without the game's detail (copied every frame otherwise).
     session::FrameRecord brief;
     brief.frame = record.frame;
-    brief.mode = record.mode;
+    brief.condition = record.condition;
     brief.kind = record.kind;
     brief.frameMs = record.frameMs;
     brief.missedVsyncs = record.missedVsyncs;
@@ -105,12 +105,13 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
     const auto perSecond = static_cast<std::size_t>(std::max(1.0, refreshHz_));
     if (lastSecond_.size() > perSecond) lastSecond_.pop_front();
     const std::int64_t frame = record.frame;
-    if (lastSecond_.size() < perSecond || record.mode.empty() || frame % static_cast<std::int64_t>(perSecond) != 0 ||
+    if (lastSecond_.size() < perSecond || record.condition.empty() ||
+        frame % static_cast<std::int64_t>(perSecond) != 0 ||
         (warnedAt_ >= 0 && frame - warnedAt_ < 5 * static_cast<std::int64_t>(perSecond)))
         return;
     std::vector<session::FrameRecord> recent;
     for (const auto& f : lastSecond_)
-        if (f.mode == record.mode) recent.push_back(f);
+        if (f.condition == record.condition) recent.push_back(f);
     const auto summary = session::summarizePacing(recent, refreshHz_);
     if (summary.empty()) return;
     const session::ConditionPacing& p = summary.front();
@@ -120,7 +121,7 @@ void SessionPolicy::warnIfOverBudget(const session::FrameRecord& record) {
     std::snprintf(text, sizeof text,
                   "warning: %s did not keep its rate in the last second: %lld of %lld display frames skipped, "
                   "frame time median %.1f ms, max %.1f ms against %.1f ms\n",
-                  p.mode.c_str(), static_cast<long long>(p.skipped), static_cast<long long>(p.shown + p.skipped),
+                  p.condition.c_str(), static_cast<long long>(p.skipped), static_cast<long long>(p.shown + p.skipped),
                   p.medianMs, p.maxMs, p.budgetMs);
     progress_ << text;
 }

@@ -11,7 +11,7 @@
 namespace warplab::live {
 
 // Presses wait until a frame is shown whose picture shows their input (ShownFrame::inputFrame,
-// which the mode's schedule decides); that frame lights the marker, and the next is black again
+// which the condition's schedule decides); that frame lights the marker, and the next is black again
 // unless it answers a later press. A display frame the clock skipped is never seen, so it
 // answers nothing: the next frame shown does.
 class PhotonMarkerTiming {

@@ -1,5 +1,5 @@
 // The one window loop of live sessions and free play: the display clock (vsync, or a timer at
-// the protocol's rate), the participant's input (or a player's), making each frame as its mode
+// the protocol's rate), the participant's input (or a player's), making each frame as its condition
 // makes it with the HUD over it, presenting it, feedback sounds, screenshots, scripted input
 // and the supervisor's pause. What differs -- a session store and its commits, or free play's
 // live switching and status line -- is a LoopPolicy's.

@@ -104,8 +104,8 @@ void FrameMaker::release(Kept& kept) {
 
 void FrameMaker::prepareFor(const game::Study& study) {
     method(kShowSource);
-    for (const std::string& mode : study.conditionNames()) {
-        const condition::Condition& c = study.conditions().at(mode);
+    for (const std::string& condition : study.conditionNames()) {
+        const condition::Condition& c = study.conditions().at(condition);
         for (const std::string& name : {c.sourceMethod(), c.warpMethod(), c.interpolationMethod()})
             if (!name.empty()) method(name);
     }
@@ -146,10 +146,10 @@ void FrameMaker::make(const game::ShownFrame& shown, renderer::DisplayFrame& dis
     renderer::UpconversionMethod& shows = method(name);
     auto it = sources_.find(shown.sourceFrame);
     if (it == sources_.end()) {
-        // Lag modes open with frames queued before the mode started: the scene as it was.
+        // Lag conditions open with frames queued before the condition started: the scene as it was.
         it = sources_.emplace(shown.sourceFrame, Kept{nullptr, {shown.camera, shown.scene}, {}, std::nullopt}).first;
     } else if (!shows.info().acceptsGuardBand && !(it->second.band == renderer::GuardBand{})) {
-        // A warp mode's source shown by a method that takes no band (at a change of mode): drawn
+        // A warp condition's source shown by a method that takes no band (at a change of condition): drawn
         // again without it.
         release(it->second);
         it->second.band = {};

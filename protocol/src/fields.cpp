@@ -55,29 +55,29 @@ void Reader::nameAndDescription(const Json& document, std::string& name, std::st
     string(&document, "", "description", description);
 }
 
-void Reader::modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const {
+void Reader::conditionId(const Json* parent, const std::string& path, const char* key, std::string& out) const {
     const Json* value = find(parent, key);
     if (!value) return;
-    if (!value->is_string()) fail(joinPath(path, key), "must be a mode id (a string), got " + describe(*value));
+    if (!value->is_string()) fail(joinPath(path, key), "must be a condition id (a string), got " + describe(*value));
     out = value->get<std::string>();
 }
 
-void Reader::modeList(const Json* parent, const std::string& path, const char* key,
-                      std::vector<std::string>& out) const {
-    const Json* list = array(parent, path, key, "mode ids");
+void Reader::conditionList(const Json* parent, const std::string& path, const char* key,
+                           std::vector<std::string>& out) const {
+    const Json* list = array(parent, path, key, "condition ids");
     if (!list) return;
     const std::string where = joinPath(path, key);
     std::vector<std::string> ids;
     for (std::size_t i = 0; i < list->size(); ++i) {
         const Json& id = (*list)[i];
-        if (!id.is_string()) fail(elementPath(where, i), "must be a mode id (a string), got " + describe(id));
+        if (!id.is_string()) fail(elementPath(where, i), "must be a condition id (a string), got " + describe(id));
         ids.push_back(id.get<std::string>());
     }
     requireDistinct(ids, [&where](std::size_t i) { return elementPath(where, i); });
     out = std::move(ids);
 }
 
-void Reader::requireMode(const std::string& where, const std::string& id, double refreshHz) const {
+void Reader::requireCondition(const std::string& where, const std::string& id, double refreshHz) const {
     used_.insert(id);
     const std::string reason = conditions_.check(id, refreshHz);
     if (!reason.empty()) fail(where, "is \"" + id + "\": " + reason);
@@ -257,7 +257,7 @@ void Reader::requireConditionsUsed() const {
     for (const auto& c : conditions_.defined())
         if (!used_.count(c.name))
             fail(joinPath("conditions", c.name),
-                 "is defined but no field names it (a condition list or mode field); remove it or use it");
+                 "is defined but no field names it (a condition list or condition field); remove it or use it");
 }
 
 void writeConditions(Json& document, const std::vector<condition::Condition>& defined) {
@@ -279,8 +279,8 @@ void writeConditions(Json& document, const std::vector<condition::Condition>& de
     }
 }
 
-void Reader::requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const {
-    for (std::size_t i = 0; i < ids.size(); ++i) requireMode(elementPath(path, i), ids[i], refreshHz);
+void Reader::requireConditions(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const {
+    for (std::size_t i = 0; i < ids.size(); ++i) requireCondition(elementPath(path, i), ids[i], refreshHz);
 }
 
 }  // namespace warplab::protocol::fields

@@ -44,7 +44,7 @@ inline const std::vector<Field<V1FrameRow>>& v1FrameFields() {
     using R = V1FrameRow;
     static const std::vector<Field<R>> fields = {
         {"frame", &R::frame},
-        {"mode", &R::mode},
+        {"mode", &R::condition},
         {"kind", &R::kind},
         {"frame_ms", &R::frameMs},
         {"missed_vsyncs", &R::missedVsyncs},
@@ -64,7 +64,7 @@ inline const std::vector<Field<V1EventRow>>& v1EventFields() {
         {"type", &R::type},
         {"phase", &R::phase},
         {"trial", &R::trial},
-        {"mode", &R::mode},
+        {"mode", &R::condition},
         {"difficulty", &R::difficulty},
         {"target_speed", &R::targetSpeed},
         {"spawn_time", &R::spawnTime},

@@ -30,8 +30,8 @@ std::pair<double, double> p95AndMax(std::vector<double> t) {
 
 }  // namespace
 
-void PacingTally::addInterval(Mode& m, const FrameRecord& f, bool newImage) {
-    // A run of the mode's frames ends where another mode's frames, or a feedback pause, came
+void PacingTally::addInterval(Condition& m, const FrameRecord& f, bool newImage) {
+    // A run of the condition's frames ends where another condition's frames, or a feedback pause, came
     // between: the time until the next run is no interval of the condition's cadence.
     if (f.frame != m.lastFrame + 1) {
         m.lastNewImage = -1;
@@ -52,41 +52,43 @@ void PacingTally::addInterval(Mode& m, const FrameRecord& f, bool newImage) {
 }
 
 void PacingTally::add(const FrameRecord& f, const std::string& scheduledKind) {
-    Mode* mode = &screens_;
-    if (!f.mode.empty()) {
-        // Few modes a session: a search beats a map.
-        auto it = std::find_if(modes_.begin(), modes_.end(), [&](const Mode& m) { return m.counts.mode == f.mode; });
-        if (it == modes_.end()) {
-            Mode added;
-            added.counts.mode = f.mode;
-            modes_.push_back(std::move(added));
-            it = modes_.end() - 1;
+    Condition* condition = &screens_;
+    if (!f.condition.empty()) {
+        // Few conditions a session: a search beats a map.
+        auto it = std::find_if(conditions_.begin(), conditions_.end(),
+                               [&](const Condition& m) { return m.counts.condition == f.condition; });
+        if (it == conditions_.end()) {
+            Condition added;
+            added.counts.condition = f.condition;
+            conditions_.push_back(std::move(added));
+            it = conditions_.end() - 1;
         }
-        mode = &*it;
+        condition = &*it;
     }
     const bool newImage = showsNewImage(scheduledKind.empty() ? f.kind : scheduledKind);
-    addInterval(*mode, f, newImage);
-    *mode->counts.newImages += newImage;
+    addInterval(*condition, f, newImage);
+    *condition->counts.newImages += newImage;
     if (f.kind == kSkippedFrameKind) {
-        ++mode->counts.skipped;
+        ++condition->counts.skipped;
         return;
     }
-    ++mode->counts.shown;
-    mode->counts.late += newImage && f.missedVsyncs > 0;
-    if (f.frameMs > 0.0) mode->frameMs.push_back(f.frameMs);
+    ++condition->counts.shown;
+    condition->counts.late += newImage && f.missedVsyncs > 0;
+    if (f.frameMs > 0.0) condition->frameMs.push_back(f.frameMs);
 }
 
 std::vector<ConditionPacing> PacingTally::summary(double refreshHz) const {
     const double budget = refreshHz > 0.0 ? 1000.0 / refreshHz : kNaN;
     std::vector<ConditionPacing> out;
-    auto summarize = [&](const Mode& mode) {
-        ConditionPacing row = mode.counts;
+    auto summarize = [&](const Condition& condition) {
+        ConditionPacing row = condition.counts;
         row.budgetMs = budget;
         std::vector<double> intended;
-        for (const std::int64_t frames : mode.intendedFrames) intended.push_back(static_cast<double>(frames) * budget);
+        for (const std::int64_t frames : condition.intendedFrames)
+            intended.push_back(static_cast<double>(frames) * budget);
         std::tie(row.intendedP95Ms, row.intendedMaxMs) = p95AndMax(intended);
-        std::tie(row.shownP95Ms, row.shownMaxMs) = p95AndMax(mode.shownMs);
-        std::vector<double> t = mode.frameMs;
+        std::tie(row.shownP95Ms, row.shownMaxMs) = p95AndMax(condition.shownMs);
+        std::vector<double> t = condition.frameMs;
         if (t.empty()) {
             row.medianMs = row.p95Ms = row.maxMs = kNaN;
             return row;
@@ -99,7 +101,7 @@ std::vector<ConditionPacing> PacingTally::summary(double refreshHz) const {
         for (const double ms : t) row.overBudget += ms > budget * kOverBudgetShare;
         return row;
     };
-    for (const Mode& mode : modes_) out.push_back(summarize(mode));
+    for (const Condition& condition : conditions_) out.push_back(summarize(condition));
     if (screens_.counts.shown + screens_.counts.skipped > 0) out.push_back(summarize(screens_));
     return out;
 }
@@ -113,7 +115,8 @@ std::vector<ConditionPacing> summarizePacing(const std::vector<FrameRecord>& fra
 std::string pacingReport(const std::vector<ConditionPacing>& pacing) {
     if (pacing.empty()) return "";
     char line[512];
-    std::snprintf(line, sizeof line, "pacing per mode (a display frame every %.2f ms):\n", pacing.front().budgetMs);
+    std::snprintf(line, sizeof line, "pacing per condition (a display frame every %.2f ms):\n",
+                  pacing.front().budgetMs);
     std::string out = line;
     for (const ConditionPacing& p : pacing) {
         const double all = static_cast<double>(std::max<std::int64_t>(1, p.shown + p.skipped));
@@ -122,7 +125,7 @@ std::string pacingReport(const std::vector<ConditionPacing>& pacing) {
         std::snprintf(line, sizeof line,
                       "  %s: %lld shown (%.1f a second of %.0f), %lld late (%.1f %%), %lld skipped (%.1f %%); frame "
                       "time median %.1f ms, p95 %.1f, max %.1f\n",
-                      p.mode.empty() ? "(screens)" : p.mode.c_str(), static_cast<long long>(p.shown),
+                      p.condition.empty() ? "(screens)" : p.condition.c_str(), static_cast<long long>(p.shown),
                       static_cast<double>(p.shown) / all * refreshHz, refreshHz, static_cast<long long>(p.late),
                       100.0 * static_cast<double>(p.late) / all, static_cast<long long>(p.skipped),
                       100.0 * static_cast<double>(p.skipped) / all, p.medianMs, p.p95Ms, p.maxMs);
@@ -148,7 +151,7 @@ std::string pacingText(const std::vector<ConditionPacing>& pacing) {
     // NaN has no JSON form: null.
     auto number = [](double v) { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
     for (const ConditionPacing& p : pacing)
-        list.push_back({{"mode", p.mode},
+        list.push_back({{"mode", p.condition},
                         {"shown", p.shown},
                         {"late", p.late},
                         {"skipped", p.skipped},
@@ -173,7 +176,7 @@ bool parsePacing(const std::string& text, std::vector<ConditionPacing>& out) {
     for (const auto& o : list) {
         if (!o.is_object() || !o.contains("mode") || !o["mode"].is_string()) return false;
         ConditionPacing p;
-        p.mode = o["mode"].get<std::string>();
+        p.condition = o["mode"].get<std::string>();
         p.shown = o.value("shown", std::int64_t{0});
         p.late = o.value("late", std::int64_t{0});
         p.skipped = o.value("skipped", std::int64_t{0});

@@ -64,7 +64,7 @@ private:
     template <typename Result>
     Result readBesideWal(Result (Reader::*readOpen)(), void (Reader::*openAlone)()) {
         checkRegularFile();
-        // A WAL-mode file without its -wal beside it is whole (finished, or closed without
+        // A WAL-condition file without its -wal beside it is whole (finished, or closed without
         // finishing): nothing is writing it.
         std::error_code ec;
         if (!fs::exists(path_ + "-wal", ec)) {
@@ -197,7 +197,7 @@ private:
         if (!fs::is_regular_file(status)) fail("is not a regular file (a pipe, socket or device), not a session file.");
     }
 
-    // whole: no -wal beside the file. A plain read-only open of a WAL-mode file would still
+    // whole: no -wal beside the file. A plain read-only open of a WAL-condition file would still
     // create empty -wal and -shm files next to it; "immutable" reads it as it is and leaves
     // the folder untouched (export promises that). With a -wal present a writer may be
     // running, so the read takes part in SQLite's locking as usual.

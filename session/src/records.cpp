@@ -30,7 +30,7 @@ const std::vector<Field<FrameRecord>>& fieldsOf<FrameRecord>() {
     using R = FrameRecord;
     static const std::vector<Field<R>> fields = {
         {"frame", &R::frame},
-        {"mode", &R::mode},
+        {"mode", &R::condition},
         {"kind", &R::kind},
         {"frame_ms", &R::frameMs},
         {"render_ms", &R::renderMs},
@@ -50,7 +50,7 @@ const std::vector<Field<EventRecord>>& fieldsOf<EventRecord>() {
         {"type", &R::type},
         {"phase", &R::phase},
         {"trial", &R::trial},
-        {"mode", &R::mode},
+        {"mode", &R::condition},
         {"event_time", &R::eventTime},
         {"world_outcome", &R::worldOutcome},
         {"displayed_outcome", &R::displayedOutcome},

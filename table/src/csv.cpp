@@ -171,4 +171,10 @@ void CsvFile::close() {
     closed_ = true;
 }
 
+Cells Cells::rearranged(const std::vector<int>& at) const {
+    Cells out;
+    for (const int k : at) out.cells_.push_back(k < 0 ? std::string() : cells_.at(static_cast<std::size_t>(k)));
+    return out;
+}
+
 }  // namespace warplab::table

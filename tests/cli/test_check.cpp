@@ -54,10 +54,10 @@ const char* const kAudio = "warn  audio: SDL's dummy audio driver plays nowhere 
 // A frame-time line: its form, and a verdict that says what its numbers say (FAIL: more than
 // 1 % of the frames longer than one refresh, as a session flags them, and how many frames a
 // second a session would show; warn: some). Returns whether it fails.
-bool expectFrameTime(const std::string& line, const std::string& mode, const std::string& refresh,
+bool expectFrameTime(const std::string& line, const std::string& condition, const std::string& refresh,
                      const std::string& budget) {
     const std::regex form(
-        "(ok  |warn|FAIL)  frame time " + mode +
+        "(ok  |warn|FAIL)  frame time " + condition +
         ": median ([0-9.]+) ms, p95 [0-9.]+ ms, max [0-9.]+ ms over ([0-9]+) frames at 160x90; ([0-9]+) longer than "
         "one refresh \\(" +
         budget + " ms at " + refresh + "\\)(.*)");
@@ -101,8 +101,8 @@ bool expectFrameTime(const std::string& line, const std::string& mode, const std
 // A cadence line: its form, the schedule's shortest and longest intervals between new images,
 // and a verdict that says what its numbers say (FAIL: the p95 is longer than the shortest).
 // Returns whether it fails.
-bool expectCadence(const std::string& line, const std::string& mode, int refreshHz, int shortest, int longest) {
-    const std::regex form("(ok  |FAIL)  cadence " + mode +
+bool expectCadence(const std::string& line, const std::string& condition, int refreshHz, int shortest, int longest) {
+    const std::regex form("(ok  |FAIL)  cadence " + condition +
                           ": its frames that make a new image take p95 ([0-9.]+) ms over [0-9]+ frames, (within|longer "
                           "than) the ([0-9.]+) ms its schedule leaves the shortest of its intervals between new images "
                           "\\(" +
@@ -180,11 +180,11 @@ TEST(Check, OnXvfbTheQuickProtocolWarnsOfTheUnknownRefreshAndFailsOnlyOnSpeed) {
               "120 Hz that protocol '" +
                   protocol("shooter-quick") + "' needs; a session would pace its frames by a timer");
     bool slow = false;
-    const char* const modes[] = {"conv120", "conv15", "warp15to120"};
+    const char* const conditions[] = {"conv120", "conv15", "warp15to120"};
     const int shortest[] = {1, 8, 1};
     for (int i = 0; i < 3; ++i) {
-        slow = expectFrameTime(lines[4 + 2 * i], modes[i], "120 Hz", "8.33") || slow;
-        slow = expectCadence(lines[5 + 2 * i], modes[i], 120, shortest[i], shortest[i]) || slow;
+        slow = expectFrameTime(lines[4 + 2 * i], conditions[i], "120 Hz", "8.33") || slow;
+        slow = expectCadence(lines[5 + 2 * i], conditions[i], 120, shortest[i], shortest[i]) || slow;
     }
     EXPECT_EQ(lines[10], "ok    results folder: '" + dir + "' is writable and no session holds it");
     EXPECT_TRUE(contains(lines[11], "; a session of shooter-quick writes about ")) << lines[11];

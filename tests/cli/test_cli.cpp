@@ -377,11 +377,11 @@ TEST(CliSession, TheLateWarpProtocolRunsReplaysAndScoresWhatTheWarpedFrameShows)
     std::vector<std::int64_t> rotationShots;
     for (const auto& e : data.events)
         if (e.type == "shot") {
-            ++shots[e.mode];
-            if (e.mode == "lag60x5-rotation") rotationShots.push_back(e.frame);
+            ++shots[e.condition];
+            if (e.condition == "lag60x5-rotation") rotationShots.push_back(e.frame);
         }
-    for (const char* mode : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
-        EXPECT_GE(shots[mode], 1) << mode << " was never shot at";
+    for (const char* condition : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
+        EXPECT_GE(shots[condition], 1) << condition << " was never shot at";
     const auto replay = warplab("replay " + session);
     EXPECT_EQ(replay.status, 0) << replay.output;
     EXPECT_GE(reproducedIn(replay.output), 16) << replay.output;

@@ -47,7 +47,7 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     const auto sessions = filesIn(fs::path(out) / "results", ".warplab-session");
     ASSERT_EQ(sessions.size(), 4u);
     EXPECT_EQ(filesIn(fs::path(out) / "logs", ".log").size(), 4u);
-    // participant -> mode -> test-phase hits as displayed, from the sessions themselves.
+    // participant -> condition -> test-phase hits as displayed, from the sessions themselves.
     std::map<std::string, std::map<std::string, int>> shooterHits;
     for (const auto& path : sessions) {
         const auto data = warplab::session::readSession(path.string());
@@ -56,7 +56,7 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
         if (nlohmann::json::parse(data.header.protocolJson).at("name") != "shooter-quick") continue;
         for (const auto& e : data.events)
             if (e.phase == "test" && (e.type == "shot" || e.type == "timeout"))
-                shooterHits[data.header.participant][e.mode] += e.displayedOutcome == "hit";
+                shooterHits[data.header.participant][e.condition] += e.displayedOutcome == "hit";
     }
     ASSERT_EQ(shooterHits.size(), 2u);
 
@@ -68,16 +68,17 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     const nlohmann::json report = nlohmann::json::parse(in);
     const auto& rates = report.at("games").at("shooter").at("hit_rates");
     int compared = 0;
-    for (const auto& [participant, modes] : shooterHits) {
-        ASSERT_EQ(modes.size(), 3u) << participant;
-        for (const auto& [mode, hits] : modes) {
-            EXPECT_EQ(rates.at(participant).at(mode).at("hits").get<int>(), hits) << participant << " " << mode;
-            EXPECT_EQ(rates.at(participant).at(mode).at("shots").get<int>(), 4) << participant << " " << mode;
+    for (const auto& [participant, conditions] : shooterHits) {
+        ASSERT_EQ(conditions.size(), 3u) << participant;
+        for (const auto& [condition, hits] : conditions) {
+            EXPECT_EQ(rates.at(participant).at(condition).at("hits").get<int>(), hits)
+                << participant << " " << condition;
+            EXPECT_EQ(rates.at(participant).at(condition).at("shots").get<int>(), 4) << participant << " " << condition;
             ++compared;
         }
     }
     EXPECT_EQ(compared, 6);
-    // Sign tests with a sample-size plan for every pair of the shooter's modes, and the figures.
+    // Sign tests with a sample-size plan for every pair of the shooter's conditions, and the figures.
     int planned = 0;
     for (const auto& test : report.at("sign_tests"))
         planned += test.at("game") == "shooter" && test.at("participants") == 2 && test.contains("planning");
@@ -105,9 +106,9 @@ TEST(CliDemo, RunsTheLateWarpProtocolWithItsOwnConditions) {
     const nlohmann::json report = nlohmann::json::parse(in);
     const auto& rates = report.at("games").at("shooter").at("hit_rates");
     ASSERT_EQ(rates.size(), 2u);
-    for (const auto& [participant, modes] : rates.items())
-        for (const char* mode : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
-            EXPECT_EQ(modes.at(mode).at("shots").get<int>(), 4) << participant << " " << mode;
+    for (const auto& [participant, conditions] : rates.items())
+        for (const char* condition : {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"})
+            EXPECT_EQ(conditions.at(condition).at("shots").get<int>(), 4) << participant << " " << condition;
     int lateAgainstLag = 0;
     for (const auto& test : report.at("sign_tests"))
         lateAgainstLag +=

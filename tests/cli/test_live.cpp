@@ -71,7 +71,7 @@ std::string firstRecordDifference(const warplab::session::SessionData& a, const 
 
 using warplab::testing::tinyProtocol;
 
-// The click game in a few seconds: two modes (one of them interpolating between renders),
+// The click game in a few seconds: two conditions (one of them interpolating between renders),
 // one short match each, each followed by its four ratings; it too warns of another refresh.
 std::string tinyClickProtocol(const std::string& dir) {
     std::ofstream(dir + "/tiny-click.json") << R"({"format_version":1,"name":"click-tiny","game":"click",
@@ -273,7 +273,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     EXPECT_NEAR(shownMs, displayMs, 0.02 * displayMs + 3 * periodMs) << skipped << " skipped of " << a.frames.size();
 
     // The pacing, printed and stored.
-    EXPECT_TRUE(contains(window.output, "pacing per mode (a display frame every 8.33 ms)")) << window.output;
+    EXPECT_TRUE(contains(window.output, "pacing per condition (a display frame every 8.33 ms)")) << window.output;
     std::vector<warplab::session::ConditionPacing> pacing;
     ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
     std::int64_t storedSkipped = 0;
@@ -283,7 +283,7 @@ TEST(LiveSession, ASlowMachineSkipsDisplayFramesAndKeepsTheProtocolsTime) {
     const std::string replay = replayOf(sessionIn(dir));
     EXPECT_TRUE(contains(replay, "outcomes reproduced")) << replay;
     EXPECT_FALSE(contains(replay, "differs")) << replay;
-    // The export says it: the session's skipped frames, the pacing per mode.
+    // The export says it: the session's skipped frames, the pacing per condition.
     const std::string exported = scratch("slow-export");
     const auto ex =
         runCommand(std::string(WARPLAB_BINARY) + " export " + dir + " --out " + exported + " --include-flagged");
@@ -355,13 +355,13 @@ TEST(LiveSession, AnOverloadedMachineShowsEveryConditionInTrueTime) {
     for (std::size_t i = 1; i < a.frames.size(); ++i) {  // the first frame's time is the start's
         const auto& f = a.frames[i];
         if (f.kind == warplab::session::kSkippedFrameKind) {
-            ++skipped[f.mode];
+            ++skipped[f.condition];
             continue;
         }
-        ++shown[f.mode];
+        ++shown[f.condition];
         loopMs += f.frameMs;
         makingMs.push_back(f.renderMs);
-        longestMs[f.mode] = std::max(longestMs[f.mode], f.frameMs);
+        longestMs[f.condition] = std::max(longestMs[f.condition], f.frameMs);
     }
     // A frame stays up while the next is made, and no longer: half a second, or on a machine
     // this busy (ctest runs tests side by side) four times what the slowest twentieth of the
@@ -372,12 +372,12 @@ TEST(LiveSession, AnOverloadedMachineShowsEveryConditionInTrueTime) {
     const double p95MakingMs = makingMs[makingMs.size() * 95 / 100];
     const double longestAllowedMs = std::max(500.0, 4.0 * p95MakingMs);
     const double displayMs = static_cast<double>(a.frames.size() - 1) * 1000.0 / 120.0;
-    for (const std::string mode : {"conv15", "conv120", "warp15to120"}) {
-        SCOPED_TRACE(mode);
-        EXPECT_GT(skipped[mode], 0) << "the machine must be overloaded for this case to mean anything";
-        EXPECT_GE(shown[mode], 2) << skipped[mode] << " skipped";
-        EXPECT_LE(longestMs[mode], longestAllowedMs)
-            << shown[mode] << " shown, " << skipped[mode] << " skipped; p95 making " << p95MakingMs << " ms";
+    for (const std::string condition : {"conv15", "conv120", "warp15to120"}) {
+        SCOPED_TRACE(condition);
+        EXPECT_GT(skipped[condition], 0) << "the machine must be overloaded for this case to mean anything";
+        EXPECT_GE(shown[condition], 2) << skipped[condition] << " skipped";
+        EXPECT_LE(longestMs[condition], longestAllowedMs)
+            << shown[condition] << " shown, " << skipped[condition] << " skipped; p95 making " << p95MakingMs << " ms";
     }
     EXPECT_LE(loopMs, 1.5 * displayMs);
     // The whole run, window and shader compiles included, against the display time: within
@@ -502,10 +502,10 @@ TEST(LiveSession, TheLateWarpProtocolRunsInTheWindowAsHeadless) {
     const auto b = warplab::session::readSession(sessionIn(headless));
     EXPECT_TRUE(a.completed) << a.note;
     ASSERT_EQ(firstRecordDifference(a, b), "");
-    std::set<std::string> modes;
+    std::set<std::string> conditions;
     for (const auto& e : a.events)
-        if (e.type == "shot") modes.insert(e.mode);
-    EXPECT_EQ(modes, (std::set<std::string>{"base60", "lag60x5", "lag60x5-depth", "lag60x5-rotation"}));
+        if (e.type == "shot") conditions.insert(e.condition);
+    EXPECT_EQ(conditions, (std::set<std::string>{"base60", "lag60x5", "lag60x5-depth", "lag60x5-rotation"}));
     const std::string replayed = replayOf(sessionIn(dir));
     EXPECT_TRUE(contains(replayed, " outcomes reproduced")) << replayed;
     EXPECT_FALSE(contains(replayed, "differ")) << replayed;
@@ -545,16 +545,16 @@ TEST(LiveSession, UnevenConditionsRunInTheWindowAndReplay) {
 
     std::vector<warplab::session::ConditionPacing> pacing;
     ASSERT_TRUE(warplab::session::parsePacing(a.summaries.at("pacing"), pacing));
-    std::map<std::string, warplab::session::ConditionPacing> byMode;
-    for (const auto& p : pacing) byMode[p.mode] = p;
-    ASSERT_EQ(byMode.count("even60"), 1u) << a.summaries.at("pacing");
-    ASSERT_EQ(byMode.count("rough60"), 1u) << a.summaries.at("pacing");
+    std::map<std::string, warplab::session::ConditionPacing> byCondition;
+    for (const auto& p : pacing) byCondition[p.condition] = p;
+    ASSERT_EQ(byCondition.count("even60"), 1u) << a.summaries.at("pacing");
+    ASSERT_EQ(byCondition.count("rough60"), 1u) << a.summaries.at("pacing");
     const double refreshMs = 1000.0 / 144.0;
-    EXPECT_NEAR(byMode["even60"].intendedMaxMs, 3 * refreshMs, 1e-9);  // never a hitch's stall
-    EXPECT_GE(byMode["rough60"].intendedMaxMs, 100.0);  // the hitch, as the schedule meant it
-    EXPECT_GT(byMode["even60"].newImages, 0);
-    EXPECT_LT(byMode["even60"].newImages, byMode["even60"].shown);  // held frames between renders
-    EXPECT_FALSE(std::isnan(byMode["even60"].shownMaxMs)) << "the window measured what it showed";
+    EXPECT_NEAR(byCondition["even60"].intendedMaxMs, 3 * refreshMs, 1e-9);  // never a hitch's stall
+    EXPECT_GE(byCondition["rough60"].intendedMaxMs, 100.0);  // the hitch, as the schedule meant it
+    EXPECT_GT(byCondition["even60"].newImages, 0);
+    EXPECT_LT(byCondition["even60"].newImages, byCondition["even60"].shown);  // held frames between renders
+    EXPECT_FALSE(std::isnan(byCondition["even60"].shownMaxMs)) << "the window measured what it showed";
 }
 
 // A second window on the rig recorded into the folder beside the first. While another session
@@ -587,9 +587,9 @@ TEST(LiveSession, ABadInputScriptIsNamedWithItsLine) {
     EXPECT_TRUE(sessionIn(dir).empty());
 }
 
-// Free play: the supervisor switches modes and difficulty live; a mode the display cannot run
+// Free play: the supervisor switches conditions and difficulty live; a condition the display cannot run
 // is refused with its reason; nothing is recorded.
-TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
+TEST(LiveSession, FreePlaySwitchesConditionsLiveAndRecordsNothing) {
     const std::string dir = scratch("free-play");
     std::ofstream(dir + "/script.txt") << "5 key 1\n20 key u\n40 key 8\n70 key esc\n70 key q\n";
     const auto r = inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
@@ -604,27 +604,38 @@ TEST(LiveSession, FreePlaySwitchesModesLiveAndRecordsNothing) {
     EXPECT_TRUE(sessionIn(dir).empty()) << "free play wrote a session";
 }
 
-// ] and [ (PageDown and PageUp) step through every mode, past the ninth that the digits end
-// at, around the list, and over the modes the display cannot run.
-TEST(LiveSession, FreePlayStepsPastTheNinthModeAndAroundTheList) {
-    const std::string dir = scratch("free-play-steps");
-    std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
-                                          "80 key esc\n80 key q\n";
-    const auto r =
-        inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
-                 "/protocol/click-quick.json --free-play --mode lag200 --width 320 --height 180 --out " + dir +
-                 " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
-    ASSERT_EQ(r.status, 0) << r.output;
-    // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
-    // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
-    std::size_t at = 0;
-    for (const char* mode : {"bireproj15to60", "conv15", "bireproj15to60", "lag200", "bireproj15to60"}) {
-        const std::size_t found = r.output.find("free play: " + std::string(mode) + ", level 0", at);
-        ASSERT_NE(found, std::string::npos) << "no switch to " << mode << " after offset " << at << ":\n" << r.output;
-        at = found + 1;
+// ] and [ (PageDown and PageUp) step through every condition, past the ninth that the digits end
+// at, around the list, and over the conditions the display cannot run.
+// The condition to start in is --condition, or --mode, its older name.
+TEST(LiveSession, FreePlayStepsPastTheNinthConditionAndAroundTheList) {
+    for (const char* option : {"--condition", "--mode"}) {
+        SCOPED_TRACE(option);
+        const std::string dir = scratch("free-play-steps");
+        std::ofstream(dir + "/script.txt") << "5 key ]\n20 key ]\n35 key [\n50 key pageup\n65 key pagedown\n"
+                                              "80 key esc\n80 key q\n";
+        const auto r =
+            inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                     "/protocol/click-quick.json --free-play " + option + " lag200 --width 320 --height 180 --out " +
+                     dir + " --input-script " + dir + "/script.txt --screenshots " + dir + " --screenshot-frames 30");
+        ASSERT_EQ(r.status, 0) << r.output;
+        // lag200 (the seventh) -> past warp15to120, which needs 120 Hz -> bireproj15to60 (the
+        // ninth) -> around to conv15 -> back -> lag200 -> bireproj15to60.
+        std::size_t at = 0;
+        for (const char* condition : {"bireproj15to60", "conv15", "bireproj15to60", "lag200", "bireproj15to60"}) {
+            const std::size_t found = r.output.find("free play: " + std::string(condition) + ", level 0", at);
+            ASSERT_NE(found, std::string::npos) << "no switch to " << condition << " after offset " << at << ":\n"
+                                                << r.output;
+            at = found + 1;
+        }
+        EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
+        EXPECT_TRUE(fs::exists(dir + "/free_30.png"));
+        fs::remove_all(dir);
     }
-    EXPECT_FALSE(contains(r.output, "free play: warp15to120")) << r.output;
-    EXPECT_TRUE(fs::exists(dir + "/free_30.png"));
+    const auto both = inWindow("run --seed 1 --protocol " + std::string(WARPLAB_SOURCE_DIR) +
+                               "/protocol/click-quick.json --free-play --condition lag200 --mode lag100 --out " +
+                               scratch("free-play-both"));
+    EXPECT_EQ(both.status, 2) << both.output;
+    EXPECT_TRUE(contains(both.output, "options --condition and --mode are one option")) << both.output;
 }
 
 TEST(LiveSession, AHumanNeedsTheWindow) {

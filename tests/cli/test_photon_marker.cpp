@@ -1,6 +1,6 @@
 // The photodiode marker in a real SDL window (Mesa GLX under Xvfb): a scripted press, the
 // corner's pixels read back from the window's frames, black before, white exactly on the frame
-// the mode's schedule says (the README's latency table), black after; and the frames table
+// the condition's schedule says (the README's latency table), black after; and the frames table
 // marking that frame. Runs with --every-frame, so the scripted frames are the frames shown.
 #include <cstdint>
 #include <cstdio>
@@ -82,7 +82,7 @@ void expectReplayDrawsTheMarker(const std::string& dir, const std::string& corne
 }
 
 // lag50 in the click game at 60 Hz: a press at frame 20 is shown 3 frames later (50 ms, the
-// README's least view latency at 60 Hz, since lag modes render every frame there). The marker
+// README's least view latency at 60 Hz, since lag conditions render every frame there). The marker
 // comes from the protocol (format 5).
 TEST(PhotonMarker, LightsWhereLag50ShowsThePress) {
     const std::string dir = warplab::testing::scratch("photon-marker", "lag50");

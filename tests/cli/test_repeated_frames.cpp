@@ -45,7 +45,7 @@ TEST(RepeatedFrames, ARepeatedBFrameIsHeldAndDrawnAsTheBFrame) {
     std::int64_t bFrame = -1, iFrame = -1;
     for (std::size_t i = 1; i + 1 < data.frames.size() && bFrame < 0; ++i) {
         const auto& f = data.frames[i];
-        if (f.frame < 16 || f.mode != "bireproj15to60") continue;
+        if (f.frame < 16 || f.condition != "bireproj15to60") continue;
         if (f.kind == "rendered") iFrame = f.frame;
         if (iFrame >= 0 && f.kind == "interpolated" && data.frames[i + 1].kind == "held") bFrame = f.frame;
     }

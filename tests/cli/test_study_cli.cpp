@@ -32,7 +32,7 @@ nlohmann::json planOf(const std::string& dir) {
     return nlohmann::json::parse(in);
 }
 
-// The counterbalanced list of a stored protocol (shooter test.conditions, click matches.modes).
+// The counterbalanced list of a stored protocol (shooter test.conditions, click matches.conditions).
 std::vector<std::string> listOf(const nlohmann::json& protocol) {
     return protocol["game"] == "click" ? protocol["matches"]["modes"].get<std::vector<std::string>>()
                                        : protocol["test"]["conditions"].get<std::vector<std::string>>();

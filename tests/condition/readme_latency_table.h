@@ -1,5 +1,5 @@
-// The README's latency table ("## Modes and their latency"), read as the tests that check it
-// need it: each row's mode and its view and scene latency cells, and the display refreshes the
+// The README's latency table ("## Conditions and their latency"), read as the tests that check it
+// need it: each row's condition and its view and scene latency cells, and the display refreshes the
 // section says the table holds at. Read in one place, so every test that holds the table to
 // the schedule or to a real run reads the same cells.
 #pragma once
@@ -31,7 +31,7 @@ inline ReadmeLatencyTable readmeLatencyTable() {
     ReadmeLatencyTable table;
     bool inSection = false;
     for (std::string line; std::getline(doc, line);) {
-        if (line.rfind("## ", 0) == 0) inSection = line == "## Modes and their latency";
+        if (line.rfind("## ", 0) == 0) inSection = line == "## Conditions and their latency";
         if (!inSection) continue;
         for (std::size_t at = line.find(" Hz display"); at != std::string::npos;
              at = line.find(" Hz display", at + 1)) {

@@ -16,7 +16,7 @@ inline std::int64_t floorTo(std::int64_t k, std::int64_t period) {
 
 class Schedule {
 public:
-    Schedule(const Condition& c, double refreshHz) : mode_(c), refreshHz_(refreshHz), fill_(c.fillKind()) {
+    Schedule(const Condition& c, double refreshHz) : condition_(c), refreshHz_(refreshHz), fill_(c.fillKind()) {
         renderPeriod_ = std::llround(refreshHz / c.renderHz);
         lagFrames_ = lagFramesAt(c, refreshHz);
         fillPeriod_ = fill_ == Fill::Hold ? renderPeriod_ : (c.fillHz ? std::llround(refreshHz / *c.fillHz) : 1);
@@ -75,18 +75,19 @@ public:
         f.displayTime = static_cast<double>(k) / refreshHz_;
         f.rendersNow = now.rendersNow;
         f.samplesInput = now.samplesInput;
-        if (mode_.lateWarp != LateWarp::None) {
+        if (condition_.lateWarp != LateWarp::None) {
             f.samplesInput = true;
-            if (f.cameraTime != f.displayTime || (mode_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
+            if (f.cameraTime != f.displayTime ||
+                (condition_.lateWarp == LateWarp::Depth && f.sceneTime != f.displayTime))
                 f.kind = f.made = FrameKind::Warped;
             f.cameraTime = f.displayTime;
-            if (mode_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
+            if (condition_.lateWarp == LateWarp::Depth) f.sceneTime = f.displayTime;
         }
         return f;
     }
 
 private:
-    Condition mode_;
+    Condition condition_;
     double refreshHz_;
     Fill fill_;
     std::int64_t renderPeriod_ = 1, lagFrames_ = 0, fillPeriod_ = 1;

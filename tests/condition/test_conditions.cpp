@@ -1,4 +1,4 @@
-// Conditions as data: the presets expand to exactly the schedules the compiled-in modes had,
+// Conditions as data: the presets expand to exactly the schedules the compiled-in conditions had,
 // composed conditions (other rates, lags in frames, fills, late warp) get their timing from the
 // same schedule, and an impossible combination is refused naming the part and why.
 #include <gtest/gtest.h>
@@ -13,26 +13,26 @@
 namespace warplab::condition {
 namespace {
 
-// The frame schedule of the nine modes before they were composed from parts, verbatim but for
+// The frame schedule of the nine conditions before they were composed from parts, verbatim but for
 // names: the oracle the presets must reproduce frame by frame.
-struct OldMode {
+struct OldCondition {
     double renderRateHz, lagMs;
     enum { None, Warp, Bidirectional } upconversion;
     double upconvertedRateHz;
 };
 std::int64_t floorTo(std::int64_t k, std::int64_t period) { return k - ((k % period) + period) % period; }
-ScheduledFrame oldFrame(const OldMode& m, double refreshHz, std::int64_t k) {
+ScheduledFrame oldFrame(const OldCondition& m, double refreshHz, std::int64_t k) {
     const std::int64_t renderPeriod = std::llround(refreshHz / m.renderRateHz);
     const std::int64_t lagFrames = std::llround(m.lagMs * refreshHz / 1000.0);
     const std::int64_t bPeriod =
-        m.upconversion == OldMode::Bidirectional ? std::llround(refreshHz / m.upconvertedRateHz) : 1;
+        m.upconversion == OldCondition::Bidirectional ? std::llround(refreshHz / m.upconvertedRateHz) : 1;
     ScheduledFrame f;
     f.index = k;
     f.displayTime = static_cast<double>(k) / refreshHz;
     f.rendersNow = floorTo(k, renderPeriod) == k;
     auto time = [&](std::int64_t frame) { return static_cast<double>(frame) / refreshHz; };
     switch (m.upconversion) {
-        case OldMode::None: {
+        case OldCondition::None: {
             const std::int64_t shown = floorTo(k - lagFrames, renderPeriod);
             f.sourceIndex = shown;
             f.kind = shown == k - lagFrames ? FrameKind::Rendered : FrameKind::Held;
@@ -40,7 +40,7 @@ ScheduledFrame oldFrame(const OldMode& m, double refreshHz, std::int64_t k) {
             f.samplesInput = f.rendersNow;
             break;
         }
-        case OldMode::Warp: {
+        case OldCondition::Warp: {
             f.sourceIndex = floorTo(k, renderPeriod);
             f.kind = f.rendersNow ? FrameKind::Rendered : FrameKind::Warped;
             f.cameraTime = f.sceneTime = f.displayTime;
@@ -48,7 +48,7 @@ ScheduledFrame oldFrame(const OldMode& m, double refreshHz, std::int64_t k) {
             f.samplesInput = true;
             break;
         }
-        case OldMode::Bidirectional: {
+        case OldCondition::Bidirectional: {
             const std::int64_t depicted = floorTo(k, bPeriod) - renderPeriod;
             f.sourceIndex = floorTo(depicted, renderPeriod);
             const bool onIFrame = f.sourceIndex == depicted;
@@ -65,32 +65,32 @@ ScheduledFrame oldFrame(const OldMode& m, double refreshHz, std::int64_t k) {
 }
 
 TEST(Conditions, EveryPresetExpandsToTheScheduleItReplaced) {
-    const std::vector<std::pair<std::string, OldMode>> old = {
-        {"conv15", {15, 0, OldMode::None, 0}},
-        {"conv30", {30, 0, OldMode::None, 0}},
-        {"conv60", {60, 0, OldMode::None, 0}},
-        {"conv120", {120, 0, OldMode::None, 0}},
-        {"lag50", {60, 50, OldMode::None, 0}},
-        {"lag100", {60, 100, OldMode::None, 0}},
-        {"lag200", {60, 200, OldMode::None, 0}},
-        {"warp15to120", {15, 0, OldMode::Warp, 120}},
-        {"bireproj15to60", {15, 0, OldMode::Bidirectional, 60}},
+    const std::vector<std::pair<std::string, OldCondition>> old = {
+        {"conv15", {15, 0, OldCondition::None, 0}},
+        {"conv30", {30, 0, OldCondition::None, 0}},
+        {"conv60", {60, 0, OldCondition::None, 0}},
+        {"conv120", {120, 0, OldCondition::None, 0}},
+        {"lag50", {60, 50, OldCondition::None, 0}},
+        {"lag100", {60, 100, OldCondition::None, 0}},
+        {"lag200", {60, 200, OldCondition::None, 0}},
+        {"warp15to120", {15, 0, OldCondition::Warp, 120}},
+        {"bireproj15to60", {15, 0, OldCondition::Bidirectional, 60}},
     };
     ASSERT_EQ(presets().size(), old.size());
     int compared = 0;
     // The refreshes the shipped protocols and every stored session use.
     for (const double refresh : {60.0, 120.0}) {
-        for (const auto& [name, mode] : old) {
+        for (const auto& [name, condition] : old) {
             if (!ConditionTable().check(name, refresh).empty()) continue;
             const ConditionSchedule schedule(preset(name), refresh);
             for (std::int64_t k = -50; k < 400; ++k) {
-                const ScheduledFrame a = schedule.frame(k), b = oldFrame(mode, refresh, k);
+                const ScheduledFrame a = schedule.frame(k), b = oldFrame(condition, refresh, k);
                 SCOPED_TRACE(name + " at " + std::to_string(refresh) + " Hz, frame " + std::to_string(k));
                 // Bidirectional reprojection's repeated frames (B-frames shown twice on a 120 Hz
                 // display) are held, as they were, but were drawn as the I-frame before; they are
                 // made as the same B-frame again. Everything the scoring reads is unchanged.
-                const bool repeatedBFrame =
-                    mode.upconversion == OldMode::Bidirectional && b.kind == FrameKind::Held && b.nextSourceIndex != -1;
+                const bool repeatedBFrame = condition.upconversion == OldCondition::Bidirectional &&
+                    b.kind == FrameKind::Held && b.nextSourceIndex != -1;
                 EXPECT_EQ(a.kind, b.kind);
                 EXPECT_EQ(a.made, repeatedBFrame ? FrameKind::Interpolated : b.kind);
                 EXPECT_EQ(a.index, b.index);

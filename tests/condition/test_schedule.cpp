@@ -21,8 +21,8 @@ constexpr double kFrame = 1.0 / kRefresh;
 ConditionSchedule schedule(const std::string& id) { return ConditionSchedule(preset(id), kRefresh); }
 
 // The nine published presets (DESIGN.md) come first, in this order, as protocols, logs and CSVs
-// name them; a mode added to the table comes after them and needs no edit here.
-TEST(Modes, KnownIdsAndUnknownOnesNamed) {
+// name them; a condition added to the table comes after them and needs no edit here.
+TEST(Conditions, KnownIdsAndUnknownOnesNamed) {
     const std::vector<std::string> published{"conv15", "conv30", "conv60",      "conv120",       "lag50",
                                              "lag100", "lag200", "warp15to120", "bireproj15to60"};
     const std::vector<std::string> ids = presetNames();
@@ -39,9 +39,9 @@ TEST(Modes, KnownIdsAndUnknownOnesNamed) {
     }
 }
 
-// The mode ids a Markdown page's mode table names: the backticked words in the first cell of
+// The condition ids a Markdown page's condition table names: the backticked words in the first cell of
 // each row of the first table under the heading that starts with `heading`.
-std::vector<std::string> documentedModeIds(const std::string& page, const std::string& heading) {
+std::vector<std::string> documentedConditionIds(const std::string& page, const std::string& heading) {
     std::ifstream doc(std::string(WARPLAB_SOURCE_DIR) + "/" + page);
     EXPECT_TRUE(doc.good()) << page;
     std::vector<std::string> ids;
@@ -70,17 +70,17 @@ std::vector<std::string> documentedModeIds(const std::string& page, const std::s
     return ids;
 }
 
-// The pages people read describe exactly the modes the table holds: a mode added to the table
+// The pages people read describe exactly the conditions the table holds: a condition added to the table
 // fails here until the README's latency table and docs/protocol.md's refresh table have its row,
-// and a row for a mode that is gone fails too.
-TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
+// and a row for a condition that is gone fails too.
+TEST(Conditions, ReadmeAndProtocolDocsDescribeEveryCondition) {
     const std::vector<std::string> ids = presetNames();
     const std::set<std::string> known(ids.begin(), ids.end());
     for (const auto& [page, heading] : std::vector<std::pair<std::string, std::string>>{
-             {"README.md", "## Modes and their latency"},
+             {"README.md", "## Conditions and their latency"},
              {"docs/protocol.md", "## Conditions: presets and a protocol's own"}}) {
         SCOPED_TRACE(page + ", " + heading);
-        const std::vector<std::string> documented = documentedModeIds(page, heading);
+        const std::vector<std::string> documented = documentedConditionIds(page, heading);
         const std::set<std::string> named(documented.begin(), documented.end());
         for (const auto& id : ids) EXPECT_EQ(named.count(id), 1u) << "mode " << id << " has no row";
         for (const auto& id : documented) EXPECT_EQ(known.count(id), 1u) << "a row names " << id << ", no mode";
@@ -91,7 +91,7 @@ TEST(Modes, ReadmeAndProtocolDocsDescribeEveryMode) {
 // scene latency as "A – B ms" (or "same as view"), which must be what `warplab conditions`
 // prints for it at 120 Hz, to the 0.1 ms the README rounds to. (tests/games/click/test_click_game.cpp
 // holds the same cells to a real run.)
-TEST(Modes, ReadmeLatencyCellsAreTheSchedulesRanges) {
+TEST(Conditions, ReadmeLatencyCellsAreTheSchedulesRanges) {
     const readme::ReadmeLatencyTable table = readme::readmeLatencyTable();
     EXPECT_EQ(table.displayRatesHz.count(120.0), 1u) << "the table is for a 120 Hz display";
     for (const readme::ReadmeLatencyRow& row : table.rows) {
@@ -104,13 +104,13 @@ TEST(Modes, ReadmeLatencyCellsAreTheSchedulesRanges) {
     EXPECT_EQ(table.rows.size(), presets().size());
 }
 
-TEST(Modes, CheckModeNamesTheProblem) {
+TEST(Conditions, CheckConditionNamesTheProblem) {
     EXPECT_EQ(ConditionTable().check("conv60", 60.0), "");
     EXPECT_NE(ConditionTable().check("conv120", 60.0).find("120"), std::string::npos);
     EXPECT_NE(ConditionTable().check("conv45", 60.0).find("unknown condition 'conv45'"), std::string::npos);
 }
 
-TEST(Modes, RatesAboveTheRefreshAndLagsOfPartFramesAreRefused) {
+TEST(Conditions, RatesAboveTheRefreshAndLagsOfPartFramesAreRefused) {
     EXPECT_THROW(ConditionSchedule(preset("conv120"), 60.0), std::invalid_argument);
     EXPECT_NO_THROW(ConditionSchedule(preset("conv15"), 100.0));  // the uneven 6-7-7 cadence
     EXPECT_THROW(ConditionSchedule(preset("warp15to120"), 60.0), std::invalid_argument);
@@ -120,7 +120,7 @@ TEST(Modes, RatesAboveTheRefreshAndLagsOfPartFramesAreRefused) {
     EXPECT_NO_THROW(ConditionSchedule(preset("bireproj15to60"), 60.0));
 }
 
-TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
+TEST(Conditions, Conventional15HoldsEachFrameForEightRefreshes) {
     const auto s = schedule("conv15");
     for (std::int64_t k = 0; k < 32; ++k) {
         const auto f = s.frame(k);
@@ -135,7 +135,7 @@ TEST(Modes, Conventional15HoldsEachFrameForEightRefreshes) {
     }
 }
 
-TEST(Modes, Conventional120RendersEveryFrame) {
+TEST(Conditions, Conventional120RendersEveryFrame) {
     const auto s = schedule("conv120");
     for (std::int64_t k = 0; k < 10; ++k) {
         EXPECT_EQ(s.frame(k).kind, FrameKind::Rendered);
@@ -143,7 +143,7 @@ TEST(Modes, Conventional120RendersEveryFrame) {
     }
 }
 
-TEST(Modes, LagShowsSixtyHertzFramesLate) {
+TEST(Conditions, LagShowsSixtyHertzFramesLate) {
     for (const auto& [id, frames] :
          std::vector<std::pair<std::string, int>>{{"lag50", 6}, {"lag100", 12}, {"lag200", 24}}) {
         const auto s = schedule(id);
@@ -160,7 +160,7 @@ TEST(Modes, LagShowsSixtyHertzFramesLate) {
     }
 }
 
-TEST(Modes, WarpRendersEveryEighthAndWarpsToTheCurrentCameraInBetween) {
+TEST(Conditions, WarpRendersEveryEighthAndWarpsToTheCurrentCameraInBetween) {
     const auto s = schedule("warp15to120");
     for (std::int64_t k = 0; k < 24; ++k) {
         const auto f = s.frame(k);
@@ -173,7 +173,7 @@ TEST(Modes, WarpRendersEveryEighthAndWarpsToTheCurrentCameraInBetween) {
     }
 }
 
-TEST(Modes, BidirectionalRunsOneSourcePeriodBehindAtSixtyHertz) {
+TEST(Conditions, BidirectionalRunsOneSourcePeriodBehindAtSixtyHertz) {
     const auto s = schedule("bireproj15to60");
     for (std::int64_t k = 8; k < 40; ++k) {
         const auto f = s.frame(k);
@@ -208,9 +208,9 @@ Range latencies(const ConditionSchedule& s, bool view) {
     return r;
 }
 
-// The README's latency table, checked: for each mode the shortest and longest time from a step
+// The README's latency table, checked: for each condition the shortest and longest time from a step
 // (in the mouse, or in the target's motion) to the first displayed frame that shows it.
-TEST(Modes, LatencyTable) {
+TEST(Conditions, LatencyTable) {
     struct Row {
         const char* id;
         double viewMinMs, viewMaxMs, sceneMinMs, sceneMaxMs;

@@ -63,9 +63,9 @@ std::string replayedAs(const std::string& source, const std::string& dir, const 
 struct Counts {
     int shots = 0, hits = 0, timeouts = 0;
 };
-using Key = std::tuple<std::string, std::string, std::string>;  // participant, game, mode
+using Key = std::tuple<std::string, std::string, std::string>;  // participant, game, condition
 
-// Scored-phase shots and clicks per participant x game x mode. The shooter's scored phase is
+// Scored-phase shots and clicks per participant x game x condition. The shooter's scored phase is
 // "test"; a click counts when its match event says the round was scored. The outcome that
 // counts is the one the protocol's "scoring" names (world or displayed).
 void countScored(const session::SessionData& data, std::map<Key, Counts>& into) {
@@ -81,7 +81,7 @@ void countScored(const session::SessionData& data, std::map<Key, Counts>& into) 
         const bool scoredClick = e.type == "click" && scoredMatch[e.trial];
         if (!shooterTrial && !scoredClick) continue;
         const std::string outcome = scoring == "world" ? e.worldOutcome : e.displayedOutcome;
-        Counts& c = into[{data.header.participant, gameName, e.mode}];
+        Counts& c = into[{data.header.participant, gameName, e.condition}];
         ++c.shots;
         c.hits += outcome == "hit" || outcome == "green";
         c.timeouts += outcome == "timeout";
@@ -357,7 +357,7 @@ TEST(Export, EachShotCarriesTheFrameTimeP95OfItsLastSecond) {
     header.startedAt = "";
     session::SessionWriter w = session::SessionWriter::create(results, header);
     for (session::FrameRecord f : data.frames) {
-        if (f.mode == "conv120" && f.kind == "rendered" && f.frame % 2 == 1) f.kind = "held";
+        if (f.condition == "conv120" && f.kind == "rendered" && f.frame % 2 == 1) f.kind = "held";
         w.addFrame(f);
     }
     for (const auto& e : data.events) w.addEvent(e);
@@ -543,21 +543,21 @@ bool scoredMatch(const session::EventRecord& e) {
     return e.type == "match" && nlohmann::json::parse(e.detailJson).at("scored").get<bool>();
 }
 
-// A participant who played a scored match without clicking still ran its mode: hitrates.csv
-// has that participant x mode, with 0 clicks, 0 hits and no rate (an empty cell, NA in R), so
-// every participant x mode run appears, and none has a rate of 0/0.
-TEST(Export, AModePlayedWithoutAClickHasAHitRateRowWithoutARate) {
+// A participant who played a scored match without clicking still ran its condition: hitrates.csv
+// has that participant x condition, with 0 clicks, 0 hits and no rate (an empty cell, NA in R), so
+// every participant x condition run appears, and none has a rate of 0/0.
+TEST(Export, AConditionPlayedWithoutAClickHasAHitRateRowWithoutARate) {
     const std::string source = scratch("no-clicks/source"), results = scratch("no-clicks/results");
     const auto data = session::readSession(headless("click-quick.json", "Z", source, 8));
     const auto first = std::find_if(data.events.begin(), data.events.end(), scoredMatch);
     ASSERT_NE(first, data.events.end());
     const int trial = first->trial;
-    const std::string mode = first->mode;
+    const std::string condition = first->condition;
     std::vector<session::EventRecord> events;
     int dropped = 0;
-    std::set<std::string> modes;
+    std::set<std::string> conditions;
     for (auto e : data.events) {
-        if (scoredMatch(e)) modes.insert(e.mode);
+        if (scoredMatch(e)) conditions.insert(e.condition);
         if (e.type == "click" && e.trial == trial) {
             ++dropped;
             continue;
@@ -573,11 +573,11 @@ TEST(Export, AModePlayedWithoutAClickHasAHitRateRowWithoutARate) {
     rewriteEvents(data, results, "Z", events);
     const std::string out = scratch("no-clicks/out");
     exportQuietly(results, out);
-    std::map<std::string, Row> byMode;
-    for (const auto& row : readCsv(out + "/hitrates.csv")) byMode[row.at("condition")] = row;
-    EXPECT_EQ(byMode.size(), modes.size()) << "one row per mode the scored round ran";
-    ASSERT_EQ(byMode.count(mode), 1u) << mode << " has no row";
-    const Row& row = byMode[mode];
+    std::map<std::string, Row> byCondition;
+    for (const auto& row : readCsv(out + "/hitrates.csv")) byCondition[row.at("condition")] = row;
+    EXPECT_EQ(byCondition.size(), conditions.size()) << "one row per mode the scored round ran";
+    ASSERT_EQ(byCondition.count(condition), 1u) << condition << " has no row";
+    const Row& row = byCondition[condition];
     EXPECT_EQ(row.at("shots"), "0");
     EXPECT_EQ(row.at("hits"), "0");
     EXPECT_EQ(row.at("hit_rate"), "");
@@ -607,10 +607,10 @@ TEST(Export, AClickMatchThatNeverEndedLeavesItsClicksOut) {
     const std::string out = scratch("cut-match/out");
     exportQuietly(results, out, options);
     std::set<std::string> listed;
-    std::map<std::string, int> clicksByMode;
+    std::map<std::string, int> clicksByCondition;
     for (const auto& m : readCsv(out + "/matches.csv")) {
         listed.insert(m.at("match"));
-        clicksByMode[m.at("condition")] += std::stoi(m.at("clicks"));
+        clicksByCondition[m.at("condition")] += std::stoi(m.at("clicks"));
     }
     EXPECT_EQ(listed.count(std::to_string(cutTrial)), 0u);
     const auto shots = readCsv(out + "/shots.csv");
@@ -619,7 +619,7 @@ TEST(Export, AClickMatchThatNeverEndedLeavesItsClicksOut) {
     std::map<std::string, int> hitrateClicks;
     for (const auto& row : readCsv(out + "/hitrates.csv"))
         hitrateClicks[row.at("condition")] = std::stoi(row.at("shots"));
-    EXPECT_EQ(hitrateClicks, clicksByMode);
+    EXPECT_EQ(hitrateClicks, clicksByCondition);
 }
 
 TEST(Export, ParticipantIdsCannotBecomeFormulasOrBreakTheColumns) {
@@ -664,7 +664,7 @@ TEST(Export, SessionsRecordedWithTheBlendStandInStillReplayAndSaySo) {
     for (const auto& r : data.frames) w.addFrame(r);
     int marked = 0;
     for (auto e : data.events) {
-        if (e.type == "match" && e.mode == "bireproj15to60") {
+        if (e.type == "match" && e.condition == "bireproj15to60") {
             auto detail = nlohmann::json::parse(e.detailJson);
             detail["stand_in"] = "bidirectional reprojection";
             e.detailJson = detail.dump();
@@ -808,14 +808,14 @@ TEST(Export, AnswersCsvHoldsEveryAnswerOfEveryKindAndGame) {
     // Shooter: one answer after each condition's block, about that condition.
     const auto& shots = byGame["shooter"];
     ASSERT_EQ(shots.size(), 3u);
-    std::vector<std::string> modes;
+    std::vector<std::string> conditions;
     for (std::size_t i = 0; i < shots.size(); ++i) {
         EXPECT_EQ(shots[i].at("block"), "test");
         EXPECT_EQ(shots[i].at("block_index"), std::to_string(i));
         EXPECT_EQ(shots[i].at("kind"), "choice");
-        modes.push_back(shots[i].at("condition"));
+        conditions.push_back(shots[i].at("condition"));
     }
-    EXPECT_EQ(modes, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
+    EXPECT_EQ(conditions, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
 }
 
 // Click sessions of older formats log their ratings as "rating" events: answers.csv has them too,
@@ -895,7 +895,7 @@ TEST(Export, ThePlansOwnFolderExportsWithItsParticipants) {
 TEST(Export, EveryRowSaysWhoPlayedAndWhereItsConditionCameInTheOrder) {
     const std::string source = scratch("kinds/source"), results = scratch("kinds/results");
     auto protocol = nlohmann::json::parse(slurp(std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json"));
-    protocol["test"]["conditions"] = {"warp15to120", "conv120"};  // conv15: training's low mode only
+    protocol["test"]["conditions"] = {"warp15to120", "conv120"};  // conv15: training's low condition only
     protocol["test"]["interleave"] = false;
     const std::string file = source + "/blocked.json";
     std::ofstream(file) << protocol.dump(2);
@@ -964,6 +964,34 @@ TEST(Export, AnOutputFolderThatCannotBeMadeSaysWhy) {
 
 // ============================ the documented columns ============================
 
+// shots.csv: export.md documents the columns every game has, each game's page its own, which
+// the file has after aim_time_s, game by game in the order they were registered.
+void expectShotColumnsMatchTheirPages(const exporter::CsvColumns& csv, const std::vector<std::string>& pages) {
+    std::vector<std::string> shared = csv.columns, games;
+    const auto own = game::gameShotColumns();
+    for (const auto& [gameName, columns] : own) {
+        games.insert(games.end(), columns.begin(), columns.end());
+        for (const std::string& c : columns) shared.erase(std::find(shared.begin(), shared.end(), c));
+    }
+    ASSERT_GE(games.size(), 4u) << "the shooter's three and the click game's one";
+    const auto after = std::find(csv.columns.begin(), csv.columns.end(), "aim_time_s") + 1;
+    EXPECT_EQ(std::vector<std::string>(after, after + static_cast<std::ptrdiff_t>(games.size())), games);
+    std::size_t pagesOfGames = 0;
+    for (const std::string& page : pages) {
+        // A test game's page is held to its columns by its own tests, where it is registered.
+        if (page.find("/tests/games/") != std::string::npos) continue;
+        const std::vector<std::string> documented = testing_docs::documentedColumns(csv.file, page).columns;
+        if (fs::path(page).filename() == "export.md") {
+            EXPECT_EQ(documented, shared) << page;
+            continue;
+        }
+        ++pagesOfGames;
+        EXPECT_TRUE(std::any_of(own.begin(), own.end(), [&](const auto& g) { return g.second == documented; }))
+            << page << " documents shots.csv columns no registered game has";
+    }
+    EXPECT_EQ(pagesOfGames, own.size()) << "each game's own columns on its page";
+}
+
 // The page analysts read is the contract: each CSV's documented columns are exactly the
 // columns its table writes, in the same order.
 TEST(ExportColumns, MatchTheirPages) {
@@ -971,6 +999,10 @@ TEST(ExportColumns, MatchTheirPages) {
     ASSERT_EQ(written.size(), 13u);  // export's 11, and the click game's matches.csv and ratings.csv
     for (const exporter::CsvColumns& csv : written) {
         const std::vector<std::string> pages = testing_docs::pagesDocumenting(csv.file);
+        if (csv.file == "shots.csv") {
+            expectShotColumnsMatchTheirPages(csv, pages);
+            continue;
+        }
         ASSERT_EQ(pages.size(), 1u) << csv.file << ": documented on one page";
         SCOPED_TRACE(pages.front() + ", " + csv.file);
         const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(csv.file, pages.front());

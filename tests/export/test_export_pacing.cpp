@@ -109,7 +109,7 @@ TEST(ExportPacing, AppendsTheSummarysNewImagesAndIntervalsEmptyWhereItHasNone) {
     const std::string scratchDir = scratch("pacing-columns/source");
     const std::string source = headless("shooter-quick.json", "P00", scratchDir, 1);
     session::ConditionPacing now;
-    now.mode = "conv15";
+    now.condition = "conv15";
     now.shown = 100;
     now.budgetMs = 1000.0 / 120;
     now.medianMs = now.p95Ms = now.maxMs = 8.5;

@@ -128,7 +128,7 @@ TEST(QuestionText, AnAnswerIsAlwaysValidUtf8WithinItsLength) {
 protocol::ClickProtocol clickWith(std::vector<Question> questions) {
     auto p = protocol::loadClickProtocol(std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json");
     p.formatVersion = protocol::kClickQuestionsSince;  // logs "answer" events
-    p.modes = {"conv60", "conv30"};
+    p.conditions = {"conv60", "conv30"};
     p.rounds = {{"practice", false, 1, ""}, {"scored", true, 1, ""}};
     p.shuffle = false;
     p.matchS = 0.5;
@@ -181,7 +181,7 @@ TEST(ClickQuestions, EachKindAnswersAsDocumentedAndIsLoggedAsAnAnswer) {
     EXPECT_EQ(events[0].type, "answer");
     EXPECT_EQ(events[0].phase, "practice");
     EXPECT_EQ(events[0].trial, 0);
-    EXPECT_EQ(events[0].mode, "conv60");
+    EXPECT_EQ(events[0].condition, "conv60");
     auto d = detail(events[0]);
     EXPECT_EQ(d["question_id"], "fun");
     EXPECT_EQ(d["question_index"], 0);
@@ -344,20 +344,21 @@ TEST(ShooterQuestions, ABlockedTestAsksAfterEachConditionsBlock) {
     // Answers come in threes, each after its block's last test trial and before the next
     // block's first, about that block's condition.
     std::vector<std::string> askedAbout;
-    std::string lastTrialMode;
+    std::string lastTrialCondition;
     int trialsSince = 0;
     for (const auto& e : played.events) {
         if (e.phase != "test") continue;
         if (e.type == "shot" || e.type == "timeout") {
-            if (e.mode != lastTrialMode) {
-                EXPECT_TRUE(lastTrialMode.empty() || trialsSince == 0) << "block of " << lastTrialMode << " unasked";
-                lastTrialMode = e.mode;
+            if (e.condition != lastTrialCondition) {
+                EXPECT_TRUE(lastTrialCondition.empty() || trialsSince == 0)
+                    << "block of " << lastTrialCondition << " unasked";
+                lastTrialCondition = e.condition;
             }
             ++trialsSince;
         } else if (e.type == "answer") {
-            EXPECT_EQ(e.mode, lastTrialMode);
+            EXPECT_EQ(e.condition, lastTrialCondition);
             EXPECT_EQ(e.trial, static_cast<int>(askedAbout.size() / 3));
-            askedAbout.push_back(e.mode);
+            askedAbout.push_back(e.condition);
             trialsSince = 0;
         }
     }
@@ -376,7 +377,7 @@ TEST(ShooterQuestions, AnInterleavedTestAsksOnceAtItsEnd) {
     ASSERT_TRUE(played.finished);
     const auto answers = answersIn(played.events);
     ASSERT_EQ(answers.size(), 1u);
-    EXPECT_EQ(answers[0].mode, "");  // the block mixed the conditions
+    EXPECT_EQ(answers[0].condition, "");  // the block mixed the conditions
     EXPECT_EQ(detail(answers[0])["value"], 4);  // the bot's Likert answer: the scale's middle
     // After the test's last trial, before it is done.
     const auto at =

@@ -533,7 +533,7 @@ TEST(BireprojLatestInit, StartingFromTheEarlierBFrameIsUsedAndChangesLittle) {
 }
 
 // The later I-frame's backward flow drawn in its own render (a fourth render target, as the
-// study mode and the bench make their I-frames) gives exactly the B-frames the method makes
+// study condition and the bench make their I-frames) gives exactly the B-frames the method makes
 // when it has to draw that flow itself.
 TEST(BireprojFlow, TheIFramesOwnFlowGivesTheSameBFrames) {
     game::SequenceConfig config;

@@ -36,10 +36,10 @@ struct Made {
 
 // Steps `mode` for `frames` display frames, the camera turning, every frame kept; makes every
 // `every`-th one (as a session that shows one frame in `every`), its picture added to `pictures`.
-Made play(const game::Study& study, const std::string& mode, int frames, int every,
+Made play(const game::Study& study, const std::string& condition, int frames, int every,
           std::vector<image::ImageRGBA8>& pictures) {
     testing::glContext();
-    auto game = study.newFreePlay(3, kDisplay, mode, 6);
+    auto game = study.newFreePlay(3, kDisplay, condition, 6);
     present::FrameMaker maker(testing::sourceDataPaths(), kWidth, kHeight, study.rendering());
     renderer::DisplayFrame display(kWidth, kHeight);
     Made made;
@@ -63,14 +63,14 @@ Made play(const game::Study& study, const std::string& mode, int frames, int eve
 // of them, every one of which cost as much as the frame it was meant to make room for.
 TEST(FrameMaker, SkippedFramesDrawNoRenderNoShownFrameNeeds) {
     const auto shooter = studyFrom("shooter-quick");
-    for (const std::string mode : {"conv15", "conv120", "warp15to120"}) {
+    for (const std::string condition : {"conv15", "conv120", "warp15to120"}) {
         std::vector<image::ImageRGBA8> pictures;
-        const Made all = play(*shooter, mode, 240, 1, pictures);
-        const Made some = play(*shooter, mode, 240, 19, pictures);
-        EXPECT_EQ(all.renders, all.rendersStepped) << mode << ": each render made once when every frame is shown";
-        EXPECT_GT(some.rendersStepped, some.frames) << mode << ": the case must step more renders than it shows";
-        EXPECT_LE(some.renders, some.frames) << mode << ": " << some.renders << " renders drawn for " << some.frames
-                                             << " frames shown of " << some.stepped;
+        const Made all = play(*shooter, condition, 240, 1, pictures);
+        const Made some = play(*shooter, condition, 240, 19, pictures);
+        EXPECT_EQ(all.renders, all.rendersStepped) << condition << ": each render made once when every frame is shown";
+        EXPECT_GT(some.rendersStepped, some.frames) << condition << ": the case must step more renders than it shows";
+        EXPECT_LE(some.renders, some.frames) << condition << ": " << some.renders << " renders drawn for "
+                                             << some.frames << " frames shown of " << some.stepped;
         EXPECT_GE(some.renders, 1);
     }
 }
@@ -86,15 +86,15 @@ TEST(FrameMaker, AFrameMadeFromALateRenderIsTheFrameOfAnEagerOne) {
     const auto click = studyFrom("click-quick");
     struct Case {
         const game::Study* study;
-        std::string mode;
+        std::string condition;
     };
     for (const Case& c : {Case{shooter.get(), "conv15"}, Case{shooter.get(), "warp15to120"},
                           Case{click.get(), "bireproj15to60"}, Case{click.get(), "lag100"}}) {
         std::vector<image::ImageRGBA8> pictures;
-        const Made skipping = play(*c.study, c.mode, 120, 7, pictures);
-        ASSERT_GT(skipping.frames, 10) << c.mode;
+        const Made skipping = play(*c.study, c.condition, 120, 7, pictures);
+        ASSERT_GT(skipping.frames, 10) << c.condition;
         // The same frames from a maker that made every frame: compared at the 7th ones.
-        auto game = c.study->newFreePlay(3, kDisplay, c.mode, 6);
+        auto game = c.study->newFreePlay(3, kDisplay, c.condition, 6);
         present::FrameMaker maker(testing::sourceDataPaths(), kWidth, kHeight, c.study->rendering());
         renderer::DisplayFrame display(kWidth, kHeight);
         std::size_t next = 0, compared = 0;
@@ -111,13 +111,13 @@ TEST(FrameMaker, AFrameMadeFromALateRenderIsTheFrameOfAnEagerOne) {
             if (i % 7 != 6) continue;
             if (!afterAnother) {
                 EXPECT_EQ(renderer::readBack(display, false).colour.pixels, pictures.at(next).pixels)
-                    << c.mode << ": frame " << shown.frame;
+                    << c.condition << ": frame " << shown.frame;
                 ++compared;
             }
             ++next;
         }
-        EXPECT_EQ(next, pictures.size()) << c.mode;
-        EXPECT_GE(compared, pictures.size() / 3) << c.mode;
+        EXPECT_EQ(next, pictures.size()) << c.condition;
+        EXPECT_GE(compared, pictures.size() / 3) << c.condition;
     }
 }
 

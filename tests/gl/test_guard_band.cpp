@@ -69,7 +69,7 @@ TEST(GuardBand, RefusesFractionsOutsideTheRange) {
     EXPECT_EQ(renderer::guardBandFor(320, 180, 0.0), (renderer::GuardBand{0, 0}));
 }
 
-// What a warp mode shows at its render instants: the band's inside, the displayed view itself.
+// What a warp condition shows at its render instants: the band's inside, the displayed view itself.
 // It is rendered through another projection, so a silhouette pixel whose centre lies within
 // rounding of an edge may fall the other way; nothing else may differ.
 TEST(GuardBand, HoldShowsTheDisplayedPartOfABandedSource) {

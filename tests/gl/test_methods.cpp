@@ -149,7 +149,7 @@ TEST(Methods, UnknownMethodIsNamed) {
     }
 }
 
-// The bench's CSV, the summary and the modes name a method by its registry name; a method
+// The bench's CSV, the summary and the conditions name a method by its registry name; a method
 // that called itself anything else would be measured under one name and reported under another.
 TEST(Methods, EveryMethodCallsItselfByItsRegistryName) {
     testing::glContext();

@@ -53,9 +53,9 @@ participants::PerceptualPlayer playerFor(const game::Study& study, std::uint64_t
 
 // Plays free-play targets at `level` in `mode` until `targets` trials have ended; the share of
 // them hit as displayed (the scored outcome of the shooter's protocols).
-double hitRate(const game::Study& study, const std::string& mode, int level, int targets,
+double hitRate(const game::Study& study, const std::string& condition, int level, int targets,
                const participants::ParticipantParams& params, std::uint64_t seed = 1) {
-    auto game = study.newFreePlay(seed, kDisplay, mode, level);
+    auto game = study.newFreePlay(seed, kDisplay, condition, level);
     auto player = playerFor(study, seed, params);
     game::FrameInput input = player.first();
     int ended = 0, hits = 0;
@@ -225,7 +225,7 @@ TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {
     const game::ShownFrame shown = game->step({3.14159 / study->mouseRadiansPerCount(), 0, 0, 0});
     ASSERT_FALSE(shown.scene.objects.empty());
     EXPECT_TRUE(eye.see(shown).objects.empty());
-    // And in a lagged mode, what is seen is the lagged picture: the target where the frame on
+    // And in a lagged condition, what is seen is the lagged picture: the target where the frame on
     // screen depicts it, not where the world has it.
     const auto click = game::loadStudy(protocolPath("click-quick"));
     auto lagged = click->newFreePlay(4, kDisplay, "lag200", 0);
@@ -250,7 +250,7 @@ TEST(SimulatedParticipant, ATargetTheFrameDoesNotShowIsNotSeen) {
     EXPECT_GE(compared, 1);
 }
 
-// A world changed where the frame does not show it -- every object's velocity, the mode's name,
+// A world changed where the frame does not show it -- every object's velocity, the condition's name,
 // the outcome the game has judged -- with the pictures unchanged: the same actions, to the bit.
 // An eye that let any of it through to the participant would make them differ.
 TEST(SimulatedParticipant, AChangedWorldWithIdenticalFramesGivesIdenticalActions) {

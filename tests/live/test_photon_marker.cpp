@@ -19,7 +19,7 @@ game::ShownFrame frame(std::int64_t number, std::int64_t inputFrame) {
 
 const game::FrameInput kPressed{0.0, 0.0, game::kButtonLeft, 0};
 
-// A mode that shows each frame's input 3 frames late (lag50 at 60 Hz): a press at 10 lights 13
+// A condition that shows each frame's input 3 frames late (lag50 at 60 Hz): a press at 10 lights 13
 // alone, however long the button is held.
 TEST(PhotonMarker, LightsOnceOnTheFirstFrameThatShowsThePress) {
     PhotonMarkerTiming timing;
@@ -53,7 +53,7 @@ TEST(PhotonMarker, EachPressIsAnsweredByTheFrameThatShowsIt) {
     for (std::int64_t k = 0; k < 40; ++k) {
         const bool down = k == 1 || k == 3 || k == 6 || k == 20 || k == 21;  // 20 and 21: one held press
         const game::FrameInput input = down ? kPressed : game::FrameInput{};
-        // A mode that renders every 4th frame and shows each render 4 frames late.
+        // A condition that renders every 4th frame and shows each render 4 frames late.
         const std::int64_t shows = k < 4 ? -4 : (k - 4) / 4 * 4;
         const PhotonMarkerTiming::Answer a = timing.step(frame(k, shows), input, true);
         if (a.lit) lit.emplace_back(k, a.press);

@@ -27,7 +27,8 @@ using Json = nlohmann::ordered_json;
 const std::string kShooter = std::string(WARPLAB_SOURCE_DIR) + "/protocol/shooter-quick.json";
 const std::string kClick = std::string(WARPLAB_SOURCE_DIR) + "/protocol/click-quick.json";
 const std::vector<std::string> kShooterConditions{"conv15", "conv120", "warp15to120"};
-const std::vector<std::string> kClickModes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
+const std::vector<std::string> kClickConditions{"conv60", "conv30", "conv15",        "lag50",
+                                                "lag100", "lag200", "bireproj15to60"};
 
 // An empty folder build/test-output/plan/<name>.
 std::string scratch(const std::string& name) {
@@ -119,7 +120,7 @@ TEST(StudyPlan, SixParticipantsOverBothQuickProtocols) {
     const ProtocolEntry& click = plan.protocols[1];
     EXPECT_EQ(click.file, "protocols/click-quick.json");
     EXPECT_EQ(click.game, "click");
-    EXPECT_EQ(click.conditions, kClickModes);
+    EXPECT_EQ(click.conditions, kClickConditions);
     EXPECT_FALSE(click.blocked);  // matches.shuffle is true
     EXPECT_EQ(readText(fs::path(dir) / click.file), readText(kClick));
     EXPECT_NE(shooter.hash, click.hash);
@@ -137,7 +138,7 @@ TEST(StudyPlan, SixParticipantsOverBothQuickProtocols) {
         EXPECT_EQ(p.protocolOrder, (i % 2 == 0 ? std::vector<int>{0, 1} : std::vector<int>{1, 0})) << p.id;
         ASSERT_EQ(p.conditionOrder.size(), 2u);
         EXPECT_TRUE(isRowOf(p.conditionOrder[0], kShooterConditions)) << p.id;
-        EXPECT_TRUE(isRowOf(p.conditionOrder[1], kClickModes)) << p.id;
+        EXPECT_TRUE(isRowOf(p.conditionOrder[1], kClickConditions)) << p.id;
         for (int k = 0; k < 3; ++k) {
             const auto at = std::find(kShooterConditions.begin(), kShooterConditions.end(), p.conditionOrder[0][k]);
             ++shooterPositions[at - kShooterConditions.begin()][k];
@@ -148,7 +149,7 @@ TEST(StudyPlan, SixParticipantsOverBothQuickProtocols) {
     // Six participants take all six rows of the three conditions' square: each condition is
     // then in each position twice.
     for (const auto& counts : shooterPositions) EXPECT_EQ(counts, (std::vector<int>{2, 2, 2}));
-    // The click modes' fourteen rows: six participants, six different rows.
+    // The click conditions' fourteen rows: six participants, six different rows.
     std::set<std::vector<std::string>> clickOrders;
     for (const auto& p : plan.participants) clickOrders.insert(p.conditionOrder[1]);
     EXPECT_EQ(clickOrders.size(), 6u);
@@ -453,7 +454,7 @@ TEST(StudyPlan, AParticipantsProtocolHasTheirOrderAndNothingElseChanged) {
     const std::string click = participantProtocolJson(dir, plan, *p, 1);
     EXPECT_EQ(parsedList(shooter, "test", "conditions"), p->conditionOrder[0]);
     EXPECT_EQ(parsedList(click, "matches", "modes"), p->conditionOrder[1]);
-    EXPECT_NE(p->conditionOrder[1], kClickModes);  // P04 does not have the file's own order
+    EXPECT_NE(p->conditionOrder[1], kClickConditions);  // P04 does not have the file's own order
 
     // Everything but the list is the file's.
     Json mine = Json::parse(click), file = Json::parse(readText(kClick));

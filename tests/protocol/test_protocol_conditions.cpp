@@ -111,7 +111,8 @@ TEST(ProtocolConditions, BadDefinitionsNameTheirPath) {
          "conditions.conv60 shadows the preset conv60 with other parts (the preset's: render_hz 60, lag_ms 0, fill "
          "hold, late_warp none); give the condition another name"},
         {"/conditions/spare", Json{{"render_hz", 30}},
-         "conditions.spare is defined but no field names it (a condition list or mode field); remove it or use it"},
+         "conditions.spare is defined but no field names it (a condition list or condition field); remove it or use "
+         "it"},
         {"/conditions/bad name", Json{{"render_hz", 30}},
          "conditions.bad name is not a condition name: 1 to 40 letters, digits and - _ . + (it appears in CSVs and "
          "file names)"},

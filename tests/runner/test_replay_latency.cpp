@@ -49,7 +49,7 @@ const char* kProtocol = R"({"format_version":8,"name":"uneven-latency","game":"s
 // One replayed display frame, as far as the latencies need it.
 struct Replayed {
     double time = 0.0;
-    std::string mode;
+    std::string condition;
     std::int64_t scheduleStart = 0;  // the session frame its schedule started at
     double localTime = 0.0;  // its display time on that schedule's clock
     bool onTarget = false;  // a test trial's target on screen, not a pause
@@ -96,7 +96,7 @@ Session runAndReplay(const std::string& name) {
     const Rerun r = rerun(data, *played, [&](std::size_t i, const game::ShownFrame& shown, std::size_t) {
         Replayed f;
         f.time = shown.time;
-        f.mode = shown.condition.name;
+        f.condition = shown.condition.name;
         f.scheduleStart = shown.frame - shown.schedule.index;
         f.localTime = shown.schedule.displayTime;
         f.onTarget = shooter->currentPhase() == game::Phase::Test && !shown.frozen && !shown.scene.objects.empty();
@@ -121,11 +121,11 @@ struct Stretch {
     std::size_t first = 0, last = 0;
 };
 
-std::vector<Stretch> stretches(const Session& s, const std::string& mode) {
+std::vector<Stretch> stretches(const Session& s, const std::string& condition) {
     std::vector<Stretch> out;
     for (std::size_t i = 0; i < s.frames.size(); ++i) {
         const Replayed& f = s.frames[i];
-        if (!f.onTarget || f.mode != mode) continue;
+        if (!f.onTarget || f.condition != condition) continue;
         if (!out.empty() && out.back().last + 1 == i && s.frames[out.back().first].scheduleStart == f.scheduleStart)
             out.back().last = i;
         else
@@ -135,7 +135,7 @@ std::vector<Stretch> stretches(const Session& s, const std::string& mode) {
 }
 
 condition::ConditionSchedule scheduleOf(const Session& s, const Replayed& f) {
-    return condition::ConditionSchedule(s.protocol.conditionTable.at(f.mode), s.protocol.refreshHz,
+    return condition::ConditionSchedule(s.protocol.conditionTable.at(f.condition), s.protocol.refreshHz,
                                         game::pacingSeed(s.seed, f.scheduleStart));
 }
 
@@ -146,11 +146,11 @@ const std::vector<std::string> kUneven = {"even60", "rough60", "traced"};
 // back to one it had before, there is no step to see and v is passed over.
 TEST(ReplayLatency, MouseStepsShowWithTheSchedulesViewLatencyFrameByFrame) {
     const Session s = runAndReplay("view");
-    for (const std::string& mode : kUneven) {
-        SCOPED_TRACE(mode);
+    for (const std::string& condition : kUneven) {
+        SCOPED_TRACE(condition);
         int measured = 0;
         std::set<std::int64_t> phases;  // refreshes since the schedule started
-        for (const Stretch& st : stretches(s, mode)) {
+        for (const Stretch& st : stretches(s, condition)) {
             const condition::ConditionSchedule schedule = scheduleOf(s, s.frames[st.first]);
             for (std::size_t v = st.first + 1; v <= st.last; ++v) {
                 const Replayed& step = s.frames[v];
@@ -210,10 +210,10 @@ std::vector<double> bounces(const physics::TargetPlane& plane, const game::Shoot
 // rounding, cannot be told and is passed over.
 TEST(ReplayLatency, TargetBouncesShowWithTheSchedulesSceneLatencyFrameByFrame) {
     const Session s = runAndReplay("scene");
-    for (const std::string& mode : kUneven) {
-        SCOPED_TRACE(mode);
+    for (const std::string& condition : kUneven) {
+        SCOPED_TRACE(condition);
         int measured = 0;
-        for (const Stretch& st : stretches(s, mode)) {
+        for (const Stretch& st : stretches(s, condition)) {
             const Replayed& first = s.frames[st.first];
             ASSERT_TRUE(first.trial);
             const condition::ConditionSchedule schedule = scheduleOf(s, first);

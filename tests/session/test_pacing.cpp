@@ -1,5 +1,5 @@
 // The pacing summary against a frame-time sequence worked out by hand: counts of shown, late and
-// skipped display frames per mode, the median, nearest-rank 95th percentile and maximum of the
+// skipped display frames per condition, the median, nearest-rank 95th percentile and maximum of the
 // shown frames' times, and the frames over budget; and its JSON form read back.
 #include <cmath>
 #include <set>
@@ -13,9 +13,9 @@
 namespace warplab::session {
 namespace {
 
-FrameRecord frame(const char* mode, double ms, int missed = 0, const char* kind = "rendered") {
+FrameRecord frame(const char* condition, double ms, int missed = 0, const char* kind = "rendered") {
     FrameRecord f;
-    f.mode = mode;
+    f.condition = condition;
     f.kind = kind;
     f.frameMs = ms;
     f.missedVsyncs = missed;
@@ -39,9 +39,9 @@ std::vector<FrameRecord> sequence() {
 
 TEST(Pacing, SummarisesAKnownSequence) {
     const auto pacing = summarizePacing(sequence(), 60.0);
-    ASSERT_EQ(pacing.size(), 3u);  // the modes in order of appearance, then the screens
+    ASSERT_EQ(pacing.size(), 3u);  // the conditions in order of appearance, then the screens
     const ConditionPacing& a = pacing[0];
-    EXPECT_EQ(a.mode, "conv60");
+    EXPECT_EQ(a.condition, "conv60");
     EXPECT_EQ(a.shown, 21);
     EXPECT_EQ(a.late, 1);
     EXPECT_EQ(a.skipped, 2);
@@ -53,12 +53,12 @@ TEST(Pacing, SummarisesAKnownSequence) {
     // Over 1.1 budgets (18.33 ms): 19, 20 and 50.
     EXPECT_EQ(a.overBudget, 3);
     const ConditionPacing& b = pacing[1];
-    EXPECT_EQ(b.mode, "conv30");
+    EXPECT_EQ(b.condition, "conv30");
     EXPECT_EQ(b.shown, 2);
     EXPECT_TRUE(std::isnan(b.medianMs));  // nothing measured: no number, not 0
     EXPECT_TRUE(std::isnan(b.maxMs));
     const ConditionPacing& screens = pacing[2];
-    EXPECT_EQ(screens.mode, "");
+    EXPECT_EQ(screens.condition, "");
     EXPECT_EQ(screens.shown, 1);
     EXPECT_DOUBLE_EQ(screens.medianMs, 16.0);
 }
@@ -104,14 +104,14 @@ TEST(Pacing, LateCountsOnlyNewImagesThatMissedTheirRefresh) {
         << report;
 }
 
-// The gap between two runs of a mode (another mode's frames, a feedback pause) is no interval
+// The gap between two runs of a condition (another condition's frames, a feedback pause) is no interval
 // of its cadence; without measured times (headless) nothing was shown to measure.
-TEST(Pacing, IntervalsStayWithinARunOfTheModesFrames) {
+TEST(Pacing, IntervalsStayWithinARunOfTheConditionsFrames) {
     std::vector<FrameRecord> frames;
-    const char* modes[] = {"a", "a", "b", "b", "a", "a", "a", "a"};
+    const char* conditions[] = {"a", "a", "b", "b", "a", "a", "a", "a"};
     const char* kinds[] = {"rendered", "rendered", "rendered", "rendered", "rendered", "frozen", "held", "rendered"};
     for (int k = 0; k < 8; ++k) {
-        frames.push_back(frame(modes[k], 0.0, 0, kinds[k]));
+        frames.push_back(frame(conditions[k], 0.0, 0, kinds[k]));
         frames.back().frame = k;
     }
     const auto pacing = summarizePacing(frames, 100.0);
@@ -151,7 +151,7 @@ TEST(Pacing, TheStoredTextReadsBack) {
     ASSERT_TRUE(parsePacing(pacingText(pacing), read));
     ASSERT_EQ(read.size(), pacing.size());
     for (std::size_t i = 0; i < read.size(); ++i) {
-        EXPECT_EQ(read[i].mode, pacing[i].mode);
+        EXPECT_EQ(read[i].condition, pacing[i].condition);
         EXPECT_EQ(read[i].shown, pacing[i].shown);
         EXPECT_EQ(read[i].late, pacing[i].late);
         EXPECT_EQ(read[i].skipped, pacing[i].skipped);
@@ -170,7 +170,7 @@ TEST(Pacing, TheStoredTextReadsBack) {
     EXPECT_FALSE(parsePacing("[{\"shown\": 3}]", read));
 }
 
-TEST(Pacing, TheReportNamesEachModeAndTheBudget) {
+TEST(Pacing, TheReportNamesEachConditionAndTheBudget) {
     const std::string report = pacingReport(summarizePacing(sequence(), 60.0));
     EXPECT_NE(report.find("every 16.67 ms"), std::string::npos) << report;
     EXPECT_NE(report.find("conv60: 21 shown (54.8 a second of 60), 1 late (4.3 %), 2 skipped (8.7 %); frame time "

@@ -51,7 +51,7 @@ void writeTrials(SessionWriter& w) {
             w.addInput(in);
             FrameRecord f;
             f.frame = frame;
-            f.mode = "conv120";
+            f.condition = "conv120";
             f.kind = "rendered";
             f.detailJson = R"({"target":[1.5,2.5,-8]})";
             w.addFrame(f);

@@ -56,7 +56,7 @@ void writeTrial(SessionWriter& w, int trial) {
         w.addInput(in);
         FrameRecord fr;
         fr.frame = f;
-        fr.mode = "warp15to120";
+        fr.condition = "warp15to120";
         fr.kind = f % 8 == 0 ? "rendered" : "warped";
         fr.detailJson = R"({"target":[)" + std::to_string(f * 0.001) + ",1.25,-3.5]}";
         w.addFrame(fr);

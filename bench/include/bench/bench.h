@@ -22,7 +22,7 @@ struct BenchOptions {
     int repeats = 5;  // timed runs of each pass (after an untimed one); the median is reported
     int shadingCost = 0;  // ShadingOptions::shadingCost for every conventional frame
     // Sources of the methods that take one (the warps) are rendered this fraction of the size
-    // beyond each side, as a study's warp mode renders them (protocol display.guard_band).
+    // beyond each side, as a study's warp condition renders them (protocol display.guard_band).
     double guardBand = 0.1;
     // Samples per pixel side for every conventional frame -- truth, sources, brute force -- so
     // that errors measure the method rather than aliasing (protocol display.supersampling).

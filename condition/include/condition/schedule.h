@@ -1,4 +1,4 @@
-// A condition as a frame schedule on the display clock (DESIGN.md "Time, modes and
+// A condition as a frame schedule on the display clock (DESIGN.md "Time, conditions and
 // determinism"). It says, for every displayed frame: is it rendered, held, warped or
 // interpolated; is the mouse read for it; which instant's camera and which instant's world it
 // depicts. Everything else -- the game loop, scoring, the frame maker, replay, the latency
@@ -18,8 +18,8 @@ namespace warplab::condition {
 enum class FrameKind : std::uint8_t { Rendered, Held, Warped, Interpolated };
 const char* frameKindName(FrameKind kind);
 
-// What one displayed frame depicts. Times are seconds since the schedule started (a mode
-// switch starts a new schedule); they may be negative for lag and bidirectional modes, whose
+// What one displayed frame depicts. Times are seconds since the schedule started (a condition
+// switch starts a new schedule); they may be negative for lag and bidirectional conditions, whose
 // first frames show what the queue held before the switch.
 struct ScheduledFrame {
     std::int64_t index = 0;  // display frame since the schedule started

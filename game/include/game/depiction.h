@@ -1,4 +1,4 @@
-// What a condition shows, decided once (DESIGN.md "Time, modes and determinism"). A mode's
+// What a condition shows, decided once (DESIGN.md "Time, modes and determinism"). A condition's
 // ScheduledFrame says which instants a displayed frame depicts; from it this decides, for every
 // game alike, which of the game's recorded states the frame shows and how: as sampled
 // (rendered, held, lagged), moved on by its velocity (warp extrapolation) or blended between
@@ -20,8 +20,8 @@
 
 namespace warplab::game {
 
-// A mode's schedule laid on the session's display frames: its frame 0 is shown at session
-// frame `start` (a mode switch, a trial or a match starts a schedule afresh).
+// A condition's schedule laid on the session's display frames: its frame 0 is shown at session
+// frame `start` (a condition switch, a trial or a match starts a schedule afresh).
 struct SchedulePlacement {
     std::int64_t start = 0;
     double refreshHz = 60.0;
@@ -30,15 +30,15 @@ struct SchedulePlacement {
     double timeAt(double localTime) const { return static_cast<double>(frameAt(localTime)) / refreshHz; }
 };
 
-// The ShownFrame of session frame `frame` as far as the schedule says: its display time, mode,
+// The ShownFrame of session frame `frame` as far as the schedule says: its display time, condition,
 // schedule, sources, depicted scene time, the input it shows (cameraFrame) and whether it
 // renders now. The game adds the camera
 // or pointer (at cameraFrame), what the scene holds, the render and its texts.
-ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& mode, const condition::ScheduledFrame& f,
-                               const SchedulePlacement& placement);
+ShownFrame scheduledShownFrame(std::int64_t frame, const condition::Condition& condition,
+                               const condition::ScheduledFrame& f, const SchedulePlacement& placement);
 
 // The columns of a frame's record that every game fills alike from what the frame shows: its
-// frame, mode, kind ("screen" for a blank frame, "frozen" for a held shot, else the schedule's)
+// frame, condition, kind ("screen" for a blank frame, "frozen" for a held shot, else the schedule's)
 // and camera. The game adds its own detail_json.
 session::FrameRecord frameRecordOf(const ShownFrame& shown);
 // A screen's ShownFrame (ready, instructions, questions, done): no scene, the camera at rest
@@ -76,7 +76,7 @@ struct WorldDepiction {
     double spanS = 0.0;  // Interpolated: seconds from one I-frame to the other
 };
 
-WorldDepiction depictWorld(const condition::Condition& mode, const condition::ScheduledFrame& f,
+WorldDepiction depictWorld(const condition::Condition& condition, const condition::ScheduledFrame& f,
                            const SchedulePlacement& placement, WorldClock clock);
 
 // What `d` shows of a world, through the game's hooks:
@@ -103,7 +103,7 @@ std::optional<State> depictedState(const WorldDepiction& d, At&& at, Move&& move
     return std::nullopt;
 }
 
-// click_timing "input_reads": a press waits for the next frame at which the mode reads its
+// click_timing "input_reads": a press waits for the next frame at which the condition reads its
 // input (conv15/30/60 read it only at their renders), as a game polling input at its frame
 // rate would. With click_timing "display" a press counts at the frame it comes with.
 class ClickGate {

@@ -1,6 +1,6 @@
 // What was true at each recent display frame (the camera, the cursor, the world), so a frame
 // that depicts an earlier instant -- held, lagged, or one I-frame late -- can be told exactly
-// what it shows. Games keep one per thing the modes look back at.
+// what it shows. Games keep one per thing the conditions look back at.
 #pragma once
 
 #include <cstddef>

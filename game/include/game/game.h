@@ -97,7 +97,7 @@ struct ShownFrame {
     bool blank = false;  // nothing of the scene is shown (e.g. a rating screen)
 
     // The pointer as this frame depicts it: the reticle at the centre, or the cursor drawn
-    // into the frame, so it shares the mode's frame rate and lag. Display pixels, x right,
+    // into the frame, so it shares the condition's frame rate and lag. Display pixels, x right,
     // y down, continuous (pixel centres at +0.5).
     PointerKind pointer = PointerKind::Reticle;
     glm::dvec2 cursor{0.0};
@@ -113,7 +113,7 @@ struct ShownFrame {
 };
 
 // What the frame on screen shows under its pointer, worked out from the world model and the
-// mode's timing -- the analytic side of `replay --render`'s cross-check against the id buffer.
+// condition's timing -- the analytic side of `replay --render`'s cross-check against the id buffer.
 struct PointerProbe {
     std::uint32_t objectId = scene::kIdNone;  // a game object's id, or kIdNone for none
     // Angle between the pointer's ray and the nearest silhouette it is judged against. Within

@@ -25,12 +25,22 @@ using StudyParser = std::unique_ptr<Study> (*)(const std::string& jsonText, cons
 // export writes them, header only where no session of the game is included, so that a folder
 // exported again never keeps an older export's rows beside the new data.
 using GameTables = std::vector<GameTable> (*)();
+// What a game adds to the export beside what every game has (docs/export.md).
+struct GameExport {
+    // Its own columns of shots.csv, which its rows fill (ShotResult::own) and other games' rows
+    // leave empty. A column is one game's, as a table's file is.
+    std::vector<std::string> shotColumns;
+    GameTables tables = nullptr;
+};
 // Makes `name` (the protocol's "game") known to parseStudy and gameNames, after the games
 // registered before it. Throws std::invalid_argument when a game of that name is already known,
-// or when one of its tables has the file name of another game's.
-void registerGame(const std::string& name, StudyParser parse, GameTables tables = nullptr);
+// when one of its tables has the file name of another game's, or when one of its shots.csv
+// columns is another game's or its own twice.
+void registerGame(const std::string& name, StudyParser parse, GameExport exports = {});
 
 // Every registered game's own tables, in the order registered: (game, table without rows).
 std::vector<std::pair<std::string, GameTable>> gameTables();
+// Every registered game's own columns of shots.csv, in the order registered: (game, columns).
+std::vector<std::pair<std::string, std::vector<std::string>>> gameShotColumns();
 
 }  // namespace warplab::game

@@ -19,19 +19,20 @@ struct ShotResult {
     std::string phase;  // shooter: acclimation/training/test; click: the round's name
     bool scoredPhase = false;  // the phase the study analyses (shooter "test", a scored round)
     int trial = -1;  // shooter: trial index; click: match index
-    std::string mode;
+    std::string condition;
     std::string outcome;  // the one the protocol scores: hit/miss/timeout, green/red/miss
     std::string worldOutcome, displayedOutcome;
     bool hit = false;  // outcome counts as a hit (shooter "hit", click "green")
     bool timeout = false;
     double time = 0.0;  // display time of the shot, click or timeout, s
-    // Game-specific; kNotApplicable where the game has no such quantity.
-    double spawnTime = kNotApplicable;  // s, display clock
-    double aimTime = kNotApplicable;  // shot time - spawn time, s
-    double angularErrorDeg = kNotApplicable;  // aim ray to target centre
-    double errorPx = kNotApplicable;  // click: cursor to the nearest green sphere's centre on screen
-    double difficulty = kNotApplicable;  // staircase level
-    double targetSpeed = kNotApplicable;  // m/s
+    // When the trial's target appeared (display clock, s) and the time from then to the shot;
+    // kNotApplicable where a game has no such moment (the click game: a match's clicks). Export
+    // counts a trial's skipped frames and its frame time from spawnTime.
+    double spawnTime = kNotApplicable;
+    double aimTime = kNotApplicable;
+    // The game's own columns of shots.csv (GameExport::shotColumns), in that order: the measures
+    // of a trial only it has (the shooter's angular error, the click game's distance in pixels).
+    table::Cells own;
 };
 
 // One answer to a question after a block (a click match, a block of the shooter's test): a row
@@ -40,7 +41,7 @@ struct AnswerResult {
     std::string block;  // what the answer is about: the click round's name, the shooter's "test"
     bool scoredPhase = false;  // the block is in the part the study analyses
     int blockIndex = -1;  // click: the match index; shooter: the test block, 0-based
-    std::string mode;  // the block's condition; "" where its trials mixed conditions
+    std::string condition;  // the block's condition; "" where its trials mixed conditions
     int questionIndex = 0;  // 0-based, in the protocol's order
     std::string questionId;  // the protocol's id ("" in sessions of protocols that had none)
     std::string kind;  // "likert", "choice" or "text"

@@ -8,17 +8,17 @@
 
 namespace warplab::game {
 
-int botRating(const condition::Condition& mode, double refreshHz, int statement, int min, int max) {
+int botRating(const condition::Condition& condition, double refreshHz, int statement, int min, int max) {
     // The rate new frames reach the screen: the renders when they are held, else the fill's (a
     // late warp makes one every display frame).
-    const double shownRate = mode.lateWarp != condition::LateWarp::None ? refreshHz
-        : mode.fillKind() == condition::Fill::Hold                      ? mode.renderHz
-                                                                        : mode.fillHz.value_or(refreshHz);
+    const double shownRate = condition.lateWarp != condition::LateWarp::None ? refreshHz
+        : condition.fillKind() == condition::Fill::Hold                      ? condition.renderHz
+                                                                             : condition.fillHz.value_or(refreshHz);
     // Average time from an input to its frame: what the schedule shows a mouse step at a render
     // with (the queue; bidirectional reprojection's wait for the next I-frame), plus half a
     // render period of holding.
-    const condition::ConditionSchedule schedule(mode, refreshHz);
-    const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / mode.renderHz;
+    const condition::ConditionSchedule schedule(condition, refreshHz);
+    const double latencyMs = 1000.0 * schedule.viewLatency(0.0) + 500.0 / condition.renderHz;
     const int smooth = static_cast<int>(std::lround(1.0 + 6.0 * std::min(1.0, shownRate / 60.0)));
     const int responsive = std::clamp(static_cast<int>(std::lround(7.0 - latencyMs / 25.0)), 1, 7);
     const int enjoyed = static_cast<int>(std::lround((smooth + responsive) / 2.0));
@@ -52,7 +52,8 @@ FrameInput ClickBot::rate(const ShownFrame& shown, bool waited) {
     const QuestionPrompt& r = *shown.question;
     if (r.kind != protocol::QuestionKind::Likert)
         return waited ? reader_.answer(shown, BotQuestionReader::choiceFor(r)) : input;
-    const int value = botRating(protocol_.conditionTable.at(lastMode_), protocol_.refreshHz, r.index, r.min, r.max);
+    const int value =
+        botRating(protocol_.conditionTable.at(lastCondition_), protocol_.refreshHz, r.index, r.min, r.max);
     const glm::dvec4 box = r.boxes[static_cast<std::size_t>(value - r.min)];
     const glm::dvec2 centre(box.x + box.z * 0.5, box.y + box.w * 0.5);
     // Even statements by key, odd ones by mouse; a value no digit key gives always by mouse.
@@ -125,9 +126,9 @@ FrameInput ClickBot::play(const ShownFrame& shown) {
 FrameInput ClickBot::next(const ShownFrame& shown) {
     FrameInput input;
     if (prompt_.pressesEnter(shown, settings_.enterAfterS)) input.keys = kKeyEnter;
-    if (!shown.condition.name.empty()) lastMode_ = shown.condition.name;
+    if (!shown.condition.name.empty()) lastCondition_ = shown.condition.name;
     // Screens show the cursor live, so there the bot sees exactly where it is; in a match it
-    // keeps track itself, since the frame shows the cursor as late as the mode shows it.
+    // keeps track itself, since the frame shows the cursor as late as the condition shows it.
     if (shown.blank) cursor_ = shown.cursor;
     const bool waited = reader_.ready(shown);
     if (shown.question) {

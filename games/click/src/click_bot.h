@@ -1,7 +1,7 @@
 // A scripted player for the click game: it looks at the frame on screen a reaction time ago,
 // picks the green sphere nearest its cursor, leads it by its apparent motion, and clicks when
 // the cursor seems to be on it -- so lag and low frame rates cost it as they cost a person,
-// roughly. Ratings follow a fixed rule of the mode's frame rate and latency (documented in
+// roughly. Ratings follow a fixed rule of the condition's frame rate and latency (documented in
 // docs/click-study.md), answered by key for statements 1 and 3 and by clicking the box for
 // 2 and 4, so headless sessions are complete and exercise both answers. Deterministic.
 #pragma once
@@ -32,7 +32,7 @@ struct ClickBotSettings {
 // The bot's rating of a condition on a display of refreshHz, by the rule in
 // docs/click-study.md; statement 0 enjoyed, 1 difficult, 2 responsive, 3 smooth, clamped to
 // [min, max].
-int botRating(const condition::Condition& mode, double refreshHz, int statement, int min, int max);
+int botRating(const condition::Condition& condition, double refreshHz, int statement, int min, int max);
 
 class ClickBot final : public Player {
 public:
@@ -61,7 +61,7 @@ private:
     std::map<std::uint32_t, double> clicked_;  // ids it clicked, and when
     bool buttonDown_ = false;
     BotPromptReader prompt_;
-    std::string lastMode_;
+    std::string lastCondition_;
     BotQuestionReader reader_;
 };
 

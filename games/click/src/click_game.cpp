@@ -88,8 +88,8 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
     physics::FallingSpheres(physics_, seed);  // throws now, naming the field, if the settings cannot work
     for (std::size_t r = 0; r < protocol.rounds.size(); ++r) {
         std::vector<std::string> order;
-        for (const auto& mode : protocol.modes)
-            for (int i = 0; i < protocol.rounds[r].matchesPerMode; ++i) order.push_back(mode);
+        for (const auto& condition : protocol.conditions)
+            for (int i = 0; i < protocol.rounds[r].matchesPerCondition; ++i) order.push_back(condition);
         if (protocol.shuffle) shuffle(order, subSeed(seed, kTagMatchOrder, static_cast<int>(r)));
         for (std::size_t i = 0; i < order.size(); ++i)
             matches_.push_back({static_cast<int>(matches_.size()), static_cast<int>(r), order[i], static_cast<int>(i),
@@ -97,11 +97,11 @@ ClickGame::ClickGame(const protocol::ClickProtocol& protocol, std::uint64_t seed
     }
 }
 
-void ClickGame::switchTo(const std::string& mode, int) {
-    condition::ConditionSchedule(protocol_.conditionTable.at(mode),
-                                 protocol_.refreshHz);  // throws for a mode this display cannot run
+void ClickGame::switchTo(const std::string& condition, int) {
+    condition::ConditionSchedule(protocol_.conditionTable.at(condition),
+                                 protocol_.refreshHz);  // throws for a condition this display cannot run
     freePlay_ = true;
-    matches_ = {{0, 0, mode, 0, 1}};
+    matches_ = {{0, 0, condition, 0, 1}};
     matchIndex_ = 0;
     beginMatch();  // from the next frame, with a fresh field
     takeEvents();  // free play records nothing
@@ -134,7 +134,7 @@ session::EventRecord ClickGame::matchEvent(const char* type, nlohmann::json deta
     e.type = type;
     e.phase = round.name;
     e.trial = m.index;
-    e.mode = m.mode;
+    e.condition = m.condition;
     detail["round"] = round.name;
     if (!detail.contains("scored")) detail["scored"] = round.scored;
     e.detailJson = detail.dump();
@@ -157,7 +157,7 @@ void ClickGame::beginMatch() {
     // its schedule's renders, start with the next one.
     matchStart_ = frame_ + 1;
     world_.emplace(physics_, subSeed(seed_, kTagWorld, m.index));
-    schedule_.emplace(protocol_.conditionTable.at(m.mode), protocol_.refreshHz, pacingSeed(seed_, matchStart_));
+    schedule_.emplace(protocol_.conditionTable.at(m.condition), protocol_.refreshHz, pacingSeed(seed_, matchStart_));
     worldHistory_.clear();
     // The cursor stays where the hand left it; frames before the match shows its own
     // history (lag, bireproj) show it where the match found it.
@@ -350,7 +350,7 @@ ShownFrame ClickGame::matchFrame(bool click) {
         emit(e);
     }
     if (freePlay_)
-        shown.phaseText = "Free play: " + match.mode;
+        shown.phaseText = "Free play: " + match.condition;
     else if (k + 1 >= std::llround(protocol_.matchS * refresh))
         endMatch();
     return shown;

@@ -2,8 +2,8 @@
 // state machine on the display clock. Red and green spheres fall and bounce in a box seen by
 // a fixed camera; the player moves a cursor and clicks: a clicked sphere vanishes and counts
 // as a green or a red hit, a click on empty space as a miss. Matches of a fixed length,
-// one per mode and round in a seeded order, each followed by the protocol's questions (by
-// default Yang et al.'s four statements, rated 1-7). The cursor is part of the displayed frame, so it shares the mode's frame rate
+// one per condition and round in a seeded order, each followed by the protocol's questions (by
+// default Yang et al.'s four statements, rated 1-7). The cursor is part of the displayed frame, so it shares the condition's frame rate
 // and lag with the spheres. No GL; a session is a pure function of protocol, seed and input.
 #pragma once
 
@@ -47,7 +47,7 @@ public:
     PointerProbe probePointer(const ShownFrame& shown) const override;
     std::optional<std::uint32_t> displayedObject(const session::EventRecord& event) const override;
     // Match events recorded before bidirectional reprojection existed say that a stand-in drew
-    // the mode's frames ("stand_in": the rendering, not the game).
+    // the condition's frames ("stand_in": the rendering, not the game).
     std::vector<std::string> renderDetailKeys() const override { return {"stand_in"}; }
     // Free play: one endless match in `mode` (the click game has no difficulty levels).
     void switchTo(const std::string& condition, int difficulty) override;
@@ -55,7 +55,7 @@ public:
     struct Match {
         int index = 0;  // over the whole session
         int round = 0;  // index into protocol.rounds
-        std::string mode;
+        std::string condition;
         int inRound = 0, ofRound = 0;  // its place in its round, and the round's match count
     };
     const std::vector<Match>& matches() const { return matches_; }
@@ -79,7 +79,7 @@ private:
     ShownFrame screenFrame();  // ready, instructions, question and done screens
     std::vector<physics::Sphere> depictedSpheres(const condition::ScheduledFrame& f) const;
     void emit(session::EventRecord event);
-    // An event of the match in progress: its round, index and mode, and the detail with the
+    // An event of the match in progress: its round, index and condition, and the detail with the
     // round's name and whether it is scored (unless the detail says what "scored" means).
     session::EventRecord matchEvent(const char* type, nlohmann::json detail) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }

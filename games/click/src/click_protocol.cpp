@@ -23,7 +23,7 @@ constexpr int kStepRateLimit = 100000;  // Hz
 constexpr int kSphereLimit = 40;
 constexpr double kSpeedLimit = 100;  // m/s
 constexpr double kCursorPerCountLimit = 100;
-constexpr int kMatchesPerModeLimit = 100;
+constexpr int kMatchesPerConditionLimit = 100;
 // Positive is not enough where a tiny value breaks later maths. 1 cm, a 45th of the default
 // radius, is still drawn; a subnormal radius became a float 0, spheres no click could hit.
 constexpr double kRadiusMin = 0.01;
@@ -51,7 +51,10 @@ const std::vector<fields::Key<ClickRound>>& roundKeys() {
         return std::vector<fields::Key<R>>{
             name,
             fields::Keys<R>::boolean("scored", at(&R::scored)),
-            fields::Keys<R>::integer("matches_per_mode", at(&R::matchesPerMode), 1, kMatchesPerModeLimit),
+            fields::Keys<R>::integer("matches_per_mode", at(&R::matchesPerCondition), 1, kMatchesPerConditionLimit)
+                .renamed(kClickConditionKeysSince, "matches_per_condition"),
+            fields::Keys<R>::integer("matches_per_condition", at(&R::matchesPerCondition), 1, kMatchesPerConditionLimit)
+                .renames(kClickConditionKeysSince),
             fields::instructionsKey<R>(at(&R::instructions), kClickInstructionsSince),
         };
     }();
@@ -148,7 +151,9 @@ const std::vector<fields::Section<P>>& sections() {
                         {kCursorPerCountMin, false, kCursorPerCountLimit, false}),
               K::choice("click_timing", at(&P::clickTiming))}},
             {"matches",
-             {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}), K::modeList("modes", at(&P::modes)),
+             {K::number("match_s", at(&P::matchS), {0, true, kMatchLimitS, false}),
+              K::conditionList("modes", at(&P::conditions)).renamed(kClickConditionKeysSince, "conditions"),
+              K::conditionList("conditions", at(&P::conditions)).renames(kClickConditionKeysSince),
               K::custom("rounds", readRounds, writeRounds), K::boolean("shuffle", at(&P::shuffle)),
               K::choice("scoring", at(&P::scoring)), matchQuestionsKey()}},
             fields::Section<P>{"ratings",
@@ -204,9 +209,15 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
             "ratings.min",
             "must be less than ratings.max (" + std::to_string(p.ratingMax) + "), got " + std::to_string(p.ratingMin));
     r.requireConditionsRun(p.refreshHz);
-    r.requireModes("matches.modes", p.modes, p.refreshHz);
+    r.requireConditions(joinPath("matches", conditionListKey(p.formatVersion)), p.conditions, p.refreshHz);
     r.requireConditionsUsed();
     return p;
+}
+
+std::string conditionListKey(int formatVersion) {
+    for (const auto& s : sections())
+        if (std::string(s.name) == "matches") return fields::keyNameIn(s.keys, "conditions", formatVersion);
+    return "conditions";
 }
 
 ClickProtocol loadClickProtocol(const std::string& path) { return parseClickProtocol(readProtocolFile(path), path); }

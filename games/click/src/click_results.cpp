@@ -24,7 +24,7 @@ const std::vector<Column<MatchResult>>& matchColumns() {
         {"round", [](F& f, const R& r) { f.text(r.round); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.scoredPhase); }},
         {"match", [](F& f, const R& r) { f.integer(r.match); }},
-        {"condition", [](F& f, const R& r) { f.text(r.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.condition); }},
         {"stand_in", [](F& f, const R& r) { f.text(r.standIn); }},
         {"green_hits", [](F& f, const R& r) { f.integer(r.greenHits); }},
         {"red_hits", [](F& f, const R& r) { f.integer(r.redHits); }},
@@ -42,7 +42,7 @@ const std::vector<Column<RatingOf>>& ratingColumns() {
         {"round", [](F& f, const R& r) { f.text(r.match.round); }},
         {"scored_phase", [](F& f, const R& r) { f.boolean(r.match.scoredPhase); }},
         {"match", [](F& f, const R& r) { f.integer(r.match.match); }},
-        {"condition", [](F& f, const R& r) { f.text(r.match.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.match.condition); }},
         {"statement_index", [](F& f, const R& r) { f.integer(r.rating.statementIndex); }},
         {"statement", [](F& f, const R& r) { f.text(r.rating.statement); }},
         {"value", [](F& f, const R& r) { f.integer(r.rating.value); }},
@@ -53,14 +53,29 @@ const std::vector<Column<RatingOf>>& ratingColumns() {
     return columns;
 }
 
+// The click game's own columns of shots.csv (docs/click-study.md), from a click's event detail.
+const std::vector<Column<EventDetail>>& shotColumns() {
+    using F = CellWriter;
+    using R = EventDetail;
+    static const std::vector<Column<R>> columns = {
+        // Cursor to the nearest green sphere's centre on screen; empty with none.
+        {"error_px", [](F& f, const R& d) { f.number(d.number("nearest_green_px")); }},
+    };
+    return columns;
+}
+
 }  // namespace
+
+void writeClickShotCells(table::Cells& own, const EventDetail& click) { table::writeCells(own, shotColumns(), click); }
+
+GameExport clickExport() { return {table::headerOf(shotColumns()), clickTables}; }
 
 std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
     GameTable byMatch{"matches.csv", table::headerOf(matchColumns()), true, "rating_", {}};
     GameTable byRating{"ratings.csv", table::headerOf(ratingColumns()), false, "", {}};
     for (const MatchResult& m : matches) {
         GameTableRow row;
-        row.condition = m.mode;
+        row.condition = m.condition;
         row.scoredPhase = m.scoredPhase;
         row.startTime = m.endTime - m.durationS;  // a match event is logged at its last frame
         row.endTime = m.endTime;
@@ -79,7 +94,7 @@ std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches) {
         byMatch.rows.push_back(std::move(row));
         for (const RatingResult& r : m.ratings) {
             GameTableRow rating;
-            rating.condition = m.mode;
+            rating.condition = m.condition;
             rating.scoredPhase = m.scoredPhase;
             table::writeCells(rating.cells, ratingColumns(), RatingOf{m, r});
             byRating.rows.push_back(std::move(rating));

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "game/event_detail.h"
 #include "game/results.h"
 
 namespace warplab::game {
@@ -25,8 +26,8 @@ struct MatchResult {
     std::string round;
     bool scoredPhase = false;
     int match = -1;
-    std::string mode;
-    std::string standIn;  // method drawn in the mode's place ("" = the mode's own)
+    std::string condition;
+    std::string standIn;  // method drawn in the condition's place ("" = the condition's own)
     int greenHits = 0, redHits = 0, misses = 0, clicks = 0;
     double durationS = 0.0;
     double endTime = kNotApplicable;  // display time of the match's last frame, s
@@ -35,5 +36,8 @@ struct MatchResult {
 
 // matches.csv (a span table, one rating_k column per statement) and ratings.csv, in that order.
 std::vector<GameTable> clickTables(const std::vector<MatchResult>& matches);
+
+// A click's cells of the click game's own columns of shots.csv, from its event's detail.
+void writeClickShotCells(table::Cells& own, const EventDetail& click);
 
 }  // namespace warplab::game

@@ -27,16 +27,16 @@ public:
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickGame>(protocol_, seed, display);
     }
-    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
-                                              int difficulty) const override {
+    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
+                                              const std::string& condition, int difficulty) const override {
         auto game = std::make_unique<ClickGame>(protocol_, seed, display);
-        game->switchTo(mode, difficulty);
+        game->switchTo(condition, difficulty);
         return game;
     }
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ClickBot>(seed, protocol_, display);
     }
-    std::vector<std::string> conditionNames() const override { return protocol_.modes; }
+    std::vector<std::string> conditionNames() const override { return protocol_.conditions; }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     bool warnsOnRefreshMismatch() const override {
         return protocol_.refreshMismatch == protocol::RefreshMismatch::Warn;
@@ -68,14 +68,14 @@ public:
                 r.phase = e.phase;
                 r.scoredPhase = roundScored(e.phase);
                 r.trial = e.trial;
-                r.mode = e.mode;
+                r.condition = e.condition;
                 r.worldOutcome = e.worldOutcome;
                 r.displayedOutcome = e.displayedOutcome;
                 r.outcome = d.text("scored",
                                    protocol_.scoring == protocol::Scoring::World ? e.worldOutcome : e.displayedOutcome);
                 r.hit = r.outcome == "green";
                 r.time = e.eventTime;
-                r.errorPx = d.number("nearest_green_px");
+                writeClickShotCells(r.own, d);
                 unfinished[e.trial].push_back(std::move(r));
             } else if (e.type == "match") {
                 if (const auto clicks = unfinished.find(e.trial); clicks != unfinished.end()) {
@@ -86,7 +86,7 @@ public:
                 m.round = e.phase;
                 m.scoredPhase = roundScored(e.phase);
                 m.match = e.trial;
-                m.mode = e.mode;
+                m.condition = e.condition;
                 m.standIn = d.text("stand_in");  // sessions recorded while blend stood in for bireproj
                 m.greenHits = static_cast<int>(d.integer("green_hits", 0));
                 m.redHits = static_cast<int>(d.integer("red_hits", 0));
@@ -120,15 +120,16 @@ public:
         Progress p{"matches", 0, 0};
         for (const auto& e : events) p.done += e.type == "match";
         for (const auto& round : protocol_.rounds)
-            p.planned += protocol_.modes.size() * static_cast<std::size_t>(round.matchesPerMode);
+            p.planned += protocol_.conditions.size() * static_cast<std::size_t>(round.matchesPerCondition);
         return p;
     }
     std::optional<CounterbalancedList> counterbalanced() const override {
-        return CounterbalancedList{protocol_.modes, !protocol_.shuffle};
+        return CounterbalancedList{protocol_.conditions, !protocol_.shuffle};
     }
     std::string withConditionOrder(const std::string& protocolText,
                                    const std::vector<std::string>& order) const override {
-        return protocol::withList(protocolText, "matches", "modes", order);
+        return protocol::withList(protocolText, "matches", protocol::conditionListKey(protocol_.formatVersion).c_str(),
+                                  order);
     }
 
 private:

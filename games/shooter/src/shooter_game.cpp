@@ -59,23 +59,23 @@ ShooterGame::ShooterGame(const protocol::ShooterProtocol& protocol, std::uint64_
     restingCamera_.verticalFovDeg = static_cast<float>(protocol.verticalFovDeg);
     plane_ = physics::fitTargetPlane(restingCamera_, aspect, protocol.targetRadius);
     camera_ = restingCamera_;
-    mode_ = protocol.acclimationMode;
-    schedule_.emplace(protocol.conditionTable.at(mode_), protocol.refreshHz, pacingSeed(seed, scheduleStart_));
+    condition_ = protocol.acclimationCondition;
+    schedule_.emplace(protocol.conditionTable.at(condition_), protocol.refreshHz, pacingSeed(seed, scheduleStart_));
 }
 
 std::optional<ShooterGame::TrialView> ShooterGame::currentTrial() const {
     if (!trial_) return std::nullopt;
-    return TrialView{static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz, trial_->motion, trial_->mode};
+    return TrialView{static_cast<double>(trial_->spawnFrame) / protocol_.refreshHz, trial_->motion, trial_->condition};
 }
 
-void ShooterGame::switchTo(const std::string& mode, int difficulty) {
+void ShooterGame::switchTo(const std::string& condition, int difficulty) {
     condition::ConditionSchedule(
-        protocol_.conditionTable.at(mode),
-        protocol_.refreshHz);  // throws for a mode this display cannot run, before anything changes
+        protocol_.conditionTable.at(condition),
+        protocol_.refreshHz);  // throws for a condition this display cannot run, before anything changes
     freePlay_ = true;
-    freeMode_ = mode;
+    freeCondition_ = condition;
     freeLevel_ = std::max(0, difficulty);
-    // The practice phase, endless: the next frame starts a fresh target in the new mode.
+    // The practice phase, endless: the next frame starts a fresh target in the new condition.
     phase_ = Phase::Acclimation;
     trial_.reset();
     frozenFrame_.reset();
@@ -185,7 +185,7 @@ void ShooterGame::beginPhase(Phase phase) {
         case Phase::Training: {
             level_ = protocol_.training.startLevel;
             missedYet_ = false;
-            shotsPerMode_ = protocol_.training.shotsPerLevelEasy;
+            shotsPerCondition_ = protocol_.training.shotsPerLevelEasy;
             levelQueue_.clear();
             return openPhase(protocol_.trainingInstructions);
         }
@@ -241,19 +241,19 @@ ShownFrame ShooterGame::readingFrame() const {
     return shown;
 }
 
-void ShooterGame::startTrial(const std::string& mode, int level) {
+void ShooterGame::startTrial(const std::string& condition, int level) {
     Trial t;
     t.index = trialsInPhase_++;
-    t.mode = mode;
+    t.condition = condition;
     t.level = level;
     t.speed = speedFor(level);
     t.spawnFrame = frame_;
     t.motion = physics::spawnTarget(plane_, t.speed, trialSeed(static_cast<int>(phase_), t.index));
     trial_ = t;
-    // Every trial starts its mode's schedule afresh (DESIGN: switching modes starts clean).
-    mode_ = mode;
+    // Every trial starts its condition's schedule afresh (DESIGN: switching conditions starts clean).
+    condition_ = condition;
     scheduleStart_ = frame_;
-    schedule_.emplace(protocol_.conditionTable.at(mode), protocol_.refreshHz, pacingSeed(seed_, scheduleStart_));
+    schedule_.emplace(protocol_.conditionTable.at(condition), protocol_.refreshHz, pacingSeed(seed_, scheduleStart_));
 }
 
 void ShooterGame::finishTrainingLevel() {
@@ -264,14 +264,14 @@ void ShooterGame::finishTrainingLevel() {
     event.eventTime = now();
     event.detailJson = detailText({{"difficulty", level_},
                                    {"target_speed", speedFor(level_)},
-                                   {"low_mode", protocol_.training.lowMode},
+                                   {"low_mode", protocol_.training.lowCondition},
                                    {"low_hit_rate", lowHit},
-                                   {"high_mode", protocol_.training.highMode},
+                                   {"high_mode", protocol_.training.highCondition},
                                    {"high_miss_rate", highMiss},
-                                   {"shots_per_mode", shotsPerMode_}});
+                                   {"shots_per_mode", shotsPerCondition_}});
     emit(event);
     commitPoint_ = true;
-    // Stop where the fast mode's misses outnumber the slow mode's hits (seed 004 Figure 31).
+    // Stop where the fast condition's misses outnumber the slow condition's hits (seed 004 Figure 31).
     if (levelShots_[0] > 0 && highMiss > lowHit) {
         testLevel_ = level_;
         return beginPhase(Phase::Test);
@@ -283,16 +283,16 @@ void ShooterGame::finishTrainingLevel() {
     }
     ++level_;
     // Few shots per level while everything is hit, more once rates start to drop.
-    shotsPerMode_ = missedYet_ ? protocol_.training.shotsPerLevelHard : protocol_.training.shotsPerLevelEasy;
+    shotsPerCondition_ = missedYet_ ? protocol_.training.shotsPerLevelHard : protocol_.training.shotsPerLevelEasy;
 }
 
 void ShooterGame::scheduleNextTrial() {
     const double elapsed = static_cast<double>(frame_ - phaseStartFrame_) / protocol_.refreshHz;
     switch (phase_) {
         case Phase::Acclimation:
-            if (freePlay_) return startTrial(freeMode_, freeLevel_);
+            if (freePlay_) return startTrial(freeCondition_, freeLevel_);
             if (elapsed >= protocol_.acclimationS) return beginPhase(Phase::AwaitingSupervisor);
-            return startTrial(protocol_.acclimationMode, protocol_.acclimationLevel);
+            return startTrial(protocol_.acclimationCondition, protocol_.acclimationLevel);
         case Phase::Training: {
             const bool levelDone = levelQueue_.empty() && levelShots_[0] + levelShots_[1] > 0;
             // Format 2 judges a finished level before stopping for time; format 1 stopped
@@ -316,16 +316,16 @@ void ShooterGame::scheduleNextTrial() {
                     if (phase_ != Phase::Training) return;
                 }
                 levelHits_[0] = levelHits_[1] = levelShots_[0] = levelShots_[1] = 0;
-                for (int i = 0; i < shotsPerMode_; ++i) {
-                    levelQueue_.push_back(protocol_.training.lowMode);
-                    levelQueue_.push_back(protocol_.training.highMode);
+                for (int i = 0; i < shotsPerCondition_; ++i) {
+                    levelQueue_.push_back(protocol_.training.lowCondition);
+                    levelQueue_.push_back(protocol_.training.highCondition);
                 }
                 shuffle(levelQueue_, trialSeed(8, level_));
                 levelTrials_ = levelQueue_.size();
             }
-            const std::string mode = levelQueue_.back();
+            const std::string condition = levelQueue_.back();
             levelQueue_.pop_back();
-            return startTrial(mode, level_);
+            return startTrial(condition, level_);
         }
         case Phase::Test:
             if (testNext_ >= testQueue_.size()) return beginPhase(Phase::Done);
@@ -341,7 +341,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
     session::EventRecord event;
     event.type = world == Outcome::Timeout ? "timeout" : "shot";
     event.trial = t.index;
-    event.mode = t.mode;
+    event.condition = t.condition;
     event.eventTime = shotTime;
     event.worldOutcome = outcomeName(world);
     event.displayedOutcome = outcomeName(displayed);
@@ -362,7 +362,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
     const Outcome scored = protocol_.scoring == protocol::Scoring::World ? world : displayed;
     banner_ = scored == Outcome::Hit ? "HIT" : (scored == Outcome::Timeout ? "TIMEOUT" : "MISS");
     if (phase_ == Phase::Training) {
-        const int which = t.mode == protocol_.training.lowMode ? 0 : 1;
+        const int which = t.condition == protocol_.training.lowCondition ? 0 : 1;
         ++levelShots_[which];
         levelHits_[which] += scored == Outcome::Hit;
     }
@@ -376,7 +376,7 @@ void ShooterGame::finishTrial(Outcome world, Outcome displayed, double shotTime,
         (!protocol_.interleaveConditions && testQueue_[testNext_] != testQueue_[testNext_ - 1]);
     if (!lastOfBlock) return;
     questionsDue_ = true;
-    blockMode_ = protocol_.interleaveConditions ? "" : testQueue_[testNext_ - 1];
+    blockCondition_ = protocol_.interleaveConditions ? "" : testQueue_[testNext_ - 1];
 }
 
 ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
@@ -396,7 +396,7 @@ ShownFrame ShooterGame::questionFrame(const FrameInput& input) {
         session::EventRecord event;
         event.type = "answer";
         event.trial = block_;
-        event.mode = blockMode_;
+        event.condition = blockCondition_;
         event.eventTime = now();
         event.detailJson = questions_.answerDetail(*a).dump();
         emit(event);
@@ -440,7 +440,7 @@ void ShooterGame::turnCamera(const FrameInput& input) {
 ShownFrame ShooterGame::frozenShownFrame() const {
     ShownFrame shown = *frozenFrame_;
     shown.frame = frame_;
-    shown.inputFrame = frame_;  // the banner answers the shot at once, whatever the mode's lag
+    shown.inputFrame = frame_;  // the banner answers the shot at once, whatever the condition's lag
     shown.time = now();
     shown.frozen = true;
     shown.rendersNow = false;
@@ -478,7 +478,7 @@ void ShooterGame::describePhase(ShownFrame& shown) const {
     switch (phase_) {
         case Phase::Acclimation: {
             if (freePlay_) {
-                shown.phaseText = "Free play: " + mode_ + ", level " + std::to_string(freeLevel_);
+                shown.phaseText = "Free play: " + condition_ + ", level " + std::to_string(freeLevel_);
                 break;
             }
             // Appendix B: the supervisor and the participant see how much practice is left.

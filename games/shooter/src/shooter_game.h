@@ -2,7 +2,7 @@
 // deterministic state machine on the display clock: one step() per displayed frame, with
 // that frame's input. It owns the phases (acclimation; the supervisor's Enter, which begins
 // the recorded experiment as in seed 004 Appendix B; the training staircase; the test), the
-// trials, the modes' schedules and the scoring; it never touches GL.
+// trials, the conditions' schedules and the scoring; it never touches GL.
 // A session is a pure function of protocol, seed and the per-frame input record, which is
 // what makes replay exact.
 #pragma once
@@ -64,14 +64,14 @@ public:
     struct TrialView {
         double spawnTime = 0.0;
         physics::TargetMotion motion;
-        std::string mode;
+        std::string condition;
     };
     std::optional<TrialView> currentTrial() const;
 
 private:
     struct Trial {
         int index = 0;  // within its phase
-        std::string mode;
+        std::string condition;
         int level = 0;
         double speed = 0.0;
         std::int64_t spawnFrame = 0;
@@ -83,7 +83,7 @@ private:
     void openPhase(const std::string& instructions);
     void finishReading();
     ShownFrame readingFrame() const;
-    void startTrial(const std::string& mode, int level);
+    void startTrial(const std::string& condition, int level);
     void scheduleNextTrial();
     void finishTrial(Outcome world, Outcome displayed, double shotTime, double angularErrorDeg);
     // A frame of the questions after a block of the test: the mouse moves a cursor, not the view.
@@ -92,7 +92,7 @@ private:
     void openQuestionsIfDue();  // a block's last pause over: its questions, from this frame
     void turnCamera(const FrameInput& input);  // the mouse turns the view; recorded per frame
     ShownFrame frozenShownFrame() const;  // the frame of the last shot, held with its banner
-    ShownFrame scheduledFrame(const condition::ScheduledFrame& f) const;  // the mode's frame and the target in it
+    ShownFrame scheduledFrame(const condition::ScheduledFrame& f) const;  // the condition's frame and the target in it
     void describePhase(ShownFrame& shown) const;  // the status line for the participant and supervisor
     void judgeTrial(bool click, ShownFrame& shown);  // a shot or a timeout ends the trial
     void finishTrainingLevel();
@@ -119,7 +119,7 @@ private:
     std::int64_t phaseStartFrame_ = 0;  // its time runs from here (from the end of its instructions)
     bool reading_ = false;  // the phase's instructions are on screen
     bool recentre_ = false;  // the next frame's view starts from the resting one (a phase begins)
-    std::string mode_;
+    std::string condition_;
     std::optional<condition::ConditionSchedule> schedule_;
     std::int64_t scheduleStart_ = 0;
 
@@ -131,8 +131,8 @@ private:
 
     // Training staircase.
     int level_ = 0;
-    int shotsPerMode_ = 0;
-    std::vector<std::string> levelQueue_;  // modes of the remaining trials of this level
+    int shotsPerCondition_ = 0;
+    std::vector<std::string> levelQueue_;  // conditions of the remaining trials of this level
     std::size_t levelTrials_ = 0;  // ... and of all its trials
     int levelHits_[2] = {0, 0}, levelShots_[2] = {0, 0};
     bool missedYet_ = false;
@@ -146,12 +146,12 @@ private:
     Questionnaire questions_;
     bool questionsDue_ = false, asking_ = false;
     int block_ = 0;  // blocks of the test whose questions are answered
-    std::string blockMode_;  // the condition of the block being asked about; "" for a mixed one
+    std::string blockCondition_;  // the condition of the block being asked about; "" for a mixed one
     glm::dvec2 questionCursor_{0.0};
     DisplaySize display_;
 
     bool freePlay_ = false;
-    std::string freeMode_;
+    std::string freeCondition_;
     int freeLevel_ = 0;
 
     EventQueue events_;

@@ -59,7 +59,9 @@ const std::vector<fields::Section<P>>& sections() {
                         {kMousePerCountMin, false, kMousePerCountLimit, false})}},
             {"acclimation",
              {K::number("duration_s", at(&P::acclimationS), {0, true, kAcclimationLimitS, false}),
-              K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit), K::modeId("mode", at(&P::acclimationMode)),
+              K::integer("level", at(&P::acclimationLevel), 0, kLevelLimit),
+              K::conditionId("mode", at(&P::acclimationCondition)).renamed(kShooterConditionKeysSince, "condition"),
+              K::conditionId("condition", at(&P::acclimationCondition)).renames(kShooterConditionKeysSince),
               fields::instructionsKey<P>(at(&P::acclimationInstructions), kShooterInstructionsSince)}},
             {"training",
              {K::number("base_speed_m_per_s", at(&P::training, &S::baseSpeed), {0, true, kMaxBaseSpeedMPerS, false}),
@@ -67,12 +69,16 @@ const std::vector<fields::Section<P>>& sections() {
               K::integer("max_level", at(&P::training, &S::maxLevel), 0, kLevelLimit),
               K::integer("shots_per_level_easy", at(&P::training, &S::shotsPerLevelEasy), 1, kShotsLimit),
               K::integer("shots_per_level_hard", at(&P::training, &S::shotsPerLevelHard), 1, kShotsLimit),
-              K::modeId("high_mode", at(&P::training, &S::highMode)),
-              K::modeId("low_mode", at(&P::training, &S::lowMode)),
+              K::conditionId("high_mode", at(&P::training, &S::highCondition))
+                  .renamed(kShooterConditionKeysSince, "high_condition"),
+              K::conditionId("high_condition", at(&P::training, &S::highCondition)).renames(kShooterConditionKeysSince),
+              K::conditionId("low_mode", at(&P::training, &S::lowCondition))
+                  .renamed(kShooterConditionKeysSince, "low_condition"),
+              K::conditionId("low_condition", at(&P::training, &S::lowCondition)).renames(kShooterConditionKeysSince),
               K::number("time_limit_s", at(&P::training, &S::timeLimitS), {0, true, kTrainingLimitS, false}),
               fields::instructionsKey<P>(at(&P::trainingInstructions), kShooterInstructionsSince)}},
             {"test",
-             {K::modeList("conditions", at(&P::conditions)),
+             {K::conditionList("conditions", at(&P::conditions)),
               K::integer("targets_per_condition", at(&P::targetsPerCondition), 1, kTargetsLimit),
               K::boolean("interleave", at(&P::interleaveConditions)),
               K::number("timeout_s", at(&P::timeoutS), {0, true, kTimeoutLimitS, false}),
@@ -126,14 +132,19 @@ ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::str
         r.fail("training.shots_per_level_hard",
                "must be at least training.shots_per_level_easy (" + std::to_string(s.shotsPerLevelEasy) + "), got " +
                    std::to_string(s.shotsPerLevelHard));
-    if (s.highMode == s.lowMode)
-        r.fail("training.low_mode", "must differ from training.high_mode, both are \"" + s.lowMode + "\"");
-    // Defaults included: a file that only changes the refresh must still fit every mode.
+    // Named as the file names them (acclimation.mode before format 9).
+    const auto named = [&](const char* section, const char* key) {
+        return fields::keyPathIn(sections(), section, key, p.formatVersion);
+    };
+    if (s.highCondition == s.lowCondition)
+        r.fail(named("training", "low_condition"),
+               "must differ from " + named("training", "high_condition") + ", both are \"" + s.lowCondition + "\"");
+    // Defaults included: a file that only changes the refresh must still fit every condition.
     r.requireConditionsRun(p.refreshHz);
-    r.requireMode("acclimation.mode", p.acclimationMode, p.refreshHz);
-    r.requireMode("training.high_mode", s.highMode, p.refreshHz);
-    r.requireMode("training.low_mode", s.lowMode, p.refreshHz);
-    r.requireModes("test.conditions", p.conditions, p.refreshHz);
+    r.requireCondition(named("acclimation", "condition"), p.acclimationCondition, p.refreshHz);
+    r.requireCondition(named("training", "high_condition"), s.highCondition, p.refreshHz);
+    r.requireCondition(named("training", "low_condition"), s.lowCondition, p.refreshHz);
+    r.requireConditions("test.conditions", p.conditions, p.refreshHz);
     r.requireConditionsUsed();
     return p;
 }

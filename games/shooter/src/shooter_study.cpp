@@ -7,9 +7,23 @@
 #include "shooter_bot.h"
 #include "shooter_game.h"
 #include "shooter/shooter_protocol.h"
+#include "table/columns.h"
 
 namespace warplab::game {
 namespace {
+
+// The shooter's own columns of shots.csv (docs/shooter-study.md), from a shot's or a timeout's
+// event detail.
+const std::vector<table::Column<EventDetail>>& shotColumns() {
+    using F = table::CellWriter;
+    using R = EventDetail;
+    static const std::vector<table::Column<R>> columns = {
+        {"angular_error_deg", [](F& f, const R& d) { f.number(d.number("angular_error_deg")); }},
+        {"difficulty", [](F& f, const R& d) { f.number(d.number("difficulty")); }},
+        {"target_speed", [](F& f, const R& d) { f.number(d.number("target_speed")); }},
+    };
+    return columns;
+}
 
 class ShooterStudy final : public Study {
 public:
@@ -21,10 +35,10 @@ public:
     std::unique_ptr<Game> newGame(std::uint64_t seed, const DisplaySize& display) const override {
         return std::make_unique<ShooterGame>(protocol_, seed, display);
     }
-    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display, const std::string& mode,
-                                              int difficulty) const override {
+    std::unique_ptr<FreePlayGame> newFreePlay(std::uint64_t seed, const DisplaySize& display,
+                                              const std::string& condition, int difficulty) const override {
         auto game = std::make_unique<ShooterGame>(protocol_, seed, display);
-        game->switchTo(mode, difficulty);
+        game->switchTo(condition, difficulty);
         return game;
     }
     std::unique_ptr<Player> newBot(std::uint64_t seed, const DisplaySize&) const override {
@@ -46,8 +60,8 @@ public:
     }
     const condition::ConditionTable& conditions() const override { return protocol_.conditionTable; }
     std::vector<std::string> conditionNames() const override {
-        std::vector<std::string> ids{protocol_.acclimationMode, protocol_.training.lowMode,
-                                     protocol_.training.highMode};
+        std::vector<std::string> ids{protocol_.acclimationCondition, protocol_.training.lowCondition,
+                                     protocol_.training.highCondition};
         ids.insert(ids.end(), protocol_.conditions.begin(), protocol_.conditions.end());
         return ids;
     }
@@ -68,7 +82,7 @@ public:
             r.phase = e.phase;
             r.scoredPhase = e.phase == "test";  // acclimation and training set up the test; only it is analysed
             r.trial = e.trial;
-            r.mode = e.mode;
+            r.condition = e.condition;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
             r.outcome =
@@ -78,9 +92,7 @@ public:
             r.time = e.eventTime;
             r.spawnTime = d.number("spawn_time");
             r.aimTime = d.number("aim_time");
-            r.angularErrorDeg = d.number("angular_error_deg");
-            r.difficulty = d.number("difficulty");
-            r.targetSpeed = d.number("target_speed");
+            table::writeCells(r.own, shotColumns(), d);
             out.shots.push_back(std::move(r));
         }
         return out;
@@ -110,5 +122,7 @@ private:
 std::unique_ptr<Study> parseShooterStudy(const std::string& jsonText, const std::string& sourceName) {
     return std::make_unique<ShooterStudy>(protocol::parseShooterProtocol(jsonText, sourceName));
 }
+
+GameExport shooterExport() { return {table::headerOf(shotColumns()), nullptr}; }
 
 }  // namespace warplab::game

@@ -1,6 +1,6 @@
 // A study session in a real window (seed 004 section 5.2 and Appendix B;
 // seed 000 section 8): the participant's mouse in relative mode, one frame per vsync (or per
-// timer tick where vsync or the refresh rate cannot be had), the frames made as the mode makes
+// timer tick where vsync or the refresh rate cannot be had), the frames made as the condition makes
 // them with the HUD over them, feedback sounds, and the supervisor's start, pause, abort and
 // end screens. The session is written as it runs, like a headless one, and replays the same.
 #pragma once
@@ -56,8 +56,8 @@ struct LiveRun {
     // The photodiode marker: "" for the protocol's display.photon_marker, else one of its
     // spellings ("off", "top_left" ...), which replaces it.
     std::string photonMarker;
-    // Free play (runFreePlay): the mode and difficulty it starts in ("" = the protocol's first).
-    std::string freePlayMode;
+    // Free play (runFreePlay): the condition and difficulty it starts in ("" = the protocol's first).
+    std::string freePlayCondition;
     int freePlayLevel = 0;
 };
 
@@ -76,7 +76,7 @@ LiveEnd runLive(const LiveRun& run, const renderer::DataPaths& paths, std::ostre
 // Free play for pilots and demonstrations: the protocol's game, endless and unrecorded; keys
 // 1-9 switch live to the nine presets (condition::presets()), ] and [ (PageDown and PageUp)
 // step to the next and previous of all of them and of the protocol's own conditions (around the list, over those the display
-// cannot run), U and D change the difficulty, the status line shows the mode and the frame
+// cannot run), U and D change the difficulty, the status line shows the condition and the frame
 // times; Esc pauses, Q ends. Returns when it ends.
 void runFreePlay(const LiveRun& run, const renderer::DataPaths& paths, std::ostream& progress);
 

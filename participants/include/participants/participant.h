@@ -1,8 +1,8 @@
 // A perceptual simulated participant. It sees only what a person
-// sees -- the displayed frames, made exactly as the session's mode makes them, at a reduced
+// sees -- the displayed frames, made exactly as the session's condition makes them, at a reduced
 // resolution, plus the pointer and the text drawn on screen -- and acts through the same input
 // as a person: mouse counts and button and key presses, once per displayed frame. Its hit
-// rates therefore depend on what each mode shows and when it shows it.
+// rates therefore depend on what each condition shows and when it shows it.
 //
 // Two halves, so that "it never reads the world" is a property of the types, not a promise:
 //   Eye                  -- GL (participants/eye.h, library warplab_participants_eye). The

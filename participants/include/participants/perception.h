@@ -66,7 +66,7 @@ struct Percept {
     Thumbnail picture;  // the scene, blurred (4 x 4 pixel cells)
     Thumbnail detail;  // the scene, sharp (one cell per percept pixel)
     // The pointer drawn into the frame: the reticle at the centre, or the cursor where this
-    // frame draws it (so it has the mode's frame rate and lag). Display pixels.
+    // frame draws it (so it has the condition's frame rate and lag). Display pixels.
     game::PointerKind pointer = game::PointerKind::None;
     glm::dvec2 pointerAt{0.0};
     // Text on screen.

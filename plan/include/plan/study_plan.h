@@ -40,7 +40,7 @@ struct ProtocolEntry {
     std::string file;  // relative to the plan folder, e.g. protocols/shooter-quick.json
     std::string name, game;  // the protocol's "name" and "game"
     std::string hash;  // FNV-1a 64 of the file's bytes, 16 lower-case hex digits
-    // The list that is counterbalanced (shooter test.conditions, click matches.modes), in the
+    // The list that is counterbalanced (shooter test.conditions, click matches.conditions), in the
     // file's order.
     std::vector<std::string> conditions;
     // The game plays the list in the given order (shooter test.interleave false, click

@@ -1,5 +1,5 @@
 // Making the frames a session displayed, shared by `replay --render` and live
-// sessions in a window, so both show exactly what the mode makes.
+// sessions in a window, so both show exactly what the condition makes.
 #pragma once
 
 #include <map>
@@ -21,8 +21,8 @@ renderer::HudContent hudFor(const game::ShownFrame& shown, double toFrameX, doub
 // The HUD's photodiode marker in `corner`, black; none when it is off.
 std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker corner);
 
-// Makes each displayed frame the way its mode makes it (its schedule's `made`), from the
-// conventional renders it keeps: a render shown as it is, or the mode's method for warped and
+// Makes each displayed frame the way its condition makes it (its schedule's `made`), from the
+// conventional renders it keeps: a render shown as it is, or the condition's method for warped and
 // interpolated frames, repeated ones too.
 //
 // A source is rendered when a frame made needs it, not when the game steps the frame that
@@ -33,10 +33,10 @@ std::optional<renderer::HudPhotonMarker> hudPhotonMarker(protocol::PhotonMarker 
 // from the world as the schedule sampled it (ShownFrame::render), never from the time it is drawn.
 class FrameMaker {
 public:
-    // `rendering`: the protocol's guard band (warp modes' sources) and supersampling.
+    // `rendering`: the protocol's guard band (warp conditions' sources) and supersampling.
     FrameMaker(const renderer::DataPaths& paths, int width, int height, const protocol::RenderSettings& rendering);
 
-    // Builds (compiles) now every method the study's modes make frames with, so that no
+    // Builds (compiles) now every method the study's conditions make frames with, so that no
     // condition's first frames wait for a shader compiler: a hitch in the stimulus.
     void prepareFor(const game::Study& study);
     // Call for every frame the game steps, shown or not: held, lagged and warped frames need
@@ -70,7 +70,7 @@ private:
     renderer::DataPaths paths_;
     renderer::ConventionalRenderer conventional_;
     int width_, height_;
-    renderer::GuardBand warpBand_;  // for the sources of warp modes
+    renderer::GuardBand warpBand_;  // for the sources of warp conditions
     std::map<std::int64_t, Kept> sources_;  // by session frame
     // Source frames no longer needed, for the next renders: a G-buffer made anew per render (its
     // textures and framebuffer) costs llvmpipe more than drawing a small frame into it.

@@ -32,7 +32,7 @@ struct ReplayRenderResult {
 
 // Replays the session and writes every displayed frame of the range as DIR/frame_NNNNNNN.png
 // (frames the record marks skipped were never displayed: none is written for them),
-// made the way its mode makes it (rendered, held, warped, interpolated) with the HUD over it,
+// made the way its condition makes it (rendered, held, warped, interpolated) with the HUD over it,
 // the photodiode marker included where the session's window drew one (white on the frames it lit).
 // On frames whose image is an exact render (rendered or held), the object id read back under
 // the reticle or cursor is checked against the game's analytic account of that frame, and on

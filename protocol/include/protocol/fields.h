@@ -1,6 +1,6 @@
 // What every game's protocol parser is built from, over the strict reader (strict/json.h) that
 // all of warplab's files share, so that all protocol files follow the same rules
-// (docs/protocol.md, "Rules"): the header every protocol starts with, its own conditions, mode
+// (docs/protocol.md, "Rules"): the header every protocol starts with, its own conditions, condition
 // ids, and the field tables below. Public, so that a game's module (games/NAME/) reads its own
 // sections with it; nothing here names a game.
 #pragma once
@@ -49,7 +49,7 @@ Json headerJson(int formatVersion, const std::string& name, const std::string& d
 std::string canonicalText(const Json& document);
 
 // The strict reader for a protocol: every message starts "protocol 'NAME': ", and the
-// protocol's header, conditions and mode ids are read here.
+// protocol's header, conditions and condition ids are read here.
 class Reader : public strict::Reader {
 public:
     explicit Reader(const std::string& source);
@@ -78,25 +78,26 @@ public:
 
     // The top-level "conditions" object (new in format_version `since`): each condition's parts,
     // checked on their own; whether each can run is asked once the refresh is final
-    // (requireConditions). A name that is a preset must repeat the preset's parts. Mode ids
+    // (requireConditions). A name that is a preset must repeat the preset's parts. Condition ids
     // name conditions; they are checked against these and the presets from here on.
     // Its pacing keys (frame_time_jitter, hitches) are new in format_version `pacingSince`.
     std::vector<condition::Condition> conditions(const Json& document, int formatVersion, int since, int pacingSince);
     // Every defined condition runs at refreshHz: checked before the fields that name them, so
     // the error names the definition's part rather than a field that uses it.
     void requireConditionsRun(double refreshHz) const;
-    // ... and is named by some field (requireMode), checked after them.
+    // ... and is named by some field (requireCondition), checked after them.
     void requireConditionsUsed() const;
     const condition::ConditionTable& conditionTable() const { return conditions_; }
 
-    // Mode ids are only read as strings here; whether they exist and fit the refresh is asked
-    // of the condition table once the refresh is final (requireMode), so defaults are checked too.
-    void modeId(const Json* parent, const std::string& path, const char* key, std::string& out) const;
-    // A non-empty array of distinct mode ids.
-    void modeList(const Json* parent, const std::string& path, const char* key, std::vector<std::string>& out) const;
-    void requireMode(const std::string& where, const std::string& id, double refreshHz) const;
+    // Condition ids are only read as strings here; whether they exist and fit the refresh is asked
+    // of the condition table once the refresh is final (requireCondition), so defaults are checked too.
+    void conditionId(const Json* parent, const std::string& path, const char* key, std::string& out) const;
+    // A non-empty array of distinct condition ids.
+    void conditionList(const Json* parent, const std::string& path, const char* key,
+                       std::vector<std::string>& out) const;
+    void requireCondition(const std::string& where, const std::string& id, double refreshHz) const;
     // Each of a list, named path[i].
-    void requireModes(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const;
+    void requireConditions(const std::string& path, const std::vector<std::string>& ids, double refreshHz) const;
 
 private:
     // A definition's frame_time_jitter and hitches, at `path`.
@@ -105,7 +106,7 @@ private:
     // A definition's frame_times, at `path`: sets its trace and render rate (frame_times_json.cpp).
     void frameTimes(const Json& value, const std::string& path, condition::Condition& c) const;
     condition::ConditionTable conditions_;
-    mutable std::set<std::string> used_;  // the conditions requireMode was asked about
+    mutable std::set<std::string> used_;  // the conditions requireCondition was asked about
 };
 
 // A condition's "frame_times" as a stored copy keeps it: the frame times inline.
@@ -130,12 +131,38 @@ struct Key {
     // may not set it either.
     int newIn = 1;
     bool refusedBefore = false;
+    // A key renamed in format_version `renamedIn` is two keys of one member: the old name, read
+    // and written by the versions before it and refused from it on (naming `renamedTo`), and the
+    // new name, refused before it and never written there (the old name carries the value).
+    int renamedIn = 0;  // the old name's: the version from which files use renamedTo instead
+    const char* renamedTo = "";
+    bool renaming = false;  // the new name's: written only from newIn on
 
     Key since(int version, bool refused = false) const {
         Key k = *this;
         k.newIn = version;
         k.refusedBefore = refused;
         return k;
+    }
+    // This key's name until `version`, from which files call it `to` (a key of its own, made
+    // with renames(version)).
+    Key renamed(int version, const char* to) const {
+        Key k = *this;
+        k.renamedIn = version;
+        k.renamedTo = to;
+        return k;
+    }
+    // The new name of a key renamed in `version`.
+    Key renames(int version) const {
+        Key k = since(version, true);
+        k.renaming = true;
+        return k;
+    }
+    bool existsIn(int formatVersion) const { return renamedIn == 0 || formatVersion < renamedIn; }
+    bool writtenIn(int formatVersion, const P& p) const {
+        if (!existsIn(formatVersion)) return false;
+        if (renaming) return formatVersion >= newIn;
+        return formatVersion >= newIn || !isDefault(p);
     }
 };
 
@@ -218,15 +245,15 @@ struct Keys {
         return k;
     }
     template <class Get>
-    static Key<P> modeId(const char* name, Get get) {
+    static Key<P> conditionId(const char* name, Get get) {
         return make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
-            r.modeId(o, path, name, get(p));
+            r.conditionId(o, path, name, get(p));
         });
     }
     template <class Get>
-    static Key<P> modeList(const char* name, Get get) {
+    static Key<P> conditionList(const char* name, Get get) {
         return make(name, get, [name, get](const Reader& r, const Json* o, const std::string& path, P& p) {
-            r.modeList(o, path, name, get(p));
+            r.conditionList(o, path, name, get(p));
         });
     }
 };
@@ -246,10 +273,21 @@ Key<P> instructionsKey(Get get, int since) {
     return k;
 }
 
+// The keys' present names (a renamed key by its new one), in table order.
 template <class P>
 std::vector<const char*> keyNames(const std::vector<Key<P>>& keys) {
     std::vector<const char*> names;
-    for (const Key<P>& k : keys) names.push_back(k.name);
+    for (const Key<P>& k : keys)
+        if (k.renamedIn == 0) names.push_back(k.name);
+    return names;
+}
+
+// The names a file of `formatVersion` may use: a renamed key by the name its version has.
+template <class P>
+std::vector<const char*> keyNamesIn(const std::vector<Key<P>>& keys, int formatVersion) {
+    std::vector<const char*> names;
+    for (const Key<P>& k : keys)
+        if (k.existsIn(formatVersion) && !(k.renaming && formatVersion < k.newIn)) names.push_back(k.name);
     return names;
 }
 
@@ -268,24 +306,45 @@ std::vector<const char*> topLevelKeys(const std::vector<Section<P>>& sections) {
     return names;
 }
 
-// One object's keys read from `object` at `path` (absent keys keep their defaults): unknown
-// keys first, then keys this format version may not have, then each key in table order.
+// One object's keys read from `object` at `path` (absent keys keep their defaults): a renamed
+// key under the name another version gives it first (said so, where it would be unknown), then
+// unknown keys, then keys this format version may not have, then each key in table order.
 template <class P>
 void readKeys(const Reader& r, const Json& object, const std::string& path, const std::vector<Key<P>>& keys,
               int formatVersion, P& out) {
-    r.requireKnownKeys(object, path, keyNames(keys));
-    for (const Key<P>& k : keys)
-        if (k.refusedBefore && formatVersion < k.newIn && object.contains(k.name))
+    const auto refuseAsNew = [&](const Key<P>& k) {
+        r.fail(joinPath(path, k.name),
+               "is new in format_version " + std::to_string(k.newIn) + ", but this file is format_version " +
+                   std::to_string(formatVersion));
+    };
+    for (const Key<P>& k : keys) {
+        if (!object.contains(k.name)) continue;
+        if (k.renaming && formatVersion < k.newIn) refuseAsNew(k);
+        if (!k.existsIn(formatVersion))
             r.fail(joinPath(path, k.name),
-                   "is new in format_version " + std::to_string(k.newIn) + ", but this file is format_version " +
-                       std::to_string(formatVersion));
+                   std::string("was renamed ") + k.renamedTo + " in format_version " + std::to_string(k.renamedIn) +
+                       ", and this file is format_version " + std::to_string(formatVersion) + ": use " +
+                       joinPath(path, k.renamedTo) + " instead");
+    }
+    r.requireKnownKeys(object, path, keyNamesIn(keys, formatVersion));
+    for (const Key<P>& k : keys)
+        if (k.refusedBefore && formatVersion < k.newIn && object.contains(k.name)) refuseAsNew(k);
     for (const Key<P>& k : keys) k.read(r, &object, path, out);
 }
 
 template <class P>
 void writeKeys(Json& object, const std::vector<Key<P>>& keys, int formatVersion, const P& p) {
     for (const Key<P>& k : keys)
-        if (formatVersion >= k.newIn || !k.isDefault(p)) k.write(object, p);
+        if (k.writtenIn(formatVersion, p)) k.write(object, p);
+}
+
+// The name a file of `formatVersion` gives the key that is now `name` in `keys`: its older name
+// in files older than the rename. Messages about a value name the key the file has.
+template <class P>
+std::string keyNameIn(const std::vector<Key<P>>& keys, const char* name, int formatVersion) {
+    for (const Key<P>& k : keys)
+        if (k.renamedIn != 0 && std::string(k.renamedTo) == name && formatVersion < k.renamedIn) return k.name;
+    return name;
 }
 
 // Every section present in `document`, read in table order.
@@ -301,6 +360,16 @@ void readSections(const Reader& r, const Json& document, const std::vector<Secti
         if (const Json* object = r.object(document, "", s.name))
             readKeys(r, *object, s.name, s.keys, formatVersion, out);
     }
+}
+
+// The path ("training.low_mode") a file of `formatVersion` has for the key now at
+// section.key.
+template <class P>
+std::string keyPathIn(const std::vector<Section<P>>& sections, const char* section, const char* key,
+                      int formatVersion) {
+    for (const Section<P>& s : sections)
+        if (std::string(s.name) == section) return joinPath(section, keyNameIn(s.keys, key, formatVersion));
+    return joinPath(section, key);
 }
 
 template <class P>
@@ -326,7 +395,8 @@ struct ElementKeys {
     std::vector<const char*> keys;
 };
 
-// Every key as a JSON path ("display.refresh_hz"), header first, in table order; the keys of an
+// Every key as a JSON path ("display.refresh_hz"), header first, in table order (a renamed key
+// by its present name, whose row on the page gives the older one); the keys of an
 // array's elements ("matches.rounds[].name") follow their section's own keys, as the page
 // documents them.
 template <class P>
@@ -335,7 +405,8 @@ std::vector<std::string> keyPaths(const std::vector<Section<P>>& sections,
     std::vector<std::string> paths(kHeaderKeys.begin(), kHeaderKeys.end());
     paths.emplace_back(kConditionsKey);
     for (const Section<P>& s : sections) {
-        for (const Key<P>& k : s.keys) paths.push_back(joinPath(s.name, k.name));
+        for (const Key<P>& k : s.keys)
+            if (k.renamedIn == 0) paths.push_back(joinPath(s.name, k.name));  // a renamed key under its new name
         for (const ElementKeys& e : elements)
             if (e.array.rfind(std::string(s.name) + ".", 0) == 0)
                 for (const char* k : e.keys) paths.push_back(e.array + "[]." + k);

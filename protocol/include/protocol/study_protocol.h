@@ -26,7 +26,7 @@ inline constexpr double kMaxCameraPitchDeg = 89;
 // Which outcome scores, both games alike (DESIGN.md "Scoring"); both are always logged.
 enum class Scoring { Displayed, World };
 // When a click counts (docs/protocol.md, "Click timing"): at the display frame where the button
-// goes down, or only at frames where the mode reads input.
+// goes down, or only at frames where the condition reads input.
 enum class ClickTiming { Display, InputReads };
 // A live session on a display whose refresh is known to differ from the protocol's: refuse to
 // start, or warn and pace frames by timer.
@@ -85,7 +85,7 @@ std::optional<E> valueNamed(const std::string& name) {
 // participant sees, never the game's state: the outcomes a session logs replay the same
 // whatever they say.
 struct RenderSettings {
-    // Warp modes render their sources this fraction of the displayed width and height beyond
+    // Warp conditions render their sources this fraction of the displayed width and height beyond
     // each side, so what a turn brings into view is really there (renderer::GuardBand).
     double guardBand = 0.1;
     // Samples per pixel side for every conventional frame's colour (1 = none, 2 = 2x2 ...).

@@ -1,7 +1,7 @@
-// Upconversion methods: given the conventionally rendered source frames a mode would have,
+// Upconversion methods: given the conventionally rendered source frames a condition would have,
 // make the frame displayed at some instant. Every method -- sample-and-hold, blend, warp
 // extrapolation, bidirectional reprojection and the rest -- sits behind this one interface,
-// so the benchmark and the study modes treat them alike.
+// so the benchmark and the study conditions treat them alike.
 #pragma once
 
 #include <cstdint>
@@ -110,10 +110,10 @@ struct MethodInfo {
     // many conventional renders (brute force). 0 = an instant, as every other method.
     int exposureSamples = 0;
     // Shows what a source's guard band (SourceFrame::band) holds as the view turns: the warps.
-    // The bench renders such a method's sources with the band, as a study's warp mode does.
+    // The bench renders such a method's sources with the band, as a study's warp condition does.
     bool takesGuardBand = false;
     // Accepts a banded source at all: the methods above, and the holds, which show its inside
-    // (a warp mode's frames at its render instants).
+    // (a warp condition's frames at its render instants).
     bool acceptsGuardBand = false;
     // Shades part of every displayed frame itself, at the displayed instant (spatio-temporal
     // upsampling, adaptive frameless sampling): this share of the display's pixels, exactly, from

@@ -105,7 +105,7 @@ public:
         if (flowsFor_ && *flowsFor_ == key) return;
         // The forward flow of the earlier I-frame needs the later one's instant, so it is drawn
         // now, as seed 000 section 5 draws it; the later I-frame's backward flow came with its
-        // own render where the renderer was asked for it (the mode's sessions, the bench).
+        // own render where the renderer was asked for it (the condition's sessions, the bench).
         drawFlow(input.previous->depicts, input.next->depicts, *forward_);
         const auto& next = input.next->gbuffer.impl();
         const auto& before = input.previous->depicts;

@@ -1,5 +1,5 @@
 // The one list of upconversion methods. A new method registers here and is then available to
-// the bench (--methods) and, through its name, to the study modes.
+// the bench (--methods) and, through its name, to the study conditions.
 #include <cmath>
 #include <functional>
 #include <memory>

@@ -87,7 +87,7 @@ struct InputRecord {
 // Per displayed frame: what was shown and how it went.
 struct FrameRecord {
     std::int64_t frame = 0;
-    std::string mode;  // mode id, e.g. "warp15to120"
+    std::string condition;  // condition id, e.g. "warp15to120"
     std::string kind;  // "rendered" | "held" | "warped" | "interpolated" | "frozen" | "screen" | "skipped"
     double frameMs = 0;  // measured present to present (live sessions); 0 headless
     double renderMs = 0;  // measured: making the frame (render, warp or blend, HUD) to glFinish; 0 headless
@@ -109,7 +109,7 @@ struct EventRecord {
     std::string type;  // "shot", "timeout", "phase", "level", "click", "match", "rating" ...
     std::string phase;
     int trial = -1;  // trial (shooter) or match (click) index; -1: not part of one
-    std::string mode;
+    std::string condition;
     double eventTime = 0;  // seconds on the display clock
     std::string worldOutcome, displayedOutcome;  // "hit" | "miss" | "timeout" | "green" | "red" | ""
     std::string detailJson;  // a JSON object text ("" = none), keys sorted (nlohmann dump)

@@ -47,6 +47,9 @@ class Cells final : public CellWriter {
 public:
     const std::vector<std::string>& written() const { return cells_; }
     std::size_t size() const { return cells_.size(); }
+    // These cells in another order: cell at[k] as cell k, an empty one where at[k] is negative
+    // (a row of one game's columns written under a header with every game's).
+    Cells rearranged(const std::vector<int>& at) const;
 
 private:
     void cell(const std::string& written) override { cells_.push_back(written); }

@@ -1,6 +1,6 @@
 // The click game as a pure function of protocol, seed and input: the bot plays the quick
 // protocol to the end with every match and rating, replays reproduce it bit for bit, the
-// cursor and spheres on screen are as late as each mode's schedule says, and clicks are
+// cursor and spheres on screen are as late as each condition's schedule says, and clicks are
 // judged against the world and against the frame on screen.
 #include <algorithm>
 #include <cmath>
@@ -61,12 +61,12 @@ ShownFrame startFirstMatch(ClickGame& game) {
 TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
     const auto p = quick();
     const Played played = playWithBot(p, 3, 7);
-    std::map<int, std::set<std::string>> modesPerRound;
+    std::map<int, std::set<std::string>> conditionsPerRound;
     int matches = 0, ratings = 0, clicks = 0, greens = 0, byKey = 0, byMouse = 0;
     for (const auto& e : played.events) {
         if (e.type == "match") {
             ++matches;
-            modesPerRound[detail(e)["round"] == "practice" ? 0 : 1].insert(e.mode);
+            conditionsPerRound[detail(e)["round"] == "practice" ? 0 : 1].insert(e.condition);
             EXPECT_EQ(
                 detail(e)["clicks"].get<int>(),
                 detail(e)["green_hits"].get<int>() + detail(e)["red_hits"].get<int>() + detail(e)["misses"].get<int>());
@@ -77,7 +77,7 @@ TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
             EXPECT_GE(v, p.ratingMin);
             EXPECT_LE(v, p.ratingMax);
             EXPECT_EQ(v,
-                      botRating(condition::preset(e.mode), p.refreshHz, detail(e)["statement_index"], p.ratingMin,
+                      botRating(condition::preset(e.condition), p.refreshHz, detail(e)["statement_index"], p.ratingMin,
                                 p.ratingMax));
             (detail(e)["answered_with"] == "key" ? byKey : byMouse) += 1;
         }
@@ -86,11 +86,12 @@ TEST(ClickGame, BotPlaysEveryMatchAndAnswersEveryRating) {
             greens += detail(e)["scored"] == "green";
         }
     }
-    const int expected = static_cast<int>(p.modes.size()) * 2;  // one match per mode per round
+    const int expected = static_cast<int>(p.conditions.size()) * 2;  // one match per condition per round
     EXPECT_EQ(matches, expected);
     EXPECT_EQ(ratings, expected * 4);
     EXPECT_EQ(byKey, byMouse) << "the bot answers half by key, half by clicking the box";
-    for (const auto& [round, modes] : modesPerRound) EXPECT_EQ(modes.size(), p.modes.size()) << round;
+    for (const auto& [round, conditions] : conditionsPerRound)
+        EXPECT_EQ(conditions.size(), p.conditions.size()) << round;
     EXPECT_GT(clicks, expected);
     EXPECT_GT(greens, clicks / 4) << "the bot should hit green spheres";
     EXPECT_EQ(played.events.back().type, "phase");
@@ -135,7 +136,7 @@ TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
     ClickBot bot(7, p, kDisplay);
     FrameInput input = bot.first();
     std::map<std::string, std::vector<int>> seen;  // round -> the match numbers shown, in order
-    const int perRound = static_cast<int>(p.modes.size());
+    const int perRound = static_cast<int>(p.conditions.size());
     while (!game.finished()) {
         const ShownFrame shown = game.step(input);
         game.takeEvents();
@@ -155,12 +156,12 @@ TEST(ClickGame, PhaseTextCountsTheMatchesOfTheRound) {
     EXPECT_EQ(seen["scored"], oneToN);
 }
 
-TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersModesBySeed) {
+TEST(ClickGame, EveryMatchLastsItsFramesAndOrdersConditionsBySeed) {
     auto p = quick();
     ClickGame a(p, 5, kDisplay), b(p, 6, kDisplay);
     std::vector<std::string> orderA, orderB;
-    for (const auto& m : a.matches()) orderA.push_back(m.mode);
-    for (const auto& m : b.matches()) orderB.push_back(m.mode);
+    for (const auto& m : a.matches()) orderA.push_back(m.condition);
+    for (const auto& m : b.matches()) orderB.push_back(m.condition);
     EXPECT_NE(orderA, orderB);
     const Played played = playWithBot(p, 5, 1);
     std::map<int, std::int64_t> start;
@@ -199,25 +200,25 @@ TEST(ClickGame, EveryMatchOpensWithARender) {
     EXPECT_EQ(openings, static_cast<int>(game.matches().size()));
 }
 
-// The cursor is drawn into the frame, so a mouse step shows with the mode's view latency --
+// The cursor is drawn into the frame, so a mouse step shows with the condition's view latency --
 // the same schedule the shooter's reticle follows.
-TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
-    for (const auto& mode : quick().modes) {
+TEST(ClickGame, CursorStepShowsWithEachConditionsViewLatency) {
+    for (const auto& condition : quick().conditions) {
         for (int phase = 0; phase < 4; ++phase) {
             auto p = quick();
-            p.modes = {mode};
+            p.conditions = {condition};
             p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             ClickGame game(p, 2, kDisplay);
             ShownFrame shown = startFirstMatch(game);
             for (int i = 0; i < 30 + phase; ++i) shown = game.step({});
             const glm::dvec2 before = shown.cursor;
             const ShownFrame stepFrame = game.step({40.0, 0.0, 0, 0});
-            const condition::ConditionSchedule schedule(condition::preset(mode), p.refreshHz);
+            const condition::ConditionSchedule schedule(condition::preset(condition), p.refreshHz);
             ShownFrame f = stepFrame;
             while (f.cursor == before) f = game.step({});
             EXPECT_NEAR(f.time - stepFrame.time, schedule.viewLatency(stepFrame.schedule.displayTime), 1e-9)
-                << mode << " phase " << phase;
-            EXPECT_DOUBLE_EQ(f.cursor.x - before.x, 40.0 * p.cursorPixelsPerCount) << mode;
+                << condition << " phase " << phase;
+            EXPECT_DOUBLE_EQ(f.cursor.x - before.x, 40.0 * p.cursorPixelsPerCount) << condition;
         }
     }
 }
@@ -226,7 +227,7 @@ TEST(ClickGame, CursorStepShowsWithEachModesViewLatency) {
 FrameInput clickOnGreen(const ClickGame& game, const protocol::ClickProtocol& p);
 
 // The README's latency table in a real run, at each display rate its section names (the
-// table's 120 Hz, the click game's 60 Hz), for every mode that rate can run. A cursor step comes
+// table's 120 Hz, the click game's 60 Hz), for every condition that rate can run. A cursor step comes
 // with frame v's input: it happened in (v - 1, v], so when frame k first shows it, it is k - v
 // to k - v + 1 frames old, and over every phase of the cycle those give the row's view latency,
 // least and most. A click at v takes its sphere from the world after v's sample: the change
@@ -243,7 +244,7 @@ TEST(ClickGame, ReadmeLatencyTableHoldsInARealRun) {
         for (const readme::ReadmeLatencyRow& row : table.rows) {
             auto p = quick();
             p.refreshHz = refresh;
-            p.modes = {row.id};
+            p.conditions = {row.id};
             p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
             SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
@@ -309,7 +310,7 @@ TEST(ClickGame, APressIsOnScreenWhereTheReadmeLatencyTableSays) {
         for (const readme::ReadmeLatencyRow& row : table.rows) {
             auto p = quick();
             p.refreshHz = refresh;
-            p.modes = {row.id};
+            p.conditions = {row.id};
             p.rounds = {{"only", true, 1, ""}};  // no instructions screen
             if (!p.conditionTable.check(row.id, refresh).empty()) continue;  // conv120 at 60 Hz
             SCOPED_TRACE(row.id + " at " + std::to_string(static_cast<int>(refresh)) + " Hz");
@@ -350,9 +351,9 @@ TEST(ClickGame, APressIsOnScreenWhereTheReadmeLatencyTableSays) {
 // What a lag or conventional frame shows is the world of the frame it was rendered at; a
 // bireproj B-frame lies on the straight line between its two I-frames.
 TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
-    for (const auto& mode : quick().modes) {
+    for (const auto& condition : quick().conditions) {
         auto p = quick();
-        p.modes = {mode};
+        p.conditions = {condition};
         p.rounds = {{"only", true, 1, ""}};  // no instructions screen
         ClickGame game(p, 8, kDisplay);
         startFirstMatch(game);
@@ -376,20 +377,21 @@ TEST(ClickGame, DisplayedSpheresAreTheWorldAtTheDepictedInstant) {
                     const double w =
                         double(depicted - shown.sourceFrame) / double(shown.nextSourceFrame - shown.sourceFrame);
                     const glm::dvec3 expected = pa->position + (pb->position - pa->position) * w;
-                    EXPECT_LT(glm::length(glm::dvec3(o.position) - expected), 1e-5) << mode;
+                    EXPECT_LT(glm::length(glm::dvec3(o.position) - expected), 1e-5) << condition;
                     ++compared;
                 }
                 continue;
             }
             const auto& truth = world.at(depicted);
-            ASSERT_EQ(shown.scene.objects.size(), truth.size()) << mode << " frame " << shown.frame;
+            ASSERT_EQ(shown.scene.objects.size(), truth.size()) << condition << " frame " << shown.frame;
             for (std::size_t j = 0; j < truth.size(); ++j) {
                 // Positions cross to the renderer as float.
-                EXPECT_LT(glm::length(glm::dvec3(shown.scene.objects[j].position) - truth[j].position), 1e-5) << mode;
+                EXPECT_LT(glm::length(glm::dvec3(shown.scene.objects[j].position) - truth[j].position), 1e-5)
+                    << condition;
                 ++compared;
             }
         }
-        EXPECT_GT(compared, 100) << mode;
+        EXPECT_GT(compared, 100) << condition;
     }
 }
 
@@ -412,9 +414,9 @@ struct ClickTally {
     int removedAfterGreen = 0, greens = 0;
 };
 
-ClickTally aimAtTheWorld(const std::string& mode, protocol::Scoring scoring) {
+ClickTally aimAtTheWorld(const std::string& condition, protocol::Scoring scoring) {
     auto p = quick();
-    p.modes = {mode};
+    p.conditions = {condition};
     p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 20;
     p.scoring = scoring;
@@ -466,7 +468,7 @@ TEST(ClickGame, ClicksAreJudgedAgainstTheWorldAndAgainstTheFrameOnScreen) {
 // scores green and takes the sphere; the same image two frames on is a ghost.
 TEST(ClickGame, AGhostOfAClickedSphereCannotBeScoredTwice) {
     auto p = quick();
-    p.modes = {"lag200"};
+    p.conditions = {"lag200"};
     p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.scoring = protocol::Scoring::Displayed;
     p.matchS = 20;
@@ -513,7 +515,7 @@ std::vector<int> ratingValues(ClickGame& game) {
 // A one-match protocol whose match is over in half a second: its rating screen comes quickly.
 protocol::ClickProtocol oneShortMatch() {
     auto p = quick();
-    p.modes = {"conv60"};
+    p.conditions = {"conv60"};
     p.rounds = {{"only", true, 1, ""}};  // no instructions screen
     p.matchS = 0.5;
     return p;
@@ -605,7 +607,7 @@ TEST(ClickGame, TheBotReadsTheInstructionsAndPlaysOn) {
         matches += e.type == "match";
     }
     EXPECT_EQ(instructions, static_cast<int>(p.rounds.size()));
-    EXPECT_EQ(matches, 2 * static_cast<int>(p.modes.size()));
+    EXPECT_EQ(matches, 2 * static_cast<int>(p.conditions.size()));
     ClickGame replay(p, 3, kDisplay);
     std::vector<session::EventRecord> again;
     for (const auto& in : played.inputs) {
@@ -646,7 +648,7 @@ TEST(ClickGame, RatingsAreAnsweredByKeyOrByClickingABox) {
     EXPECT_EQ(how, (std::vector<std::string>{"key", "mouse"}));
 }
 
-TEST(ClickBot, RatesEachModeByItsSchedulesLatencyAsTheFormerFormulaDid) {
+TEST(ClickBot, RatesEachConditionByItsSchedulesLatencyAsTheFormerFormulaDid) {
     // The formula the bot used before it asked the schedule, the oracle: the ratings, whole
     // numbers, must not move for any preset, statement or scale on the click game's 60 Hz.
     struct Former {
@@ -667,12 +669,12 @@ TEST(ClickBot, RatesEachModeByItsSchedulesLatencyAsTheFormerFormulaDid) {
         const int values[4] = {enjoyed, 8 - enjoyed, responsive, smooth};
         return std::clamp(values[statement % 4], min, max);
     };
-    for (const char* mode : {"conv15", "conv30", "conv60", "lag50", "lag100", "lag200", "bireproj15to60"})
+    for (const char* condition : {"conv15", "conv30", "conv60", "lag50", "lag100", "lag200", "bireproj15to60"})
         for (int statement = 0; statement < 8; ++statement)
             for (const auto& [min, max] : {std::pair{1, 7}, std::pair{1, 5}, std::pair{0, 10}, std::pair{3, 4}})
-                EXPECT_EQ(botRating(condition::preset(mode), 60.0, statement, min, max),
-                          rating(former.at(mode), statement, min, max))
-                    << mode << " statement " << statement << " on " << min << ".." << max;
+                EXPECT_EQ(botRating(condition::preset(condition), 60.0, statement, min, max),
+                          rating(former.at(condition), statement, min, max))
+                    << condition << " statement " << statement << " on " << min << ".." << max;
 }
 
 }  // namespace

@@ -82,13 +82,13 @@ void expectSame(const ClickProtocol& a, const ClickProtocol& b) {
     EXPECT_EQ(a.cursorPixelsPerCount, b.cursorPixelsPerCount);
     EXPECT_EQ(a.clickTiming, b.clickTiming);
     EXPECT_EQ(a.matchS, b.matchS);
-    EXPECT_EQ(a.modes, b.modes);
+    EXPECT_EQ(a.conditions, b.conditions);
     ASSERT_EQ(a.rounds.size(), b.rounds.size());
     for (std::size_t i = 0; i < a.rounds.size(); ++i) {
         SCOPED_TRACE("round " + std::to_string(i));
         EXPECT_EQ(a.rounds[i].name, b.rounds[i].name);
         EXPECT_EQ(a.rounds[i].scored, b.rounds[i].scored);
-        EXPECT_EQ(a.rounds[i].matchesPerMode, b.rounds[i].matchesPerMode);
+        EXPECT_EQ(a.rounds[i].matchesPerCondition, b.rounds[i].matchesPerCondition);
         EXPECT_EQ(a.rounds[i].instructions, b.rounds[i].instructions);
     }
     EXPECT_EQ(a.shuffle, b.shuffle);
@@ -154,7 +154,7 @@ ClickProtocol everyFieldChanged() {
     p.cursorPixelsPerCount = 2.5;
     p.clickTiming = ClickTiming::InputReads;
     p.matchS = 30.5;
-    p.modes = {"conv120", "warp15to120"};
+    p.conditions = {"conv120", "warp15to120"};
     p.rounds = {{"warm-up", false, 3, "Two\nlines \"quoted\""}, {"a", true, 1, ""}, {"b", true, 4, "B"}};
     p.shuffle = false;
     Question likert;
@@ -195,18 +195,18 @@ TEST(ClickFiles, YangIsTheStudyAsPublished) {
     const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-yang.json");
     EXPECT_EQ(p.name, "click-yang");
     EXPECT_EQ(p.game, "click");
-    EXPECT_EQ(p.refreshHz, 60.0);  // the fastest mode is 60 fps
+    EXPECT_EQ(p.refreshHz, 60.0);  // the fastest condition is 60 fps
     EXPECT_EQ(p.matchS, 45.0);  // "Each game match lasts for 45 seconds"
     // "60, 30, and 15fps", "60fps ... 50ms, 100ms, and 200ms" of lag, bireproj "15 to 60fps".
-    EXPECT_EQ(p.modes,
+    EXPECT_EQ(p.conditions,
               (std::vector<std::string>{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"}));
-    // "21 matches, divided into two rounds": 7 unscored (one per mode), 14 scored (two per mode).
+    // "21 matches, divided into two rounds": 7 unscored (one per condition), 14 scored (two per condition).
     ASSERT_EQ(p.rounds.size(), 2u);
     EXPECT_FALSE(p.rounds[0].scored);
-    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+    EXPECT_EQ(p.rounds[0].matchesPerCondition, 1);
     EXPECT_TRUE(p.rounds[1].scored);
-    EXPECT_EQ(p.rounds[1].matchesPerMode, 2);
-    EXPECT_EQ(p.modes.size() * (p.rounds[0].matchesPerMode + p.rounds[1].matchesPerMode), 21u);
+    EXPECT_EQ(p.rounds[1].matchesPerCondition, 2);
+    EXPECT_EQ(p.conditions.size() * (p.rounds[0].matchesPerCondition + p.rounds[1].matchesPerCondition), 21u);
     EXPECT_TRUE(p.shuffle);  // "presented in random order"
     EXPECT_TRUE(p.ratingsEnabled);
     EXPECT_EQ(p.ratingStatements,
@@ -231,16 +231,16 @@ TEST(ClickFiles, QuickIsTheSameStudyInSeconds) {
     const ClickProtocol p = loadClickProtocol(protocolDir() + "/click-quick.json");
     EXPECT_EQ(p.name, "click-quick");
     EXPECT_EQ(p.refreshHz, 60.0);
-    EXPECT_EQ(p.modes, ClickProtocol{}.modes);
+    EXPECT_EQ(p.conditions, ClickProtocol{}.conditions);
     EXPECT_EQ(p.matchS, 3.0);
     ASSERT_EQ(p.rounds.size(), 2u);
     EXPECT_EQ(p.rounds[0].name, "practice");
     EXPECT_FALSE(p.rounds[0].scored);
-    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+    EXPECT_EQ(p.rounds[0].matchesPerCondition, 1);
     EXPECT_EQ(p.rounds[1].name, "scored");
     EXPECT_TRUE(p.rounds[1].scored);
-    EXPECT_EQ(p.rounds[1].matchesPerMode, 1);
-    EXPECT_EQ(p.modes.size() * 2 * p.matchS, 42.0);  // seconds of play, ratings aside
+    EXPECT_EQ(p.rounds[1].matchesPerCondition, 1);
+    EXPECT_EQ(p.conditions.size() * 2 * p.matchS, 42.0);  // seconds of play, ratings aside
 }
 
 TEST(ClickFiles, ShippedFilesAreInCanonicalForm) {
@@ -252,7 +252,7 @@ TEST(ClickFiles, ShippedFilesAreInCanonicalForm) {
 }
 
 // Every protocol that ships, whichever game, goes through the shared loader: "game" picks the
-// parser, and each parser checks every mode id the file names against the conditions it can run.
+// parser, and each parser checks every condition id the file names against the conditions it can run.
 TEST(ClickFiles, EveryShippedProtocolLoadsThroughTheSharedLoader) {
     int count = 0;
     for (const auto& entry : std::filesystem::directory_iterator(protocolDir())) {
@@ -283,12 +283,12 @@ TEST(ClickDefaults, UnsetFieldsTakeThePublishedValues) {
     for (const char* section : {"display", "physics", "input", "matches", "ratings"})
         document[section] = Json::object();
     expectSame(parse(document.dump()), expected);
-    // A round with only its name is one scored match per mode.
+    // A round with only its name is one scored match per condition.
     document["matches"]["rounds"] = Json::array({Json{{"name", "only"}}});
     const ClickProtocol p = parse(document.dump());
     ASSERT_EQ(p.rounds.size(), 1u);
     EXPECT_TRUE(p.rounds[0].scored);
-    EXPECT_EQ(p.rounds[0].matchesPerMode, 1);
+    EXPECT_EQ(p.rounds[0].matchesPerCondition, 1);
 }
 
 TEST(ClickRoundTrip, EveryFieldSurvivesBitForBit) {
@@ -338,7 +338,7 @@ TEST(ClickRoundTrip, WriterUsesTheDocumentedLayout) {
     EXPECT_EQ(document.at("matches").at("rounds").at(0),
               (Json{{"name", "warm-up"},
                     {"scored", false},
-                    {"matches_per_mode", 3},
+                    {"matches_per_condition", 3},
                     {"instructions", "Two\nlines \"quoted\""}}));
     EXPECT_EQ(document.at("matches").at("scoring"), "displayed");
     EXPECT_EQ(document.at("physics").at("gravity_m_per_s2"), 1.62);
@@ -693,9 +693,9 @@ TEST(ClickErrors, NegativeGravity) {
 }
 
 TEST(ClickErrors, ZeroMatches) {
-    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/matches_per_mode", 0)),
+    EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/matches_per_condition", 0)),
               kPrefix +
-                  "matches.rounds[1].matches_per_mode must be an integer between 1 and 100, "
+                  "matches.rounds[1].matches_per_condition must be an integer between 1 and 100, "
                   "got 0");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds", Json::array())),
               kPrefix + "matches.rounds must be a non-empty array of rounds, got array []");
@@ -709,38 +709,92 @@ TEST(ClickErrors, ZeroMatches) {
 }
 
 // The reason after the path is the condition table's own: the presets have one home.
-std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
+std::string conditionError(const std::string& where, const std::string& id, double refreshHz) {
     return kPrefix + where + " is \"" + id + "\": " + condition::ConditionTable().check(id, refreshHz);
 }
 
-TEST(ClickErrors, UnknownMode) {
-    const std::string message = messageFor(yangWith("/matches/modes/2", "conv25"));
-    EXPECT_EQ(message, modeError("matches.modes[2]", "conv25", 60));
+TEST(ClickErrors, UnknownCondition) {
+    const std::string message = messageFor(yangWith("/matches/conditions/2", "conv25"));
+    EXPECT_EQ(message, conditionError("matches.conditions[2]", "conv25", 60));
     EXPECT_NE(message.find("unknown condition 'conv25'"), std::string::npos) << message;
-    EXPECT_EQ(messageFor(yangWith("/matches/modes/0", 60)),
-              kPrefix + "matches.modes[0] must be a mode id (a string), got 60");
-    EXPECT_EQ(messageFor(yangWith("/matches/modes", Json::array())),
-              kPrefix + "matches.modes must be a non-empty array of mode ids, got array []");
+    EXPECT_EQ(messageFor(yangWith("/matches/conditions/0", 60)),
+              kPrefix + "matches.conditions[0] must be a condition id (a string), got 60");
+    EXPECT_EQ(messageFor(yangWith("/matches/conditions", Json::array())),
+              kPrefix + "matches.conditions must be a non-empty array of condition ids, got array []");
 }
 
-TEST(ClickErrors, ModeThatCannotRunAtTheRefresh) {
-    const std::string message = messageFor(yangWith("/matches/modes/3", "conv120"));
-    EXPECT_EQ(message, modeError("matches.modes[3]", "conv120", 60));
+TEST(ClickErrors, ConditionThatCannotRunAtTheRefresh) {
+    const std::string message = messageFor(yangWith("/matches/conditions/3", "conv120"));
+    EXPECT_EQ(message, conditionError("matches.conditions[3]", "conv120", 60));
     EXPECT_NE(message.find("above the refresh (60 Hz)"), std::string::npos) << message;
-    // The defaults are checked too: the published modes need a multiple of 60 Hz.
+    // The defaults are checked too: the published conditions need a multiple of 60 Hz.
     Json document = minimal();
     document["display"] = Json{{"refresh_hz", 50}};
     document["physics"] = Json{{"step_rate_hz", 1000}};
-    EXPECT_EQ(messageFor(document), modeError("matches.modes[0]", "conv60", 50));
+    EXPECT_EQ(messageFor(document), conditionError("matches.modes[0]", "conv60", 50));
     // 120 Hz runs everything the study names, and conv120 too.
     document = yangWith("/display/refresh_hz", 120);
-    document["matches"]["modes"].push_back("conv120");
-    EXPECT_EQ(parse(document.dump()).modes.size(), 8u);
+    document["matches"]["conditions"].push_back("conv120");
+    EXPECT_EQ(parse(document.dump()).conditions.size(), 8u);
 }
 
-TEST(ClickErrors, DuplicateModes) {
-    EXPECT_EQ(messageFor(yangWith("/matches/modes/3", "conv60")),
-              kPrefix + "matches.modes[3] repeats \"conv60\", already matches.modes[0]");
+// Format 7 renamed the keys that name conditions for them (matches.modes is matches.conditions);
+// older files keep their names, so that their sessions replay, and a study plan writes a
+// participant's order under the name the file has.
+TEST(ClickVersions, Format7NamesTheKeysThatNameConditions) {
+    ClickProtocol p;
+    p.name = "t";
+    p.conditions = {"conv30", "lag100"};
+    p.rounds[0].matchesPerCondition = 3;
+    p.formatVersion = 6;
+    const Json before = Json::parse(toJson(p));
+    EXPECT_EQ(before["matches"]["modes"], Json({"conv30", "lag100"}));
+    EXPECT_EQ(before["matches"]["rounds"][0]["matches_per_mode"], 3);
+    EXPECT_FALSE(before["matches"].contains("conditions"));
+    EXPECT_FALSE(before["matches"]["rounds"][0].contains("matches_per_condition"));
+    expectSame(parse(before.dump()), p);
+
+    p.formatVersion = 7;
+    const Json after = Json::parse(toJson(p));
+    EXPECT_EQ(after["matches"]["conditions"], Json({"conv30", "lag100"}));
+    EXPECT_EQ(after["matches"]["rounds"][0]["matches_per_condition"], 3);
+    EXPECT_FALSE(after["matches"].contains("modes"));
+    EXPECT_FALSE(after["matches"]["rounds"][0].contains("matches_per_mode"));
+    expectSame(parse(after.dump()), p);
+
+    // Each name in the other version's file is refused, naming what to write.
+    Json stale = after;
+    stale["matches"]["modes"] = stale["matches"]["conditions"];
+    stale["matches"].erase("conditions");
+    EXPECT_EQ(messageFor(stale),
+              kPrefix +
+                  "matches.modes was renamed conditions in format_version 7, and this file is "
+                  "format_version 7: use matches.conditions instead");
+    Json early = before;
+    early["matches"]["rounds"][0]["matches_per_condition"] = 3;
+    early["matches"]["rounds"][0].erase("matches_per_mode");
+    EXPECT_EQ(messageFor(early),
+              kPrefix +
+                  "matches.rounds[0].matches_per_condition is new in format_version 7, but "
+                  "this file is format_version 6");
+    // A message about an older file's list names the file's key.
+    early = before;
+    early["matches"]["modes"][1] = "conv120";
+    EXPECT_EQ(messageFor(early), conditionError("matches.modes[1]", "conv120", 60));
+
+    // A participant's condition order goes where the file keeps its list.
+    for (const Json& file : {before, after}) {
+        const std::string key = file["format_version"] == 6 ? "modes" : "conditions";
+        const auto study = game::parseStudy(file.dump(), kSource);
+        const Json ordered = Json::parse(study->withConditionOrder(file.dump(), {"lag100", "conv30"}));
+        EXPECT_EQ(ordered["matches"][key], Json({"lag100", "conv30"})) << key;
+        EXPECT_EQ(parse(ordered.dump()).conditions, (std::vector<std::string>{"lag100", "conv30"})) << key;
+    }
+}
+
+TEST(ClickErrors, DuplicateConditions) {
+    EXPECT_EQ(messageFor(yangWith("/matches/conditions/3", "conv60")),
+              kPrefix + "matches.conditions[3] repeats \"conv60\", already matches.conditions[0]");
 }
 
 // A format 3 file's ratings section, as its sessions were recorded with.
@@ -851,12 +905,12 @@ TEST(ClickErrors, AFileOfTheOtherGameUnderThisNameBlamesTheGameField) {
     // A click file newer than this build is still just that, with or without fields of its own:
     // a bare header is any game's, and a newer click file's sections are no shooter's.
     for (const Json& newer :
-         {Json{{"format_version", 7}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 7)}) {
+         {Json{{"format_version", 8}, {"name", "t"}, {"game", "click"}}, yangWith("/format_version", 8)}) {
         try {
             game::parseStudy(newer.dump(), kSource);
             ADD_FAILURE() << "expected a ProtocolError";
         } catch (const ProtocolError& e) {
-            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 7 is newer than this warplab supports (6)");
+            EXPECT_EQ(std::string(e.what()), kPrefix + "format_version 8 is newer than this warplab supports (7)");
         }
     }
 }
@@ -869,7 +923,7 @@ TEST(ClickErrors, RoundsAreChecked) {
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/0/matches", 1)),
               kPrefix +
                   "matches.rounds[0].matches is not a known field (matches.rounds[0] may "
-                  "have name, scored, matches_per_mode, instructions)");
+                  "have name, scored, matches_per_condition, instructions)");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/name", "practice")),
               kPrefix + "matches.rounds[1].name repeats \"practice\", already matches.rounds[0].name");
     EXPECT_EQ(messageFor(yangWith("/matches/rounds/1/scored", "yes")),
@@ -907,7 +961,7 @@ TEST(ClickErrors, OutOfRangeValuesNameTheRange) {
         {"/physics/gravity", 9.81,
          "physics.gravity is not a known field (physics may have gravity_m_per_s2, sphere_radius_m, "
          "restitution, step_rate_hz, sphere_count, green_share, spawn_delay_s, spawn_speed_m_per_s)"},
-        {"/format_version", 7, "format_version 7 is newer than this warplab supports (6)"},
+        {"/format_version", 8, "format_version 8 is newer than this warplab supports (7)"},
     };
     for (const Case& c : cases) {
         SCOPED_TRACE(c.pointer);

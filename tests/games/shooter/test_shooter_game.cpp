@@ -1,5 +1,5 @@
 // The shooter study as a pure function of protocol, seed and input: a bot plays the quick
-// protocol to the end, replays reproduce it, and every mode's measured latency -- a mouse step
+// protocol to the end, replays reproduce it, and every condition's measured latency -- a mouse step
 // and a bounce of the target, found in the displayed frames -- is what its schedule says.
 #include <cmath>
 #include <cstdio>
@@ -211,10 +211,10 @@ TEST(ShooterGame, TestConditionsComeInTheProtocolsNumbers) {
     auto p = quick();
     p.targetsPerCondition = 6;
     const Played played = playWithBot(p, 21, 1);
-    std::map<std::string, int> perMode;
+    std::map<std::string, int> perCondition;
     for (const auto& e : played.events)
-        if (e.phase == "test" && (e.type == "shot" || e.type == "timeout")) ++perMode[e.mode];
-    for (const auto& c : p.conditions) EXPECT_EQ(perMode[c], 6) << c;
+        if (e.phase == "test" && (e.type == "shot" || e.type == "timeout")) ++perCondition[e.condition];
+    for (const auto& c : p.conditions) EXPECT_EQ(perCondition[c], 6) << c;
 }
 
 // Conditions a lab composes, beside the presets: Kim et al.'s late warps (from the shipped
@@ -262,8 +262,8 @@ std::vector<condition::Condition> composedConditions() {
     return list;
 }
 
-// The schedule a game runs a mode on from session frame `start`: jittered and hitching
-// cadences are drawn from the game's seed (5 in ModeRig) and where the schedule starts.
+// The schedule a game runs a condition on from session frame `start`: jittered and hitching
+// cadences are drawn from the game's seed (5 in ConditionRig) and where the schedule starts.
 condition::ConditionSchedule gameSchedule(const condition::Condition& c, double refreshHz, const ShownFrame& shown) {
     return condition::ConditionSchedule(c, refreshHz, pacingSeed(5, shown.frame - shown.schedule.index));
 }
@@ -275,18 +275,18 @@ std::vector<std::string> measuredConditions() {
     return names;
 }
 
-// A game whose test phase shows one mode, reached without clicking (training times out).
-struct ModeRig {
+// A game whose test phase shows one condition, reached without clicking (training times out).
+struct ConditionRig {
     protocol::ShooterProtocol p;
     std::unique_ptr<ShooterGame> game;
     ShownFrame last;
-    explicit ModeRig(const std::string& mode) {
+    explicit ConditionRig(const std::string& condition) {
         p = quick();
         p.conditionTable = condition::ConditionTable(composedConditions());
         p.acclimationS = 0.0;
         p.supervisorStartsTest = false;
         p.training.timeLimitS = 0.001;  // the first training trial is the only one
-        p.conditions = {mode};
+        p.conditions = {condition};
         p.targetsPerCondition = 2;
         p.timeoutS = 2.5;
         game = std::make_unique<ShooterGame>(p, 5, DisplaySize{});
@@ -296,48 +296,49 @@ struct ModeRig {
     }
 };
 
-TEST(ShooterGame, MouseStepShowsWithEachModesViewLatency) {
-    for (const auto& mode : measuredConditions()) {
+TEST(ShooterGame, MouseStepShowsWithEachConditionsViewLatency) {
+    for (const auto& condition : measuredConditions()) {
         for (int phase = 0; phase < 8; ++phase) {
-            ModeRig rig(mode);
+            ConditionRig rig(condition);
             for (int i = 0; i < 16 + phase; ++i) rig.last = rig.game->step({});
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});  // the step, read at this frame
             const double stepTime = stepFrame.time;
             const condition::ConditionSchedule schedule =
-                gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, stepFrame);
+                gameSchedule(rig.p.conditionTable.at(condition), rig.p.refreshHz, stepFrame);
             const double local = stepFrame.schedule.displayTime;
             ShownFrame f = stepFrame;
             while (f.camera.yaw == before) f = rig.game->step({});
-            EXPECT_NEAR(f.time - stepTime, schedule.viewLatency(local), 1e-9) << mode << " phase " << phase;
+            EXPECT_NEAR(f.time - stepTime, schedule.viewLatency(local), 1e-9) << condition << " phase " << phase;
         }
     }
 }
 
 // A frame shows the input its inputFrame names (what a photodiode marker lights on): a mouse
 // step at frame v first turns the view on the first frame whose inputFrame reaches v, in every
-// mode. The freeze frame after a shot answers at once, whatever the mode's lag: the banner is
+// condition. The freeze frame after a shot answers at once, whatever the condition's lag: the banner is
 // the game's own response, so its inputFrame is its own frame.
 TEST(ShooterGame, InputFrameIsTheInputTheViewShows) {
-    for (const auto& mode : measuredConditions()) {
+    for (const auto& condition : measuredConditions()) {
         for (int phase = 0; phase < 8; ++phase) {
-            ModeRig rig(mode);
+            ConditionRig rig(condition);
             for (int i = 0; i < 16 + phase; ++i) rig.last = rig.game->step({});
             const double before = rig.last.camera.yaw;
             const ShownFrame stepFrame = rig.game->step({100.0, 0.0, 0, 0});
             ShownFrame f = stepFrame;
             for (int i = 0; i < 100 && f.inputFrame < stepFrame.frame; ++i) {
-                EXPECT_EQ(f.camera.yaw, before) << mode << ": frame " << f.frame << " shows the step before it says so";
+                EXPECT_EQ(f.camera.yaw, before)
+                    << condition << ": frame " << f.frame << " shows the step before it says so";
                 f = rig.game->step({});
             }
-            EXPECT_NE(f.camera.yaw, before) << mode << ": frame " << f.frame << " says it shows the step";
+            EXPECT_NE(f.camera.yaw, before) << condition << ": frame " << f.frame << " says it shows the step";
         }
-        ModeRig rig(mode);
+        ConditionRig rig(condition);
         const ShownFrame shot = rig.game->step({0.0, 0.0, kButtonLeft, 0});
-        EXPECT_LE(shot.inputFrame, shot.frame) << mode;
+        EXPECT_LE(shot.inputFrame, shot.frame) << condition;
         const ShownFrame frozen = rig.game->step({0.0, 0.0, kButtonLeft, 0});
-        ASSERT_TRUE(frozen.frozen) << mode;
-        EXPECT_EQ(frozen.inputFrame, frozen.frame) << mode;
+        ASSERT_TRUE(frozen.frozen) << condition;
+        EXPECT_EQ(frozen.inputFrame, frozen.frame) << condition;
     }
 }
 
@@ -345,9 +346,9 @@ TEST(ShooterGame, InputFrameIsTheInputTheViewShows) {
 // the display instant; the target where the queued render had it (rotation) or moved on by its
 // velocity to the display instant (depth), never where it truly is now.
 TEST(ShooterGame, LateWarpShowsTheWorldOfItsRenderThroughTheCameraOfNow) {
-    for (const std::string mode : {"lag60x5", "lag60x5-rotation", "lag60x5-depth"}) {
-        SCOPED_TRACE(mode);
-        ModeRig rig(mode);
+    for (const std::string condition : {"lag60x5", "lag60x5-rotation", "lag60x5-depth"}) {
+        SCOPED_TRACE(condition);
+        ConditionRig rig(condition);
         for (int i = 0; i < 30; ++i) rig.last = rig.game->step({i % 3 == 0 ? 40.0 : 0.0, 0.0, 0, 0});
         int checked = 0;
         for (int i = 0; i < 40; ++i) {
@@ -364,9 +365,9 @@ TEST(ShooterGame, LateWarpShowsTheWorldOfItsRenderThroughTheCameraOfNow) {
             const glm::dvec2 velocity = physics::velocityAt(plane, trial->motion, sourceTime - trial->spawnTime);
             const glm::dvec2 shown(f.scene.objects.front().position);
             const glm::dvec2 expected =
-                mode == "lag60x5-depth" ? atSource + velocity * (f.time - sourceTime) : atSource;
+                condition == "lag60x5-depth" ? atSource + velocity * (f.time - sourceTime) : atSource;
             EXPECT_LT(glm::length(shown - expected), 1e-4) << "frame " << f.frame;
-            if (mode != "lag60x5") {
+            if (condition != "lag60x5") {
                 EXPECT_NE(f.camera.yaw, yawBefore) << "the late warp did not turn to the mouse of now";
                 EXPECT_EQ(f.schedule.kind, condition::FrameKind::Warped);
             }
@@ -377,12 +378,12 @@ TEST(ShooterGame, LateWarpShowsTheWorldOfItsRenderThroughTheCameraOfNow) {
 }
 
 // A bounce is a step in the target's motion. It shows in the first displayed frame whose
-// target leaves the straight line the target was on; that must come when the mode's schedule
+// target leaves the straight line the target was on; that must come when the condition's schedule
 // says (conventional: the next render; warp: the next source, since warped frames extrapolate
 // the old velocity; bidirectional: the first B-frame interpolating towards a later I-frame).
-TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
-    for (const auto& mode : measuredConditions()) {
-        ModeRig rig(mode);
+TEST(ShooterGame, TargetBounceShowsWithEachConditionsSceneLatency) {
+    for (const auto& condition : measuredConditions()) {
+        ConditionRig rig(condition);
         bool measured = false;
         for (int attempt = 0; attempt < 8 && !measured; ++attempt) {
             while (rig.last.frozen || rig.last.scene.objects.empty()) rig.last = rig.game->step({});
@@ -398,27 +399,27 @@ TEST(ShooterGame, TargetBounceShowsWithEachModesSceneLatency) {
             const std::int64_t scheduleStart = rig.last.frame - rig.last.schedule.index;
             const double localBounce = bounce - static_cast<double>(scheduleStart) / rig.p.refreshHz;
             const condition::ConditionSchedule schedule =
-                gameSchedule(rig.p.conditionTable.at(mode), rig.p.refreshHz, rig.last);
+                gameSchedule(rig.p.conditionTable.at(condition), rig.p.refreshHz, rig.last);
             if (bounce + schedule.sceneLatency(localBounce) > trial->spawnTime + rig.p.timeoutS - 0.05) {
                 while (!rig.last.frozen) rig.last = rig.game->step({});  // too late in this trial: next one
                 continue;
             }
             for (int i = 0; i < 2000; ++i) {
                 rig.last = rig.game->step({});
-                ASSERT_FALSE(rig.last.frozen) << mode;
+                ASSERT_FALSE(rig.last.frozen) << condition;
                 if (rig.last.scene.objects.empty()) continue;
                 const glm::dvec2 straight = p0 + v0 * (rig.last.scene.time - now);
                 const glm::dvec3 shown(rig.last.scene.objects.front().position);
                 // Positions cross to the renderer as float: 1e-4 m is well above their rounding
                 // and far below a bounce's deviation one frame after it (2 |v| / 120 s).
                 if (glm::length(glm::dvec2(shown) - straight) > 1e-4 && rig.last.scene.time > now) {
-                    EXPECT_NEAR(rig.last.time - bounce, schedule.sceneLatency(localBounce), 1e-9) << mode;
+                    EXPECT_NEAR(rig.last.time - bounce, schedule.sceneLatency(localBounce), 1e-9) << condition;
                     measured = true;
                     break;
                 }
             }
         }
-        EXPECT_TRUE(measured) << mode << ": no bounce early enough in 8 trials";
+        EXPECT_TRUE(measured) << condition << ": no bounce early enough in 8 trials";
     }
 }
 

@@ -27,7 +27,7 @@ const std::string kSource = "p.json";
 
 std::string shippedPath(const std::string& name) { return std::string(WARPLAB_SOURCE_DIR) + "/protocol/" + name; }
 
-// Parsing as the app does: mode ids name presets or the file's own conditions.
+// Parsing as the app does: condition ids name presets or the file's own conditions.
 ShooterProtocol parse(const std::string& text, const std::string& source = kSource) {
     return parseShooterProtocol(text, source);
 }
@@ -35,6 +35,16 @@ ShooterProtocol load(const std::string& path) { return loadShooterProtocol(path)
 
 // The smallest valid file: only the required fields.
 Json minimal() { return Json{{"format_version", 2}, {"name", "t"}, {"game", "shooter"}}; }
+
+// The keys format 9 renamed: section, name, name before.
+struct RenamedKey {
+    const char* section;
+    const char* now;
+    const char* before;
+};
+const RenamedKey kRenamedKeys[] = {{"acclimation", "condition", "mode"},
+                                   {"training", "high_condition", "high_mode"},
+                                   {"training", "low_condition", "low_mode"}};
 
 // The full canonical thesis document with one value replaced (pointer like "/test/timeout_s").
 Json thesisWith(const std::string& pointer, const Json& value) {
@@ -50,6 +60,13 @@ Json thesisWith(const std::string& pointer, const Json& value) {
         document["test"].erase("questions");
     if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterPhotonMarkerSince)
         document["display"].erase("photon_marker"), document["display"].erase("max_late_share");
+    // ... and with the older names of the keys that name a condition.
+    if (pointer == "/format_version" && value.is_number_integer() && value.get<int>() < kShooterConditionKeysSince)
+        for (const auto& [section, now, before] : kRenamedKeys) {
+            Json renamed = Json::object();  // in place, as the canonical text has it
+            for (const auto& [key, v] : document[section].items()) renamed[key == now ? before : key] = v;
+            document[section] = renamed;
+        }
     return document;
 }
 
@@ -89,7 +106,7 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.mouseRadiansPerCount, b.mouseRadiansPerCount);
     EXPECT_EQ(a.acclimationS, b.acclimationS);
     EXPECT_EQ(a.acclimationLevel, b.acclimationLevel);
-    EXPECT_EQ(a.acclimationMode, b.acclimationMode);
+    EXPECT_EQ(a.acclimationCondition, b.acclimationCondition);
     EXPECT_EQ(a.acclimationInstructions, b.acclimationInstructions);
     EXPECT_EQ(a.trainingInstructions, b.trainingInstructions);
     EXPECT_EQ(a.testInstructions, b.testInstructions);
@@ -98,8 +115,8 @@ void expectSame(const ShooterProtocol& a, const ShooterProtocol& b) {
     EXPECT_EQ(a.training.maxLevel, b.training.maxLevel);
     EXPECT_EQ(a.training.shotsPerLevelEasy, b.training.shotsPerLevelEasy);
     EXPECT_EQ(a.training.shotsPerLevelHard, b.training.shotsPerLevelHard);
-    EXPECT_EQ(a.training.highMode, b.training.highMode);
-    EXPECT_EQ(a.training.lowMode, b.training.lowMode);
+    EXPECT_EQ(a.training.highCondition, b.training.highCondition);
+    EXPECT_EQ(a.training.lowCondition, b.training.lowCondition);
     EXPECT_EQ(a.training.timeLimitS, b.training.timeLimitS);
     EXPECT_EQ(a.conditions, b.conditions);
     EXPECT_EQ(a.targetsPerCondition, b.targetsPerCondition);
@@ -134,7 +151,7 @@ ShooterProtocol everyFieldChanged() {
     p.mouseRadiansPerCount = std::nextafter(0.0022, 1.0);
     p.acclimationS = 12.5;
     p.acclimationLevel = 3;
-    p.acclimationMode = "conv60";
+    p.acclimationCondition = "conv60";
     p.acclimationInstructions = "Two\nlines";
     p.trainingInstructions = "";
     p.testInstructions = "T \"quoted\"";
@@ -143,8 +160,8 @@ ShooterProtocol everyFieldChanged() {
     p.training.maxLevel = 40;
     p.training.shotsPerLevelEasy = 3;
     p.training.shotsPerLevelHard = 9;
-    p.training.highMode = "conv60";
-    p.training.lowMode = "conv30";
+    p.training.highCondition = "conv60";
+    p.training.lowCondition = "conv30";
     p.training.timeLimitS = 1e-3;
     p.conditions = {"bireproj15to60", "lag200", "conv30", "warp15to120"};
     p.targetsPerCondition = 17;
@@ -184,8 +201,8 @@ TEST(ProtocolFiles, ThesisIsTheStudyAsPublished) {
     EXPECT_EQ(p.acclimationS, 300.0);  // 5.3.4: 5 minutes
     EXPECT_EQ(p.acclimationLevel, 0);  // "with the easiest difficulty"
     EXPECT_EQ(p.training.timeLimitS, 720.0);  // 5.3.4: 12 minutes
-    EXPECT_EQ(p.training.highMode, "conv120");  // 5.3.3: stop when 120 Hz misses...
-    EXPECT_EQ(p.training.lowMode, "conv15");  // ... exceed 15 Hz hits
+    EXPECT_EQ(p.training.highCondition, "conv120");  // 5.3.3: stop when 120 Hz misses...
+    EXPECT_EQ(p.training.lowCondition, "conv15");  // ... exceed 15 Hz hits
     EXPECT_LT(p.training.shotsPerLevelEasy, p.training.shotsPerLevelHard);
     EXPECT_EQ(p.conditions, (std::vector<std::string>{"conv15", "conv120", "warp15to120"}));
     EXPECT_EQ(p.targetsPerCondition, 225);  // 5.3.4: 675 targets in all
@@ -306,12 +323,12 @@ TEST(ProtocolErrors, RequiredFieldsAreNamed) {
 
 TEST(ProtocolErrors, NewerFormatVersionNamesBothVersions) {
     Json document = minimal();
-    document["format_version"] = 9;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 9 is newer than this warplab supports (8)");
+    document["format_version"] = 10;
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 10 is newer than this warplab supports (9)");
     // A newer file may have fields this build does not know; the version is the real reason.
     document["test"] = Json{{"new_thing", 1}};
     document["shiny"] = true;
-    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 9 is newer than this warplab supports (8)");
+    EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version 10 is newer than this warplab supports (9)");
     document = minimal();
     document["format_version"] = 0;
     EXPECT_EQ(errorOf(document), "protocol 'p.json': format_version must be at least 1, got 0");
@@ -362,10 +379,10 @@ TEST(ProtocolErrors, WrongTypesAreNamed) {
     EXPECT_EQ(errorOf(thesisWith("/description", 5)), "protocol 'p.json': description must be a string, got 5");
     EXPECT_EQ(errorOf(thesisWith("/display", 120)), "protocol 'p.json': display must be an object, got 120");
     EXPECT_EQ(errorOf(thesisWith("/test/conditions", "conv15")),
-              "protocol 'p.json': test.conditions must be a non-empty array of mode ids, got "
+              "protocol 'p.json': test.conditions must be a non-empty array of condition ids, got "
               "string \"conv15\"");
     EXPECT_EQ(errorOf(thesisWith("/test/conditions", Json::array())),
-              "protocol 'p.json': test.conditions must be a non-empty array of mode ids, got "
+              "protocol 'p.json': test.conditions must be a non-empty array of condition ids, got "
               "array []");
     EXPECT_EQ(errorOf(thesisWith("/training/start_level", true)),
               "protocol 'p.json': training.start_level must be an integer between 0 and 120, got "
@@ -527,9 +544,9 @@ TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
     EXPECT_EQ(errorOf(document),
               "protocol 'p.json': training.shots_per_level_hard must be at least "
               "training.shots_per_level_easy (4), got 3");
-    document = thesisWith("/training/low_mode", "conv120");
+    document = thesisWith("/training/low_condition", "conv120");
     EXPECT_EQ(errorOf(document),
-              "protocol 'p.json': training.low_mode must differ from training.high_mode, both are "
+              "protocol 'p.json': training.low_condition must differ from training.high_condition, both are "
               "\"conv120\"");
     // Equal is fine: a fixed-difficulty "staircase" and fixed shots per level.
     document = thesisWith("/training/start_level", 60);
@@ -538,22 +555,24 @@ TEST(ProtocolErrors, LevelsAndShotsMustBeOrdered) {
 }
 
 // The reason after the path is the condition table's own: the presets have one home.
-std::string modeError(const std::string& where, const std::string& id, double refreshHz) {
+std::string conditionError(const std::string& where, const std::string& id, double refreshHz) {
     return "protocol 'p.json': " + where + " is \"" + id + "\": " + condition::ConditionTable().check(id, refreshHz);
 }
 
-TEST(ProtocolErrors, UnknownModesListTheKnownOnes) {
+TEST(ProtocolErrors, UnknownConditionsListTheKnownOnes) {
     const std::string message = errorOf(thesisWith("/test/conditions/1", "conv25"));
-    EXPECT_EQ(message, modeError("test.conditions[1]", "conv25", 120));
+    EXPECT_EQ(message, conditionError("test.conditions[1]", "conv25", 120));
     expectContains(message, {"test.conditions[1] is \"conv25\": unknown condition 'conv25'"});
     for (const std::string& id : condition::presetNames()) expectContains(message, {id});
-    EXPECT_EQ(errorOf(thesisWith("/acclimation/mode", "CONV120")), modeError("acclimation.mode", "CONV120", 120));
-    EXPECT_EQ(errorOf(thesisWith("/training/high_mode", "warp")), modeError("training.high_mode", "warp", 120));
-    // Not a string at all: a type error, before any mode is looked up.
-    EXPECT_EQ(errorOf(thesisWith("/training/low_mode", 15)),
-              "protocol 'p.json': training.low_mode must be a mode id (a string), got 15");
+    EXPECT_EQ(errorOf(thesisWith("/acclimation/condition", "CONV120")),
+              conditionError("acclimation.condition", "CONV120", 120));
+    EXPECT_EQ(errorOf(thesisWith("/training/high_condition", "warp")),
+              conditionError("training.high_condition", "warp", 120));
+    // Not a string at all: a type error, before any condition is looked up.
+    EXPECT_EQ(errorOf(thesisWith("/training/low_condition", 15)),
+              "protocol 'p.json': training.low_condition must be a condition id (a string), got 15");
     EXPECT_EQ(errorOf(thesisWith("/test/conditions/0", Json::array({"conv15"}))),
-              "protocol 'p.json': test.conditions[0] must be a mode id (a string), got array "
+              "protocol 'p.json': test.conditions[0] must be a condition id (a string), got array "
               "[\"conv15\"]");
 }
 
@@ -572,53 +591,53 @@ TEST(ProtocolErrors, ScoringIsDisplayedOrWorld) {
     EXPECT_EQ(parse(thesisWith("/test/scoring", "world").dump()).scoring, Scoring::World);
 }
 
-TEST(ProtocolErrors, ModesMustFitTheRefreshRate) {
-    // The thesis defaults at 100 Hz: the first mode read, acclimation's, is the culprit.
-    EXPECT_EQ(errorOf(thesisWith("/display/refresh_hz", 100)), modeError("acclimation.mode", "conv120", 100));
+TEST(ProtocolErrors, ConditionsMustFitTheRefreshRate) {
+    // The thesis defaults at 100 Hz: the first condition read, acclimation's, is the culprit.
+    EXPECT_EQ(errorOf(thesisWith("/display/refresh_hz", 100)), conditionError("acclimation.condition", "conv120", 100));
     expectContains(errorOf(thesisWith("/display/refresh_hz", 100)),
-                   {"acclimation.mode is \"conv120\"", "above the refresh (100 Hz)"});
-    // Defaults are checked too, not just the modes a file spells out.
+                   {"acclimation.condition is \"conv120\"", "above the refresh (100 Hz)"});
+    // Defaults are checked too, not just the conditions a file spells out.
     Json document = minimal();
     document["display"] = Json{{"refresh_hz", 60}};
-    EXPECT_EQ(errorOf(document), modeError("acclimation.mode", "conv120", 60));
+    EXPECT_EQ(errorOf(document), conditionError("acclimation.mode", "conv120", 60));
 
     document = thesisWith("/display/refresh_hz", 100);
-    // 60 on 100 Hz runs, unevenly (renders 1 or 2 refreshes apart): the next mode read is the culprit.
-    document["acclimation"]["mode"] = "conv60";
-    expectContains(errorOf(document), {"training.high_mode is \"conv120\"", "above the refresh (100 Hz)"});
+    // 60 on 100 Hz runs, unevenly (renders 1 or 2 refreshes apart): the next condition read is the culprit.
+    document["acclimation"]["condition"] = "conv60";
+    expectContains(errorOf(document), {"training.high_condition is \"conv120\"", "above the refresh (100 Hz)"});
 
-    // 60 Hz: conv15/30/60, the lag modes and bireproj fit; 120 Hz and warp do not.
+    // 60 Hz: conv15/30/60, the lag conditions and bireproj fit; 120 Hz and warp do not.
     document = thesisWith("/display/refresh_hz", 60);
-    document["acclimation"]["mode"] = "conv60";
-    document["training"]["high_mode"] = "conv60";
+    document["acclimation"]["condition"] = "conv60";
+    document["training"]["high_condition"] = "conv60";
     document["test"]["conditions"] = {"conv15", "conv30", "conv60",         "lag50",
                                       "lag100", "lag200", "bireproj15to60", "warp15to120"};
-    EXPECT_EQ(errorOf(document), modeError("test.conditions[7]", "warp15to120", 60));
+    EXPECT_EQ(errorOf(document), conditionError("test.conditions[7]", "warp15to120", 60));
     document["test"]["conditions"].erase(7);
     EXPECT_NO_THROW(parse(document.dump()));
 
-    // 90 Hz: the lag modes' 60 Hz renders run unevenly and 100 ms is 9 whole frames; a fill at
+    // 90 Hz: the lag conditions' 60 Hz renders run unevenly and 100 ms is 9 whole frames; a fill at
     // 60 Hz makes its frames 1 or 2 refreshes apart; but 50 ms is not whole frames.
     document = thesisWith("/display/refresh_hz", 90);
-    document["acclimation"]["mode"] = "conv30";
-    document["training"]["high_mode"] = "conv30";
+    document["acclimation"]["condition"] = "conv30";
+    document["training"]["high_condition"] = "conv30";
     document["test"]["conditions"] = {"conv15", "lag100", "bireproj15to60"};
     EXPECT_NO_THROW(parse(document.dump()));
     document["test"]["conditions"] = {"lag50"};
     expectContains(errorOf(document), {"test.conditions[0] is \"lag50\"", "4.5 frames at 90 Hz"});
 
-    // The training pair is checked like any other mode.
+    // The training pair is checked like any other condition.
     document = thesisWith("/display/refresh_hz", 45);
-    document["acclimation"]["mode"] = "conv15";
-    document["training"]["high_mode"] = "conv15";
-    document["training"]["low_mode"] = "conv30";
+    document["acclimation"]["condition"] = "conv15";
+    document["training"]["high_condition"] = "conv15";
+    document["training"]["low_condition"] = "conv30";
     document["test"]["conditions"] = {"conv15"};
     EXPECT_NO_THROW(parse(document.dump()));  // 30 on 45 Hz: renders 1 or 2 refreshes apart
-    document["training"]["low_mode"] = "conv60";
-    EXPECT_EQ(errorOf(document), modeError("training.low_mode", "conv60", 45));
+    document["training"]["low_condition"] = "conv60";
+    EXPECT_EQ(errorOf(document), conditionError("training.low_condition", "conv60", 45));
 
     // A non-integral refresh fits nothing, 240 Hz fits everything.
-    expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"acclimation.mode is \"conv120\""});
+    expectContains(errorOf(thesisWith("/display/refresh_hz", 119.88)), {"acclimation.condition is \"conv120\""});
     document = thesisWith("/display/refresh_hz", 240);
     document["test"]["conditions"] = condition::presetNames();
     EXPECT_EQ(parse(document.dump()).conditions, condition::presetNames());
@@ -637,13 +656,63 @@ Json thesisVersion1() {
     return document;
 }
 
-TEST(ProtocolVersions, NewStructsAreVersion8WithNewRules) {
+TEST(ProtocolVersions, NewStructsAreVersion9WithNewRules) {
     const ShooterProtocol p;
     EXPECT_EQ(p.formatVersion, kShooterFormatVersion);
-    EXPECT_EQ(kShooterFormatVersion, 8);
+    EXPECT_EQ(kShooterFormatVersion, 9);
     EXPECT_FALSE(p.legacyRules);
     EXPECT_EQ(p.clickTiming, ClickTiming::Display);
     EXPECT_FALSE(parse(minimal().dump()).legacyRules);
+}
+
+// Format 9 renamed the keys that name a condition for it (acclimation.mode is
+// acclimation.condition); older files keep their names, so that their sessions replay.
+TEST(ProtocolVersions, Format9NamesTheKeysThatNameACondition) {
+    Json before = thesisWith("/format_version", 8);
+    before["acclimation"]["mode"] = "conv60";
+    before["training"]["high_mode"] = "conv60";
+    before["training"]["low_mode"] = "conv30";
+    const ShooterProtocol old = parse(before.dump());
+    EXPECT_EQ(old.acclimationCondition, "conv60");
+    EXPECT_EQ(old.training.highCondition, "conv60");
+    EXPECT_EQ(old.training.lowCondition, "conv30");
+    // Written back under the names of its version, and read back the same.
+    const Json written = Json::parse(toJson(old));
+    EXPECT_EQ(written["acclimation"]["mode"], "conv60");
+    EXPECT_EQ(written["training"]["low_mode"], "conv30");
+    for (const auto& [section, now, name] : kRenamedKeys) EXPECT_FALSE(written[section].contains(now)) << now;
+    EXPECT_EQ(toJson(parse(toJson(old))), toJson(old));
+
+    // The same protocol in format 9 under the new names.
+    Json after = thesisWith("/acclimation/condition", "conv60");
+    after["training"]["high_condition"] = "conv60";
+    after["training"]["low_condition"] = "conv30";
+    const ShooterProtocol now = parse(after.dump());
+    EXPECT_EQ(now.acclimationCondition, "conv60");
+    EXPECT_EQ(now.training.highCondition, "conv60");
+    EXPECT_EQ(now.training.lowCondition, "conv30");
+    for (const auto& [section, name, before] : kRenamedKeys)
+        EXPECT_FALSE(Json::parse(toJson(now))[section].contains(before)) << before;
+
+    // A format 9 file that keeps an old name is refused naming the new one; an older file may
+    // not use a new name.
+    Json stale = after;
+    stale["training"]["low_mode"] = "conv30";
+    stale["training"].erase("low_condition");
+    EXPECT_EQ(errorOf(stale),
+              "protocol 'p.json': training.low_mode was renamed low_condition in format_version 9, "
+              "and this file is format_version 9: use training.low_condition instead");
+    Json early = before;
+    early["acclimation"]["condition"] = "conv60";
+    early["acclimation"].erase("mode");
+    EXPECT_EQ(errorOf(early),
+              "protocol 'p.json': acclimation.condition is new in format_version 9, but this file is format_version 8");
+
+    // A message about an older file's value names the key the file has.
+    before["training"]["low_mode"] = "conv60";
+    EXPECT_EQ(errorOf(before),
+              "protocol 'p.json': training.low_mode must differ from training.high_mode, both are "
+              "\"conv60\"");
 }
 
 TEST(ProtocolInstructions, EachPhaseOpensWithTheTaskInPlainWordsFromFormat4) {
@@ -801,7 +870,7 @@ TEST(ProtocolVersions, RefreshMismatchIsRefuseOrWarn) {
     expectContains(errorOf(thesisWith("/display/refresh_mismatch", "ignore")), {"display.refresh_mismatch"});
 }
 
-// How frames are rendered: a guard band for warp modes' sources and supersampling.
+// How frames are rendered: a guard band for warp conditions' sources and supersampling.
 TEST(ProtocolRendering, GuardBandAndSupersamplingAreReadAndBounded) {
     EXPECT_EQ(ShooterProtocol{}.rendering.guardBand, 0.1);
     EXPECT_EQ(ShooterProtocol{}.rendering.supersampling, 1);

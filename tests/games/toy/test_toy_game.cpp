@@ -13,6 +13,7 @@
 
 #include "export/documented_columns.h"
 #include "export/export.h"
+#include "export/export_test_support.h"
 #include "runner/session_runner.h"
 #include "game/registry.h"
 #include "session/records.h"
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 
 // The toy's one registration line, after the built-in games (as a lab's own task would add it).
 class RegisterTheToy : public ::testing::Environment {
-    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::tables); }
+    void SetUp() override { game::registerGame(toy::kGameName, toy::parseStudy, toy::exports()); }
 };
 [[maybe_unused]] const auto* const registered = ::testing::AddGlobalTestEnvironment(new RegisterTheToy);
 
@@ -40,12 +41,12 @@ std::string readAll(const fs::path& path) {
 class ToyGame : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
-    const std::string mode = GetParam();
-    const fs::path dir = fs::path(testing::TempDir()) / ("warplab-toy-" + mode);
+    const std::string condition = GetParam();
+    const fs::path dir = fs::path(testing::TempDir()) / ("warplab-toy-" + condition);
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
     const fs::path protocolPath = dir / "toy.json";
-    std::ofstream(protocolPath) << toy::toyProtocol(mode);
+    std::ofstream(protocolPath) << toy::toyProtocol(condition);
 
     runner::HeadlessRun run;
     run.protocolPath = protocolPath.string();
@@ -87,9 +88,9 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
     EXPECT_TRUE(summary.sessions[0].included) << summary.sessions[0].why;
     const std::string shots = readAll(dir / "csv" / "shots.csv");
     EXPECT_NE(shots.find(",toy,"), std::string::npos) << shots;
-    EXPECT_NE(shots.find(mode), std::string::npos) << shots;
+    EXPECT_NE(shots.find(condition), std::string::npos) << shots;
     const std::string rates = readAll(dir / "csv" / "hitrates.csv");
-    EXPECT_NE(rates.find("toy-bot,toy," + mode + ","), std::string::npos) << rates;
+    EXPECT_NE(rates.find("toy-bot,toy," + condition + ","), std::string::npos) << rates;
     // What its hit rate counts, in its own words, for the report.
     const std::string games = readAll(dir / "csv" / "games.csv");
     EXPECT_EQ(games, "game,hits_are,shots_are,tables\ntoy,toy hits,clicks,toy_clicks.csv\n");
@@ -100,10 +101,27 @@ TEST_P(ToyGame, RunsReplaysAndExportsThroughTheStudyInterfaceAlone) {
         clicks.substr(0, clicks.find('\n')),
         "participant,session,click,condition,shown_x_m,true_x_m,shown_offset_m,typed,player_kind,condition_position");
     EXPECT_EQ(std::count(clicks.begin(), clicks.end(), '\n'), std::count(shots.begin(), shots.end(), '\n'));
-    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + mode + ","), std::string::npos)
+    EXPECT_NE(clicks.find("toy-bot," + fs::path(session).filename().string() + ",0," + condition + ","),
+              std::string::npos)
         << clicks;
     const std::string matches = readAll(dir / "csv" / "matches.csv");
     EXPECT_EQ(std::count(matches.begin(), matches.end(), '\n'), 1) << matches;
+
+    // Its own column of shots.csv after the other games', filled in its rows (the offset its
+    // table has too) and the other games' columns empty there.
+    EXPECT_NE(shots.find(",aim_time_s,angular_error_deg,difficulty,target_speed,error_px,toy_offset_m,skipped_frames,"),
+              std::string::npos)
+        << shots.substr(0, shots.find('\n'));
+    const auto shotRows = app::exporttest::readCsv((dir / "csv" / "shots.csv").string());
+    const auto clickRows = app::exporttest::readCsv((dir / "csv" / "toy_clicks.csv").string());
+    ASSERT_EQ(shotRows.size(), clickRows.size());
+    ASSERT_GE(shotRows.size(), 3u);
+    for (std::size_t i = 0; i < shotRows.size(); ++i) {
+        EXPECT_EQ(shotRows[i].at("toy_offset_m"), clickRows[i].at("shown_offset_m")) << "click " << i;
+        EXPECT_FALSE(shotRows[i].at("toy_offset_m").empty()) << "click " << i;
+        for (const char* other : {"angular_error_deg", "difficulty", "target_speed", "error_px"})
+            EXPECT_EQ(shotRows[i].at(other), "") << other;
+    }
 }
 
 // The toy's own table is documented on its page, column for column, as export writes it.
@@ -117,10 +135,13 @@ TEST(ToyModule, ItsOwnTableMatchesItsPage) {
     const testing_docs::DocumentedColumns documented = testing_docs::documentedColumns(written.file, pages.front());
     EXPECT_EQ(documented.columns, written.columns);
     EXPECT_EQ(documented.numbered, written.numbered);
+    // And its own column of shots.csv.
+    EXPECT_EQ(testing_docs::documentedColumns("shots.csv", pages.front()).columns, toy::exports().shotColumns);
+    EXPECT_FALSE(toy::exports().shotColumns.empty());
 }
 
 // Held, warped and interpolated frames: each way a condition shows the world.
-INSTANTIATE_TEST_SUITE_P(Modes, ToyGame, ::testing::Values("conv15", "warp15to120", "bireproj15to60"));
+INSTANTIATE_TEST_SUITE_P(Conditions, ToyGame, ::testing::Values("conv15", "warp15to120", "bireproj15to60"));
 
 // A session interrupted after a click and resumed carries on from what was typed before the
 // interruption: its kept frames are played again with their text, so the clicks after it
@@ -186,8 +207,13 @@ TEST(Registry, AGameRegisteredAtRunTimeIsKnownAfterTheBuiltInOnes) {
             "click", [](const std::string&, const std::string&) -> std::unique_ptr<game::Study> { return nullptr; }),
         std::invalid_argument);
     EXPECT_EQ(game::parseStudy(toy::toyProtocol("conv60"), "toy.json")->game(), "toy");
-    // One file, one game: a second game naming the toy's table is refused, and not registered.
-    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, toy::tables), std::invalid_argument);
+    // One file, one game: a second game naming the toy's table is refused, and not registered;
+    // so is one naming a column of shots.csv that is the toy's, or its own twice.
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {{}, toy::tables}), std::invalid_argument);
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {toy::exports().shotColumns, nullptr}),
+                 std::invalid_argument);
+    EXPECT_THROW(game::registerGame("toy-copy", toy::parseStudy, {{"copy_m", "copy_m"}, nullptr}),
+                 std::invalid_argument);
     const auto after = game::gameNames();
     EXPECT_EQ(std::find(after.begin(), after.end(), "toy-copy"), after.end());
     std::size_t toyClicks = 0;

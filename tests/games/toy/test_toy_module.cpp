@@ -80,7 +80,8 @@ TEST(ToyStudy, SaysWhatAParticipantIsTold) {
     EXPECT_EQ(told.task, "Click while the sphere is under the reticle.");
 }
 
-std::vector<std::string> modesPlayed(const std::string& protocolText, const std::string& dirName, std::uint64_t seed) {
+std::vector<std::string> conditionsPlayed(const std::string& protocolText, const std::string& dirName,
+                                          std::uint64_t seed) {
     const fs::path dir = fs::path(testing::TempDir()) / dirName;
     fs::remove_all(dir);
     fs::create_directories(dir / "results");
@@ -93,27 +94,27 @@ std::vector<std::string> modesPlayed(const std::string& protocolText, const std:
     run.seed = seed;
     std::ostringstream progress;
     const session::SessionData data = session::readSession(runner::runHeadless(run, progress));
-    std::vector<std::string> modes;
+    std::vector<std::string> conditions;
     for (const auto& frame : data.frames)
-        if (modes.empty() || modes.back() != frame.mode) modes.push_back(frame.mode);
-    return modes;
+        if (conditions.empty() || conditions.back() != frame.condition) conditions.push_back(frame.condition);
+    return conditions;
 }
 
 TEST(ToyGame, PlaysItsConditionsInTheListedOrderOrTheSeeds) {
-    EXPECT_EQ(
-        modesPlayed(toy::toyProtocol(std::vector<std::string>{"conv15", "conv60", "warp15to120"}, 0.5), "toy-order", 1),
-        (std::vector<std::string>{"conv15", "conv60", "warp15to120"}));
+    EXPECT_EQ(conditionsPlayed(toy::toyProtocol(std::vector<std::string>{"conv15", "conv60", "warp15to120"}, 0.5),
+                               "toy-order", 1),
+              (std::vector<std::string>{"conv15", "conv60", "warp15to120"}));
     // Shuffled: each seed's own order, every condition once; some seed moves the first.
     const std::string shuffled =
         toy::toyProtocol(std::vector<std::string>{"conv15", "conv60", "warp15to120"}, 0.25, true);
     bool moved = false;
     for (std::uint64_t seed = 1; seed <= 4; ++seed) {
-        const auto modes = modesPlayed(shuffled, "toy-shuffled-" + std::to_string(seed), seed);
-        EXPECT_EQ(modes, modesPlayed(shuffled, "toy-shuffled-again", seed));
-        auto sorted = modes;
+        const auto conditions = conditionsPlayed(shuffled, "toy-shuffled-" + std::to_string(seed), seed);
+        EXPECT_EQ(conditions, conditionsPlayed(shuffled, "toy-shuffled-again", seed));
+        auto sorted = conditions;
         std::sort(sorted.begin(), sorted.end());
         EXPECT_EQ(sorted, (std::vector<std::string>{"conv15", "conv60", "warp15to120"}));
-        moved = moved || modes.front() != "conv15";
+        moved = moved || conditions.front() != "conv15";
     }
     EXPECT_TRUE(moved);
 }

@@ -1,6 +1,6 @@
 // The falling-sphere click game's protocol file (Yang et al. 2011, seed 000 section 8): red and
 // green spheres fall and bounce in a box, the player clicks the green ones and avoids the red
-// ones, in 45 s matches played in each mode, each followed by questions (the paper's four 1-7
+// ones, in 45 s matches played in each condition, each followed by questions (the paper's four 1-7
 // ratings unless the file lists its own). Every field is documented, with its JSON key, unit,
 // range and source, in docs/protocol.md. The defaults are the published study, so an unset
 // field in a file means "as in the paper".
@@ -18,8 +18,10 @@ namespace warplab::protocol {
 // The newest click protocol format this build reads and the one toJson writes.
 // 2 added the protocol's own "conditions" (docs/protocol.md, "Format versions"), 3 each
 // round's "instructions" screen, 4 matches.questions in place of the ratings section, 5
-// display.photon_marker, 6 a condition's frame_time_jitter and hitches.
-inline constexpr int kClickFormatVersion = 6;
+// display.photon_marker, 6 a condition's frame_time_jitter and hitches, 7 named the keys that
+// name conditions for them (matches.conditions and a round's matches_per_condition, formerly
+// matches.modes and matches_per_mode).
+inline constexpr int kClickFormatVersion = 7;
 inline constexpr int kClickConditionsSince = 2;
 // A condition's frame_time_jitter and hitches (docs/frame-pacing.md).
 inline constexpr int kClickPacingSince = 6;
@@ -29,18 +31,19 @@ inline constexpr int kClickInstructionsSince = 3;
 // sessions log those answers as "rating" events.
 inline constexpr int kClickQuestionsSince = 4;
 inline constexpr int kClickPhotonMarkerSince = 5;
+inline constexpr int kClickConditionKeysSince = 7;  // matches.conditions, formerly matches.modes
 
 // What a round's instructions say unless the protocol says otherwise: the task in plain words.
 inline constexpr const char* kClickTaskInstructions =
     "Red and green spheres fall and bounce. Click the green ones with the mouse to make them "
     "vanish; never click a red one, nor empty space.";
 
-// One round: every mode of the study played matchesPerMode times. Yang et al. played an
-// unscored round of one match per mode, then a scored round of two per mode.
+// One round: every condition of the study played matchesPerCondition times. Yang et al. played an
+// unscored round of one match per condition, then a scored round of two per condition.
 struct ClickRound {
     std::string name;  // written into every match event of the round
     bool scored = true;  // false: played for practice, outcomes logged but not analysed
-    int matchesPerMode = 1;
+    int matchesPerCondition = 1;
     // The screen that opens the round, read and continued with Enter; "" for none (and none at
     // all in files older than format 3).
     std::string instructions = kClickTaskInstructions;
@@ -70,15 +73,15 @@ struct ClickProtocol {
     ClickTiming clickTiming = ClickTiming::Display;  // or InputReads, as for the shooter
     // matches.*
     double matchS = 45;  // > 0
-    // The conditions the file defines beside the presets ("conditions"); matches.modes names
+    // The conditions the file defines beside the presets ("conditions"); matches.conditions names
     // presets or these.
     condition::ConditionTable conditionTable;
-    std::vector<std::string> modes{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
+    std::vector<std::string> conditions{"conv60", "conv30", "conv15", "lag50", "lag100", "lag200", "bireproj15to60"};
     std::vector<ClickRound> rounds{
         {"practice", false, 1, std::string("Practice. ") + kClickTaskInstructions + " Nothing in the practice counts."},
         {"scored", true, 2,
          std::string(kClickTaskInstructions) + " From now on every match counts. After each one, say how it felt."}};
-    bool shuffle = true;  // random mode order per round, from the session seed
+    bool shuffle = true;  // random condition order per round, from the session seed
     // matches.questions: what is asked after every match, in order; empty for nothing. Files
     // older than format 4 give it as the ratings section below (their statements as Likert
     // questions on one scale, with no ids); the game asks this list whatever the version.
@@ -91,7 +94,7 @@ struct ClickProtocol {
     Scoring scoring = Scoring::World;  // matches.scoring: or Displayed (DESIGN.md "Scoring")
 };
 
-// sourceName is what messages call the file (its path). Every mode id must name a preset or a
+// sourceName is what messages call the file (its path). Every condition id must name a preset or a
 // condition the file defines, runnable at its refresh. Throws ProtocolError.
 ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string& sourceName);
 // Every key a click protocol may have, as JSON paths ("display.refresh_hz", and
@@ -100,6 +103,10 @@ ClickProtocol parseClickProtocol(const std::string& jsonText, const std::string&
 std::vector<std::string> clickProtocolKeys();
 // A missing or unreadable file is a ProtocolError naming the path.
 ClickProtocol loadClickProtocol(const std::string& path);
+
+// The key of matches' condition list in a file of `formatVersion`: "conditions", or "modes"
+// before format 7 (a study plan writes a participant's order there).
+std::string conditionListKey(int formatVersion);
 // Canonical form: every field, in a fixed order, 2-space indent, trailing newline. Parsing it
 // gives back the same struct bit for bit, so the session stores this copy as the protocol it
 // ran. Does not validate; parse what it writes to check a hand-built struct.

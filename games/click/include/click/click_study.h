@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "game/game.h"
+#include "game/registry.h"
 #include "game/results.h"
 
 namespace warplab::game {
@@ -15,5 +16,7 @@ std::unique_ptr<Study> parseClickStudy(const std::string& jsonText, const std::s
 // The click game's own export tables, without rows: matches.csv and ratings.csv
 // (docs/click-study.md).
 std::vector<GameTable> clickTables();
+// What the click game adds to the export: its column of shots.csv and those tables.
+GameExport clickExport();
 
 }  // namespace warplab::game

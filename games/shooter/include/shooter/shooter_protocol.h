@@ -19,8 +19,9 @@ namespace warplab::protocol {
 // each phase's "instructions" screen, 5 the questions after each block of the test, 6
 // display.photon_marker, 7 the view re-centred where training and the test begin and the
 // question screens' cursor starting clear of every answer, 8 a condition's frame_time_jitter and
-// hitches.
-inline constexpr int kShooterFormatVersion = 8;
+// hitches, 9 named the keys that name a condition for it (acclimation.condition,
+// training.high_condition and low_condition, formerly mode, high_mode and low_mode).
+inline constexpr int kShooterFormatVersion = 9;
 inline constexpr int kShooterConditionsSince = 3;
 // A condition's frame_time_jitter and hitches (docs/frame-pacing.md).
 inline constexpr int kShooterPacingSince = 8;
@@ -28,6 +29,7 @@ inline constexpr int kShooterInstructionsSince = 4;
 inline constexpr int kShooterQuestionsSince = 5;  // test.questions
 inline constexpr int kShooterPhotonMarkerSince = 6;  // display.photon_marker
 inline constexpr int kShooterRecentresSince = 7;  // a rule of the game: older files replay without it
+inline constexpr int kShooterConditionKeysSince = 9;  // acclimation.condition, formerly acclimation.mode
 
 // training.base_speed_m_per_s at most, the target's speed at level 0; render's --speed too.
 inline constexpr double kMaxBaseSpeedMPerS = 100;
@@ -39,8 +41,8 @@ struct StaircaseSettings {
     int maxLevel = 60;
     int shotsPerLevelEasy = 4;  // shots evaluated per level while everything is hit
     int shotsPerLevelHard = 16;  // ... once hit rates drop ("progressively more shots")
-    std::string highMode = "conv120";  // stop when highMode's miss rate > lowMode's hit rate
-    std::string lowMode = "conv15";
+    std::string highCondition = "conv120";  // stop when highCondition's miss rate > lowCondition's hit rate
+    std::string lowCondition = "conv15";
     double timeLimitS = 720;  // then the test starts at the level reached
 };
 
@@ -59,7 +61,7 @@ struct ShooterProtocol {
     double mouseRadiansPerCount = 0.0022;  // camera turn per mouse count
     double acclimationS = 300;
     int acclimationLevel = 0;
-    std::string acclimationMode = "conv120";
+    std::string acclimationCondition = "conv120";
     // Each phase opens with a screen of its instructions, read and continued with Enter; ""
     // for none (and none at all in files older than format 4).
     std::string acclimationInstructions =
@@ -72,7 +74,7 @@ struct ShooterProtocol {
         "The test. Aim at the ball with the mouse and press the left button to shoot it, one shot "
         "for each ball, before it disappears. Be as quick and as accurate as you can.";
     StaircaseSettings training;
-    // The conditions the file defines beside the presets ("conditions"); the mode fields and
+    // The conditions the file defines beside the presets ("conditions"); the condition fields and
     // test.conditions name presets or these.
     condition::ConditionTable conditionTable;
     std::vector<std::string> conditions{"conv15", "conv120", "warp15to120"};
@@ -87,7 +89,7 @@ struct ShooterProtocol {
     Scoring scoring = Scoring::Displayed;  // or World (DESIGN.md "Scoring")
     bool supervisorStartsTest = true;  // the supervisor's Enter starts the recorded part
     // Display: a click counts at the display frame where the button goes down; InputReads:
-    // only at frames where the mode reads input (conv15/30/60 read it only at their renders),
+    // only at frames where the condition reads input (conv15/30/60 read it only at their renders),
     // so a press counts at the next such frame. Format 2 and later.
     ClickTiming clickTiming = ClickTiming::Display;
     // Not in the JSON: true for a format_version 1 file, whose sessions were recorded under the
@@ -96,7 +98,7 @@ struct ShooterProtocol {
     bool legacyRules = false;
 };
 
-// sourceName is what messages call the file (its path). Every mode id must name a preset or a
+// sourceName is what messages call the file (its path). Every condition id must name a preset or a
 // condition the file defines, runnable at its refresh. Reads format_version 1 to 6. Throws
 // ProtocolError.
 ShooterProtocol parseShooterProtocol(const std::string& jsonText, const std::string& sourceName);

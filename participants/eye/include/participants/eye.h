@@ -1,5 +1,5 @@
 // The simulated participant's eye (GL) and the player that joins it to the participant
-// (participants/participant.h): the eye draws each displayed frame as the session's mode
+// (participants/participant.h): the eye draws each displayed frame as the session's condition
 // makes it, through the same FrameMaker a participant's window uses, and perceives it.
 #pragma once
 
@@ -18,7 +18,7 @@
 namespace warplab::participants {
 
 // ---------------------------------------------------------------------------------------------
-// The eye: GL. Makes each displayed frame as the mode makes it, at the percept resolution.
+// The eye: GL. Makes each displayed frame as the condition makes it, at the percept resolution.
 // What it reads of a ShownFrame, all of it: (1) whatever FrameMaker reads to draw the frame --
 // the same drawing a participant's window shows; (2) what the HUD draws over it: the pointer
 // (reticle or cursor position), banner, phase text, Enter prompt, rating screen, and whether
@@ -26,7 +26,7 @@ namespace warplab::participants {
 // is already on screen, whether the frame is frozen or a held copy of the source last drawn
 // (`frozen`, `schedule.made`, `sourceFrame`): the same pixels either way; and a held or
 // rendered frame is read at the source FrameMaker would copy (FrameMaker::shownUnchanged), the
-// same pixels without the copy. Never the scene's objects, the camera, the mode or the outcome
+// same pixels without the copy. Never the scene's objects, the camera, the condition or the outcome
 // for itself.
 class Eye {
 public:

@@ -69,7 +69,7 @@ game::ShownFrame ToyGame::step(const game::FrameInput& input) {
         session::EventRecord e;
         e.type = "click";
         e.trial = clicks_++;
-        e.mode = schedule_.condition().name;
+        e.condition = schedule_.condition().name;
         e.worldOutcome = underReticle(dotAt(now).x) ? "hit" : "miss";
         e.displayedOutcome = underReticle(seen.x) ? "hit" : "miss";
         // Everything typed so far, as typed (Backspaces kept): replay, and a resumed
@@ -107,8 +107,8 @@ std::optional<std::uint32_t> ToyGame::displayedObject(const session::EventRecord
     return e.displayedOutcome == "hit" ? scene::kIdTarget : scene::kIdNone;
 }
 
-void ToyGame::switchTo(const std::string& mode, int) {
-    order_ = {mode};
+void ToyGame::switchTo(const std::string& condition, int) {
+    order_ = {condition};
     startCondition(0, frame_ + 1);
     freePlay_ = true;
 }

@@ -17,7 +17,7 @@ const std::vector<fields::Section<P>>& sections() {
     static const std::vector<fields::Section<P>> list{
         {"display", {K::number("refresh_hz", at(&P::refreshHz), {1, false, fields::kRefreshLimitHz, false})}},
         {"play",
-         {K::modeList("conditions", at(&P::conditions)), K::boolean("shuffle", at(&P::shuffle)),
+         {K::conditionList("conditions", at(&P::conditions)), K::boolean("shuffle", at(&P::shuffle)),
           K::number("seconds_per_condition", at(&P::secondsPerCondition), {0, true, kMaxSecondsPerCondition, false})}},
     };
     return list;
@@ -38,7 +38,7 @@ ToyProtocol parseToyProtocol(const std::string& jsonText, const std::string& sou
     p.conditionTable = condition::ConditionTable(r.conditions(document, p.formatVersion, 1, 1));
     fields::readSections(r, document, sections(), p.formatVersion, p);
     r.requireConditionsRun(p.refreshHz);
-    r.requireModes("play.conditions", p.conditions, p.refreshHz);
+    r.requireConditions("play.conditions", p.conditions, p.refreshHz);
     r.requireConditionsUsed();
     return p;
 }

@@ -25,12 +25,22 @@ const std::vector<table::Column<Click>>& clickColumns() {
     using R = Click;
     static const std::vector<table::Column<R>> columns = {
         {"click", [](F& f, const R& r) { f.integer(r.event.trial); }},
-        {"condition", [](F& f, const R& r) { f.text(r.event.mode); }},
+        {"condition", [](F& f, const R& r) { f.text(r.event.condition); }},
         {"shown_x_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x")); }},
         {"true_x_m", [](F& f, const R& r) { f.number(r.detail.number("x")); }},
         // What the condition's latency moved the sphere by, as the participant saw it.
         {"shown_offset_m", [](F& f, const R& r) { f.number(r.detail.number("shown_x") - r.detail.number("x")); }},
         {"typed", [](F& f, const R& r) { f.text(r.detail.text("typed", "")); }},
+    };
+    return columns;
+}
+
+// The toy's own column of shots.csv: what the condition's latency moved the sphere by.
+const std::vector<table::Column<game::EventDetail>>& shotColumns() {
+    using F = table::CellWriter;
+    using R = game::EventDetail;
+    static const std::vector<table::Column<R>> columns = {
+        {"toy_offset_m", [](F& f, const R& d) { f.number(d.number("shown_x") - d.number("x")); }},
     };
     return columns;
 }
@@ -48,9 +58,9 @@ public:
         return std::make_unique<ToyGame>(protocol_, seed);
     }
     std::unique_ptr<game::FreePlayGame> newFreePlay(std::uint64_t seed, const game::DisplaySize&,
-                                                    const std::string& mode, int difficulty) const override {
+                                                    const std::string& condition, int difficulty) const override {
         auto game = std::make_unique<ToyGame>(protocol_, seed);
-        game->switchTo(mode, difficulty);
+        game->switchTo(condition, difficulty);
         return game;
     }
     std::unique_ptr<game::Player> newBot(std::uint64_t, const game::DisplaySize&) const override {
@@ -77,7 +87,7 @@ public:
         for (const auto& e : events) {
             if (e.type != "click") continue;
             game::GameTableRow row;
-            row.condition = e.mode;
+            row.condition = e.condition;
             row.scoredPhase = true;
             table::writeCells(row.cells, clickColumns(), Click{e, game::EventDetail(e.detailJson)});
             out.tables.front().rows.push_back(std::move(row));
@@ -85,12 +95,13 @@ public:
             r.phase = e.phase;
             r.scoredPhase = true;
             r.trial = e.trial;
-            r.mode = e.mode;
+            r.condition = e.condition;
             r.outcome = e.displayedOutcome;
             r.worldOutcome = e.worldOutcome;
             r.displayedOutcome = e.displayedOutcome;
             r.hit = r.outcome == "hit";
             r.time = e.eventTime;
+            table::writeCells(r.own, shotColumns(), game::EventDetail(e.detailJson));
             out.shots.push_back(std::move(r));
         }
         return out;
@@ -118,5 +129,7 @@ std::unique_ptr<Study> parseStudy(const std::string& jsonText, const std::string
 }
 
 std::vector<game::GameTable> tables() { return {clicksTable()}; }
+
+game::GameExport exports() { return {table::headerOf(shotColumns()), tables}; }
 
 }  // namespace warplab::toy

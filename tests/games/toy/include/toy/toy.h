@@ -3,7 +3,7 @@
 // click while it is under the reticle is a hit. It is a module of its own -- its strict
 // protocol section (toy.md lists every key), game, bot, Study, the list a study plan
 // counterbalances, what a participant is told and its own export table -- registered by one line:
-//     game::registerGame(toy::kGameName, toy::parseStudy, toy::tables);
+//     game::registerGame(toy::kGameName, toy::parseStudy, toy::exports());
 // Nothing else in warplab knows it.
 #pragma once
 
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "game/game.h"
+#include "game/registry.h"
 #include "game/results.h"
 
 namespace warplab::toy {
@@ -22,6 +23,8 @@ inline constexpr const char* kGameName = "toy";
 std::unique_ptr<game::Study> parseStudy(const std::string& jsonText, const std::string& sourceName);
 // Its own export table, toy_clicks.csv, without rows (README.md lists its columns).
 std::vector<game::GameTable> tables();
+// What it adds to the export: that table and its column of shots.csv.
+game::GameExport exports();
 
 // Every key of a toy protocol as a JSON path, header first, in the parser's table order.
 std::vector<std::string> toyProtocolKeys();
