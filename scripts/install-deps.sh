@@ -30,6 +30,9 @@ packages=(
   # R and exactRankTests: the analysis tests check the report's statistics against R's
   # (analysis/tests/test_against_r.py) and run the docs' R snippets (test_doc_snippets.py)
   r-base-core r-cran-exactranktests
+  # psyphy: the psychometric fit is checked against glm with its forced-choice links
+  # (analysis/tests/test_psychometric.py)
+  r-cran-psyphy
 )
 
 missing=()

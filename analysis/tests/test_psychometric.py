@@ -1,0 +1,134 @@
+"""The psychometric fit against R's glm with psyphy's forced-choice links, which share no code with
+ours: mafc.logit(2) and mafc.cloglog(2) with no lapse, logit.2asym and cloglog.2asym with a fixed
+one. The trials travel as hexadecimal floats, so R fits the very doubles Python does."""
+import os
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
+from warplab_analysis import psychometric  # noqa: E402
+
+INSTALL = ("run scripts/install-deps.sh (it installs r-base-core and r-cran-psyphy, which this test needs to "
+           "check the psychometric fit against R)")
+
+R_SCRIPT = r"""
+suppressPackageStartupMessages(library(psyphy))
+for (line in readLines(commandArgs(trailingOnly = TRUE)[1])) {
+  parts <- strsplit(line, " ", fixed = TRUE)[[1]]
+  lapse <- as.numeric(parts[2])
+  link <- switch(parts[1],
+    logistic = if (lapse == 0) mafc.logit(2) else logit.2asym(g = 0.5, lam = lapse),
+    weibull = if (lapse == 0) mafc.cloglog(2) else cloglog.2asym(g = 0.5, lam = lapse))
+  u <- as.numeric(strsplit(parts[3], ",", fixed = TRUE)[[1]])
+  y <- as.numeric(strsplit(parts[4], ",", fixed = TRUE)[[1]])
+  # glm's own start can leave the .2asym links' range and diverge, and scoring from a poor one
+  # can stall: it starts from the likeliest of a grid of locations and slopes over the levels.
+  loglik <- function(b) { p <- link$linkinv(b[1] + b[2] * u); sum(dbinom(y, 1, p, log = TRUE)) }
+  grid <- expand.grid(t = seq(min(u), max(u), length.out = 25),
+                      s = exp(seq(log(0.5), log(200), length.out = 25)) / diff(range(u)))
+  starts <- lapply(seq_len(nrow(grid)), function(i) c(-grid$s[i] * grid$t[i], grid$s[i]))
+  start <- starts[[which.max(sapply(starts, loglik))]]
+  m <- glm(cbind(y, 1 - y) ~ u, family = binomial(link), start = start,
+           control = glm.control(epsilon = 1e-15, maxit = 500))
+  cat(sprintf("%a %a\n", coef(m)[1], coef(m)[2]))
+}
+"""
+
+LEVELS = np.array([3.0, 6.0, 9.0, 12.0, 18.0, 24.0, 36.0, 48.0])
+
+
+def trials(rng, shape, scale, lapse, per_level, threshold=14.0, slope=2.5):
+    x = np.repeat(LEVELS, per_level)
+    if scale == "linear":
+        slope = slope / 10.0  # per ms rather than per log unit
+    p = psychometric.probability(x, threshold, slope, lapse, 0.5, shape, scale)
+    return x, (rng.random(len(x)) < p).astype(float)
+
+
+def cases():
+    rng = np.random.default_rng(20261204)
+    out = []
+    for shape in psychometric.SHAPES:
+        for scale in psychometric.SCALES:
+            for lapse in (0.0, 0.03):
+                for per_level in (20, 50):
+                    x, y = trials(rng, shape, scale, lapse, per_level)
+                    out.append((shape, scale, lapse, x, y))
+    return out
+
+
+def r_coefficients(batch, tmp_path):
+    rscript = shutil.which("Rscript")
+    if rscript is None:
+        pytest.fail(f"Rscript is not on PATH: {INSTALL}.")
+    script, data = tmp_path / "psyphy.R", tmp_path / "trials.txt"
+    script.write_text(R_SCRIPT)
+    data.write_text("".join(
+        f"{shape} {lapse!r} {','.join(float(v).hex() for v in u)} {','.join(str(int(v)) for v in y)}\n"
+        for shape, lapse, u, y in batch))
+    done = subprocess.run([rscript, "--vanilla", str(script), str(data)], capture_output=True, text=True,
+                          timeout=300)
+    if "psyphy" in done.stderr and done.returncode != 0:
+        pytest.fail(f"R lacks the package psyphy: {INSTALL}.")
+    assert done.returncode == 0, f"Rscript failed: {done.stderr}"
+    rows = [line.split() for line in done.stdout.splitlines()]
+    assert len(rows) == len(batch), done.stdout
+    return [(float.fromhex(a), float.fromhex(b)) for a, b in rows]
+
+
+def test_the_fit_is_rs_glm_with_psyphys_links(tmp_path):
+    batch, ours = [], []
+    for shape, scale, lapse, x, y in cases():
+        f = psychometric.fit(x, y, lapse=lapse, shape=shape, scale=scale)
+        u = x if scale == "linear" else np.log(x)
+        batch.append((shape, lapse, u, y))
+        ours.append((f["intercept"], f["coefficient"]))
+    theirs = r_coefficients(batch, tmp_path)
+    assert len(ours) == 16
+    for (shape, scale, lapse, x, _), (a, b), (ra, rb) in zip(cases(), ours, theirs):
+        where = f"{shape} on the {scale} scale, lapse {lapse}, {len(x)} trials"
+        assert a == pytest.approx(ra, abs=1e-6, rel=1e-6), where
+        assert b == pytest.approx(rb, abs=1e-6, rel=1e-6), where
+
+
+def test_the_fit_recovers_a_known_function_and_its_interval_holds_it():
+    rng = np.random.default_rng(7)
+    x, y = trials(rng, "weibull", "log", 0.0, 250)
+    f = psychometric.fit(x, y)
+    assert f["threshold"] == pytest.approx(14.0, rel=0.05)
+    assert f["slope"] == pytest.approx(2.5, rel=0.15)
+    truth = psychometric.stimulus_at(75.0, 14.0, 2.5)
+    low, high, fitted, left_out = psychometric.bootstrap_interval(x, y, 75.0, resamples=200, seed=3)
+    assert fitted + left_out == 200 and fitted >= 190
+    assert low < truth < high
+    assert high / low < 1.3, "2000 trials pin the 75 % point down"
+    # Seeded: the same interval again.
+    assert psychometric.bootstrap_interval(x, y, 75.0, resamples=200, seed=3) == (low, high, fitted, left_out)
+
+
+def test_the_function_and_its_inverse_agree():
+    for shape in psychometric.SHAPES:
+        for scale in psychometric.SCALES:
+            for pc in (55.0, 70.7, 75.0, 90.0):
+                x = psychometric.stimulus_at(pc, 12.0, 2.0, 0.04, 0.5, shape, scale)
+                assert psychometric.probability(x, 12.0, 2.0, 0.04, 0.5, shape, scale) == pytest.approx(pc / 100)
+    # The classic Weibull of the stimulus, written out.
+    assert psychometric.probability(7.0, 10.0, 2.5, 0.03) == pytest.approx(
+        0.5 + 0.47 * (1 - np.exp(-(7.0 / 10.0) ** 2.5)), rel=1e-14)
+    with pytest.raises(ValueError):
+        psychometric.stimulus_at(97.0, 12.0, 2.0, 0.04)
+    with pytest.raises(ValueError):
+        psychometric.fit([5.0, 5.0], [1, 0])
+    with pytest.raises(ValueError, match="separate perfectly"):
+        psychometric.fit([2.0, 2.0, 4.0, 4.0, 8.0, 8.0], [0, 0, 0, 1, 1, 1])
+
+
+def test_install_deps_installs_psyphy():
+    script = open(os.path.join(os.path.dirname(__file__), "..", "..", "scripts", "install-deps.sh")).read()
+    block = script.split("packages=(", 1)[1].split("\n)", 1)[0]
+    listed = {word for line in block.splitlines() for word in line.split("#", 1)[0].split()}
+    assert "r-cran-psyphy" in listed

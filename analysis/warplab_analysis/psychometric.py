@@ -1,0 +1,145 @@
+"""Psychometric functions of a forced-choice task, and their maximum-likelihood fit.
+
+The function is the one the adaptive procedures use (adaptive/psychometric.h):
+
+    p(x) = guess + (1 - guess - lapse) F(slope * (u(x) - u(threshold)))
+
+with u the stimulus or its natural log, F the logistic 1 / (1 + e^-z) or the Weibull (Gumbel)
+1 - exp(-e^z) -- on the log scale the classic Weibull of the stimulus, 1 - exp(-(x / t)^slope).
+With the lapse fixed the fit is a generalised linear model in eta = a + b u, a = -slope u(t) and
+b = slope: R's glm with the psyphy package's link mafc.logit(m) (logistic) or mafc.cloglog(m)
+(Weibull) for guess = 1/m, which analysis/tests/test_psychometric.py checks it against. It is
+found as glm finds it, by Fisher scoring, to a tighter tolerance.
+"""
+import math
+
+import numpy as np
+
+SHAPES = ("logistic", "weibull")
+SCALES = ("linear", "log")
+
+
+def _u(x, scale):
+    x = np.asarray(x, dtype=float)
+    if scale == "linear":
+        return x
+    if np.any(x <= 0):
+        raise ValueError("a psychometric function on the log scale needs stimuli above 0")
+    return np.log(x)
+
+
+def _cdf_and_density(z, shape):
+    """F(z) and F'(z), written so that no large exponent overflows."""
+    z = np.asarray(z, dtype=float)
+    if shape == "logistic":
+        f = 0.5 * (1.0 + np.tanh(0.5 * z))
+        return f, f * (1.0 - f)
+    ez = np.exp(np.minimum(z, 700.0))
+    return -np.expm1(-ez), ez * np.exp(-ez)
+
+
+def probability(x, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """p(correct) at stimulus x (a number or an array)."""
+    z = slope * (_u(x, scale) - _u(threshold, scale))
+    return guess + (1.0 - guess - lapse) * _cdf_and_density(z, shape)[0]
+
+
+def stimulus_at(percent_correct, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """The stimulus at which the function gives percent_correct % correct."""
+    q = (percent_correct / 100.0 - guess) / (1.0 - guess - lapse)
+    if not 0.0 < q < 1.0:
+        raise ValueError(f"the function never reaches {percent_correct} % correct "
+                         f"(guess rate {guess}, lapse {lapse})")
+    z = math.log(q / (1.0 - q)) if shape == "logistic" else math.log(-math.log1p(-q))
+    u = float(_u(threshold, scale)) + z / slope
+    return u if scale == "linear" else math.exp(u)
+
+
+def fit(stimuli, correct, guess=0.5, lapse=0.0, shape="weibull", scale="log", tolerance=1e-12, max_steps=200):
+    """The maximum-likelihood threshold and slope of the trials (stimulus, correct 0/1), lapse fixed.
+
+    Returns a dict: threshold, slope, intercept and coefficient (a and b of eta = a + b u, as R's
+    glm reports them), log_likelihood, steps. Raises ValueError when there is nothing to fit (fewer
+    than two distinct levels), when the likelihood has no maximum (every answer right above a
+    level and wrong below it: the slope runs off to infinity) or when scoring does not settle.
+    """
+    if shape not in SHAPES or scale not in SCALES:
+        raise ValueError(f"shape must be one of {SHAPES} and scale one of {SCALES}")
+    every_u = _u(stimuli, scale)
+    every_y = np.asarray(correct, dtype=float)
+    if len(every_u) != len(every_y) or len(np.unique(every_u)) < 2:
+        raise ValueError("a psychometric fit needs trials at two levels or more")
+    # Binomial counts per level: the same likelihood as trial by trial, a term per level.
+    u, at = np.unique(every_u, return_inverse=True)
+    n = np.bincount(at).astype(float)
+    y = np.bincount(at, weights=every_y)
+    c = 1.0 - guess - lapse
+    design = np.column_stack([np.ones_like(u), u])
+
+    def log_likelihood(b):
+        p = guess + c * _cdf_and_density(design @ b, shape)[0]
+        p = np.clip(p, 1e-300, 1.0 - 1e-16)
+        return float(np.sum(y * np.log(p) + (n - y) * np.log1p(-p)))
+
+    # Scoring from a poor start can leap to where every trial is certain and learn nothing: it
+    # starts from the best of a coarse grid of locations within the levels and slopes across them.
+    t, b = np.meshgrid(np.linspace(u.min(), u.max(), 25), np.geomspace(0.5, 200.0, 25) / float(np.ptp(u)))
+    starts = np.column_stack([-(b * t).ravel(), b.ravel()])
+    p = np.clip(guess + c * _cdf_and_density(starts @ design.T, shape)[0], 1e-300, 1.0 - 1e-16)
+    beta = starts[int(np.argmax(np.log(p) @ y + np.log1p(-p) @ (n - y)))]
+    current = log_likelihood(beta)
+    for step in range(1, max_steps + 1):
+        f, density = _cdf_and_density(design @ beta, shape)
+        p = np.clip(guess + c * f, 1e-300, 1.0 - 1e-16)
+        dp = c * density
+        weights = n * dp * dp / (p * (1.0 - p))
+        score = design.T @ ((y - n * p) * dp / (p * (1.0 - p)))
+        information = design.T @ (design * weights[:, None])
+        # Least squares rather than an inverse: where only one level's trials still carry weight
+        # (a slope near a step) the information is all but singular.
+        move = np.linalg.lstsq(information, score, rcond=None)[0]
+        # Fisher scoring, halved while it would lower the likelihood.
+        for _ in range(60):
+            trial = beta + move
+            value = log_likelihood(trial)
+            if value >= current - 1e-12:
+                break
+            move /= 2.0
+        beta, previous, current = trial, current, value
+        if abs(beta[1]) > 1e6:
+            raise ValueError("the psychometric fit has no maximum: the answers separate perfectly by level")
+        if np.max(np.abs(move)) < tolerance * (1.0 + np.max(np.abs(beta))) and abs(current - previous) < 1e-12:
+            break
+    else:
+        raise ValueError(f"the psychometric fit did not converge in {max_steps} steps")
+    # Every fitted probability at the guess rate or at 1 - lapse: a step between two levels, which
+    # only an infinite slope reaches.
+    fitted = guess + c * _cdf_and_density(design @ beta, shape)[0]
+    if np.all((fitted - guess < 1e-6) | (1.0 - lapse - fitted < 1e-6)):
+        raise ValueError("the psychometric fit has no maximum: the answers separate perfectly by level")
+    a, b = float(beta[0]), float(beta[1])
+    location = -a / b
+    return {"threshold": location if scale == "linear" else math.exp(location), "slope": b,
+            "intercept": a, "coefficient": b, "log_likelihood": current, "steps": step}
+
+
+def bootstrap_interval(stimuli, correct, percent_correct, resamples=1000, seed=1, **function):
+    """The 95 % percentile interval of the stimulus at percent_correct, over fits of trials drawn
+    with replacement (resamples that cannot be fitted, or never reach it, are left out and
+    counted). Returns (low, high, fitted, left_out)."""
+    stimuli, correct = np.asarray(stimuli, dtype=float), np.asarray(correct, dtype=float)
+    rng = np.random.default_rng(seed)
+    lapse, guess = function.get("lapse", 0.0), function.get("guess", 0.5)
+    shape, scale = function.get("shape", "weibull"), function.get("scale", "log")
+    values, left_out = [], 0
+    for _ in range(resamples):
+        pick = rng.integers(0, len(stimuli), size=len(stimuli))
+        try:
+            f = fit(stimuli[pick], correct[pick], **function)
+            values.append(stimulus_at(percent_correct, f["threshold"], f["slope"], lapse, guess, shape, scale))
+        except (ValueError, np.linalg.LinAlgError):
+            left_out += 1
+    if not values:
+        return math.nan, math.nan, 0, left_out
+    low, high = np.percentile(values, [2.5, 97.5])
+    return float(low), float(high), len(values), left_out
