@@ -10,7 +10,10 @@ namespace warplab::adaptive {
 
 Procedure::Procedure(ProcedureSettings settings, std::uint64_t seed) : settings_(std::move(settings)) {
     switch (settings_.method) {
-        case Method::QuestPlus: quest_.emplace(settings_.quest); break;
+        case Method::QuestPlus:
+            quest_.emplace(settings_.quest);
+            questNext_ = quest_->next();
+            break;
         case Method::Staircase: staircase_.emplace(settings_.staircase); break;
         case Method::ConstantStimuli:
             if (settings_.staircase.stimuli.empty()) throw std::invalid_argument("constant stimuli need levels");
@@ -27,14 +30,17 @@ const std::vector<double>& Procedure::levels() const {
 }
 
 std::size_t Procedure::next() const {
-    if (quest_) return quest_->next();
+    if (quest_) return questNext_;
     if (staircase_) return staircase_->next();
     return order_.at(trials_);
 }
 
 void Procedure::update(bool correct) {
     if (finished()) throw std::logic_error("an answer to a procedure that has finished");
-    if (quest_) quest_->update(quest_->next(), correct);
+    if (quest_) {
+        quest_->update(questNext_, correct);
+        questNext_ = quest_->next();
+    }
     if (staircase_) staircase_->update(correct);
     ++trials_;
 }

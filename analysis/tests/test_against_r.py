@@ -11,8 +11,6 @@ R is run once for the whole batch; the values travel as hexadecimal floats, so R
 doubles Python does.
 """
 import os
-import shutil
-import subprocess
 import sys
 from pathlib import Path
 
@@ -21,6 +19,7 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from warplab_analysis import stats  # noqa: E402
+from r_support import run_r  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 INSTALL = ("run scripts/install-deps.sh (it installs r-base-core and r-cran-exactranktests, which this test "
@@ -70,19 +69,9 @@ def vectors():
 
 
 def r_p_values(batch, tmp_path):
-    rscript = shutil.which("Rscript")
-    if rscript is None:
-        pytest.fail(f"Rscript is not on PATH: {INSTALL}.")
-    script, data = tmp_path / "wilcoxon.R", tmp_path / "vectors.txt"
-    script.write_text(R_SCRIPT)
-    data.write_text("".join(f"{method} {','.join(float(x).hex() for x in d)}\n" for method, d in batch))
-    done = subprocess.run([rscript, "--vanilla", str(script), str(data)], capture_output=True, text=True,
-                          timeout=300)
-    if "exactRankTests" in done.stderr and done.returncode != 0:
-        pytest.fail(f"R lacks the package exactRankTests: {INSTALL}.")
-    assert done.returncode == 0, f"Rscript failed: {done.stderr}"
-    values = [float.fromhex(line) for line in done.stdout.split()]
-    assert len(values) == len(batch), done.stdout
+    data = "".join(f"{method} {','.join(float(x).hex() for x in d)}\n" for method, d in batch)
+    values = [float.fromhex(line) for line in run_r(R_SCRIPT, data, tmp_path, "exactRankTests", INSTALL)]
+    assert len(values) == len(batch), values
     return values
 
 

@@ -2,8 +2,6 @@
 ours: mafc.logit(2) and mafc.cloglog(2) with no lapse, logit.2asym and cloglog.2asym with a fixed
 one. The trials travel as hexadecimal floats, so R fits the very doubles Python does."""
 import os
-import shutil
-import subprocess
 import sys
 
 import numpy as np
@@ -11,6 +9,7 @@ import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from warplab_analysis import psychometric  # noqa: E402
+from r_support import run_r  # noqa: E402
 
 INSTALL = ("run scripts/install-deps.sh (it installs r-base-core and r-cran-psyphy, which this test needs to "
            "check the psychometric fit against R)")
@@ -62,21 +61,10 @@ def cases():
 
 
 def r_coefficients(batch, tmp_path):
-    rscript = shutil.which("Rscript")
-    if rscript is None:
-        pytest.fail(f"Rscript is not on PATH: {INSTALL}.")
-    script, data = tmp_path / "psyphy.R", tmp_path / "trials.txt"
-    script.write_text(R_SCRIPT)
-    data.write_text("".join(
-        f"{shape} {lapse!r} {','.join(float(v).hex() for v in u)} {','.join(str(int(v)) for v in y)}\n"
-        for shape, lapse, u, y in batch))
-    done = subprocess.run([rscript, "--vanilla", str(script), str(data)], capture_output=True, text=True,
-                          timeout=300)
-    if "psyphy" in done.stderr and done.returncode != 0:
-        pytest.fail(f"R lacks the package psyphy: {INSTALL}.")
-    assert done.returncode == 0, f"Rscript failed: {done.stderr}"
-    rows = [line.split() for line in done.stdout.splitlines()]
-    assert len(rows) == len(batch), done.stdout
+    data = "".join(f"{shape} {lapse!r} {','.join(float(v).hex() for v in u)} {','.join(str(int(v)) for v in y)}\n"
+                   for shape, lapse, u, y in batch)
+    rows = [line.split() for line in run_r(R_SCRIPT, data, tmp_path, "psyphy", INSTALL)]
+    assert len(rows) == len(batch), rows
     return [(float.fromhex(a), float.fromhex(b)) for a, b in rows]
 
 

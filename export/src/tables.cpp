@@ -178,9 +178,8 @@ ShotsLayout shotsLayout() {
 
 void writeShot(CsvFile& file, const ShotsLayout& layout, const ShotRow& row) {
     writeCells(file, shotLeadingColumns(), row);
-    const auto at = layout.at.find(row.from.game);
-    file.cells(at == layout.at.end() ? table::Cells().rearranged(std::vector<int>(layout.gameColumns.size(), -1))
-                                     : row.shot.own.rearranged(at->second));
+    // A readable session's game is a registered one, so it has its entry.
+    file.cells(row.shot.own.rearranged(layout.at.at(row.from.game)));
     writeCells(file, shotTrailingColumns(), row);
 }
 

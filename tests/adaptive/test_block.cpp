@@ -137,6 +137,12 @@ TEST(Block, QuestPlusStopsWhenItsIntervalIsNarrowEnough) {
     Observer observer{21};
     const std::vector<Trial> trials = play(block, observer);
     EXPECT_LT(trials.size(), 400u);
+    // Each trial at the level QUEST+ itself chooses after the answers before it.
+    QuestPlus alone(narrow.quest);
+    for (const Trial& trial : trials) {
+        ASSERT_EQ(trial.level, alone.next());
+        alone.update(trial.level, trial.correct);
+    }
     const Estimate t = block.procedure(0).quest()->threshold();
     EXPECT_LE(t.high - t.low, 6.0);
     EXPECT_GT(trials.size(), 10u);

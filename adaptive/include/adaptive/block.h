@@ -49,6 +49,9 @@ private:
     std::optional<QuestPlus> quest_;
     std::optional<Staircase> staircase_;
     std::vector<std::size_t> order_;  // ConstantStimuli: every trial's level
+    // QuestPlus: its choice for the coming trial, made once per answer (the costly part: an
+    // expected entropy per level over the whole grid).
+    std::size_t questNext_ = 0;
     std::size_t trials_ = 0;
 };
 
