@@ -40,7 +40,8 @@ DiscriminationGame::DiscriminationGame(const DiscriminationProtocol& protocol, s
       block_(
           [&] {
               std::vector<adaptive::ProcedureSettings> settings;
-              for (const ProcedureSpec& spec : protocol.procedures) settings.push_back(procedureSettings(protocol, spec));
+              for (const ProcedureSpec& spec : protocol.procedures)
+                  settings.push_back(procedureSettings(protocol, spec));
               return settings;
           }(),
           seed),
@@ -122,6 +123,9 @@ void DiscriminationGame::beginInterval(int interval) {
 void DiscriminationGame::beginBlank(bool afterAnswer) {
     stage_ = Stage::Blank;
     stageStart_ = frame_;
+    // The view rests from here, so that a lagged interval's first frames, which show the camera
+    // of frames before it, show the resting view as the other interval's do.
+    camera_ = restingCamera_;
     interval_ = 0;
     afterAnswer_ = afterAnswer;
     if (frames(protocol_.blankS) == 0) advanceStage();
@@ -148,7 +152,9 @@ void DiscriminationGame::advanceStage() {
 }
 
 std::optional<glm::dvec3> DiscriminationGame::targetAt(std::int64_t frame) const {
-    if (!trial_ || frame < spawnFrame_) return std::nullopt;
+    // The target's path runs before the interval too, so that a lagged interval shows it from
+    // its first frame where it was: appearing late would be a cue other than responsiveness.
+    if (!trial_) return std::nullopt;
     const double t = static_cast<double>(frame - spawnFrame_) / protocol_.refreshHz;
     return glm::dvec3(physics::positionAt(plane_, trial_->motion, t), plane_.z);
 }
@@ -170,8 +176,8 @@ std::optional<glm::dvec3> DiscriminationGame::displayedTarget(const condition::S
     auto blend = [](const Target& a, const Target& b, double weight, double) {
         return Target{a.position + (b.position - a.position) * weight, a.velocity};
     };
-    const game::WorldDepiction d = game::depictWorld(schedule_->condition(), f, {scheduleStart_, protocol_.refreshHz},
-                                                     game::WorldClock::Session);
+    const game::WorldDepiction d =
+        game::depictWorld(schedule_->condition(), f, {scheduleStart_, protocol_.refreshHz}, game::WorldClock::Session);
     const auto shown = game::depictedState<Target>(d, at, move, blend);
     if (!shown) return std::nullopt;
     return shown->position;
@@ -188,7 +194,7 @@ game::ShownFrame DiscriminationGame::intervalFrame(const game::FrameInput& input
     const condition::ScheduledFrame f = schedule_->frame(frame_ - scheduleStart_);
     game::ShownFrame shown = game::scheduledShownFrame(frame_, schedule_->condition(), f, placement);
     shown.camera = cameraHistory_.at(game::cameraFrame(f, placement));
-    const double t = std::max(0.0, shown.scene.time - static_cast<double>(spawnFrame_) / protocol_.refreshHz);
+    const double t = shown.scene.time - static_cast<double>(spawnFrame_) / protocol_.refreshHz;
     if (const auto p = displayedTarget(f)) {
         scene::ObjectState target = physics::targetObject(plane_, trial_->motion, t, protocol_.targetRadius);
         target.position = glm::vec3(*p);
@@ -198,7 +204,8 @@ game::ShownFrame DiscriminationGame::intervalFrame(const game::FrameInput& input
         shown.render.camera = camera_;
         shown.render.scene.time = now();
         const double age = static_cast<double>(frame_ - spawnFrame_) / protocol_.refreshHz;
-        shown.render.scene.objects.push_back(physics::targetObject(plane_, trial_->motion, age, protocol_.targetRadius));
+        shown.render.scene.objects.push_back(
+            physics::targetObject(plane_, trial_->motion, age, protocol_.targetRadius));
     }
     shown.phaseText = interval_ == 0 ? "Free play: " + schedule_->condition().name : intervalText(interval_);
     return shown;
@@ -228,18 +235,19 @@ void DiscriminationGame::answer(const game::Answer& a) {
     event.type = "judgement";
     event.trial = t.index;
     event.condition = spec.reference;
-    event.detailJson = nlohmann::json{{"procedure", spec.name},
-                                      {"procedure_trial", t.procedureTrial},
-                                      {"dimension", condition::dimensionName(spec.dimension)},
-                                      {"level", spec.levels[t.level]},
-                                      {"stimulus", condition::stimulusOf(spec.dimension, reference, spec.levels[t.level])},
-                                      {"test_condition", t.test.name},
-                                      {"test_interval", t.testInterval},
-                                      {"answer", chosen},
-                                      {"correct", correct},
-                                      {"answered_with", a.answeredWith},
-                                      {"answer_s", a.answerS}}
-                           .dump();
+    event.detailJson = nlohmann::json{
+        {"procedure", spec.name},
+        {"procedure_trial", t.procedureTrial},
+        {"dimension", condition::dimensionName(spec.dimension)},
+        {"level", spec.levels[t.level]},
+        {"stimulus", condition::stimulusOf(spec.dimension, reference, spec.levels[t.level])},
+        {"test_condition", t.test.name},
+        {"test_interval", t.testInterval},
+        {"answer", chosen},
+        {"correct", correct},
+        {"answered_with", a.answeredWith},
+        {"answer_s",
+         a.answerS}}.dump();
     event.worldOutcome = event.displayedOutcome = correct ? "correct" : "wrong";
     emit(event);
     block_.answer(correct);

@@ -73,7 +73,7 @@ private:
     game::ShownFrame intervalFrame(const game::FrameInput& input);
     game::ShownFrame questionFrame(const game::FrameInput& input);
     void answer(const game::Answer& answer);
-    std::optional<glm::dvec3> targetAt(std::int64_t frame) const;  // the world; nullopt before the interval
+    std::optional<glm::dvec3> targetAt(std::int64_t frame) const;  // the world; nullopt between trials
     std::optional<glm::dvec3> displayedTarget(const condition::ScheduledFrame& f) const;
     double now() const { return static_cast<double>(frame_) / protocol_.refreshHz; }
     std::int64_t frames(double seconds) const;

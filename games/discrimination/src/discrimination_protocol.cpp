@@ -46,12 +46,14 @@ fields::Key<S> numberList(const char* name, std::vector<double> S::*member, Numb
             const std::string where = elementPath(joinPath(path, name), i);
             read.push_back(r.numberAt((*list)[i], where, range));
             if (rising && i > 0 && !(read[i] > read[i - 1]))
-                r.fail(where, "must be greater than the value before it (" + formatNumber(read[i - 1]) + "): the list rises, got " +
-                                  formatNumber(read[i]));
+                r.fail(where,
+                       "must be greater than the value before it (" + formatNumber(read[i - 1]) +
+                           "): the list rises, got " + formatNumber(read[i]));
         }
         if (read.size() > static_cast<std::size_t>(kGridLimit) && rising)
-            r.fail(joinPath(path, name), "has " + std::to_string(read.size()) + " values; at most " +
-                                             std::to_string(kGridLimit) + " are allowed");
+            r.fail(joinPath(path, name),
+                   "has " + std::to_string(read.size()) + " values; at most " + std::to_string(kGridLimit) +
+                       " are allowed");
         s.*member = std::move(read);
     });
 }
@@ -68,21 +70,22 @@ const std::vector<fields::Key<S>>& procedureKeys() {
             return k;
         };
         const NumberRange any{-1e9, false, 1e9, false};
-        fields::Key<S> dimension =
-            KS::make("dimension", at(&S::dimension),
-                     [](const fields::Reader& r, const Json* o, const std::string& path, S& s) {
-                         std::vector<const char*> allowed;
-                         for (const auto& d : condition::dimensionSpellings()) allowed.push_back(d.name);
-                         std::string name = condition::dimensionName(s.dimension);
-                         r.choice(o, path, "dimension", allowed, name);
-                         s.dimension = *condition::dimensionNamed(name);
-                     });
+        fields::Key<S> dimension = KS::make("dimension", at(&S::dimension),
+                                            [](const fields::Reader& r, const Json* o, const std::string& path, S& s) {
+                                                std::vector<const char*> allowed;
+                                                for (const auto& d : condition::dimensionSpellings())
+                                                    allowed.push_back(d.name);
+                                                std::string name = condition::dimensionName(s.dimension);
+                                                r.choice(o, path, "dimension", allowed, name);
+                                                s.dimension = *condition::dimensionNamed(name);
+                                            });
         dimension.write = [](Json& o, const S& s) { o["dimension"] = condition::dimensionName(s.dimension); };
         return std::vector<fields::Key<S>>{
-            required("name", KS::make("name", at(&S::name),
-                                      [](const fields::Reader& r, const Json* o, const std::string& path, S& s) {
-                                          s.name = r.line(o->at("name"), joinPath(path, "name"));
-                                      })),
+            required("name",
+                     KS::make("name", at(&S::name),
+                              [](const fields::Reader& r, const Json* o, const std::string& path, S& s) {
+                                  s.name = r.line(o->at("name"), joinPath(path, "name"));
+                              })),
             required("reference", KS::conditionId("reference", at(&S::reference))),
             dimension,
             KS::choice("method", at(&S::method)),
@@ -120,8 +123,9 @@ void readProcedures(const fields::Reader& r, const Json* trials, const std::stri
     const Json* list = r.array(trials, path, "procedures", "procedures");
     if (!list) return;
     if (list->size() > static_cast<std::size_t>(kProcedureLimit))
-        r.fail(joinPath(path, "procedures"), "has " + std::to_string(list->size()) + " procedures; at most " +
-                                                 std::to_string(kProcedureLimit) + " are allowed");
+        r.fail(joinPath(path, "procedures"),
+               "has " + std::to_string(list->size()) + " procedures; at most " + std::to_string(kProcedureLimit) +
+                   " are allowed");
     std::vector<S> read;
     std::vector<std::string> names;
     for (std::size_t i = 0; i < list->size(); ++i) {
@@ -158,7 +162,8 @@ const std::vector<fields::Section<P>>& sections() {
         for (auto& k : fields::renderKeys<P>(1)) display.push_back(k);
         return std::vector<fields::Section<P>>{
             {"display", display},
-            {"input", {K::number("mouse_radians_per_count", at(&P::mouseRadiansPerCount), {0.000001, false, 0.1, false})}},
+            {"input",
+             {K::number("mouse_radians_per_count", at(&P::mouseRadiansPerCount), {0.000001, false, 0.1, false})}},
             {"target",
              {K::number("radius_m", at(&P::targetRadius), {0.01, false, kRadiusLimit, false}),
               K::number("speed_m_per_s", at(&P::targetSpeed), {0, false, kSpeedLimit, false})}},
@@ -167,7 +172,8 @@ const std::vector<fields::Section<P>>& sections() {
               K::number("blank_s", at(&P::blankS), {0, false, kBlankLimitS, false}),
               K::make("question", at(&P::question),
                       [](const fields::Reader& r, const Json* o, const std::string& path, P& p) {
-                          if (o->contains("question")) p.question = r.line(o->at("question"), joinPath(path, "question"));
+                          if (o->contains("question"))
+                              p.question = r.line(o->at("question"), joinPath(path, "question"));
                       }),
               K::make("instructions", at(&P::instructions),
                       [](const fields::Reader& r, const Json* o, const std::string& path, P& p) {
@@ -194,20 +200,24 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
             r.fail(at, e.what());
         }
         if (const auto problem = condition::problem(test, p.refreshHz))
-            r.fail(at, "is " + formatNumber(s.levels[i]) + ", which this display (" + formatNumber(p.refreshHz) +
-                           " Hz) cannot show: " + (problem->part.empty() ? "" : problem->part + " ") + problem->reason);
+            r.fail(at,
+                   "is " + formatNumber(s.levels[i]) + ", which this display (" + formatNumber(p.refreshHz) +
+                       " Hz) cannot show: " + (problem->part.empty() ? "" : problem->part + " ") + problem->reason);
         const double stimulus = condition::stimulusOf(s.dimension, ref, s.levels[i]);
         if (!(stimulus > 0))
-            r.fail(at, "must be worse than the reference " + s.reference + "'s " + key + " (" + formatNumber(ref) +
-                           ": " + (s.dimension == condition::Dimension::RenderHz ? "lower" : "higher") + "), got " +
-                           formatNumber(s.levels[i]));
+            r.fail(at,
+                   "must be worse than the reference " + s.reference + "'s " + key + " (" + formatNumber(ref) + ": " +
+                       (s.dimension == condition::Dimension::RenderHz ? "lower" : "higher") + "), got " +
+                       formatNumber(s.levels[i]));
         if (i > 0 && !(stimulus > condition::stimulusOf(s.dimension, ref, s.levels[i - 1])))
-            r.fail(at, "must be further from the reference's " + key + " than the level before it (" +
-                           formatNumber(s.levels[i - 1]) + "), got " + formatNumber(s.levels[i]));
+            r.fail(at,
+                   "must be further from the reference's " + key + " than the level before it (" +
+                       formatNumber(s.levels[i - 1]) + "), got " + formatNumber(s.levels[i]));
     }
     if (s.levels.size() > static_cast<std::size_t>(kLevelLimit))
-        r.fail(joinPath(where, "levels"), "has " + std::to_string(s.levels.size()) + " levels; at most " +
-                                              std::to_string(kLevelLimit) + " are allowed");
+        r.fail(joinPath(where, "levels"),
+               "has " + std::to_string(s.levels.size()) + " levels; at most " + std::to_string(kLevelLimit) +
+                   " are allowed");
     const double topLapse = s.lapses.back();
     if (!(s.percentCorrect < 100 * (1 - topLapse)))
         r.fail(joinPath(where, "percent_correct"),
@@ -224,11 +234,13 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
                    "must be more than 0 on scale \"log\", got " + formatNumber(s.thresholds.front()));
         const std::size_t combinations = s.thresholds.size() * s.slopes.size() * s.lapses.size();
         if (combinations > kPriorLimit)
-            r.fail(where, "has " + std::to_string(combinations) + " combinations of thresholds, slopes and lapses; at most " +
-                              std::to_string(kPriorLimit) + " are allowed");
+            r.fail(where,
+                   "has " + std::to_string(combinations) + " combinations of thresholds, slopes and lapses; at most " +
+                       std::to_string(kPriorLimit) + " are allowed");
         if (!s.prior.empty() && s.prior.size() != combinations)
-            r.fail(joinPath(where, "prior"), "must have one weight per combination of thresholds, slopes and lapses (" +
-                                                 std::to_string(combinations) + "), got " + std::to_string(s.prior.size()));
+            r.fail(joinPath(where, "prior"),
+                   "must have one weight per combination of thresholds, slopes and lapses (" +
+                       std::to_string(combinations) + "), got " + std::to_string(s.prior.size()));
         if (!s.prior.empty() && std::all_of(s.prior.begin(), s.prior.end(), [](double w) { return w == 0; }))
             r.fail(joinPath(where, "prior"), "must give some combination a weight above 0");
     }
@@ -252,8 +264,9 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
     };
     for (const auto& o : only)
         if (o.set && o.method != s.method)
-            r.fail(joinPath(where, o.key), std::string("is only for method \"") + protocol::nameOf(o.method) +
-                                               "\", and this procedure's method is \"" + protocol::nameOf(s.method) + "\"");
+            r.fail(joinPath(where, o.key),
+                   std::string("is only for method \"") + protocol::nameOf(o.method) +
+                       "\", and this procedure's method is \"" + protocol::nameOf(s.method) + "\"");
     if (s.method == adaptive::Method::ConstantStimuli && s.maxTrials != 0)
         r.fail(joinPath(where, "max_trials"),
                "is not for method \"constant_stimuli\", which stops once every level has had its repeats");
@@ -263,7 +276,8 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
                    "\": without a trial limit it may never stop (required)");
     if (s.method == adaptive::Method::Staircase && s.start != 0 &&
         std::find(s.levels.begin(), s.levels.end(), s.start) == s.levels.end())
-        r.fail(joinPath(where, "start"), "must be one of the levels (or 0 for the easiest), got " + formatNumber(s.start));
+        r.fail(joinPath(where, "start"),
+               "must be one of the levels (or 0 for the easiest), got " + formatNumber(s.start));
     try {
         adaptive::Procedure(procedureSettings(p, s), 0);
     } catch (const std::exception& e) {
@@ -303,7 +317,8 @@ adaptive::ProcedureSettings procedureSettings(const DiscriminationProtocol& p, c
     s.staircase.down = spec.down;
     s.staircase.steps = spec.steps;
     const auto start = std::find(spec.levels.begin(), spec.levels.end(), spec.start);
-    s.staircase.start = start == spec.levels.end() ? levels.size() - 1 : static_cast<std::size_t>(start - spec.levels.begin());
+    s.staircase.start =
+        start == spec.levels.end() ? levels.size() - 1 : static_cast<std::size_t>(start - spec.levels.begin());
     return s;
 }
 

@@ -93,14 +93,16 @@ game::GameTable thresholdsTable() { return {"thresholds.csv", table::headerOf(th
 // The procedure's answers (level index, correct), in order, replayed through its method.
 ThresholdRow thresholdRow(const DiscriminationProtocol& p, const ProcedureSpec& spec,
                           const std::vector<std::pair<std::size_t, bool>>& answers) {
-    ThresholdRow row{p, spec, 0, false, 0.0, {game::kNotApplicable, game::kNotApplicable, game::kNotApplicable}, {}, {}};
+    ThresholdRow row{p,  spec, 0, false, 0.0, {game::kNotApplicable, game::kNotApplicable, game::kNotApplicable},
+                     {}, {}};
     row.trials = answers.size();
     const adaptive::ProcedureSettings settings = procedureSettings(p, spec);
     adaptive::Procedure procedure(settings, 0);  // the seed orders constant stimuli only: not their end
     for (const auto& a : answers)
         if (!procedure.finished()) procedure.update(a.second);
     row.finished = procedure.finished();
-    row.fitLapse = std::accumulate(spec.lapses.begin(), spec.lapses.end(), 0.0) / static_cast<double>(spec.lapses.size());
+    row.fitLapse =
+        std::accumulate(spec.lapses.begin(), spec.lapses.end(), 0.0) / static_cast<double>(spec.lapses.size());
     switch (spec.method) {
         case adaptive::Method::QuestPlus: {
             adaptive::QuestPlus quest(settings.quest);
@@ -130,7 +132,8 @@ adaptive::Estimate thresholdAt(const adaptive::QuestPlus& quest, double percentC
     std::size_t i = 0;
     for (double t : s.thresholds)
         for (double b : s.slopes)
-            for (double l : s.lapses) weighted.emplace_back(s.function.stimulusAt(percentCorrect, t, b, l), quest.posterior()[i++]);
+            for (double l : s.lapses)
+                weighted.emplace_back(s.function.stimulusAt(percentCorrect, t, b, l), quest.posterior()[i++]);
     adaptive::Estimate e;
     for (const auto& [x, w] : weighted) e.mean += x * w;
     std::sort(weighted.begin(), weighted.end());
