@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "judgement.h"
 #include "scene/scene.h"
 
 namespace warplab::participants {
@@ -170,55 +171,18 @@ bool sameImage(const Percept& a, const Percept& b) {
 }  // namespace
 
 glm::dvec2 SimulatedParticipant::handAt(double time) const {
-    if (handLog_.empty()) return hand_;
-    if (time <= handLog_.front().first) return handLog_.front().second;
-    const auto later = std::lower_bound(handLog_.begin(), handLog_.end(), time,
-                                        [](const auto& entry, double t) { return entry.first < t; });
-    if (later == handLog_.end()) return handLog_.back().second;
-    const auto& [t0, h0] = *std::prev(later);
-    const auto& [t1, h1] = *later;
-    return t1 > t0 ? glm::mix(h0, h1, (time - t0) / (t1 - t0)) : h1;
+    return handLog_.empty() ? hand_ : positionAt(handLog_, time);
 }
 
 void SimulatedParticipant::judgeDelay(double now) {
-    // How late the pointer on screen follows the hand: the delay that best lines up how far the
-    // pointer moved between new images a baseline apart with how far the hand moved over the
-    // same span that much earlier (a quarter second: long enough to see a movement, short
-    // enough that drift between belief and screen does not count). Judged a few times a
-    // second, and only from spans in which the hand moved: a still hand shows no delay.
+    // How late the pointer on screen follows the hand (fitDelay), judged a few times a second
+    // over the last delayWindowS of play, a frame's precision, and followed slowly.
     if (now - lastDelayJudged_ < 0.1 || pointerLog_.size() < 4) return;
     const double dt = now - std::max(lastDelayJudged_, now - 1.0);
     lastDelayJudged_ = now;
-    constexpr double kBaselineS = 0.25, kMaxDelayS = 0.4;
-    const double step = 1.0 / knowledge_.refreshHz;
-    double bestError = std::numeric_limits<double>::infinity(), best = 0.0, motion = 0.0;
-    for (double d = 0.0; d <= kMaxDelayS + 1e-9; d += step) {
-        double error = 0.0;
-        int pairs = 0;
-        std::size_t j = 0;
-        for (std::size_t i = 1; i < pointerLog_.size(); ++i) {
-            const double ti = pointerLog_[i].first;
-            while (j + 1 < i && pointerLog_[j + 1].first <= ti - kBaselineS) ++j;
-            const double span = ti - pointerLog_[j].first;
-            if (span < kBaselineS - 1e-9 || span > 2.0 * kBaselineS) continue;
-            const glm::dvec2 shown = pointerLog_[i].second - pointerLog_[j].second;
-            const glm::dvec2 moved = handAt(ti - d) - handAt(pointerLog_[j].first - d);
-            const glm::dvec2 e = shown - moved;
-            error += glm::dot(e, e);
-            if (d == 0.0) motion += glm::dot(shown, shown);
-            ++pairs;
-        }
-        if (pairs == 0) return;
-        error /= pairs;
-        if (d == 0.0) motion /= pairs;
-        if (error < bestError - 1e-12) {
-            bestError = error;
-            best = d;
-        }
-    }
-    // A movement the pointer's error is small against, else the judgement is noise.
-    if (motion <= 4.0 * bestError || motion <= 0.0) return;
-    seenDelay_ += (best - seenDelay_) * (1.0 - std::exp(-dt / params_.delayFollowS));
+    const std::optional<double> best = fitDelay(pointerLog_, handLog_, 1.0 / knowledge_.refreshHz);
+    if (!best) return;
+    seenDelay_ += (*best - seenDelay_) * (1.0 - std::exp(-dt / params_.delayFollowS));
 }
 
 void SimulatedParticipant::remember(const Percept& percept) {
