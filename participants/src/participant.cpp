@@ -114,7 +114,9 @@ SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const
     : knowledge_(knowledge),
       params_(params),
       random_(game::mix(seed ^ 0x5133A1E7ULL)),
-      ratingRandom_(game::mix(seed ^ 0x7A71A6E5ULL)) {
+      ratingRandom_(game::mix(seed ^ 0x7A71A6E5ULL)),
+      intervals_(std::make_unique<IntervalJudge>(game::mix(seed ^ 0x1D7E2A15ULL), params.delayJudgementNoiseMs,
+                                                 params.smoothnessJudgementNoise)) {
     if (knowledge.radiansPerCount > 0.0) {
         // Mouse right turns right (+yaw); mouse down (+y) pitches down.
         unitsPerCount_ = {knowledge.radiansPerCount, -knowledge.radiansPerCount};
@@ -123,6 +125,10 @@ SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const
         hand_ = {knowledge.display.width * 0.5, knowledge.display.height * 0.5};
     }
 }
+
+SimulatedParticipant::~SimulatedParticipant() = default;
+SimulatedParticipant::SimulatedParticipant(SimulatedParticipant&&) noexcept = default;
+SimulatedParticipant& SimulatedParticipant::operator=(SimulatedParticipant&&) noexcept = default;
 
 void SimulatedParticipant::move(game::FrameInput& input, glm::dvec2 velocity, double dt, bool pursuing) {
     if (!pursuing) {
@@ -241,11 +247,14 @@ void SimulatedParticipant::remember(const Percept& percept) {
             {o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
     }
     // The pointer as each new image shows it: the cursor where it is drawn, the view as seen.
+    std::optional<glm::dvec2> pointerSeen;
     if (s.valid && newImage && s.pointer != game::PointerKind::None) {
-        pointerLog_.emplace_back(percept.time, reticle ? s.view : s.pointerAt);
+        pointerSeen = reticle ? s.view : s.pointerAt;
+        pointerLog_.emplace_back(percept.time, *pointerSeen);
         while (!pointerLog_.empty() && pointerLog_.front().first < percept.time - params_.delayWindowS)
             pointerLog_.pop_front();
     }
+    intervals_->see(percept.time, newImage, pointerSeen);
     judgeDelay(percept.time);
     sightings_.push_back(std::move(s));
     const double keepFrom = percept.time - params_.reactionS - params_.motionWindowS - 0.05;
@@ -389,6 +398,8 @@ void SimulatedParticipant::pursue(game::FrameInput& input, const Sighting& view,
     const glm::dvec2 predicted = seen.positionAt(ahead + dt);
     const Thing& inView = *sees(view, *target_);
     aim_ = pointer + (hand_ - handBefore);
+    // A discrimination interval asks it to track the target, and nothing is shot.
+    if (intervals_->inInterval()) return;
     if (decidesToClick(predicted - aim_, inView.offset, inView.radius, now - aimingSince_, params_)) {
         input.buttons = game::kButtonLeft;
         clicked_[*target_] = now;
@@ -475,6 +486,14 @@ int SimulatedParticipant::ratingFor(const std::string& statement, int min, int m
     return std::clamp(static_cast<int>(std::lround(min + (value - 1.0) / 6.0 * (max - min))), min, max);
 }
 
+int SimulatedParticipant::choiceFor(const game::QuestionPrompt& question) {
+    // Which of two intervals was the more responsive (or smoother): the one it judged so.
+    if (question.boxes.size() == 2)
+        if (const std::optional<int> interval = intervals_->answer(question.prompt)) return *interval;
+    // A choice it has no feeling about: the options in turn.
+    return 1 + question.index % std::max(1, static_cast<int>(question.boxes.size()));
+}
+
 game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
     game::FrameInput input;
     if (!judged_) judgeMatch();
@@ -488,7 +507,7 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
         typed_ = false;
         return input;
     }
-    // What it has no feeling about: a choice's options in turn, a few words typed and sent.
+    // A text question it has no feeling about: a few words typed and sent.
     if (r.kind == protocol::QuestionKind::Text) {
         if (!typed_)
             input.text = "no comment";
@@ -497,9 +516,9 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
         typed_ = true;
         return input;
     }
-    const int value = r.kind == protocol::QuestionKind::Choice
-        ? 1 + r.index % std::max(1, static_cast<int>(r.boxes.size()))
-        : (answer_ ? *answer_ : ratingFor(r.prompt, r.min, r.max));
+    const int value = answer_
+        ? *answer_
+        : (r.kind == protocol::QuestionKind::Choice ? choiceFor(r) : ratingFor(r.prompt, r.min, r.max));
     answer_ = value;  // decided once per question (its noise drawn once)
     if (value >= 1 && value <= 9) {
         input.keys = game::digitKey(value);
@@ -520,6 +539,8 @@ game::FrameInput SimulatedParticipant::act(const Percept& percept) {
     const double dt =
         lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
     lastTime_ = percept.time;
+    // Which interval of a discrimination trial is on screen, if any (a question closes it).
+    intervals_->follow(percept.question ? std::string() : percept.phaseText, percept.time, hand_);
     game::FrameInput input;
     if (percept.question) {
         input = rate(percept);
