@@ -73,6 +73,13 @@ public:
         return {"trials", done, planned};
     }
 
+    // A study plan gives each participant a seed and a results folder; the procedures' trials
+    // are interleaved at random by the session seed, so there is no order for it to balance
+    // (not blocked: the file is played as it is).
+    std::optional<game::CounterbalancedList> counterbalanced() const override {
+        return game::CounterbalancedList{conditionNames(), false};
+    }
+
 private:
     DiscriminationProtocol protocol_;
 };

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "discrimination/discrimination_protocol.h"
+#include "discrimination/discrimination_study.h"
 #include "discrimination_bot.h"
 #include "discrimination_game.h"
 #include "discrimination_results.h"
@@ -275,6 +276,27 @@ TEST(DiscriminationSession, AResumedSessionChoosesTheLevelsTheUninterruptedOneCh
         EXPECT_EQ(detail(a[i])["level"], detail(b[i])["level"]) << "trial " << i;
         EXPECT_EQ(session::firstDifference(a[i], b[i]), "") << "trial " << i;
     }
+}
+
+}  // namespace
+}  // namespace warplab::discrimination
+
+namespace warplab::discrimination {
+namespace {
+
+// A study plan takes the task: its references as the list, never blocked, since the session
+// seed interleaves the procedures' trials; the participant's copy is the file as it is.
+TEST(DiscriminationStudy, AStudyPlanTakesItWithoutAnOrderToBalance) {
+    std::ifstream in(protocolPath("latency-jnd-quick"));
+    std::stringstream text;
+    text << in.rdbuf();
+    const auto study = parseDiscriminationStudy(text.str(), "latency-jnd-quick.json");
+    const auto list = study->counterbalanced();
+    ASSERT_TRUE(list.has_value());
+    EXPECT_EQ(list->conditions, (std::vector<std::string>{"conv120", "latewarp120"}));
+    EXPECT_FALSE(list->blocked);
+    EXPECT_EQ(study->withConditionOrder(text.str(), {"latewarp120", "conv120"}), text.str());
+    EXPECT_EQ(study->progress({}).planned, 16u);
 }
 
 }  // namespace
