@@ -21,6 +21,7 @@
 #include "runner/session_runner.h"
 #include "session/records.h"
 #include "session/session_store.h"
+#include "support/cut_session.h"
 
 namespace warplab::discrimination {
 namespace {
@@ -251,18 +252,7 @@ TEST(DiscriminationSession, AResumedSessionChoosesTheLevelsTheUninterruptedOneCh
     std::size_t kept = 0;
     for (int answered = 0; kept < whole.events.size() && answered < 5; ++kept)
         answered += whole.events[kept].type == "judgement";
-    const std::int64_t lastFrame = whole.events[kept - 1].frame;
-    std::string cut;
-    {
-        auto writer = session::SessionWriter::create((dir / "cut").string(), whole.header);
-        for (const auto& in : whole.inputs)
-            if (in.frame <= lastFrame) writer.addInput(in);
-        for (const auto& frame : whole.frames)
-            if (frame.frame <= lastFrame) writer.addFrame(frame);
-        for (std::size_t i = 0; i < kept; ++i) writer.addEvent(whole.events[i]);
-        writer.commit();
-        cut = writer.path();
-    }
+    const std::string cut = testing_sessions::cutSession(whole, kept, (dir / "cut").string());
     runner::HeadlessRun resume = run;
     resume.resumeFrom = cut;
     resume.resultsDir = (dir / "resumed").string();
