@@ -167,7 +167,8 @@ def analyse(export, who=None, game=None, order_key=None):
                "rows": [], "procedures": [], "comparisons": [], "notes": list(export.notes), "figures": {}}
     for row in chosen:
         section["rows"].append(refit(row, export.trials, section["notes"]))
-    unlisted = [key for key in (export.trials or {}) if (who is None or key[0] in who)
+    # Without thresholds.csv at all, export.notes has said so once.
+    unlisted = [key for key in (export.trials or {}) if export.rows and (who is None or key[0] in who)
                 and not any((r["participant"], r["session"], r["procedure"]) == key for r in chosen)]
     for participant, session, procedure in unlisted:
         section["notes"].append(f"{TRIALS} has trials of {participant}'s {procedure} (session {session}) that "

@@ -276,8 +276,9 @@ def discrimination_figure(path, dimension, participants, rows, procedures):
     participants; logarithmic where every procedure's function is on the log scale."""
     columns = min(5, max(1, math.ceil(math.sqrt(len(participants)))))
     panel_rows = math.ceil(len(participants) / columns)
-    fig, axes = plt.subplots(panel_rows, columns, figsize=(3.1 * columns, 2.5 * panel_rows + 1.1), dpi=110,
-                             squeeze=False, sharex=True, sharey=True)
+    # At least 6.4 in wide, so that the title and the axis label fit over a single panel.
+    fig, axes = plt.subplots(panel_rows, columns, figsize=(max(6.4, 3.1 * columns), 2.5 * panel_rows + 1.2),
+                             dpi=110, squeeze=False, sharex=True, sharey=True)
     colours = {p: plt.get_cmap("tab10")(k % 10) for k, p in enumerate(procedures)}
     # Each procedure's threshold interval a little above or below its percent correct, so that two
     # procedures' intervals at one percent correct do not hide each other.
@@ -318,7 +319,8 @@ def discrimination_figure(path, dimension, participants, rows, procedures):
     first.set_xlim(*limits)
     first.set_ylim(max(0.0, floor - 0.08), 1.03)
     units = next(iter({row["units"] for row in rows}), "")
-    fig.supxlabel(f"{dimension}: difference from the reference ({units})", fontsize=9, y=0.045)
+    height = fig.get_figheight()
+    fig.supxlabel(f"{dimension}: difference from the reference ({units})", fontsize=9, y=0.32 / height)
     fig.supylabel("proportion correct", fontsize=9)
     # The legend under the axis label, the title above the panels: neither can cover the other,
     # however few panels the figure is wide.
@@ -328,8 +330,7 @@ def discrimination_figure(path, dimension, participants, rows, procedures):
                bbox_to_anchor=(0.5, 0.0))
     fig.suptitle(f"{dimension}: proportion correct per level (marker area: trials), MLE fit,\nthreshold (black) "
                  "with its 95 % bootstrap interval (cut at the axis)", fontsize=9, x=0.02, ha="left")
-    height = fig.get_figheight()
-    fig.tight_layout(rect=(0, 0.6 / height, 1, 1 - 0.5 / height))
+    fig.tight_layout(rect=(0, 0.3 / height, 1, 1))
     fig.savefig(path)
     plt.close(fig)
 

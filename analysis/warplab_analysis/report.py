@@ -434,6 +434,8 @@ def procedure_table(out, procedure, rows, level):
 
 
 def comparisons_table(out, section, level):
+    if not section["procedures"]:
+        return  # nothing was fitted: the notes say why
     out.append(f"{'#' * level} Paired comparisons of thresholds\n")
     comparisons = section["comparisons"]
     if not comparisons:
