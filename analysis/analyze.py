@@ -190,7 +190,8 @@ def analyse_matches(loaded, statements, requested_reference, table, game):
 
 def analyse_part(export_dir, data, who, reference_condition, table):
     """The statistics of the participants `who` (None: everyone): {games, sign_tests, matches,
-    answers}. A game that has fewer than two of them has no paired tests: a note says so."""
+    discrimination, answers}. A game that has fewer than two of them has no paired tests: a note
+    says so."""
     games, described, matches, statements, answers, thresholds = data
     part = {"games": {}, "sign_tests": [], "matches": None, "discrimination": None, "group_notes": [],
             "answers": [a for a in answers or [] if who is None or a["participant"] in who]}
