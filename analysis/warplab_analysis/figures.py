@@ -10,7 +10,8 @@
 - each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
   MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
 - each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
-  histograms drawn exactly from the spans, a row per condition on one latency scale.
+  histograms drawn exactly from the spans, a row per condition on one latency scale;
+- the discrimination task's psychometric curves, a panel per participant, a colour per procedure.
 Each condition keeps one colour in every figure: its place in `palette`, every condition the
 export's table lists in the report's condition order (conditions.ConditionTable.all_conditions).
 """
@@ -19,9 +20,12 @@ import math
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.lines  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from .psychometric import probability  # noqa: E402
 
 BIN_WIDTH = 0.05
 # Up to this many participants the hit-rate figure gives each a column (0.38 in, so 26 in and
@@ -262,3 +266,89 @@ def latency_figure(path, distributions, palette):
                  "dotted: the longest (latency.csv)", fontsize=9)
     fig.savefig(path)
     plt.close(fig)
+
+
+def discrimination_figure(path, dimension, participants, rows, procedures):
+    """Each participant's psychometric curves of one stimulus dimension (discrimination.analyse's
+    rows), a panel each: per procedure (a colour each) the proportion correct at every level tried,
+    marker area proportional to its trials, the MLE fit, and the threshold at its percent correct
+    with its bootstrap interval. One scale for every panel, so that thresholds compare across
+    participants; logarithmic where every procedure's function is on the log scale."""
+    columns = min(5, max(1, math.ceil(math.sqrt(len(participants)))))
+    panel_rows = math.ceil(len(participants) / columns)
+    # At least 6.4 in wide, so that the title and the axis label fit over a single panel.
+    fig, axes = plt.subplots(panel_rows, columns, figsize=(max(6.4, 3.1 * columns), 2.5 * panel_rows + 1.2),
+                             dpi=110, squeeze=False, sharex=True, sharey=True)
+    colours = {p: plt.get_cmap("tab10")(k % 10) for k, p in enumerate(procedures)}
+    # Each procedure's threshold interval a little above or below its percent correct, so that two
+    # procedures' intervals at one percent correct do not hide each other.
+    offsets = {p: 0.025 * (k - (len(procedures) - 1) / 2) for k, p in enumerate(procedures)}
+    # The levels tried and the thresholds set the span; a bootstrap interval of a weak session may
+    # reach far beyond any level tried (even 10^7 frames), and is cut at the axis.
+    stimuli = [level["stimulus"] for row in rows for level in row["levels"]]
+    stimuli += [row["mle"]["threshold"] for row in rows if row["mle"]]
+    log = all(row["scale"] == "log" for row in rows) and bool(stimuli) and min(stimuli) > 0
+    low, high = (min(stimuli), max(stimuli)) if stimuli else (0.0, 1.0)
+    if log:
+        grid = np.geomspace(low, high, 200)
+        pad = (high / low) ** 0.06
+        limits = (low / pad, high * pad)
+    else:
+        grid = np.linspace(low, high, 200)
+        pad = 0.06 * (high - low or 1.0)
+        limits = (low - pad, high + pad)
+    # Area, not radius, in proportion to the trials: the eye reads a marker's size as its area.
+    most = max((level["n"] for row in rows for level in row["levels"]), default=1)
+    floor = min(row["guess"] for row in rows)
+    for ax, participant in zip(axes.flat, participants):
+        for row in [r for r in rows if r["participant"] == participant]:
+            discrimination_panel(ax, row, colours[row["procedure"]], offsets[row["procedure"]], grid, most)
+        ax.set_title(participant, fontsize=9)
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+        ax.tick_params(labelsize=7)
+    for ax in list(axes.flat)[len(participants):]:
+        ax.set_visible(False)
+    first = axes.flat[0]
+    if log:
+        first.set_xscale("log")
+        # 1, 2, 5 in each decade, written as numbers: a span of levels is often within one decade,
+        # where the default would label only its power of ten.
+        first.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        first.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+        first.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    first.set_xlim(*limits)
+    first.set_ylim(max(0.0, floor - 0.08), 1.03)
+    units = next(iter({row["units"] for row in rows}), "")
+    height = fig.get_figheight()
+    fig.supxlabel(f"{dimension}: difference from the reference ({units})", fontsize=9, y=0.32 / height)
+    fig.supylabel("proportion correct", fontsize=9)
+    # The legend under the axis label, the title above the panels: neither can cover the other,
+    # however few panels the figure is wide.
+    handles = [matplotlib.lines.Line2D([], [], color=colours[p], marker="o", linestyle="-", label=p)
+               for p in procedures]
+    fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=min(5, len(procedures)), frameon=False,
+               bbox_to_anchor=(0.5, 0.0))
+    fig.suptitle(f"{dimension}: proportion correct per level (marker area: trials), MLE fit,\nthreshold (black) "
+                 "with its 95 % bootstrap interval (cut at the axis)", fontsize=9, x=0.02, ha="left")
+    fig.tight_layout(rect=(0, 0.3 / height, 1, 1))
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def discrimination_panel(ax, row, colour_of_row, offset, grid, most):
+    levels = row["levels"]
+    ax.scatter([level["stimulus"] for level in levels], [level["correct"] / level["n"] for level in levels],
+               s=[60.0 * level["n"] / most + 4.0 for level in levels], color=colour_of_row, alpha=0.55,
+               edgecolors="none", zorder=2)
+    fit = row["mle"]
+    if fit is None:
+        return
+    if row["scale"] == "log":
+        grid = grid[grid > 0]  # a linear axis beside a linear-scale procedure may reach 0 and below
+    ax.plot(grid, probability(grid, fit["location"], fit["slope"], fit["lapse"], row["guess"], row["shape"],
+                              row["scale"]), color=colour_of_row, linewidth=1.2, zorder=3)
+    y = row["percent_correct"] / 100.0 + offset
+    low, high = fit["bootstrap_low"], fit["bootstrap_high"]
+    if low is not None and math.isfinite(low):
+        ax.plot([low, high], [y, y], color=colour_of_row, linewidth=2.4, alpha=0.8, solid_capstyle="butt", zorder=4)
+    ax.plot([fit["threshold"]], [y], marker="|", markersize=11, markeredgewidth=2.0, color="black", zorder=5)
