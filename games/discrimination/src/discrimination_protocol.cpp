@@ -197,7 +197,7 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
         try {
             test = condition::varied(reference, s.dimension, s.levels[i]);
         } catch (const std::invalid_argument& e) {
-            r.fail(at, e.what());
+            r.fail(at, "must be a level " + key + " can take: " + e.what());
         }
         if (const auto problem = condition::problem(test, p.refreshHz))
             r.fail(at,

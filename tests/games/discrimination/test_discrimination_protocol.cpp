@@ -119,7 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
                  [](Json& d) {
                      first(d)["levels"] = {0, 1, 2};
                  },
-                 "must be worse than the reference conv120's lag_frames"},
+                 "must be worse than the reference conv120's lag_frames of 0 (higher)"},
         BadInput{"levels out of order",
                  [](Json& d) {
                      first(d)["levels"] = {1, 4, 2};
