@@ -206,8 +206,8 @@ void checkProcedure(const fields::Reader& r, const P& p, const S& s, const std::
         const double stimulus = condition::stimulusOf(s.dimension, ref, s.levels[i]);
         if (!(stimulus > 0))
             r.fail(at,
-                   "must be worse than the reference " + s.reference + "'s " + key + " (" + formatNumber(ref) + ": " +
-                       (s.dimension == condition::Dimension::RenderHz ? "lower" : "higher") + "), got " +
+                   "must be worse than the reference " + s.reference + "'s " + key + " of " + formatNumber(ref) +
+                       (s.dimension == condition::Dimension::RenderHz ? " (lower)" : " (higher)") + ", got " +
                        formatNumber(s.levels[i]));
         if (i > 0 && !(stimulus > condition::stimulusOf(s.dimension, ref, s.levels[i - 1])))
             r.fail(at,
