@@ -16,12 +16,18 @@ at the row's percent correct, with a seeded percentile bootstrap over resampled 
 mean with its credible interval (Watson 2017), a staircase's mean of the last reversals (Levitt
 1971), nothing for constant stimuli.
 
-Comparisons: for every two procedures of one dimension, over the participants with an MLE
-threshold in both, d = threshold(a) - threshold(b). The participant is the unit: a participant
-with several sessions of a procedure (a row each) contributes the mean of their thresholds, so
-that a participant who came twice does not count as two. The mean of d, its 95 % t interval, a
-seeded bootstrap interval over participants, and stats.paired_tests' paired t-test and Wilcoxon
-signed-rank test (scipy's, with mid-ranks for tied |d|; the matches section's tests).
+Comparisons: for every two procedures of one dimension, d = threshold(a) - threshold(b), twice.
+First on each procedure's own estimate, where both make one: QUEST+'s posterior mean exists for
+every session, however its answers fall, but rests on the procedure's prior and grids as well as
+on the trials (and a staircase's reversal mean is another estimator again). Then on the MLE
+thresholds, one estimator of every procedure from the trials alone -- which has none where the
+likelihood keeps rising towards a step between two levels, common when QUEST+ places a short
+session's trials close to the threshold. Each over the participants with that threshold in both.
+The participant is the unit: a participant with several sessions of a procedure (a row each)
+contributes the mean of their thresholds, so that a participant who came twice does not count as
+two. The mean of d, its 95 % t interval, a seeded bootstrap interval over participants, and
+stats.paired_tests' paired t-test and Wilcoxon signed-rank test (scipy's, with mid-ranks for
+tied |d|; the matches section's tests).
 
 Problems of the data -- a row without trials, a fit that fails, every answer right, a comparison
 with fewer than two participants -- are sentences in the section's notes; a malformed file is
@@ -181,6 +187,7 @@ def analyse(export, who=None, game=None, order_key=None):
         if row["percent_correct"] not in entry["percent_correct"]:
             entry["percent_correct"].append(row["percent_correct"])
     section["procedures"] = [p for p in procedures.values() if any(r["procedure"] == p["procedure"] for r in chosen)]
+    beyond_the_levels(section["rows"], section["procedures"], section["notes"])
     section["comparisons"] = compare(section["rows"], section["procedures"], order_key, section["notes"])
     return section
 
@@ -200,6 +207,7 @@ def refit(row, trials, notes):
     estimate = ESTIMATES.get(row["method"], "the procedure's own estimate") if row["threshold"] is not None else None
     out["export"] = dict({"estimate": estimate},
                          **{k: row[k] for k in ("threshold", "threshold_low", "threshold_high") + MARGINALS})
+    out["export"]["location"] = own_location(row)
     out["mle"] = None
     if trials is None:
         return out
@@ -239,6 +247,44 @@ def refit(row, trials, notes):
     return out
 
 
+def own_location(row):
+    """The threshold parameter of the function the procedure's own estimate describes (QUEST+'s:
+    its posterior mean threshold at percent_correct, slope and lapse), or None where the row has no
+    threshold or no slope. A summary, not the posterior's mean function: the marginal means of
+    slope and lapse with the threshold at percent_correct; what the figure draws where the trials
+    give no fit."""
+    if row["threshold"] is None or row["slope"] is None:
+        return None
+    lapse = row["lapse"] if row["lapse"] is not None else row["fit_lapse"]
+    try:
+        return psychometric.location_at(row["percent_correct"], row["threshold"], row["slope"], lapse, row["guess"],
+                                        row["shape"], row["scale"])
+    except (ValueError, ZeroDivisionError):  # a lapse that never lets it reach percent_correct, a slope of 0
+        return None
+
+
+def beyond_the_levels(rows, procedures, notes):
+    """A note per procedure and side naming the sessions whose own threshold lies beyond every level
+    they presented: QUEST+'s posterior mean can sit there (it integrates over its whole grid), but
+    then it rests on the prior and the grid's end more than on the trials."""
+    for procedure in procedures:
+        theirs = [r for r in rows if r["procedure"] == procedure["procedure"] and r["levels"]
+                  and r["export"]["threshold"] is not None]
+        sessions = {}
+        for row in theirs:
+            sessions[row["participant"]] = sessions.get(row["participant"], 0) + 1
+        for side, beyond in (("above", lambda t, tried: t > max(tried)), ("below", lambda t, tried: t < min(tried))):
+            whose = [r["participant"] if sessions[r["participant"]] == 1 else name_of(r) for r in theirs
+                     if beyond(r["export"]["threshold"], [level["stimulus"] for level in r["levels"]])]
+            if not whose:
+                continue
+            listed = ", ".join(whose)
+            notes.append(f"{procedure['procedure']}: in {len(whose)} session{'s' if len(whose) > 1 else ''} "
+                         f"({listed}) the procedure's own threshold lies {side} every level presented, so it rests "
+                         "on its prior and the end of its grid more than on the trials; the comparisons on own "
+                         "estimates take it as it is.")
+
+
 def levels(stimuli, correct):
     """[{stimulus, n, correct}] per distinct stimulus, ascending: what the figure draws."""
     out = {}
@@ -275,43 +321,86 @@ def unfittable(stimuli, correct, by_level):
     return None
 
 
+# What a comparison takes of each row, in the order the report gives them: the procedure's own
+# estimate, which every QUEST+ session has, then the MLE refit, which rests on the trials alone but
+# fails where they step between two levels. For each: what a participant has (the notes' words),
+# what the comparison is on, and the row's threshold or None.
+COMPARED = {
+    "procedure": ("the procedure's own estimate", "the procedures' own estimates",
+                  lambda row: row["export"]["threshold"]),
+    "mle": ("an MLE threshold", "the MLE thresholds",
+            lambda row: row["mle"]["threshold"] if row["mle"] is not None else None),
+}
+# Below this many non-zero differences the exact signed-rank test cannot reach p < 0.05 (its least
+# two-sided p is 2 / 2^n, every difference of one sign): a note says so beside a t-test that can.
+WILCOXON_LEAST_N = 6
+
+
 def compare(rows, procedures, order_key, notes):
-    """Every two procedures of one dimension, in the procedures' order, over the participants with an
-    MLE threshold in both (each participant's mean over their sessions)."""
-    values = {}  # procedure -> participant -> [MLE thresholds of their sessions]
+    """Every two procedures of one dimension, in the procedures' order, once on each procedure's own
+    estimate (where both make one) and once on the MLE thresholds, each over the participants with
+    that threshold in both (each participant's mean over their sessions). Own-estimate comparisons
+    first, then the MLE's; each has `estimate`, the key of COMPARED it takes."""
+    sessions = {}  # (procedure, participant) -> their rows
     for row in rows:
-        if row["mle"] is not None:
-            values.setdefault(row["procedure"], {}).setdefault(row["participant"], []).append(row["mle"]["threshold"])
-    for procedure, per_participant in values.items():
-        for participant, thresholds in per_participant.items():
-            if len(thresholds) > 1:
-                notes.append(f"{participant} has {len(thresholds)} sessions of {procedure} with an MLE threshold: "
-                             "the comparisons take their mean.")
-    comparisons = []
+        sessions.setdefault((row["procedure"], row["participant"]), []).append(row)
+    for (procedure, participant), theirs in sessions.items():
+        if len(theirs) > 1:
+            notes.append(f"{participant} has {len(theirs)} sessions of {procedure}: the comparisons take the mean of "
+                         "their thresholds, each over the sessions that have one.")
+    own = {p["procedure"] for p in procedures
+           if any(r["export"]["threshold"] is not None for r in rows if r["procedure"] == p["procedure"])}
+    comparisons = {estimate: [] for estimate in COMPARED}
     for i, a in enumerate(procedures):
         for b in procedures[i + 1:]:
             if a["dimension"] != b["dimension"]:
                 continue
-            got_a, got_b = values.get(a["procedure"], {}), values.get(b["procedure"], {})
-            both = sorted(set(got_a) & set(got_b), key=order_key)
-            mean_a = [sum(got_a[p]) / len(got_a[p]) for p in both]
-            mean_b = [sum(got_b[p]) / len(got_b[p]) for p in both]
-            comparison = {"dimension": a["dimension"], "units": a["units"], "a": a["procedure"], "b": b["procedure"],
-                          "pairs": [{"participant": p, "a": x, "b": y, "difference": x - y}
-                                    for p, x, y in zip(both, mean_a, mean_b)]}
-            comparison.update(paired(mean_a, mean_b))
-            comparisons.append(comparison)
             where = f"{a['procedure']} against {b['procedure']}"
-            if len(both) < 2:
-                who = "no participant has" if not both else f"only {both[0]} has"
-                notes.append(f"{where}: {who} an MLE threshold in both, and a paired comparison needs two "
-                             "participants or more.")
+            for estimate, (what, on, value) in COMPARED.items():
+                if estimate == "procedure" and not {a["procedure"], b["procedure"]} <= own:
+                    continue  # constant stimuli make no estimate of their own
+                comparison = paired_by_participant(sessions, a, b, value, order_key)
+                comparisons[estimate].append(dict(estimate=estimate, **comparison))
+                if comparison["n"] < 2:
+                    both = comparison["pairs"]
+                    who = "no participant has" if not both else f"only {both[0]['participant']} has"
+                    notes.append(f"{where}: {who} {what} in both, and a paired comparison needs two participants or "
+                                 "more.")
+                    continue
+                m = comparison["positive"] + comparison["negative"]
+                if comparison["wilcoxon_method"] == "exact" and m < WILCOXON_LEAST_N:
+                    notes.append(f"{where}, on {on}: with {m} non-zero differences the exact Wilcoxon test's "
+                                 f"two-sided p is at least 2 / 2^{m} = {2.0 / 2 ** m:.3g}, however large they are; "
+                                 "the t-test's is not bounded so.")
+            kinds = [ESTIMATES.get(p["method"]) for p in (a, b)]
+            if {a["procedure"], b["procedure"]} <= own and kinds[0] != kinds[1]:
+                notes.append(f"{where}: their own estimates are of different kinds ({kinds[0] or a['method']} and "
+                             f"{kinds[1] or b['method']}), so the difference of those mixes the procedures with the "
+                             "estimators; the MLE thresholds are one estimator of both.")
             points = a["percent_correct"] + [p for p in b["percent_correct"] if p not in a["percent_correct"]]
             if len(points) > 1:
                 notes.append(f"{where}: their thresholds are defined at different points "
                              f"({', '.join(f'{p:g}' for p in points)} % correct), so the difference mixes the two "
                              "procedures with the two definitions.")
-    return comparisons
+    return [c for estimate in COMPARED for c in comparisons[estimate]]
+
+
+def paired_by_participant(sessions, a, b, value, order_key):
+    """The comparison of procedure a with b on `value` of each row: the participants with a value in
+    both, each by the mean of their sessions' values."""
+    means = {a["procedure"]: {}, b["procedure"]: {}}
+    for (procedure, participant), theirs in sessions.items():
+        values = [v for v in map(value, theirs) if v is not None]
+        if procedure in means and values:
+            means[procedure][participant] = sum(values) / len(values)
+    got_a, got_b = means[a["procedure"]], means[b["procedure"]]
+    both = sorted(set(got_a) & set(got_b), key=order_key)
+    mean_a, mean_b = [got_a[p] for p in both], [got_b[p] for p in both]
+    comparison = {"dimension": a["dimension"], "units": a["units"], "a": a["procedure"], "b": b["procedure"],
+                  "pairs": [{"participant": p, "a": x, "b": y, "difference": x - y}
+                            for p, x, y in zip(both, mean_a, mean_b)]}
+    comparison.update(paired(mean_a, mean_b))
+    return comparison
 
 
 def paired(a, b):

@@ -60,14 +60,30 @@ def probability(x, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scal
     return guess + (1.0 - guess - lapse) * _cdf_and_density(z, shape)[0]
 
 
-def stimulus_at(percent_correct, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
-    """The stimulus at which the function gives percent_correct % correct."""
+def _z_at(percent_correct, lapse, guess, shape):
+    """F's argument z at which the function gives percent_correct % correct: F^-1(q), with q the
+    share of the way from the guess rate to 1 - lapse."""
     q = (percent_correct / 100.0 - guess) / (1.0 - guess - lapse)
     if not 0.0 < q < 1.0:
         raise ValueError(f"the function never reaches {percent_correct} % correct "
                          f"(guess rate {guess}, lapse {lapse})")
-    z = math.log(q / (1.0 - q)) if shape == "logistic" else math.log(-math.log1p(-q))
-    u = float(_u(threshold, scale)) + z / slope
+    return math.log(q / (1.0 - q)) if shape == "logistic" else math.log(-math.log1p(-q))
+
+
+def stimulus_at(percent_correct, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """The stimulus at which the function gives percent_correct % correct."""
+    u = float(_u(threshold, scale)) + _z_at(percent_correct, lapse, guess, shape) / slope
+    return u if scale == "linear" else math.exp(u)
+
+
+def location_at(percent_correct, stimulus, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """The function's threshold parameter (its location) that puts percent_correct % correct at
+    `stimulus`: stimulus_at's inverse in its threshold. stimulus_at solves
+    slope (u(x) - u(t)) = z for u(x); solved for u(t) instead, u(t) = u(x) - z / slope, a shift on
+    the function's scale -- t = x - z / slope on the linear scale, t = x e^(-z / slope) on the log
+    scale. Useful where a procedure reports the stimulus at its percent correct (QUEST+'s
+    posterior mean) and the function is wanted."""
+    u = float(_u(stimulus, scale)) - _z_at(percent_correct, lapse, guess, shape) / slope
     return u if scale == "linear" else math.exp(u)
 
 

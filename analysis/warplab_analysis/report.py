@@ -433,6 +433,15 @@ def procedure_table(out, procedure, rows, level):
     out.append(table([name for name, _ in columns], cells))
 
 
+# The comparisons' tables, in report.json's order (discrimination.COMPARED): heading, and the
+# sentence where a dimension's procedures give nothing to compare on it.
+COMPARISON_TABLES = {
+    "procedure": ("On the procedures' own estimates", "No two procedures of one dimension both make an estimate of "
+                  "their own (constant stimuli make none): nothing to compare on them."),
+    "mle": ("On the MLE thresholds", None),
+}
+
+
 def comparisons_table(out, section, level):
     if not section["procedures"]:
         return  # nothing was fitted: the notes say why
@@ -441,22 +450,34 @@ def comparisons_table(out, section, level):
     if not comparisons:
         out.append("No two procedures vary the same dimension: nothing to compare.\n")
         return
-    out.append("Every two procedures of one dimension, over the participants with an MLE threshold in both: d = "
-               "threshold(a) − threshold(b), a participant with several sessions of a procedure counted once, by "
-               "the mean of their thresholds. The mean of d with its 95 % t interval and the 95 % percentile "
-               f"interval of {section['paired_resamples']} bootstrap resamples of the participants (seed "
-               f"{section['seed']}); the paired t-test and the Wilcoxon signed-rank test (exact, mid-ranks for "
-               "tied |d|), two-sided.\n")
-    rows = []
-    for c in comparisons:
-        rows.append([cell(c["dimension"]), f"{cell(c['a'])} − {cell(c['b'])}", str(c["n"]),
-                     f"{number(c['mean_diff'])} {cell(c['units'])}" if c["mean_diff"] is not None else NOTHING,
-                     interval(c["mean_diff"], c["t_low"], c["t_high"]).partition(" ")[2] or NOTHING,
-                     interval(c["mean_diff"], c["bootstrap_low"], c["bootstrap_high"]).partition(" ")[2] or NOTHING,
-                     fmt(c["t"], ".3f") + (f" ({c['df']})" if c["df"] is not None else ""),
-                     fmt(c["p_t"], ".4g"), fmt(c["p_wilcoxon"], ".4g")])
-    out.append(table(["dimension", "a − b", "n", "mean d", "95 % t interval", "95 % bootstrap", "t (df)", "p (t)",
-                      "p (Wilcoxon)"], rows))
+    out.append("Every two procedures of one dimension, compared twice. First on each procedure's own estimate "
+               "(thresholds.csv's threshold: QUEST+'s posterior mean, a staircase's mean of its last reversals; "
+               "constant stimuli make none): QUEST+'s exists for every session, however its answers fall, but rests "
+               "on the procedure's prior and grids as well as on the trials. Then on the MLE thresholds: one "
+               "estimator for every procedure, from the trials alone, but none where the likelihood keeps rising "
+               "towards a step between two levels, as it often does when QUEST+ places a short session's trials "
+               "close to the threshold. Each over the participants with that threshold in both: d = threshold(a) "
+               "− threshold(b), a participant with several sessions of a procedure counted once, by the mean of "
+               "their thresholds. The mean of d with its 95 % t interval and the 95 % percentile interval of "
+               f"{section['paired_resamples']} bootstrap resamples of the participants (seed {section['seed']}); the "
+               "paired t-test and the Wilcoxon signed-rank test (exact, mid-ranks for tied |d|), two-sided.\n")
+    for estimate, (heading, none) in COMPARISON_TABLES.items():
+        chosen = [c for c in comparisons if c["estimate"] == estimate]
+        out.append(f"{'#' * (level + 1)} {heading}\n")
+        if not chosen:
+            out.append(f"{none}\n")
+            continue
+        rows = []
+        for c in chosen:
+            rows.append([cell(c["dimension"]), f"{cell(c['a'])} − {cell(c['b'])}", str(c["n"]),
+                         f"{number(c['mean_diff'])} {cell(c['units'])}" if c["mean_diff"] is not None else NOTHING,
+                         interval(c["mean_diff"], c["t_low"], c["t_high"]).partition(" ")[2] or NOTHING,
+                         interval(c["mean_diff"], c["bootstrap_low"], c["bootstrap_high"]).partition(" ")[2]
+                         or NOTHING,
+                         fmt(c["t"], ".3f") + (f" ({c['df']})" if c["df"] is not None else ""),
+                         fmt(c["p_t"], ".4g"), fmt(c["p_wilcoxon"], ".4g")])
+        out.append(table(["dimension", "a − b", "n", "mean d", "95 % t interval", "95 % bootstrap", "t (df)", "p (t)",
+                          "p (Wilcoxon)"], rows))
 
 
 def condition_name(condition):
