@@ -238,7 +238,8 @@ def refit(row, trials, notes):
                      "lies.")
     if left_out > LEFT_OUT_NOTE_SHARE * RESAMPLES:
         notes.append(f"{name}: {left_out} of {RESAMPLES} bootstrap resamples could not be fitted (their answers "
-                     "separate perfectly by level, or never reach the percent correct), so its interval, from the "
+                     "are likeliest under a step between two levels, or never reach the percent correct), so its "
+                     "interval, from the "
                      "others, understates the uncertainty.")
     out["mle"] = {"threshold": threshold, "bootstrap_low": low, "bootstrap_high": high, "resamples_fitted": kept,
                   "resamples_left_out": left_out, "slope": fitted["slope"], "slope_unbounded": unbounded,

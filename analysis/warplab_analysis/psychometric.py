@@ -158,7 +158,8 @@ def fit(stimuli, correct, guess=0.5, lapse=0.0, shape="weibull", scale="log", to
         # only an infinite slope reaches. Checked once the likelihood stops rising, so that a fit
         # running off towards the step stops there rather than after max_steps.
         if abs(beta[1]) > 1e6 or (abs(current - previous) < 1e-12 and at_a_step(beta)):
-            raise ValueError("the psychometric fit has no maximum: the answers separate perfectly by level")
+            raise ValueError("the psychometric fit has no maximum: its likelihood keeps rising towards a step "
+                             "between two levels, which only an infinite slope reaches")
         if np.max(np.abs(move)) < tolerance * (1.0 + np.max(np.abs(beta))) and abs(current - previous) < 1e-12:
             break
     else:
