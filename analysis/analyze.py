@@ -24,6 +24,12 @@ default; choose_reference says which when the matches lack it) by paired t-test
 signed-rank and sign test, and a repeated-measures ANOVA per measure (statsmodels' AnovaRM,
 left out with a note if statsmodels is missing).
 
+Discrimination thresholds (thresholds.csv and discrimination_trials.csv, the discrimination
+game's): every session's trials of each procedure refitted by maximum likelihood beside the
+procedure's own estimate, and the thresholds of procedures of one stimulus dimension compared
+between them, participant by participant (warplab_analysis/discrimination.py). That game has no
+shots: an export of it alone has a hitrates.csv without rows.
+
 Bad input (a missing folder or file, an empty file, a missing column, a cell that is not a
 count, hits above shots, a game with one participant, a condition the table gives no valid
 parts, a rating outside the scale, a statement without its rating_k column) ends in one sentence on stderr naming the file, column and line, and exit status 1.
@@ -38,7 +44,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from warplab_analysis import inputs, players, questions, report, stats  # noqa: E402
+from warplab_analysis import discrimination, inputs, players, questions, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -184,9 +190,10 @@ def analyse_matches(loaded, statements, requested_reference, table, game):
 
 def analyse_part(export_dir, data, who, reference_condition, table):
     """The statistics of the participants `who` (None: everyone): {games, sign_tests, matches,
-    answers}. A game that has fewer than two of them has no paired tests: a note says so."""
-    games, described, matches, statements, answers = data
-    part = {"games": {}, "sign_tests": [], "matches": None, "group_notes": [],
+    discrimination, answers}. A game that has fewer than two of them has no paired tests: a note
+    says so."""
+    games, described, matches, statements, answers, thresholds = data
+    part = {"games": {}, "sign_tests": [], "matches": None, "discrimination": None, "group_notes": [],
             "answers": [a for a in answers or [] if who is None or a["participant"] in who]}
     for game in order_games(games, described):
         chosen = {p: row for p, row in games[game].items() if who is None or p in who}
@@ -206,19 +213,28 @@ def analyse_part(export_dir, data, who, reference_condition, table):
             game = matches_game(export_dir, described, matches[3])
             part["matches"] = analyse_matches((chosen,) + tuple(matches[1:]), statements, reference_condition, table,
                                             game)
+    if thresholds is not None and (who is None or thresholds.participants() & who):
+        sessions = {row["session"] for row in thresholds.rows}
+        game = owning_game(export_dir, described, discrimination.THRESHOLDS, sessions)
+        part["discrimination"] = discrimination.analyse(thresholds, who, game, natural_key)
     return part
 
 
 def matches_game(export_dir, described, sessions):
-    """The game whose matches matches.csv holds: the one games.csv says has the table; in an export
-    from before games.csv said so, the one game of the rows' sessions (sessions.csv); None when
-    neither tells."""
-    owners = [g for g, d in described.items() if inputs.MATCHES in (d.get("tables") or ())]
+    """The game whose matches matches.csv holds (owning_game)."""
+    return owning_game(export_dir, described, inputs.MATCHES, sessions)
+
+
+def owning_game(export_dir, described, table_file, sessions):
+    """The game whose rows a game's own table holds: the one games.csv says has the table; in an
+    export from before games.csv said so, the one game of the rows' sessions (sessions.csv); None
+    when neither tells."""
+    owners = [g for g, d in described.items() if table_file in (d.get("tables") or ())]
     if len(owners) == 1:
         return owners[0]
     of_session = inputs.session_games(export_dir)
-    match_games = {of_session[s] for s in sessions if s in of_session}
-    return match_games.pop() if len(match_games) == 1 else None
+    games = {of_session[s] for s in sessions if s in of_session}
+    return games.pop() if len(games) == 1 else None
 
 
 def title_of(game):
@@ -232,7 +248,9 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
         raise BadInput(f"{export_dir}: no such directory (expected the folder `warplab export` wrote).")
     if not os.path.isdir(export_dir):
         raise BadInput(f"{export_dir}: is not a directory (expected the folder `warplab export` wrote).")
-    games, hitrate_rows = inputs.load_hitrates(export_dir)
+    thresholds = discrimination.load(export_dir)
+    # The discrimination game has no shots: an export of it alone has hit rates of no game.
+    games, hitrate_rows = inputs.load_hitrates(export_dir, rows_required=thresholds is None)
     statements = inputs.load_statements(export_dir)
     matches = inputs.load_matches(export_dir, inputs.rating_scales(statements, rating_scale))
     inputs.check_rating_columns(matches, statements)
@@ -262,7 +280,13 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
     if answers is not None:
         results["inputs"][inputs.ANSWERS] = {"answers": len(answers)}
     kinds = inputs.load_player_kinds(export_dir)
-    everyone = sorted({p for g in games.values() for p in g} | set(kinds or {}), key=natural_key)
+    in_thresholds = set()
+    if thresholds is not None:
+        results["inputs"].update(thresholds.inputs)
+        in_thresholds = thresholds.participants()
+        for participant, kinds_of in (thresholds.player_kinds() if kinds is not None else {}).items():
+            kinds.setdefault(participant, set()).update(kinds_of)
+    everyone = sorted({p for g in games.values() for p in g} | set(kinds or {}) | in_thresholds, key=natural_key)
     split = players.groups(kinds, everyone, natural_key)
     results["players"] = {"sentence": players.sentence(kinds, everyone, natural_key), "pooled": pool_players,
                           "kinds": None if kinds is None else {p: players.kind_of(kinds.get(p, set()))
@@ -271,7 +295,7 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
     if kinds is None:
         results["notes"].append(players.UNKNOWN_NOTE)
     parts = {"all": None} if kinds is None or pool_players or len(split) <= 1 else split
-    data = (games, described, matches, statements, answers)
+    data = (games, described, matches, statements, answers, thresholds)
     for k, (group, who) in enumerate(parts.items()):
         part = analyse_part(export_dir, data, None if who is None else set(who), reference_condition, table)
         if k == 0:
@@ -286,6 +310,8 @@ def analyse(export_dir, reference_condition, rating_scale=None, pool_players=Fal
         seen |= {c for g in part["games"].values() for c in g["conditions"]}
         if part["matches"]:
             seen |= set(part["matches"]["conditions"])
+        if part["discrimination"]:  # the references; each level's condition is one of them with one part changed
+            seen |= {row["reference"] for row in part["discrimination"]["rows"]}
     results["condition_order"] = table.order(seen)
     for part in [results] + results.get("player_groups", []):
         part["questions"] = questions.summarise(part.pop("answers"), results["condition_order"], natural_key)
@@ -359,6 +385,17 @@ def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_
         name = file_stem(prefix + "matches", taken) + ".png"
         figures.matches_figure(os.path.join(out_dir, name), matches, palette)
         matches["figure"] = name
+        written.append(name)
+    section = part["discrimination"]
+    for dimension in dict.fromkeys(row["dimension"] for row in (section or {}).get("rows", [])):
+        rows = [row for row in section["rows"] if row["dimension"] == dimension]
+        if not any(row["levels"] for row in rows):
+            continue  # no trials to draw
+        name = file_stem(f"{prefix}discrimination_{dimension}", taken) + ".png"
+        figures.discrimination_figure(os.path.join(out_dir, name), dimension,
+                                      list(dict.fromkeys(row["participant"] for row in rows)), rows,
+                                      [p["procedure"] for p in section["procedures"] if p["dimension"] == dimension])
+        section["figures"][dimension] = name
         written.append(name)
     return written
 

@@ -219,8 +219,9 @@ def test_without_a_condition_table_conditions_are_in_id_order_with_a_note(tmp_pa
 # and upconverts). Such an export must keep giving the same numbers, orders and notes.
 BEFORE = DATA / "modes_csv_reports"
 # report.json's keys that the analysis has added since the pinned reports were written: which file
-# the condition table comes from; who played (unknown in these exports: a note), the questions.
-ADDED_KEYS = {"conditions_file", "players", "questions", "group_notes"}
+# the condition table comes from; who played (unknown in these exports: a note), the questions; the
+# discrimination thresholds (null: these exports have none).
+ADDED_KEYS = {"conditions_file", "players", "questions", "group_notes", "discrimination"}
 
 
 def without_conditions_section(md):
@@ -248,6 +249,7 @@ def test_modes_csv_export_reports_as_before(tmp_path, name):
         assert report["sessions"].pop("players") == {"human": 5}  # added since: who played, by kind
     report["notes"].remove(players.UNKNOWN_NOTE)
     assert report["players"]["kinds"] is None and report["questions"] == [] and report["group_notes"] == []
+    assert report["discrimination"] is None
     assert_same({k: report[k] for k in expected}, expected, "report")
     md = (tmp_path / "out" / "report.md").read_text(encoding="utf-8").replace(str(export), "EXPORT")
     md = md.replace(players.UNKNOWN_NOTE + "\n\n", "")

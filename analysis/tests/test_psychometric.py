@@ -6,6 +6,7 @@ import sys
 
 import numpy as np
 import pytest
+import scipy.optimize
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from warplab_analysis import psychometric  # noqa: E402
@@ -83,6 +84,52 @@ def test_the_fit_is_rs_glm_with_psyphys_links(tmp_path):
         assert b == pytest.approx(rb, abs=1e-6, rel=1e-6), where
 
 
+def likelihood(shape, lapse, u, y, a, b):
+    """The log-likelihood written out again, with the functions in their textbook form."""
+    z = a + b * u
+    f = 1.0 / (1.0 + np.exp(-z)) if shape == "logistic" else 1.0 - np.exp(-np.exp(z))
+    p = np.clip(0.5 + (0.5 - lapse) * f, 1e-300, 1.0 - 1e-16)
+    return float(np.sum(y * np.log(p) + (1.0 - y) * np.log1p(-p)))
+
+
+def test_with_a_lapse_the_fit_settles_at_the_maximum_on_a_sessions_trials():
+    """With a lapse the link is not canonical, and Fisher scoring -- R's glm too -- can circle the
+    maximum of a session's few trials without settling. Nelder and Mead's simplex (scipy), which
+    shares no code with the fit, from the fit's answer and from the function the trials were drawn
+    from, finds no likelier point."""
+    rng = np.random.default_rng(20261205)
+    fitted = 0
+    for shape in psychometric.SHAPES:
+        for scale in psychometric.SCALES:
+            for _ in range(5):
+                x, y = trials(rng, shape, scale, 0.02, 8)
+                u = x if scale == "linear" else np.log(x)
+                try:
+                    f = psychometric.fit(x, y, lapse=0.02, shape=shape, scale=scale)
+                except ValueError as e:
+                    assert "no maximum" in str(e)  # a step between two levels: the slope runs off
+                    continue
+                fitted += 1
+                truth = 2.5 / 10.0 if scale == "linear" else 2.5
+                starts = [(f["intercept"], f["coefficient"]), (-truth * (14.0 if scale == "linear" else np.log(14.0)),
+                                                                truth)]
+                best = max(-scipy.optimize.minimize(lambda b: -likelihood(shape, 0.02, u, y, *b), start,
+                                                    method="Nelder-Mead",
+                                                    options={"xatol": 1e-10, "fatol": 1e-13, "maxiter": 20000}).fun
+                           for start in starts)
+                assert f["log_likelihood"] >= best - 1e-9, (shape, scale)
+                assert f["log_likelihood"] == pytest.approx(likelihood(shape, 0.02, u, y, f["intercept"],
+                                                                       f["coefficient"]), abs=1e-9)
+    assert fitted >= 15
+    # Ten trials at each of eight levels that scoring circled for ever ("did not converge").
+    x = np.repeat(np.arange(1.0, 9.0), 10)
+    y = np.concatenate([np.r_[np.ones(k), np.zeros(10 - k)] for k in (6, 4, 7, 8, 10, 10, 10, 10)])
+    f = psychometric.fit(x, y, lapse=0.02)
+    simplex = scipy.optimize.minimize(lambda b: -likelihood("weibull", 0.02, np.log(x), y, *b), (-5.0, 3.0),
+                                      method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-13, "maxiter": 20000})
+    assert (f["intercept"], f["coefficient"]) == pytest.approx(tuple(simplex.x), rel=1e-6)
+
+
 def test_the_fit_recovers_a_known_function_and_its_interval_holds_it():
     rng = np.random.default_rng(7)
     x, y = trials(rng, "weibull", "log", 0.0, 250)
@@ -111,7 +158,7 @@ def test_the_function_and_its_inverse_agree():
         psychometric.stimulus_at(97.0, 12.0, 2.0, 0.04)
     with pytest.raises(ValueError):
         psychometric.fit([5.0, 5.0], [1, 0])
-    with pytest.raises(ValueError, match="separate perfectly"):
+    with pytest.raises(ValueError, match="keeps rising towards a step"):
         psychometric.fit([2.0, 2.0, 4.0, 4.0, 8.0, 8.0], [0, 0, 0, 1, 1, 1])
 
 

@@ -10,7 +10,8 @@
 - each condition's frame times against time over its pacing horizon (frametimes.csv), the graph
   MangoHud and CapFrameX draw, one panel per condition on one frame-time scale;
 - each condition's view and scene latency of a step falling uniformly in time (latency.csv), as
-  histograms drawn exactly from the spans, a row per condition on one latency scale.
+  histograms drawn exactly from the spans, a row per condition on one latency scale;
+- the discrimination task's psychometric curves, a panel per participant, a colour per procedure.
 Each condition keeps one colour in every figure: its place in `palette`, every condition the
 export's table lists in the report's condition order (conditions.ConditionTable.all_conditions).
 """
@@ -19,9 +20,12 @@ import math
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.lines  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from .psychometric import probability  # noqa: E402
 
 BIN_WIDTH = 0.05
 # Up to this many participants the hit-rate figure gives each a column (0.38 in, so 26 in and
@@ -262,3 +266,167 @@ def latency_figure(path, distributions, palette):
                  "dotted: the longest (latency.csv)", fontsize=9)
     fig.savefig(path)
     plt.close(fig)
+
+
+# How far beyond the levels tried the stimulus axis reaches for a threshold or an interval's end,
+# as a share of the levels' span on the axis's scale (on a log axis at least a factor of 2, so that
+# levels close together still leave room; on a linear one, with a single level, that share of its
+# size). Beyond it they are cut at the axis: a bootstrap interval of a weak session may reach 10^5
+# frames, and an axis that spans it squeezes every level into a corner.
+INTERVAL_REACH = 0.35
+
+
+def stimulus_limits(levels, values, log):
+    """The stimulus axis's limits: every level tried, and every threshold and interval's end up to
+    the cut (INTERVAL_REACH), with a little room beyond. On a log axis a value at or below 0 lies
+    beyond the cut."""
+    def to(v):
+        v = np.asarray(v, dtype=float)
+        if not log:
+            return v
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(v > 0, np.log(np.maximum(v, 1e-300)), -np.inf)
+
+    core = to(levels if len(levels) else [v for v in values if math.isfinite(v)] or [1.0])
+    low, high = float(core.min()), float(core.max())
+    if log:
+        reach = max(INTERVAL_REACH * (high - low), math.log(2.0))
+    else:
+        reach = INTERVAL_REACH * ((high - low) or max(abs(high), 1.0))
+    shown = np.concatenate([core, np.clip(to([v for v in values if not math.isnan(v)]), low - reach, high + reach)])
+    low, high = float(shown.min()), float(shown.max())
+    pad = 0.06 * (high - low or 1.0)
+    limits = (low - pad, high + pad)
+    return (math.exp(limits[0]), math.exp(limits[1])) if log else limits
+
+
+def proportion_floor(rows):
+    """The proportion axis's lower limit: a little below the guess rate, or below the lowest
+    proportion correct -- a level tried once and answered wrong is at 0, under any guess rate, and
+    is data the figure must show."""
+    return max(-0.04, min([row["guess"] - 0.08 for row in rows]
+                          + [level["correct"] / level["n"] - 0.04 for row in rows for level in row["levels"]]))
+
+
+def discrimination_figure(path, dimension, participants, rows, procedures):
+    """Each participant's psychometric curves of one stimulus dimension (discrimination.analyse's
+    rows), a panel each: per procedure (a colour each) the proportion correct at every level tried,
+    marker area proportional to its trials; the MLE fit (solid), or where the trials give none the
+    function of the procedure's own estimate (dashed; QUEST+'s posterior means); the MLE threshold
+    at its percent correct with its bootstrap interval, and the procedure's own threshold with its
+    credible interval. One scale for every panel, so that thresholds compare across participants;
+    logarithmic where every procedure's function is on the log scale."""
+    columns = min(5, max(1, math.ceil(math.sqrt(len(participants)))))
+    panel_rows = math.ceil(len(participants) / columns)
+    legend_rows = 2
+    legend = 0.08 + 0.19 * legend_rows  # inches of the legend, under the axis label
+    # At least 6.4 in wide, so that the title and the axis label fit over a single panel.
+    fig, axes = plt.subplots(panel_rows, columns, figsize=(max(6.4, 3.1 * columns), 2.5 * panel_rows + 1.2 + legend),
+                             dpi=110, squeeze=False, sharex=True, sharey=True)
+    colours = {p: plt.get_cmap("tab10")(k % 10) for k, p in enumerate(procedures)}
+    # Each threshold's interval a little above or below its percent correct, one place per procedure
+    # and estimate, so that no two intervals at one percent correct hide each other.
+    places = [(p, kind) for p in procedures for kind in ("mle", "export")]
+    offsets = {place: 0.022 * (k - (len(places) - 1) / 2) for k, place in enumerate(places)}
+    stimuli = [level["stimulus"] for row in rows for level in row["levels"]]
+    values = []  # every threshold and interval's end
+    for row in rows:
+        for estimate, low, high in (("mle", "bootstrap_low", "bootstrap_high"),
+                                    ("export", "threshold_low", "threshold_high")):
+            got = row[estimate]
+            if got and got["threshold"] is not None:
+                values += [v for v in (got["threshold"], got[low], got[high]) if v is not None]
+    log = all(row["scale"] == "log" for row in rows) and all(v > 0 for v in stimuli)
+    limits = stimulus_limits(stimuli, values, log)
+    grid = np.geomspace(*limits, 300) if log else np.linspace(*limits, 300)
+    # Area, not radius, in proportion to the trials: the eye reads a marker's size as its area.
+    most = max((level["n"] for row in rows for level in row["levels"]), default=1)
+    for ax, participant in zip(axes.flat, participants):
+        for row in [r for r in rows if r["participant"] == participant]:
+            discrimination_panel(ax, row, colours[row["procedure"]],
+                                 {kind: offsets[(row["procedure"], kind)] for kind in ("mle", "export")}, grid, most,
+                                 limits)
+        ax.set_title(participant, fontsize=9)
+        ax.grid(True, linewidth=0.4, alpha=0.5)
+        ax.tick_params(labelsize=7)
+    for ax in list(axes.flat)[len(participants):]:
+        ax.set_visible(False)
+    first = axes.flat[0]
+    if log:
+        first.set_xscale("log")
+        # 1, 2, 5 in each decade, written as numbers: a span of levels is often within one decade,
+        # where the default would label only its power of ten.
+        first.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10.0, subs=(1.0, 2.0, 5.0)))
+        first.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+        first.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    first.set_xlim(*limits)
+    first.set_ylim(proportion_floor(rows), 1.03)
+    units = next(iter({row["units"] for row in rows}), "")
+    height = fig.get_figheight()
+    # Over the legend; tight_layout (matplotlib 3.6 and later) keeps the panels' tick labels above it.
+    fig.supxlabel(f"{dimension}: difference from the reference ({units})", fontsize=9, y=legend / height,
+                  va="bottom")
+    fig.supylabel("proportion correct", fontsize=9)
+    # The legend under the axis label, the title above the panels: neither can cover the other,
+    # however few panels the figure is wide.
+    handles = [matplotlib.lines.Line2D([], [], color=colours[p], marker="o", linestyle="none", label=p)
+               for p in procedures]
+    handles += [matplotlib.lines.Line2D([], [], color="0.25", linestyle="-", label="MLE fit"),
+                matplotlib.lines.Line2D([], [], color="black", marker="|", markersize=9, markeredgewidth=2.0,
+                                        linestyle="none", label="MLE threshold, bootstrap interval")]
+    if any(row["export"]["threshold"] is not None for row in rows):
+        handles += [matplotlib.lines.Line2D([], [], color="0.25", linestyle="--",
+                                            label="procedure's estimate (no MLE fit)"),
+                    matplotlib.lines.Line2D([], [], color="black", marker="D", markersize=5, markerfacecolor="white",
+                                            linestyle="none", label="procedure's threshold, credible interval")]
+    fig.legend(handles=handles, fontsize=8, loc="lower center", ncol=math.ceil(len(handles) / legend_rows),
+               frameon=False, bbox_to_anchor=(0.5, 0.0), columnspacing=1.2, handletextpad=0.4)
+    fig.suptitle(f"{dimension}: proportion correct per level (marker area: trials); thresholds at their percent "
+                 "correct\nwith 95 % intervals, cut at the axis (open triangle)", fontsize=9, x=0.02, ha="left")
+    fig.tight_layout(rect=(0, legend / height, 1, 1))
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def discrimination_panel(ax, row, colour_of_row, offsets, grid, most, limits):
+    levels = row["levels"]
+    ax.scatter([level["stimulus"] for level in levels], [level["correct"] / level["n"] for level in levels],
+               s=[60.0 * level["n"] / most + 4.0 for level in levels], color=colour_of_row, alpha=0.55,
+               edgecolors="none", zorder=2)
+    if row["scale"] == "log":
+        grid = grid[grid > 0]  # a linear axis beside a linear-scale procedure may reach 0 and below
+    fit, own = row["mle"], row["export"]
+    # The function: the trials' own where they have one; else the one the procedure concluded,
+    # dashed, so that a row without a fit still shows where its procedure put the threshold.
+    if fit is not None:
+        curve = (fit["location"], fit["slope"], fit["lapse"], "-")
+    elif own["location"] is not None:
+        curve = (own["location"], own["slope"], own["lapse"] if own["lapse"] is not None else row["fit_lapse"], "--")
+    else:
+        curve = None
+    if curve:
+        location, slope, lapse, style = curve
+        ax.plot(grid, probability(grid, location, slope, lapse, row["guess"], row["shape"], row["scale"]),
+                color=colour_of_row, linewidth=1.2, linestyle=style, zorder=3)
+    y = row["percent_correct"] / 100.0
+    if fit is not None:
+        threshold_marker(ax, fit["threshold"], fit["bootstrap_low"], fit["bootstrap_high"], y + offsets["mle"],
+                         colour_of_row, limits, {"marker": "|", "markersize": 11, "markeredgewidth": 2.0,
+                                                 "color": "black"})
+    if own["threshold"] is not None:
+        threshold_marker(ax, own["threshold"], own["threshold_low"], own["threshold_high"], y + offsets["export"],
+                         colour_of_row, limits, {"marker": "D", "markersize": 4.5, "markeredgewidth": 1.0,
+                                                 "markerfacecolor": "white", "color": "black"})
+
+
+def threshold_marker(ax, threshold, low, high, y, colour_of_row, limits, marker):
+    """A threshold on its interval at height y; an interval's end beyond the axis drawn to the axis,
+    with an open triangle there pointing on."""
+    if low is not None and high is not None and math.isfinite(low) and math.isfinite(high):
+        ax.plot([max(low, limits[0]), min(high, limits[1])], [y, y], color=colour_of_row, linewidth=2.4, alpha=0.8,
+                solid_capstyle="butt", zorder=4)
+        for end, edge, pointing in ((low, limits[0], "<"), (high, limits[1], ">")):
+            if (end < edge) if pointing == "<" else (end > edge):
+                ax.plot([edge], [y], marker=pointing, markersize=5, markerfacecolor="white",
+                        markeredgecolor=colour_of_row, clip_on=False, zorder=5)
+    ax.plot([threshold], [y], linestyle="none", zorder=6, **marker)

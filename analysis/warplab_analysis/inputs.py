@@ -168,10 +168,12 @@ def boolean(table, record, column):
                    f"{record[column]!r}.")
 
 
-def load_hitrates(export_dir):
-    """{game: {participant: {condition: (hits, shots)}}} and the number of rows, in file order."""
+def load_hitrates(export_dir, rows_required=True):
+    """{game: {participant: {condition: (hits, shots)}}} and the number of rows, in file order.
+    rows_required: a file with its header only is refused (there would be nothing to report);
+    False for an export whose data is elsewhere (the discrimination game has no shots)."""
     table = read_table(os.path.join(export_dir, HITRATES), HITRATES_REQUIRED, condition_column=True)
-    if not table.records:
+    if not table.records and rows_required:
         raise BadInput(f"{table.path}: has a header but no data rows.")
     optional_numeric = [c for c in ("timeouts", "hit_rate") if c in table.header]
     games = {}

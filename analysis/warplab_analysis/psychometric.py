@@ -9,7 +9,9 @@ with u the stimulus or its natural log, F the logistic 1 / (1 + e^-z) or the Wei
 With the lapse fixed the fit is a generalised linear model in eta = a + b u, a = -slope u(t) and
 b = slope: R's glm with the psyphy package's link mafc.logit(m) (logistic) or mafc.cloglog(m)
 (Weibull) for guess = 1/m, which analysis/tests/test_psychometric.py checks it against. It is
-found as glm finds it, by Fisher scoring, to a tighter tolerance.
+found by Fisher scoring, as glm finds it, to a tighter tolerance, but near the maximum by Newton's
+steps: with a lapse the link is not canonical, and on a session's few trials scoring (glm's too)
+can circle the maximum without ever settling.
 """
 import math
 
@@ -38,20 +40,50 @@ def _cdf_and_density(z, shape):
     return -np.expm1(-ez), ez * np.exp(-ez)
 
 
+def _clip(p):
+    """p kept off 0 and 1, where a log-likelihood term is infinite (np.clip's result, without
+    its overhead on the few numbers of a fit's levels)."""
+    return np.minimum(np.maximum(p, 1e-300), 1.0 - 1e-16)
+
+
+def _density_slope(z, density, shape):
+    """F''(z), from z and F'(z)."""
+    z = np.asarray(z, dtype=float)
+    if shape == "logistic":
+        return density * -np.tanh(0.5 * z)  # F' (1 - 2F)
+    return density * -np.expm1(np.minimum(z, 700.0))  # F' (1 - e^z)
+
+
 def probability(x, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
     """p(correct) at stimulus x (a number or an array)."""
     z = slope * (_u(x, scale) - _u(threshold, scale))
     return guess + (1.0 - guess - lapse) * _cdf_and_density(z, shape)[0]
 
 
-def stimulus_at(percent_correct, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
-    """The stimulus at which the function gives percent_correct % correct."""
+def _z_at(percent_correct, lapse, guess, shape):
+    """F's argument z at which the function gives percent_correct % correct: F^-1(q), with q the
+    share of the way from the guess rate to 1 - lapse."""
     q = (percent_correct / 100.0 - guess) / (1.0 - guess - lapse)
     if not 0.0 < q < 1.0:
         raise ValueError(f"the function never reaches {percent_correct} % correct "
                          f"(guess rate {guess}, lapse {lapse})")
-    z = math.log(q / (1.0 - q)) if shape == "logistic" else math.log(-math.log1p(-q))
-    u = float(_u(threshold, scale)) + z / slope
+    return math.log(q / (1.0 - q)) if shape == "logistic" else math.log(-math.log1p(-q))
+
+
+def stimulus_at(percent_correct, threshold, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """The stimulus at which the function gives percent_correct % correct."""
+    u = float(_u(threshold, scale)) + _z_at(percent_correct, lapse, guess, shape) / slope
+    return u if scale == "linear" else math.exp(u)
+
+
+def location_at(percent_correct, stimulus, slope, lapse=0.0, guess=0.5, shape="weibull", scale="log"):
+    """The function's threshold parameter (its location) that puts percent_correct % correct at
+    `stimulus`: stimulus_at's inverse in its threshold. stimulus_at solves
+    slope (u(x) - u(t)) = z for u(x); solved for u(t) instead, u(t) = u(x) - z / slope, a shift on
+    the function's scale -- t = x - z / slope on the linear scale, t = x e^(-z / slope) on the log
+    scale. Useful where a procedure reports the stimulus at its percent correct (QUEST+'s
+    posterior mean) and the function is wanted."""
+    u = float(_u(stimulus, scale)) - _z_at(percent_correct, lapse, guess, shape) / slope
     return u if scale == "linear" else math.exp(u)
 
 
@@ -78,27 +110,43 @@ def fit(stimuli, correct, guess=0.5, lapse=0.0, shape="weibull", scale="log", to
 
     def log_likelihood(b):
         p = guess + c * _cdf_and_density(design @ b, shape)[0]
-        p = np.clip(p, 1e-300, 1.0 - 1e-16)
+        p = _clip(p)
         return float(np.sum(y * np.log(p) + (n - y) * np.log1p(-p)))
 
     # Scoring from a poor start can leap to where every trial is certain and learn nothing: it
     # starts from the best of a coarse grid of locations within the levels and slopes across them.
     t, b = np.meshgrid(np.linspace(u.min(), u.max(), 25), np.geomspace(0.5, 200.0, 25) / float(np.ptp(u)))
     starts = np.column_stack([-(b * t).ravel(), b.ravel()])
-    p = np.clip(guess + c * _cdf_and_density(starts @ design.T, shape)[0], 1e-300, 1.0 - 1e-16)
+    p = _clip(guess + c * _cdf_and_density(starts @ design.T, shape)[0])
     beta = starts[int(np.argmax(np.log(p) @ y + np.log1p(-p) @ (n - y)))]
     current = log_likelihood(beta)
+
+    def at_a_step(b):
+        fitted = guess + c * _cdf_and_density(design @ b, shape)[0]
+        return bool(np.all((fitted - guess < 1e-6) | (1.0 - lapse - fitted < 1e-6)))
+
     for step in range(1, max_steps + 1):
-        f, density = _cdf_and_density(design @ beta, shape)
-        p = np.clip(guess + c * f, 1e-300, 1.0 - 1e-16)
+        eta = design @ beta
+        f, density = _cdf_and_density(eta, shape)
+        p = _clip(guess + c * f)
         dp = c * density
-        weights = n * dp * dp / (p * (1.0 - p))
-        score = design.T @ ((y - n * p) * dp / (p * (1.0 - p)))
-        information = design.T @ (design * weights[:, None])
+        per_p = y / p - (n - y) / (1.0 - p)  # d log-likelihood / dp at each level
+        score = design.T @ (per_p * dp)
+        # Newton's step where the likelihood curves down in every direction (near its maximum),
+        # else Fisher scoring's (glm's). With a lapse the link is not canonical, and scoring's
+        # expected information can differ enough from the curvature that it circles the maximum,
+        # each step a little longer than the last, and never settles.
+        observed = (y / (p * p) + (n - y) / ((1.0 - p) ** 2)) * dp * dp - per_p * c * _density_slope(eta, density,
+                                                                                                     shape)
+        information = design.T @ (design * observed[:, None])
+        # Positive definite: a 2 x 2 matrix with a positive corner and determinant.
+        if not (information[0, 0] > 0.0 and information[0, 0] * information[1, 1] > information[0, 1] ** 2):
+            weights = n * dp * dp / (p * (1.0 - p))
+            information = design.T @ (design * weights[:, None])
         # Least squares rather than an inverse: where only one level's trials still carry weight
         # (a slope near a step) the information is all but singular.
         move = np.linalg.lstsq(information, score, rcond=None)[0]
-        # Fisher scoring, halved while it would lower the likelihood.
+        # The step, halved while it would lower the likelihood.
         for _ in range(60):
             trial = beta + move
             value = log_likelihood(trial)
@@ -106,17 +154,16 @@ def fit(stimuli, correct, guess=0.5, lapse=0.0, shape="weibull", scale="log", to
                 break
             move /= 2.0
         beta, previous, current = trial, current, value
-        if abs(beta[1]) > 1e6:
-            raise ValueError("the psychometric fit has no maximum: the answers separate perfectly by level")
+        # Every fitted probability at the guess rate or at 1 - lapse: a step between two levels, which
+        # only an infinite slope reaches. Checked once the likelihood stops rising, so that a fit
+        # running off towards the step stops there rather than after max_steps.
+        if abs(beta[1]) > 1e6 or (abs(current - previous) < 1e-12 and at_a_step(beta)):
+            raise ValueError("the psychometric fit has no maximum: its likelihood keeps rising towards a step "
+                             "between two levels, which only an infinite slope reaches")
         if np.max(np.abs(move)) < tolerance * (1.0 + np.max(np.abs(beta))) and abs(current - previous) < 1e-12:
             break
     else:
         raise ValueError(f"the psychometric fit did not converge in {max_steps} steps")
-    # Every fitted probability at the guess rate or at 1 - lapse: a step between two levels, which
-    # only an infinite slope reaches.
-    fitted = guess + c * _cdf_and_density(design @ beta, shape)[0]
-    if np.all((fitted - guess < 1e-6) | (1.0 - lapse - fitted < 1e-6)):
-        raise ValueError("the psychometric fit has no maximum: the answers separate perfectly by level")
     a, b = float(beta[0]), float(beta[1])
     location = -a / b
     return {"threshold": location if scale == "linear" else math.exp(location), "slope": b,

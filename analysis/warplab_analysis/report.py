@@ -331,8 +331,14 @@ def game_sections(out, results, part):
     games = list(part["games"])
     if matches is not None and match_game not in games:
         games.append(match_game)
+    # The discrimination thresholds go with their game too; that game has no shots, so it is one
+    # of the games with hit rates only in an export that gives it some.
+    section = part.get("discrimination")
     for game in games:
         summary = part["games"].get(game)
+        if section is not None and game == section["game"]:
+            discrimination_section(out, section, 2)
+            section = None
         if matches is not None and game == match_game:
             heading = f"{title(game)} game" if game else "Matches"
             out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
@@ -347,6 +353,131 @@ def game_sections(out, results, part):
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
             if shares(summary["conditions"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
+    if section is not None:
+        discrimination_section(out, section, 2)
+
+
+METHODS = {"quest_plus": "QUEST+", "staircase": "staircase", "constant_stimuli": "constant stimuli"}
+# The column of a procedure's own estimate, by method; constant stimuli have none.
+ESTIMATE_HEADERS = {"quest_plus": "QUEST+ posterior mean [95 % credible]",
+                    "staircase": "staircase: mean of the last reversals"}
+
+
+def number(value):
+    return fmt(value, ".3g")
+
+
+def interval(value, low, high):
+    """"3.1 [2.5, 3.8]", the value alone without its interval, a dash without the value."""
+    if value is None:
+        return NOTHING
+    if low is None or high is None or not (math.isfinite(low) and math.isfinite(high)):
+        return number(value)
+    return f"{number(value)} [{number(low)}, {number(high)}]"
+
+
+def discrimination_section(out, section, level):
+    """The discrimination thresholds (discrimination.analyse): a table per procedure, the paired
+    comparisons, the figures and the notes."""
+    h = "#" * level
+    game = section["game"]
+    out.append(f"{h} Discrimination thresholds" + (f" ({cell(game)} game)" if game and game != "discrimination"
+                                                    else "") + "\n")
+    out.append("Each session's trials of a procedure (discrimination_trials.csv) refitted by maximum likelihood with "
+               "the function thresholds.csv gives the procedure (shape, scale, guess rate) and its lapse rate held at "
+               "the row's fit\\_lapse (Wichmann and Hill 2001). The MLE threshold is the stimulus at the procedure's "
+               "percent correct, with the 95 % percentile interval of "
+               f"{section['resamples']} bootstrap resamples of the trials (seed {section['seed']}; a resample that "
+               "cannot be fitted is left out). Beside it, the procedure's own estimate: QUEST+'s posterior mean with "
+               "its 95 % credible interval (Watson 2017), a staircase's mean of its last reversals (Levitt 1971). "
+               "Thresholds are differences from the reference, in the dimension's units. Slopes are per unit of "
+               "the function's scale (the log of the stimulus on the log scale).\n")
+    for procedure in section["procedures"]:
+        procedure_table(out, procedure, [r for r in section["rows"] if r["procedure"] == procedure["procedure"]],
+                        level + 1)
+    comparisons_table(out, section, level + 1)
+    for dimension, name in section["figures"].items():
+        out.append(f"![{cell(dimension)}: each participant's psychometric curves]({name})\n")
+    if section["notes"]:
+        out.append("Notes:\n\n" + "\n".join(f"- {cell(note)}" for note in section["notes"]) + "\n")
+
+
+def procedure_table(out, procedure, rows, level):
+    """One procedure's rows: the export's estimate (where its method makes one) beside the refit."""
+    method = procedure["method"]
+    points = " and ".join(f"{p:g}" for p in procedure["percent_correct"])
+    out.append(f"{'#' * level} {cell(procedure['procedure'])}: {cell(procedure['dimension'])} "
+               f"({cell(procedure['units'])}), {cell(METHODS.get(method, method))}, threshold at {points} % correct\n")
+    out.append(f"Reference: {', '.join(dict.fromkeys(cell(r['reference']) for r in rows))}.\n")
+    columns = [("participant", lambda r: cell(r["participant"]))]
+    if len({r["participant"] for r in rows}) < len(rows):  # a participant with several sessions
+        columns.append(("session", lambda r: cell(r["session"])))
+    columns.append(("trials", lambda r: str(r["trials_found"])))
+    if any(r["export"]["threshold"] is not None for r in rows):
+        columns.append((ESTIMATE_HEADERS.get(method, "the procedure's estimate"),
+                        lambda r: interval(r["export"]["threshold"], r["export"]["threshold_low"],
+                                           r["export"]["threshold_high"])))
+    columns.append(("MLE threshold [95 % bootstrap]",
+                    lambda r: interval(r["mle"]["threshold"], r["mle"]["bootstrap_low"], r["mle"]["bootstrap_high"])))
+    if any(r["mle"] and r["mle"]["resamples_left_out"] for r in rows):
+        columns.append(("resamples fitted", lambda r: f"{r['mle']['resamples_fitted']} of "
+                        f"{r['mle']['resamples_fitted'] + r['mle']['resamples_left_out']}"))
+    columns.append(("MLE slope", lambda r: "unbounded" if r["mle"]["slope_unbounded"] else number(r["mle"]["slope"])))
+    columns.append(("lapse held", lambda r: number(r["fit_lapse"])))
+    if method == "quest_plus":
+        for part in ("slope", "lapse"):
+            columns.append((f"QUEST+ {part} [95 %]", lambda r, part=part: interval(
+                r["export"][part], r["export"][f"{part}_low"], r["export"][f"{part}_high"])))
+    needs_fit = {"MLE threshold [95 % bootstrap]", "resamples fitted", "MLE slope"}
+    cells = [[NOTHING if name in needs_fit and r["mle"] is None else get(r) for name, get in columns] for r in rows]
+    out.append(table([name for name, _ in columns], cells))
+
+
+# The comparisons' tables, in report.json's order (discrimination.COMPARED): heading, and the
+# sentence where a dimension's procedures give nothing to compare on it.
+COMPARISON_TABLES = {
+    "procedure": ("On the procedures' own estimates", "No two procedures of one dimension both make an estimate of "
+                  "their own (constant stimuli make none): nothing to compare on them."),
+    "mle": ("On the MLE thresholds", None),
+}
+
+
+def comparisons_table(out, section, level):
+    if not section["procedures"]:
+        return  # nothing was fitted: the notes say why
+    out.append(f"{'#' * level} Paired comparisons of thresholds\n")
+    comparisons = section["comparisons"]
+    if not comparisons:
+        out.append("No two procedures vary the same dimension: nothing to compare.\n")
+        return
+    out.append("Every two procedures of one dimension, compared twice. First on each procedure's own estimate "
+               "(thresholds.csv's threshold: QUEST+'s posterior mean, a staircase's mean of its last reversals; "
+               "constant stimuli make none): QUEST+'s exists for every session, however its answers fall, but rests "
+               "on the procedure's prior and grids as well as on the trials. Then on the MLE thresholds: one "
+               "estimator for every procedure, from the trials alone, but none where the likelihood keeps rising "
+               "towards a step between two levels, as it often does when QUEST+ places a short session's trials "
+               "close to the threshold. Each over the participants with that threshold in both: d = threshold(a) "
+               "− threshold(b), a participant with several sessions of a procedure counted once, by the mean of "
+               "their thresholds. The mean of d with its 95 % t interval and the 95 % percentile interval of "
+               f"{section['paired_resamples']} bootstrap resamples of the participants (seed {section['seed']}); the "
+               "paired t-test and the Wilcoxon signed-rank test (exact, mid-ranks for tied |d|), two-sided.\n")
+    for estimate, (heading, none) in COMPARISON_TABLES.items():
+        chosen = [c for c in comparisons if c["estimate"] == estimate]
+        out.append(f"{'#' * (level + 1)} {heading}\n")
+        if not chosen:
+            out.append(f"{none}\n")
+            continue
+        rows = []
+        for c in chosen:
+            rows.append([cell(c["dimension"]), f"{cell(c['a'])} − {cell(c['b'])}", str(c["n"]),
+                         f"{number(c['mean_diff'])} {cell(c['units'])}" if c["mean_diff"] is not None else NOTHING,
+                         interval(c["mean_diff"], c["t_low"], c["t_high"]).partition(" ")[2] or NOTHING,
+                         interval(c["mean_diff"], c["bootstrap_low"], c["bootstrap_high"]).partition(" ")[2]
+                         or NOTHING,
+                         fmt(c["t"], ".3f") + (f" ({c['df']})" if c["df"] is not None else ""),
+                         fmt(c["p_t"], ".4g"), fmt(c["p_wilcoxon"], ".4g")])
+        out.append(table(["dimension", "a − b", "n", "mean d", "95 % t interval", "95 % bootstrap", "t (df)", "p (t)",
+                          "p (Wilcoxon)"], rows))
 
 
 def condition_name(condition):

@@ -53,4 +53,28 @@ Condition varied(const Condition& reference, Dimension dimension, double level) 
     return c;
 }
 
+double levelOf(const Condition& c, Dimension dimension, double refreshHz) {
+    switch (dimension) {
+        case Dimension::LagFrames: return static_cast<double>(lagFramesAt(c, refreshHz));
+        case Dimension::RenderHz: return c.renderHz;
+        case Dimension::JitterSdMs:
+            return c.jitter.shape == JitterShape::Normal || c.jitter.shape == JitterShape::Lognormal ? c.jitter.sdMs
+                                                                                                     : 0.0;
+    }
+    return 0.0;
+}
+
+double stimulusOf(Dimension dimension, double referenceLevel, double level) {
+    return dimension == Dimension::RenderHz ? referenceLevel - level : level - referenceLevel;
+}
+
+const char* dimensionUnits(Dimension dimension) {
+    switch (dimension) {
+        case Dimension::LagFrames: return "display frames";
+        case Dimension::RenderHz: return "Hz";
+        case Dimension::JitterSdMs: return "ms";
+    }
+    return "";
+}
+
 }  // namespace warplab::condition

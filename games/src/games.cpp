@@ -3,6 +3,7 @@
 #include <mutex>
 
 #include "click/click_study.h"
+#include "discrimination/discrimination_study.h"
 #include "game/registry.h"
 #include "shooter/shooter_study.h"
 
@@ -14,6 +15,8 @@ void registerGames() {
         // The one list of built-in games, in the order gameNames() gives them.
         game::registerGame("shooter", game::parseShooterStudy, game::shooterExport());
         game::registerGame("click", game::parseClickStudy, game::clickExport());
+        game::registerGame("discrimination", discrimination::parseDiscriminationStudy,
+                           discrimination::discriminationExport());
     });
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "judgement.h"
 #include "scene/scene.h"
 
 namespace warplab::participants {
@@ -113,7 +114,9 @@ SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const
     : knowledge_(knowledge),
       params_(params),
       random_(game::mix(seed ^ 0x5133A1E7ULL)),
-      ratingRandom_(game::mix(seed ^ 0x7A71A6E5ULL)) {
+      ratingRandom_(game::mix(seed ^ 0x7A71A6E5ULL)),
+      intervals_(std::make_unique<IntervalJudge>(game::mix(seed ^ 0x1D7E2A15ULL), params.delayJudgementNoiseMs,
+                                                 params.smoothnessJudgementNoise)) {
     if (knowledge.radiansPerCount > 0.0) {
         // Mouse right turns right (+yaw); mouse down (+y) pitches down.
         unitsPerCount_ = {knowledge.radiansPerCount, -knowledge.radiansPerCount};
@@ -122,6 +125,10 @@ SimulatedParticipant::SimulatedParticipant(const TaskKnowledge& knowledge, const
         hand_ = {knowledge.display.width * 0.5, knowledge.display.height * 0.5};
     }
 }
+
+SimulatedParticipant::~SimulatedParticipant() = default;
+SimulatedParticipant::SimulatedParticipant(SimulatedParticipant&&) noexcept = default;
+SimulatedParticipant& SimulatedParticipant::operator=(SimulatedParticipant&&) noexcept = default;
 
 void SimulatedParticipant::move(game::FrameInput& input, glm::dvec2 velocity, double dt, bool pursuing) {
     if (!pursuing) {
@@ -170,55 +177,18 @@ bool sameImage(const Percept& a, const Percept& b) {
 }  // namespace
 
 glm::dvec2 SimulatedParticipant::handAt(double time) const {
-    if (handLog_.empty()) return hand_;
-    if (time <= handLog_.front().first) return handLog_.front().second;
-    const auto later = std::lower_bound(handLog_.begin(), handLog_.end(), time,
-                                        [](const auto& entry, double t) { return entry.first < t; });
-    if (later == handLog_.end()) return handLog_.back().second;
-    const auto& [t0, h0] = *std::prev(later);
-    const auto& [t1, h1] = *later;
-    return t1 > t0 ? glm::mix(h0, h1, (time - t0) / (t1 - t0)) : h1;
+    return handLog_.empty() ? hand_ : positionAt(handLog_, time);
 }
 
 void SimulatedParticipant::judgeDelay(double now) {
-    // How late the pointer on screen follows the hand: the delay that best lines up how far the
-    // pointer moved between new images a baseline apart with how far the hand moved over the
-    // same span that much earlier (a quarter second: long enough to see a movement, short
-    // enough that drift between belief and screen does not count). Judged a few times a
-    // second, and only from spans in which the hand moved: a still hand shows no delay.
+    // How late the pointer on screen follows the hand (fitDelay), judged a few times a second
+    // over the last delayWindowS of play, a frame's precision, and followed slowly.
     if (now - lastDelayJudged_ < 0.1 || pointerLog_.size() < 4) return;
     const double dt = now - std::max(lastDelayJudged_, now - 1.0);
     lastDelayJudged_ = now;
-    constexpr double kBaselineS = 0.25, kMaxDelayS = 0.4;
-    const double step = 1.0 / knowledge_.refreshHz;
-    double bestError = std::numeric_limits<double>::infinity(), best = 0.0, motion = 0.0;
-    for (double d = 0.0; d <= kMaxDelayS + 1e-9; d += step) {
-        double error = 0.0;
-        int pairs = 0;
-        std::size_t j = 0;
-        for (std::size_t i = 1; i < pointerLog_.size(); ++i) {
-            const double ti = pointerLog_[i].first;
-            while (j + 1 < i && pointerLog_[j + 1].first <= ti - kBaselineS) ++j;
-            const double span = ti - pointerLog_[j].first;
-            if (span < kBaselineS - 1e-9 || span > 2.0 * kBaselineS) continue;
-            const glm::dvec2 shown = pointerLog_[i].second - pointerLog_[j].second;
-            const glm::dvec2 moved = handAt(ti - d) - handAt(pointerLog_[j].first - d);
-            const glm::dvec2 e = shown - moved;
-            error += glm::dot(e, e);
-            if (d == 0.0) motion += glm::dot(shown, shown);
-            ++pairs;
-        }
-        if (pairs == 0) return;
-        error /= pairs;
-        if (d == 0.0) motion /= pairs;
-        if (error < bestError - 1e-12) {
-            bestError = error;
-            best = d;
-        }
-    }
-    // A movement the pointer's error is small against, else the judgement is noise.
-    if (motion <= 4.0 * bestError || motion <= 0.0) return;
-    seenDelay_ += (best - seenDelay_) * (1.0 - std::exp(-dt / params_.delayFollowS));
+    const std::optional<double> best = fitDelay(pointerLog_, handLog_, 1.0 / knowledge_.refreshHz);
+    if (!best) return;
+    seenDelay_ += (*best - seenDelay_) * (1.0 - std::exp(-dt / params_.delayFollowS));
 }
 
 void SimulatedParticipant::remember(const Percept& percept) {
@@ -277,11 +247,14 @@ void SimulatedParticipant::remember(const Percept& percept) {
             {o.id, where, offset, sizeInHandUnits(knowledge_, percept.pointer, o.radiusPx), o.greenish()});
     }
     // The pointer as each new image shows it: the cursor where it is drawn, the view as seen.
+    std::optional<glm::dvec2> pointerSeen;
     if (s.valid && newImage && s.pointer != game::PointerKind::None) {
-        pointerLog_.emplace_back(percept.time, reticle ? s.view : s.pointerAt);
+        pointerSeen = reticle ? s.view : s.pointerAt;
+        pointerLog_.emplace_back(percept.time, *pointerSeen);
         while (!pointerLog_.empty() && pointerLog_.front().first < percept.time - params_.delayWindowS)
             pointerLog_.pop_front();
     }
+    intervals_->see(percept.time, newImage, pointerSeen);
     judgeDelay(percept.time);
     sightings_.push_back(std::move(s));
     const double keepFrom = percept.time - params_.reactionS - params_.motionWindowS - 0.05;
@@ -425,6 +398,8 @@ void SimulatedParticipant::pursue(game::FrameInput& input, const Sighting& view,
     const glm::dvec2 predicted = seen.positionAt(ahead + dt);
     const Thing& inView = *sees(view, *target_);
     aim_ = pointer + (hand_ - handBefore);
+    // A discrimination interval asks it to track the target, and nothing is shot.
+    if (intervals_->inInterval()) return;
     if (decidesToClick(predicted - aim_, inView.offset, inView.radius, now - aimingSince_, params_)) {
         input.buttons = game::kButtonLeft;
         clicked_[*target_] = now;
@@ -511,6 +486,14 @@ int SimulatedParticipant::ratingFor(const std::string& statement, int min, int m
     return std::clamp(static_cast<int>(std::lround(min + (value - 1.0) / 6.0 * (max - min))), min, max);
 }
 
+int SimulatedParticipant::choiceFor(const game::QuestionPrompt& question) {
+    // Which of two intervals was the more responsive (or smoother): the one it judged so.
+    if (question.boxes.size() == 2)
+        if (const std::optional<int> interval = intervals_->answer(question.prompt)) return *interval;
+    // A choice it has no feeling about: the options in turn.
+    return 1 + question.index % std::max(1, static_cast<int>(question.boxes.size()));
+}
+
 game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
     game::FrameInput input;
     if (!judged_) judgeMatch();
@@ -524,7 +507,7 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
         typed_ = false;
         return input;
     }
-    // What it has no feeling about: a choice's options in turn, a few words typed and sent.
+    // A text question it has no feeling about: a few words typed and sent.
     if (r.kind == protocol::QuestionKind::Text) {
         if (!typed_)
             input.text = "no comment";
@@ -533,9 +516,9 @@ game::FrameInput SimulatedParticipant::rate(const Percept& percept) {
         typed_ = true;
         return input;
     }
-    const int value = r.kind == protocol::QuestionKind::Choice
-        ? 1 + r.index % std::max(1, static_cast<int>(r.boxes.size()))
-        : (answer_ ? *answer_ : ratingFor(r.prompt, r.min, r.max));
+    const int value = answer_
+        ? *answer_
+        : (r.kind == protocol::QuestionKind::Choice ? choiceFor(r) : ratingFor(r.prompt, r.min, r.max));
     answer_ = value;  // decided once per question (its noise drawn once)
     if (value >= 1 && value <= 9) {
         input.keys = game::digitKey(value);
@@ -556,6 +539,8 @@ game::FrameInput SimulatedParticipant::act(const Percept& percept) {
     const double dt =
         lastTime_ < 0.0 || percept.time <= lastTime_ ? 1.0 / knowledge_.refreshHz : percept.time - lastTime_;
     lastTime_ = percept.time;
+    // Which interval of a discrimination trial is on screen, if any (a question closes it).
+    intervals_->follow(percept.question ? std::string() : percept.phaseText, percept.time, hand_);
     game::FrameInput input;
     if (percept.question) {
         input = rate(percept);

@@ -116,6 +116,24 @@ TEST(CliDemo, RunsTheLateWarpProtocolWithItsOwnConditions) {
     EXPECT_EQ(lateAgainstLag, 2);
 }
 
+// The discrimination task end to end: bots play it, every judgement replays, and the report has
+// each session's thresholds and the comparison of the two procedures, though the task has no
+// shots and so no hit rates.
+TEST(CliDemo, RunsTheDiscriminationTaskToItsThresholds) {
+    const std::string out = scratch("jnd");
+    const auto demo =
+        warplab("demo --out " + out + " --participants 3 --player bot --protocols latency-jnd-quick --jobs 2");
+    ASSERT_EQ(demo.status, 0) << demo.output;
+    EXPECT_TRUE(contains(demo.output, "3 sessions in " + out + "/results, every outcome replayed")) << demo.output;
+    std::ifstream in(fs::path(out) / "report" / "report.json");
+    ASSERT_TRUE(in) << demo.output;
+    const nlohmann::json report = nlohmann::json::parse(in);
+    const auto& discrimination = report.at("discrimination");
+    EXPECT_EQ(discrimination.at("rows").size(), 6u) << "three sessions of two procedures";
+    EXPECT_FALSE(discrimination.at("comparisons").empty());
+    EXPECT_TRUE(fs::exists(fs::path(out) / "report" / "discrimination_lag_frames.png"));
+}
+
 TEST(CliDemo, BadInputIsRefusedWithASentenceAndAFailedSessionNamesItsLog) {
     const std::string out = scratch("refused");
     const auto unknown = warplab("demo --out " + out + " --protocols shooter-quick,no-such-protocol");

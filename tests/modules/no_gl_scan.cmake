@@ -1,5 +1,5 @@
 # No file of a GL-free module includes a GL, EGL, OSMesa, SDL or X11 header (tests/modules/).
-set(gl_free scene physics image condition strict protocol session table adaptive game games runner export plan
+set(gl_free scene physics image condition strict protocol session table adaptive game games discrimination runner export plan
   participants/include participants/src)
 set(bad "")
 foreach(module IN LISTS gl_free)

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "condition/reference_schedule.h"
+#include "game/registry.h"
 #include "click/click_protocol.h"
 #include "shooter/shooter_protocol.h"
 
@@ -29,18 +30,10 @@ TEST(ProtocolPacing, EveryShippedProtocolKeepsItsSchedules) {
         std::ifstream in(entry.path());
         std::stringstream text;
         text << in.rdbuf();
-        const std::string game = Json::parse(text.str()).at("game");
-        condition::ConditionTable table;
-        double refresh = 0;
-        if (game == "shooter") {
-            const ShooterProtocol p = parseShooterProtocol(text.str(), entry.path().string());
-            table = p.conditionTable;
-            refresh = p.refreshHz;
-        } else {
-            const ClickProtocol p = parseClickProtocol(text.str(), entry.path().string());
-            table = p.conditionTable;
-            refresh = p.refreshHz;
-        }
+        // Whichever game: the shared loader picks the parser, and its Study has the conditions.
+        const auto study = game::parseStudy(text.str(), entry.path().string());
+        const condition::ConditionTable& table = study->conditions();
+        const double refresh = study->refreshHz();
         ++protocols;
         for (const std::string& name : table.names()) {
             if (!table.check(name, refresh).empty()) continue;

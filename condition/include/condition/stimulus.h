@@ -36,4 +36,15 @@ const char* dimensionName(Dimension dimension);
 // problem(varied(...), refreshHz).
 Condition varied(const Condition& reference, Dimension dimension, double level);
 
+// The dimension's part of `c` on a display of refreshHz: its lag in whole display frames (the
+// presets' lag_ms counted in frames), its render rate, its jitter's SD (0 without jitter; the
+// SD of a normal or lognormal jitter). Throws std::invalid_argument as lagFramesAt does.
+double levelOf(const Condition& c, Dimension dimension, double refreshHz);
+// How much worse a level is than the reference's: added lag or jitter above the reference's,
+// render rate below it. What a discrimination task's psychometric function is a function of:
+// positive for a test condition that is worse, and growing as it gets easier to tell apart.
+double stimulusOf(Dimension dimension, double referenceLevel, double level);
+// The stimulus's units, as reports write them: "display frames", "Hz", "ms".
+const char* dimensionUnits(Dimension dimension);
+
 }  // namespace warplab::condition

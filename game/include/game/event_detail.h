@@ -27,6 +27,10 @@ public:
         const auto it = json_.find(key);
         return it != json_.end() && it->is_number_integer() ? it->get<std::int64_t>() : fallback;
     }
+    bool boolean(const char* key, bool fallback) const {
+        const auto it = json_.find(key);
+        return it != json_.end() && it->is_boolean() ? it->get<bool>() : fallback;
+    }
     std::string text(const char* key, const std::string& fallback = "") const {
         const auto it = json_.find(key);
         return it != json_.end() && it->is_string() ? it->get<std::string>() : fallback;

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -141,6 +142,22 @@ struct ParticipantParams {
     double ratingScale = 1.0;
     double ratingBias = 0.0;
     double ratingNoise = 0.0;
+    // Two-interval task (games/discrimination): asked which interval was the more responsive,
+    // it compares the delays it judged between its hand and the picture in each, each blurred by
+    // Gaussian noise of this standard deviation in ms (one draw per interval and question). The
+    // noise is the judgement's limit: the 75 %-correct threshold of a two-interval task
+    // (Phi(delta / (sqrt(2) sigma)) = 0.75) is then about 0.95 sigma, plus what the delay fit
+    // itself misjudges. Additive in ms, not a share of the delay: people moving a virtual object
+    // by hand told latency changes of under 33 ms, probably under 16.7 ms, apart in a forced
+    // choice whatever the base latency (27, 94 or 194 ms) -- Ellis, Young, Adelstein & Ehrlich
+    // 1999, Proc. Human Factors and Ergonomics Society 43 (cited from memory). The value is a
+    // model choice within that.
+    double delayJudgementNoiseMs = 15.0;
+    // ... and asked which was the smoother, the rates at which the picture changed, each blurred
+    // by Gaussian noise of this standard deviation on a natural-log scale (0.15: a 75 % threshold
+    // near a sixth of the rate). Model choice: a ratio of rates, as Weber's law has it for most
+    // magnitudes, at a size not fitted to any study.
+    double smoothnessJudgementNoise = 0.15;
     double enterAfterS = 0.5;  // the supervisor presses Enter this long after the prompt
     double answerAfterS = 1.0;  // reading a rating statement before answering it
     // Percept resolution: width in pixels (height keeps the display's aspect). 128 x 72 puts
@@ -194,9 +211,14 @@ bool decidesToClick(glm::dvec2 predictedError, glm::dvec2 seenError, double targ
 
 // ---------------------------------------------------------------------------------------------
 // The participant: percepts in, input out. No GL and no game state.
+class IntervalJudge;  // judgement.h: the two intervals of a discrimination trial
+
 class SimulatedParticipant {
 public:
     SimulatedParticipant(const TaskKnowledge& knowledge, const ParticipantParams& params, std::uint64_t seed);
+    ~SimulatedParticipant();
+    SimulatedParticipant(SimulatedParticipant&&) noexcept;
+    SimulatedParticipant& operator=(SimulatedParticipant&&) noexcept;
     // The input for the next frame, given the frame on screen now. Once per displayed frame,
     // in order.
     game::FrameInput act(const Percept& percept);
@@ -244,12 +266,14 @@ private:
     double bridged() const { return params_.delayAdaptation * seenDelay_; }
     double handUnitsPerRadian() const;
     int ratingFor(const std::string& statement, int min, int max);
+    int choiceFor(const game::QuestionPrompt& question);
     void judgeMatch();
 
     TaskKnowledge knowledge_;
     ParticipantParams params_;
     game::Random random_;
     game::Random ratingRandom_;  // its own stream: answering a question moves no hand
+    std::unique_ptr<IntervalJudge> intervals_;  // with its own stream, for the same reason
     glm::dvec2 unitsPerCount_;  // hand units per count in x and y, signed as the game reads them
     glm::dvec2 hand_{0.0};  // where it has commanded its hand to be (efference copy)
     glm::dvec2 calibration_{0.0};  // cursor: where it sees the cursor, less where its hand says

@@ -18,6 +18,7 @@
 #include "game/registry.h"
 #include "session/records.h"
 #include "session/session_store.h"
+#include "support/cut_session.h"
 #include "toy/toy.h"
 
 namespace warplab {
@@ -166,17 +167,7 @@ TEST(ToyGameResume, AResumedSessionIsTheUninterruptedOneTypingIncluded) {
     for (int clicks = 0; kept < whole.events.size() && clicks < 2; ++kept) clicks += whole.events[kept].type == "click";
     ASSERT_LT(kept, whole.events.size()) << "the bot clicks more than twice";
     const std::int64_t lastFrame = whole.events[kept - 1].frame;
-    std::string cut;
-    {
-        auto writer = session::SessionWriter::create((dir / "cut").string(), whole.header);
-        for (const auto& in : whole.inputs)
-            if (in.frame <= lastFrame) writer.addInput(in);
-        for (const auto& frame : whole.frames)
-            if (frame.frame <= lastFrame) writer.addFrame(frame);
-        for (std::size_t i = 0; i < kept; ++i) writer.addEvent(whole.events[i]);
-        writer.commit();  // not finished: an interrupted session
-        cut = writer.path();
-    }
+    const std::string cut = testing_sessions::cutSession(whole, kept, (dir / "cut").string());
 
     runner::HeadlessRun resume = run;
     resume.resumeFrom = cut;
