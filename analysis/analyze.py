@@ -44,7 +44,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from warplab_analysis import discrimination, inputs, players, questions, report, stats  # noqa: E402
+from warplab_analysis import discrimination, inputs, mixed_models, players, questions, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -336,6 +336,7 @@ def draw_figures(results, out_dir):
         # A second group's figures are named after it: "scripted_shooter_hit_rates.png".
         prefix = f"{part['group']}_" if "group" in part else ""
         written += draw_part(figures, part, out_dir, taken, table, palette, prefix, results["conditions_file"])
+    written += draw_model_figures(results.get("mixed_models"), out_dir, taken, palette)
     if frame_times:
         name = file_stem("frame_times", taken) + ".png"
         figures.frame_times_figure(os.path.join(out_dir, name), frame_times, palette)
@@ -346,6 +347,23 @@ def draw_figures(results, out_dir):
         written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
+
+
+def draw_model_figures(section, out_dir, taken, palette):
+    """The mixed models' contrasts and means (model_figures), where R fitted any; the names written."""
+    if not section or not any(m.get("fitted") for m in section["models"]):
+        return []
+    from warplab_analysis import model_figures
+    written = []
+    drawers = [("means", model_figures.means_figure)]
+    if any(m.get("fitted") and m["contrasts"] for m in section["models"]):
+        drawers.insert(0, ("contrasts", model_figures.contrasts_figure))
+    for kind, draw in drawers:
+        name = file_stem(f"mixed_models_{kind}", taken) + ".png"
+        draw(os.path.join(out_dir, name), section, palette)
+        section["figures"][kind] = name
+        written.append(name)
+    return written
 
 
 def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_file):
@@ -449,6 +467,10 @@ def main(argv=None):
                              "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
                              "from before ratings.csv had them, 1:7, the protocol's default); a rating outside the "
                              "scale is refused")
+    parser.add_argument("--rscript", default="Rscript", metavar="PATH",
+                        help="the Rscript that fits the mixed models (default: Rscript on PATH)")
+    parser.add_argument("--no-mixed-models", action="store_true",
+                        help="leave out the trial-level mixed models (R), for a quick look at a large study")
     parser.add_argument("--pool-players", action="store_true",
                         help="analyse people and scripted players (bots, simulated participants) together; by "
                              "default each kind is analysed on its own, people first")
@@ -464,6 +486,8 @@ def main(argv=None):
         return 1
     try:
         os.makedirs(args.out, exist_ok=True)
+        results["mixed_models"] = (mixed_models.left_out("Left out, as --no-mixed-models asked.")
+                                   if args.no_mixed_models else mixed_models.fit(results, args.out, args.rscript))
         written = draw_figures(results, args.out)
         target = os.path.join(args.out, "report.json")
         with open(target, "w", encoding="utf-8") as f:
