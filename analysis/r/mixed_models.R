@@ -176,44 +176,42 @@ measures_of <- function(dir) {
 # Sentences on what the data allow, and whether a model can be fitted at all.
 check_measure <- function(m, rows) {
   notes <- character(0)
-  stop_with <- function(sentence) list(fit = FALSE, notes = c(notes, sentence))
+  stop_with <- function(...) list(fit = FALSE, notes = c(notes, sprintf(...)))
   absent <- setdiff(m$listed, rows$condition)
   if (length(absent)) {
-    notes <- c(notes, sprintf("conditions.csv lists %s for the %s, but no participant has %s of %s: not a level of the model.",
-                              paste(absent, collapse = ", "), m$game, m$unit, if (length(absent) > 1) "them" else "it"))
+    notes <- c(notes, sprintf("conditions.csv lists %s for the %s, but no participant has %s of %s: not a level of %s.",
+                              paste(absent, collapse = ", "), m$game, m$unit, if (length(absent) > 1) "them" else "it",
+                              "the model"))
   }
   if (!is.null(m$scale) && !anyNA(m$scale)) {
     out <- which(rows$y < m$scale[1] | rows$y > m$scale[2] | is.na(rows$y))
     if (length(out)) {
-      return(stop_with(sprintf(paste("answers.csv, data row %d: the answer %s is outside the question's scale %g to %g,",
-                                     "so this question is not modelled."),
-                               m$file_rows[out[1]], rows$y[out[1]], m$scale[1], m$scale[2])))
+      return(stop_with("answers.csv, data row %d: the answer %s is outside the question's scale %g to %g, %s.",
+                       m$file_rows[out[1]], rows$y[out[1]], m$scale[1], m$scale[2], "so this question is not modelled"))
     }
   }
   people <- unique(rows$participant)
   if (length(people) < 2) {
-    return(stop_with(sprintf("Only one participant (%s) has %s here: a mixed model needs several to estimate how participants vary, so none is fitted.",
-                             people[1], m$unit)))
+    return(stop_with("Only one participant (%s) has %s here: a mixed model needs several to estimate how %s.",
+                     people[1], m$unit, "participants vary, so none is fitted"))
   }
   conds <- unique(rows$condition)
-  if (length(conds) < 2) {
-    return(stop_with(sprintf("Only one condition (%s): nothing to compare, so no model.", conds[1])))
-  }
+  if (length(conds) < 2) return(stop_with("Only one condition (%s): nothing to compare, so no model.", conds[1]))
   cells <- table(factor(rows$participant, levels = people), factor(rows$condition, levels = conds))
   lacking <- which(cells == 0, arr.ind = TRUE)
   if (nrow(lacking)) {
     says <- sprintf("%s lacks %s", rownames(cells)[lacking[, 1]], colnames(cells)[lacking[, 2]])
-    notes <- c(notes, sprintf("Not every participant played every condition (%s); the model uses each participant's other conditions.",
-                              paste(says, collapse = "; ")))
+    notes <- c(notes, sprintf("Not every participant played every condition (%s); %s.", paste(says, collapse = "; "),
+                              "the model uses each participant's other conditions"))
   }
   if (length(unique(rows$y)) == 1) {
     what <- if (m$engine == "binomial") (if (rows$y[1] == 1) "a hit" else "a miss") else paste("the answer", rows$y[1])
-    return(stop_with(sprintf("Every one of the %d %s is %s: there is no variation to model.", nrow(rows), m$unit, what)))
+    return(stop_with("Every one of the %d %s is %s: there is no variation to model.", nrow(rows), m$unit, what))
   }
   flat <- flat_conditions(m, rows)
   if (length(flat)) {
-    return(stop_with(capitalise(sprintf("%s: %s no finite estimate, so no model.", paste(flat, collapse = "; "),
-                             if (m$engine == "poisson") "a log rate of 0 counts has" else "such log-odds have"))))
+    return(stop_with("%s: %s no finite estimate, so no model.", capitalise(paste(flat, collapse = "; ")),
+                     if (m$engine == "poisson") "a log rate of 0 counts has" else "such log-odds have"))
   }
   if (m$engine == "binomial") notes <- c(notes, separation_sentence(rows, m$unit))
   list(fit = TRUE, notes = notes)
@@ -332,8 +330,9 @@ print_model <- function(s) {
   }
   if (!is.null(s$theta)) cat(sprintf("Negative binomial theta = %s\n", num(s$theta)))
   for (a in c(s$poisson_attempts, s$attempts)) {
-    cat(sprintf("  %s: %s -- %s\n", a$step, a$formula,
-                if (a$kept) paste(c("kept", a$problems), collapse = "; ") else paste("dropped:", paste(a$problems, collapse = "; "))))
+    verdict <- if (a$kept) paste(c("kept", a$problems), collapse = "; ") else
+      paste("dropped:", paste(a$problems, collapse = "; "))
+    cat(sprintf("  %s: %s -- %s\n", a$step, a$formula, verdict))
   }
   cat(sprintf("Reference level: %s\n", s$reference))
   cat(sprintf("Estimated %s per condition [95%% CI]:\n", s$means_scale))

@@ -16,8 +16,9 @@ MAXIMAL <- "maximal"
 ZERO_CORRELATION <- "uncorrelated"
 INTERCEPT <- "random intercept"
 
-# Below this a participant SD counts as 0 for a model isSingular does not know (clmm).
-SINGULAR_SD <- 1e-4
+# Below this a clmm's participant SD (latent logit scale) counts as 0: isSingular does not know
+# clmm, and ordinal optimises the log of the SD, which stops short of 0 where the estimate is 0.
+SINGULAR_SD <- 0.01
 # Overdispersion: a Poisson model's Pearson chi-square against its residual df at this level
 # (Bolker et al. 2009, "GLMMs in practice" FAQ) sends the counts to a negative binomial.
 OVERDISPERSION_ALPHA <- 0.05

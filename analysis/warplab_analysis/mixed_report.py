@@ -13,7 +13,7 @@ RATIO_WORDS = {
     "binomial": "the odds of a hit in a over those in b",
     "poisson": "the expected count in a over that in b",
     "negbin": "the expected count in a over that in b",
-    "clmm": "the odds of an answer above any given level in a over those in b (cumulative odds ratio)",
+    "clmm": "the odds of an answer above any given level in a over those in b",
 }
 
 
@@ -50,7 +50,7 @@ def section(out, results, level=2):
     h = "#" * level
     out.append(f"{h} Mixed models, trial by trial\n")
     if mm["left_out"]:
-        out.append(f"{cell(mm['left_out'])}\n")
+        out.append(f"{mm['left_out']}\n")  # our sentence, its code in backticks
         return
     intro(out, mm)
     who = results["players"]
@@ -75,10 +75,9 @@ def title(model):
 def model_section(out, model, level):
     out.append(f"{'#' * level} {cell(title(model))}\n")
     if not model["fitted"]:
+        steps(out, model)
         for note in model["notes"]:
             out.append(f"{cell(note)}\n")
-        if model.get("attempts"):
-            steps(out, model)
         return
     out.append(f"`{model['call_text']}`: {model['n_observations']} {cell(model['unit'])} of "
                f"{model['n_participants']} participants; reference level {cell(model['reference'])}.\n")
@@ -87,17 +86,18 @@ def model_section(out, model, level):
     steps(out, model)
     scale = model["means_scale"]
     spec = SCALE_FORMATS.get(scale, ".3g")
-    what = scale
-    if model["engine"] == "clmm":
-        what = ("mean answer (emmeans' mean.class, the expected answer on the question's values where they are "
-                "consecutive whole numbers)")
     rows = [[cell(e["condition"]), interval(e["estimate"], e["low"], e["high"], spec)] for e in model["means"]]
-    out.append(table(["condition", f"estimated {what} [95 % CI]"], rows))
+    out.append(table(["condition", f"estimated {scale} [95 % CI]"], rows))
+    if model["engine"] == "clmm":
+        out.append("The mean answer is emmeans' mean.class, the expected class under the model, on the question's "
+                   "own values when the answers given are consecutive whole numbers (else class 1 is the lowest "
+                   "answer given).\n")
     if model["contrasts"]:
         rows = [[f"{cell(c['a'])} / {cell(c['b'])}", interval(c["ratio"], c["low"], c["high"], ".3g"),
                  fmt(c["z"], ".2f"), fmt(c["p_holm"], ".4g")] for c in model["contrasts"]]
         out.append(table(["a / b", f"{model['ratio']} [95 % CI, unadjusted]", "z", "p (Holm)"], rows))
-        out.append(f"{'An' if model['ratio'][0] in 'aeiou' else 'A'} {model['ratio']} is {RATIO_WORDS[model['engine']]}.\n")
+        article = "An" if model["ratio"][0] in "aeiou" else "A"
+        out.append(f"{article} {model['ratio']} is {RATIO_WORDS[model['engine']]}.\n")
     random_effects(out, model)
     for note in model["notes"]:
         out.append(f"{cell(note)}\n")

@@ -67,8 +67,9 @@ def contrasts_figure(path, section, palette):
         low, high = min(span), max(span)
         pad = (high / low) ** 0.08 if high > low else 2.0
         ax.set_xlim(low / pad, high * pad)
-        # Ratios read as numbers (0.5, 1, 2), not powers of ten, at 1-2-5 steps.
-        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+        # Ratios read as numbers (0.5, 1, 2), not powers of ten: at 1-2-5 steps, finer over a short span.
+        subs = (1.0, 2.0, 5.0) if high / low > 8 else (1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.0)
+        ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=subs))
         ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_yticks(y)

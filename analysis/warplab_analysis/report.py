@@ -331,8 +331,8 @@ def game_sections(out, results, part):
                 out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
                 hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
         else:
-            out.append(f"## {cell(title(game))}: hit rates, the paper's own analysis, replicated (Pulkkinen 2014, seed 004 "
-                       "§6–§7)\n")
+            out.append(f"## {cell(title(game))}: hit rates, the paper's own analysis, replicated (Pulkkinen 2014, "
+                       "seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
             if shares(summary["conditions"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
