@@ -83,8 +83,10 @@ def contrasts_figure(path, section, palette):
         ax.set_xlabel(f"{model['ratio']} (a / b), 95 % CI unadjusted; right: Holm-adjusted p", fontsize=8)
         ax.tick_params(axis="x", labelsize=8)
         ax.grid(True, axis="x", which="both", linewidth=0.3, alpha=0.5)
-    fig.suptitle(wrapped("Mixed models: every pair of conditions (log scale; 1 = no difference)", fig), fontsize=10)
-    fig.tight_layout()
+    # Placed in inches from the top: a tall figure's default (2 % of its height) leaves a gap.
+    fig.suptitle(wrapped("Mixed models: every pair of conditions (log scale; 1 = no difference)", fig), fontsize=10,
+                 y=1 - 0.1 / fig.get_figheight(), va="top")
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.3 / fig.get_figheight()))  # room for the title
     fig.savefig(path)
     plt.close(fig)
 
