@@ -23,7 +23,8 @@ import numpy as np
 import pytest
 
 from exports import DATA, run_in_process, write
-from r_support import run_r
+from warplab_analysis import mixed_models
+from r_support import installed_by_deps, run_r
 
 INSTALL = ("run scripts/install-deps.sh (it installs r-base-core, r-cran-lme4, r-cran-emmeans, r-cran-ordinal, "
            "r-cran-glmmtmb and r-cran-jsonlite)")
@@ -315,3 +316,10 @@ def test_a_rating_outside_its_scale_is_refused(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert err == (f"analyze: {tmp_path / 'answers.csv'}: line 2, column 'value' is 9, outside the question's scale 1 "
                    "to 7 (its scale_min and scale_max).")
+
+
+def test_install_deps_installs_the_model_packages():
+    """The packages the report's sentence names, and glmmTMB for this file's independent fit."""
+    wanted = {"r-base-core", "r-cran-lme4", "r-cran-emmeans", "r-cran-ordinal", "r-cran-jsonlite", "r-cran-glmmtmb"}
+    assert wanted <= installed_by_deps(), wanted - installed_by_deps()
+    assert set(mixed_models.INSTALL.split()[2:]) == wanted - {"r-cran-glmmtmb"}
