@@ -347,7 +347,8 @@ def test_entry_point_writes_the_report(tmp_path):
                  "click_hit_rates.png", "matches.png"):
         assert (out / name).is_file() and str(out / name) in printed, name
     md = (out / "report.md").read_text()
-    assert md.index("## Shooter") < md.index("## Click game")
+    assert md.index("## Mixed models") < md.index("## Shooter") < md.index("## Click game")
+    assert (out / "mixed_models.R").is_file() and str(out / "mixed_models_contrasts.png") in printed
     report = json.loads((out / "report.json").read_text())
     assert (set(report["games"]) == {"shooter", "click"}
             and report["matches"]["reference_condition"] == "bireproj15to60")
