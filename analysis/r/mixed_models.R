@@ -69,13 +69,21 @@ check_packages <- function() {
   }
 }
 
-# A CSV of the export as text columns (an id "NA" stays "NA"), NULL when the file is not there.
-read_export <- function(dir, name) {
+# A CSV of the export as text columns (an id "NA" stays "NA"): NULL when the file is not there,
+# a sentence (a character string) when it cannot be read or lacks a column the models need.
+read_export <- function(dir, name, required = character(0)) {
   path <- file.path(dir, name)
   if (!file.exists(path)) return(NULL)
-  d <- read.csv(path, colClasses = "character", na.strings = character(0), check.names = FALSE,
-                encoding = "UTF-8", strip.white = FALSE)
+  d <- tryCatch(read.csv(path, colClasses = "character", na.strings = character(0), check.names = FALSE,
+                         encoding = "UTF-8", strip.white = FALSE),
+                error = function(e) sprintf("%s cannot be read as CSV (%s): no models of its rows.", name,
+                                            conditionMessage(e)))
+  if (is.character(d)) return(d)
   if (!"condition" %in% names(d) && "mode" %in% names(d)) names(d)[names(d) == "mode"] <- "condition"
+  missing <- setdiff(required, names(d))
+  if (length(missing)) {
+    return(sprintf("%s has no column %s: no models of its rows.", name, paste0("'", missing, "'", collapse = ", ")))
+  }
   d
 }
 
@@ -115,62 +123,77 @@ measure <- function(game, id, label, source, unit, engine, participant, conditio
                                             stringsAsFactors = FALSE), listed = listed), extra)
 }
 
+# Every game's hit per trial (shots.csv).
+shot_measures <- function(dir, conditions, games) {
+  shots <- read_export(dir, "shots.csv", c("participant", "game", "condition", "hit"))
+  if (is.null(shots)) return(list(measures = list(), notes = "There is no shots.csv: no per-trial models."))
+  if (is.character(shots)) return(list(measures = list(), notes = shots))
+  shots <- analysed_rows(shots)
+  if (nrow(shots) == 0) {
+    return(list(measures = list(), notes = "shots.csv has no trial rows of the scored phase: no per-trial models."))
+  }
+  out <- lapply(unique(shots$game), function(game) {
+    rows <- shots[shots$game == game, , drop = FALSE]
+    words <- if (!is.null(games) && !is.character(games) && game %in% games$game) {
+      games[games$game == game, ][1, ]
+    } else list(hits_are = "hits", shots_are = "shots")
+    measure(game, "hit", paste0(words$hits_are, " / ", words$shots_are, ", per trial"), "shots.csv", "trials",
+            "binomial", rows$participant, rows$condition, as.integer(is_true(rows$hit)),
+            listed_conditions(conditions, game))
+  })
+  list(measures = out, notes = character(0))
+}
+
+# The green hits of each scored match (matches.csv), for the game whose matches they are.
+match_measures <- function(dir, conditions) {
+  matches <- read_export(dir, "matches.csv", c("participant", "condition", "green_hits"))
+  if (is.null(matches)) return(list(measures = list(), notes = character(0)))
+  if (is.character(matches)) return(list(measures = list(), notes = matches))
+  matches <- analysed_rows(matches)
+  game <- if (is.null(SETTINGS$matches_game)) "matches" else SETTINGS$matches_game
+  if (nrow(matches) == 0) return(list(measures = list(), notes = character(0)))
+  list(measures = list(measure(game, "green_hits", "green hits per match", "matches.csv", "matches", "poisson",
+                               matches$participant, matches$condition, as.numeric(matches$green_hits),
+                               listed_conditions(conditions, game))),
+       notes = character(0))
+}
+
+# Each Likert question's answers (answers.csv), per game and question.
+likert_measures <- function(dir, conditions) {
+  answers <- read_export(dir, "answers.csv", c("participant", "game", "condition", "kind", "question_index",
+                                               "question_id", "prompt", "value"))
+  if (is.null(answers)) return(list(measures = list(), notes = character(0)))
+  if (is.character(answers)) return(list(measures = list(), notes = answers))
+  notes <- character(0)
+  likert <- answers[answers$kind == "likert", , drop = FALSE]
+  mixed <- nrow(analysed_rows(likert)) - nrow(analysed_rows(likert[likert$condition != "", , drop = FALSE]))
+  likert <- analysed_rows(likert)
+  if (mixed > 0) {
+    notes <- sprintf(paste("%d Likert answers of answers.csv are about blocks of interleaved conditions (an empty",
+                           "condition): no condition to model them by, so they are left out."), mixed)
+  }
+  questions <- unique(likert[, c("game", "question_index", "question_id", "prompt")])
+  out <- lapply(seq_len(nrow(questions)), function(q) {
+    key <- questions[q, ]
+    rows <- likert[likert$game == key$game & likert$question_index == key$question_index &
+                   likert$question_id == key$question_id & likert$prompt == key$prompt, , drop = FALSE]
+    id <- if (key$question_id != "") key$question_id else paste0("q", key$question_index)
+    scale <- if (all(c("scale_min", "scale_max") %in% names(rows))) {
+      c(as.numeric(rows$scale_min[1]), as.numeric(rows$scale_max[1]))
+    } else NULL
+    measure(key$game, paste0("likert:", id), key$prompt, "answers.csv", "answers", "clmm", rows$participant,
+            rows$condition, suppressWarnings(as.numeric(rows$value)), listed_conditions(conditions, key$game),
+            list(scale = scale, file_rows = as.integer(rownames(rows))))
+  })
+  list(measures = out, notes = notes)
+}
+
 measures_of <- function(dir) {
   conditions <- read_export(dir, "conditions.csv")
-  games <- read_export(dir, "games.csv")
-  out <- list()
-  notes <- character(0)
-  shots <- read_export(dir, "shots.csv")
-  if (is.null(shots)) {
-    notes <- c(notes, "There is no shots.csv: no per-trial models.")
-  } else {
-    shots <- analysed_rows(shots)
-    if (nrow(shots) == 0) notes <- c(notes, "shots.csv has no trial rows of the scored phase: no per-trial models.")
-    for (game in unique(shots$game)) {
-      rows <- shots[shots$game == game, , drop = FALSE]
-      words <- if (!is.null(games) && game %in% games$game) games[games$game == game, ][1, ] else
-        list(hits_are = "hits", shots_are = "shots")
-      out[[length(out) + 1]] <- measure(game, "hit", paste0(words$hits_are, " / ", words$shots_are, ", per trial"),
-                                        "shots.csv", "trials", "binomial", rows$participant, rows$condition,
-                                        as.integer(is_true(rows$hit)), listed_conditions(conditions, game))
-    }
-  }
-  matches <- read_export(dir, "matches.csv")
-  if (!is.null(matches)) {
-    matches <- analysed_rows(matches)
-    game <- if (is.null(SETTINGS$matches_game)) "matches" else SETTINGS$matches_game
-    if (nrow(matches)) {
-      out[[length(out) + 1]] <- measure(game, "green_hits", "green hits per match", "matches.csv", "matches",
-                                        "poisson", matches$participant, matches$condition,
-                                        as.numeric(matches$green_hits), listed_conditions(conditions, game))
-    }
-  }
-  answers <- read_export(dir, "answers.csv")
-  if (!is.null(answers)) {
-    mixed <- answers$kind == "likert" & answers$condition == "" & (!"scored_phase" %in% names(answers) |
-                                                                   is_true(answers$scored_phase))
-    if (any(mixed)) {
-      notes <- c(notes, sprintf(paste("%d Likert answers of answers.csv are about blocks of interleaved conditions",
-                                      "(an empty condition): no condition to model them by, so they are left out."),
-                                sum(mixed)))
-    }
-    likert <- analysed_rows(answers[answers$kind == "likert", , drop = FALSE])
-    questions <- unique(likert[, c("game", "question_index", "question_id", "prompt")])
-    for (q in seq_len(nrow(questions))) {
-      key <- questions[q, ]
-      rows <- likert[likert$game == key$game & likert$question_index == key$question_index &
-                     likert$question_id == key$question_id & likert$prompt == key$prompt, , drop = FALSE]
-      id <- if (key$question_id != "") key$question_id else paste0("q", key$question_index)
-      scale <- if (all(c("scale_min", "scale_max") %in% names(rows))) {
-        c(as.numeric(rows$scale_min[1]), as.numeric(rows$scale_max[1]))
-      } else NULL
-      out[[length(out) + 1]] <- measure(key$game, paste0("likert:", id), key$prompt, "answers.csv", "answers",
-                                        "clmm", rows$participant, rows$condition, as.numeric(rows$value),
-                                        listed_conditions(conditions, key$game),
-                                        list(scale = scale, file_rows = as.integer(rownames(rows))))
-    }
-  }
-  list(measures = out, notes = notes)
+  if (is.character(conditions)) conditions <- NULL
+  parts <- list(shot_measures(dir, conditions, read_export(dir, "games.csv")), match_measures(dir, conditions),
+                likert_measures(dir, conditions))
+  list(measures = do.call(c, lapply(parts, `[[`, "measures")), notes = unlist(lapply(parts, `[[`, "notes")))
 }
 
 # Sentences on what the data allow, and whether a model can be fitted at all.
@@ -367,7 +390,13 @@ main <- function() {
   summaries <- list()
   models <- list()
   for (m in found$measures) {
-    result <- fit_measure(m)
+    result <- tryCatch(fit_measure(m), error = function(e) {
+      list(summary = list(key = m$key, game = m$game, measure = m$measure, label = m$label, source = m$source,
+                          unit = m$unit, fitted = FALSE, conditions = list(), participant_points = list(),
+                          n_participants = length(unique(m$rows$participant)), n_observations = nrow(m$rows),
+                          notes = list(paste("R could not model these rows:", conditionMessage(e)))),
+           saved = NULL)
+    })
     summaries[[length(summaries) + 1]] <- result$summary
     if (!is.null(result$saved)) models[[m$key]] <- result$saved
   }
@@ -384,4 +413,8 @@ main <- function() {
   saveRDS(models, file.path(out_dir, "mixed_models.rds"))
 }
 
-main()
+# Any error left is R's, said in one line that analyze can quote.
+tryCatch(main(), error = function(e) {
+  message("mixed_models.R: ", conditionMessage(e))
+  quit(status = 1)
+})

@@ -289,6 +289,19 @@ def test_without_r_the_report_says_what_to_install(awkward):
     assert not (out / "mixed_models.json").exists()
 
 
+def test_without_rs_packages_the_report_names_them(awkward, monkeypatch):
+    """R without its site library (where Debian's r-cran-* packages live): the script's own check."""
+    base, _, _ = awkward
+    monkeypatch.setenv("R_LIBS_SITE", str(base / "no-library"))
+    monkeypatch.setenv("R_LIBS_USER", str(base / "no-library"))
+    report, md = analyse(base / "export", base / "no-packages")
+    sentence = report["mixed_models"]["left_out"]
+    assert sentence == ("Left out: R lacks the package(s) lme4, emmeans, ordinal, jsonlite; install them with: apt-get "
+                        "install r-cran-lme4 r-cran-emmeans r-cran-ordinal r-cran-jsonlite (Debian's packages), then "
+                        "re-run the report or `Rscript mixed_models.R` beside it.")
+    assert md.count(sentence) == 1 and "## Shooter: hit rates, the paper's own analysis" in md
+
+
 def test_one_participant_and_no_trial_rows_are_sentences(tmp_path):
     rscript()
     rng = np.random.default_rng(5)

@@ -129,10 +129,10 @@ def fit(results, out_dir, rscript="Rscript"):
     except OSError as e:
         return left_out(f"Left out: {rscript} could not be run ({e.strerror or e}); install R and its packages with "
                         f"`{INSTALL}`.", SCRIPT)
-    last = (done.stderr.strip().splitlines() or [""])[-1]
+    last = (done.stderr.strip().splitlines() or [""])[-1].removeprefix("mixed_models.R: ")
     if done.returncode == MISSING_PACKAGE:
-        return left_out(f"Left out: {last.removeprefix('mixed_models.R: ')} (Debian; `{INSTALL}` installs all of "
-                        "them).", SCRIPT)
+        return left_out(f"Left out: {last} (Debian's packages), then re-run the report or `Rscript {SCRIPT}` "
+                        "beside it.", SCRIPT)
     if done.returncode != 0 or not os.path.exists(os.path.join(out_dir, RESULTS)):
         return left_out(f"Left out: R stopped (exit status {done.returncode}): {last or 'no message'}", SCRIPT)
     with open(os.path.join(out_dir, RESULTS), encoding="utf-8") as f:
