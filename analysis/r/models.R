@@ -20,7 +20,7 @@ INTERCEPT <- "random intercept"
 # clmm, and ordinal optimises the log of the SD, which stops short of 0 where the estimate is 0.
 SINGULAR_SD <- 0.01
 # Overdispersion: a Poisson model's Pearson chi-square against its residual df at this level
-# (Bolker et al. 2009, "GLMMs in practice" FAQ) sends the counts to a negative binomial.
+# (Bolker et al. 2009) sends the counts to a negative binomial.
 OVERDISPERSION_ALPHA <- 0.05
 
 # What a model is, by engine: the R call's name, the family in words, what its EMMs are on the

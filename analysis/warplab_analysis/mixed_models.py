@@ -11,6 +11,7 @@ is one sentence saying what to install, and the rest of the report is made as be
 """
 import json
 import os
+import re
 import shutil
 import subprocess
 
@@ -21,7 +22,9 @@ RESULTS = "mixed_models.json"
 MODELS = "mixed_models.rds"
 SETTINGS_START = "# >>> settings"
 SETTINGS_END = "# <<< settings"
-SOURCE_HELPERS = 'source(file.path(dirname(script_path()), "models.R"))'
+# mixed_models.R's line that reads models.R, which the copy replaces with models.R itself.
+SOURCE_HELPERS = ('source(file.path(dirname(script_path()), "models.R"))  # analyze\'s copy has models.R here, '
+                  'inline')
 # mixed_models.R's exit status when R lacks a package (it names them and their Debian packages).
 MISSING_PACKAGE = 3
 INSTALL = "apt-get install r-base-core r-cran-lme4 r-cran-emmeans r-cran-ordinal r-cran-jsonlite"
@@ -86,15 +89,20 @@ def script_text(values):
     with open(os.path.join(R_DIR, HELPERS), encoding="utf-8") as f:
         helpers = f.read()
     before, rest = text.split(SETTINGS_START, 1)
-    _, after = rest.split(SETTINGS_END, 1)
+    template, after = rest.split(SETTINGS_END, 1)
+    # Each setting keeps the comment the repository's script gives it.
+    comments = dict(re.findall(r"^\s*(\w+) = .*?(#.*)$", template, flags=re.M))
+    lines = [f"  {key} = {r_value(value)}" + ("," if k < len(values) - 1 else "")
+             for k, (key, value) in enumerate(values.items())]
+    width = max(len(line) for line in lines) + 2
     block = [f"{SETTINGS_START}: the values analyze used for this report (edit to re-run otherwise)",
              "SETTINGS <- list("]
-    block.append(",\n".join(f"  {key} = {r_value(value)}" for key, value in values.items()))
+    block += [f"{line:<{width}}{comments[key]}" if key in comments else line for line, key in zip(lines, values)]
     block.append(")")
     text = before + "\n".join(block) + "\n" + SETTINGS_END + after
     inline = f"# ---- models.R, inlined by analyze ----\n{helpers}# ---- end of models.R ----"
     assert SOURCE_HELPERS in text, "mixed_models.R no longer sources models.R as mixed_models.py expects"
-    return text.replace(SOURCE_HELPERS + "  # analyze's copy has models.R here, inline", inline)
+    return text.replace(SOURCE_HELPERS, inline)
 
 
 def left_out(sentence, script=None):
@@ -107,6 +115,9 @@ def fit(results, out_dir, rscript="Rscript"):
     results (mixed_models.json) with the file names, or, where R could not run them, a section
     whose `left_out` says why in one sentence."""
     values = settings(results)
+    for name in (RESULTS, MODELS):  # never leave an earlier run's results beside this report
+        if os.path.exists(os.path.join(out_dir, name)):
+            os.remove(os.path.join(out_dir, name))
     script = os.path.join(out_dir, SCRIPT)
     with open(script, "w", encoding="utf-8") as f:
         f.write(script_text(values))
@@ -117,9 +128,6 @@ def fit(results, out_dir, rscript="Rscript"):
     if program is None:
         return left_out(f"Left out: R's Rscript ({rscript}) was not found; install R and its packages with "
                         f"`{INSTALL}`, then re-run the report or `Rscript {SCRIPT}` beside it.", SCRIPT)
-    for name in (RESULTS, MODELS):  # never read an earlier run's results as this one's
-        if os.path.exists(os.path.join(out_dir, name)):
-            os.remove(os.path.join(out_dir, name))
     try:
         done = subprocess.run([program, "--vanilla", script], capture_output=True, text=True, timeout=TIMEOUT_S,
                               env=dict(os.environ, LC_ALL="C.UTF-8"))
