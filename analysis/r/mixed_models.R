@@ -306,10 +306,12 @@ fit_measure <- function(m) {
     out$dispersion <- dispersion_of(fitted$fit)
     if (out$dispersion$overdispersed) {
       negbin <- fit_ladder("negbin", prepared$response, prepared$data, prepared$dummies, start = fitted$k)
-      out$poisson_attempts <- fitted$attempts
       if (is.null(negbin$fit)) {
-        out$notes <- c(out$notes, "The negative binomial model could not be fitted, so the Poisson model is kept.")
+        why <- unlist(lapply(negbin$attempts, `[[`, "problems"))
+        out$notes <- c(out$notes, sprintf("The negative binomial model could not be fitted (%s), so the Poisson %s",
+                                          paste(why, collapse = "; "), "model is kept."))
       } else {
+        out$poisson_attempts <- fitted$attempts
         engine <- "negbin"
         fitted <- negbin
       }

@@ -120,27 +120,32 @@ def dispersion(out, model):
 
 
 def steps(out, model):
-    """Which random-effects structure was kept, and why each richer one was dropped."""
-    attempts = (model.get("poisson_attempts") or []) + (model.get("attempts") or [])
-    if not attempts:
-        return
-    dropped = [a for a in attempts if not a["kept"] and a["problems"]]
-    kept = [a for a in attempts if a["kept"]]
-    words = []
+    """Which random-effects structure was kept, and why each richer one was dropped: for counts that
+    went negative binomial, the Poisson ladder first, then the negative binomial's from its step."""
     if model.get("poisson_attempts"):
-        words.append("Poisson ladder first, then the negative binomial's from the step the Poisson model kept.")
-    for a in dropped:
-        family = " (Poisson)" if model.get("poisson_attempts") and a in model["poisson_attempts"] else ""
-        words.append(f"The {a['step']} model{family}, `{a['formula']}`, was dropped: {cell('; '.join(a['problems']))}.")
-    if kept:
+        ladders = [(" (Poisson)", model["poisson_attempts"]), (" (negative binomial)", model.get("attempts") or [])]
+    else:
+        ladders = [("", model.get("attempts") or [])]
+    words = []
+    for k, (family, attempts) in enumerate(ladders):
+        dropped = [a for a in attempts if not a["kept"]]
+        for a in dropped:
+            words.append(f"The {a['step']} model{family}, `{a['formula']}`, was dropped: "
+                         f"{cell('; '.join(a['problems']) or 'it could not be fitted')}.")
+        kept = [a for a in attempts if a["kept"]]
+        if not kept:
+            continue
         a = kept[-1]
-        if a["problems"]:
-            words.append(f"The {a['step']} model is kept, the last step, although {cell('; '.join(a['problems']))}.")
-        elif dropped:
-            words.append(f"The {a['step']} model is kept.")
+        if k < len(ladders) - 1:
+            words.append(f"The Poisson ladder stopped at the {a['step']} model, where the negative binomial's began.")
+        elif a["problems"]:
+            words.append(f"The {a['step']} model{family} is kept, the last step, although "
+                         f"{cell('; '.join(a['problems']))}.")
         else:
-            words.append(f"The {a['step']} model fitted without problems and is kept.")
-    out.append(" ".join(words) + "\n")
+            words.append(f"The {a['step']} model{family} " + ("is kept." if dropped else
+                                                              "fitted without problems and is kept."))
+    if words:
+        out.append(" ".join(words) + "\n")
 
 
 def random_effects(out, model):
