@@ -3,7 +3,12 @@
 and PNG figures.
 
 Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-condition NAME] [--rating-scale MIN:MAX]
-       [--pool-players]
+       [--pool-players] [--rscript PATH] [--no-mixed-models]
+
+First, the trial-level mixed models reviewers expect (hits by binomial GLMMs, counts by Poisson or
+negative binomial GLMMs, Likert answers by cumulative-link mixed models), fitted by R from the
+script analysis/r/mixed_models.R, which the report keeps beside itself (mixed_models.py). Then
+each paper's own analysis, replicated, as below.
 
 A condition (the `condition` column of the other files; `mode` in an older export) is one the
 export's condition table describes: conditions.csv, or modes.csv in an export from before it
