@@ -21,12 +21,13 @@
 # simulation", says what is assumed and why.
 #
 # Exit status: 0, the JSON is written (a model that cannot be simulated is in it with the reason);
-# 1, bad input or a missing package: one sentence on stderr; 2, a bad command line.
+# 1, bad input: one sentence on stderr; 2, a bad command line; 3, R lacks a package it needs.
 
 DEFAULTS <- list(replicates = 200L, alpha = 0.05, target = 0.8, seed = 1L, n_min = 4L, n_max = 64L,
                  optimizer = "nloptwrap")
-# A pilot needs this many participants for its random-effect covariance to be anything but a guess.
-FEWEST_PILOT_PARTICIPANTS <- 2L
+# Fewer pilot participants than this give the spread of participants' random effects from one or
+# two values: a guess, not an estimate, and the simulation takes it as the truth.
+FEWEST_PILOT_PARTICIPANTS <- 3L
 
 say <- function(sentence, status) {
   cat("power.R: ", sentence, "\n", sep = "", file = stderr())
@@ -127,8 +128,8 @@ unusable <- function(entry) {
   if (!all(c("participant", "condition") %in% names(data))) return("its data lacks participant or condition")
   people <- length(unique(data$participant))
   if (people < FEWEST_PILOT_PARTICIPANTS)
-    return(paste0("the pilot has too little data: ", people, " participant(s), and the random effects' spread ",
-                  "needs at least ", FEWEST_PILOT_PARTICIPANTS))
+    return(paste0("the pilot has too little data: ", people, " participant", if (people == 1) "" else "s",
+                  ", where the spread of participants' random effects needs at least ", FEWEST_PILOT_PARTICIPANTS))
   NULL
 }
 
@@ -138,7 +139,8 @@ unusable <- function(entry) {
 design_of <- function(entry, trials) {
   model <- entry$model
   data <- as.data.frame(entry$data)
-  conditions <- levels(model@frame$condition)
+  conditions <- model@frame$condition
+  conditions <- if (is.factor(conditions)) levels(conditions) else sort(unique(as.character(conditions)))
   response <- all.vars(formula(model))[1]
   carried <- setdiff(all.vars(formula(model)), c(response, "participant", "condition"))
   rows <- lapply(conditions, function(cond) {
@@ -371,7 +373,7 @@ plan_model <- function(name, entry, opts, streams) {
   pilot <- fixef(model)
   beta <- apply_effects(pilot, effects, reference, name)
   pairs <- contrasts_of(opts, effects, design$conditions)
-  if (!length(pairs)) return(list(model = name, skipped = "none of the contrasts named is between its conditions"))
+  if (!length(pairs)) return(list(model = name, skipped = "none of the contrasts asked for is between two of its conditions"))
   L <- do.call(rbind, lapply(pairs, function(p) contrast_row(p[[1]], p[[2]], reference, beta)))
   fam <- family(model)
   ctx <- list(name = name, design = design, params = list(beta = beta, theta = getME(model, "theta")),
@@ -420,7 +422,7 @@ main <- function(args) {
   opts <- parse_args(args)
   for (package in c("lme4", "jsonlite"))
     if (!requireNamespace(package, quietly = TRUE))
-      bad_input("R lacks the package ", package, " (Debian: apt-get install r-cran-", tolower(package), ")")
+      say(paste0("R lacks the package ", package, " (Debian: apt-get install r-cran-", tolower(package), ")"), 3L)
   suppressPackageStartupMessages(library(lme4))
   if (!file.exists(opts$rds)) bad_input(opts$rds, ": no such file")
   models <- tryCatch(readRDS(opts$rds), error = function(e) bad_input(opts$rds, ": not an RDS file R can read"))
