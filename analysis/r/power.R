@@ -119,7 +119,8 @@ unusable <- function(entry) {
   if (!inherits(model, "glmerMod")) return("it is not a glmer fit (only binomial and Poisson GLMMs are simulated)")
   fam <- family(model)
   if (!paste(fam$family, fam$link) %in% c("binomial logit", "poisson log"))
-    return(paste0("its family is ", fam$family, " (", fam$link, "); only binomial (logit) and Poisson (log) are simulated"))
+    return(paste0("its family is ", fam$family, " (", fam$link, "); only binomial (logit) and Poisson (log) ",
+                  "are simulated"))
   groups <- names(getME(model, "flist"))
   if (!identical(groups, "participant"))
     return(paste0("its random effects are grouped by ", paste(groups, collapse = " and "),
@@ -373,7 +374,8 @@ plan_model <- function(name, entry, opts, streams) {
   pilot <- fixef(model)
   beta <- apply_effects(pilot, effects, reference, name)
   pairs <- contrasts_of(opts, effects, design$conditions)
-  if (!length(pairs)) return(list(model = name, skipped = "none of the contrasts asked for is between two of its conditions"))
+  if (!length(pairs))
+    return(list(model = name, skipped = "none of the contrasts asked for is between two of its conditions"))
   L <- do.call(rbind, lapply(pairs, function(p) contrast_row(p[[1]], p[[2]], reference, beta)))
   fam <- family(model)
   ctx <- list(name = name, design = design, params = list(beta = beta, theta = getME(model, "theta")),

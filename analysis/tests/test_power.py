@@ -6,8 +6,10 @@ Oracles outside the code under test: lme4's own simulate() for the simulated res
 Clopper-Pearson interval for the Monte-Carlo intervals, and what a null or a large effect must do
 to power. Replicates are few, so each run takes seconds on one core.
 """
+import argparse
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -211,3 +213,28 @@ def test_each_study_is_drawn_as_lme4_s_simulate_draws_it(pilots, tmp_path):
     rows = [line.split() for line in done.stdout.splitlines()]
     assert {r[0] for r in rows} == {"shooter_hit", "shooter_hit_uncorrelated", "shooter_hit_correlated"}
     assert all(r[2] == str(9 * 36) and r[3] == "0" for r in rows), rows
+
+
+def test_the_docs_state_power_r_s_defaults():
+    """docs/export.md's numbers are power.R's: the default replicates, the n searched, the batch,
+    the smallest pilot, alpha."""
+    source = power.SCRIPT.read_text()
+    defaults = dict(re.findall(r"(\w+) = ([\d.]+)L?", re.search(r"DEFAULTS <- list\((.*?)\)\n", source, re.S)[1]))
+    batch = re.search(r"^BATCH <- (\d+)L", source, re.M)[1]
+    fewest = re.search(r"^FEWEST_PILOT_PARTICIPANTS <- (\d+)L", source, re.M)[1]
+    docs = " ".join((ANALYSIS.parent / "docs" / "export.md").read_text().split())
+    for phrase in (f"{defaults['replicates']} studies per n by default", f"n is searched from {defaults['n_min']},",
+                   f"doubling up to {defaults['n_max']}", f"batches of {batch}", f"fewer than {fewest} participants",
+                   f"at α = {defaults['alpha']}", f"(default {defaults['seed']})"):
+        assert phrase in docs, phrase
+
+
+@pytest.mark.parametrize("text, good", [("warp15to120:conv15=2", True), ("a:b=0.5", True), ("a:b=0", False),
+                                        ("a:b=-1", False), ("a:b=inf", False), ("ab=2", False), ("a:b", False),
+                                        ("a:b=two", False)])
+def test_the_effect_option_wants_two_conditions_and_a_ratio_above_zero(text, good):
+    if good:
+        assert power.effect_argument(text) == text
+    else:
+        with pytest.raises(argparse.ArgumentTypeError, match="A:B=RATIO"):
+            power.effect_argument(text)

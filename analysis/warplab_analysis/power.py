@@ -37,7 +37,8 @@ def effect_argument(text):
     except ValueError:
         value = math.nan
     if not equals or ":" not in pair or not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is not A:B=RATIO, two conditions and an odds ratio above 0 (warp15to120:conv15=2)")
+        raise argparse.ArgumentTypeError(f"{text!r} is not A:B=RATIO, two conditions and an odds ratio above 0 "
+                                         "(warp15to120:conv15=2)")
     return text
 
 
