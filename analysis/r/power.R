@@ -34,6 +34,10 @@ say <- function(sentence, status) {
   quit(save = "no", status = status)
 }
 bad_input <- function(...) say(paste0(...), 1L)
+# A model this script cannot simulate, for a reason in the model rather than in what was asked:
+# plan_model's caller records it as skipped and goes on with the others.
+cannot_simulate <- function(...) stop(structure(class = c("cannot_simulate", "error", "condition"),
+                                                list(message = paste0(...), call = NULL)))
 bad_usage <- function(...) say(paste0(..., " (usage: Rscript power.R RDS --out JSON [options];",
                                       " see the comment at its top)"), 2L)
 
@@ -84,6 +88,7 @@ parse_args <- function(args) {
            "--optimizer" = opts$optimizer <- value,
            bad_usage("unknown option ", flag))
   }
+  for (text in opts$effects) split_effect(text)  # its form now; its conditions per model
   if (is.null(opts$rds)) bad_usage("no RDS file given")
   if (is.null(opts$out)) bad_usage("no --out JSON given")
   if (opts$n_max < opts$n_min) bad_usage("--n-max ", opts$n_max, " is below --n-min ", opts$n_min)
@@ -146,10 +151,10 @@ design_of <- function(entry, trials) {
   carried <- setdiff(all.vars(formula(model)), c(response, "participant", "condition"))
   rows <- lapply(conditions, function(cond) {
     here <- data[data$condition == cond, , drop = FALSE]
-    if (nrow(here) == 0) bad_input("the pilot of ", entry$name, " has no trials in ", cond)
+    if (nrow(here) == 0) cannot_simulate("the pilot has no trials in ", cond)
     k <- if (is.null(trials)) max(1L, as.integer(round(median(table(as.character(here$participant)))))) else trials
     for (column in carried) if (length(unique(here[[column]])) != 1)
-      bad_input("the column ", column, " of ", entry$name, "'s data varies within condition ", cond,
+      cannot_simulate("its column ", column, " varies within condition ", cond,
                 ", so new participants' values of it cannot be known")
     row <- data.frame(condition = rep(cond, k), stringsAsFactors = FALSE)
     for (column in carried) row[[column]] <- rep(here[[column]][1], k)
@@ -178,7 +183,7 @@ contrast_row <- function(a, b, reference, beta) {
   for (side in list(c(a, 1), c(b, -1))) {
     name <- coefficient_of(side[[1]], reference)
     if (!is.na(name)) {
-      if (!name %in% names(beta)) bad_input("the fixed effects have no ", name, " (treatment coding against ",
+      if (!name %in% names(beta)) cannot_simulate("its fixed effects have no ", name, " (treatment coding against ",
                                            reference, " expected)")
       row[[name]] <- as.numeric(side[[2]])
     }
@@ -256,7 +261,11 @@ one_study <- function(r, structure, ctx) {
 # for every batch (mclapply) cost as much again. With one core the replicates run here.
 start_workers <- function(ctx, cores) {
   if (cores < 2L) return(NULL)
-  workers <- parallel::makeForkCluster(cores)
+  workers <- tryCatch(parallel::makeForkCluster(cores), error = function(e) {
+    cat("power.R: no workers (", conditionMessage(e), "), so one core\n", sep = "", file = stderr())
+    NULL
+  })
+  if (is.null(workers)) return(NULL)
   parallel::clusterExport(workers, "ctx", envir = environment())
   workers
 }
@@ -295,7 +304,7 @@ evaluator <- function(ctx, workers, target) {
                             failed = sum(vapply(runs, `[[`, TRUE, "failed")),
                             singular = sum(vapply(runs, function(x) x$singular %in% TRUE, TRUE)),
                             warned = sum(vapply(runs, `[[`, TRUE, "warned")),
-                            seconds = proc.time()[["elapsed"]] - started)
+                            seconds = round(proc.time()[["elapsed"]] - started, 3))
       cat(sprintf("power.R: %s, n = %d: %d studies, %.0f s\n", ctx$name, n, length(runs), cache[[key]]$seconds),
           file = stderr())
     }
@@ -365,7 +374,7 @@ plan_model <- function(name, entry, opts, streams) {
   design <- design_of(entry, opts$trials)
   reference <- design$conditions[[1]]
   if (!is.null(entry$reference) && !identical(as.character(entry$reference), reference))
-    bad_input(name, "'s reference is ", entry$reference, " but its model's first condition level is ", reference)
+    cannot_simulate("its reference is ", entry$reference, " but its model's first condition level is ", reference)
   effects <- Filter(Negate(is.null), lapply(opts$effects, function(text) {
     e <- split_effect(text)
     pair <- parse_pair(e$pair, design$conditions)
@@ -384,7 +393,7 @@ plan_model <- function(name, entry, opts, streams) {
   # The pilot refitted here first: it loads glmer's code before the workers fork (start_workers).
   tryCatch(suppressWarnings(suppressMessages(glmer(ctx$formula, data = entry$data, family = fam,
                                                     control = ctx$control))),
-           error = function(e) bad_input("the kept formula of ", name, " does not refit to its own data: ",
+           error = function(e) cannot_simulate("its kept formula does not refit to its own data: ",
                                          conditionMessage(e)))
   workers <- start_workers(ctx, opts$cores)
   on.exit(if (!is.null(workers)) parallel::stopCluster(workers))
@@ -439,7 +448,9 @@ main <- function(args) {
   stream <- .Random.seed
   for (r in seq_len(opts$replicates)) streams[[r]] <- stream <- parallel::nextRNGStream(stream)
   started <- proc.time()[["elapsed"]]
-  planned <- lapply(chosen, function(name) plan_model(name, models[[name]], opts, streams))
+  planned <- lapply(chosen, function(name) tryCatch(plan_model(name, models[[name]], opts, streams),
+                                                    cannot_simulate = function(e) list(model = name,
+                                                                                       skipped = conditionMessage(e))))
   used <- unlist(lapply(planned, function(p) vapply(p$contrasts, function(c) c$source == "stated", TRUE)))
   if (length(opts$effects) && !any(used))
     bad_input("no model has both conditions of ", paste(opts$effects, collapse = ", "))
@@ -448,11 +459,14 @@ main <- function(args) {
                  search = if (is.null(opts$n)) list(n_min = opts$n_min, n_max = opts$n_max, n = NULL)
                           else list(n_min = NULL, n_max = NULL, n = opts$n),
                  trials = opts$trials, effects = opts$effects, models = planned,
-                 seconds = proc.time()[["elapsed"]] - started,
+                 seconds = round(proc.time()[["elapsed"]] - started, 3),
                  versions = list(R = paste(R.version$major, R.version$minor, sep = "."),
                                  lme4 = as.character(packageVersion("lme4"))))
   text <- jsonlite::toJSON(result, auto_unbox = TRUE, null = "null", na = "null", digits = NA, pretty = TRUE)
   writeLines(text, opts$out)
 }
 
-if (sys.nframe() == 0L) main(commandArgs(trailingOnly = TRUE))  # not when source()d, as the tests do
+# Not when source()d, as the tests do. An error nothing above foresaw still ends in one sentence.
+if (sys.nframe() == 0L)
+  tryCatch(main(commandArgs(trailingOnly = TRUE)),
+           error = function(e) say(paste0("R stopped: ", sub("\\.?\\s*$", "", conditionMessage(e))), 1L))

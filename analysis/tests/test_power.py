@@ -54,7 +54,10 @@ saveRDS(list(
   shooter_hit_uncorrelated = entry(paste("hit ~ condition + (1 | participant) + (0 + d_conv120 | participant)",
                                          "+ (0 + d_warp15to120 | participant)"), d),
   shooter_hit_correlated = entry("hit ~ condition + (1 + condition | participant)", d)), out[1])
-saveRDS(list(shooter_hit = entry("hit ~ condition + (1 | participant)", pilot(2, 12))), out[2])
+wrong <- entry("hit ~ condition + (1 | participant)", d)
+wrong$reference <- "conv120"  # not the factor's first level, which the coefficients are against
+saveRDS(list(shooter_hit = entry("hit ~ condition + (1 | participant)", pilot(2, 12)), wrong_reference = wrong),
+        out[2])
 """
 
 
@@ -77,7 +80,7 @@ def pilots(tmp_path_factory):
 
 
 def plan(tmp_path, rds, **options):
-    options = {"models": ["shooter_hit"], "cores": 1, **options}
+    options = {"models": ["shooter_hit"], "cores": 1, **options}  # models None: every one in the file
     return power.plan(str(tmp_path), str(rds), **options)
 
 
@@ -168,8 +171,12 @@ def test_r_missing_gives_one_sentence(pilots, tmp_path):
 
 
 def test_a_pilot_of_two_participants_is_too_little_data(pilots, tmp_path):
-    [line] = power.power_markdown(plan(tmp_path, pilots[1]))
-    assert line.startswith(power.LEFT_OUT) and "too little data: 2 participants" in line
+    """So is one whose reference is not what its coefficients are against: each skipped with its
+    reason, and with none left, the section is one sentence naming both."""
+    [line] = power.power_markdown(plan(tmp_path, pilots[1], models=None))
+    assert line.startswith(power.LEFT_OUT) and line.count(". ") == 0
+    assert "shooter_hit: the pilot has too little data: 2 participants" in line
+    assert "wrong_reference: its reference is conv120 but its model's first condition level is conv15" in line
 
 
 def test_an_effect_naming_no_model_s_conditions_is_refused(pilots, tmp_path):
