@@ -1,6 +1,7 @@
 # Power of the report's trial-level mixed models by simulation: how many participants a study
 # needs for a condition contrast to be found with 80 % power. What R's simr does (Green & MacLeod
-# 2016), which Debian does not package, written here with lme4's simulate() and a refit.
+# 2016), which Debian does not package, written here with lme4: studies drawn as its simulate()
+# draws them, each refitted by glmer.
 #
 # Usage:
 #   Rscript power.R RDS --out JSON [--model NAME]... [--effect A:B=RATIO]... [--contrast A:B]...
@@ -139,14 +140,19 @@ unusable <- function(entry) {
   NULL
 }
 
+# The model's conditions in its level order, the reference first (as glmer makes a factor of text).
+conditions_of <- function(model) {
+  conditions <- model@frame$condition
+  if (is.factor(conditions)) levels(conditions) else sort(unique(as.character(conditions)))
+}
+
 # What each new participant plays: per condition, the pilot's median trials (or --trials), with
 # the value every other column the formula uses has in that condition (the dummy columns of
 # uncorrelated slopes): such a column must be constant within a condition.
 design_of <- function(entry, trials) {
   model <- entry$model
   data <- as.data.frame(entry$data)
-  conditions <- model@frame$condition
-  conditions <- if (is.factor(conditions)) levels(conditions) else sort(unique(as.character(conditions)))
+  conditions <- conditions_of(model)
   response <- all.vars(formula(model))[1]
   carried <- setdiff(all.vars(formula(model)), c(response, "participant", "condition"))
   rows <- lapply(conditions, function(cond) {
@@ -442,6 +448,10 @@ main <- function(args) {
   unknown <- setdiff(chosen, names(models))
   if (length(unknown)) bad_input(opts$rds, " has no model ", unknown[[1]], " (it has ",
                                  paste(names(models), collapse = ", "), ")")
+  known <- lapply(models[chosen], function(e) if (is.list(e) && inherits(e$model, "merMod")) conditions_of(e$model))
+  for (text in opts$effects)  # a misspelt condition is caught before any study is simulated
+    if (!any(vapply(known, function(k) !is.null(parse_pair(split_effect(text)$pair, k)), TRUE)))
+      bad_input("no model has both conditions of ", text)
   RNGkind("L'Ecuyer-CMRG")
   set.seed(opts$seed)
   streams <- vector("list", opts$replicates)
@@ -451,9 +461,6 @@ main <- function(args) {
   planned <- lapply(chosen, function(name) tryCatch(plan_model(name, models[[name]], opts, streams),
                                                     cannot_simulate = function(e) list(model = name,
                                                                                        skipped = conditionMessage(e))))
-  used <- unlist(lapply(planned, function(p) vapply(p$contrasts, function(c) c$source == "stated", TRUE)))
-  if (length(opts$effects) && !any(used))
-    bad_input("no model has both conditions of ", paste(opts$effects, collapse = ", "))
   result <- list(test = "Wald z", alpha = opts$alpha, target = opts$target, replicates = opts$replicates,
                  seed = opts$seed, cores = opts$cores, optimizer = opts$optimizer,
                  search = if (is.null(opts$n)) list(n_min = opts$n_min, n_max = opts$n_max, n = NULL)

@@ -180,8 +180,9 @@ def test_a_pilot_of_two_participants_is_too_little_data(pilots, tmp_path):
 
 
 def test_an_effect_naming_no_model_s_conditions_is_refused(pilots, tmp_path):
-    with pytest.raises(BadInput, match="no model has both conditions of conv60:conv15=2"):
-        plan(tmp_path, pilots[0], effects=["conv60:conv15=2"], replicates=5, n=[4])
+    """Even beside one that does: a misspelt condition is not silently left out."""
+    with pytest.raises(BadInput, match="^power.R: no model has both conditions of conv60:conv15=2$"):
+        plan(tmp_path, pilots[0], effects=["warp15to120:conv15=2", "conv60:conv15=2"], replicates=5, n=[4])
 
 
 SIMULATE_R = r"""
