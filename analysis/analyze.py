@@ -45,11 +45,12 @@ import json
 import math
 import os
 import re
+import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from warplab_analysis import discrimination, inputs, mixed_models, players, questions, report, stats  # noqa: E402
+from warplab_analysis import discrimination, inputs, mixed_models, players, power, questions, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -476,6 +477,15 @@ def main(argv=None):
                         help="the Rscript that fits the mixed models (default: Rscript on PATH)")
     parser.add_argument("--no-mixed-models", action="store_true",
                         help="leave out the trial-level mixed models (R), for a quick look at a large study")
+    parser.add_argument("--power", action="store_true",
+                        help="also plan the sample size by simulating the mixed models (R; docs/export.md, "
+                             "\"Sample size by simulation\"): every pair of each model's conditions from the pilot's "
+                             "estimates, which takes a minute or more")
+    parser.add_argument("--effect", action="append", type=power.effect_argument, metavar="A:B=OR",
+                        help="with the power plan (implies --power): the odds ratio (rate ratio) of condition A "
+                             "against B to plan for, in place of the pilot's; repeatable")
+    parser.add_argument("--power-replicates", type=int, metavar="N",
+                        help="simulated studies per number of participants (implies --power; default 200)")
     parser.add_argument("--pool-players", action="store_true",
                         help="analyse people and scripted players (bots, simulated participants) together; by "
                              "default each kind is analysed on its own, people first")
@@ -493,7 +503,14 @@ def main(argv=None):
         os.makedirs(args.out, exist_ok=True)
         results["mixed_models"] = (mixed_models.left_out("Left out, as --no-mixed-models asked.")
                                    if args.no_mixed_models else mixed_models.fit(results, args.out, args.rscript))
+        results["power"] = None
+        if (args.power or args.effect or args.power_replicates) and not args.no_mixed_models:
+            results["power"] = power.plan(args.out, os.path.join(args.out, power.MODELS), effects=args.effect,
+                                          replicates=args.power_replicates,
+                                          rscript=shutil.which(args.rscript) or args.rscript)
         written = draw_figures(results, args.out)
+        if results["power"] and results["power"].get("figure"):
+            written.append(os.path.join(args.out, results["power"]["figure"]))
         target = os.path.join(args.out, "report.json")
         with open(target, "w", encoding="utf-8") as f:
             json.dump(finite_or_none(results), f, indent=2, allow_nan=False, ensure_ascii=False)

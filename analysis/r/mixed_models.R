@@ -25,7 +25,7 @@
 # question's id, or q and its index when it has none). Each element is a list:
 #   model      the fitted object: an lme4 merMod (glmerMod; glmer.nb's is one too) or an
 #              ordinal clmm
-#   formula    the formula kept after stepping down (a formula object)
+#   formula    the formula kept after stepping down (text: read it with as.formula())
 #   engine     "binomial", "poisson", "negbin" or "clmm"
 #   step       "maximal", "uncorrelated" or "random intercept"
 #   reference  the reference condition: the first level of data$condition
@@ -334,7 +334,10 @@ fit_measure <- function(m) {
   out$fitted <- TRUE
   out$reference <- levels(prepared$data$condition)[1]
   out$n_participants <- nlevels(prepared$data$participant)
-  saved <- list(model = fitted$fit, formula = fitted$formula, engine = engine, step = fitted$step,
+  # The formula as text, as the RDS's layout (this file's header) says: power.R and a reader's own
+  # code read it with as.formula().
+  saved <- list(model = fitted$fit, formula = paste(deparse(fitted$formula, width.cutoff = 500L), collapse = " "),
+                engine = engine, step = fitted$step,
                 reference = out$reference, data = prepared$data, dummies = prepared$dummies, game = m$game,
                 measure = m$measure, label = m$label)
   list(summary = out, saved = saved)

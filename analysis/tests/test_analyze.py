@@ -222,7 +222,7 @@ BEFORE = DATA / "modes_csv_reports"
 # the condition table comes from; who played (unknown in these exports: a note), the questions; the
 # discrimination thresholds (null: these exports have none); the mixed models (left out here, as
 # run_in_process leaves them out).
-ADDED_KEYS = {"conditions_file", "players", "questions", "group_notes", "discrimination", "mixed_models"}
+ADDED_KEYS = {"conditions_file", "players", "questions", "group_notes", "discrimination", "mixed_models", "power"}
 
 
 def without_conditions_section(md):

@@ -15,7 +15,7 @@ import shutil
 import subprocess
 from pathlib import Path
 
-from . import report
+from . import markdown
 from .inputs import BadInput
 
 SCRIPT = Path(__file__).resolve().parents[1] / "r" / "power.R"
@@ -126,9 +126,9 @@ def contrast_row(model, contrast, search):
         if contrast["needed"] == search["smallest"]:
             needed = f"{needed} or fewer (the fewest searched)"
     top = str(high) if high is not None else f"above {search['largest']}"
-    span = report.NOTHING if low is None else str(low) if low == high else f"{low}–{top}"
-    return [report.cell(model["model"]), f"{report.cell(contrast['a'])} vs {report.cell(contrast['b'])}", ratio,
-            source, needed, at, span, str(replicates), report.cell(model["formula"])]
+    span = markdown.NOTHING if low is None else str(low) if low == high else f"{low}–{top}"
+    return [markdown.cell(model["model"]), f"{markdown.cell(contrast['a'])} vs {markdown.cell(contrast['b'])}", ratio,
+            source, needed, at, span, str(replicates), markdown.cell(model["formula"])]
 
 
 def power_markdown(result, level=2):
@@ -160,12 +160,12 @@ def power_markdown(result, level=2):
     rows, notes = [], []
     for model in result["models"]:
         if "skipped" in model:
-            notes.append(f"{report.cell(model['model'])}: not simulated, {model['skipped']}.")
+            notes.append(f"{markdown.cell(model['model'])}: not simulated, {model['skipped']}.")
             continue
         for contrast in model["contrasts"]:
             rows.append(contrast_row(model, contrast, {"smallest": smallest, "largest": largest}))
         notes += model_notes(model)
-    lines.append(report.table(["model", "contrast", "odds ratio", "from", f"N for {target * 100:g} %",
+    lines.append(markdown.table(["model", "contrast", "odds ratio", "from", f"N for {target * 100:g} %",
                                "power at N (95 % MC interval)", "N range", "studies", "model simulated"], rows))
     if result.get("figure"):
         lines.append(f"![Power against participants, with 95 % Monte-Carlo intervals]({result['figure']})\n")
@@ -177,7 +177,7 @@ def model_notes(model):
     """What a reader needs to weigh the numbers: the trials per condition, the pilot's size and
     whether its fit was singular, the refits that failed or were singular."""
     trials = ", ".join(f"{c} {k}" for c, k in model["trials_per_condition"].items())
-    pilot, name = model["pilot"], report.cell(model["model"])
+    pilot, name = model["pilot"], markdown.cell(model["model"])
     notes = [f"{name}: each simulated participant plays {trials} trials; the pilot had "
              f"{pilot['participants']} participants" + (", and its fit was singular (a random-effect variance at "
                                                           "zero, or a correlation at ±1)" if pilot["singular"] else "")

@@ -15,7 +15,7 @@ them all).
 import math
 import statistics
 
-from . import mixed_report, papers, planning, players
+from . import mixed_report, papers, planning, players, power
 from .conditions import ConditionTable
 from .markdown import NOTHING, cell, fmt, table
 
@@ -267,6 +267,8 @@ def render(results):
     for note in results["notes"]:
         out.append(f"{note}\n")
     mixed_report.section(out, results)
+    if results.get("power") is not None:
+        out.extend(power.power_markdown(results["power"]))
     conditions_section(out, results)
     game_sections(out, results, results)
     questions_section(out, results["questions"])
