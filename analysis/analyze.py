@@ -3,7 +3,12 @@
 and PNG figures.
 
 Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-condition NAME] [--rating-scale MIN:MAX]
-       [--pool-players]
+       [--pool-players] [--rscript PATH] [--no-mixed-models]
+
+First, the trial-level mixed models reviewers expect (hits by binomial GLMMs, counts by Poisson or
+negative binomial GLMMs, Likert answers by cumulative-link mixed models), fitted by R from the
+script analysis/r/mixed_models.R, which the report keeps beside itself (mixed_models.py). Then
+each paper's own analysis, replicated, as below.
 
 A condition (the `condition` column of the other files; `mode` in an older export) is one the
 export's condition table describes: conditions.csv, or modes.csv in an export from before it
@@ -40,11 +45,12 @@ import json
 import math
 import os
 import re
+import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from warplab_analysis import discrimination, inputs, players, questions, report, stats  # noqa: E402
+from warplab_analysis import discrimination, inputs, mixed_models, players, power, questions, report, stats  # noqa: E402
 from warplab_analysis.conditions import ConditionTable  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -336,6 +342,7 @@ def draw_figures(results, out_dir):
         # A second group's figures are named after it: "scripted_shooter_hit_rates.png".
         prefix = f"{part['group']}_" if "group" in part else ""
         written += draw_part(figures, part, out_dir, taken, table, palette, prefix, results["conditions_file"])
+    written += draw_model_figures(results.get("mixed_models"), out_dir, taken, palette)
     if frame_times:
         name = file_stem("frame_times", taken) + ".png"
         figures.frame_times_figure(os.path.join(out_dir, name), frame_times, palette)
@@ -346,6 +353,23 @@ def draw_figures(results, out_dir):
         written.append(name)
     results["figures"] = written
     return [os.path.join(out_dir, name) for name in written]
+
+
+def draw_model_figures(section, out_dir, taken, palette):
+    """The mixed models' contrasts and means (model_figures), where R fitted any; the names written."""
+    if not section or not any(m.get("fitted") for m in section["models"]):
+        return []
+    from warplab_analysis import model_figures
+    written = []
+    drawers = [("means", model_figures.means_figure)]
+    if any(m.get("fitted") and m["contrasts"] for m in section["models"]):
+        drawers.insert(0, ("contrasts", model_figures.contrasts_figure))
+    for kind, draw in drawers:
+        name = file_stem(f"mixed_models_{kind}", taken) + ".png"
+        draw(os.path.join(out_dir, name), section, palette)
+        section["figures"][kind] = name
+        written.append(name)
+    return written
 
 
 def draw_part(figures, part, out_dir, taken, table, palette, prefix, conditions_file):
@@ -449,6 +473,19 @@ def main(argv=None):
                              "ratings.min and ratings.max that ratings.csv records (default: those; for an export "
                              "from before ratings.csv had them, 1:7, the protocol's default); a rating outside the "
                              "scale is refused")
+    parser.add_argument("--rscript", default="Rscript", metavar="PATH",
+                        help="the Rscript that fits the mixed models (default: Rscript on PATH)")
+    parser.add_argument("--no-mixed-models", action="store_true",
+                        help="leave out the trial-level mixed models (R), for a quick look at a large study")
+    parser.add_argument("--power", action="store_true",
+                        help="also plan the sample size by simulating the mixed models (R; docs/export.md, "
+                             "\"Sample size by simulation\"): every pair of each model's conditions from the pilot's "
+                             "estimates, which takes a minute or more")
+    parser.add_argument("--effect", action="append", type=power.effect_argument, metavar="A:B=OR",
+                        help="with the power plan (implies --power): the odds ratio (rate ratio) of condition A "
+                             "against B to plan for, in place of the pilot's; repeatable")
+    parser.add_argument("--power-replicates", type=int, metavar="N",
+                        help="simulated studies per number of participants (implies --power; default 200)")
     parser.add_argument("--pool-players", action="store_true",
                         help="analyse people and scripted players (bots, simulated participants) together; by "
                              "default each kind is analysed on its own, people first")
@@ -464,7 +501,16 @@ def main(argv=None):
         return 1
     try:
         os.makedirs(args.out, exist_ok=True)
+        results["mixed_models"] = (mixed_models.left_out("Left out, as --no-mixed-models asked.")
+                                   if args.no_mixed_models else mixed_models.fit(results, args.out, args.rscript))
+        results["power"] = None
+        if (args.power or args.effect or args.power_replicates) and not args.no_mixed_models:
+            results["power"] = power.plan(args.out, os.path.join(args.out, power.MODELS), effects=args.effect,
+                                          replicates=args.power_replicates,
+                                          rscript=shutil.which(args.rscript) or args.rscript)
         written = draw_figures(results, args.out)
+        if results["power"] and results["power"].get("figure"):
+            written.append(os.path.join(args.out, results["power"]["figure"]))
         target = os.path.join(args.out, "report.json")
         with open(target, "w", encoding="utf-8") as f:
             json.dump(finite_or_none(results), f, indent=2, allow_nan=False, ensure_ascii=False)

@@ -33,6 +33,10 @@ packages=(
   # psyphy: the psychometric fit is checked against glm with its forced-choice links
   # (analysis/tests/test_psychometric.py)
   r-cran-psyphy
+  # the report's trial-level mixed models (analysis/r/mixed_models.R): lme4's GLMMs, emmeans'
+  # marginal means and contrasts, ordinal's cumulative-link models, jsonlite for the results;
+  # glmmTMB fits them independently in analysis/tests/test_mixed_models.py
+  r-cran-lme4 r-cran-emmeans r-cran-ordinal r-cran-jsonlite r-cran-glmmtmb
 )
 
 missing=()

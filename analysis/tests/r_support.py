@@ -1,6 +1,7 @@
 """Running an R script over a data file, for the tests that check the analysis against R."""
 import shutil
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -20,3 +21,11 @@ def run_r(script_text, data_text, tmp_path, package, install):
         pytest.fail(f"R lacks the package {package}: {install}.")
     assert done.returncode == 0, f"Rscript failed: {done.stderr}"
     return done.stdout.splitlines()
+
+
+def installed_by_deps():
+    """The Debian packages scripts/install-deps.sh installs: the project's test command runs it
+    first, so what a test needs from R must be in that list."""
+    script = (Path(__file__).resolve().parents[2] / "scripts" / "install-deps.sh").read_text()
+    block = script.split("packages=(", 1)[1].split("\n)", 1)[0]
+    return {word for line in block.splitlines() for word in line.split("#", 1)[0].split()}

@@ -12,16 +12,14 @@ doubles Python does.
 """
 import os
 import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from warplab_analysis import stats  # noqa: E402
-from r_support import run_r  # noqa: E402
+from r_support import installed_by_deps, run_r  # noqa: E402
 
-ROOT = Path(__file__).resolve().parents[2]
 INSTALL = ("run scripts/install-deps.sh (it installs r-base-core and r-cran-exactranktests, which this test "
            "needs to check the report's statistics against R)")
 
@@ -92,7 +90,4 @@ def test_wilcoxon_p_is_rs(tmp_path):
 
 def test_install_deps_installs_r():
     """The project's test command runs scripts/install-deps.sh first: R must be in its list."""
-    script = (ROOT / "scripts" / "install-deps.sh").read_text()
-    block = script.split("packages=(", 1)[1].split("\n)", 1)[0]
-    listed = {word for line in block.splitlines() for word in line.split("#", 1)[0].split()}
-    assert {"r-base-core", "r-cran-exactranktests"} <= listed, "scripts/install-deps.sh does not install R"
+    assert {"r-base-core", "r-cran-exactranktests"} <= installed_by_deps(), "scripts/install-deps.sh does not install R"

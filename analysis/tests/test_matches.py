@@ -157,7 +157,8 @@ def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     code, report = run_in_process(tmp_path, tmp_path / "out")
     assert code == 0
     md = (tmp_path / "out" / "report.md").read_text()
-    assert "## Spheres game (Yang et al. 2011, seed 000 §8)" in md and "Click game" not in md
+    assert "## Spheres game: the paper's own analysis, replicated (Yang et al. 2011, seed 000 §8)" in md
+    assert "Click game" not in md
     assert "F(1, n − 1) = t²" in md and "Pulkkinen" not in md
     assert "rate = green hits out of clicks" in md and "### Hit rates: green hits / clicks" in md
     assert report["matches"]["game"] == "spheres" and report["matches"]["conditions"] == CLICK_CONDITIONS
@@ -167,7 +168,8 @@ def test_matches_sections_follow_the_data_not_the_game_name(tmp_path):
     assert code == 0
     md = (tmp_path / "out2" / "report.md").read_text()
     assert report["matches"]["game"] is None
-    assert "## Matches (Yang et al. 2011, seed 000 §8)" in md and "## Spheres: hit rates" in md
+    assert "## Matches: the paper's own analysis, replicated (Yang et al. 2011, seed 000 §8)" in md
+    assert "## Spheres: hit rates" in md
     assert md.index("## Spheres: hit rates") < md.index("## Matches")
     # games.csv's `tables` (exports since games own their tables) says it without sessions.csv.
     # A game without tables of its own has an empty cell there.

@@ -574,6 +574,8 @@ def load_answers(export_dir):
                 raise BadInput(f"{path}: line {record['_line']}, column 'value' is not a whole number: "
                                f"{record['value']!r}.")
             value = int(value)
+            if kind == "likert":
+                answer_on_scale(table, record, value)
         block = None
         if "block_index" in table.header and record["block_index"].strip() != "":
             block = whole(table, record, "block_index")
@@ -583,6 +585,17 @@ def load_answers(export_dir):
                         "condition": record[CONDITION], "value": value, "text": record["text"], "block": block,
                         "player_kind": record.get("player_kind")})
     return answers
+
+
+def answer_on_scale(table, record, value):
+    """A Likert answer within the scale its row records (scale_min, scale_max; an export from before
+    them records none): an answer outside would move every summary and model of its question."""
+    if not all(c in table.header and record[c].strip() != "" for c in SCALE_COLUMNS):
+        return
+    low, high = whole(table, record, "scale_min"), whole(table, record, "scale_max")
+    if not low <= value <= high:
+        raise BadInput(f"{table.path}: line {record['_line']}, column 'value' is {value}, outside the question's "
+                       f"scale {low} to {high} (its scale_min and scale_max).")
 
 
 FRAME_TIMES = "frametimes.csv"

@@ -1,42 +1,23 @@
 """report.md from the results analyze.py also writes to report.json, so the two cannot disagree.
 
-Shooter (and any other game): the thesis's layout (seed 004 §6–§7): Table 1 hits and rates per
-participant, the hit-rate figure, sign tests for every pair of conditions, Table 2 differences of
-each upconverting condition, Table 3 quartiles, histograms, then a planning table (participants a
-study would need, this data as pilot). A game whose sessions played matches (matches.csv; the
-click game): the layout of Yang et al.'s Table 2 (seed 000 §8) first, then the same hit-rate
-sections on what its hits and shots count (games.csv: green hits / clicks). Each condition is
-described as the export's condition table (conditions.csv, or modes.csv before it) describes it:
-its words and, in a section of their own, its parts and latencies.
-Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has them all).
+First the trial-level mixed models R fitted (mixed_report.py), then each paper's own analysis,
+replicated and labelled so. Shooter (and any other game): the thesis's layout (seed 004 §6–§7):
+Table 1 hits and rates per participant, the hit-rate figure, sign tests for every pair of
+conditions, Table 2 differences of each upconverting condition, Table 3 quartiles, histograms,
+then a planning table (participants a study would need, this data as pilot). A game whose
+sessions played matches (matches.csv; the click game): the layout of Yang et al.'s Table 2 (seed
+000 §8) first, then the same hit-rate sections on what its hits and shots count (games.csv: green
+hits / clicks). Each condition is described as the export's condition table (conditions.csv, or
+modes.csv before it) describes it: its words and, in a section of their own, its parts and
+latencies. Rates have 3 decimals, means and SDs 2, p values 4 significant digits (report.json has
+them all).
 """
 import math
 import statistics
 
-from . import papers, planning, players
+from . import mixed_report, papers, planning, players, power
 from .conditions import ConditionTable
-
-NOTHING = "–"
-
-
-def cell(text):
-    """Markdown table cell: characters that would start a table column, emphasis or a link escaped."""
-    out = str(text).replace("\r", " ").replace("\n", " ")
-    for ch in "\\`*_[]<>|":
-        out = out.replace(ch, "\\" + ch)
-    return out
-
-
-def fmt(value, spec):
-    if value is None or (isinstance(value, float) and not math.isfinite(value)):
-        return NOTHING if value is None or math.isnan(value) else ("∞" if value > 0 else "−∞")
-    return format(value, spec)
-
-
-def table(header, rows):
-    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
-    lines += ["| " + " | ".join(row) + " |" for row in rows]
-    return "\n".join(lines) + "\n"
+from .markdown import NOTHING, cell, fmt, table
 
 
 def title(game):
@@ -285,6 +266,9 @@ def render(results):
                                           for c in results["condition_order"]) + ".\n")
     for note in results["notes"]:
         out.append(f"{note}\n")
+    mixed_report.section(out, results)
+    if results.get("power") is not None:
+        out.extend(power.power_markdown(results["power"]))
     conditions_section(out, results)
     game_sections(out, results, results)
     questions_section(out, results["questions"])
@@ -341,7 +325,7 @@ def game_sections(out, results, part):
             section = None
         if matches is not None and game == match_game:
             heading = f"{title(game)} game" if game else "Matches"
-            out.append(f"## {cell(heading)} (Yang et al. 2011, seed 000 §8)\n")
+            out.append(f"## {cell(heading)}: the paper's own analysis, replicated (Yang et al. 2011, seed 000 §8)\n")
             matches_sections(out, matches, 3)
             if shares(matches["conditions"], papers.YANG_CONDITIONS, papers.YANG_BEST):
                 yang_section(out, results, matches, 3)
@@ -349,7 +333,8 @@ def game_sections(out, results, part):
                 out.append(f"### Hit rates: {cell(summary['hits_are'])} / {cell(summary['shots_are'])}\n")
                 hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 4)
         else:
-            out.append(f"## {cell(title(game))}: hit rates (Pulkkinen 2014, seed 004 §6–§7)\n")
+            out.append(f"## {cell(title(game))}: hit rates, the paper's own analysis, replicated (Pulkkinen 2014, "
+                       "seed 004 §6–§7)\n")
             hit_rate_sections(out, game, summary, tests_by_game.get(game, []), 3)
             if shares(summary["conditions"], papers.THESIS_CONDITIONS, papers.THESIS_BEST):
                 thesis_section(out, results, game, summary, 3)
