@@ -9,7 +9,7 @@
 #     [--seed S] [--cores K] [--optimizer NAME]
 #
 # RDS is mixed_models.rds, as the report's mixed-model script saves it: a named list, one entry
-# per game and measure ("shooter_hit"), each a list with `model` (the fitted glmerMod), `formula`
+# per game and measure ("shooter/hit"), each a list with `model` (the fitted glmerMod), `formula`
 # (the kept formula, text), `reference` (the reference condition) and `data` (the frame it was
 # fitted to: participant, condition, the response, and any numeric dummy columns the formula uses).
 #
