@@ -5,8 +5,8 @@
 #
 # Usage:
 #   Rscript power.R RDS --out JSON [--model NAME]... [--effect A:B=RATIO]... [--contrast A:B]...
-#     [--pairs reference|all] [--n N,N,... | --n-min N --n-max N] [--trials K] [--replicates R] [--alpha A] [--target P]
-#     [--seed S] [--cores K] [--optimizer NAME] [--nagq 0|1]
+#     [--pairs reference|all] [--n N,N,... | --n-min N --n-max N] [--trials K] [--replicates R]
+#     [--alpha A] [--target P] [--seed S] [--cores K] [--optimizer NAME] [--nagq 0|1]
 #
 # RDS is mixed_models.rds, as the report's mixed-model script saves it: a named list, one entry
 # per game and measure ("shooter/hit"), each a list with `model` (the fitted glmerMod), `formula`
@@ -504,7 +504,8 @@ main <- function(args) {
                                                     cannot_simulate = function(e) list(model = name,
                                                                                        skipped = conditionMessage(e))))
   result <- list(test = "Wald z", alpha = opts$alpha, target = opts$target, replicates = opts$replicates,
-                 pairs = opts$pairs, seed = opts$seed, cores = opts$cores, optimizer = opts$optimizer, nagq = opts$nagq,
+                 pairs = opts$pairs, seed = opts$seed, cores = opts$cores, optimizer = opts$optimizer,
+                 nagq = opts$nagq,
                  search = if (is.null(opts$n)) list(n_min = opts$n_min, n_max = opts$n_max, n = NULL)
                           else list(n_min = NULL, n_max = NULL, n = opts$n),
                  trials = opts$trials, effects = opts$effects, contrasts = opts$contrasts, models = planned,

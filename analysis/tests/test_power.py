@@ -207,6 +207,17 @@ def test_an_effect_naming_no_model_s_conditions_is_refused(pilots, tmp_path):
         plan(tmp_path, pilots[0], effects=["warp15to120:conv15=2", "conv60:conv15=2"], replicates=5, n=[4])
 
 
+def rows_printed(script_text, rds, folder):
+    """Runs an R script that sources power.R (its first argument) and reads `rds` (its second);
+    the words of each line it prints."""
+    script = folder / "check.R"
+    script.write_text(script_text)
+    done = subprocess.run([rscript(), "--vanilla", str(script), str(power.SCRIPT), str(rds)], capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    return [line.split() for line in done.stdout.splitlines()]
+
+
 SIMULATE_R = r"""
 args <- commandArgs(trailingOnly = TRUE)
 source(args[1])
@@ -235,12 +246,7 @@ for (name in names(models)) {
 def test_each_study_is_drawn_as_lme4_s_simulate_draws_it(pilots, tmp_path):
     """For every formula shape, the same stream gives the same responses as simulate(re.form = NA,
     allow.new.levels = TRUE) for nine new participants: fresh random effects, then the trials."""
-    script = tmp_path / "simulate.R"
-    script.write_text(SIMULATE_R)
-    done = subprocess.run([rscript(), "--vanilla", str(script), str(power.SCRIPT), str(pilots[0])],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, done.stderr
-    rows = [line.split() for line in done.stdout.splitlines()]
+    rows = rows_printed(SIMULATE_R, pilots[0], tmp_path)
     assert {r[0] for r in rows} == {"shooter_hit", "shooter_hit_uncorrelated", "shooter_hit_correlated"}
     assert all(r[2] == str(9 * 36) and r[3] == "0" for r in rows), rows
 
@@ -279,12 +285,7 @@ def test_refitting_the_template_decides_as_fitting_each_study_afresh(pilots, tmp
     """Each study is refitted from one fit per n (lme4's refit with the study's response): for
     every formula shape, 30 studies of 6 participants reject the same contrasts as glmer run
     afresh on each, and some but not all of them reject (the comparison has something to see)."""
-    script = tmp_path / "refit.R"
-    script.write_text(REFIT_R)
-    done = subprocess.run([rscript(), "--vanilla", str(script), str(power.SCRIPT), str(pilots[0])],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, done.stderr
-    rows = [line.split() for line in done.stdout.splitlines()]
+    rows = rows_printed(REFIT_R, pilots[0], tmp_path)
     assert len(rows) == 3 * 30
     assert all(r[4] == "0" for r in rows), [r for r in rows if r[4] != "0"]
     rejections = [int(r[2]) for r in rows]
