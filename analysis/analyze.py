@@ -3,12 +3,14 @@
 and PNG figures.
 
 Usage: analysis/analyze EXPORT_DIR --out REPORT_DIR [--reference-condition NAME] [--rating-scale MIN:MAX]
-       [--pool-players] [--rscript PATH] [--no-mixed-models]
+       [--pool-players] [--rscript PATH] [--no-mixed-models] [--no-power] [--effect A:B=OR]...
+       [--power-pairs reference|all] [--power-replicates N]
 
 First, the trial-level mixed models reviewers expect (hits by binomial GLMMs, counts by Poisson or
 negative binomial GLMMs, Likert answers by cumulative-link mixed models), fitted by R from the
-script analysis/r/mixed_models.R, which the report keeps beside itself (mixed_models.py). Then
-each paper's own analysis, replicated, as below.
+script analysis/r/mixed_models.R, which the report keeps beside itself (mixed_models.py), and the
+participants a study needs for each condition's contrast with the reference in those models, by
+simulation (power.py, analysis/r/power.R). Then each paper's own analysis, replicated, as below.
 
 A condition (the `condition` column of the other files; `mode` in an older export) is one the
 export's condition table describes: conditions.csv, or modes.csv in an export from before it
@@ -477,15 +479,21 @@ def main(argv=None):
                         help="the Rscript that fits the mixed models (default: Rscript on PATH)")
     parser.add_argument("--no-mixed-models", action="store_true",
                         help="leave out the trial-level mixed models (R), for a quick look at a large study")
-    parser.add_argument("--power", action="store_true",
-                        help="also plan the sample size by simulating the mixed models (R; docs/export.md, "
-                             "\"Sample size by simulation\"): every pair of each model's conditions from the pilot's "
-                             "estimates, which takes a minute or more")
+    parser.add_argument("--no-power", action="store_true",
+                        help="leave out the sample size by simulation of the mixed models (R; docs/export.md, "
+                             "\"Sample size by simulation\"), which takes about a minute for the demo on 2 cores")
+    # The plan was once asked for by --power; it is made by default now, and the option is kept
+    # for the scripts that pass it; left out of --help.
+    parser.add_argument("--power", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("--effect", action="append", type=power.effect_argument, metavar="A:B=OR",
-                        help="with the power plan (implies --power): the odds ratio (rate ratio) of condition A "
-                             "against B to plan for, in place of the pilot's; repeatable")
+                        help="the odds ratio (rate ratio) of condition A against B to plan the sample size for, "
+                             "in place of the pilot's estimate; only the stated contrasts are then planned; "
+                             "repeatable")
+    parser.add_argument("--power-pairs", choices=power.PAIRS, default=power.PAIRS[0],
+                        help="the contrasts planned from the pilot's estimates: each condition against the "
+                             "model's reference (default), or every pair, which takes several times as long")
     parser.add_argument("--power-replicates", type=int, metavar="N",
-                        help="simulated studies per number of participants (implies --power; default 200)")
+                        help=f"simulated studies per number of participants (default {power.REPLICATES})")
     parser.add_argument("--pool-players", action="store_true",
                         help="analyse people and scripted players (bots, simulated participants) together; by "
                              "default each kind is analysed on its own, people first")
@@ -504,9 +512,11 @@ def main(argv=None):
         results["mixed_models"] = (mixed_models.left_out("Left out, as --no-mixed-models asked.")
                                    if args.no_mixed_models else mixed_models.fit(results, args.out, args.rscript))
         results["power"] = None
-        if (args.power or args.effect or args.power_replicates) and not args.no_mixed_models:
+        if args.no_power and not args.no_mixed_models:
+            results["power"] = power.left_out("as --no-power asked.")
+        elif not args.no_mixed_models:
             results["power"] = power.plan(args.out, os.path.join(args.out, power.MODELS), effects=args.effect,
-                                          replicates=args.power_replicates,
+                                          replicates=args.power_replicates, pairs=args.power_pairs,
                                           rscript=shutil.which(args.rscript) or args.rscript)
         written = draw_figures(results, args.out)
         if results["power"] and results["power"].get("figure"):

@@ -5,8 +5,8 @@
 #
 # Usage:
 #   Rscript power.R RDS --out JSON [--model NAME]... [--effect A:B=RATIO]... [--contrast A:B]...
-#     [--n N,N,... | --n-min N --n-max N] [--trials K] [--replicates R] [--alpha A] [--target P]
-#     [--seed S] [--cores K] [--optimizer NAME]
+#     [--pairs reference|all] [--n N,N,... | --n-min N --n-max N] [--trials K] [--replicates R]
+#     [--alpha A] [--target P] [--seed S] [--cores K] [--optimizer NAME] [--nagq 0|1]
 #
 # RDS is mixed_models.rds, as the report's mixed-model script saves it: a named list, one entry
 # per game and measure ("shooter/hit"), each a list with `model` (the fitted glmerMod), `formula`
@@ -24,8 +24,10 @@
 # Exit status: 0, the JSON is written (a model that cannot be simulated is in it with the reason);
 # 1, bad input: one sentence on stderr; 2, a bad command line; 3, R lacks a package it needs.
 
-DEFAULTS <- list(replicates = 200L, alpha = 0.05, target = 0.8, seed = 1L, n_min = 4L, n_max = 64L,
-                 optimizer = "nloptwrap")
+DEFAULTS <- list(replicates = 100L, alpha = 0.05, target = 0.8, seed = 1L, n_min = 4L, n_max = 64L,
+                 optimizer = "nloptwrap", nagq = 0L, pairs = "reference")
+# --pairs: which contrasts a model reports when neither --contrast nor --effect names them.
+PAIRS <- c("reference", "all")
 # Fewer pilot participants than this give the spread of participants' random effects from one or
 # two values: a guess, not an estimate, and the simulation takes it as the truth.
 FEWEST_PILOT_PARTICIPANTS <- 3L
@@ -87,6 +89,10 @@ parse_args <- function(args) {
            "--seed" = opts$seed <- whole(value, flag, 0L),
            "--cores" = opts$cores <- whole(value, flag, 1L),
            "--optimizer" = opts$optimizer <- value,
+           "--nagq" = opts$nagq <- if (value %in% c("0", "1")) as.integer(value) else
+             bad_usage("--nagq wants 0 or 1, not '", value, "'"),
+           "--pairs" = opts$pairs <- if (value %in% PAIRS) value else
+             bad_usage("--pairs wants ", paste(PAIRS, collapse = " or "), ", not '", value, "'"),
            bad_usage("unknown option ", flag))
   }
   for (text in opts$effects) split_effect(text)  # its form now; its conditions per model
@@ -234,6 +240,22 @@ study_structure <- function(ctx, n) {
   list(study = study, X = parts$X, Zt = parts$reTrms$Zt, Lambdat = lambdat)
 }
 
+# The fit each replicate at n refits with its own response (lme4's refit, as bootMer does): half
+# the time of a fresh glmer, which rebuilds the model frame and structure every time, for fixed
+# effects and standard errors within 1e-4 of it (the refit starts from this fit's estimates). Fitted
+# here, before any work is shared out, to replicate 1's response, so every worker refits the same
+# fit; NULL when that fit fails, and each replicate is then fitted afresh.
+with_template <- function(structure, ctx) {
+  assign(".Random.seed", ctx$streams[[1]], envir = globalenv())
+  structure$study[[ctx$design$response]] <- simulate_response(structure, ctx$params$beta, ctx$family)
+  structure$template <- tryCatch(suppressWarnings(suppressMessages(fit_study(structure$study, ctx))),
+                                 error = function(e) NULL)
+  structure
+}
+
+fit_study <- function(study, ctx)
+  glmer(ctx$formula, data = study, family = ctx$family, control = ctx$control, nAGQ = ctx$nagq)
+
 simulate_response <- function(structure, beta, family) {
   u <- rnorm(nrow(structure$Zt))
   eta <- as.vector(structure$X %*% beta[colnames(structure$X)] +
@@ -246,11 +268,11 @@ simulate_response <- function(structure, beta, family) {
 # when the refit failed) and whether the refit was singular or warned.
 one_study <- function(r, structure, ctx) {
   assign(".Random.seed", ctx$streams[[r]], envir = globalenv())
-  study <- structure$study
-  study[[ctx$design$response]] <- simulate_response(structure, ctx$params$beta, ctx$family)
+  response <- simulate_response(structure, ctx$params$beta, ctx$family)
   warned <- FALSE
   fit <- tryCatch(withCallingHandlers(
-    glmer(ctx$formula, data = study, family = ctx$family, control = ctx$control),
+    if (!is.null(structure$template)) refit(structure$template, newresp = response)
+    else fit_study(replace(structure$study, ctx$design$response, list(response)), ctx),
     warning = function(w) { warned <<- TRUE; invokeRestart("muffleWarning") },
     message = function(m) invokeRestart("muffleMessage")), error = function(e) NULL)
   none <- rep(NA, nrow(ctx$L))
@@ -275,11 +297,18 @@ start_workers <- function(ctx, cores) {
   parallel::clusterExport(workers, "ctx", envir = environment())
   workers
 }
-in_worker <- function(r, structure) one_study(r, structure, get("ctx", envir = globalenv()))
+in_worker <- function(r) one_study(r, get("structure", envir = globalenv()), get("ctx", envir = globalenv()))
+
+# Each n's structure (its template fit included) goes to the workers once, not with every batch.
+share_structure <- function(workers, structure) {
+  if (!is.null(workers))
+    parallel::clusterCall(workers, function(s) assign("structure", s, envir = globalenv()), structure)
+  invisible(NULL)
+}
 
 run_batch <- function(batch, structure, ctx, workers) {
   tryCatch(if (is.null(workers)) lapply(batch, one_study, structure = structure, ctx = ctx)
-           else parallel::parLapply(workers, batch, in_worker, structure = structure),
+           else parallel::parLapply(workers, batch, in_worker),
            error = function(e) bad_input("a simulated study of ", ctx$name, " failed in R: ", conditionMessage(e)))
 }
 
@@ -296,7 +325,8 @@ evaluator <- function(ctx, workers, target) {
     key <- as.character(n)
     if (is.null(cache[[key]])) {
       started <- proc.time()[["elapsed"]]
-      structure <- study_structure(ctx, n)
+      structure <- with_template(study_structure(ctx, n), ctx)
+      share_structure(workers, structure)
       runs <- list()
       while (length(runs) < length(ctx$streams)) {
         batch <- seq(length(runs) + 1L, min(length(runs) + BATCH, length(ctx$streams)))
@@ -318,9 +348,10 @@ evaluator <- function(ctx, workers, target) {
   }
 }
 
-# How finely the search pins n down: to the participant up to 10, then to within a tenth, since
-# the Monte-Carlo interval of the power spans more than that there and each larger n costs more.
-RESOLUTION <- 0.1
+# How finely the search pins n down: to the participant up to 10, then to within a fifth. The
+# Monte-Carlo interval of the power at the default replicates spans more than that (at the demo's
+# effects, its N range spans a third to a half of N), and each larger n costs more.
+RESOLUTION <- 0.2
 tolerance <- function(n) max(1L, as.integer(floor(RESOLUTION * n)))
 
 # The smallest n among `candidates` (ascending) where ok(n), bisecting the gap below it (when
@@ -343,32 +374,41 @@ first_n <- function(ok, candidates, bisect) {
 
 upto <- function(candidates, most) unique(as.integer(pmin(candidates, most)))
 
-# For contrast k: the n for the target power, and the n range where its Monte-Carlo interval
-# holds the target: from the first n whose upper limit reaches it to the first whose lower limit
-# does. A search doubles n from --n-min up to --n-max, then bisects; with --n, the given n only.
-search_contrast <- function(k, evaluate, opts) {
-  at <- function(n) with(evaluate(n), share(rejections[[k]], replicates))
-  reaches <- function(limit) function(n) at(n)[[limit]] >= opts$target
+# For contrast k: the smallest n with the target power. A search doubles n from --n-min up to
+# --n-max, then bisects; with --n, the given n only.
+needed_n <- function(k, evaluate, opts) {
+  reaches <- function(n) with(evaluate(n), rejections[[k]] / replicates) >= opts$target
   given <- !is.null(opts$n)
-  doubling <- if (given) opts$n else upto(opts$n_min * 2^(0:30), opts$n_max)
-  needed <- first_n(reaches("power"), doubling, !given)
-  if (is.na(needed)) return(list(needed = NA, range = c(first_n(reaches("high"), doubling, !given), NA)))
-  below <- c(doubling[doubling < needed], needed)
-  above <- if (given) opts$n[opts$n >= needed] else upto(needed + c(0, tolerance(needed) * 2^(0:30)), opts$n_max)
-  list(needed = needed, range = c(first_n(reaches("high"), below, !given), first_n(reaches("low"), above, !given)))
+  first_n(reaches, if (given) opts$n else upto(opts$n_min * 2^(0:30), opts$n_max), !given)
+}
+
+# Where N could be, given the simulation's own noise, among the n simulated for any contrast: from
+# the first n whose Monte-Carlo interval reaches the target to the first whose interval lies
+# wholly above it; NA for an end no n simulated shows. Searching each end further would cost
+# studies at more n, for a precision the interval itself does not have.
+n_range <- function(curve, target) {
+  first <- function(limit) {
+    n <- vapply(Filter(function(p) p[[limit]] >= target, curve), `[[`, 1, "n")
+    if (length(n)) as.integer(min(n)) else NA
+  }
+  c(first("high"), first("low"))
 }
 
 # The contrasts to report for one model: those --contrast names, else those --effect states,
-# else every pair, each later condition (in the model's level order, reference first) against
-# each earlier one, so that a contrast with the reference reads as its coefficient.
+# else (--pairs reference, the default) each condition against the reference, or (--pairs all)
+# every pair, each later condition (in the model's level order, reference first) against each
+# earlier one. Either way a contrast with the reference reads as its coefficient. Every pair of
+# seven conditions is 21 contrasts, whose searches visit more n, each costing a full set of
+# studies; against the reference they are 6, the questions a study is usually planned for.
 contrasts_of <- function(opts, effects, conditions) {
   if (length(opts$contrasts)) {
     pairs <- lapply(opts$contrasts, parse_pair, conditions)
     return(pairs[!vapply(pairs, is.null, TRUE)])
   }
   if (length(effects)) return(lapply(effects, function(e) c(e$a, e$b)))
+  earlier <- function(j) if (opts$pairs == "all") seq_len(j - 1L) else 1L
   pairs <- list()
-  for (j in seq_along(conditions)[-1]) for (i in seq_len(j - 1L)) pairs[[length(pairs) + 1L]] <- conditions[c(j, i)]
+  for (j in seq_along(conditions)[-1]) for (i in earlier(j)) pairs[[length(pairs) + 1L]] <- conditions[c(j, i)]
   pairs
 }
 
@@ -395,10 +435,10 @@ plan_model <- function(name, entry, opts, streams) {
   fam <- family(model)
   ctx <- list(name = name, design = design, params = list(beta = beta, theta = getME(model, "theta")),
               formula = as.formula(entry$formula, env = globalenv()), family = fam, alpha = opts$alpha, L = L,
-              streams = streams, control = glmerControl(optimizer = opts$optimizer, calc.derivs = FALSE))
+              streams = streams, control = glmerControl(optimizer = opts$optimizer, calc.derivs = FALSE),
+              nagq = opts$nagq)
   # The pilot refitted here first: it loads glmer's code before the workers fork (start_workers).
-  tryCatch(suppressWarnings(suppressMessages(glmer(ctx$formula, data = entry$data, family = fam,
-                                                    control = ctx$control))),
+  tryCatch(suppressWarnings(suppressMessages(fit_study(entry$data, ctx))),
            error = function(e) cannot_simulate("its kept formula does not refit to its own data: ",
                                          conditionMessage(e)))
   workers <- start_workers(ctx, opts$cores)
@@ -406,15 +446,15 @@ plan_model <- function(name, entry, opts, streams) {
   evaluate <- evaluator(ctx, workers, opts$target)
   stated <- vapply(pairs, function(p) any(vapply(effects, function(e) e$a == p[[1]] && e$b == p[[2]], TRUE)), TRUE)
   contrasts <- lapply(seq_along(pairs), function(k) {
-    found <- search_contrast(k, evaluate, opts)
     list(a = pairs[[k]][[1]], b = pairs[[k]][[2]], log_ratio = sum(L[k, ] * beta), ratio = exp(sum(L[k, ] * beta)),
          pilot_ratio = exp(sum(L[k, ] * pilot)), source = if (stated[[k]]) "stated" else "pilot",
-         needed = found$needed, range = found$range)
+         needed = needed_n(k, evaluate, opts))
   })
   evaluated <- evaluate_all(evaluate, environment(evaluate)$cache)
   for (k in seq_along(contrasts)) {
     contrasts[[k]]$curve <- lapply(evaluated, function(e) c(list(n = e$n), share(e$rejections[[k]], e$replicates),
                                                             list(rejections = e$rejections[[k]])))
+    contrasts[[k]]$range <- n_range(contrasts[[k]]$curve, opts$target)
     if (!is.na(contrasts[[k]]$needed))
       contrasts[[k]]$at_needed <- with(evaluate(contrasts[[k]]$needed), share(rejections[[k]], replicates))
   }
@@ -443,7 +483,9 @@ main <- function(args) {
   suppressPackageStartupMessages(library(lme4))
   if (!file.exists(opts$rds)) bad_input(opts$rds, ": no such file")
   models <- tryCatch(readRDS(opts$rds), error = function(e) bad_input(opts$rds, ": not an RDS file R can read"))
-  if (!is.list(models) || is.null(names(models))) bad_input(opts$rds, ": not a named list of fitted models")
+  # An empty list is what the mixed-model script saves when it fitted nothing: nothing to plan.
+  if (!is.list(models) || (length(models) && is.null(names(models))))
+    bad_input(opts$rds, ": not a named list of fitted models")
   chosen <- if (length(opts$models)) opts$models else names(models)
   unknown <- setdiff(chosen, names(models))
   if (length(unknown)) bad_input(opts$rds, " has no model ", unknown[[1]], " (it has ",
@@ -462,10 +504,11 @@ main <- function(args) {
                                                     cannot_simulate = function(e) list(model = name,
                                                                                        skipped = conditionMessage(e))))
   result <- list(test = "Wald z", alpha = opts$alpha, target = opts$target, replicates = opts$replicates,
-                 seed = opts$seed, cores = opts$cores, optimizer = opts$optimizer,
+                 pairs = opts$pairs, seed = opts$seed, cores = opts$cores, optimizer = opts$optimizer,
+                 nagq = opts$nagq,
                  search = if (is.null(opts$n)) list(n_min = opts$n_min, n_max = opts$n_max, n = NULL)
                           else list(n_min = NULL, n_max = NULL, n = opts$n),
-                 trials = opts$trials, effects = opts$effects, models = planned,
+                 trials = opts$trials, effects = opts$effects, contrasts = opts$contrasts, models = planned,
                  seconds = round(proc.time()[["elapsed"]] - started, 3),
                  versions = list(R = paste(R.version$major, R.version$minor, sep = "."),
                                  lme4 = as.character(packageVersion("lme4"))))

@@ -36,10 +36,11 @@ def hitrate_lines(rows, game="shooter"):
     return [HITRATES_HEADER] + [f"{p},{game},{m},{s},{h},0,{h / s:.6f}" for p, m, h, s in rows]
 
 
-def run_in_process(export_dir, out_dir, *extra, mixed_models=False):
-    """mixed_models: fit them (R, a few seconds a report); the tests of other sections leave them
-    out, test_mixed_models.py tests them."""
-    flags = [] if mixed_models else ["--no-mixed-models"]
+def run_in_process(export_dir, out_dir, *extra, mixed_models=False, power=False):
+    """mixed_models: fit them (R, a few seconds a report); power: plan the sample size from them
+    by simulation (R, up to a minute). The tests of other sections leave both out;
+    test_mixed_models.py and test_power.py test them."""
+    flags = ([] if power else ["--no-power"]) if mixed_models else ["--no-mixed-models"]
     code = analyze.main([str(export_dir), "--out", str(out_dir), *map(str, extra), *flags])
     report = out_dir / "report.json"
     return code, (json.loads(report.read_text()) if code == 0 else None)

@@ -204,7 +204,7 @@ def test_reference_mode_is_the_older_name_of_reference_condition(tmp_path, capsy
     written = {}
     for flag in ("--reference-condition", "--reference-mode"):
         out = tmp_path / flag.lstrip("-")
-        assert analyze.main([str(export), "--out", str(out), flag, "conv60"]) == 0
+        assert analyze.main([str(export), "--out", str(out), flag, "conv60", "--no-power"]) == 0
         written[flag] = {name: (out / name).read_bytes() for name in ("report.json", "report.md")}
     assert written["--reference-mode"] == written["--reference-condition"]
     report = json.loads(written["--reference-condition"]["report.json"])

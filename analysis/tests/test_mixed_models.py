@@ -99,8 +99,8 @@ def likert_answers(rng, participants):
     return rows
 
 
-def analyse(export, out, *extra):
-    code, report = run_in_process(export, out, *extra, mixed_models=True)
+def analyse(export, out, *extra, power=False):
+    code, report = run_in_process(export, out, *extra, mixed_models=True, power=power)
     assert code == 0
     return report, (out / "report.md").read_text(encoding="utf-8")
 
@@ -117,7 +117,8 @@ def simulated(tmp_path_factory):
     rng = np.random.default_rng(20240611)
     write_export(base / "export", simulate_hits(rng, LOG_ODDS, INTERCEPT_SD, SLOPE_SD, PARTICIPANTS, TARGETS))
     write(base / "export" / "answers.csv", likert_answers(rng, PARTICIPANTS))
-    report, md = analyse(base / "export", base / "report")
+    # The report as analyze makes it by default, but for fewer simulated studies (one batch).
+    report, md = analyse(base / "export", base / "report", "--power-replicates", 25, power=True)
     return base, report, md
 
 
@@ -159,10 +160,16 @@ def test_estimates_cover_the_true_odds_ratios(simulated):
     likert = model(report, "shooter/likert:smooth")
     assert likert["fitted"] and likert["ratio"] == "cumulative odds ratio" and likert["engine"] == "clmm"
     assert all(1 <= e["low"] <= e["estimate"] <= e["high"] <= 7 for e in likert["means"])
-    # The report opens with the models, before the conditions and the papers' own analyses.
+    # The report opens with the models and the sample size they need, before the conditions and
+    # the papers' own analyses.
     sections = re.findall(r"^## (.*)$", md, flags=re.M)
     assert sections[0] == "Mixed models, trial by trial", sections
-    assert sections[2].startswith("Shooter: hit rates, the paper's own analysis, replicated")
+    assert sections[1].startswith("Sample size by simulation (mixed models)")
+    assert sections[3].startswith("Shooter: hit rates, the paper's own analysis, replicated")
+    planned = {m["model"]: m for m in report["power"]["models"]}
+    assert report["power"]["available"] and report["power"]["pairs"] == "reference"
+    assert [(c["a"], c["b"]) for c in planned["shooter/hit"]["contrasts"]] == [("conv120", "warp15to120"),
+                                                                               ("conv15", "warp15to120")]
     assert "| warp15to120 / conv120 |" in md and "Holm" in md
     for name in ("mixed_models_contrasts.png", "mixed_models_means.png"):
         assert name in report["figures"] and f"]({name})" in md

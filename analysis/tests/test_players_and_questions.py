@@ -50,7 +50,7 @@ def write_mixed(export, kinds=True):
 
 
 def run(export, out, *extra):
-    assert analyze.main([str(export), "--out", str(out), *extra]) == 0
+    assert analyze.main([str(export), "--out", str(out), "--no-power", *extra]) == 0
     return json.loads((out / "report.json").read_text()), (out / "report.md").read_text(encoding="utf-8")
 
 

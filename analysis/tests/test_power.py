@@ -7,6 +7,7 @@ Clopper-Pearson interval for the Monte-Carlo intervals, and what a null or a lar
 to power. Replicates are few, so each run takes seconds on one core.
 """
 import argparse
+import json
 import math
 import os
 import re
@@ -26,7 +27,8 @@ from warplab_analysis.inputs import BadInput  # noqa: E402
 INSTALL = "apt-get install r-base-core r-cran-lme4 r-cran-jsonlite"
 
 # Four participants x three conditions x 12 targets, as the demo's shooter pilot; the kept formula
-# in three shapes the mixed-model script may keep, and a pilot of two participants.
+# in three shapes the mixed-model script may keep, and a pilot of two participants. Then the click
+# game's counts and answers.
 PILOTS_R = r"""
 suppressPackageStartupMessages(library(lme4))
 out <- commandArgs(trailingOnly = TRUE)
@@ -58,6 +60,24 @@ wrong <- entry("hit ~ condition + (1 | participant)", d)
 wrong$reference <- "conv120"  # not the factor's first level, which the coefficients are against
 saveRDS(list(shooter_hit = entry("hit ~ condition + (1 | participant)", pilot(2, 12)), wrong_reference = wrong),
         out[2])
+# The click game's green hits per match (Poisson), and the two fits the simulation does not do: a
+# negative binomial GLMM and a cumulative-link model of answers, as the mixed-model script keeps them.
+set.seed(13)
+conds <- c("bireproj15to60", "conv60", "conv15")
+m <- expand.grid(match = 1:2, condition = conds, participant = sprintf("P%d", 1:5), stringsAsFactors = FALSE)
+m$green_hits <- rpois(nrow(m), exp(3 + c(bireproj15to60 = 0, conv60 = 0.2, conv15 = -0.3)[m$condition] +
+                                  rnorm(5, 0, 0.1)[as.integer(factor(m$participant))]))
+m$condition <- factor(m$condition, levels = conds)
+m$match <- NULL
+counts <- function(formula, fit) list(model = fit, formula = formula, reference = "bireproj15to60", data = m)
+f <- "green_hits ~ condition + (1 | participant)"
+a <- data.frame(participant = rep(sprintf("P%d", 1:5), each = 3), condition = factor(rep(conds, 5), levels = conds),
+                answer = factor(c(5, 6, 2, 4, 6, 3, 5, 7, 2, 6, 6, 1, 4, 5, 3), levels = 1:7, ordered = TRUE))
+saveRDS(list("click/green_hits" = counts(f, suppressWarnings(glmer(as.formula(f), m, family = poisson))),
+             "click/green_hits_nb" = counts(f, suppressWarnings(suppressMessages(glmer.nb(as.formula(f), m)))),
+             "click/likert:q0" = list(model = ordinal::clmm(answer ~ condition + (1 | participant), data = a),
+                                      formula = "answer ~ condition + (1 | participant)",
+                                      reference = "bireproj15to60", data = a)), out[3])
 """
 
 
@@ -73,7 +93,7 @@ def pilots(tmp_path_factory):
     folder = tmp_path_factory.mktemp("pilots")
     script = folder / "pilots.R"
     script.write_text(PILOTS_R)
-    paths = folder / "mixed_models.rds", folder / "two_participants.rds"
+    paths = folder / "mixed_models.rds", folder / "two_participants.rds", folder / "click.rds"
     done = subprocess.run([rscript(), "--vanilla", str(script), *map(str, paths)], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     return paths
@@ -125,12 +145,14 @@ def test_a_null_effect_never_reaches_the_target_and_says_so(pilots, tmp_path):
 
 
 def timeless(pilots, tmp_path, cores, seed):
-    """A run's JSON less what timing and the core count change."""
+    """The plan as the report keeps it: without what timing and the core count change, which
+    power.json keeps."""
     result = plan(tmp_path, pilots[0], replicates=30, n=[4, 6], cores=cores, seed=seed)
-    for model in result["models"]:
-        for study in model["studies"]:
-            study.pop("seconds")
-    return {k: v for k, v in result.items() if k not in ("seconds", "cores")}
+    written = json.loads((tmp_path / power.RESULT).read_text())
+    assert written["cores"] == cores and written["seconds"] > 0
+    assert "seconds" not in result and "cores" not in result
+    assert all("seconds" not in study for model in result["models"] for study in model["studies"])
+    return result
 
 
 def test_the_same_seed_gives_the_same_answer_on_one_core_and_on_two(pilots, tmp_path):
@@ -185,6 +207,17 @@ def test_an_effect_naming_no_model_s_conditions_is_refused(pilots, tmp_path):
         plan(tmp_path, pilots[0], effects=["warp15to120:conv15=2", "conv60:conv15=2"], replicates=5, n=[4])
 
 
+def rows_printed(script_text, rds, folder):
+    """Runs an R script that sources power.R (its first argument) and reads `rds` (its second);
+    the words of each line it prints."""
+    script = folder / "check.R"
+    script.write_text(script_text)
+    done = subprocess.run([rscript(), "--vanilla", str(script), str(power.SCRIPT), str(rds)], capture_output=True,
+                          text=True)
+    assert done.returncode == 0, done.stderr
+    return [line.split() for line in done.stdout.splitlines()]
+
+
 SIMULATE_R = r"""
 args <- commandArgs(trailingOnly = TRUE)
 source(args[1])
@@ -213,14 +246,50 @@ for (name in names(models)) {
 def test_each_study_is_drawn_as_lme4_s_simulate_draws_it(pilots, tmp_path):
     """For every formula shape, the same stream gives the same responses as simulate(re.form = NA,
     allow.new.levels = TRUE) for nine new participants: fresh random effects, then the trials."""
-    script = tmp_path / "simulate.R"
-    script.write_text(SIMULATE_R)
-    done = subprocess.run([rscript(), "--vanilla", str(script), str(power.SCRIPT), str(pilots[0])],
-                          capture_output=True, text=True)
-    assert done.returncode == 0, done.stderr
-    rows = [line.split() for line in done.stdout.splitlines()]
+    rows = rows_printed(SIMULATE_R, pilots[0], tmp_path)
     assert {r[0] for r in rows} == {"shooter_hit", "shooter_hit_uncorrelated", "shooter_hit_correlated"}
     assert all(r[2] == str(9 * 36) and r[3] == "0" for r in rows), rows
+
+
+REFIT_R = r"""
+args <- commandArgs(trailingOnly = TRUE)
+source(args[1])
+suppressPackageStartupMessages(library(lme4))
+models <- readRDS(args[2])
+RNGkind("L'Ecuyer-CMRG")
+set.seed(5)
+streams <- Reduce(function(s, r) parallel::nextRNGStream(s), seq_len(30), .Random.seed, accumulate = TRUE)[-1]
+for (name in names(models)) {
+  entry <- models[[name]]
+  model <- entry$model
+  design <- design_of(c(entry, name = name), NULL)
+  beta <- fixef(model)
+  L <- do.call(rbind, lapply(list(c("conv120", "conv15"), c("warp15to120", "conv15"), c("warp15to120", "conv120")),
+                             function(p) contrast_row(p[[1]], p[[2]], "conv15", beta)))
+  ctx <- list(design = design, formula = as.formula(entry$formula), family = family(model), streams = streams,
+              params = list(beta = beta, theta = getME(model, "theta")), L = L, alpha = 0.05, nagq = 0L,
+              control = glmerControl(optimizer = "nloptwrap", calc.derivs = FALSE))
+  fresh <- study_structure(ctx, 6L)
+  refitted <- with_template(fresh, ctx)
+  stopifnot(inherits(refitted$template, "glmerMod"))
+  for (r in seq_along(streams)) {
+    a <- one_study(r, refitted, ctx)
+    b <- one_study(r, fresh, ctx)
+    cat(name, r, sum(a$reject), sum(b$reject), sum(a$reject != b$reject), "\n")
+  }
+}
+"""
+
+
+def test_refitting_the_template_decides_as_fitting_each_study_afresh(pilots, tmp_path):
+    """Each study is refitted from one fit per n (lme4's refit with the study's response): for
+    every formula shape, 30 studies of 6 participants reject the same contrasts as glmer run
+    afresh on each, and some but not all of them reject (the comparison has something to see)."""
+    rows = rows_printed(REFIT_R, pilots[0], tmp_path)
+    assert len(rows) == 3 * 30
+    assert all(r[4] == "0" for r in rows), [r for r in rows if r[4] != "0"]
+    rejections = [int(r[2]) for r in rows]
+    assert 0 < sum(rejections) < 3 * len(rows)
 
 
 def test_the_docs_state_power_r_s_defaults():
@@ -246,3 +315,60 @@ def test_the_effect_option_wants_two_conditions_and_a_ratio_above_zero(text, goo
     else:
         with pytest.raises(argparse.ArgumentTypeError, match="A:B=RATIO"):
             power.effect_argument(text)
+
+
+def test_counts_are_planned_by_their_rate_ratio_and_other_fits_are_named_as_not_simulated(pilots, tmp_path):
+    """A Poisson GLMM is simulated as one (a stated rate ratio of 1.5 on about 20 green hits a
+    match is found with few participants); a negative binomial GLMM and a clmm are named with
+    their reasons, beside it."""
+    result = plan(tmp_path, pilots[2], models=None, effects=["conv60:bireproj15to60=1.5"], replicates=25,
+                  n_min=2, n_max=8)
+    models = {m["model"]: m for m in result["models"]}
+    counts = models["click/green_hits"]
+    assert (counts["family"], counts["ratio_name"]) == ("poisson", "rate ratio")
+    assert counts["fixed_effects"]["conditionconv60"] == pytest.approx(math.log(1.5))
+    [contrast] = counts["contrasts"]
+    assert contrast["needed"] is not None and contrast["needed"] <= 4
+    assert counts["trials_per_condition"] == {"bireproj15to60": 2, "conv60": 2, "conv15": 2}
+    assert models["click/green_hits_nb"]["skipped"].startswith("its family is Negative Binomial(")
+    assert models["click/likert:q0"]["skipped"] == ("it is not a glmer fit (only binomial and Poisson GLMMs are "
+                                                   "simulated)")
+    text = "".join(power.power_markdown(result))
+    assert "click/green\\_hits: a Poisson model, so its ratios are rate ratios." in text  # _ escaped
+    assert "click/likert:q0: not simulated, it is not a glmer fit" in text
+
+
+def test_each_condition_is_planned_against_the_reference_unless_every_pair_is_asked_for(pilots, tmp_path):
+    pairs = {}
+    for asked in power.PAIRS:
+        model, = plan(tmp_path, pilots[0], pairs=asked, replicates=25, n=[4])["models"]
+        pairs[asked] = [(c["a"], c["b"]) for c in model["contrasts"]]
+    assert pairs["reference"] == [("conv120", "conv15"), ("warp15to120", "conv15")]
+    assert pairs["all"] == pairs["reference"][:1] + [("warp15to120", "conv15"), ("warp15to120", "conv120")]
+
+
+def test_contrast_trials_and_alpha_are_the_plan_s(pilots, tmp_path):
+    """--contrast names the contrasts planned (one no model has is skipped with the reason),
+    --trials sets each new participant's trials per condition, and --alpha the test's level: the
+    same studies (the same seed) reject no more often at 0.01 than at 0.05, and less often here."""
+    runs = {}
+    for alpha in (0.05, 0.01):
+        model, = plan(tmp_path, pilots[0], contrasts=["warp15to120:conv120"], trials=6, alpha=alpha, replicates=25,
+                      n=[4, 8])["models"]
+        [contrast] = model["contrasts"]
+        assert (contrast["a"], contrast["b"]) == ("warp15to120", "conv120")
+        assert model["trials_per_condition"] == {"conv15": 6, "conv120": 6, "warp15to120": 6}
+        assert all(s["replicates"] == 25 for s in model["studies"])  # one batch: the same studies at each level
+        runs[alpha] = [p["rejections"] for p in contrast["curve"]]
+    assert all(strict <= loose for strict, loose in zip(runs[0.01], runs[0.05]))
+    assert sum(runs[0.01]) < sum(runs[0.05])
+    [line] = power.power_markdown(plan(tmp_path, pilots[0], contrasts=["conv60:conv15"], replicates=25, n=[4]))
+    assert line == (power.LEFT_OUT + "shooter_hit: none of the contrasts asked for is between two of its "
+                    "conditions.\n")
+
+
+def test_the_python_side_knows_power_r_s_pairs_and_replicates():
+    source = power.SCRIPT.read_text()
+    assert re.search(r'^PAIRS <- c\("reference", "all"\)$', source, re.M) and power.PAIRS == ("reference", "all")
+    assert re.search(rf"DEFAULTS <- list\(replicates = {power.REPLICATES}L,", source)
+    assert re.search(r'pairs = "reference"\)', source)

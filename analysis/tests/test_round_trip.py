@@ -175,3 +175,10 @@ def test_a_condition_the_protocol_defines_reaches_every_table(study):
     assert ("shooter", "lag60x5-depth", "lag60x5") in pairs
     text = (report / "report.md").read_text()
     assert "each frame late-warped by the camera's rotation" in text
+    # The mixed model of the shooter's hits has them as levels, and the sample-size plan made by
+    # default plans each of them against the reference.
+    [shooter] = [m for m in data["mixed_models"]["models"] if m["key"] == "shooter/hit"]
+    assert {"base60", "lag60x5", "lag60x5-rotation", "lag60x5-depth"} <= set(shooter["conditions"])
+    [planned] = [m for m in data["power"]["models"] if m["model"] == "shooter/hit"]
+    assert [(c["a"], c["b"]) for c in planned["contrasts"]] == [(c, shooter["reference"])
+                                                              for c in shooter["conditions"][1:]]

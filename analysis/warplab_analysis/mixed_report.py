@@ -36,8 +36,9 @@ def intro(out, section):
         + (f" Fitted by R {section['r_version']} ({versions})." if section.get("r_version") else "") + "\n")
     out.append(f"The script that fitted them is `{section['script']}` beside this report: `Rscript "
                f"{section['script']} [EXPORT_DIR]` prints these estimates again and writes `{section['results']}` "
-               f"and `{section['models_file']}`, the fitted models for a power simulation (docs/export.md, "
-               "\"Mixed models\"). Each paper's own analysis follows, replicated on this study's data and labelled "
+               f"and `{section['models_file']}`, the fitted models the sample-size plan below simulates from "
+               "(docs/export.md, \"Mixed models\"). Each paper's own analysis follows it, replicated on this study's "
+               "data and labelled "
                "so: sign tests of per-participant hit rates (Pulkkinen 2014), paired t, Wilcoxon and repeated-measures "
                "ANOVA of per-participant averages (Yang et al. 2011).\n")
 

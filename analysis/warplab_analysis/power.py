@@ -26,6 +26,10 @@ LEFT_OUT = "Sample size by simulation left out: "
 DEBIAN = "Debian: apt-get install r-base-core r-cran-lme4 r-cran-jsonlite"
 # power.R's exit statuses (its top comment): 1 bad input, 2 bad command line, 3 a package missing.
 MISSING_PACKAGE = 3
+# power.R's --pairs values, its default first, and its default --replicates (a test holds these to
+# power.R's PAIRS and DEFAULTS).
+PAIRS = ("reference", "all")
+REPLICATES = 100
 
 
 def effect_argument(text):
@@ -45,7 +49,7 @@ def effect_argument(text):
 def run(rds_path, out_json, effects=(), replicates=None, cores=None, rscript=None, **options):
     """Runs power.R on `rds_path`, writing `out_json`; its parsed JSON with `available` True, or
     {"available": False, "sentence": why} when R, a package or the fitted models are missing.
-    options: models, contrasts (lists of names and A:B), n (list), n_min, n_max, trials, seed,
+    options: models, contrasts (lists of names and A:B), pairs, n (list), n_min, n_max, trials, seed,
     alpha, target, optimizer, as power.R's options. Raises BadInput when power.R refuses its input
     (an effect naming no model's conditions, effects that contradict each other)."""
     if not os.path.isfile(rds_path):
@@ -72,16 +76,32 @@ def run(rds_path, out_json, effects=(), replicates=None, cores=None, rscript=Non
     if done.returncode != 0:
         raise BadInput(f"power.R: {why}")
     with open(out_json, encoding="utf-8") as f:
-        result = json.load(f)
+        result = timeless(json.load(f))
     result["available"] = True
+    if not result["models"]:
+        return unavailable("no mixed model was fitted to plan from.")
     simulated = [m for m in result["models"] if "skipped" not in m]
     if not simulated:
         return unavailable("; ".join(f"{m['model']}: {m['skipped']}" for m in result["models"]) + ".")
     return result
 
 
+def timeless(result):
+    """power.json less what the machine changes (the seconds taken, the cores used), so that the
+    report made from it is the same on any machine: power.json keeps them."""
+    result = {k: v for k, v in result.items() if k not in ("seconds", "cores")}
+    result["models"] = [dict(m, studies=[{k: v for k, v in s.items() if k != "seconds"} for s in m["studies"]])
+                        if "studies" in m else m for m in result["models"]]
+    return result
+
+
 def unavailable(why):
     return {"available": False, "sentence": LEFT_OUT + why}
+
+
+def left_out(why):
+    """The section's one sentence when the analysis was asked to leave the plan out."""
+    return {"available": False, "sentence": f"Sample size by simulation left out, {why}"}
 
 
 def ending(text):
@@ -147,16 +167,17 @@ def power_markdown(result, level=2):
              f"by simulation (what R's simr does): up to {result['replicates']} simulated studies at each number of "
              "participants n, each of n new participants whose random effects are drawn afresh from the pilot's "
              "fitted distribution, each playing the pilot's trials per condition, every study refitted with the "
-             "kept formula. The pilot's fixed effects are the truth, except a stated odds ratio, which replaces "
-             "its contrast; with few pilot participants the random effects' spread is a rough estimate, taken as "
-             "the truth too. "
+             f"kept formula (glmer, nAGQ = {result['nagq']}). The pilot's fixed effects are the truth, except a "
+             "stated odds ratio, which replaces its contrast; with few pilot participants the random effects' "
+             "spread is a rough estimate, taken as the truth too. " + planned_contrasts(result)
              + (f"n is each of {', '.join(str(n) for n in search['n'])}. " if given else
                 f"n is searched from {smallest} to {largest}, doubling and then bisecting. ")
              + f"N for {target * 100:g} % is the smallest n searched whose simulated power reached {target:g}; "
-             "beside it the power there and its 95 % Monte-Carlo interval (Clopper-Pearson), and the range of n "
-             f"from the first whose interval reaches {target:g} to the first whose interval lies above it. "
-             f"An n whose interval already lay wholly on one side of {target:g} stopped early (studies: those "
-             "simulated at N).\n"]
+             "beside it the power there and its 95 % Monte-Carlo interval (Clopper-Pearson), and the range of n, "
+             f"among those simulated, from the first whose interval reaches {target:g} to the first whose interval "
+             f"lies above it. An n whose interval already lay wholly on one side of {target:g} stopped early "
+             "(studies: those simulated at N). For a study's final size, ask for more studies per n "
+             "(`--power-replicates`): the interval narrows with their square root.\n"]
     rows, notes = [], []
     for model in result["models"]:
         if "skipped" in model:
@@ -165,12 +186,23 @@ def power_markdown(result, level=2):
         for contrast in model["contrasts"]:
             rows.append(contrast_row(model, contrast, {"smallest": smallest, "largest": largest}))
         notes += model_notes(model)
-    lines.append(markdown.table(["model", "contrast", "odds ratio", "from", f"N for {target * 100:g} %",
+    lines.append(markdown.table(["model", "contrast", "odds or rate ratio", "from", f"N for {target * 100:g} %",
                                "power at N (95 % MC interval)", "N range", "studies", "model simulated"], rows))
     if result.get("figure"):
         lines.append(f"![Power against participants, with 95 % Monte-Carlo intervals]({result['figure']})\n")
     lines += [note + "\n" for note in notes]
     return lines
+
+
+def planned_contrasts(result):
+    """Which contrasts the table plans, as power.R chose them."""
+    if result["contrasts"]:
+        return "The contrasts planned are those named. "
+    if result["effects"]:
+        return "The contrasts planned are those stated. "
+    if result["pairs"] == "all":
+        return "Every pair of each model's conditions is planned. "
+    return "Each condition is planned against the model's reference (`--power-pairs all`: every pair). "
 
 
 def model_notes(model):
@@ -203,7 +235,9 @@ def power_figure(result, path):
     import matplotlib.pyplot as plt
     import matplotlib.ticker
     models = [m for m in result["models"] if "skipped" not in m]
-    fig, axes = plt.subplots(1, len(models), figsize=(6.0 * len(models), 4.5), dpi=110, squeeze=False)
+    rows = max(len(m["contrasts"]) for m in models)
+    # The legends go below the panels, where they hide no curve; taller for more contrasts.
+    fig, axes = plt.subplots(1, len(models), figsize=(6.0 * len(models), 4.0 + 0.25 * rows), dpi=110, squeeze=False)
     for ax, model in zip(axes[0], models):
         for k, contrast in enumerate(model["contrasts"]):
             colour = plt.get_cmap("tab10")(k % 10)
@@ -211,7 +245,8 @@ def power_figure(result, path):
             n = [p["n"] for p in curve]
             power = [p["power"] for p in curve]
             errors = [[p["power"] - p["low"] for p in curve], [p["high"] - p["power"] for p in curve]]
-            label = f"{contrast['a']} vs {contrast['b']} (OR {contrast['ratio']:.3g}, {contrast['source']})"
+            ratio = "OR" if model["ratio_name"] == "odds ratio" else "RR"
+            label = f"{contrast['a']} vs {contrast['b']} ({ratio} {contrast['ratio']:.3g}, {contrast['source']})"
             ax.errorbar(n, power, yerr=errors, color=colour, marker="o", markersize=4, capsize=3, label=label)
             if contrast["needed"] is not None:
                 ax.axvline(contrast["needed"], color=colour, linestyle=":", linewidth=1)
@@ -222,7 +257,7 @@ def power_figure(result, path):
         ax.set_xlabel("participants (n)")
         ax.set_ylabel(f"power (Wald z, α = {result['alpha']:g})")
         ax.set_title(model["model"])
-        ax.legend(fontsize=8, loc="lower right")
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.16), frameon=False)
     fig.tight_layout()
-    fig.savefig(path)
+    fig.savefig(path, bbox_inches="tight")
     plt.close(fig)

@@ -90,6 +90,16 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     std::ifstream md(fs::path(out) / "report" / "report.md");
     const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
     EXPECT_TRUE(contains(text, "Planning (shooter)")) << text.substr(0, 2000);
+    // The report opens with the trial-level mixed models and then their sample-size plan by
+    // simulation, which two participants are too few to simulate new ones from: it says so.
+    EXPECT_EQ(text.find("\n## "), text.find("\n## Mixed models, trial by trial")) << text.substr(0, 2000);
+    EXPECT_FALSE(report.at("power").at("available").get<bool>());
+    const std::string plan = report.at("power").at("sentence");
+    EXPECT_EQ(plan.rfind("Sample size by simulation left out: shooter/hit: the pilot has too little data: 2 "
+                         "participants", 0),
+              0u)
+        << plan;
+    EXPECT_TRUE(contains(text, plan)) << text.substr(0, 4000);
 }
 
 // The demo runs a protocol whose conditions the protocol defines (Kim et al.'s late warp) end

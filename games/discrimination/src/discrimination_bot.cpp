@@ -13,17 +13,22 @@ DiscriminationBot::DiscriminationBot(std::uint64_t seed, const DiscriminationPro
       settings_(std::move(settings)),
       questions_(settings_.answerAfterS, kQuestionCursorPixelsPerCount) {}
 
-double DiscriminationBot::pCorrect(const condition::Condition& a, const condition::Condition& b) const {
-    // The dimension the two differ in, and by how much: 0 (a guess) where they do not differ.
+std::optional<DiscriminationBot::Difference> DiscriminationBot::differenceOf(const condition::Condition& a,
+                                                                             const condition::Condition& b) const {
     for (const condition::DimensionSpelling& d : condition::dimensionSpellings()) {
         const double la = condition::levelOf(a, d.dimension, protocol_.refreshHz);
         const double lb = condition::levelOf(b, d.dimension, protocol_.refreshHz);
-        if (la == lb) continue;
-        const double stimulus = std::abs(condition::stimulusOf(d.dimension, la, lb));
-        const Observer& o = settings_.observer;
-        return o.function.probability(stimulus, o.thresholds.at(d.dimension), o.slope, o.lapse);
+        if (la != lb) return Difference{d.dimension, condition::stimulusOf(d.dimension, la, lb)};
     }
-    return settings_.observer.function.guess;
+    return std::nullopt;
+}
+
+double DiscriminationBot::pCorrect(const condition::Condition& a, const condition::Condition& b) const {
+    const Observer& o = settings_.observer;
+    const std::optional<Difference> difference = differenceOf(a, b);
+    if (!difference) return o.function.guess;  // no difference: a guess
+    return o.function.probability(std::abs(difference->stimulus), o.thresholds.at(difference->dimension), o.slope,
+                                  o.lapse);
 }
 
 game::FrameInput DiscriminationBot::next(const game::ShownFrame& shown) {
@@ -32,15 +37,8 @@ game::FrameInput DiscriminationBot::next(const game::ShownFrame& shown) {
         if (choice_ == 0) {
             // The better interval is the one the other is worse than; the observer finds it with
             // its function's probability, decided once per question.
-            int better = 1;
-            for (const condition::DimensionSpelling& d : condition::dimensionSpellings()) {
-                const double a = condition::levelOf(seen_[0], d.dimension, protocol_.refreshHz);
-                const double b = condition::levelOf(seen_[1], d.dimension, protocol_.refreshHz);
-                if (a != b) {
-                    better = condition::stimulusOf(d.dimension, a, b) > 0 ? 1 : 2;
-                    break;
-                }
-            }
+            const std::optional<Difference> difference = differenceOf(seen_[0], seen_[1]);
+            const int better = !difference || difference->stimulus > 0 ? 1 : 2;
             choice_ = random_.uniform() < pCorrect(seen_[0], seen_[1]) ? better : 3 - better;
         }
         input = questions_.answer(shown, choice_);

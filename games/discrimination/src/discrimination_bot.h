@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 
 #include "adaptive/psychometric.h"
 #include "condition/stimulus.h"
@@ -44,6 +45,14 @@ public:
     double pCorrect(const condition::Condition& a, const condition::Condition& b) const;
 
 private:
+    // The first dimension the two conditions differ in, and the stimulus of b against a as the
+    // reference (positive where b is worse); none where they do not differ.
+    struct Difference {
+        condition::Dimension dimension;
+        double stimulus;
+    };
+    std::optional<Difference> differenceOf(const condition::Condition& a, const condition::Condition& b) const;
+
     game::Random random_;
     DiscriminationProtocol protocol_;
     BotSettings settings_;
