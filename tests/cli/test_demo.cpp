@@ -96,7 +96,8 @@ TEST(CliDemo, ATinySimulatedStudyIsRunReplayedExportedAndAnalysed) {
     EXPECT_FALSE(report.at("power").at("available").get<bool>());
     const std::string plan = report.at("power").at("sentence");
     EXPECT_EQ(plan.rfind("Sample size by simulation left out: shooter/hit: the pilot has too little data: 2 "
-                         "participants", 0),
+                         "participants",
+                         0),
               0u)
         << plan;
     EXPECT_TRUE(contains(text, plan)) << text.substr(0, 4000);
