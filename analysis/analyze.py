@@ -456,6 +456,18 @@ def rating_scale(text):
     return low, high
 
 
+def replicates(text):
+    """--power-replicates N, a whole number of at least 1 (power.R's own check, made before any
+    model is fitted)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number of at least 1")
+    return value
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="analyze", description="Sign tests, the matches' tables and figures from "
                                                                  "the CSVs `warplab export` writes.")
@@ -481,7 +493,7 @@ def main(argv=None):
                         help="leave out the trial-level mixed models (R), for a quick look at a large study")
     parser.add_argument("--no-power", action="store_true",
                         help="leave out the sample size by simulation of the mixed models (R; docs/export.md, "
-                             "\"Sample size by simulation\"), which takes about a minute for the demo on 2 cores")
+                             "\"Sample size by simulation\"), which takes about 35 s for the demo on 2 cores")
     # The plan was once asked for by --power; it is made by default now, and the option is kept
     # for the scripts that pass it; left out of --help.
     parser.add_argument("--power", action="store_true", help=argparse.SUPPRESS)
@@ -491,8 +503,9 @@ def main(argv=None):
                              "repeatable")
     parser.add_argument("--power-pairs", choices=power.PAIRS, default=power.PAIRS[0],
                         help="the contrasts planned from the pilot's estimates: each condition against the "
-                             "model's reference (default), or every pair, which takes several times as long")
-    parser.add_argument("--power-replicates", type=int, metavar="N",
+                             "model's reference (default), or every pair, which takes longer (half as long again for "
+                             "the demo)")
+    parser.add_argument("--power-replicates", type=replicates, metavar="N",
                         help=f"simulated studies per number of participants (default {power.REPLICATES})")
     parser.add_argument("--pool-players", action="store_true",
                         help="analyse people and scripted players (bots, simulated participants) together; by "

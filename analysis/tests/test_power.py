@@ -21,6 +21,7 @@ import scipy.stats
 
 ANALYSIS = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ANALYSIS))
+import analyze  # noqa: E402
 from warplab_analysis import power  # noqa: E402
 from warplab_analysis.inputs import BadInput  # noqa: E402
 
@@ -372,3 +373,13 @@ def test_the_python_side_knows_power_r_s_pairs_and_replicates():
     assert re.search(r'^PAIRS <- c\("reference", "all"\)$', source, re.M) and power.PAIRS == ("reference", "all")
     assert re.search(rf"DEFAULTS <- list\(replicates = {power.REPLICATES}L,", source)
     assert re.search(r'pairs = "reference"\)', source)
+
+
+@pytest.mark.parametrize("text", ["0", "-5", "many", "2.5"])
+def test_the_replicates_option_wants_a_whole_number_of_at_least_one(text, tmp_path, capsys):
+    """Refused by analyze's command line, before any model is fitted (exit 2, as argparse's)."""
+    with pytest.raises(SystemExit) as ended:
+        analyze.main([str(tmp_path), "--out", str(tmp_path / "out"), "--power-replicates", text])
+    assert ended.value.code == 2
+    assert f"argument --power-replicates: {text!r} is not a whole number of at least 1" in capsys.readouterr().err
+    assert not (tmp_path / "out").exists()
