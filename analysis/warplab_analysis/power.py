@@ -50,7 +50,7 @@ def run(rds_path, out_json, effects=(), replicates=None, cores=None, rscript=Non
     """Runs power.R on `rds_path`, writing `out_json`; its parsed JSON with `available` True, or
     {"available": False, "sentence": why} when R, a package or the fitted models are missing.
     options: models, contrasts (lists of names and A:B), pairs, n (list), n_min, n_max, trials, seed,
-    alpha, target, optimizer, as power.R's options. Raises BadInput when power.R refuses its input
+    alpha, target, optimizer, nagq, as power.R's options. Raises BadInput when power.R refuses its input
     (an effect naming no model's conditions, effects that contradict each other)."""
     if not os.path.isfile(rds_path):
         return unavailable(f"no mixed models were fitted ({rds_path} is missing).")
